@@ -1,0 +1,739 @@
+//! `inertance check`: the paper's worked examples, reproduced value by value.
+//!
+//! A derivation is a Markdown file in `derivations/`: prose (what the paper says, what was
+//! deduced, why a value differs) around machine-read fenced blocks, in the spirit of PROJ's
+//! `gie` files.
+//!
+//! ````text
+//! ```scene bar                 ← a scene (the TOML schema of `inertance solve`)
+//! name = "…"
+//! …
+//! ```
+//!
+//! ```expect case1 bar          ← a case: its name, then the scene it runs
+//! set contact[0].k = 1         ← optional overrides of scene values (TOML values)
+//! mode = exact                 ← optional: exact | f64 (default: exact when every input is rational)
+//! newton.P1 = 58.07            ← a value as printed in the paper
+//! newton.twist = [0, 0, 3, -0.375, 0, 0]
+//! ```
+//! ````
+//!
+//! **Comparison at the printed precision.** A printed value with d decimals agrees when
+//! |computed − printed| ≤ ½·10⁻ᵈ. A printed integer is a claim of an exact value: in exact
+//! mode it must be equal; in f64 mode it must agree to 10⁻⁹ relative. Angles in degrees are
+//! compared modulo 360°.
+//!
+//! **Known errata.** `derivations/ERRATA.md` holds a table
+//! `| derivation | case | quantity | printed | computed | reason |`. A disagreement listed
+//! there is reported as a known erratum — and the row's `computed` column is itself checked
+//! (at its own printed precision), so ERRATA.md cannot go stale silently. A listed erratum
+//! that in fact agrees, or that names no checked value, fails the check. Any other
+//! disagreement fails.
+//!
+//! Quantity names (i, j count contacts from 1 as the paper does; vector entries from 0):
+//! `det`, `g{i}{j}xx|yx|zx`, `v{i}x0|y0|z0`, `cos_a{i}_0`, `sin_a{i}_0`, `a{i}_0` (before
+//! impact) and, after a `newton.` or `poisson.` prefix, `P{i}`, `P{i}c`, `twist` ([ω; v_C]),
+//! `omega`, `vC`, `v{i}x|y|z`, `cos_a{i}`, `sin_a{i}`, `a{i}`, `Ep`, `dEc`.
+
+use std::collections::{BTreeMap, BTreeSet};
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+use num_rational::BigRational;
+
+use crate::number::{parse_decimal, parse_number};
+use crate::pipeline::{RunError, Solved, run};
+use crate::report::{Report, Value};
+use crate::restitution::Model;
+use crate::scalar::Exact;
+use crate::scene::{Scene, parse_document, set_value};
+
+/// One case of a derivation: a scene, overrides, and the values the paper prints.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Case {
+    /// The case's name, unique in its file.
+    pub name: String,
+    /// The scene block it runs.
+    pub scene: String,
+    /// `set PATH = VALUE` overrides, in order.
+    pub sets: Vec<(String, String)>,
+    /// `Some(true)` for exact, `Some(false)` for f64, `None` for automatic.
+    pub exact: Option<bool>,
+    /// (quantity, printed text, line number).
+    pub expects: Vec<(String, String, usize)>,
+}
+
+/// A parsed derivation file.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Derivation {
+    /// The file.
+    pub path: PathBuf,
+    /// Scene blocks by name: (first line number, TOML text).
+    pub scenes: BTreeMap<String, (usize, String)>,
+    /// The cases, in file order.
+    pub cases: Vec<Case>,
+}
+
+/// A malformed derivation or errata file (an authoring error, not a disagreement).
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[error("{file}:{line}: {message}")]
+pub struct FormatError {
+    /// The file.
+    pub file: String,
+    /// 1-based line.
+    pub line: usize,
+    /// What is wrong.
+    pub message: String,
+}
+
+impl Derivation {
+    /// Parse the derivation at `path`.
+    pub fn load(path: &Path) -> Result<Derivation, FormatError> {
+        let text = std::fs::read_to_string(path).map_err(|e| FormatError {
+            file: path.display().to_string(),
+            line: 0,
+            message: format!("cannot read: {e}"),
+        })?;
+        Derivation::parse(&text, path)
+    }
+
+    /// Parse derivation text.
+    pub fn parse(text: &str, path: &Path) -> Result<Derivation, FormatError> {
+        let file = path.display().to_string();
+        let err = |line: usize, message: String| FormatError {
+            file: file.clone(),
+            line,
+            message,
+        };
+        let mut scenes = BTreeMap::new();
+        let mut cases: Vec<Case> = Vec::new();
+        let lines: Vec<&str> = text.lines().collect();
+        let mut i = 0;
+        while i < lines.len() {
+            let Some(info) = lines[i].trim_start().strip_prefix("```") else {
+                i += 1;
+                continue;
+            };
+            let words: Vec<&str> = info.split_whitespace().collect();
+            let start = i + 1;
+            let mut end = start;
+            while end < lines.len() && !lines[end].trim_start().starts_with("```") {
+                end += 1;
+            }
+            if end == lines.len() {
+                return Err(err(i + 1, "unclosed code block".into()));
+            }
+            let body = &lines[start..end];
+            match words.as_slice() {
+                ["scene", name] => {
+                    if scenes
+                        .insert(name.to_string(), (start + 1, body.join("\n")))
+                        .is_some()
+                    {
+                        return Err(err(i + 1, format!("scene `{name}` defined twice")));
+                    }
+                }
+                ["expect", case, scene] => {
+                    if cases.iter().any(|c| c.name == *case) {
+                        return Err(err(i + 1, format!("case `{case}` defined twice")));
+                    }
+                    let mut c = Case {
+                        name: case.to_string(),
+                        scene: scene.to_string(),
+                        sets: Vec::new(),
+                        exact: None,
+                        expects: Vec::new(),
+                    };
+                    for (k, raw) in body.iter().enumerate() {
+                        let line_no = start + k + 1;
+                        let line = raw.split('#').next().unwrap_or("").trim();
+                        if line.is_empty() {
+                            continue;
+                        }
+                        let Some((lhs, rhs)) = line.split_once('=') else {
+                            return Err(err(line_no, format!("expected `name = value`: `{line}`")));
+                        };
+                        let (lhs, rhs) = (lhs.trim(), rhs.trim());
+                        if let Some(path) = lhs.strip_prefix("set ") {
+                            c.sets.push((path.trim().to_string(), rhs.to_string()));
+                        } else if lhs == "mode" {
+                            c.exact = match rhs {
+                                "exact" => Some(true),
+                                "f64" => Some(false),
+                                _ => {
+                                    return Err(err(
+                                        line_no,
+                                        format!("mode must be exact or f64, not `{rhs}`"),
+                                    ));
+                                }
+                            };
+                        } else {
+                            c.expects.push((lhs.to_string(), rhs.to_string(), line_no));
+                        }
+                    }
+                    cases.push(c);
+                }
+                ["scene", ..] | ["expect", ..] => {
+                    return Err(err(
+                        i + 1,
+                        format!("expected ```scene NAME or ```expect CASE SCENE, got ```{info}"),
+                    ));
+                }
+                _ => {}
+            }
+            i = end + 1;
+        }
+        for c in &cases {
+            if !scenes.contains_key(&c.scene) {
+                return Err(err(
+                    0,
+                    format!(
+                        "case `{}` runs scene `{}`, which is not defined",
+                        c.name, c.scene
+                    ),
+                ));
+            }
+        }
+        Ok(Derivation {
+            path: path.to_path_buf(),
+            scenes,
+            cases,
+        })
+    }
+}
+
+/// One row of ERRATA.md.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Erratum {
+    /// Derivation file name (e.g. `example-3-planar-bar.md`).
+    pub derivation: String,
+    /// Case name.
+    pub case: String,
+    /// Quantity name.
+    pub quantity: String,
+    /// The value the paper prints.
+    pub printed: String,
+    /// The value computed (at the precision written).
+    pub computed: String,
+    /// Why they differ.
+    pub reason: String,
+}
+
+/// Read the errata table of `ERRATA.md`.
+pub fn load_errata(path: &Path) -> Result<Vec<Erratum>, FormatError> {
+    let file = path.display().to_string();
+    let text = match std::fs::read_to_string(path) {
+        Ok(t) => t,
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(Vec::new()),
+        Err(e) => {
+            return Err(FormatError {
+                file,
+                line: 0,
+                message: format!("cannot read: {e}"),
+            });
+        }
+    };
+    let mut out = Vec::new();
+    let mut in_table = false;
+    for (k, line) in text.lines().enumerate() {
+        let t = line.trim();
+        if !t.starts_with('|') {
+            in_table = false;
+            continue;
+        }
+        let cells: Vec<String> = t
+            .trim_matches('|')
+            .split('|')
+            .map(|c| c.trim().trim_matches('`').to_string())
+            .collect();
+        if cells.first().map(String::as_str) == Some("derivation") {
+            in_table = true;
+            continue;
+        }
+        if !in_table
+            || cells
+                .iter()
+                .all(|c| c.chars().all(|ch| ch == '-' || ch == ':'))
+        {
+            continue;
+        }
+        if cells.len() != 6 {
+            return Err(FormatError {
+                file: file.clone(),
+                line: k + 1,
+                message: "an errata row has six cells: derivation | case | quantity | printed | computed | reason".into(),
+            });
+        }
+        let [derivation, case, quantity, printed, computed, reason]: [String; 6] =
+            cells.try_into().map_err(|_| FormatError {
+                file: file.clone(),
+                line: k + 1,
+                message: "bad row".into(),
+            })?;
+        out.push(Erratum {
+            derivation,
+            case,
+            quantity,
+            printed,
+            computed,
+            reason,
+        });
+    }
+    Ok(out)
+}
+
+/// The verdict on one printed value.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Verdict {
+    /// Reproduced at the printed precision.
+    Reproduced,
+    /// Disagrees, and ERRATA.md says why.
+    KnownErratum(String),
+    /// Disagrees (or an errata row is wrong): the check fails.
+    Fail(String),
+}
+
+/// One checked value.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Line {
+    /// Case name.
+    pub case: String,
+    /// Quantity name.
+    pub quantity: String,
+    /// As printed in the paper.
+    pub printed: String,
+    /// As computed (exact text when exact).
+    pub computed: String,
+    /// The verdict.
+    pub verdict: Verdict,
+}
+
+/// The outcome of checking one derivation file.
+#[derive(Clone, Debug, PartialEq)]
+pub struct FileResult {
+    /// The file.
+    pub path: PathBuf,
+    /// Per case: (name, scalar used, energy identity held for every model).
+    pub cases: Vec<(String, &'static str, bool)>,
+    /// Every value checked.
+    pub lines: Vec<Line>,
+}
+
+/// Check every derivation in `dir` against `dir/ERRATA.md`.
+pub fn check_dir(dir: &Path) -> Result<Vec<FileResult>, FormatError> {
+    let mut files: Vec<PathBuf> = std::fs::read_dir(dir)
+        .map_err(|e| FormatError {
+            file: dir.display().to_string(),
+            line: 0,
+            message: format!("cannot read the directory: {e}"),
+        })?
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| {
+            p.extension().is_some_and(|x| x == "md")
+                && p.file_name()
+                    .is_some_and(|n| n != "ERRATA.md" && n != "README.md")
+        })
+        .collect();
+    files.sort();
+    let errata = load_errata(&dir.join("ERRATA.md"))?;
+    let mut results = Vec::new();
+    let mut used = BTreeSet::new();
+    for f in &files {
+        let d = Derivation::load(f)?;
+        results.push(check_derivation(&d, &errata, &mut used)?);
+    }
+    // Errata rows that name nothing that was checked are stale.
+    for (k, e) in errata.iter().enumerate() {
+        if !used.contains(&k) {
+            let name = e.derivation.clone();
+            let line = Line {
+                case: e.case.clone(),
+                quantity: e.quantity.clone(),
+                printed: e.printed.clone(),
+                computed: "—".into(),
+                verdict: Verdict::Fail(
+                    "ERRATA.md lists this value, but no derivation checks it".into(),
+                ),
+            };
+            match results.iter_mut().find(|r| {
+                r.path
+                    .file_name()
+                    .is_some_and(|n| n.to_string_lossy() == name)
+            }) {
+                Some(r) => r.lines.push(line),
+                None => results.push(FileResult {
+                    path: dir.join(&name),
+                    cases: Vec::new(),
+                    lines: vec![line],
+                }),
+            }
+        }
+    }
+    Ok(results)
+}
+
+/// Check one derivation; `used` collects the indices of the errata rows that matched.
+pub fn check_derivation(
+    d: &Derivation,
+    errata: &[Erratum],
+    used: &mut BTreeSet<usize>,
+) -> Result<FileResult, FormatError> {
+    let file = d.path.display().to_string();
+    let fname = d
+        .path
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    let mut result = FileResult {
+        path: d.path.clone(),
+        cases: Vec::new(),
+        lines: Vec::new(),
+    };
+    for case in &d.cases {
+        let (line0, text) = &d.scenes[&case.scene];
+        let label = format!("{file}#{}", case.name);
+        let fmt_err = |message: String| FormatError {
+            file: file.clone(),
+            line: *line0,
+            message,
+        };
+        let mut doc = parse_document(text, &label).map_err(|e| fmt_err(e.to_string()))?;
+        for (path, value) in &case.sets {
+            set_value(&mut doc, path, value)
+                .map_err(|e| fmt_err(format!("case `{}`: set {e}", case.name)))?;
+        }
+        let scene = Scene::from_document(&doc, &label).map_err(|e| fmt_err(e.to_string()))?;
+        let exact = case.exact.unwrap_or_else(|| scene.is_rational());
+        let solved: Result<Solved, RunError> = if exact {
+            run::<Exact>(&scene, None)
+        } else {
+            run::<f64>(&scene, None)
+        };
+        let solved = solved.map_err(|e| fmt_err(format!("case `{}`: {e}", case.name)))?;
+        result.cases.push((
+            case.name.clone(),
+            solved.report.scalar,
+            solved.energy_identity.iter().all(|&b| b),
+        ));
+        for (quantity, printed, line_no) in &case.expects {
+            let values = lookup(&solved.report, quantity).map_err(|m| FormatError {
+                file: file.clone(),
+                line: *line_no,
+                message: m,
+            })?;
+            let printed_items = split_printed(printed);
+            if printed_items.len() != values.len() {
+                return Err(FormatError {
+                    file: file.clone(),
+                    line: *line_no,
+                    message: format!(
+                        "`{quantity}` has {} entries, the expectation {}",
+                        values.len(),
+                        printed_items.len()
+                    ),
+                });
+            }
+            let angle = is_angle(quantity);
+            for (k, (p, v)) in printed_items.iter().zip(&values).enumerate() {
+                let q = if values.len() > 1 || printed.trim_start().starts_with('[') {
+                    format!("{quantity}[{k}]")
+                } else {
+                    quantity.clone()
+                };
+                let agreed = agrees(p, v, angle).map_err(|m| FormatError {
+                    file: file.clone(),
+                    line: *line_no,
+                    message: m,
+                })?;
+                let computed = describe(v, p);
+                let listed = errata
+                    .iter()
+                    .enumerate()
+                    .find(|(_, e)| e.derivation == fname && e.case == case.name && e.quantity == q);
+                let verdict = match (agreed, listed) {
+                    (true, None) => Verdict::Reproduced,
+                    (true, Some((k, _))) => {
+                        used.insert(k);
+                        Verdict::Fail("listed in ERRATA.md, but the value is in fact reproduced: remove the row".into())
+                    }
+                    (false, None) => Verdict::Fail(
+                        "disagrees with the computation and is not in ERRATA.md".into(),
+                    ),
+                    (false, Some((k, e))) => {
+                        used.insert(k);
+                        if e.printed != *p {
+                            Verdict::Fail(format!(
+                                "ERRATA.md says the paper prints {}, the derivation {}",
+                                e.printed, p
+                            ))
+                        } else if !agrees(&e.computed, v, angle).unwrap_or(false) {
+                            Verdict::Fail(format!(
+                                "ERRATA.md's computed value {} is not what is computed",
+                                e.computed
+                            ))
+                        } else {
+                            Verdict::KnownErratum(e.reason.clone())
+                        }
+                    }
+                };
+                result.lines.push(Line {
+                    case: case.name.clone(),
+                    quantity: q,
+                    printed: p.clone(),
+                    computed,
+                    verdict,
+                });
+            }
+        }
+    }
+    Ok(result)
+}
+
+fn is_angle(q: &str) -> bool {
+    let name = q.rsplit('.').next().unwrap_or(q);
+    name.starts_with('a') && name[1..].chars().next().is_some_and(|c| c.is_ascii_digit())
+}
+
+/// `[a, b, c]` → the items; a scalar → itself.
+fn split_printed(p: &str) -> Vec<String> {
+    let t = p.trim();
+    match t.strip_prefix('[').and_then(|s| s.strip_suffix(']')) {
+        Some(inner) => inner.split(',').map(|s| s.trim().to_string()).collect(),
+        None => vec![t.to_string()],
+    }
+}
+
+/// Does the computed `v` agree with the printed text `p` at the printed precision?
+fn agrees(p: &str, v: &Value, angle: bool) -> Result<bool, String> {
+    let text = p.trim();
+    let Some(decimals) = printed_decimals(text) else {
+        return Err(format!("`{text}` is not a printed decimal number"));
+    };
+    let printed = parse_number(text).map_err(|e| e.to_string())?;
+    let pv = printed.approx;
+    let mut diff = v.f64 - pv;
+    if angle {
+        diff = (diff + 180.0).rem_euclid(360.0) - 180.0;
+    }
+    if decimals == 0 && !angle {
+        // A printed integer claims an exact value.
+        return Ok(match (&v.exact, &printed.exact) {
+            (Some(t), Ok(q)) => {
+                parse_number(t).ok().and_then(|n| n.exact.ok()).as_ref() == Some(q)
+                    || (t.contains("sqrt") && diff.abs() <= 1e-12 * pv.abs().max(1.0))
+            }
+            _ => diff.abs() <= 1e-9 * pv.abs().max(1.0),
+        });
+    }
+    let half_unit = 0.5 * 10f64.powi(-(decimals as i32));
+    Ok(diff.abs() <= half_unit * (1.0 + 1e-9))
+}
+
+/// Number of decimals printed, `None` if not a plain decimal.
+fn printed_decimals(t: &str) -> Option<usize> {
+    parse_decimal(t)?;
+    if t.contains(['e', 'E']) {
+        return None;
+    }
+    Some(t.split_once('.').map_or(0, |(_, frac)| frac.len()))
+}
+
+/// The computed value as shown next to a printed one: rounded to one more decimal than
+/// printed, plus the exact text when there is one.
+fn describe(v: &Value, printed: &str) -> String {
+    let d = printed_decimals(printed.trim()).unwrap_or(6) + 1;
+    let approx = format!("{:.*}", d.min(15), v.f64);
+    match &v.exact {
+        Some(t) if *t != approx => format!("{approx} (= {t})"),
+        _ => approx,
+    }
+}
+
+/// The reported value(s) of a quantity.
+pub fn lookup(r: &Report, q: &str) -> Result<Vec<Value>, String> {
+    let unknown = || format!("unknown quantity `{q}` (see `inertance check --help` for the names)");
+    let n = r.inertance.len();
+    let idx = |s: &str| -> Option<usize> {
+        s.parse::<usize>()
+            .ok()
+            .filter(|&i| i >= 1 && i <= n)
+            .map(|i| i - 1)
+    };
+    let axis = |c: char| "xyz".find(c);
+    let (model, name) = match q.split_once('.') {
+        Some((m, rest)) => (Some(Model::from_name(m).ok_or_else(unknown)?), rest),
+        None => (None, q),
+    };
+    match model {
+        None => {
+            if name == "det" {
+                return Ok(vec![r.det.clone()]);
+            }
+            if let Some(rest) = name.strip_prefix('g') {
+                // g{i}{j}{a}x with single-digit i, j.
+                let c: Vec<char> = rest.chars().collect();
+                if c.len() == 4 && c[3] == 'x' {
+                    let (i, j, a) = (idx(&c[0].to_string()), idx(&c[1].to_string()), axis(c[2]));
+                    if let (Some(i), Some(j), Some(a)) = (i, j, a) {
+                        let m = [&r.inertance, &r.inertance_yx, &r.inertance_zx][a];
+                        return Ok(vec![m[i][j].clone()]);
+                    }
+                }
+            }
+            if let Some(rest) = name.strip_suffix("_0") {
+                return angle_value(&r.contacts_before, rest, &idx).ok_or_else(unknown);
+            }
+            if let Some(rest) = name.strip_prefix('v').and_then(|s| s.strip_suffix('0')) {
+                let (i, a) = rest.split_at(rest.len().saturating_sub(1));
+                if let (Some(i), Some(a)) = (idx(i), a.chars().next().and_then(axis)) {
+                    return Ok(vec![r.contacts_before[i].components[a].clone()]);
+                }
+            }
+            Err(unknown())
+        }
+        Some(m) => {
+            let mr = r
+                .model(m)
+                .ok_or_else(|| format!("`{q}`: the {m} model was not solved"))?;
+            match name {
+                "Ep" => return Ok(vec![mr.lost_velocity_energy.clone()]),
+                "dEc" => return Ok(vec![mr.kinetic_energy_loss.clone()]),
+                "omega" => return Ok(mr.angular_velocity.to_vec()),
+                "vC" => return Ok(mr.velocity.to_vec()),
+                "twist" => {
+                    return Ok(mr
+                        .angular_velocity
+                        .iter()
+                        .chain(&mr.velocity)
+                        .cloned()
+                        .collect());
+                }
+                _ => {}
+            }
+            if let Some(rest) = name.strip_prefix('P') {
+                if let Some(i) = rest.strip_suffix('c').and_then(idx) {
+                    let c = mr.compression_impulses.as_ref().ok_or_else(|| {
+                        format!("`{q}`: compression impulses exist for Poisson only")
+                    })?;
+                    return Ok(vec![c[i].clone()]);
+                }
+                if let Some(i) = idx(rest) {
+                    return Ok(vec![mr.impulses[i].clone()]);
+                }
+            }
+            if let Some(v) = angle_value(&mr.contacts, name, &idx) {
+                return Ok(v);
+            }
+            if let Some(rest) = name.strip_prefix('v') {
+                let (i, a) = rest.split_at(rest.len().saturating_sub(1));
+                if let (Some(i), Some(a)) = (idx(i), a.chars().next().and_then(axis)) {
+                    return Ok(vec![mr.contacts[i].components[a].clone()]);
+                }
+            }
+            Err(unknown())
+        }
+    }
+}
+
+/// `cos_a{i}`, `sin_a{i}`, `a{i}` of a list of point velocities.
+fn angle_value(
+    points: &[crate::report::PointVelocity],
+    name: &str,
+    idx: &dyn Fn(&str) -> Option<usize>,
+) -> Option<Vec<Value>> {
+    let (kind, i) = if let Some(i) = name.strip_prefix("cos_a") {
+        (0, i)
+    } else if let Some(i) = name.strip_prefix("sin_a") {
+        (1, i)
+    } else {
+        (2, name.strip_prefix('a')?)
+    };
+    let a = points.get(idx(i)?)?.angle.as_ref();
+    let v = match (kind, a) {
+        (_, None) => Value {
+            f64: f64::NAN,
+            exact: Some("undefined (no tangential velocity)".into()),
+        },
+        (0, Some(a)) => a.cos.clone(),
+        (1, Some(a)) => a.sin.clone(),
+        (_, Some(a)) => Value {
+            f64: a.degrees,
+            exact: None,
+        },
+    };
+    Some(vec![v])
+}
+
+/// Render the results as the `check` report; returns the text and whether everything passed.
+pub fn render(results: &[FileResult]) -> (String, bool) {
+    let mut out = String::new();
+    let (mut ok, mut errata, mut fail, mut identity_fail) = (0, 0, 0, 0);
+    for r in results {
+        let _ = writeln!(out, "{}", r.path.display());
+        for (case, scalar, identity) in &r.cases {
+            let _ = writeln!(
+                out,
+                "  case {case} [{scalar}]: energy identity (eq. 34) {}",
+                if *identity { "holds" } else { "FAILS" }
+            );
+            if !identity {
+                identity_fail += 1;
+            }
+            for l in r.lines.iter().filter(|l| &l.case == case) {
+                let (tag, note) = match &l.verdict {
+                    Verdict::Reproduced => {
+                        ok += 1;
+                        ("ok     ", String::new())
+                    }
+                    Verdict::KnownErratum(why) => {
+                        errata += 1;
+                        ("erratum", format!("  — {why}"))
+                    }
+                    Verdict::Fail(why) => {
+                        fail += 1;
+                        ("FAIL   ", format!("  — {why}"))
+                    }
+                };
+                let _ = writeln!(
+                    out,
+                    "    {tag} {:<16} printed {:<12} computed {}{note}",
+                    l.quantity, l.printed, l.computed
+                );
+            }
+        }
+        for l in r
+            .lines
+            .iter()
+            .filter(|l| !r.cases.iter().any(|c| c.0 == l.case))
+        {
+            fail += 1;
+            let _ = writeln!(
+                out,
+                "    FAIL    {:<16} case {}  — {}",
+                l.quantity,
+                l.case,
+                match &l.verdict {
+                    Verdict::Fail(w) | Verdict::KnownErratum(w) => w.as_str(),
+                    Verdict::Reproduced => "",
+                }
+            );
+        }
+    }
+    let _ = writeln!(
+        out,
+        "\n{} values checked: {ok} reproduced, {errata} known errata (derivations/ERRATA.md), {fail} failed{}",
+        ok + errata + fail,
+        if identity_fail > 0 {
+            format!("; energy identity failed in {identity_fail} cases")
+        } else {
+            String::new()
+        }
+    );
+    let passed = fail == 0 && identity_fail == 0;
+    (out, passed)
+}
+
+/// Exact rational of a printed value, for tests.
+pub fn printed_value(t: &str) -> Option<BigRational> {
+    parse_decimal(t)
+}

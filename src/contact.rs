@@ -1,0 +1,255 @@
+//! Contacts and their local frames A_i x_i y_i z_i (eq. 2–4 and §12, eq. 112–123).
+//!
+//! **No square root.** The axes are kept as the (generally non-unit) directions they are
+//! built from: x̂_i = n_i as given, ŷ_i, ẑ_i as below. With E-hat the screw of an unnormalised
+//! axis, every quantity of the paper follows from a hatted one by a norm:
+//!
+//! ```text
+//! v_ix = v̂_ix / |x̂_i|,   P_i = P̂_i |x̂_i|,   g_ij = ĝ_ij / (|x̂_i| |x̂_j|)
+//! ```
+//!
+//! and the laws (eq. 14, 21–23) are invariant under this scaling, so the solve runs on hatted
+//! quantities in any field and the norms are applied only when results are reported, as
+//! exact surds q·√r ([`Surd`]) in exact mode. Velocities after impact and both energies never
+//! involve a norm and are exact rationals whenever the inputs are.
+//!
+//! **Tangent axes.** If the contact gives a tangent y_i (it must be perpendicular to n_i), then
+//! ŷ_i = y_i and ẑ_i = x̂_i × ŷ_i. Otherwise §12 builds them from the velocity v_A of the
+//! contact point before impact: ẑ_i = n_i × v_A (eq. 113) and ŷ_i = ẑ_i × n_i (eq. 120), so
+//! that ŷ_i points along the tangential velocity and v_iz⁰ = 0 (Remark 3). When the tangential
+//! velocity is zero (n_i × v_A = 0), the fallback is deterministic: ẑ_i = n_i × e_k, where e_k
+//! is the coordinate axis least aligned with n_i (smallest |n_k|, lowest k on ties).
+
+use crate::scalar::Scalar;
+use crate::screw::{Screw, Vec3, dot, norm2};
+
+/// One contact as given: the point A_i, the outward normal n_i (axis A_i x_i; need not be a
+/// unit vector), an optional tangent axis y_i, and the restitution coefficients.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Contact<T: Scalar> {
+    /// Position of A_i from C, body axes.
+    pub point: Vec3<T>,
+    /// Outward normal of the body at A_i: the direction of A_i x_i.
+    pub normal: Vec3<T>,
+    /// The axis A_i y_i, if imposed.
+    pub tangent: Option<Vec3<T>>,
+    /// Newton's coefficient k_i^N (eq. 14).
+    pub k_newton: T,
+    /// Poisson's coefficient k_i^P (eq. 23).
+    pub k_poisson: T,
+}
+
+/// How the tangent axis y_i of a frame was chosen.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum TangentRule {
+    /// Given in the scene.
+    Given,
+    /// Along the tangential velocity of the contact point before impact (§12).
+    Velocity,
+    /// Tangential velocity zero: ẑ = n × e_k with this coordinate axis k (0 = x, 1 = y, 2 = z).
+    Fallback(usize),
+}
+
+/// A contact's frame as three unnormalised axis screws and their squared norms.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ContactFrame<T: Scalar> {
+    /// {Ê_x}, {Ê_y}, {Ê_z}: screws of the unnormalised axes x̂, ŷ, ẑ through A_i.
+    pub axes: [Screw<T>; 3],
+    /// |x̂|², |ŷ|², |ẑ|².
+    pub norm2: [T; 3],
+    /// How ŷ was chosen.
+    pub rule: TangentRule,
+}
+
+/// A contact whose imposed tangent is not perpendicular to its normal.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[error("contact {index}: the tangent is not perpendicular to the normal (n·y = {dot})")]
+pub struct TangentNotPerpendicular {
+    /// The contact's index (0-based).
+    pub index: usize,
+    /// n·y, as f64, for the message.
+    pub dot: f64,
+}
+
+impl<T: Scalar> ContactFrame<T> {
+    /// Build the frame of `contact` (number `index`) for a body moving with the twist
+    /// `v0` = [ω⁰; v_C⁰] before impact.
+    pub fn new(
+        index: usize,
+        contact: &Contact<T>,
+        v0: &Screw<T>,
+    ) -> Result<Self, TangentNotPerpendicular> {
+        let x = contact.normal.clone();
+        let nx2 = norm2(&x);
+        let (y, rule) = match &contact.tangent {
+            Some(t) => {
+                let d = dot(&x, t);
+                let reference = nx2.clone() * norm2(t);
+                if !(d.clone() * &d).is_negligible(&reference, 3) {
+                    return Err(TangentNotPerpendicular {
+                        index,
+                        dot: d.to_f64(),
+                    });
+                }
+                (t.clone(), TangentRule::Given)
+            }
+            None => {
+                // eq. 112: velocity of A_i; eq. 113: n × v_A.
+                let va = v0.bottom() + v0.top().cross(&contact.point);
+                let z = x.cross(&va);
+                let reference = nx2.clone() * norm2(&va);
+                if norm2(&z).is_negligible(&reference, 3) {
+                    let k = least_aligned_axis(&x);
+                    let mut e = Vec3::<T>::zeros();
+                    e[k] = T::one();
+                    (x.cross(&e).cross(&x), TangentRule::Fallback(k))
+                } else {
+                    (z.cross(&x), TangentRule::Velocity)
+                }
+            }
+        };
+        let z = x.cross(&y);
+        let norm2 = [nx2, norm2(&y), norm2(&z)];
+        let axes = [
+            Screw::axis(&contact.point, &x),
+            Screw::axis(&contact.point, &y),
+            Screw::axis(&contact.point, &z),
+        ];
+        Ok(ContactFrame { axes, norm2, rule })
+    }
+
+    /// The hatted velocity components (Ê_x, Ê_y, Ê_z)·{v} of the contact point (eq. 8).
+    pub fn velocity(&self, v: &Screw<T>) -> [T; 3] {
+        [
+            self.axes[0].reciprocal(v),
+            self.axes[1].reciprocal(v),
+            self.axes[2].reciprocal(v),
+        ]
+    }
+}
+
+/// The index of the coordinate axis least aligned with `n` (smallest |n_k|, lowest k on ties).
+fn least_aligned_axis<T: Scalar>(n: &Vec3<T>) -> usize {
+    let mut k = 0;
+    for i in 1..3 {
+        if n[k].abs_gt(&n[i]) {
+            k = i;
+        }
+    }
+    k
+}
+
+/// A value q·√r with q, r in the scalar type (r ≥ 0): how a quantity that involves an axis
+/// norm is reported. For exact types it renders canonically (`3/17*sqrt(17)`); for floats it
+/// is evaluated.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Surd<T: Scalar> {
+    /// q.
+    pub coeff: T,
+    /// r ≥ 0.
+    pub radicand: T,
+}
+
+impl<T: Scalar> Surd<T> {
+    /// A rational value (r = 1).
+    pub fn rational(q: T) -> Self {
+        Surd {
+            coeff: q,
+            radicand: T::one(),
+        }
+    }
+
+    /// raw · |a|^power for an axis with |a|² = `norm2`: raw·√n² for power +1, raw/√n² =
+    /// (raw/n²)·√n² for power −1.
+    pub fn scaled(raw: &T, norm2: &T, power: i32) -> Self {
+        match power {
+            1 => Surd {
+                coeff: raw.clone(),
+                radicand: norm2.clone(),
+            },
+            -1 => Surd {
+                coeff: raw.clone() / norm2,
+                radicand: norm2.clone(),
+            },
+            _ => unreachable!("only ±1 powers of a norm occur"),
+        }
+    }
+
+    /// The value in f64.
+    pub fn to_f64(&self) -> f64 {
+        match (self.coeff.to_rational(), self.radicand.to_rational()) {
+            (Some(q), Some(r)) => crate::number::surd_to_f64(&q, &r),
+            _ => self.coeff.to_f64() * self.radicand.to_f64().sqrt(),
+        }
+    }
+
+    /// The exact text `p/q` or `c*sqrt(r)`, for exact types.
+    pub fn exact_text(&self) -> Option<String> {
+        let (q, r) = (self.coeff.to_rational()?, self.radicand.to_rational()?);
+        Some(crate::number::format_surd(&q, &r))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scalar::{Exact, int};
+
+    fn v(x: i64, y: i64, z: i64) -> Vec3<Exact> {
+        Vec3::new(int(x), int(y), int(z))
+    }
+
+    fn contact(p: Vec3<Exact>, n: Vec3<Exact>, t: Option<Vec3<Exact>>) -> Contact<Exact> {
+        Contact {
+            point: p,
+            normal: n,
+            tangent: t,
+            k_newton: int(0),
+            k_poisson: int(0),
+        }
+    }
+
+    #[test]
+    fn velocity_rule_reproduces_example_8() {
+        // §13: A_1 = (R,0,0), A_2 = (0,R,0), v_C⁰ = (v⁰, 2v⁰, 0), ω⁰ = 0 (R = 1, v⁰ = 1).
+        let v0 = Screw::new(v(0, 0, 0), v(1, 2, 0));
+        let f1 = ContactFrame::new(0, &contact(v(1, 0, 0), v(1, 0, 0), None), &v0).unwrap();
+        let f2 = ContactFrame::new(1, &contact(v(0, 1, 0), v(0, 1, 0), None), &v0).unwrap();
+        // The paper: y_1 ∝ (0,1,0), z_1 = (0,0,1); y_2 ∝ (1,0,0), z_2 = (0,0,−1).
+        assert_eq!(
+            f1.axes[1].top() / f1.norm2[1].clone(),
+            v(0, 1, 0) / int::<Exact>(2)
+        );
+        assert_eq!(f2.axes[2].top(), v(0, 0, -1));
+        assert_eq!(f2.axes[1].top(), v(1, 0, 0));
+        assert_eq!(f1.rule, TangentRule::Velocity);
+        // Remark 3: v_iz⁰ = 0 by construction.
+        assert_eq!(f1.velocity(&v0)[2], int(0));
+        assert_eq!(f2.velocity(&v0)[2], int(0));
+    }
+
+    #[test]
+    fn zero_tangential_velocity_falls_back_deterministically() {
+        let v0 = Screw::new(v(0, 0, 0), v(3, 0, 0));
+        let f = ContactFrame::new(0, &contact(v(1, 0, 0), v(2, 0, 0), None), &v0).unwrap();
+        assert_eq!(f.rule, TangentRule::Fallback(1));
+        // ẑ = n × e_y ∝ e_z, ŷ = ẑ × n ∝ e_y: a right-handed orthogonal frame.
+        assert_eq!(dot(&f.axes[0].top(), &f.axes[1].top()), int(0));
+        assert_eq!(f.axes[0].top().cross(&f.axes[1].top()), f.axes[2].top());
+    }
+
+    #[test]
+    fn skew_tangent_is_refused() {
+        let v0 = Screw::zero();
+        let err = ContactFrame::new(3, &contact(v(0, 0, 0), v(1, 0, 0), Some(v(1, 1, 0))), &v0);
+        assert_eq!(err, Err(TangentNotPerpendicular { index: 3, dot: 1.0 }));
+    }
+
+    #[test]
+    fn non_unit_normal_norms() {
+        let v0 = Screw::new(v(0, 0, 1), v(1, 1, 0));
+        let f = ContactFrame::new(0, &contact(v(1, 1, 0), v(4, 1, 0), None), &v0).unwrap();
+        assert_eq!(f.norm2[0], int(17));
+        assert_eq!(f.norm2[2], f.norm2[0].clone() * &f.norm2[1]);
+    }
+}

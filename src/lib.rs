@@ -1,0 +1,37 @@
+//! # inertance
+//!
+//! The simultaneous frictionless collision of a rigid body at N points, after Dragna, Pandrea
+//! and Stănescu, *Simultaneous Collision of the Rigid Body at Two Points*, Symmetry 13 (2021)
+//! 1924 — "the paper"; equation numbers in the docs are the paper's.
+//!
+//! ## Notation (used everywhere)
+//!
+//! * Cxyz: central principal axes of the body; m, J = diag(J_x, J_y, J_z).
+//! * Twist {v} = [ω; v_C]; axis screw {E} = [u; r × u] (eq. 3–4); η = [[0, I], [I, 0]] (eq. 5)
+//!   and the mixed product {a}ᵀ η {b} (eq. 6).
+//! * [M] = [[0, m I], [J, 0]] and [M]⁻¹ = [[0, J⁻¹], [m⁻¹ I, 0]] (eq. 9).
+//! * Inertances g_ij,ab = {E_ia}ᵀ η [M]⁻¹ {E_jb} (eq. 12); G = [g_ij,xx]; Δ = det G.
+//! * P_i: the impulse at A_i, acting along −x_i (x_i is the outward normal, eq. 10).
+//!
+//! ## Modules, one idea each
+//!
+//! [`scalar`] (the field a solve runs in) · [`number`] (exact numbers as written) ·
+//! [`linalg`] (field-only LDLᵀ) · [`screw`] (Plücker coordinates) · [`body`] (mass matrix,
+//! mobility) · [`contact`] (contact frames, §12) · [`restitution`] (Newton, Poisson) ·
+//! [`solve`] (the collision) · [`scene`] (TOML scenes) · [`report`] (tables and JSON) ·
+//! [`check`] (the paper's worked examples, checked).
+
+#![deny(missing_docs)]
+
+pub mod body;
+pub mod check;
+pub mod contact;
+pub mod linalg;
+pub mod number;
+pub mod pipeline;
+pub mod report;
+pub mod restitution;
+pub mod scalar;
+pub mod scene;
+pub mod screw;
+pub mod solve;

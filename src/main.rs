@@ -1,0 +1,161 @@
+//! The `inertance` command line: a thin layer over the library.
+//!
+//! Exit status: 0 success; 1 `check` found a disagreement not in ERRATA.md; 2 bad input (an
+//! unreadable or invalid scene, a malformed derivation, a bad flag); 3 the collision has no
+//! unique solution (Δ = 0).
+
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use clap::{Parser, Subcommand, ValueEnum};
+
+use inertance::check;
+use inertance::pipeline::{RunError, run};
+use inertance::restitution::Model;
+use inertance::scalar::Exact;
+use inertance::scene::Scene;
+use inertance::solve::SolveError;
+
+#[derive(Parser)]
+#[command(
+    name = "inertance",
+    version,
+    about = "Simultaneous collision of a rigid body at N points, exact and fast"
+)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Solve a scene: impulses, velocities after impact, energies.
+    Solve {
+        /// The scene file (TOML).
+        scene: PathBuf,
+        /// Compute in exact rationals (every number read exactly as written).
+        #[arg(long)]
+        exact: bool,
+        /// Which restitution model(s); default: the scene's `[solve] models`.
+        #[arg(long, value_enum)]
+        model: Option<ModelArg>,
+        /// Print the JSON report instead of the table.
+        #[arg(long)]
+        json: bool,
+    },
+    /// Reproduce the paper's worked examples in a derivations directory.
+    Check {
+        /// The directory of derivations.
+        #[arg(default_value = "derivations")]
+        dir: PathBuf,
+        /// Print only failures, errata and the summary.
+        #[arg(long, short)]
+        quiet: bool,
+    },
+}
+
+#[derive(Clone, Copy, ValueEnum)]
+enum ModelArg {
+    Newton,
+    Poisson,
+    Both,
+}
+
+fn main() -> ExitCode {
+    let cli = match Cli::try_parse() {
+        Ok(c) => c,
+        Err(e) => {
+            let _ = e.print();
+            return ExitCode::from(if e.use_stderr() { 2 } else { 0 });
+        }
+    };
+    match cli.command {
+        Command::Solve {
+            scene,
+            exact,
+            model,
+            json,
+        } => solve(scene, exact, model, json),
+        Command::Check { dir, quiet } => run_check(dir, quiet),
+    }
+}
+
+fn solve(path: PathBuf, exact: bool, model: Option<ModelArg>, json: bool) -> ExitCode {
+    let scene = match Scene::load(&path) {
+        Ok(s) => s,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return ExitCode::from(2);
+        }
+    };
+    let models: Option<Vec<Model>> = model.map(|m| match m {
+        ModelArg::Newton => vec![Model::Newton],
+        ModelArg::Poisson => vec![Model::Poisson],
+        ModelArg::Both => Model::ALL.to_vec(),
+    });
+    let solved = if exact {
+        run::<Exact>(&scene, models.as_deref())
+    } else {
+        run::<f64>(&scene, models.as_deref())
+    };
+    match solved {
+        Ok(s) => {
+            if json {
+                println!(
+                    "{}",
+                    serde_json::to_string_pretty(&s.report.to_json()).unwrap_or_default()
+                );
+            } else {
+                print!("{}", s.report.to_table());
+            }
+            ExitCode::SUCCESS
+        }
+        Err(RunError::Scene(e)) => {
+            eprintln!("error: {e}");
+            ExitCode::from(2)
+        }
+        Err(RunError::Solve(e @ SolveError::Singular { .. })) => {
+            eprintln!(
+                "error: {}: {e}.\n  The simultaneous-collision hypothesis does not fix the impulses here \
+                 (§8 of the paper: Δ = 0, e.g. coincident contact points or a body that cannot move along \
+                 the normals independently).",
+                path.display()
+            );
+            ExitCode::from(3)
+        }
+        Err(RunError::Solve(e)) => {
+            eprintln!("error: {}: {e}", path.display());
+            ExitCode::from(3)
+        }
+    }
+}
+
+fn run_check(dir: PathBuf, quiet: bool) -> ExitCode {
+    if !dir.is_dir() {
+        eprintln!("error: {}: not a directory of derivations", dir.display());
+        return ExitCode::from(2);
+    }
+    let results = match check::check_dir(&dir) {
+        Ok(r) => r,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return ExitCode::from(2);
+        }
+    };
+    let (text, passed) = check::render(&results);
+    if quiet {
+        for line in text.lines() {
+            let t = line.trim_start();
+            if !t.starts_with("ok ") && !t.starts_with("case ") {
+                println!("{line}");
+            }
+        }
+    } else {
+        print!("{text}");
+    }
+    if passed {
+        ExitCode::SUCCESS
+    } else {
+        ExitCode::from(1)
+    }
+}

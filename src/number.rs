@@ -1,0 +1,1415 @@
+//! Numbers as written in scene files, read exactly.
+//!
+//! A scene number is a TOML literal (`0.1`, `1_000.5`, `-3e-2`, `0x10`) or a string holding a
+//! fraction or expression (`"1/3"`, `"2/sqrt(5)"`, `"cos(30 deg)"`). Exact mode needs the value the
+//! author meant, so `0.1` is exactly 1/10 and never the nearest binary float; expressions that
+//! are not rational (`sqrt(5)`) carry the reason instead, and f64 mode still gets a value.
+//!
+//! Evaluation tracks, besides rationals, rational multiples of pi, so that angles such as
+//! `30 deg` or `pi/6` give exact sines and cosines where those are rational (Niven's theorem).
+//! Limitation: other irrational values are not tracked symbolically, so cancellations such as
+//! `sqrt(2)*sqrt(2)` are reported as irrational even though the result is 2.
+
+use std::f64::consts::PI;
+
+use num_bigint::{BigInt, BigUint};
+use num_rational::BigRational;
+use num_traits::{One, Signed, ToPrimitive, Zero};
+
+/// A number as written in a scene: its text, its exact rational value when it has one, and its f64 value.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Number {
+    /// The text as given (outer whitespace trimmed), kept for messages and reports.
+    pub text: String,
+    /// Ok(q) when the expression is rational; Err(reason) says why not, e.g. "sqrt(5) is irrational".
+    pub exact: Result<BigRational, String>,
+    /// Best f64 value: the correctly rounded exact value when rational, else the f64 evaluation.
+    pub approx: f64,
+}
+
+/// Why a text could not be read as a finite number.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum NumberError {
+    /// The text is not a number or expression of the accepted grammar.
+    #[error("cannot read '{text}' as a number: {reason}")]
+    Syntax {
+        /// The text that was read.
+        text: String,
+        /// What was unexpected and where (1-based character position).
+        reason: String,
+    },
+    /// The text is well formed but its value is not a finite real number.
+    #[error("'{text}' is not finite ({reason})")]
+    NotFinite {
+        /// The text that was read.
+        text: String,
+        /// nan, inf, division by zero, root of a negative number or overflow of f64.
+        reason: String,
+    },
+}
+
+/// Exact values wider than this many bits (numerator or denominator) are given up on:
+/// no scene needs them, and the gcd behind every rational operation is quadratic in the size.
+const MAX_EXACT_BITS: u64 = 16_384;
+/// Decimal exponents beyond this are not read exactly (10^5000 already exceeds `MAX_EXACT_BITS`).
+const MAX_DECIMAL_EXPONENT: i64 = 5_000;
+/// Deeper nesting is refused so that no input can overflow the stack.
+const MAX_DEPTH: usize = 200;
+/// Square factors are found by trial division up to this bound (plus a perfect-square test of the rest).
+const TRIAL_DIVISION_BOUND: u32 = 10_000;
+/// Names the expression grammar knows, listed in the error for an unknown name.
+const KNOWN_NAMES: &str = "pi, deg, sqrt, sin, cos, tan";
+
+/// Parse a number or expression.
+///
+/// Accepts TOML numeric literals too (underscores between digits, leading '+', exponent,
+/// `0x..`, `0o..`, `0b..` integers) and the expression grammar
+/// `+ - * / ^ ( )`, `pi`, `X deg`, `sqrt sin cos tan`. Rejects nan/inf (NotFinite).
+/// Syntax errors take precedence over value errors, so the author sees typos first.
+///
+/// # Errors
+/// [`NumberError::Syntax`] for text outside the grammar or nesting deeper than 200 levels;
+/// [`NumberError::NotFinite`] for nan/inf, division by zero, even roots of negative numbers,
+/// tan at a pole, and values that overflow f64.
+pub fn parse_number(text: &str) -> Result<Number, NumberError> {
+    let src = text.trim();
+    let syntax = |reason: String| NumberError::Syntax {
+        text: src.to_string(),
+        reason,
+    };
+    if src.is_empty() {
+        return Err(syntax("empty input".to_string()));
+    }
+    let toks = lex(src).map_err(syntax)?;
+    let mut parser = Parser {
+        src,
+        toks,
+        pos: 0,
+        depth: 0,
+    };
+    let root = parser.expr().map_err(syntax)?;
+    if parser.peek().kind != TokKind::End {
+        return Err(syntax(
+            parser.unexpected("an operator or the end of the input"),
+        ));
+    }
+    let value = Eval { src }.eval(&root)?;
+    if !value.f.is_finite() {
+        return Err(NumberError::NotFinite {
+            text: src.to_string(),
+            reason: if value.f.is_nan() {
+                "the value is not a number".to_string()
+            } else {
+                "the value overflows f64".to_string()
+            },
+        });
+    }
+    let exact = match value.ex {
+        Exact::Rat(q) => Ok(q),
+        Exact::Pi(_) => Err(format!(
+            "{src} is irrational (a non-zero rational multiple of pi)"
+        )),
+        Exact::No(reason) => Err(reason),
+    };
+    Ok(Number {
+        text: src.to_string(),
+        exact,
+        approx: value.f,
+    })
+}
+
+/// Exact decimal literal -> rational: "0.1" -> 1/10, "-3e-2" -> -3/100, "1_000.5" -> 2001/2.
+///
+/// Also accepts a leading sign and TOML `0x`/`0o`/`0b` integers, so any TOML integer or float
+/// text can be passed. None for anything else, including nan/inf and exponents beyond ±5000.
+pub fn parse_decimal(text: &str) -> Option<BigRational> {
+    let s = text.trim();
+    let (negative, body) = match s.as_bytes().first() {
+        Some(b'-') => (true, &s[1..]),
+        Some(b'+') => (false, &s[1..]),
+        _ => (false, s),
+    };
+    if !body.starts_with(|c: char| c.is_ascii_digit() || c == '.') {
+        return None;
+    }
+    let (lit, end) = scan_literal(body, 0).ok()?;
+    if end != body.len() {
+        return None;
+    }
+    let q = lit.exact?;
+    Some(if negative { -q } else { q })
+}
+
+/// "p/q" or "p" (reduced, sign on numerator), e.g. "-3/4", "5".
+pub fn format_rational(q: &BigRational) -> String {
+    // Rebuild through `new` so that a hand-made unreduced ratio still prints canonically.
+    let q = if q.denom().is_zero() {
+        q.clone()
+    } else {
+        BigRational::new(q.numer().clone(), q.denom().clone())
+    };
+    if q.denom().is_one() {
+        q.numer().to_string()
+    } else {
+        format!("{}/{}", q.numer(), q.denom())
+    }
+}
+
+/// The canonical exact form of coeff*sqrt(radicand), e.g. "3/17*sqrt(17)", "-2*sqrt(3)".
+///
+/// Square factors are pulled out so the radicand is a square-free positive integer
+/// (`sqrt(p/q) = sqrt(p*q)/q`); renders "0" when coeff or radicand is 0, "c" when the radicand
+/// is 1, "sqrt(r)" / "-sqrt(r)" for coefficients 1 / -1, else "c*sqrt(r)" with c from
+/// [`format_rational`]. Square-freeness is up to the limits described at [`canonical_surd`].
+pub fn format_surd(coeff: &BigRational, radicand: &BigRational) -> String {
+    let (c, r) = canonical_surd(coeff, radicand);
+    if c.is_zero() {
+        "0".to_string()
+    } else if r.is_one() {
+        format_rational(&c)
+    } else if c.is_one() {
+        format!("sqrt({})", r.numer())
+    } else if (-&c).is_one() {
+        format!("-sqrt({})", r.numer())
+    } else {
+        format!("{}*sqrt({})", format_rational(&c), r.numer())
+    }
+}
+
+/// Canonicalise coeff*sqrt(radicand) into (c, r) with r a square-free integer, same rule as [`format_surd`].
+///
+/// Zero (either part zero) is (0, 1), so r == 1 always means "the value is the rational c".
+/// Square factors are found by trial division by primes up to 10 000 and a perfect-square test of
+/// what remains; a large square-free-looking rest stays under the root (still correct, just less
+/// reduced). A negative radicand (outside the contract) keeps its sign: sqrt(-12) -> (2, -3).
+pub fn canonical_surd(coeff: &BigRational, radicand: &BigRational) -> (BigRational, BigRational) {
+    if coeff.is_zero() || radicand.is_zero() || radicand.denom().is_zero() {
+        return (BigRational::zero(), BigRational::one());
+    }
+    // sqrt(p/q) = sqrt(p*q)/q, so the radicand becomes an integer.
+    let q = radicand.denom().abs();
+    let n = radicand.numer().abs() * &q;
+    let (square_root, free) = split_square(&n);
+    let c = coeff * BigRational::new(square_root, q);
+    let r = if radicand.is_negative() { -free } else { free };
+    (c, BigRational::from_integer(r))
+}
+
+/// f64 value of coeff*sqrt(radicand), accurate to about 1 ulp even when the parts are huge.
+///
+/// Neither part is converted to f64 first (that overflows or loses digits): the root is taken
+/// in integers, scaled to at least 70 significant bits, and the quotient rounded once.
+/// NaN for a negative radicand (outside the contract).
+pub fn surd_to_f64(coeff: &BigRational, radicand: &BigRational) -> f64 {
+    if coeff.is_zero() || radicand.is_zero() {
+        return 0.0;
+    }
+    if radicand.is_negative() || radicand.denom().is_zero() || coeff.denom().is_zero() {
+        return f64::NAN;
+    }
+    let q = radicand.denom().abs();
+    let n = radicand.numer().abs() * &q;
+    // floor(sqrt(n * 4^m)) with at least 70 bits has relative error below 2^-70.
+    let m = 140u64.saturating_sub(n.bits()).div_ceil(2);
+    let root = (n << (2 * m)).sqrt();
+    let num = coeff.numer() * root;
+    let den = (coeff.denom() * q) << m;
+    rational_to_f64(&BigRational::new_raw(num, den))
+}
+
+/// Correctly rounded f64 of a BigRational (ties to even), also for huge numerators/denominators.
+///
+/// Converting numerator and denominator separately would give inf/inf = NaN for huge parts and
+/// round twice; instead one integer division yields 66 significant bits plus a sticky bit.
+/// Overflows to ±inf, underflows to 0 (subnormals are rounded correctly).
+pub fn rational_to_f64(q: &BigRational) -> f64 {
+    let (n, d) = (q.numer(), q.denom());
+    if n.is_zero() {
+        return 0.0;
+    }
+    if d.is_zero() {
+        return f64::NAN;
+    }
+    let negative = n.is_negative() != d.is_negative();
+    let magnitude = positive_ratio_to_f64(n.magnitude(), d.magnitude());
+    if negative { -magnitude } else { magnitude }
+}
+
+/// n/d for n, d > 0, correctly rounded.
+fn positive_ratio_to_f64(n: &BigUint, d: &BigUint) -> f64 {
+    // The value lies in [2^(k-1), 2^(k+1)).
+    let k = n.bits() as i64 - d.bits() as i64;
+    if k >= 1025 {
+        return f64::INFINITY;
+    }
+    if k <= -1077 {
+        return 0.0; // below half the smallest subnormal
+    }
+    // Scale so the integer quotient has 65 or 66 bits.
+    let shift = 65 - k;
+    let (num, den) = if shift >= 0 {
+        (n << shift as u64, d.clone())
+    } else {
+        (n.clone(), d << (-shift) as u64)
+    };
+    let quo_big = &num / &den;
+    let sticky = !(num - &quo_big * &den).is_zero();
+    let Some(quo) = quo_big.to_u128() else {
+        return f64::NAN; // unreachable: the quotient has at most 66 bits
+    };
+    let top = 127 - i64::from(quo.leading_zeros()); // exponent of the leading bit of quo
+    let exponent = top - shift;
+    // The weight of the last kept bit: 52 bits below the leading one, or the subnormal floor.
+    let ulp_exp = (exponent - 52).max(-1074);
+    let drop = (ulp_exp + shift) as u32; // in 12..=67 given the bounds on k
+    let mut kept = quo >> drop;
+    let rest = quo & ((1u128 << drop) - 1);
+    let half = 1u128 << (drop - 1);
+    if rest > half || (rest == half && (sticky || kept & 1 == 1)) {
+        kept += 1;
+    }
+    // Biased exponent and mantissa add up directly, also for subnormals and a carry into 2^53.
+    let bits = (((ulp_exp + 1074) as u64) << 52) + kept as u64;
+    if bits >= f64::INFINITY.to_bits() {
+        f64::INFINITY
+    } else {
+        f64::from_bits(bits)
+    }
+}
+
+/// Split n > 0 into (s, f) with n = s^2 * f and f square-free up to the trial-division bound.
+fn split_square(n: &BigInt) -> (BigInt, BigInt) {
+    let mut rest = n.clone();
+    let mut s = BigInt::one();
+    let mut f = BigInt::one();
+    // Odd composites never divide: their prime factors were removed before them.
+    let mut d: u32 = 2;
+    while d <= TRIAL_DIVISION_BOUND && BigInt::from(u64::from(d) * u64::from(d)) <= rest {
+        let mut e = 0u32;
+        while (&rest % d).is_zero() {
+            rest /= d;
+            e += 1;
+        }
+        s *= BigInt::from(d).pow(e / 2);
+        if e % 2 == 1 {
+            f *= d;
+        }
+        d = if d == 2 { 3 } else { d + 2 };
+    }
+    if rest > BigInt::one() {
+        let root = rest.sqrt();
+        if &root * &root == rest {
+            s *= root;
+        } else {
+            f *= rest;
+        }
+    }
+    (s, f)
+}
+
+/// The exact q-th root of x >= 0 when x is a perfect q-th power.
+fn exact_root(x: &BigInt, q: u32) -> Option<BigInt> {
+    if q < 2 || *x <= BigInt::one() {
+        return Some(x.clone());
+    }
+    if u64::from(q) >= x.bits() {
+        return None; // 1 < root < 2
+    }
+    let root = x.nth_root(q);
+    (root.pow(q) == *x).then_some(root)
+}
+
+/// 1-based character position of a byte offset, for messages.
+fn char_pos(src: &str, byte: usize) -> usize {
+    src.get(..byte).map_or(byte, |s| s.chars().count()) + 1
+}
+
+// ---------------------------------------------------------------------------------------------
+// Lexer
+
+/// A numeric literal: exact value (None when its exponent is out of range) and f64 value.
+#[derive(Debug, Clone, PartialEq)]
+struct Lit {
+    exact: Option<BigRational>,
+    approx: f64,
+}
+
+#[derive(Debug, Clone, PartialEq)]
+enum TokKind {
+    Num(Lit),
+    Ident,
+    Sym(u8),
+    End,
+}
+
+#[derive(Debug, Clone)]
+struct Tok {
+    kind: TokKind,
+    start: usize,
+    end: usize,
+}
+
+fn lex(src: &str) -> Result<Vec<Tok>, String> {
+    let bytes = src.as_bytes();
+    let mut toks = Vec::new();
+    let mut i = 0;
+    while let Some(c) = src[i..].chars().next() {
+        let start = i;
+        let digit_at = |j: usize| bytes.get(j).is_some_and(u8::is_ascii_digit);
+        if c.is_whitespace() {
+            i += c.len_utf8();
+            continue;
+        } else if c.is_ascii_digit() || (c == '.' && digit_at(i + 1)) {
+            let (lit, end) = scan_literal(src, i)
+                .map_err(|(reason, at)| format!("{reason} at position {}", char_pos(src, at)))?;
+            if let Some(&b) = bytes.get(end).filter(|b| matches!(b, b'.' | b'_')) {
+                return Err(format!(
+                    "unexpected '{}' after a number at position {}",
+                    b as char,
+                    char_pos(src, end)
+                ));
+            }
+            toks.push(Tok {
+                kind: TokKind::Num(lit),
+                start,
+                end,
+            });
+            i = end;
+        } else if c.is_ascii_alphabetic() {
+            i += 1;
+            while bytes
+                .get(i)
+                .is_some_and(|b| b.is_ascii_alphanumeric() || *b == b'_')
+            {
+                i += 1;
+            }
+            toks.push(Tok {
+                kind: TokKind::Ident,
+                start,
+                end: i,
+            });
+        } else if "+-*/^()".contains(c) {
+            i += 1;
+            toks.push(Tok {
+                kind: TokKind::Sym(c as u8),
+                start,
+                end: i,
+            });
+        } else {
+            return Err(format!(
+                "unexpected character '{c}' at position {}",
+                char_pos(src, i)
+            ));
+        }
+    }
+    toks.push(Tok {
+        kind: TokKind::End,
+        start: src.len(),
+        end: src.len(),
+    });
+    Ok(toks)
+}
+
+/// A run of digits of `radix` with TOML underscores (only between two digits), from byte `i`.
+/// Returns the digits without underscores and the end offset; errors carry a byte offset.
+fn digit_run(s: &str, mut i: usize, radix: u32) -> Result<(String, usize), (String, usize)> {
+    let bytes = s.as_bytes();
+    let is_digit = |j: usize| bytes.get(j).is_some_and(|&b| (b as char).is_digit(radix));
+    let mut digits = String::new();
+    while let Some(&b) = bytes.get(i) {
+        if (b as char).is_digit(radix) {
+            digits.push(b as char);
+        } else if b == b'_' {
+            if !(i > 0 && is_digit(i - 1) && is_digit(i + 1)) {
+                return Err(("'_' must stand between two digits".to_string(), i));
+            }
+        } else {
+            break;
+        }
+        i += 1;
+    }
+    Ok((digits, i))
+}
+
+/// Scan one unsigned numeric literal starting at byte `i` of `s`; returns it and its end offset.
+fn scan_literal(s: &str, i: usize) -> Result<(Lit, usize), (String, usize)> {
+    let bytes = s.as_bytes();
+    let radix = match (bytes.get(i), bytes.get(i + 1)) {
+        (Some(b'0'), Some(b'x')) => Some(16),
+        (Some(b'0'), Some(b'o')) => Some(8),
+        (Some(b'0'), Some(b'b')) => Some(2),
+        _ => None,
+    };
+    if let Some(radix) = radix {
+        let (digits, end) = digit_run(s, i + 2, radix)?;
+        if digits.is_empty() || bytes.get(end).is_some_and(u8::is_ascii_alphanumeric) {
+            return Err((format!("malformed base-{radix} integer"), i));
+        }
+        let n = BigInt::parse_bytes(digits.as_bytes(), radix)
+            .ok_or_else(|| (format!("malformed base-{radix} integer"), i))?;
+        let q = BigRational::from_integer(n);
+        let approx = rational_to_f64(&q);
+        return Ok((
+            Lit {
+                exact: Some(q),
+                approx,
+            },
+            end,
+        ));
+    }
+
+    let (int, mut end) = digit_run(s, i, 10)?;
+    let mut frac = String::new();
+    if bytes.get(end) == Some(&b'.') {
+        (frac, end) = digit_run(s, end + 1, 10)?;
+    }
+    if int.is_empty() && frac.is_empty() {
+        return Err(("expected digits".to_string(), i));
+    }
+    let mut exp_text = String::from("0");
+    let mut exp_negative = false;
+    if matches!(bytes.get(end), Some(b'e' | b'E')) {
+        let mut j = end + 1;
+        if let Some(&sign @ (b'+' | b'-')) = bytes.get(j) {
+            exp_negative = sign == b'-';
+            j += 1;
+        }
+        let (digits, e) = digit_run(s, j, 10)?;
+        if digits.is_empty() {
+            return Err(("the exponent needs digits".to_string(), j));
+        }
+        (exp_text, end) = (digits, e);
+    }
+
+    let mantissa = format!("{int}{frac}");
+    // The f64 parser rounds correctly and saturates huge exponents, so it serves as fallback.
+    let approx_text = format!(
+        "{}.{}e{}{}",
+        if int.is_empty() { "0" } else { &int },
+        if frac.is_empty() { "0" } else { &frac },
+        if exp_negative { "-" } else { "" },
+        exp_text
+    );
+    let approx = approx_text.parse::<f64>().unwrap_or(f64::NAN);
+    let exact = if mantissa.bytes().all(|b| b == b'0') {
+        Some(BigRational::zero())
+    } else {
+        exp_text
+            .parse::<i64>()
+            .ok()
+            .map(|e| if exp_negative { -e } else { e })
+            .and_then(|e| e.checked_sub(frac.len() as i64))
+            .filter(|e| e.abs() <= MAX_DECIMAL_EXPONENT)
+            .and_then(|e| {
+                let m = BigInt::parse_bytes(mantissa.as_bytes(), 10)?;
+                let p = BigInt::from(10u32).pow(e.unsigned_abs() as u32);
+                Some(if e >= 0 {
+                    BigRational::from_integer(m * p)
+                } else {
+                    BigRational::new(m, p)
+                })
+            })
+    };
+    Ok((Lit { exact, approx }, end))
+}
+
+// ---------------------------------------------------------------------------------------------
+// Parser: builds a tree whose depth is bounded by MAX_DEPTH (sums and products are flat lists,
+// so long chains like 1+1+...+1 do not deepen it), then the tree is evaluated.
+
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Func {
+    Sqrt,
+    Sin,
+    Cos,
+    Tan,
+}
+
+#[derive(Debug)]
+enum Kind {
+    Lit(Box<Lit>),
+    Pi,
+    /// nan / inf written as a name: well formed, but never finite.
+    NonFinite,
+    Neg(Box<Node>),
+    /// first (op rhs)*, with op one of + - * /.
+    Chain(Box<Node>, Vec<(u8, Node)>),
+    Pow(Box<Node>, Box<Node>),
+    Deg(Box<Node>),
+    Call(Func, Box<Node>),
+}
+
+#[derive(Debug)]
+struct Node {
+    /// Byte range in the source, to quote sub-expressions in messages.
+    start: usize,
+    end: usize,
+    kind: Kind,
+}
+
+struct Parser<'a> {
+    src: &'a str,
+    toks: Vec<Tok>,
+    pos: usize,
+    depth: usize,
+}
+
+impl Parser<'_> {
+    fn peek(&self) -> &Tok {
+        // `lex` always ends the list with End, and `pos` never passes it.
+        &self.toks[self.pos.min(self.toks.len() - 1)]
+    }
+
+    /// Consume the current token (End stays put) and return its byte range.
+    fn advance(&mut self) -> (usize, usize) {
+        let tok = self.peek();
+        let span = (tok.start, tok.end);
+        if tok.kind != TokKind::End {
+            self.pos += 1;
+        }
+        span
+    }
+
+    fn sym(&self) -> Option<u8> {
+        match self.peek().kind {
+            TokKind::Sym(c) => Some(c),
+            _ => None,
+        }
+    }
+
+    fn ident(&self) -> Option<&str> {
+        let tok = self.peek();
+        (tok.kind == TokKind::Ident).then(|| &self.src[tok.start..tok.end])
+    }
+
+    fn unexpected(&self, expected: &str) -> String {
+        let tok = self.peek();
+        match tok.kind {
+            TokKind::End => format!("unexpected end of input, expected {expected}"),
+            _ => format!(
+                "unexpected '{}' at position {}, expected {expected}",
+                &self.src[tok.start..tok.end],
+                char_pos(self.src, tok.start)
+            ),
+        }
+    }
+
+    /// expr := term (('+' | '-') term)*
+    fn expr(&mut self) -> Result<Node, String> {
+        self.chain(b"+-", Self::term)
+    }
+
+    /// term := unary (('*' | '/') unary)*
+    fn term(&mut self) -> Result<Node, String> {
+        self.chain(b"*/", Self::unary)
+    }
+
+    /// Left-associative chain of `operand`s joined by `ops`, kept flat.
+    ///
+    /// The recursive parser functions use `and_then`/`map` instead of `?`: every nesting level
+    /// pays for their frames, and in debug builds each `?` adds temporaries.
+    fn chain(
+        &mut self,
+        ops: &[u8],
+        operand: fn(&mut Self) -> Result<Node, String>,
+    ) -> Result<Node, String> {
+        operand(self).and_then(|first| {
+            let mut rest = Vec::new();
+            while let Some(op) = self.sym().filter(|c| ops.contains(c)) {
+                self.advance();
+                rest.push((op, operand(self)?));
+            }
+            Ok(match rest.last() {
+                None => first,
+                Some((_, last)) => Node {
+                    start: first.start,
+                    end: last.end,
+                    kind: Kind::Chain(Box::new(first), rest),
+                },
+            })
+        })
+    }
+
+    /// unary := ('-' | '+') unary | power. Every level of nesting passes here, so depth is counted here.
+    fn unary(&mut self) -> Result<Node, String> {
+        if self.depth >= MAX_DEPTH {
+            return Err(self.too_deep());
+        }
+        self.depth += 1;
+        let node = match self.sym() {
+            Some(sign @ (b'-' | b'+')) => {
+                let start = self.advance().0;
+                self.unary().map(|inner| Node {
+                    start,
+                    end: inner.end,
+                    kind: if sign == b'-' {
+                        Kind::Neg(Box::new(inner))
+                    } else {
+                        inner.kind
+                    },
+                })
+            }
+            _ => self.power(),
+        };
+        self.depth -= 1;
+        node
+    }
+
+    #[cold]
+    fn too_deep(&self) -> String {
+        format!(
+            "nested more than {MAX_DEPTH} levels deep at position {}",
+            char_pos(self.src, self.peek().start)
+        )
+    }
+
+    /// power := postfix ('^' unary)?  (right-associative through unary)
+    fn power(&mut self) -> Result<Node, String> {
+        self.postfix().and_then(|base| {
+            if self.sym() != Some(b'^') {
+                return Ok(base);
+            }
+            self.advance();
+            self.unary().map(|exp| Node {
+                start: base.start,
+                end: exp.end,
+                kind: Kind::Pow(Box::new(base), Box::new(exp)),
+            })
+        })
+    }
+
+    /// postfix := atom ('deg')?
+    fn postfix(&mut self) -> Result<Node, String> {
+        self.atom().map(|atom| {
+            if self.ident() != Some("deg") {
+                return atom;
+            }
+            let end = self.advance().1;
+            Node {
+                start: atom.start,
+                end,
+                kind: Kind::Deg(Box::new(atom)),
+            }
+        })
+    }
+
+    /// atom := literal | 'pi' | func '(' expr ')' | '(' expr ')'
+    ///
+    /// Only the recursive cases live here; the leaves are parsed by `leaf`.
+    fn atom(&mut self) -> Result<Node, String> {
+        let start = self.peek().start;
+        let func = if self.sym() == Some(b'(') {
+            self.advance();
+            None
+        } else {
+            match self.function() {
+                Ok(Some(func)) => Some(func),
+                Ok(None) => return self.leaf(),
+                Err(e) => return Err(e),
+            }
+        };
+        self.expr().and_then(|inner| {
+            self.close().map(|end| match func {
+                None => Node {
+                    start,
+                    end,
+                    ..inner
+                },
+                Some(func) => Node {
+                    start,
+                    end,
+                    kind: Kind::Call(func, Box::new(inner)),
+                },
+            })
+        })
+    }
+
+    /// A function name followed by '(' (both consumed), or None when the next token is no function.
+    fn function(&mut self) -> Result<Option<Func>, String> {
+        let func = match self.ident() {
+            Some("sqrt") => Func::Sqrt,
+            Some("sin") => Func::Sin,
+            Some("cos") => Func::Cos,
+            Some("tan") => Func::Tan,
+            _ => return Ok(None),
+        };
+        let (start, end) = self.advance();
+        if self.sym() != Some(b'(') {
+            let name = &self.src[start..end];
+            return Err(self.unexpected(&format!("'(' after '{name}'")));
+        }
+        self.advance();
+        Ok(Some(func))
+    }
+
+    /// A number, 'pi', or a nan/inf name.
+    fn leaf(&mut self) -> Result<Node, String> {
+        let tok = self.peek();
+        let (start, end) = (tok.start, tok.end);
+        let kind = match &tok.kind {
+            TokKind::Num(lit) => Kind::Lit(Box::new(lit.clone())),
+            TokKind::Ident => match &self.src[start..end] {
+                "pi" => Kind::Pi,
+                name if ["nan", "inf", "infinity"]
+                    .contains(&name.to_ascii_lowercase().as_str()) =>
+                {
+                    Kind::NonFinite
+                }
+                "deg" => return Err(self.unexpected("a number, 'pi', a function or '('")),
+                name => {
+                    return Err(format!(
+                        "unknown name '{name}' at position {} (known names: {KNOWN_NAMES})",
+                        char_pos(self.src, start)
+                    ));
+                }
+            },
+            _ => return Err(self.unexpected("a number, 'pi', a function or '('")),
+        };
+        self.advance();
+        Ok(Node { start, end, kind })
+    }
+
+    /// Consume ')' and return its end offset.
+    fn close(&mut self) -> Result<usize, String> {
+        if self.sym() != Some(b')') {
+            return Err(self.unexpected("')'"));
+        }
+        Ok(self.advance().1)
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Evaluation: exact and f64 side by side.
+
+/// The exact side of a value.
+#[derive(Debug, Clone)]
+enum Exact {
+    Rat(BigRational),
+    /// q*pi with q != 0: an angle in radians, so that trigonometry stays exact.
+    Pi(BigRational),
+    /// No exact value; the reason names the innermost culprit.
+    No(String),
+}
+
+#[derive(Debug)]
+struct Value {
+    ex: Exact,
+    f: f64,
+}
+
+struct Eval<'a> {
+    src: &'a str,
+}
+
+fn bits(q: &BigRational) -> u64 {
+    q.numer().bits().max(q.denom().bits())
+}
+
+fn int(n: i64) -> BigRational {
+    BigRational::from_integer(BigInt::from(n))
+}
+
+fn odd(n: &BigInt) -> bool {
+    n.magnitude().bit(0)
+}
+
+impl Eval<'_> {
+    fn text(&self, start: usize, end: usize) -> &str {
+        self.src.get(start..end).unwrap_or(self.src)
+    }
+
+    fn not_finite(&self, reason: String) -> NumberError {
+        NumberError::NotFinite {
+            text: self.src.to_string(),
+            reason,
+        }
+    }
+
+    /// Combine the exact and f64 results of one operation on `text`: the exact value, when
+    /// there is one, also provides the (correctly rounded) f64; without one, the f64 must be finite.
+    fn value(&self, ex: Exact, f: f64, text: &str) -> Result<Value, NumberError> {
+        let (f, ex) = match ex {
+            Exact::Pi(q) if q.is_zero() => (0.0, Exact::Rat(q)),
+            Exact::Rat(q) => (rational_to_f64(&q), Exact::Rat(q)),
+            Exact::Pi(q) => (rational_to_f64(&q) * PI, Exact::Pi(q)),
+            no => (f, no),
+        };
+        let ex = match ex {
+            Exact::Rat(ref q) | Exact::Pi(ref q) if bits(q) > MAX_EXACT_BITS => Exact::No(format!(
+                "'{text}' exceeds {MAX_EXACT_BITS} bits of exact precision"
+            )),
+            ex => ex,
+        };
+        match ex {
+            Exact::No(_) if f.is_nan() => Err(self.not_finite(format!("'{text}' is not a number"))),
+            Exact::No(_) if f.is_infinite() => {
+                Err(self.not_finite(format!("'{text}' overflows f64")))
+            }
+            ex => Ok(Value { ex, f }),
+        }
+    }
+
+    /// Evaluate children first, then combine in a separate (non-recursive) function. Written with
+    /// `and_then` rather than `?` because every nesting level pays for this frame, and in debug
+    /// builds each `?` adds temporaries.
+    fn eval(&self, node: &Node) -> Result<Value, NumberError> {
+        let text = self.text(node.start, node.end);
+        match &node.kind {
+            Kind::Lit(lit) => self.literal(lit, text),
+            Kind::Pi => self.value(Exact::Pi(BigRational::one()), PI, text),
+            Kind::NonFinite => Err(self.not_finite_name(text)),
+            Kind::Neg(inner) => self.eval(inner).and_then(|v| self.negate(v, text)),
+            Kind::Chain(first, rest) => self.chain(node.start, first, rest),
+            Kind::Pow(base, exp) => self
+                .eval(base)
+                .and_then(|b| self.eval(exp).and_then(|e| self.power(b, e, text))),
+            Kind::Deg(inner) => self.eval(inner).and_then(|v| self.degrees(v, text)),
+            Kind::Call(Func::Sqrt, arg) => self.eval(arg).and_then(|v| self.sqrt(v, text)),
+            Kind::Call(func, arg) => self.eval(arg).and_then(|v| self.trig(*func, v, text)),
+        }
+    }
+
+    fn chain(&self, start: usize, first: &Node, rest: &[(u8, Node)]) -> Result<Value, NumberError> {
+        rest.iter().fold(self.eval(first), |acc, (op, rhs)| {
+            // Quote the chain up to this operand, e.g. "2*3/0".
+            acc.and_then(|a| {
+                self.eval(rhs)
+                    .and_then(|b| self.binary(*op, a, b, self.text(start, rhs.end)))
+            })
+        })
+    }
+
+    #[cold]
+    fn not_finite_name(&self, text: &str) -> NumberError {
+        self.not_finite(format!("'{text}' is not a finite number"))
+    }
+
+    fn literal(&self, lit: &Lit, text: &str) -> Result<Value, NumberError> {
+        let ex = match &lit.exact {
+            Some(q) => Exact::Rat(q.clone()),
+            None => Exact::No(format!(
+                "'{text}' is out of the exact range (decimal exponent beyond ±{MAX_DECIMAL_EXPONENT})"
+            )),
+        };
+        self.value(ex, lit.approx, text)
+    }
+
+    fn negate(&self, v: Value, text: &str) -> Result<Value, NumberError> {
+        let ex = match v.ex {
+            Exact::Rat(q) => Exact::Rat(-q),
+            Exact::Pi(q) => Exact::Pi(-q),
+            no => no,
+        };
+        self.value(ex, -v.f, text)
+    }
+
+    fn power(&self, b: Value, e: Value, text: &str) -> Result<Value, NumberError> {
+        let irrational = || Exact::No(format!("{text} is irrational"));
+        let mut f = b.f.powf(e.f);
+        // A negative base to p/q with odd q is real: (-8)^(1/3) = -2.
+        if let (true, Exact::Rat(r)) = (b.f < 0.0 && f.is_nan(), &e.ex)
+            && odd(r.denom())
+        {
+            f = (-b.f).powf(e.f) * if odd(r.numer()) { -1.0 } else { 1.0 };
+        }
+        let ex = match (&b.ex, &e.ex) {
+            (Exact::No(r), _) | (_, Exact::No(r)) => Exact::No(r.clone()),
+            (_, Exact::Pi(_)) => irrational(),
+            (Exact::Pi(_), Exact::Rat(n)) if n.is_zero() => Exact::Rat(int(1)),
+            (Exact::Pi(q), Exact::Rat(n)) if n.is_one() => Exact::Pi(q.clone()),
+            (Exact::Pi(_), Exact::Rat(_)) => irrational(),
+            (Exact::Rat(b), Exact::Rat(e)) => self.rational_power(b, e, text)?,
+        };
+        self.value(ex, f, text)
+    }
+
+    fn degrees(&self, v: Value, text: &str) -> Result<Value, NumberError> {
+        let ex = match v.ex {
+            Exact::Rat(q) => Exact::Pi(q / int(180)),
+            Exact::Pi(_) => Exact::No(format!("{text} is irrational")),
+            no => no,
+        };
+        self.value(ex, v.f.to_radians(), text)
+    }
+
+    fn sqrt(&self, v: Value, text: &str) -> Result<Value, NumberError> {
+        let negative = match &v.ex {
+            Exact::Rat(q) | Exact::Pi(q) => q.is_negative(),
+            Exact::No(_) => v.f < 0.0,
+        };
+        if negative {
+            return Err(self.not_finite(format!("square root of a negative number in '{text}'")));
+        }
+        let ex = match v.ex {
+            Exact::Rat(q) => match (exact_root(q.numer(), 2), exact_root(q.denom(), 2)) {
+                (Some(n), Some(d)) => Exact::Rat(BigRational::new(n, d)),
+                _ => Exact::No(format!("{text} is irrational")),
+            },
+            Exact::Pi(_) => Exact::No(format!("{text} is irrational")),
+            no => no,
+        };
+        self.value(ex, v.f.sqrt(), text)
+    }
+
+    fn trig(&self, func: Func, v: Value, text: &str) -> Result<Value, NumberError> {
+        let irrational = || Exact::No(format!("{text} is irrational"));
+        let x = match &v.ex {
+            Exact::Pi(q) => reduced_radians(q),
+            _ => v.f,
+        };
+        let f = match func {
+            Func::Sin => x.sin(),
+            Func::Cos => x.cos(),
+            _ => x.tan(),
+        };
+        let ex = match v.ex {
+            Exact::Rat(q) if q.is_zero() => Exact::Rat(int(i64::from(func == Func::Cos))),
+            // Lindemann: sin/cos/tan of a non-zero rational (radian) is transcendental.
+            Exact::Rat(_) => irrational(),
+            Exact::Pi(q) => match trig_at_degrees(func, &(q * int(180))) {
+                Trig::Rational(r) => Exact::Rat(r),
+                Trig::Irrational => irrational(),
+                Trig::Pole => return Err(self.not_finite(format!("'{text}' is infinite"))),
+            },
+            no => no,
+        };
+        self.value(ex, f, text)
+    }
+
+    fn binary(&self, op: u8, a: Value, b: Value, text: &str) -> Result<Value, NumberError> {
+        use Exact::{No, Pi, Rat};
+        let irrational = || No(format!("{text} is irrational"));
+        let f = match op {
+            b'+' => a.f + b.f,
+            b'-' => a.f - b.f,
+            b'*' => a.f * b.f,
+            _ => a.f / b.f,
+        };
+        if op == b'/' && matches!(&b.ex, Rat(q) if q.is_zero()) {
+            return Err(self.not_finite(format!("division by zero in '{text}'")));
+        }
+        let ex = match (op, a.ex, b.ex) {
+            (_, No(r), _) | (_, _, No(r)) => No(r),
+            (b'+', Rat(x), Rat(y)) => Rat(x + y),
+            (b'-', Rat(x), Rat(y)) => Rat(x - y),
+            (b'*', Rat(x), Rat(y)) => Rat(x * y),
+            (b'/', Rat(x), Rat(y)) => Rat(x / y),
+            // Sums of angles stay angles; adding a non-zero rational to one does not.
+            (b'+', Pi(x), Pi(y)) => Pi(x + y),
+            (b'-', Pi(x), Pi(y)) => Pi(x - y),
+            (b'+' | b'-', Pi(x), Rat(y)) if y.is_zero() => Pi(x),
+            (b'+', Rat(x), Pi(y)) if x.is_zero() => Pi(y),
+            (b'-', Rat(x), Pi(y)) if x.is_zero() => Pi(-y),
+            (b'*', Rat(x), Pi(y)) | (b'*', Pi(y), Rat(x)) => Pi(x * y),
+            (b'/', Pi(x), Rat(y)) => Pi(x / y),
+            (b'/', Pi(x), Pi(y)) => Rat(x / y),
+            (b'/', Rat(x), Pi(_)) if x.is_zero() => Rat(x),
+            _ => irrational(),
+        };
+        self.value(ex, f, text)
+    }
+
+    /// b^e for rationals: exact when e is an integer, or e = p/q and b is a perfect q-th power.
+    fn rational_power(
+        &self,
+        b: &BigRational,
+        e: &BigRational,
+        text: &str,
+    ) -> Result<Exact, NumberError> {
+        let irrational = || Exact::No(format!("{text} is irrational"));
+        if b.is_negative() && !odd(e.denom()) {
+            return Err(self.not_finite(format!(
+                "a negative number has no real root of even order in '{text}'"
+            )));
+        }
+        let base = if e.denom().is_one() || b.is_zero() || b.abs().is_one() {
+            b.clone() // 0 and ±1 are their own roots (the sign is fine: the root order is odd)
+        } else {
+            let Some(q) = e.denom().to_u32() else {
+                return Ok(irrational()); // |b| != 1 is no perfect power of such high order
+            };
+            match (exact_root(&b.numer().abs(), q), exact_root(b.denom(), q)) {
+                (Some(n), Some(d)) => {
+                    let r = BigRational::new(n, d);
+                    if b.is_negative() { -r } else { r }
+                }
+                _ => return Ok(irrational()),
+            }
+        };
+        let n = e.numer();
+        if base.is_zero() {
+            return match n.sign() {
+                num_bigint::Sign::Minus => {
+                    Err(self.not_finite(format!("zero to a negative power in '{text}'")))
+                }
+                num_bigint::Sign::NoSign => Ok(Exact::Rat(int(1))),
+                num_bigint::Sign::Plus => Ok(Exact::Rat(base)),
+            };
+        }
+        if base.abs().is_one() {
+            return Ok(Exact::Rat(if base.is_negative() && odd(n) {
+                base
+            } else {
+                int(1)
+            }));
+        }
+        // Refuse before computing: the result has about |n| * bits(base) bits.
+        let small = n
+            .magnitude()
+            .to_u32()
+            .filter(|&k| u64::from(k) * bits(&base) <= MAX_EXACT_BITS);
+        let Some(k) = small else {
+            return Ok(Exact::No(format!(
+                "'{text}' exceeds {MAX_EXACT_BITS} bits of exact precision"
+            )));
+        };
+        let (num, den) = (base.numer().pow(k), base.denom().pow(k));
+        Ok(Exact::Rat(if n.is_negative() {
+            BigRational::new(den, num)
+        } else {
+            BigRational::new(num, den)
+        }))
+    }
+}
+
+/// f64 radians of q*pi after exact reduction of q into (-1, 1], so large angles lose no accuracy.
+fn reduced_radians(q: &BigRational) -> f64 {
+    let two = int(2);
+    let mut r = q - (q / &two).floor() * &two;
+    if r > BigRational::one() {
+        r -= two;
+    }
+    rational_to_f64(&r) * PI
+}
+
+enum Trig {
+    Rational(BigRational),
+    Irrational,
+    Pole,
+}
+
+/// sin/cos/tan at a rational number of degrees. By Niven's theorem their only rational values
+/// at rational degrees are 0, ±1/2, ±1 (sin, cos) and 0, ±1 (tan), taken at the angles listed here.
+fn trig_at_degrees(func: Func, degrees: &BigRational) -> Trig {
+    let full = int(360);
+    let d = degrees - (degrees / &full).floor() * &full;
+    let Some(d) = d.is_integer().then(|| d.to_integer().to_i64()).flatten() else {
+        return Trig::Irrational;
+    };
+    let half = || BigRational::new(BigInt::from(1), BigInt::from(2));
+    let value = match (func, d) {
+        (Func::Sin, 0 | 180) | (Func::Cos, 90 | 270) | (Func::Tan, 0 | 180) => int(0),
+        (Func::Sin, 90) | (Func::Cos, 0) | (Func::Tan, 45 | 225) => int(1),
+        (Func::Sin, 270) | (Func::Cos, 180) | (Func::Tan, 135 | 315) => int(-1),
+        (Func::Sin, 30 | 150) | (Func::Cos, 60 | 300) => half(),
+        (Func::Sin, 210 | 330) | (Func::Cos, 120 | 240) => -half(),
+        (Func::Tan, 90 | 270) => return Trig::Pole,
+        _ => return Trig::Irrational,
+    };
+    Trig::Rational(value)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn q(n: i64, d: i64) -> BigRational {
+        BigRational::new(BigInt::from(n), BigInt::from(d))
+    }
+
+    fn exact(text: &str) -> BigRational {
+        match parse_number(text) {
+            Ok(Number { exact: Ok(v), .. }) => v,
+            other => panic!("{text}: expected an exact value, got {other:?}"),
+        }
+    }
+
+    fn inexact(text: &str) -> (String, f64) {
+        match parse_number(text) {
+            Ok(Number {
+                exact: Err(reason),
+                approx,
+                ..
+            }) => (reason, approx),
+            other => panic!("{text}: expected an inexact value, got {other:?}"),
+        }
+    }
+
+    fn ulps(a: f64, b: f64) -> u64 {
+        (a.to_bits() as i64 - b.to_bits() as i64).unsigned_abs()
+    }
+
+    fn is_syntax(text: &str) -> String {
+        match parse_number(text) {
+            Err(NumberError::Syntax { reason, .. }) => reason,
+            other => panic!("{text}: expected a syntax error, got {other:?}"),
+        }
+    }
+
+    fn is_not_finite(text: &str) -> String {
+        match parse_number(text) {
+            Err(NumberError::NotFinite { reason, .. }) => reason,
+            other => panic!("{text}: expected NotFinite, got {other:?}"),
+        }
+    }
+
+    #[test]
+    fn literals_are_exact() {
+        assert_eq!(exact("0.1"), q(1, 10));
+        assert_eq!(parse_number("0.1").map(|n| n.approx), Ok(0.1));
+        assert_eq!(exact("1/3"), q(1, 3));
+        assert_eq!(exact("-3e-2"), q(-3, 100));
+        assert_eq!(exact("1_000.5"), q(2001, 2));
+        assert_eq!(exact("+7"), q(7, 1));
+        assert_eq!(exact("0x10"), q(16, 1));
+        assert_eq!(exact("0o17"), q(15, 1));
+        assert_eq!(exact("0b1_01"), q(5, 1));
+        assert_eq!(exact(".5"), q(1, 2));
+        assert_eq!(exact("5."), q(5, 1));
+        assert_eq!(exact("2.5E+4"), q(25000, 1));
+        assert_eq!(exact("1e-3"), q(1, 1000));
+        assert_eq!(exact("0e99999999"), q(0, 1));
+        assert_eq!(exact(" 0.75*4^2 "), q(12, 1));
+    }
+
+    #[test]
+    fn parse_decimal_cases() {
+        assert_eq!(parse_decimal("0.1"), Some(q(1, 10)));
+        assert_eq!(parse_decimal("-3e-2"), Some(q(-3, 100)));
+        assert_eq!(parse_decimal("1_000.5"), Some(q(2001, 2)));
+        assert_eq!(parse_decimal("+0x1F"), Some(q(31, 1)));
+        for bad in [
+            "", "-", "1_", "_1", "1__0", "1.2.3", "1e", "nan", "inf", "1/3", "0x", "1e99999",
+        ] {
+            assert_eq!(parse_decimal(bad), None, "{bad}");
+        }
+    }
+
+    #[test]
+    fn powers() {
+        assert_eq!(exact("2^-2"), q(1, 4));
+        assert_eq!(exact("-2^2"), q(-4, 1));
+        assert_eq!(exact("2^3^2"), q(512, 1));
+        assert_eq!(exact("(9/4)^(1/2)"), q(3, 2));
+        assert_eq!(exact("(-8)^(1/3)"), q(-2, 1));
+        assert_eq!(exact("(-8)^(-2/3)"), q(1, 4));
+        assert_eq!(exact("0^0"), q(1, 1));
+        assert_eq!(exact("0^(1/2)"), q(0, 1));
+        assert_eq!(exact("(-1)^(1/3)"), q(-1, 1));
+        assert_eq!(exact("(-1)^(2/3)"), q(1, 1));
+        is_not_finite("(-1)^(1/2)");
+        is_not_finite("0^(-1/2)");
+        assert_eq!(exact("(-1)^12345678901234567890"), q(1, 1));
+        let (reason, approx) = inexact("2^(1/2)");
+        assert_eq!(reason, "2^(1/2) is irrational");
+        assert_eq!(approx, 2f64.sqrt());
+        assert_eq!(inexact("(-2)^(1/3)").1, -(2f64.cbrt()));
+        is_not_finite("0^-1");
+        is_not_finite("(-4)^(1/2)");
+        is_not_finite("2^100000"); // too big to be exact, and inf in f64
+        assert!(inexact("(1/2)^100000").0.contains("bits"));
+    }
+
+    #[test]
+    fn roots() {
+        assert_eq!(exact("sqrt(9/4)"), q(3, 2));
+        assert_eq!(exact("6*sqrt(3/27)"), q(2, 1));
+        let (reason, approx) = inexact("sqrt(5)");
+        assert!(reason.contains("sqrt(5)"), "{reason}");
+        assert_eq!(approx, 5f64.sqrt());
+        let (reason, approx) = inexact("2/sqrt(5)");
+        assert_eq!(reason, "sqrt(5) is irrational");
+        assert!(ulps(approx, 2.0 / 5f64.sqrt()) <= 1);
+        assert!(is_not_finite("sqrt(-1)").contains("sqrt(-1)"));
+        is_not_finite("sqrt(0 - sqrt(2))");
+        // The documented limitation: invisible cancellations are not found.
+        assert!(inexact("sqrt(2)*sqrt(2)").0.contains("sqrt(2)"));
+    }
+
+    #[test]
+    fn angles() {
+        assert_eq!(exact("cos(60 deg)"), q(1, 2));
+        assert_eq!(exact("sin(30 deg)"), q(1, 2));
+        assert_eq!(exact("sin(-30deg)"), q(-1, 2));
+        assert_eq!(exact("cos(720 deg + 120 deg)"), q(-1, 2));
+        assert_eq!(exact("tan(135 deg)"), q(-1, 1));
+        assert_eq!(exact("sin(pi/6)"), q(1, 2));
+        assert_eq!(exact("cos(pi)"), q(-1, 1));
+        assert_eq!(exact("sin(0)"), q(0, 1));
+        assert_eq!(exact("cos(0)"), q(1, 1));
+        assert_eq!(exact("pi/pi"), q(1, 1));
+        assert_eq!(exact("0 deg"), q(0, 1));
+        let (reason, approx) = inexact("cos(30 deg)");
+        assert_eq!(reason, "cos(30 deg) is irrational");
+        assert!(ulps(approx, 3f64.sqrt() / 2.0) <= 1, "{approx}");
+        assert!(inexact("sin(1)").0.contains("sin(1)"));
+        assert!(inexact("pi").0.contains("pi"));
+        assert_eq!(inexact("30 deg").1, 30f64.to_radians());
+        assert!(inexact("pi + 1").0.contains("pi + 1"));
+        is_not_finite("tan(90 deg)");
+        is_not_finite("tan(pi/2)");
+    }
+
+    #[test]
+    fn not_finite() {
+        assert!(is_not_finite("1/0").contains("division by zero in '1/0'"));
+        assert!(is_not_finite("2*3/(1-1)").contains("2*3/(1-1)"));
+        for text in [
+            "nan",
+            "inf",
+            "-inf",
+            "+inf",
+            "NaN",
+            "1e400",
+            "-1e400",
+            "10^400",
+            "1/(1e-400)",
+        ] {
+            is_not_finite(text);
+        }
+        // Intermediate overflow is fine when the exact value is finite.
+        assert_eq!(exact("10^400/10^399"), q(10, 1));
+        assert_eq!(parse_number("1e-400").map(|n| n.approx), Ok(0.0));
+    }
+
+    #[test]
+    fn syntax_errors() {
+        assert!(is_syntax("3 +").contains("end of input"));
+        assert!(is_syntax("").contains("empty"));
+        assert!(is_syntax("   ").contains("empty"));
+        let foo = is_syntax("foo");
+        assert!(
+            foo.contains("'foo'") && foo.contains("sqrt") && foo.contains("pi"),
+            "{foo}"
+        );
+        assert!(is_syntax("1 2").contains("position 3"));
+        assert!(is_syntax("(1").contains("')'"));
+        assert!(is_syntax("1)").contains("position 2"));
+        for text in [
+            "1_",
+            "1__0",
+            "_1",
+            "1._5",
+            "1.2.3",
+            "1e",
+            "1e+",
+            "0x",
+            "0xg",
+            "0b12",
+            "sqrt 4",
+            "sqrt()",
+            "deg",
+            "3pi",
+            "2 ** 3",
+            "1 $ 2",
+            "π",
+            "\"1/3\"",
+            "--",
+            "1 deg deg",
+            "nan +",
+        ] {
+            is_syntax(text);
+        }
+    }
+
+    #[test]
+    fn no_panics_on_odd_inputs() {
+        let deep_ok = format!("{}1{}", "(".repeat(150), ")".repeat(150));
+        assert_eq!(exact(&deep_ok), q(1, 1));
+        let deep = format!("{}1{}", "(".repeat(100_000), ")".repeat(100_000));
+        assert!(is_syntax(&deep).contains("nested"));
+        is_syntax(&"-".repeat(100_000));
+        is_syntax(&"2^".repeat(100_000));
+        is_syntax(&"sqrt(".repeat(10_000));
+        let long_sum = vec!["1"; 100_000].join("+");
+        assert_eq!(exact(&long_sum), q(100_000, 1));
+        let long_literal = format!("0.{}1", "0".repeat(3_000));
+        assert!(parse_number(&long_literal).is_ok());
+        let huge_exponent = format!("1e{}", "9".repeat(100));
+        is_not_finite(&huge_exponent);
+        assert_eq!(
+            parse_number(&format!("1e-{}", "9".repeat(100))).map(|n| n.approx),
+            Ok(0.0)
+        );
+        let (reason, approx) = inexact("(1/2)^(3^20) + 1");
+        assert!(reason.contains("bits"), "{reason}");
+        assert_eq!(approx, 1.0);
+        is_not_finite("2^(3^20) * 0"); // no exact value, and inf in f64
+        for text in [
+            "2^2^2^2^2",
+            "(1/3)^(1/12345678901)",
+            "7^(2^40)",
+            "0.5^(-0.5)",
+            "é",
+            "1 é",
+        ] {
+            let _ = parse_number(text);
+        }
+    }
+
+    #[test]
+    fn formatting() {
+        assert_eq!(format_rational(&q(-6, 8)), "-3/4");
+        assert_eq!(format_rational(&q(5, 1)), "5");
+        assert_eq!(format_surd(&q(1, 1), &q(17, 1)), "sqrt(17)");
+        assert_eq!(format_surd(&q(-1, 1), &q(17, 1)), "-sqrt(17)");
+        assert_eq!(format_surd(&q(3, 17), &q(17, 1)), "3/17*sqrt(17)");
+        assert_eq!(format_surd(&q(1, 1), &q(12, 1)), "2*sqrt(3)");
+        assert_eq!(format_surd(&q(-1, 1), &q(12, 1)), "-2*sqrt(3)");
+        assert_eq!(format_surd(&q(1, 1), &q(1, 2)), "1/2*sqrt(2)");
+        assert_eq!(format_surd(&q(2, 1), &q(9, 4)), "3");
+        assert_eq!(format_surd(&q(0, 1), &q(5, 1)), "0");
+        assert_eq!(format_surd(&q(5, 1), &q(0, 1)), "0");
+        assert_eq!(canonical_surd(&q(0, 1), &q(5, 1)), (q(0, 1), q(1, 1)));
+        assert_eq!(canonical_surd(&q(6, 1), &q(3, 31)), (q(6, 31), q(93, 1)));
+        // A square of a prime above the trial-division bound is still found.
+        let p = BigInt::from(1_000_003);
+        let r = BigRational::from_integer(&p * &p * 7);
+        assert_eq!(
+            canonical_surd(&q(1, 1), &r),
+            (BigRational::from_integer(p), q(7, 1))
+        );
+    }
+
+    #[test]
+    fn conversions() {
+        let big = BigInt::from(10).pow(400);
+        assert_eq!(
+            rational_to_f64(&BigRational::new(&big + 1, big.clone())),
+            1.0
+        );
+        assert_eq!(
+            rational_to_f64(&BigRational::new(big.clone(), &big * 3)),
+            1.0 / 3.0
+        );
+        assert_eq!(rational_to_f64(&q(1, 3)), 1.0 / 3.0);
+        assert_eq!(rational_to_f64(&q(-7, 2)), -3.5);
+        assert_eq!(
+            rational_to_f64(&BigRational::from_integer(big.clone())),
+            f64::INFINITY
+        );
+        assert_eq!(
+            rational_to_f64(&BigRational::new(BigInt::from(1), big)),
+            0.0
+        );
+        // Ties to even, and subnormals.
+        let two = BigInt::from(2);
+        let tie = BigRational::from_integer(two.pow(53) + 1);
+        assert_eq!(rational_to_f64(&tie), 2f64.powi(53));
+        let tiny = BigRational::new(BigInt::from(3), two.pow(1075));
+        assert_eq!(rational_to_f64(&tiny), f64::from_bits(2));
+        let max = BigRational::from_integer(
+            BigInt::from(f64::MAX.to_bits() & ((1 << 52) - 1) | 1 << 52) * two.pow(971),
+        );
+        assert_eq!(rational_to_f64(&max), f64::MAX);
+        for (n, d) in [(1, 10), (2, 3), (123456789, 1000), (-5, 7), (1, 1 << 40)] {
+            assert_eq!(rational_to_f64(&q(n, d)), n as f64 / d as f64);
+        }
+        assert!(ulps(surd_to_f64(&q(3, 1), &q(2, 1)), 3.0 * 2f64.sqrt()) <= 1);
+        assert!(ulps(surd_to_f64(&q(3, 17), &q(17, 1)), 3.0 / 17f64.sqrt()) <= 1);
+        let huge = BigRational::from_integer(BigInt::from(10).pow(600));
+        assert_eq!(surd_to_f64(&q(1, 1), &huge), 1e300);
+        assert_eq!(surd_to_f64(&q(0, 1), &q(-1, 1)), 0.0);
+        assert!(surd_to_f64(&q(1, 1), &q(-1, 1)).is_nan());
+    }
+}

@@ -1,0 +1,70 @@
+//! From a scene to a report: compose exactly the stages the scene calls for.
+//!
+//! A scene declares its effects — today the restitution models it asks for (`[solve]
+//! models`); constraints, surfaces and friction join as effects of their own. The pipeline
+//! assembles the collision once (frames, inertances, Δ) and runs only the models listed; the
+//! report names the effects it simulated.
+
+use crate::report::Report;
+use crate::restitution::Model;
+use crate::scalar::Scalar;
+use crate::scene::{Scene, SceneError};
+use crate::solve::{Impact, Outcome, SolveError};
+
+/// Why a scene could not be solved.
+#[derive(Debug, thiserror::Error)]
+pub enum RunError {
+    /// Bad input.
+    #[error("{0}")]
+    Scene(#[from] SceneError),
+    /// The collision has no unique solution, or a frame could not be built.
+    #[error("{0}")]
+    Solve(#[from] SolveError),
+}
+
+/// A solved scene: its report, and whether the energy identity ΔE_c = −E_p + Σ P_i v_ix⁰
+/// (eq. 34) held for each model — exactly in exact mode, to `16·N·ε·scale` in floats.
+#[derive(Clone, Debug)]
+pub struct Solved {
+    /// The readout.
+    pub report: Report,
+    /// Per model, in report order.
+    pub energy_identity: Vec<bool>,
+}
+
+/// Solve `scene` in the scalar type `T` for `models` (the scene's own when `None`).
+pub fn run<T: Scalar>(scene: &Scene, models: Option<&[Model]>) -> Result<Solved, RunError> {
+    let models = models.unwrap_or(&scene.models);
+    let problem = scene.problem::<T>()?;
+    let mut impact = Impact::new();
+    impact.assemble(&problem, &problem.body).map_err(|e| match e {
+        SolveError::Tangent(t) => RunError::Scene(SceneError {
+            file: scene.file.clone(),
+            key: format!("contact[{}].tangent", t.index),
+            value: None,
+            message: format!(
+                "not perpendicular to the normal (n·y = {}); give a tangent in the contact plane \
+                 or omit it to follow §12",
+                t.dot
+            ),
+        }),
+        other => RunError::Solve(other),
+    })?;
+    let mut outcomes = Vec::with_capacity(models.len());
+    let mut identity = Vec::with_capacity(models.len());
+    for &m in models {
+        let mut out = Outcome::default();
+        impact.solve(&problem, m, &mut out)?;
+        // eq. 34: ΔE_c + E_p − Σ P̂_i v̂_ix⁰ = 0.
+        let work = impact.impulse_work(&out);
+        let residual = out.kinetic_energy_loss.clone() + &out.lost_velocity_energy - &work;
+        let scale = impact.kinetic_before.clone() + &out.lost_velocity_energy;
+        identity.push(residual.is_negligible(&scale, 16 * problem.contacts.len().max(1)));
+        outcomes.push((m, out));
+    }
+    let effects = models.iter().map(|m| m.name().to_string()).collect();
+    Ok(Solved {
+        report: Report::new(&scene.name, effects, &impact, &outcomes),
+        energy_identity: identity,
+    })
+}

@@ -1,0 +1,242 @@
+//! The scalar types the solver runs in, and the few decisions that differ between them.
+//!
+//! The solver asks only for a **field** ([`Field`]: `+ − × ÷`, zero, one) plus three
+//! capabilities gathered in [`Scalar`]: converting an exact input into the type, converting a
+//! result out to `f64`, and deciding whether a pivot is zero. No square root is ever taken, so
+//! exact rationals run the very same code as floats: contact axes are kept unnormalised and the
+//! norms are applied when results are reported (see [`crate::contact`]).
+//!
+//! Supported scalars (a closed set, as in Drake's `default_scalars`):
+//!
+//! | type | name | zero test |
+//! |---|---|---|
+//! | `f32` | `"f32"` | `|x| ≤ n·ε·|reference|` |
+//! | `f64` | `"f64"` | `|x| ≤ n·ε·|reference|` |
+//! | [`Exact`] = `BigRational` | `"exact"` | `x = 0` |
+
+use std::fmt::Debug;
+use std::ops::{Add, AddAssign, Div, DivAssign, Mul, MulAssign, Neg, Sub, SubAssign};
+
+use num_bigint::BigInt;
+use num_rational::BigRational;
+use num_traits::{One, Signed, Zero};
+
+/// Exact rational arithmetic: the reference scalar of the toolkit.
+pub type Exact = BigRational;
+
+/// The arithmetic the solver needs: a field, with operations by value and by reference
+/// (so big rationals are not cloned needlessly).
+pub trait Field:
+    Clone
+    + PartialEq
+    + Debug
+    + 'static
+    + Zero
+    + One
+    + Add<Output = Self>
+    + Sub<Output = Self>
+    + Mul<Output = Self>
+    + Div<Output = Self>
+    + Neg<Output = Self>
+    + AddAssign
+    + SubAssign
+    + MulAssign
+    + DivAssign
+    + for<'a> Add<&'a Self, Output = Self>
+    + for<'a> Sub<&'a Self, Output = Self>
+    + for<'a> Mul<&'a Self, Output = Self>
+    + for<'a> Div<&'a Self, Output = Self>
+    + for<'a> AddAssign<&'a Self>
+    + for<'a> SubAssign<&'a Self>
+    + for<'a> MulAssign<&'a Self>
+    + for<'a> DivAssign<&'a Self>
+{
+}
+
+impl<T> Field for T where
+    T: Clone
+        + PartialEq
+        + Debug
+        + 'static
+        + Zero
+        + One
+        + Add<Output = T>
+        + Sub<Output = T>
+        + Mul<Output = T>
+        + Div<Output = T>
+        + Neg<Output = T>
+        + AddAssign
+        + SubAssign
+        + MulAssign
+        + DivAssign
+        + for<'a> Add<&'a T, Output = T>
+        + for<'a> Sub<&'a T, Output = T>
+        + for<'a> Mul<&'a T, Output = T>
+        + for<'a> Div<&'a T, Output = T>
+        + for<'a> AddAssign<&'a T>
+        + for<'a> SubAssign<&'a T>
+        + for<'a> MulAssign<&'a T>
+        + for<'a> DivAssign<&'a T>
+{
+}
+
+/// A scalar the solver runs in: a [`Field`] that can be built from exact input, read out as
+/// `f64`, and asked whether a value is zero relative to a reference magnitude.
+pub trait Scalar: Field {
+    /// The name used in reports (`"f32"`, `"f64"`, `"exact"`).
+    const NAME: &'static str;
+    /// Whether every operation is exact, so that a zero test is a proof.
+    const IS_EXACT: bool;
+
+    /// The value of an exact rational in this type (rounded for floats).
+    fn from_rational(q: &BigRational) -> Self;
+
+    /// The value of an `f64` in this type; `None` when the type is exact and so refuses to
+    /// take a rounded input for an exact one.
+    fn from_f64(x: f64) -> Option<Self>;
+
+    /// An approximation in `f64`, for display and for comparison with printed values.
+    fn to_f64(&self) -> f64;
+
+    /// The exact rational value, for exact types.
+    fn to_rational(&self) -> Option<BigRational>;
+
+    /// Is `self` zero, relative to the magnitude `reference` of the quantities it was computed
+    /// from, in a problem of dimension `n`? Exact types answer `self == 0`; floats answer
+    /// `|self| ≤ n·ε·|reference|`, the rounding error of an `n`-term computation at that scale.
+    fn is_negligible(&self, reference: &Self, n: usize) -> bool;
+
+    /// `|self| > |other|`, used only to choose pivots (any choice is correct in exact
+    /// arithmetic; in floats the larger pivot is the stable one).
+    fn abs_gt(&self, other: &Self) -> bool;
+
+    /// The sign of the value: −1, 0 or 1 (exact types decide exactly; floats by the bit sign
+    /// of a nonzero value).
+    fn signum_i8(&self) -> i8;
+
+    /// Machine epsilon (zero for exact types): the unit of a tolerance claim.
+    fn epsilon_f64() -> f64;
+}
+
+macro_rules! float_scalar {
+    ($t:ty, $name:literal) => {
+        impl Scalar for $t {
+            const NAME: &'static str = $name;
+            const IS_EXACT: bool = false;
+
+            fn from_rational(q: &BigRational) -> Self {
+                crate::number::rational_to_f64(q) as $t
+            }
+            fn from_f64(x: f64) -> Option<Self> {
+                Some(x as $t)
+            }
+            fn to_f64(&self) -> f64 {
+                *self as f64
+            }
+            fn to_rational(&self) -> Option<BigRational> {
+                None
+            }
+            fn is_negligible(&self, reference: &Self, n: usize) -> bool {
+                self.abs() <= (n.max(1) as $t) * <$t>::EPSILON * reference.abs()
+            }
+            fn abs_gt(&self, other: &Self) -> bool {
+                self.abs() > other.abs()
+            }
+            fn signum_i8(&self) -> i8 {
+                if *self > 0.0 {
+                    1
+                } else if *self < 0.0 {
+                    -1
+                } else {
+                    0
+                }
+            }
+            fn epsilon_f64() -> f64 {
+                <$t>::EPSILON as f64
+            }
+        }
+    };
+}
+
+float_scalar!(f32, "f32");
+float_scalar!(f64, "f64");
+
+impl Scalar for BigRational {
+    const NAME: &'static str = "exact";
+    const IS_EXACT: bool = true;
+
+    fn from_rational(q: &BigRational) -> Self {
+        q.clone()
+    }
+    fn from_f64(_: f64) -> Option<Self> {
+        None
+    }
+    fn to_f64(&self) -> f64 {
+        crate::number::rational_to_f64(self)
+    }
+    fn to_rational(&self) -> Option<BigRational> {
+        Some(self.clone())
+    }
+    fn is_negligible(&self, _reference: &Self, _n: usize) -> bool {
+        self.is_zero()
+    }
+    fn abs_gt(&self, other: &Self) -> bool {
+        self.abs() > other.abs()
+    }
+    fn signum_i8(&self) -> i8 {
+        if self.is_positive() {
+            1
+        } else if self.is_negative() {
+            -1
+        } else {
+            0
+        }
+    }
+    fn epsilon_f64() -> f64 {
+        0.0
+    }
+}
+
+/// A small integer in any scalar type (exact for every supported type).
+pub fn int<T: Scalar>(n: i64) -> T {
+    T::from_rational(&BigRational::from_integer(BigInt::from(n)))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn q(n: i64, d: i64) -> Exact {
+        BigRational::new(n.into(), d.into())
+    }
+
+    #[test]
+    fn exact_zero_test_is_exact() {
+        assert!(Exact::zero().is_negligible(&q(1, 1), 6));
+        assert!(!q(1, 1_000_000_000_000).is_negligible(&q(1, 1), 6));
+    }
+
+    #[test]
+    fn float_zero_test_scales_with_the_reference() {
+        assert!(1e-17f64.is_negligible(&1.0, 1));
+        assert!(!1e-17f64.is_negligible(&1e-3, 1));
+        assert!(!1e-10f64.is_negligible(&1.0, 6));
+    }
+
+    #[test]
+    fn conversions_round_trip_small_rationals() {
+        assert_eq!(<f64 as Scalar>::from_rational(&q(1, 4)), 0.25);
+        assert_eq!(<f32 as Scalar>::from_rational(&q(-3, 2)), -1.5f32);
+        assert_eq!(q(1, 3).to_f64(), 1.0 / 3.0);
+        assert_eq!(Exact::from_f64(0.5), None);
+        assert_eq!(int::<Exact>(-7), q(-7, 1));
+    }
+
+    #[test]
+    fn signs() {
+        assert_eq!(q(-1, 3).signum_i8(), -1);
+        assert_eq!(Exact::zero().signum_i8(), 0);
+        assert_eq!(2.0f64.signum_i8(), 1);
+        assert_eq!((-0.0f64).signum_i8(), 0);
+    }
+}

@@ -1,0 +1,639 @@
+//! Scene files (TOML): the public schema, read exactly as written.
+//!
+//! ```toml
+//! name = "planar bar on two supports"
+//! [body]
+//! mass = 1
+//! inertia = [12, 1.6, 12]          # central principal moments Jx, Jy, Jz
+//! velocity = [3, 2, 0]             # v_C before impact, body axes
+//! angular_velocity = [0, 0, 0.4]   # omega before impact
+//! [[contact]]
+//! point = [0, -2, 0]
+//! normal = [1, 0, 0]               # outward; need not be unit
+//! k = 0.3                          # or k_newton = .., k_poisson = ..
+//! [[contact]]
+//! point = [0, 4, 0]
+//! normal = [1, 0, 0]
+//! tangent = [0, 1, 0]              # optional axis y_i
+//! k = 0.2
+//! [solve]
+//! models = ["newton", "poisson"]   # either or both
+//! ```
+//!
+//! Every number may be a TOML integer or float, or a string holding a fraction or an
+//! expression (`"1/3"`, `"2/sqrt(5)"`, `"cos(30 deg)"`, see [`crate::number`]). The raw text
+//! is kept, so in exact mode `0.1` is exactly 1/10; an irrational expression is refused in
+//! exact mode and evaluated in floating point otherwise.
+//!
+//! Keys are addressed as paths, `body.mass`, `contact[1].k` (contacts counted from 0), both
+//! in error messages and in [`set_value`], which overrides one value of a scene.
+
+use std::fmt;
+
+use num_traits::Signed;
+use toml_edit::{DocumentMut, Item, Table, TableLike, Value};
+
+use crate::body::RigidBody;
+use crate::contact::Contact;
+use crate::number::{Number, parse_number};
+use crate::restitution::Model;
+use crate::scalar::Scalar;
+use crate::screw::{Screw, Vec3};
+use crate::solve::Problem;
+
+/// A scene that failed to read: which file, which key, which value, what is wrong.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SceneError {
+    /// The file (or `<derivation>#case` for embedded scenes).
+    pub file: String,
+    /// The key path, e.g. `contact[1].k`; empty for whole-file problems.
+    pub key: String,
+    /// The offending value as written, if any.
+    pub value: Option<String>,
+    /// What is wrong, and what to do about it.
+    pub message: String,
+}
+
+impl fmt::Display for SceneError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}", self.file)?;
+        if !self.key.is_empty() {
+            write!(f, ": key `{}`", self.key)?;
+        }
+        if let Some(v) = &self.value {
+            write!(f, " = {v}")?;
+        }
+        write!(f, ": {}", self.message)
+    }
+}
+
+impl std::error::Error for SceneError {}
+
+/// One contact of a scene, numbers as written.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ContactSpec {
+    /// A_i.
+    pub point: [Number; 3],
+    /// The outward normal.
+    pub normal: [Number; 3],
+    /// The imposed axis y_i.
+    pub tangent: Option<[Number; 3]>,
+    /// k_i^N.
+    pub k_newton: Number,
+    /// k_i^P.
+    pub k_poisson: Number,
+}
+
+/// A scene, validated, with every number as written (exact value when rational, f64 always).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Scene {
+    /// Where it came from, for messages.
+    pub file: String,
+    /// Its `name`, or the file name.
+    pub name: String,
+    /// m.
+    pub mass: Number,
+    /// (J_x, J_y, J_z).
+    pub inertia: [Number; 3],
+    /// v_C⁰.
+    pub velocity: [Number; 3],
+    /// ω⁰.
+    pub angular_velocity: [Number; 3],
+    /// The contacts.
+    pub contacts: Vec<ContactSpec>,
+    /// The restitution models asked for, in the order given.
+    pub models: Vec<Model>,
+}
+
+impl Scene {
+    /// Read and validate the scene file at `path`.
+    pub fn load(path: &std::path::Path) -> Result<Scene, SceneError> {
+        let file = path.display().to_string();
+        let text = std::fs::read_to_string(path).map_err(|e| SceneError {
+            file: file.clone(),
+            key: String::new(),
+            value: None,
+            message: format!("cannot read the file: {e}"),
+        })?;
+        Scene::parse(&text, &file)
+    }
+
+    /// Parse and validate scene text; `file` names it in messages.
+    pub fn parse(text: &str, file: &str) -> Result<Scene, SceneError> {
+        let doc = parse_document(text, file)?;
+        Scene::from_document(&doc, file)
+    }
+
+    /// Validate a parsed document.
+    pub fn from_document(doc: &DocumentMut, file: &str) -> Result<Scene, SceneError> {
+        let r = Reader { file };
+        let root = doc.as_table();
+        r.only_keys(
+            root,
+            "",
+            &["name", "description", "body", "contact", "solve"],
+        )?;
+        let name = match root.get("name") {
+            None => file.rsplit('/').next().unwrap_or(file).to_string(),
+            Some(item) => r.string(item, "name")?,
+        };
+        if let Some(item) = root.get("description") {
+            r.string(item, "description")?;
+        }
+        let body = r.table(root, "body", "")?;
+        r.only_keys(
+            body,
+            "body",
+            &["mass", "inertia", "velocity", "angular_velocity"],
+        )?;
+        let mass = r.number(r.get(body, "mass", "body")?, "body.mass")?;
+        r.positive(&mass, "body.mass", "a mass must be positive")?;
+        let inertia = r.triple(r.get(body, "inertia", "body")?, "body.inertia")?;
+        for (i, j) in inertia.iter().enumerate() {
+            r.positive(
+                j,
+                &format!("body.inertia[{i}]"),
+                "central principal moments must be positive",
+            )?;
+        }
+        let velocity = r.triple(r.get(body, "velocity", "body")?, "body.velocity")?;
+        let angular_velocity = r.triple(
+            r.get(body, "angular_velocity", "body")?,
+            "body.angular_velocity",
+        )?;
+
+        let contacts = match root.get("contact") {
+            Some(Item::ArrayOfTables(arr)) => arr
+                .iter()
+                .enumerate()
+                .map(|(i, t)| r.contact(t, i))
+                .collect::<Result<Vec<_>, _>>()?,
+            Some(other) => {
+                return Err(r.err("contact", Some(short(other)), "must be [[contact]] tables"));
+            }
+            None => Vec::new(),
+        };
+        if contacts.is_empty() {
+            return Err(r.err("contact", None, "a scene needs at least one [[contact]]"));
+        }
+
+        let models = match root.get("solve") {
+            None => Model::ALL.to_vec(),
+            Some(item) => {
+                let t = item
+                    .as_table()
+                    .ok_or_else(|| r.err("solve", Some(short(item)), "must be a table: [solve]"))?;
+                r.only_keys(t, "solve", &["models"])?;
+                match t.get("models") {
+                    None => Model::ALL.to_vec(),
+                    Some(m) => r.models(m, "solve.models")?,
+                }
+            }
+        };
+        Ok(Scene {
+            file: file.to_string(),
+            name,
+            mass,
+            inertia,
+            velocity,
+            angular_velocity,
+            contacts,
+            models,
+        })
+    }
+
+    /// Whether every number of the scene is rational (so it can run exactly).
+    pub fn is_rational(&self) -> bool {
+        self.numbers().all(|(_, n)| n.exact.is_ok())
+    }
+
+    /// Every number with its key path.
+    pub fn numbers(&self) -> impl Iterator<Item = (String, &Number)> {
+        let mut v: Vec<(String, &Number)> = vec![("body.mass".into(), &self.mass)];
+        let triples = [
+            ("body.inertia", &self.inertia),
+            ("body.velocity", &self.velocity),
+            ("body.angular_velocity", &self.angular_velocity),
+        ];
+        for (k, t) in triples {
+            for (i, n) in t.iter().enumerate() {
+                v.push((format!("{k}[{i}]"), n));
+            }
+        }
+        for (c, spec) in self.contacts.iter().enumerate() {
+            for (i, n) in spec.point.iter().enumerate() {
+                v.push((format!("contact[{c}].point[{i}]"), n));
+            }
+            for (i, n) in spec.normal.iter().enumerate() {
+                v.push((format!("contact[{c}].normal[{i}]"), n));
+            }
+            if let Some(t) = &spec.tangent {
+                for (i, n) in t.iter().enumerate() {
+                    v.push((format!("contact[{c}].tangent[{i}]"), n));
+                }
+            }
+            v.push((format!("contact[{c}].k_newton"), &spec.k_newton));
+            v.push((format!("contact[{c}].k_poisson"), &spec.k_poisson));
+        }
+        v.into_iter()
+    }
+
+    /// The problem in the scalar type `T`. Exact types take each number's exact value and
+    /// refuse irrational ones (naming the key and the value); floats take the rounded value.
+    pub fn problem<T: Scalar>(&self) -> Result<Problem<T>, SceneError> {
+        let num = |n: &Number, key: &str| -> Result<T, SceneError> {
+            match &n.exact {
+                Ok(q) => Ok(T::from_rational(q)),
+                Err(why) => T::from_f64(n.approx).ok_or_else(|| SceneError {
+                    file: self.file.clone(),
+                    key: key.to_string(),
+                    value: Some(n.text.clone()),
+                    message: format!(
+                        "not a rational number ({why}); exact mode reads every number exactly, \
+                         so write it as a fraction or run without --exact"
+                    ),
+                }),
+            }
+        };
+        let vec3 = |t: &[Number; 3], key: &str| -> Result<Vec3<T>, SceneError> {
+            Ok(Vec3::new(
+                num(&t[0], &format!("{key}[0]"))?,
+                num(&t[1], &format!("{key}[1]"))?,
+                num(&t[2], &format!("{key}[2]"))?,
+            ))
+        };
+        let body = RigidBody {
+            mass: num(&self.mass, "body.mass")?,
+            inertia: vec3(&self.inertia, "body.inertia")?,
+        };
+        let velocity = Screw::new(
+            vec3(&self.angular_velocity, "body.angular_velocity")?,
+            vec3(&self.velocity, "body.velocity")?,
+        );
+        let mut contacts = Vec::with_capacity(self.contacts.len());
+        for (i, c) in self.contacts.iter().enumerate() {
+            let key = |k: &str| format!("contact[{i}].{k}");
+            contacts.push(Contact {
+                point: vec3(&c.point, &key("point"))?,
+                normal: vec3(&c.normal, &key("normal"))?,
+                tangent: match &c.tangent {
+                    Some(t) => Some(vec3(t, &key("tangent"))?),
+                    None => None,
+                },
+                k_newton: num(&c.k_newton, &key("k_newton"))?,
+                k_poisson: num(&c.k_poisson, &key("k_poisson"))?,
+            });
+        }
+        Ok(Problem {
+            body,
+            velocity,
+            contacts,
+        })
+    }
+}
+
+/// Parse TOML text into a document (syntax errors name the file and the position).
+pub fn parse_document(text: &str, file: &str) -> Result<DocumentMut, SceneError> {
+    text.parse::<DocumentMut>().map_err(|e| SceneError {
+        file: file.to_string(),
+        key: String::new(),
+        value: None,
+        message: format!("not valid TOML: {}", e.to_string().trim()),
+    })
+}
+
+/// Override one value of a scene document: `path` like `body.mass`, `contact[1].k`,
+/// `body.velocity[0]`; `value` is TOML text (`0.5`, `"1/3"`, `[1, 0, 0]`). Used by
+/// derivations (`set` lines) and parameter sweeps.
+pub fn set_value(doc: &mut DocumentMut, path: &str, value: &str) -> Result<(), String> {
+    let new: Value = value
+        .trim()
+        .parse::<Value>()
+        .map_err(|e| format!("`{value}` is not a TOML value: {}", e.to_string().trim()))?;
+    let segments: Vec<&str> = path.split('.').collect();
+    let mut table: &mut dyn TableLike = doc.as_table_mut();
+    for (depth, seg) in segments.iter().enumerate() {
+        let (name, index) =
+            split_index(seg).ok_or_else(|| format!("bad key `{seg}` in `{path}`"))?;
+        if depth + 1 == segments.len() {
+            match index {
+                None => {
+                    table.insert(name, Item::Value(new));
+                    if name == "k" {
+                        table.remove("k_newton");
+                        table.remove("k_poisson");
+                    } else if name == "k_newton" || name == "k_poisson" {
+                        split_k(table);
+                    }
+                }
+                Some(i) => {
+                    let slot = table
+                        .get_mut(name)
+                        .and_then(Item::as_array_mut)
+                        .and_then(|a| a.get_mut(i))
+                        .ok_or_else(|| format!("`{path}`: there is no {name}[{i}]"))?;
+                    *slot = new;
+                }
+            }
+            return Ok(());
+        }
+        let child = table
+            .get_mut(name)
+            .ok_or_else(|| format!("`{path}`: no key `{name}`"))?;
+        table = match (child, index) {
+            (Item::Table(t), None) => t,
+            (Item::Value(Value::InlineTable(t)), None) => t,
+            (Item::ArrayOfTables(arr), Some(i)) => arr
+                .get_mut(i)
+                .ok_or_else(|| format!("`{path}`: there is no {name}[{i}]"))?,
+            _ => return Err(format!("`{path}`: `{seg}` is not a table")),
+        };
+    }
+    Err(format!("`{path}`: nothing to set"))
+}
+
+/// When `k` is replaced by one of `k_newton`/`k_poisson`, keep the other at the old `k`.
+fn split_k(table: &mut dyn TableLike) {
+    if let Some(k) = table.remove("k") {
+        for key in ["k_newton", "k_poisson"] {
+            if table.get(key).is_none() {
+                table.insert(key, k.clone());
+            }
+        }
+    }
+}
+
+/// `contact[1]` → ("contact", Some(1)); `mass` → ("mass", None).
+fn split_index(seg: &str) -> Option<(&str, Option<usize>)> {
+    match seg.find('[') {
+        None => Some((seg, None)),
+        Some(open) => {
+            let close = seg.strip_suffix(']')?;
+            let idx = close[open + 1..].parse().ok()?;
+            Some((&seg[..open], Some(idx)))
+        }
+    }
+}
+
+fn short(item: &Item) -> String {
+    let s = item.to_string();
+    let s = s.trim();
+    if s.len() > 60 {
+        format!("{}…", &s[..s.floor_char_boundary(60)])
+    } else {
+        s.to_string()
+    }
+}
+
+/// Reads values out of a document, turning every problem into a [`SceneError`].
+struct Reader<'a> {
+    file: &'a str,
+}
+
+impl Reader<'_> {
+    fn err(&self, key: &str, value: Option<String>, message: impl Into<String>) -> SceneError {
+        SceneError {
+            file: self.file.to_string(),
+            key: key.to_string(),
+            value,
+            message: message.into(),
+        }
+    }
+
+    fn only_keys(&self, t: &dyn TableLike, at: &str, known: &[&str]) -> Result<(), SceneError> {
+        for (k, v) in t.iter() {
+            if !known.contains(&k) {
+                let key = if at.is_empty() {
+                    k.to_string()
+                } else {
+                    format!("{at}.{k}")
+                };
+                return Err(self.err(
+                    &key,
+                    Some(short(v)),
+                    format!("unknown key; expected one of: {}", known.join(", ")),
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    fn get<'t>(
+        &self,
+        t: &'t dyn toml_edit::TableLike,
+        key: &str,
+        at: &str,
+    ) -> Result<&'t Item, SceneError> {
+        t.get(key)
+            .ok_or_else(|| self.err(&format!("{at}.{key}"), None, "missing (required)"))
+    }
+
+    fn table<'t>(&self, t: &'t Table, key: &str, at: &str) -> Result<&'t Table, SceneError> {
+        let path = if at.is_empty() {
+            key.to_string()
+        } else {
+            format!("{at}.{key}")
+        };
+        match t.get(key) {
+            None => Err(self.err(
+                &path,
+                None,
+                format!("missing (required): add a [{path}] table"),
+            )),
+            Some(item) => item.as_table().ok_or_else(|| {
+                self.err(
+                    &path,
+                    Some(short(item)),
+                    format!("must be a table: [{path}]"),
+                )
+            }),
+        }
+    }
+
+    fn string(&self, item: &Item, key: &str) -> Result<String, SceneError> {
+        item.as_str()
+            .map(str::to_string)
+            .ok_or_else(|| self.err(key, Some(short(item)), "must be a string"))
+    }
+
+    fn number_value(&self, v: &Value, key: &str) -> Result<Number, SceneError> {
+        let text: String = match v {
+            Value::Integer(f) => f.display_repr().into_owned(),
+            Value::Float(f) => f.display_repr().into_owned(),
+            Value::String(s) => s.value().clone(),
+            other => {
+                return Err(self.err(
+                    key,
+                    Some(other.to_string().trim().to_string()),
+                    "must be a number (or a string such as \"1/3\")",
+                ));
+            }
+        };
+        let shown = v.to_string().trim().to_string();
+        parse_number(&text).map_err(|e| self.err(key, Some(shown), e.to_string()))
+    }
+
+    fn number(&self, item: &Item, key: &str) -> Result<Number, SceneError> {
+        match item.as_value() {
+            Some(v) => self.number_value(v, key),
+            None => Err(self.err(key, Some(short(item)), "must be a number")),
+        }
+    }
+
+    fn triple(&self, item: &Item, key: &str) -> Result<[Number; 3], SceneError> {
+        let arr = item.as_array().filter(|a| a.len() == 3).ok_or_else(|| {
+            self.err(
+                key,
+                Some(short(item)),
+                "must be an array of three numbers [x, y, z]",
+            )
+        })?;
+        let mut out = Vec::with_capacity(3);
+        for (i, v) in arr.iter().enumerate() {
+            out.push(self.number_value(v, &format!("{key}[{i}]"))?);
+        }
+        let [a, b, c]: [Number; 3] = out
+            .try_into()
+            .map_err(|_| self.err(key, None, "must have three numbers"))?;
+        Ok([a, b, c])
+    }
+
+    fn positive(&self, n: &Number, key: &str, why: &str) -> Result<(), SceneError> {
+        let ok = match &n.exact {
+            Ok(q) => q.is_positive(),
+            Err(_) => n.approx > 0.0,
+        };
+        if ok {
+            Ok(())
+        } else {
+            Err(self.err(key, Some(n.text.clone()), format!("{why} (> 0)")))
+        }
+    }
+
+    fn coefficient(&self, n: Number, key: &str) -> Result<Number, SceneError> {
+        let ok = match &n.exact {
+            Ok(q) => !q.is_negative() && *q <= num_traits::One::one(),
+            Err(_) => (0.0..=1.0).contains(&n.approx),
+        };
+        if ok {
+            Ok(n)
+        } else {
+            Err(self.err(
+                key,
+                Some(n.text.clone()),
+                "a coefficient of restitution must lie in [0, 1]",
+            ))
+        }
+    }
+
+    fn nonzero(&self, t: &[Number; 3], key: &str, what: &str) -> Result<(), SceneError> {
+        let zero = t.iter().all(|n| match &n.exact {
+            Ok(q) => num_traits::Zero::is_zero(q),
+            Err(_) => n.approx == 0.0,
+        });
+        if zero {
+            let shown = format!("[{}, {}, {}]", t[0].text, t[1].text, t[2].text);
+            Err(self.err(
+                key,
+                Some(shown),
+                format!("{what} must not be the zero vector"),
+            ))
+        } else {
+            Ok(())
+        }
+    }
+
+    fn contact(&self, t: &Table, i: usize) -> Result<ContactSpec, SceneError> {
+        let at = format!("contact[{i}]");
+        self.only_keys(
+            t,
+            &at,
+            &[
+                "point",
+                "normal",
+                "tangent",
+                "k",
+                "k_newton",
+                "k_poisson",
+                "name",
+            ],
+        )?;
+        let point = self.triple(self.get(t, "point", &at)?, &format!("{at}.point"))?;
+        let normal = self.triple(self.get(t, "normal", &at)?, &format!("{at}.normal"))?;
+        self.nonzero(&normal, &format!("{at}.normal"), "a normal")?;
+        let tangent = match t.get("tangent") {
+            None => None,
+            Some(item) => {
+                let tan = self.triple(item, &format!("{at}.tangent"))?;
+                self.nonzero(&tan, &format!("{at}.tangent"), "a tangent")?;
+                Some(tan)
+            }
+        };
+        let k_of = |key: &str| -> Result<Option<Number>, SceneError> {
+            match t.get(key) {
+                None => Ok(None),
+                Some(item) => {
+                    let path = format!("{at}.{key}");
+                    Ok(Some(self.coefficient(self.number(item, &path)?, &path)?))
+                }
+            }
+        };
+        let (k, kn, kp) = (k_of("k")?, k_of("k_newton")?, k_of("k_poisson")?);
+        let (k_newton, k_poisson) = match (k, kn, kp) {
+            (Some(k), None, None) => (k.clone(), k),
+            (None, Some(n), Some(p)) => (n, p),
+            (Some(_), _, _) => {
+                return Err(self.err(
+                    &format!("{at}.k"),
+                    None,
+                    "give either `k` or both `k_newton` and `k_poisson`, not both forms",
+                ));
+            }
+            (None, n, p) => {
+                let missing = if n.is_none() { "k_newton" } else { "k_poisson" };
+                let _ = p;
+                return Err(self.err(
+                    &format!("{at}.{missing}"),
+                    None,
+                    "missing: give `k` (both models), or both `k_newton` and `k_poisson`",
+                ));
+            }
+        };
+        Ok(ContactSpec {
+            point,
+            normal,
+            tangent,
+            k_newton,
+            k_poisson,
+        })
+    }
+
+    fn models(&self, item: &Item, key: &str) -> Result<Vec<Model>, SceneError> {
+        let arr = item.as_array().ok_or_else(|| {
+            self.err(
+                key,
+                Some(short(item)),
+                "must be an array such as [\"newton\", \"poisson\"]",
+            )
+        })?;
+        let mut models = Vec::new();
+        for v in arr.iter() {
+            let shown = v.to_string().trim().to_string();
+            let m = v.as_str().and_then(Model::from_name).ok_or_else(|| {
+                self.err(
+                    key,
+                    Some(shown.clone()),
+                    "unknown model; expected \"newton\" or \"poisson\"",
+                )
+            })?;
+            if models.contains(&m) {
+                return Err(self.err(key, Some(shown), "model listed twice"));
+            }
+            models.push(m);
+        }
+        if models.is_empty() {
+            return Err(self.err(key, Some("[]".into()), "list at least one model"));
+        }
+        Ok(models)
+    }
+}

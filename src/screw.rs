@@ -1,0 +1,114 @@
+//! Screw (Plücker) coordinates, with the paper's conventions (§2.2).
+//!
+//! A screw is a column of six numbers `[top; bottom]`:
+//!
+//! * a **velocity screw** (twist) is {v} = [ω; v_C]: angular velocity, then the velocity of
+//!   the centre of mass C;
+//! * the screw of an **axis** through the point A (position **r** from C) with direction **u**
+//!   is {E} = [u; r × u] (eq. 3–4, with [S] the matrix of r×);
+//! * a **wrench** (an impulse and its moment about C) has the same layout, [P; r × P].
+//!
+//! The mixed product of eq. (6), {a} * {b} = {a}ᵀ [η] {b} with [η] = [[0, I], [I, 0]]
+//! (eq. 5), pairs a twist with an axis: {E}ᵀ η {v} = u · (v_C + ω × r) is the velocity of
+//! the point A along **u** (eq. 8).
+
+use nalgebra::{SVector, Vector3};
+
+use crate::scalar::Scalar;
+
+/// A 3-vector of the body frame Cxyz (central principal axes).
+pub type Vec3<T> = Vector3<T>;
+
+/// A screw in Plücker coordinates, `[top; bottom]` (see the module docs).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Screw<T: Scalar>(pub SVector<T, 6>);
+
+impl<T: Scalar> Screw<T> {
+    /// The screw [top; bottom].
+    pub fn new(top: Vec3<T>, bottom: Vec3<T>) -> Self {
+        Screw(SVector::<T, 6>::from_iterator(
+            top.iter().chain(bottom.iter()).cloned(),
+        ))
+    }
+
+    /// The zero screw.
+    pub fn zero() -> Self {
+        Screw(SVector::<T, 6>::zeros())
+    }
+
+    /// The screw of the axis through `point` with direction `direction`: [u; r × u] (eq. 3–4).
+    pub fn axis(point: &Vec3<T>, direction: &Vec3<T>) -> Self {
+        Self::new(direction.clone(), point.cross(direction))
+    }
+
+    /// The first three coordinates (ω of a twist, the direction of an axis).
+    pub fn top(&self) -> Vec3<T> {
+        self.0.fixed_rows::<3>(0).into_owned()
+    }
+
+    /// The last three coordinates (v_C of a twist, the moment of an axis about C).
+    pub fn bottom(&self) -> Vec3<T> {
+        self.0.fixed_rows::<3>(3).into_owned()
+    }
+
+    /// The mixed product {self}ᵀ [η] {other} of eq. (6): top·bottom' + bottom·top'.
+    pub fn reciprocal(&self, other: &Screw<T>) -> T {
+        let mut s = T::zero();
+        for i in 0..3 {
+            s += self.0[i].clone() * &other.0[i + 3];
+            s += self.0[i + 3].clone() * &other.0[i];
+        }
+        s
+    }
+
+    /// `self + c · other`, in place (the update {v} ← {v} − P M⁻¹{E} of eq. 24).
+    pub fn add_scaled(&mut self, c: &T, other: &Screw<T>) {
+        for i in 0..6 {
+            self.0[i] += c.clone() * &other.0[i];
+        }
+    }
+
+    /// The coordinates as a slice, top first.
+    pub fn as_slice(&self) -> &[T] {
+        self.0.as_slice()
+    }
+}
+
+/// u · w, field-only.
+pub fn dot<T: Scalar>(u: &Vec3<T>, w: &Vec3<T>) -> T {
+    u[0].clone() * &w[0] + u[1].clone() * &w[1] + u[2].clone() * &w[2]
+}
+
+/// |u|², the squared norm (no square root is taken anywhere in the solver).
+pub fn norm2<T: Scalar>(u: &Vec3<T>) -> T {
+    dot(u, u)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scalar::{Exact, int};
+
+    fn v(x: i64, y: i64, z: i64) -> Vec3<Exact> {
+        Vec3::new(int(x), int(y), int(z))
+    }
+
+    #[test]
+    fn axis_screw_is_direction_and_moment() {
+        // Example 3: A_1 = (0, −2, 0), x_1 = i  ⇒  {E_1x} = [1 0 0 0 0 2]ᵀ.
+        let e = Screw::axis(&v(0, -2, 0), &v(1, 0, 0));
+        assert_eq!(e.top(), v(1, 0, 0));
+        assert_eq!(e.bottom(), v(0, 0, 2));
+    }
+
+    #[test]
+    fn reciprocal_product_is_the_point_velocity_along_the_axis() {
+        // {E}ᵀη{v} = u · (v_C + ω × r) for any r, u, ω, v_C.
+        let (r, u) = (v(1, -2, 3), v(2, 1, -1));
+        let (w, vc) = (v(-1, 4, 2), v(5, 0, -3));
+        let e = Screw::axis(&r, &u);
+        let twist = Screw::new(w.clone(), vc.clone());
+        assert_eq!(e.reciprocal(&twist), dot(&u, &(vc + w.cross(&r))));
+        assert_eq!(e.reciprocal(&twist), twist.reciprocal(&e));
+    }
+}

@@ -1,0 +1,291 @@
+//! The simultaneous collision at N points: assemble, factor, solve (§2–4, §6).
+//!
+//! For a body of mobility W (W = [M]⁻¹ for a free body) hit along the contact normals
+//! {E_1x} … {E_Nx}, with hatted (unnormalised) axes as explained in [`crate::contact`]:
+//!
+//! ```text
+//! ĝ_ij = {Ê_ix}ᵀ η W {Ê_jx}                               inertances      (eq. 12, 126)
+//! Newton:  Σ_j ĝ_ij P̂_j = (1 + k_i^N) v̂_ix⁰                               (eq. 15, 20)
+//! Poisson: Σ_j ĝ_ij P̂_j^c = v̂_ix⁰,   P̂_i = (1 + k_i^P) P̂_i^c               (eq. 21–23)
+//! {v} = {v⁰} − Σ_j P̂_j W {Ê_jx}                            after impact    (eq. 24)
+//! v̂_ia = v̂_ia⁰ − Σ_j ĝ_ij,ax P̂_j,  a = x, y, z                             (eq. 13, 25, 26)
+//! E_p  = ½ ({v} − {v⁰})ᵀ η M ({v} − {v⁰})                                  (eq. 28)
+//! ΔE_c = ½ {v⁰}ᵀ η M {v⁰} − ½ {v}ᵀ η M {v}                                 (eq. 32)
+//! ```
+//!
+//! E_p is computed from the velocity change and ΔE_c from the two kinetic energies, so the
+//! identity ΔE_c = −E_p + Σ P_i v_ix⁰ (eq. 34) is a check on the solve, not a definition.
+//!
+//! [`Impact::assemble`] does the model-independent work once (frames, G, its factorization,
+//! Δ); [`Impact::solve`] then runs one restitution model. Both reuse the buffers they own, so
+//! repeated f64 solves allocate nothing.
+
+use crate::body::{Mobility, RigidBody};
+use crate::contact::{Contact, ContactFrame, TangentNotPerpendicular};
+use crate::linalg::{self, NotSemidefinite};
+use crate::restitution::Model;
+use crate::scalar::Scalar;
+use crate::screw::Screw;
+
+/// A collision problem: the body, its twist before impact, and the contacts.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Problem<T: Scalar> {
+    /// Mass and central principal moments.
+    pub body: RigidBody<T>,
+    /// {v⁰} = [ω⁰; v_C⁰].
+    pub velocity: Screw<T>,
+    /// The contacts A_1 … A_N.
+    pub contacts: Vec<Contact<T>>,
+}
+
+/// Why a collision could not be solved.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum SolveError {
+    /// Δ = det G = 0: the system for the impulses has no unique solution (§8).
+    #[error(
+        "the inertance matrix G is singular (Δ = 0; rank {rank} of {contacts}): the impulses are \
+         not determined uniquely"
+    )]
+    Singular {
+        /// rank G.
+        rank: usize,
+        /// N.
+        contacts: usize,
+    },
+    /// A contact frame could not be built.
+    #[error(transparent)]
+    Tangent(#[from] TangentNotPerpendicular),
+    /// G was not positive semidefinite: cannot happen for a body with positive mass and
+    /// moments; reported rather than trusted.
+    #[error(transparent)]
+    NotSemidefinite(#[from] NotSemidefinite),
+}
+
+/// The model-independent part of a collision: frames, velocities before impact, inertances,
+/// the factorization of G and Δ. All matrices are N×N, row-major, in hatted form.
+#[derive(Clone, Debug)]
+pub struct Impact<T: Scalar> {
+    n: usize,
+    /// The contact frames.
+    pub frames: Vec<ContactFrame<T>>,
+    /// (v̂_ix⁰, v̂_iy⁰, v̂_iz⁰) per contact (eq. 8).
+    pub before: Vec<[T; 3]>,
+    /// W{Ê_jx}: the twist per unit hatted impulse at contact j.
+    pub responses: Vec<Screw<T>>,
+    /// Ĝ = [ĝ_ij,xx].
+    pub g: Vec<T>,
+    /// [ĝ_ij,yx] (eq. 127).
+    pub g_yx: Vec<T>,
+    /// [ĝ_ij,zx] (eq. 128).
+    pub g_zx: Vec<T>,
+    /// Δ̂ = det Ĝ = Δ · Π|x̂_i|².
+    pub det: T,
+    /// rank G.
+    pub rank: usize,
+    /// ½ {v⁰}ᵀ η M {v⁰}.
+    pub kinetic_before: T,
+    factor: Vec<T>,
+    perm: Vec<usize>,
+    work: Vec<T>,
+}
+
+/// The result of one restitution model, in hatted form (see [`crate::contact`]).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Outcome<T: Scalar> {
+    /// P̂_i = P_i / |x̂_i|.
+    pub impulses: Vec<T>,
+    /// P̂_i^c (Poisson only; empty for Newton).
+    pub compression: Vec<T>,
+    /// {v} = [ω; v_C] after impact.
+    pub velocity: Screw<T>,
+    /// (v̂_ix, v̂_iy, v̂_iz) after impact, per contact (eq. 13, 25, 26).
+    pub after: Vec<[T; 3]>,
+    /// E_p (eq. 28).
+    pub lost_velocity_energy: T,
+    /// ΔE_c (eq. 32).
+    pub kinetic_energy_loss: T,
+}
+
+impl<T: Scalar> Default for Outcome<T> {
+    fn default() -> Self {
+        Outcome {
+            impulses: Vec::new(),
+            compression: Vec::new(),
+            velocity: Screw::zero(),
+            after: Vec::new(),
+            lost_velocity_energy: T::zero(),
+            kinetic_energy_loss: T::zero(),
+        }
+    }
+}
+
+impl<T: Scalar> Default for Impact<T> {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl<T: Scalar> Impact<T> {
+    /// An empty impact, to be filled by [`Impact::assemble`].
+    pub fn new() -> Self {
+        Impact {
+            n: 0,
+            frames: Vec::new(),
+            before: Vec::new(),
+            responses: Vec::new(),
+            g: Vec::new(),
+            g_yx: Vec::new(),
+            g_zx: Vec::new(),
+            det: T::one(),
+            rank: 0,
+            kinetic_before: T::zero(),
+            factor: Vec::new(),
+            perm: Vec::new(),
+            work: Vec::new(),
+        }
+    }
+
+    /// Number of contacts.
+    pub fn contacts(&self) -> usize {
+        self.n
+    }
+
+    /// Build frames, inertances and the factorization of G for `problem`, with the body
+    /// answering impulses through `mobility`. A singular G is not an error here: `rank` and
+    /// `det` say so, and [`Impact::solve`] refuses.
+    pub fn assemble(
+        &mut self,
+        problem: &Problem<T>,
+        mobility: &impl Mobility<T>,
+    ) -> Result<(), SolveError> {
+        let n = problem.contacts.len();
+        self.n = n;
+        self.frames.clear();
+        self.before.clear();
+        self.responses.clear();
+        for (i, c) in problem.contacts.iter().enumerate() {
+            let f = ContactFrame::new(i, c, &problem.velocity)?;
+            self.before.push(f.velocity(&problem.velocity));
+            self.responses.push(mobility.response(&f.axes[0]));
+            self.frames.push(f);
+        }
+        resize(&mut self.g, n * n);
+        resize(&mut self.g_yx, n * n);
+        resize(&mut self.g_zx, n * n);
+        for i in 0..n {
+            for j in 0..n {
+                let r = &self.responses[j];
+                self.g[i * n + j] = self.frames[i].axes[0].reciprocal(r);
+                self.g_yx[i * n + j] = self.frames[i].axes[1].reciprocal(r);
+                self.g_zx[i * n + j] = self.frames[i].axes[2].reciprocal(r);
+            }
+        }
+        self.factor.clear();
+        self.factor.extend(self.g.iter().cloned());
+        self.perm.resize(n, 0);
+        let fac = linalg::factor_psd(&mut self.factor, n, &mut self.perm)?;
+        self.rank = fac.rank;
+        self.det = linalg::determinant(&self.factor, n);
+        self.kinetic_before = problem.body.kinetic_energy(&problem.velocity);
+        Ok(())
+    }
+
+    /// Solve the restitution `model` for the assembled problem into `out` (its buffers are
+    /// reused). `problem` and `mobility` must be those given to [`Impact::assemble`].
+    pub fn solve(
+        &mut self,
+        problem: &Problem<T>,
+        model: Model,
+        out: &mut Outcome<T>,
+    ) -> Result<(), SolveError> {
+        let n = self.n;
+        if self.rank < n {
+            return Err(SolveError::Singular {
+                rank: self.rank,
+                contacts: n,
+            });
+        }
+        resize(&mut self.work, n);
+        resize(&mut out.impulses, n);
+        // Right-hand side: (1 + k_i^N) v̂_ix⁰ (eq. 15) or v̂_ix⁰ (eq. 21).
+        for (i, c) in problem.contacts.iter().enumerate() {
+            let v0 = self.before[i][0].clone();
+            out.impulses[i] = match model {
+                Model::Newton => (T::one() + &c.k_newton) * &v0,
+                Model::Poisson => v0,
+            };
+        }
+        linalg::solve_factored(
+            &self.factor,
+            n,
+            &self.perm,
+            &mut out.impulses,
+            &mut self.work,
+        );
+        match model {
+            Model::Newton => out.compression.clear(),
+            Model::Poisson => {
+                out.compression.clear();
+                out.compression.extend(out.impulses.iter().cloned());
+                for (p, c) in out.impulses.iter_mut().zip(&problem.contacts) {
+                    *p *= T::one() + &c.k_poisson; // eq. 23
+                }
+            }
+        }
+        // eq. 24: {v} = {v⁰} − Σ P̂_j W{Ê_jx}.
+        out.velocity = problem.velocity.clone();
+        for (p, r) in out.impulses.iter().zip(&self.responses) {
+            out.velocity.add_scaled(&-p.clone(), r);
+        }
+        // eq. 13, 25, 26 through the inertances.
+        out.after.clear();
+        for i in 0..n {
+            let mut v = self.before[i].clone();
+            for (j, p) in out.impulses.iter().enumerate() {
+                v[0] -= self.g[i * n + j].clone() * p;
+                v[1] -= self.g_yx[i * n + j].clone() * p;
+                v[2] -= self.g_zx[i * n + j].clone() * p;
+            }
+            out.after.push(v);
+        }
+        // eq. 28 from the velocity change, eq. 32 from the kinetic energies.
+        let mut dv = out.velocity.clone();
+        dv.add_scaled(&-T::one(), &problem.velocity);
+        out.lost_velocity_energy = problem.body.kinetic_energy(&dv);
+        out.kinetic_energy_loss =
+            self.kinetic_before.clone() - problem.body.kinetic_energy(&out.velocity);
+        Ok(())
+    }
+
+    /// Σ_i P̂_i v̂_ix⁰: the right-hand side of the energy identity (eq. 34).
+    pub fn impulse_work(&self, out: &Outcome<T>) -> T {
+        let mut s = T::zero();
+        for (p, v) in out.impulses.iter().zip(&self.before) {
+            s += p.clone() * &v[0];
+        }
+        s
+    }
+}
+
+/// Resize to `n` zeros without reallocating when the capacity suffices.
+fn resize<T: Scalar>(v: &mut Vec<T>, n: usize) {
+    v.clear();
+    v.resize(n, T::zero());
+}
+
+/// Assemble and solve the free-body problem for each of `models`: the convenient one-shot
+/// entry point (allocates; use [`Impact`] directly to reuse buffers).
+pub fn solve_free<T: Scalar>(
+    problem: &Problem<T>,
+    models: &[Model],
+) -> Result<(Impact<T>, Vec<(Model, Outcome<T>)>), SolveError> {
+    let mut impact = Impact::new();
+    impact.assemble(problem, &problem.body)?;
+    let mut outcomes = Vec::with_capacity(models.len());
+    for &m in models {
+        let mut out = Outcome::default();
+        impact.solve(problem, m, &mut out)?;
+        outcomes.push((m, out));
+    }
+    Ok((impact, outcomes))
+}
