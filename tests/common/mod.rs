@@ -1,0 +1,114 @@
+//! Shared strategies and independent reference computations for the integration tests.
+//!
+//! Strategies are bounded (small rationals), as nalgebra's suites do, so exact arithmetic
+//! stays fast and no strategy breeds overflow.
+
+#![allow(dead_code)]
+
+use inertance::body::RigidBody;
+use inertance::contact::Contact;
+use inertance::scalar::{Exact, Scalar, int};
+use inertance::screw::{Screw, Vec3};
+use inertance::solve::Problem;
+use num_bigint::BigInt;
+use proptest::prelude::*;
+
+/// n/d with n in [-lo, lo], d in [1, den].
+pub fn rational(lo: i64, den: i64) -> impl Strategy<Value = Exact> {
+    (-lo..=lo, 1..=den).prop_map(|(n, d)| Exact::new(BigInt::from(n), BigInt::from(d)))
+}
+
+/// A positive rational n/d with n in [1, hi].
+pub fn positive(hi: i64, den: i64) -> impl Strategy<Value = Exact> {
+    (1..=hi, 1..=den).prop_map(|(n, d)| Exact::new(BigInt::from(n), BigInt::from(d)))
+}
+
+/// A coefficient of restitution in [0, 1] (multiples of 1/8, so 0 and 1 occur often).
+pub fn coefficient() -> impl Strategy<Value = Exact> {
+    (0i64..=8).prop_map(|n| Exact::new(BigInt::from(n), BigInt::from(8)))
+}
+
+pub fn vec3(lo: i64, den: i64) -> impl Strategy<Value = Vec3<Exact>> {
+    (rational(lo, den), rational(lo, den), rational(lo, den))
+        .prop_map(|(x, y, z)| Vec3::new(x, y, z))
+}
+
+/// A nonzero direction with small integer components (so its norm is generally irrational).
+pub fn direction() -> impl Strategy<Value = Vec3<Exact>> {
+    (-4i64..=4, -4i64..=4, -4i64..=4)
+        .prop_filter("nonzero", |(x, y, z)| (*x, *y, *z) != (0, 0, 0))
+        .prop_map(|(x, y, z)| Vec3::new(int::<Exact>(x), int(y), int(z)))
+}
+
+pub fn body() -> impl Strategy<Value = RigidBody<Exact>> {
+    (
+        positive(20, 4),
+        positive(20, 4),
+        positive(20, 4),
+        positive(20, 4),
+    )
+        .prop_map(|(m, a, b, c)| RigidBody {
+            mass: m,
+            inertia: Vec3::new(a, b, c),
+        })
+}
+
+pub fn contact() -> impl Strategy<Value = Contact<Exact>> {
+    (vec3(6, 3), direction(), coefficient(), coefficient()).prop_map(|(p, n, kn, kp)| Contact {
+        point: p,
+        normal: n,
+        tangent: None,
+        k_newton: kn,
+        k_poisson: kp,
+    })
+}
+
+/// A free-body problem with 1..=max contacts.
+pub fn problem(max: usize) -> impl Strategy<Value = Problem<Exact>> {
+    (
+        body(),
+        vec3(5, 2),
+        vec3(5, 2),
+        prop::collection::vec(contact(), 1..=max),
+    )
+        .prop_map(|(body, w, v, contacts)| Problem {
+            body,
+            velocity: Screw::new(w, v),
+            contacts,
+        })
+}
+
+/// The same problem in another scalar type (inputs rounded once).
+pub fn convert<T: Scalar>(p: &Problem<Exact>) -> Problem<T> {
+    let c = |x: &Exact| T::from_rational(x);
+    let v = |x: &Vec3<Exact>| Vec3::new(c(&x[0]), c(&x[1]), c(&x[2]));
+    Problem {
+        body: RigidBody {
+            mass: c(&p.body.mass),
+            inertia: v(&p.body.inertia),
+        },
+        velocity: Screw::new(v(&p.velocity.top()), v(&p.velocity.bottom())),
+        contacts: p
+            .contacts
+            .iter()
+            .map(|k| Contact {
+                point: v(&k.point),
+                normal: v(&k.normal),
+                tangent: k.tangent.as_ref().map(v),
+                k_newton: c(&k.k_newton),
+                k_poisson: c(&k.k_poisson),
+            })
+            .collect(),
+    }
+}
+
+/// ½(m|v_C|² + Σ J_k ω_k²), written out independently of the library.
+pub fn kinetic_energy(body: &RigidBody<Exact>, twist: &Screw<Exact>) -> Exact {
+    let (w, v) = (twist.top(), twist.bottom());
+    let mut t =
+        body.mass.clone() * (v[0].clone() * &v[0] + v[1].clone() * &v[1] + v[2].clone() * &v[2]);
+    for k in 0..3 {
+        t += body.inertia[k].clone() * &w[k] * &w[k];
+    }
+    t / Exact::from_integer(2.into())
+}
