@@ -1,0 +1,381 @@
+//! The `inertance` binary end to end: reports, and bad input that names the file, the key
+//! and the value, exits with status 2, and never panics.
+
+use std::path::PathBuf;
+use std::process::{Command, Output};
+
+const GOOD: &str = r#"
+name = "planar bar on two supports"
+[body]
+mass = 1
+inertia = [12, 1.6, 12]
+velocity = [3, 2, 0]
+angular_velocity = [0, 0, 0.4]
+[[contact]]
+point = [0, -2, 0]
+normal = [1, 0, 0]
+k = 0.3
+[[contact]]
+point = [0, 4, 0]
+normal = [1, 0, 0]
+tangent = [0, 1, 0]
+k = 0.2
+[solve]
+models = ["newton", "poisson"]
+"#;
+
+/// A scene file in a fresh temporary directory (removed when the test ends).
+struct Scene {
+    dir: PathBuf,
+    path: PathBuf,
+}
+
+impl Scene {
+    fn new(name: &str, text: &str) -> Scene {
+        let dir = std::env::temp_dir().join(format!("inertance-cli-{}-{name}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("scene.toml");
+        std::fs::write(&path, text).unwrap();
+        Scene { dir, path }
+    }
+}
+
+impl Drop for Scene {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_dir_all(&self.dir);
+    }
+}
+
+fn inertance(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_inertance"))
+        .args(args)
+        .output()
+        .unwrap()
+}
+
+fn json(out: &Output) -> serde_json::Value {
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    serde_json::from_slice(&out.stdout).unwrap()
+}
+
+/// Run `solve` on `GOOD` with `from` replaced by `to`; expect status 2 and a message that
+/// contains each of `needles` (the key, the value, what is wrong).
+fn rejects(name: &str, from: &str, to: &str, needles: &[&str]) {
+    assert!(GOOD.contains(from), "bad test: {from}");
+    let scene = Scene::new(name, &GOOD.replacen(from, to, 1));
+    for exact in [false, true] {
+        let path = scene.path.to_str().unwrap();
+        let out = if exact {
+            inertance(&["solve", path, "--exact"])
+        } else {
+            inertance(&["solve", path])
+        };
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{name}: {err}");
+        assert!(out.stdout.is_empty(), "{name}: nothing on stdout");
+        assert!(err.contains(path), "{name}: names the file: {err}");
+        for n in needles {
+            assert!(err.contains(n), "{name}: expected `{n}` in: {err}");
+        }
+        assert!(!err.contains("panicked"), "{name}: {err}");
+    }
+}
+
+#[test]
+fn exact_json_report_has_the_contract_keys_and_exact_values() {
+    let scene = Scene::new("json", GOOD);
+    let v = json(&inertance(&[
+        "solve",
+        scene.path.to_str().unwrap(),
+        "--exact",
+        "--json",
+    ]));
+    assert_eq!(v["scalar"], "exact");
+    assert_eq!(v["effects"], serde_json::json!(["newton", "poisson"]));
+    assert_eq!(
+        v["inertance"],
+        serde_json::json!([["4/3", "1/3"], ["1/3", "7/3"]])
+    );
+    assert_eq!(v["det"], "3");
+    let p = &v["models"]["poisson"];
+    // Poisson: P^c solves G P^c = v⁰_x = (19/5, 7/5): P^c = (14/5, 1/5), P = (1.3, 1.2)·P^c.
+    assert_eq!(
+        p["compression_impulses"],
+        serde_json::json!(["14/5", "1/5"])
+    );
+    assert_eq!(p["impulses"], serde_json::json!(["91/25", "6/25"]));
+    assert_eq!(p["velocity"], serde_json::json!(["-22/25", "2", "0"]));
+    assert_eq!(
+        p["angular_velocity"],
+        serde_json::json!(["0", "0", "-19/150"])
+    );
+    let c = &p["contacts"][0];
+    assert_eq!(c["velocity_before"], serde_json::json!(["19/5", "2", "0"]));
+    assert_eq!(c["angle_before_deg"], 0.0);
+    for key in ["lost_velocity_energy", "kinetic_energy_loss"] {
+        assert!(p[key].is_string(), "{key}");
+    }
+    let n = &v["models"]["newton"];
+    assert!(n.get("compression_impulses").is_none());
+    // Newton: v_ix = −k_i v_ix⁰.
+    assert_eq!(n["contacts"][0]["velocity_after"][0], "-57/50");
+    assert_eq!(n["contacts"][1]["velocity_after"][0], "-7/25");
+}
+
+#[test]
+fn f64_json_report_uses_numbers_and_model_flag_selects() {
+    let scene = Scene::new("f64", GOOD);
+    let v = json(&inertance(&[
+        "solve",
+        scene.path.to_str().unwrap(),
+        "--json",
+        "--model",
+        "newton",
+    ]));
+    assert_eq!(v["scalar"], "f64");
+    assert_eq!(v["effects"], serde_json::json!(["newton"]));
+    assert!(v["models"].get("poisson").is_none());
+    let e = v["models"]["newton"]["lost_velocity_energy"]
+        .as_f64()
+        .unwrap();
+    assert!((e - 9.195356).abs() < 5e-7);
+}
+
+#[test]
+fn table_output_names_models_and_units() {
+    let scene = Scene::new("table", GOOD);
+    let out = inertance(&["solve", scene.path.to_str().unwrap()]);
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success());
+    for s in [
+        "newton",
+        "poisson",
+        "P1 [N s]",
+        "E_p [J]",
+        "ΔE_c [J]",
+        "9.195356",
+        "4.976533",
+    ] {
+        assert!(text.contains(s), "missing {s} in:\n{text}");
+    }
+}
+
+#[test]
+fn non_unit_normal_is_exact_with_surd_impulse() {
+    // One contact, normal (4, 1, 0) through C: g = 17/m for the hatted axis, P = P̂·√17.
+    let text = r#"
+[body]
+mass = 2
+inertia = [1, 1, 1]
+velocity = [1, 0, 0]
+angular_velocity = [0, 0, 0]
+[[contact]]
+point = [0, 0, 0]
+normal = [4, 1, 0]
+k = 0.5
+"#;
+    let scene = Scene::new("surd", text);
+    let v = json(&inertance(&[
+        "solve",
+        scene.path.to_str().unwrap(),
+        "--exact",
+        "--json",
+        "--model",
+        "newton",
+    ]));
+    let n = &v["models"]["newton"];
+    // v_n⁰ = 4/√17 ⇒ P = m(1+k) v_n⁰ = 2·(3/2)·4/√17 = 12/√17 = 12/17·√17.
+    assert_eq!(n["impulses"][0], "12/17*sqrt(17)");
+    assert_eq!(n["impulses_per_normal"][0], "12/17");
+    // v_C = v⁰ − P̂ n/m = (1,0,0) − (6/17)(4,1,0).
+    assert_eq!(n["velocity"], serde_json::json!(["-7/17", "-6/17", "0"]));
+    assert_eq!(n["contacts"][0]["velocity_before"][0], "4/17*sqrt(17)");
+    // E_p = ½ m |Δv|² = (6/17)²·17 = 36/17; ΔE_c = 1 − (49 + 36)/289 = 12/17.
+    assert_eq!(n["lost_velocity_energy"], "36/17");
+    assert_eq!(n["kinetic_energy_loss"], "12/17");
+}
+
+#[test]
+fn decimal_input_is_read_exactly() {
+    let scene = Scene::new("decimal", &GOOD.replace("k = 0.3", "k = 0.1"));
+    let v = json(&inertance(&[
+        "solve",
+        scene.path.to_str().unwrap(),
+        "--exact",
+        "--json",
+    ]));
+    // Newton: v_1x = −0.1 · 19/5 exactly.
+    assert_eq!(
+        v["models"]["newton"]["contacts"][0]["velocity_after"][0],
+        "-19/50"
+    );
+}
+
+#[test]
+fn singular_scene_is_reported_not_divided() {
+    let text = GOOD.replace("point = [0, 4, 0]", "point = [0, -2, 0]");
+    let scene = Scene::new("singular", &text);
+    for flag in ["--exact", "--json"] {
+        let out = inertance(&["solve", scene.path.to_str().unwrap(), flag]);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(3), "{err}");
+        assert!(err.contains("singular") && err.contains("Δ = 0"), "{err}");
+    }
+}
+
+#[test]
+fn missing_key() {
+    rejects("missing", "mass = 1\n", "", &["body.mass", "missing"]);
+}
+
+#[test]
+fn unknown_key() {
+    rejects(
+        "unknown",
+        "k = 0.3",
+        "k = 0.3\nfriction = 0.5",
+        &["contact[0].friction", "unknown key"],
+    );
+}
+
+#[test]
+fn wrong_type() {
+    rejects(
+        "type",
+        "mass = 1",
+        "mass = \"heavy\"",
+        &["body.mass", "heavy"],
+    );
+    rejects(
+        "triple",
+        "velocity = [3, 2, 0]",
+        "velocity = [3, 2]",
+        &["body.velocity", "three numbers"],
+    );
+}
+
+#[test]
+fn non_positive_mass_and_inertia() {
+    rejects(
+        "mass0",
+        "mass = 1",
+        "mass = 0",
+        &["body.mass", "= 0", "positive"],
+    );
+    rejects(
+        "inertia",
+        "inertia = [12, 1.6, 12]",
+        "inertia = [12, -1.6, 12]",
+        &["body.inertia[1]", "-1.6", "positive"],
+    );
+}
+
+#[test]
+fn zero_normal() {
+    rejects(
+        "normal",
+        "normal = [1, 0, 0]",
+        "normal = [0, 0.0, \"0/5\"]",
+        &["contact[0].normal", "zero vector"],
+    );
+}
+
+#[test]
+fn nan_and_infinity() {
+    rejects(
+        "nan",
+        "mass = 1",
+        "mass = nan",
+        &["body.mass", "nan", "not finite"],
+    );
+    rejects(
+        "inf",
+        "velocity = [3, 2, 0]",
+        "velocity = [3, inf, 0]",
+        &["body.velocity[1]", "inf"],
+    );
+    rejects("div0", "mass = 1", "mass = \"1/0\"", &["body.mass", "1/0"]);
+}
+
+#[test]
+fn coefficient_out_of_range() {
+    rejects(
+        "k",
+        "k = 0.2",
+        "k = 1.5",
+        &["contact[1].k", "1.5", "[0, 1]"],
+    );
+    rejects(
+        "kn",
+        "k = 0.2",
+        "k_newton = -0.1\nk_poisson = 0.2",
+        &["contact[1].k_newton", "-0.1"],
+    );
+    rejects(
+        "khalf",
+        "k = 0.2",
+        "k_newton = 0.1",
+        &["contact[1].k_poisson", "missing"],
+    );
+}
+
+#[test]
+fn bad_toml_and_bad_model() {
+    rejects("toml", "mass = 1", "mass = = 1", &["not valid TOML"]);
+    rejects(
+        "model",
+        "\"newton\", \"poisson\"",
+        "\"newton\", \"energetic\"",
+        &["solve.models", "energetic"],
+    );
+}
+
+#[test]
+fn skew_tangent() {
+    rejects(
+        "tangent",
+        "tangent = [0, 1, 0]",
+        "tangent = [1, 1, 0]",
+        &["contact[1].tangent", "perpendicular"],
+    );
+}
+
+#[test]
+fn unreadable_file() {
+    let out = inertance(&["solve", "/nonexistent/scene.toml"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(
+        err.contains("/nonexistent/scene.toml") && err.contains("cannot read"),
+        "{err}"
+    );
+}
+
+#[test]
+fn irrational_input_is_refused_in_exact_mode_only() {
+    let scene = Scene::new(
+        "irrational",
+        &GOOD.replace("mass = 1", "mass = \"sqrt(2)\""),
+    );
+    let path = scene.path.to_str().unwrap();
+    let out = inertance(&["solve", path, "--exact"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("body.mass") && err.contains("sqrt(2)") && err.contains("not a rational"),
+        "{err}"
+    );
+    assert!(inertance(&["solve", path]).status.success());
+}
+
+#[test]
+fn bad_flag_is_status_2() {
+    let out = inertance(&["solve"]);
+    assert_eq!(out.status.code(), Some(2));
+    let out = inertance(&["frobnicate"]);
+    assert_eq!(out.status.code(), Some(2));
+}
