@@ -1,0 +1,79 @@
+//! The f64 solve allocates nothing: once an `Impact` and its `Outcome`s have been sized by a
+//! first solve, assembling and solving again (the same or another scene with no more
+//! contacts) performs no heap allocation. Shown with a counting global allocator; this file
+//! holds a single test so no other test allocates concurrently.
+
+use std::alloc::{GlobalAlloc, Layout, System};
+use std::sync::atomic::{AtomicUsize, Ordering};
+
+use inertance::body::RigidBody;
+use inertance::contact::Contact;
+use inertance::restitution::Model;
+use inertance::screw::{Screw, Vec3};
+use inertance::solve::{Impact, Outcome, Problem};
+
+struct Counting;
+
+static ALLOCATIONS: AtomicUsize = AtomicUsize::new(0);
+
+unsafe impl GlobalAlloc for Counting {
+    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
+        ALLOCATIONS.fetch_add(1, Ordering::SeqCst);
+        unsafe { System.alloc(layout) }
+    }
+    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
+        unsafe { System.dealloc(ptr, layout) }
+    }
+    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
+        ALLOCATIONS.fetch_add(1, Ordering::SeqCst);
+        unsafe { System.realloc(ptr, layout, new_size) }
+    }
+}
+
+#[global_allocator]
+static GLOBAL: Counting = Counting;
+
+fn scene(n: usize, shift: f64) -> Problem<f64> {
+    let contacts = (0..n)
+        .map(|i| {
+            let t = i as f64 + shift;
+            Contact {
+                point: Vec3::new(t.cos(), t.sin(), 0.3 * t),
+                normal: Vec3::new(1.0 + t.sin(), 0.5 * t.cos(), 1.0),
+                tangent: None,
+                k_newton: 0.3,
+                k_poisson: 0.6,
+            }
+        })
+        .collect();
+    Problem {
+        body: RigidBody { mass: 2.0, inertia: Vec3::new(1.0, 2.0, 3.0) },
+        velocity: Screw::new(Vec3::new(0.1, -0.2, 0.3), Vec3::new(1.0, 2.0, -0.5)),
+        contacts,
+    }
+}
+
+#[test]
+fn repeated_f64_solves_do_not_allocate() {
+    let scenes: Vec<Problem<f64>> = (0..8).map(|s| scene(6, s as f64 * 0.37)).chain([scene(2, 0.1)]).collect();
+    let mut impact = Impact::new();
+    let (mut newton, mut poisson) = (Outcome::default(), Outcome::default());
+    // Size the buffers once.
+    impact.assemble(&scenes[0], &scenes[0].body).unwrap();
+    impact.solve(&scenes[0], Model::Newton, &mut newton).unwrap();
+    impact.solve(&scenes[0], Model::Poisson, &mut poisson).unwrap();
+
+    let before = ALLOCATIONS.load(Ordering::SeqCst);
+    let mut checksum = 0.0;
+    for _ in 0..50 {
+        for p in &scenes {
+            impact.assemble(p, &p.body).unwrap();
+            impact.solve(p, Model::Newton, &mut newton).unwrap();
+            impact.solve(p, Model::Poisson, &mut poisson).unwrap();
+            checksum += newton.kinetic_energy_loss + poisson.lost_velocity_energy;
+        }
+    }
+    let after = ALLOCATIONS.load(Ordering::SeqCst);
+    assert!(checksum.is_finite());
+    assert_eq!(after - before, 0, "allocations during 900 assemble+solve rounds");
+}
