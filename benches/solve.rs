@@ -28,7 +28,12 @@ normal = [1, 0, 0]
 k = 0.2
 "#;
 
-fn solve_both<T: Scalar>(p: &Problem<T>, impact: &mut Impact<T>, n: &mut Outcome<T>, q: &mut Outcome<T>) {
+fn solve_both<T: Scalar>(
+    p: &Problem<T>,
+    impact: &mut Impact<T>,
+    n: &mut Outcome<T>,
+    q: &mut Outcome<T>,
+) {
     impact.assemble(p, &p.body).unwrap();
     impact.solve(p, Model::Newton, n).unwrap();
     impact.solve(p, Model::Poisson, q).unwrap();
@@ -50,12 +55,22 @@ fn bench_scalar<T: Scalar>(c: &mut Criterion, scene: &Scene) {
 #[inline(never)]
 fn closed_form(m: f64, jz: f64, y: [f64; 2], v: [f64; 2], w: f64, k: [f64; 2]) -> [f64; 8] {
     let f = [-y[0], -y[1]];
-    let (g11, g12, g22) = (1.0 / m + f[0] * f[0] / jz, 1.0 / m + f[0] * f[1] / jz, 1.0 / m + f[1] * f[1] / jz);
+    let (g11, g12, g22) = (
+        1.0 / m + f[0] * f[0] / jz,
+        1.0 / m + f[0] * f[1] / jz,
+        1.0 / m + f[1] * f[1] / jz,
+    );
     let det = g11 * g22 - g12 * g12;
     let v0 = [v[0] + f[0] * w, v[0] + f[1] * w];
     let r = [(1.0 + k[0]) * v0[0], (1.0 + k[1]) * v0[1]];
-    let pn = [(r[0] * g22 - r[1] * g12) / det, (g11 * r[1] - g12 * r[0]) / det];
-    let pc = [(v0[0] * g22 - v0[1] * g12) / det, (g11 * v0[1] - g12 * v0[0]) / det];
+    let pn = [
+        (r[0] * g22 - r[1] * g12) / det,
+        (g11 * r[1] - g12 * r[0]) / det,
+    ];
+    let pc = [
+        (v0[0] * g22 - v0[1] * g12) / det,
+        (g11 * v0[1] - g12 * v0[0]) / det,
+    ];
     let pp = [(1.0 + k[0]) * pc[0], (1.0 + k[1]) * pc[1]];
     let mut out = [0.0; 8];
     for (o, p) in out.chunks_mut(4).zip([pn, pp]) {
@@ -71,12 +86,23 @@ fn closed_form(m: f64, jz: f64, y: [f64; 2], v: [f64; 2], w: f64, k: [f64; 2]) -
 fn benches(c: &mut Criterion) {
     let scene = Scene::parse(EXAMPLE_3, "example 3").unwrap();
     c.bench_function("example3/closed-form-f64", |b| {
-        b.iter(|| black_box(closed_form(black_box(1.0), 12.0, [-2.0, 4.0], [3.0, 2.0], 0.4, [0.3, 0.2])))
+        b.iter(|| {
+            black_box(closed_form(
+                black_box(1.0),
+                12.0,
+                [-2.0, 4.0],
+                [3.0, 2.0],
+                0.4,
+                [0.3, 0.2],
+            ))
+        })
     });
     bench_scalar::<f64>(c, &scene);
     bench_scalar::<f32>(c, &scene);
     bench_scalar::<Exact>(c, &scene);
-    c.bench_function("example3/parse-scene", |b| b.iter(|| Scene::parse(black_box(EXAMPLE_3), "example 3").unwrap()));
+    c.bench_function("example3/parse-scene", |b| {
+        b.iter(|| Scene::parse(black_box(EXAMPLE_3), "example 3").unwrap())
+    });
 }
 
 criterion_group!(solve, benches);

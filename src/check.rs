@@ -39,8 +39,6 @@ use std::collections::{BTreeMap, BTreeSet};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
-use num_rational::BigRational;
-
 use crate::number::{parse_decimal, parse_number};
 use crate::pipeline::{RunError, Solved, run};
 use crate::report::{Report, Value};
@@ -126,12 +124,10 @@ impl Derivation {
             let body = &lines[start..end];
             match words.as_slice() {
                 ["scene", name] => {
-                    if scenes
-                        .insert(name.to_string(), (start + 1, body.join("\n")))
-                        .is_some()
-                    {
+                    if scenes.contains_key(*name) {
                         return Err(err(i + 1, format!("scene `{name}` defined twice")));
                     }
+                    scenes.insert(name.to_string(), (start + 1, body.join("\n")));
                 }
                 ["expect", case, scene] => {
                     if cases.iter().any(|c| c.name == *case) {
@@ -731,9 +727,4 @@ pub fn render(results: &[FileResult]) -> (String, bool) {
     );
     let passed = fail == 0 && identity_fail == 0;
     (out, passed)
-}
-
-/// Exact rational of a printed value, for tests.
-pub fn printed_value(t: &str) -> Option<BigRational> {
-    parse_decimal(t)
 }

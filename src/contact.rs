@@ -159,19 +159,20 @@ impl<T: Scalar> Surd<T> {
         }
     }
 
-    /// raw · |a|^power for an axis with |a|² = `norm2`: raw·√n² for power +1, raw/√n² =
-    /// (raw/n²)·√n² for power −1.
-    pub fn scaled(raw: &T, norm2: &T, power: i32) -> Self {
-        match power {
-            1 => Surd {
-                coeff: raw.clone(),
-                radicand: norm2.clone(),
-            },
-            -1 => Surd {
-                coeff: raw.clone() / norm2,
-                radicand: norm2.clone(),
-            },
-            _ => unreachable!("only ±1 powers of a norm occur"),
+    /// raw · |a| for an axis with |a|² = `norm2`: raw·√(norm2) (an impulse, P = P̂ |x̂|).
+    pub fn times_norm(raw: &T, norm2: &T) -> Self {
+        Surd {
+            coeff: raw.clone(),
+            radicand: norm2.clone(),
+        }
+    }
+
+    /// raw / |a| for an axis with |a|² = `norm2`: (raw/norm2)·√(norm2) (a velocity component
+    /// or an inertance, v = v̂ / |x̂|).
+    pub fn over_norm(raw: &T, norm2: &T) -> Self {
+        Surd {
+            coeff: raw.clone() / norm2,
+            radicand: norm2.clone(),
         }
     }
 

@@ -161,7 +161,7 @@ impl Report {
                     (0..n)
                         .map(|j| {
                             let r2 = frames[i].norm2[a].clone() * &frames[j].norm2[0];
-                            Value::surd(&Surd::scaled(&m[i * n + j], &r2, -1))
+                            Value::surd(&Surd::over_norm(&m[i * n + j], &r2))
                         })
                         .collect()
                 })
@@ -178,7 +178,7 @@ impl Report {
             .map(|f| {
                 let unit = |a: usize| -> [Value; 3] {
                     let d = f.axes[a].top();
-                    [0, 1, 2].map(|k| Value::surd(&Surd::scaled(&d[k], &f.norm2[a], -1)))
+                    [0, 1, 2].map(|k| Value::surd(&Surd::over_norm(&d[k], &f.norm2[a])))
                 };
                 ([unit(0), unit(1), unit(2)], f.rule)
             })
@@ -197,7 +197,7 @@ impl Report {
                     .impulses
                     .iter()
                     .zip(frames)
-                    .map(|(p, f)| Value::surd(&Surd::scaled(p, &f.norm2[0], 1)))
+                    .map(|(p, f)| Value::surd(&Surd::times_norm(p, &f.norm2[0])))
                     .collect(),
                 impulse_multiples: o.impulses.iter().map(Value::of).collect(),
                 compression_impulses: match m {
@@ -206,7 +206,7 @@ impl Report {
                         o.compression
                             .iter()
                             .zip(frames)
-                            .map(|(p, f)| Value::surd(&Surd::scaled(p, &f.norm2[0], 1)))
+                            .map(|(p, f)| Value::surd(&Surd::times_norm(p, &f.norm2[0])))
                             .collect(),
                     ),
                 },
@@ -422,7 +422,7 @@ impl Report {
 
 /// Velocity components in the unit frame, and the tangential angle (eq. 8, 27).
 fn point_velocity<T: Scalar>(hat: &[T; 3], frame: &ContactFrame<T>) -> PointVelocity {
-    let s: [Surd<T>; 3] = [0, 1, 2].map(|k| Surd::scaled(&hat[k], &frame.norm2[k], -1));
+    let s: [Surd<T>; 3] = [0, 1, 2].map(|k| Surd::over_norm(&hat[k], &frame.norm2[k]));
     // v_y = a√r, v_z = b√s ⇒ |v_t|² = a²r + b²s = Q, cos α = a√(r/Q), sin α = b√(s/Q).
     let q = s[1].coeff.clone() * &s[1].coeff * &s[1].radicand
         + s[2].coeff.clone() * &s[2].coeff * &s[2].radicand;

@@ -273,12 +273,15 @@ fn resize<T: Scalar>(v: &mut Vec<T>, n: usize) {
     v.resize(n, T::zero());
 }
 
+/// The outcome of each model solved, in the order asked.
+pub type Outcomes<T> = Vec<(Model, Outcome<T>)>;
+
 /// Assemble and solve the free-body problem for each of `models`: the convenient one-shot
 /// entry point (allocates; use [`Impact`] directly to reuse buffers).
 pub fn solve_free<T: Scalar>(
     problem: &Problem<T>,
     models: &[Model],
-) -> Result<(Impact<T>, Vec<(Model, Outcome<T>)>), SolveError> {
+) -> Result<(Impact<T>, Outcomes<T>), SolveError> {
     let mut impact = Impact::new();
     impact.assemble(problem, &problem.body)?;
     let mut outcomes = Vec::with_capacity(models.len());

@@ -47,7 +47,10 @@ fn scene(n: usize, shift: f64) -> Problem<f64> {
         })
         .collect();
     Problem {
-        body: RigidBody { mass: 2.0, inertia: Vec3::new(1.0, 2.0, 3.0) },
+        body: RigidBody {
+            mass: 2.0,
+            inertia: Vec3::new(1.0, 2.0, 3.0),
+        },
         velocity: Screw::new(Vec3::new(0.1, -0.2, 0.3), Vec3::new(1.0, 2.0, -0.5)),
         contacts,
     }
@@ -55,13 +58,20 @@ fn scene(n: usize, shift: f64) -> Problem<f64> {
 
 #[test]
 fn repeated_f64_solves_do_not_allocate() {
-    let scenes: Vec<Problem<f64>> = (0..8).map(|s| scene(6, s as f64 * 0.37)).chain([scene(2, 0.1)]).collect();
+    let scenes: Vec<Problem<f64>> = (0..8)
+        .map(|s| scene(6, s as f64 * 0.37))
+        .chain([scene(2, 0.1)])
+        .collect();
     let mut impact = Impact::new();
     let (mut newton, mut poisson) = (Outcome::default(), Outcome::default());
     // Size the buffers once.
     impact.assemble(&scenes[0], &scenes[0].body).unwrap();
-    impact.solve(&scenes[0], Model::Newton, &mut newton).unwrap();
-    impact.solve(&scenes[0], Model::Poisson, &mut poisson).unwrap();
+    impact
+        .solve(&scenes[0], Model::Newton, &mut newton)
+        .unwrap();
+    impact
+        .solve(&scenes[0], Model::Poisson, &mut poisson)
+        .unwrap();
 
     let before = ALLOCATIONS.load(Ordering::SeqCst);
     let mut checksum = 0.0;
@@ -75,5 +85,9 @@ fn repeated_f64_solves_do_not_allocate() {
     }
     let after = ALLOCATIONS.load(Ordering::SeqCst);
     assert!(checksum.is_finite());
-    assert_eq!(after - before, 0, "allocations during 900 assemble+solve rounds");
+    assert_eq!(
+        after - before,
+        0,
+        "allocations during 900 assemble+solve rounds"
+    );
 }
