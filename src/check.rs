@@ -33,7 +33,7 @@
 //! Quantity names (i, j count contacts from 1 as the paper does; vector entries from 0):
 //! `det`, `g{i}{j}xx|yx|zx`, `v{i}x0|y0|z0`, `cos_a{i}_0`, `sin_a{i}_0`, `a{i}_0` (before
 //! impact) and, after a `newton.` or `poisson.` prefix, `P{i}`, `P{i}c`, `twist` ([ω; v_C]),
-//! `omega`, `vC`, `v{i}x|y|z`, `cos_a{i}`, `sin_a{i}`, `a{i}`, `Ep`, `dEc`.
+//! `omega`, `vC` (one entry: `newton.omega[0]`), `v{i}x|y|z`, `cos_a{i}`, `sin_a{i}`, `a{i}`, `Ep`, `dEc`.
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::fmt::Write as _;
@@ -534,10 +534,10 @@ fn printed_decimals(t: &str) -> Option<usize> {
     Some(t.split_once('.').map_or(0, |(_, frac)| frac.len()))
 }
 
-/// The computed value as shown next to a printed one: rounded to one more decimal than
-/// printed, plus the exact text when there is one.
+/// The computed value as shown next to a printed one: two more decimals than printed (at
+/// least six), plus the exact text when there is one.
 fn describe(v: &Value, printed: &str) -> String {
-    let d = printed_decimals(printed.trim()).unwrap_or(6) + 1;
+    let d = (printed_decimals(printed.trim()).unwrap_or(6) + 2).max(6);
     let approx = format!("{:.*}", d.min(15), v.f64);
     match &v.exact {
         Some(t) if *t != approx => format!("{approx} (= {t})"),
@@ -547,6 +547,17 @@ fn describe(v: &Value, printed: &str) -> String {
 
 /// The reported value(s) of a quantity.
 pub fn lookup(r: &Report, q: &str) -> Result<Vec<Value>, String> {
+    // One entry of a vector quantity: `newton.omega[0]`.
+    if let Some((base, index)) = q.strip_suffix(']').and_then(|s| s.rsplit_once('[')) {
+        let k: usize = index.parse().map_err(|_| format!("bad index in `{q}`"))?;
+        let all = lookup(r, base)?;
+        let n = all.len();
+        return all
+            .into_iter()
+            .nth(k)
+            .map(|v| vec![v])
+            .ok_or_else(|| format!("`{q}`: `{base}` has {n} entries"));
+    }
     let unknown = || format!("unknown quantity `{q}` (see `inertance check --help` for the names)");
     let n = r.inertance.len();
     let idx = |s: &str| -> Option<usize> {

@@ -173,8 +173,23 @@ fn scene_blocks_parse_and_duplicates_are_refused() {
     use inertance::check::Derivation;
     let one = Derivation::parse(DERIVATION, Path::new("ex.md")).expect("one scene parses");
     assert_eq!(one.scenes.len(), 1);
-    assert_eq!(one.cases[0].sets, vec![("contact[0].k".to_string(), "1".to_string())]);
+    assert_eq!(
+        one.cases[0].sets,
+        vec![("contact[0].k".to_string(), "1".to_string())]
+    );
     let twice = DERIVATION.replacen("```expect", "```scene s\n```\n\n```expect", 1);
     let err = Derivation::parse(&twice, Path::new("ex.md")).unwrap_err();
     assert!(err.message.contains("defined twice"), "{err}");
+}
+
+#[test]
+fn one_vector_entry_can_be_named() {
+    // k = 1: v_C after = (1 − 2·2/2, 0, 0) = (−1, 0, 0).
+    let d = DERIVATION.replace(
+        "newton.P1 = 3\n",
+        "newton.vC[0] = -1\nnewton.twist[3] = -1.0\n",
+    );
+    let v = verdicts(&scratch("entry", &d, HEADER));
+    assert_eq!(v[0], ("newton.vC[0]".to_string(), Verdict::Reproduced));
+    assert_eq!(v[1], ("newton.twist[3]".to_string(), Verdict::Reproduced));
 }
