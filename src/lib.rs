@@ -25,6 +25,7 @@
 
 pub mod body;
 pub mod check;
+pub mod constraint;
 pub mod contact;
 pub mod linalg;
 pub mod number;
