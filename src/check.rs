@@ -32,8 +32,8 @@
 //!
 //! Quantity names (i, j count contacts from 1 as the paper does; vector entries from 0):
 //! `det`, `g{i}{j}xx|yx|zx`, `v{i}x0|y0|z0`, `cos_a{i}_0`, `sin_a{i}_0`, `a{i}_0` (before
-//! impact) and, after a `newton.` or `poisson.` prefix, `P{i}`, `P{i}c`, `twist` ([ω; v_C]),
-//! `omega`, `vC` (one entry: `newton.omega[0]`), `v{i}x|y|z`, `cos_a{i}`, `sin_a{i}`, `a{i}`, `Ep`, `dEc`.
+//! impact), `Mred` (M_red row by row, constrained scenes) and, after a `newton.` or `poisson.` prefix, `P{i}`, `P{i}c`, `twist` ([ω; v_C]),
+//! `omega`, `vC` (one entry: `newton.omega[0]`), `v{i}x|y|z`, `cos_a{i}`, `sin_a{i}`, `a{i}`, `Ep`, `dEc`, `q` (constraint impulses).
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::fmt::Write as _;
@@ -575,6 +575,13 @@ pub fn lookup(r: &Report, q: &str) -> Result<Vec<Value>, String> {
         None => {
             if name == "det" {
                 return Ok(vec![r.det.clone()]);
+            }
+            if name == "Mred" {
+                let c = r
+                    .constraints
+                    .as_ref()
+                    .ok_or_else(|| format!("`{q}`: the scene has no constraints"))?;
+                return Ok(c.reduced_mass.iter().flatten().cloned().collect());
             }
             if let Some(rest) = name.strip_prefix('g') {
                 // g{i}{j}{a}x with single-digit i, j.

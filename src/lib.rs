@@ -36,3 +36,4 @@ pub mod scalar;
 pub mod scene;
 pub mod screw;
 pub mod solve;
+pub mod surface;

@@ -5,6 +5,7 @@
 //! assembles the collision once (frames, inertances, Δ) and runs only the models listed; the
 //! report names the effects it simulated.
 
+use crate::constraint::{Constrained, ConstraintError};
 use crate::report::Report;
 use crate::restitution::Model;
 use crate::scalar::Scalar;
@@ -36,8 +37,22 @@ pub struct Solved {
 pub fn run<T: Scalar>(scene: &Scene, models: Option<&[Model]>) -> Result<Solved, RunError> {
     let models = models.unwrap_or(&scene.models);
     let problem = scene.problem::<T>()?;
+    let constrained = match scene.constraint_screws::<T>()? {
+        None => None,
+        Some((free, blocked, keys)) => {
+            let c = Constrained::new(&problem.body, free, blocked)
+                .map_err(|e| constraint_error(scene, &keys, e))?;
+            c.check_allowed(&problem.velocity)
+                .map_err(|e| constraint_error(scene, &keys, e))?;
+            Some(c)
+        }
+    };
     let mut impact = Impact::new();
-    impact.assemble(&problem, &problem.body).map_err(|e| match e {
+    let assembled = match &constrained {
+        Some(c) => impact.assemble(&problem, c),
+        None => impact.assemble(&problem, &problem.body),
+    };
+    assembled.map_err(|e| match e {
         SolveError::Tangent(t) => RunError::Scene(SceneError {
             file: scene.file.clone(),
             key: format!("contact[{}].tangent", t.index),
@@ -55,6 +70,16 @@ pub fn run<T: Scalar>(scene: &Scene, models: Option<&[Model]>) -> Result<Solved,
     for &m in models {
         let mut out = Outcome::default();
         impact.solve(&problem, m, &mut out)?;
+        if let Some(c) = &constrained {
+            let mut dv = out.velocity.clone();
+            dv.add_scaled(&-T::one(), &problem.velocity);
+            let axes = impact.frames.iter().map(|f| &f.axes[0]);
+            c.impulses_into(
+                &dv,
+                out.impulses.iter().zip(axes),
+                &mut out.constraint_impulses,
+            );
+        }
         // eq. 34: ΔE_c + E_p − Σ P̂_i v̂_ix⁰ = 0.
         let work = impact.impulse_work(&out);
         let residual = out.kinetic_energy_loss.clone() + &out.lost_velocity_energy - &work;
@@ -62,9 +87,57 @@ pub fn run<T: Scalar>(scene: &Scene, models: Option<&[Model]>) -> Result<Solved,
         identity.push(residual.is_negligible(&scale, 16 * problem.contacts.len().max(1)));
         outcomes.push((m, out));
     }
-    let effects = models.iter().map(|m| m.name().to_string()).collect();
+    let report = Report::new(
+        &scene.name,
+        scene.effects(models),
+        &impact,
+        &outcomes,
+        constrained.as_ref(),
+    );
     Ok(Solved {
-        report: Report::new(&scene.name, effects, &impact, &outcomes),
+        report,
         energy_identity: identity,
+    })
+}
+
+/// A constraint problem as a scene error naming the offending screws.
+fn constraint_error(scene: &Scene, keys: &[String], e: ConstraintError) -> RunError {
+    let key = match &e {
+        ConstraintError::Immobile => "constraints".to_string(),
+        ConstraintError::DependentFree { index } => keys
+            .get(*index)
+            .cloned()
+            .unwrap_or_else(|| "constraints.free".into()),
+        ConstraintError::DependentBlocked { index } => format!("constraints.blocked[{index}]"),
+        ConstraintError::NotReciprocal { blocked, .. } => format!("constraints.blocked[{blocked}]"),
+        ConstraintError::Dimension { .. } => "constraints.blocked".to_string(),
+        ConstraintError::VelocityNotAllowed { .. } => "body.velocity".to_string(),
+    };
+    let message = match &e {
+        ConstraintError::DependentFree { index }
+            if keys.get(*index).is_some_and(|k| k.contains("joint")) =>
+        {
+            format!(
+                "this joint's freedom is already given by the joints before it (free screw {index} is a combination of the earlier ones)"
+            )
+        }
+        ConstraintError::NotReciprocal { free, .. } => {
+            format!(
+                "{e}; it is not reciprocal to {}",
+                keys.get(*free).cloned().unwrap_or_default()
+            )
+        }
+        ConstraintError::VelocityNotAllowed { .. } => {
+            format!(
+                "{e}; with body.angular_velocity, the twist [ω⁰; v_C⁰] must be a combination of the free screws"
+            )
+        }
+        _ => e.to_string(),
+    };
+    RunError::Scene(SceneError {
+        file: scene.file.clone(),
+        key,
+        value: None,
+        message,
     })
 }

@@ -11,6 +11,7 @@
 
 use serde_json::{Map, Value as Json, json};
 
+use crate::constraint::Constrained;
 use crate::contact::{ContactFrame, Surd, TangentRule};
 use crate::restitution::Model;
 use crate::scalar::Scalar;
@@ -117,6 +118,21 @@ pub struct ModelReport {
     pub lost_velocity_energy: Value,
     /// ΔE_c.
     pub kinetic_energy_loss: Value,
+    /// {q}, the constraint impulses (empty for a free body).
+    pub constraint_impulses: Vec<Value>,
+}
+
+/// The constraints of a constrained body, as used.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ConstraintsReport {
+    /// D, the free screws.
+    pub free: Vec<[Value; 6]>,
+    /// U, the blocked screws.
+    pub blocked: Vec<[Value; 6]>,
+    /// Whether U was derived as the η-orthogonal complement of D.
+    pub blocked_derived: bool,
+    /// M_red = Dᵀ η M D (eq. 83), row by row.
+    pub reduced_mass: Vec<Vec<Value>>,
 }
 
 /// The readout of a solve.
@@ -142,6 +158,8 @@ pub struct Report {
     pub contacts_before: Vec<PointVelocity>,
     /// One readout per model solved.
     pub models: Vec<ModelReport>,
+    /// The constraints, for a constrained body.
+    pub constraints: Option<ConstraintsReport>,
 }
 
 impl Report {
@@ -151,6 +169,7 @@ impl Report {
         effects: Vec<String>,
         impact: &Impact<T>,
         outcomes: &[(Model, Outcome<T>)],
+        constraints: Option<&Constrained<T>>,
     ) -> Report {
         let n = impact.contacts();
         let frames = &impact.frames;
@@ -226,8 +245,24 @@ impl Report {
                     .collect(),
                 lost_velocity_energy: Value::of(&o.lost_velocity_energy),
                 kinetic_energy_loss: Value::of(&o.kinetic_energy_loss),
+                constraint_impulses: o.constraint_impulses.iter().map(Value::of).collect(),
             })
             .collect();
+        let screw = |s: &crate::screw::Screw<T>| -> [Value; 6] {
+            std::array::from_fn(|k| Value::of(&s.0[k]))
+        };
+        let constraints = constraints.map(|c| {
+            let d = c.dof();
+            let m = c.reduced_mass();
+            ConstraintsReport {
+                free: c.free.iter().map(screw).collect(),
+                blocked: c.blocked.iter().map(screw).collect(),
+                blocked_derived: c.derived_blocked,
+                reduced_mass: (0..d)
+                    .map(|a| (0..d).map(|b| Value::of(&m[a * d + b])).collect())
+                    .collect(),
+            }
+        });
         Report {
             scene: scene.to_string(),
             scalar: T::NAME,
@@ -239,6 +274,7 @@ impl Report {
             frames: frames_out,
             contacts_before,
             models,
+            constraints,
         }
     }
 
@@ -286,9 +322,12 @@ impl Report {
             );
             o.insert("lost_velocity_energy".into(), r.lost_velocity_energy.json());
             o.insert("kinetic_energy_loss".into(), r.kinetic_energy_loss.json());
+            if self.constraints.is_some() {
+                o.insert("constraint_impulses".into(), vec(&r.constraint_impulses));
+            }
             models.insert(r.model.name().into(), Json::Object(o));
         }
-        json!({
+        let mut top = json!({
             "scene": self.scene,
             "scalar": self.scalar,
             "effects": self.effects,
@@ -305,7 +344,19 @@ impl Report {
                 },
             })).collect::<Vec<_>>(),
             "models": Json::Object(models),
-        })
+        });
+        if let (Some(c), Some(obj)) = (&self.constraints, top.as_object_mut()) {
+            obj.insert(
+                "constraints".into(),
+                json!({
+                    "free": c.free.iter().map(|s| vec(s)).collect::<Vec<_>>(),
+                    "blocked": c.blocked.iter().map(|s| vec(s)).collect::<Vec<_>>(),
+                    "blocked_derived": c.blocked_derived,
+                    "reduced_mass": mat(&c.reduced_mass),
+                }),
+            );
+        }
+        top
     }
 
     /// A readable table: models side by side, SI units.
@@ -362,6 +413,14 @@ impl Report {
                 }),
             ));
         }
+        if let Some(c) = &self.constraints {
+            for a in 0..c.blocked.len() {
+                rows.push((
+                    format!("q{} [N s]", a + 1),
+                    each(&|m| m.constraint_impulses[a].text()),
+                ));
+            }
+        }
         rows.push(("E_p [J]".into(), each(&|m| m.lost_velocity_energy.text())));
         rows.push(("ΔE_c [J]".into(), each(&|m| m.kinetic_energy_loss.text())));
 
@@ -378,7 +437,32 @@ impl Report {
                 r.iter().map(Value::text).collect::<Vec<_>>().join("  ")
             );
         }
-        out += &format!("Δ = det G = {}\n\nBefore impact:\n", self.det.text());
+        out += &format!("Δ = det G = {}\n", self.det.text());
+        if let Some(c) = &self.constraints {
+            let screws = |l: &[[Value; 6]]| -> String {
+                l.iter()
+                    .map(|s| {
+                        format!(
+                            "[{}]",
+                            s.iter().map(Value::text).collect::<Vec<_>>().join(", ")
+                        )
+                    })
+                    .collect::<Vec<_>>()
+                    .join(" ")
+            };
+            out += &format!(
+                "Constraints: {} degree(s) of freedom\n  D = {}\n  U = {}{}\n",
+                c.free.len(),
+                screws(&c.free),
+                screws(&c.blocked),
+                if c.blocked_derived {
+                    " (derived: η-orthogonal complement of D)"
+                } else {
+                    ""
+                }
+            );
+        }
+        out += "\nBefore impact:\n";
         for (i, b) in self.contacts_before.iter().enumerate() {
             out += &format!(
                 "  A{}: v = ({}, {}, {}) m/s, α⁰ = {}\n",

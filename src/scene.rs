@@ -34,6 +34,7 @@ use num_traits::Signed;
 use toml_edit::{DocumentMut, Item, Table, TableLike, Value};
 
 use crate::body::RigidBody;
+use crate::constraint::Joint;
 use crate::contact::Contact;
 use crate::number::{Number, parse_number};
 use crate::restitution::Model;
@@ -84,6 +85,65 @@ pub struct ContactSpec {
     pub k_poisson: Number,
 }
 
+/// The kinds of joint a scene may declare (see [`crate::constraint::Joint`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum JointKind {
+    /// `kind = "revolute"`: `point`, `axis`.
+    Revolute,
+    /// `kind = "prismatic"`: `axis`.
+    Prismatic,
+    /// `kind = "cylindrical"`: `point`, `axis`.
+    Cylindrical,
+    /// `kind = "spherical"`: `point`.
+    Spherical,
+    /// `kind = "planar"`: `normal`.
+    Planar,
+}
+
+impl JointKind {
+    const NAMES: [(&'static str, JointKind); 5] = [
+        ("revolute", JointKind::Revolute),
+        ("prismatic", JointKind::Prismatic),
+        ("cylindrical", JointKind::Cylindrical),
+        ("spherical", JointKind::Spherical),
+        ("planar", JointKind::Planar),
+    ];
+
+    /// The vector keys this kind needs, besides `kind`.
+    fn keys(self) -> &'static [&'static str] {
+        match self {
+            JointKind::Revolute | JointKind::Cylindrical => &["point", "axis"],
+            JointKind::Prismatic => &["axis"],
+            JointKind::Spherical => &["point"],
+            JointKind::Planar => &["normal"],
+        }
+    }
+}
+
+/// One `[[constraints.joint]]` table.
+#[derive(Clone, Debug, PartialEq)]
+pub struct JointSpec {
+    /// Its kind.
+    pub kind: JointKind,
+    /// Its vectors, in the order of the kind's keys (`point`, `axis` / `normal`).
+    pub vectors: Vec<[Number; 3]>,
+}
+
+/// A `[constraints]` effect, as written.
+#[derive(Clone, Debug, PartialEq)]
+pub enum ConstraintsSpec {
+    /// The paper's form: the free screws (columns of D, eq. 78) and optionally the blocked
+    /// ones (columns of U, eq. 75), each [ω; v] or [direction; moment].
+    Screws {
+        /// D.
+        free: Vec<[Number; 6]>,
+        /// U, if given.
+        blocked: Option<Vec<[Number; 6]>>,
+    },
+    /// Joints; D is the union of their free screws, U derived.
+    Joints(Vec<JointSpec>),
+}
+
 /// A scene, validated, with every number as written (exact value when rational, f64 always).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Scene {
@@ -103,6 +163,8 @@ pub struct Scene {
     pub contacts: Vec<ContactSpec>,
     /// The restitution models asked for, in the order given.
     pub models: Vec<Model>,
+    /// The `[constraints]` effect, if declared.
+    pub constraints: Option<ConstraintsSpec>,
 }
 
 impl Scene {
@@ -131,7 +193,14 @@ impl Scene {
         r.only_keys(
             root,
             "",
-            &["name", "description", "body", "contact", "solve"],
+            &[
+                "name",
+                "description",
+                "body",
+                "contact",
+                "solve",
+                "constraints",
+            ],
         )?;
         let name = match root.get("name") {
             None => file.rsplit('/').next().unwrap_or(file).to_string(),
@@ -190,6 +259,10 @@ impl Scene {
                 }
             }
         };
+        let constraints = match root.get("constraints") {
+            None => None,
+            Some(item) => Some(r.constraints(item)?),
+        };
         Ok(Scene {
             file: file.to_string(),
             name,
@@ -199,7 +272,18 @@ impl Scene {
             angular_velocity,
             contacts,
             models,
+            constraints,
         })
+    }
+
+    /// The effects the scene declares, in report order.
+    pub fn effects(&self, models: &[Model]) -> Vec<String> {
+        let mut e: Vec<String> = Vec::new();
+        if self.constraints.is_some() {
+            e.push("constraints".into());
+        }
+        e.extend(models.iter().map(|m| m.name().to_string()));
+        e
     }
 
     /// Whether every number of the scene is rational (so it can run exactly).
@@ -235,26 +319,35 @@ impl Scene {
             v.push((format!("contact[{c}].k_newton"), &spec.k_newton));
             v.push((format!("contact[{c}].k_poisson"), &spec.k_poisson));
         }
+        match &self.constraints {
+            None => {}
+            Some(ConstraintsSpec::Screws { free, blocked }) => {
+                let lists = [("free", Some(free)), ("blocked", blocked.as_ref())];
+                for (name, list) in lists {
+                    for (i, screw) in list.into_iter().flatten().enumerate() {
+                        for (k, n) in screw.iter().enumerate() {
+                            v.push((format!("constraints.{name}[{i}][{k}]"), n));
+                        }
+                    }
+                }
+            }
+            Some(ConstraintsSpec::Joints(joints)) => {
+                for (j, joint) in joints.iter().enumerate() {
+                    for (key, vec) in joint.kind.keys().iter().zip(&joint.vectors) {
+                        for (k, n) in vec.iter().enumerate() {
+                            v.push((format!("constraints.joint[{j}].{key}[{k}]"), n));
+                        }
+                    }
+                }
+            }
+        }
         v.into_iter()
     }
 
     /// The problem in the scalar type `T`. Exact types take each number's exact value and
     /// refuse irrational ones (naming the key and the value); floats take the rounded value.
     pub fn problem<T: Scalar>(&self) -> Result<Problem<T>, SceneError> {
-        let num = |n: &Number, key: &str| -> Result<T, SceneError> {
-            match &n.exact {
-                Ok(q) => Ok(T::from_rational(q)),
-                Err(why) => T::from_f64(n.approx).ok_or_else(|| SceneError {
-                    file: self.file.clone(),
-                    key: key.to_string(),
-                    value: Some(n.text.clone()),
-                    message: format!(
-                        "not a rational number ({why}); exact mode reads every number exactly, \
-                         so write it as a fraction or run without --exact"
-                    ),
-                }),
-            }
-        };
+        let num = |n: &Number, key: &str| -> Result<T, SceneError> { self.value::<T>(n, key) };
         let vec3 = |t: &[Number; 3], key: &str| -> Result<Vec3<T>, SceneError> {
             Ok(Vec3::new(
                 num(&t[0], &format!("{key}[0]"))?,
@@ -289,6 +382,103 @@ impl Scene {
             velocity,
             contacts,
         })
+    }
+}
+
+/// The free screws, the blocked screws if given, and for each free screw the key that
+/// declared it (for messages), in the scalar type `T`.
+pub type ConstraintScrews<T> = (Vec<Screw<T>>, Option<Vec<Screw<T>>>, Vec<String>);
+
+impl Scene {
+    /// The declared constraints in the scalar type `T` (`None` for a free body).
+    pub fn constraint_screws<T: Scalar>(&self) -> Result<Option<ConstraintScrews<T>>, SceneError> {
+        let num = |n: &Number, key: String| -> Result<T, SceneError> { self.value::<T>(n, &key) };
+        let screw = |c: &[Number; 6], key: &str| -> Result<Screw<T>, SceneError> {
+            let mut out = Vec::with_capacity(6);
+            for (k, n) in c.iter().enumerate() {
+                out.push(num(n, format!("{key}[{k}]"))?);
+            }
+            let top = Vec3::new(out[0].clone(), out[1].clone(), out[2].clone());
+            let bottom = Vec3::new(out[3].clone(), out[4].clone(), out[5].clone());
+            Ok(Screw::new(top, bottom))
+        };
+        match &self.constraints {
+            None => Ok(None),
+            Some(ConstraintsSpec::Screws { free, blocked }) => {
+                let keys: Vec<String> = (0..free.len())
+                    .map(|i| format!("constraints.free[{i}]"))
+                    .collect();
+                let d = free
+                    .iter()
+                    .zip(&keys)
+                    .map(|(c, k)| screw(c, k))
+                    .collect::<Result<Vec<_>, _>>()?;
+                let u = match blocked {
+                    None => None,
+                    Some(b) => Some(
+                        b.iter()
+                            .enumerate()
+                            .map(|(i, c)| screw(c, &format!("constraints.blocked[{i}]")))
+                            .collect::<Result<Vec<_>, _>>()?,
+                    ),
+                };
+                Ok(Some((d, u, keys)))
+            }
+            Some(ConstraintsSpec::Joints(joints)) => {
+                let (mut d, mut keys) = (Vec::new(), Vec::new());
+                for (j, joint) in joints.iter().enumerate() {
+                    let key = format!("constraints.joint[{j}]");
+                    let mut vecs = Vec::with_capacity(2);
+                    for (name, v) in joint.kind.keys().iter().zip(&joint.vectors) {
+                        vecs.push(Vec3::new(
+                            num(&v[0], format!("{key}.{name}[0]"))?,
+                            num(&v[1], format!("{key}.{name}[1]"))?,
+                            num(&v[2], format!("{key}.{name}[2]"))?,
+                        ));
+                    }
+                    let joint_t = match joint.kind {
+                        JointKind::Revolute => Joint::Revolute {
+                            point: vecs[0].clone(),
+                            axis: vecs[1].clone(),
+                        },
+                        JointKind::Prismatic => Joint::Prismatic {
+                            axis: vecs[0].clone(),
+                        },
+                        JointKind::Cylindrical => Joint::Cylindrical {
+                            point: vecs[0].clone(),
+                            axis: vecs[1].clone(),
+                        },
+                        JointKind::Spherical => Joint::Spherical {
+                            point: vecs[0].clone(),
+                        },
+                        JointKind::Planar => Joint::Planar {
+                            normal: vecs[0].clone(),
+                        },
+                    };
+                    for s in joint_t.free_screws() {
+                        d.push(s);
+                        keys.push(key.clone());
+                    }
+                }
+                Ok(Some((d, None, keys)))
+            }
+        }
+    }
+
+    /// One number in `T`: exact types refuse irrational values, naming the key and value.
+    fn value<T: Scalar>(&self, n: &Number, key: &str) -> Result<T, SceneError> {
+        match &n.exact {
+            Ok(q) => Ok(T::from_rational(q)),
+            Err(why) => T::from_f64(n.approx).ok_or_else(|| SceneError {
+                file: self.file.clone(),
+                key: key.to_string(),
+                value: Some(n.text.clone()),
+                message: format!(
+                    "not a rational number ({why}); exact mode reads every number exactly, \
+                     so write it as a fraction or run without --exact"
+                ),
+            }),
+        }
     }
 }
 
@@ -606,6 +796,119 @@ impl Reader<'_> {
             k_newton,
             k_poisson,
         })
+    }
+
+    fn constraints(&self, item: &Item) -> Result<ConstraintsSpec, SceneError> {
+        let t = item.as_table_like().ok_or_else(|| {
+            self.err(
+                "constraints",
+                Some(short(item)),
+                "must be a table: [constraints]",
+            )
+        })?;
+        self.only_keys(t, "constraints", &["free", "blocked", "joint"])?;
+        let has_screws = t.get("free").is_some() || t.get("blocked").is_some();
+        match (t.get("joint"), has_screws) {
+            (Some(_), true) => Err(self.err(
+                "constraints",
+                None,
+                "give either the paper's form (`free`, optionally `blocked`) or `[[constraints.joint]]` tables, not both",
+            )),
+            (Some(Item::ArrayOfTables(arr)), false) => {
+                let joints = arr.iter().enumerate().map(|(j, t)| self.joint(t, j)).collect::<Result<Vec<_>, _>>()?;
+                Ok(ConstraintsSpec::Joints(joints))
+            }
+            (Some(other), false) => Err(self.err("constraints.joint", Some(short(other)), "must be [[constraints.joint]] tables")),
+            (None, _) => {
+                let free_item = t.get("free").ok_or_else(|| {
+                    self.err("constraints.free", None, "missing: give the free screws [ω; v] (columns of D), or [[constraints.joint]] tables")
+                })?;
+                let free = self.screws(free_item, "constraints.free")?;
+                let blocked = match t.get("blocked") {
+                    None => None,
+                    Some(b) => Some(self.screws(b, "constraints.blocked")?),
+                };
+                Ok(ConstraintsSpec::Screws { free, blocked })
+            }
+        }
+    }
+
+    fn screws(&self, item: &Item, key: &str) -> Result<Vec<[Number; 6]>, SceneError> {
+        let arr = item.as_array().ok_or_else(|| {
+            self.err(
+                key,
+                Some(short(item)),
+                "must be an array of six-number screws [[ωx, ωy, ωz, vx, vy, vz], …]",
+            )
+        })?;
+        let mut out = Vec::with_capacity(arr.len());
+        for (i, v) in arr.iter().enumerate() {
+            let path = format!("{key}[{i}]");
+            let inner = v.as_array().filter(|a| a.len() == 6).ok_or_else(|| {
+                self.err(
+                    &path,
+                    Some(v.to_string().trim().to_string()),
+                    "must be a screw of six numbers [ωx, ωy, ωz, vx, vy, vz]",
+                )
+            })?;
+            let mut nums = Vec::with_capacity(6);
+            for (k, x) in inner.iter().enumerate() {
+                nums.push(self.number_value(x, &format!("{path}[{k}]"))?);
+            }
+            let zero = nums.iter().all(|n| match &n.exact {
+                Ok(q) => num_traits::Zero::is_zero(q),
+                Err(_) => n.approx == 0.0,
+            });
+            if zero {
+                return Err(self.err(
+                    &path,
+                    Some(v.to_string().trim().to_string()),
+                    "a screw must not be zero",
+                ));
+            }
+            let arr6: [Number; 6] = nums
+                .try_into()
+                .map_err(|_| self.err(&path, None, "must have six numbers"))?;
+            out.push(arr6);
+        }
+        if out.is_empty() {
+            return Err(self.err(key, Some("[]".into()), "list at least one screw"));
+        }
+        Ok(out)
+    }
+
+    fn joint(&self, t: &Table, j: usize) -> Result<JointSpec, SceneError> {
+        let at = format!("constraints.joint[{j}]");
+        let kind_item = self.get(t, "kind", &at)?;
+        let names: Vec<&str> = JointKind::NAMES.iter().map(|(n, _)| *n).collect();
+        let kind = kind_item
+            .as_str()
+            .and_then(|k| {
+                JointKind::NAMES
+                    .iter()
+                    .find(|(n, _)| *n == k)
+                    .map(|(_, kind)| *kind)
+            })
+            .ok_or_else(|| {
+                self.err(
+                    &format!("{at}.kind"),
+                    Some(short(kind_item)),
+                    format!("unknown joint; expected one of: {}", names.join(", ")),
+                )
+            })?;
+        let mut known = vec!["kind"];
+        known.extend_from_slice(kind.keys());
+        self.only_keys(t, &at, &known)?;
+        let mut vectors = Vec::new();
+        for key in kind.keys() {
+            let path = format!("{at}.{key}");
+            let v = self.triple(self.get(t, key, &at)?, &path)?;
+            if *key != "point" {
+                self.nonzero(&v, &path, "a joint direction")?;
+            }
+            vectors.push(v);
+        }
+        Ok(JointSpec { kind, vectors })
     }
 
     fn models(&self, item: &Item, key: &str) -> Result<Vec<Model>, SceneError> {

@@ -104,6 +104,9 @@ pub struct Outcome<T: Scalar> {
     pub lost_velocity_energy: T,
     /// ΔE_c (eq. 32).
     pub kinetic_energy_loss: T,
+    /// The constraint impulses {q} (eq. 90–93; empty for a free body), filled by the
+    /// pipeline from [`crate::constraint::Constrained::impulses_into`].
+    pub constraint_impulses: Vec<T>,
 }
 
 impl<T: Scalar> Default for Outcome<T> {
@@ -115,6 +118,7 @@ impl<T: Scalar> Default for Outcome<T> {
             after: Vec::new(),
             lost_velocity_energy: T::zero(),
             kinetic_energy_loss: T::zero(),
+            constraint_impulses: Vec::new(),
         }
     }
 }
