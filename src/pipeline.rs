@@ -1,7 +1,7 @@
 //! From a scene to a report: compose exactly the stages the scene calls for.
 //!
-//! A scene declares its effects — today the restitution models it asks for (`[solve]
-//! models`); constraints, surfaces and friction join as effects of their own. The pipeline
+//! A scene declares its effects: the restitution models it asks for (`[solve] models`),
+//! `[constraints]` (§9–11) and `[surface]` (§12); friction will join as an effect of its own. The pipeline
 //! assembles the collision once (frames, inertances, Δ) and runs only the models listed; the
 //! report names the effects it simulated.
 
@@ -87,13 +87,17 @@ pub fn run<T: Scalar>(scene: &Scene, models: Option<&[Model]>) -> Result<Solved,
         identity.push(residual.is_negligible(&scale, 16 * problem.contacts.len().max(1)));
         outcomes.push((m, out));
     }
-    let report = Report::new(
+    let mut report = Report::new(
         &scene.name,
         scene.effects(models),
         &impact,
         &outcomes,
         constrained.as_ref(),
     );
+    report.surface = scene
+        .surface
+        .as_ref()
+        .map(|s| (s.text.clone(), s.surface.gradient_text()));
     Ok(Solved {
         report,
         energy_identity: identity,

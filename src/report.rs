@@ -160,6 +160,8 @@ pub struct Report {
     pub models: Vec<ModelReport>,
     /// The constraints, for a constrained body.
     pub constraints: Option<ConstraintsReport>,
+    /// The surface f = 0 and its gradient as text, when contact normals come from it.
+    pub surface: Option<(String, [String; 3])>,
 }
 
 impl Report {
@@ -275,6 +277,7 @@ impl Report {
             contacts_before,
             models,
             constraints,
+            surface: None,
         }
     }
 
@@ -345,6 +348,9 @@ impl Report {
             })).collect::<Vec<_>>(),
             "models": Json::Object(models),
         });
+        if let (Some((f, grad)), Some(obj)) = (&self.surface, top.as_object_mut()) {
+            obj.insert("surface".into(), json!({ "f": f, "gradient": grad }));
+        }
         if let (Some(c), Some(obj)) = (&self.constraints, top.as_object_mut()) {
             obj.insert(
                 "constraints".into(),
@@ -438,6 +444,12 @@ impl Report {
             );
         }
         out += &format!("Δ = det G = {}\n", self.det.text());
+        if let Some((f, g)) = &self.surface {
+            out += &format!(
+                "Surface: f = {f} = 0, ∇f = ({}, {}, {})\n",
+                g[0], g[1], g[2]
+            );
+        }
         if let Some(c) = &self.constraints {
             let screws = |l: &[[Value; 6]]| -> String {
                 l.iter()

@@ -39,8 +39,9 @@ use crate::contact::Contact;
 use crate::number::{Number, parse_number};
 use crate::restitution::Model;
 use crate::scalar::Scalar;
-use crate::screw::{Screw, Vec3};
+use crate::screw::{Screw, Vec3, norm2};
 use crate::solve::Problem;
+use crate::surface::{Surface, SurfaceError};
 
 /// A scene that failed to read: which file, which key, which value, what is wrong.
 #[derive(Clone, Debug, PartialEq)]
@@ -75,8 +76,8 @@ impl std::error::Error for SceneError {}
 pub struct ContactSpec {
     /// A_i.
     pub point: [Number; 3],
-    /// The outward normal.
-    pub normal: [Number; 3],
+    /// The outward normal; `None` when it comes from the `[surface]` (∇f at the point).
+    pub normal: Option<[Number; 3]>,
     /// The imposed axis y_i.
     pub tangent: Option<[Number; 3]>,
     /// k_i^N.
@@ -129,6 +130,22 @@ pub struct JointSpec {
     pub vectors: Vec<[Number; 3]>,
 }
 
+/// A `[surface]` effect: the body's surface f(x, y, z) = 0 in body axes (f < 0 inside, so
+/// ∇f points outward).
+#[derive(Clone, Debug)]
+pub struct SurfaceSpec {
+    /// f as written.
+    pub text: String,
+    /// f parsed, with its symbolic gradient.
+    pub surface: Surface,
+}
+
+impl PartialEq for SurfaceSpec {
+    fn eq(&self, other: &Self) -> bool {
+        self.text == other.text
+    }
+}
+
 /// A `[constraints]` effect, as written.
 #[derive(Clone, Debug, PartialEq)]
 pub enum ConstraintsSpec {
@@ -165,6 +182,8 @@ pub struct Scene {
     pub models: Vec<Model>,
     /// The `[constraints]` effect, if declared.
     pub constraints: Option<ConstraintsSpec>,
+    /// The `[surface]` effect, if declared.
+    pub surface: Option<SurfaceSpec>,
 }
 
 impl Scene {
@@ -190,18 +209,7 @@ impl Scene {
     pub fn from_document(doc: &DocumentMut, file: &str) -> Result<Scene, SceneError> {
         let r = Reader { file };
         let root = doc.as_table();
-        r.only_keys(
-            root,
-            "",
-            &[
-                "name",
-                "description",
-                "body",
-                "contact",
-                "solve",
-                "constraints",
-            ],
-        )?;
+        r.only_keys(root, "", TOP_KEYS)?;
         let name = match root.get("name") {
             None => file.rsplit('/').next().unwrap_or(file).to_string(),
             Some(item) => r.string(item, "name")?,
@@ -263,6 +271,10 @@ impl Scene {
             None => None,
             Some(item) => Some(r.constraints(item)?),
         };
+        let surface = match root.get("surface") {
+            None => None,
+            Some(item) => Some(r.surface(item)?),
+        };
         Ok(Scene {
             file: file.to_string(),
             name,
@@ -273,6 +285,7 @@ impl Scene {
             contacts,
             models,
             constraints,
+            surface,
         })
     }
 
@@ -282,13 +295,18 @@ impl Scene {
         if self.constraints.is_some() {
             e.push("constraints".into());
         }
+        if self.surface.is_some() {
+            e.push("surface".into());
+        }
         e.extend(models.iter().map(|m| m.name().to_string()));
         e
     }
 
-    /// Whether every number of the scene is rational (so it can run exactly).
+    /// Whether the scene can run in exact rationals: every number rational, and the surface
+    /// (if any) exact at its contact points.
     pub fn is_rational(&self) -> bool {
         self.numbers().all(|(_, n)| n.exact.is_ok())
+            && self.problem::<crate::scalar::Exact>().is_ok()
     }
 
     /// Every number with its key path.
@@ -308,7 +326,7 @@ impl Scene {
             for (i, n) in spec.point.iter().enumerate() {
                 v.push((format!("contact[{c}].point[{i}]"), n));
             }
-            for (i, n) in spec.normal.iter().enumerate() {
+            for (i, n) in spec.normal.iter().flatten().enumerate() {
                 v.push((format!("contact[{c}].normal[{i}]"), n));
             }
             if let Some(t) = &spec.tangent {
@@ -366,9 +384,21 @@ impl Scene {
         let mut contacts = Vec::with_capacity(self.contacts.len());
         for (i, c) in self.contacts.iter().enumerate() {
             let key = |k: &str| format!("contact[{i}].{k}");
+            let point = vec3(&c.point, &key("point"))?;
+            let normal = match (&c.normal, &self.surface) {
+                (Some(n), _) => vec3(n, &key("normal"))?,
+                (None, Some(surface)) => self.surface_normal(surface, &point, c, i)?,
+                (None, None) => {
+                    return Err(self.error(
+                        &key("normal"),
+                        None,
+                        "missing: give the outward normal, or declare a [surface] to take it from",
+                    ));
+                }
+            };
             contacts.push(Contact {
-                point: vec3(&c.point, &key("point"))?,
-                normal: vec3(&c.normal, &key("normal"))?,
+                point,
+                normal,
                 tangent: match &c.tangent {
                     Some(t) => Some(vec3(t, &key("tangent"))?),
                     None => None,
@@ -463,6 +493,73 @@ impl Scene {
                 Ok(Some((d, None, keys)))
             }
         }
+    }
+
+    fn error(&self, key: &str, value: Option<String>, message: impl Into<String>) -> SceneError {
+        SceneError {
+            file: self.file.clone(),
+            key: key.to_string(),
+            value,
+            message: message.into(),
+        }
+    }
+
+    /// The outward normal of a contact on the surface: ∇f at its point (eq. 103–107), after
+    /// checking that the point lies on f = 0 (exactly in exact types; in floats, the distance
+    /// estimate |f|/|∇f| must be ≤ 10⁻⁹ of max(|p|, 1)) and that ∇f ≠ 0 there.
+    fn surface_normal<T: Scalar>(
+        &self,
+        surface: &SurfaceSpec,
+        p: &Vec3<T>,
+        c: &ContactSpec,
+        i: usize,
+    ) -> Result<Vec3<T>, SceneError> {
+        let key = format!("contact[{i}].point");
+        let shown = format!(
+            "[{}, {}, {}]",
+            c.point[0].text, c.point[1].text, c.point[2].text
+        );
+        let at = [p[0].clone(), p[1].clone(), p[2].clone()];
+        let fail = |e: SurfaceError| {
+            self.error(
+                "surface.f",
+                Some(format!("\"{}\"", surface.text)),
+                format!("at {key} = {shown}: {}", e.message),
+            )
+        };
+        let g = surface.surface.gradient::<T>(&at).map_err(fail)?;
+        let grad = Vec3::new(g[0].clone(), g[1].clone(), g[2].clone());
+        let g2 = norm2(&grad);
+        if g2.is_zero() {
+            return Err(self.error(
+                &key,
+                Some(shown),
+                "∇f = 0 there: the surface has no normal at this point; give `normal` explicitly",
+            ));
+        }
+        let f = surface.surface.value::<T>(&at).map_err(fail)?;
+        let on = if T::IS_EXACT {
+            f.is_zero()
+        } else {
+            let (f, g, r) = (
+                f.to_f64().abs(),
+                g2.to_f64().sqrt(),
+                norm2(p).to_f64().sqrt().max(1.0),
+            );
+            f <= 1e-9 * g * r
+        };
+        if !on {
+            return Err(self.error(
+                &key,
+                Some(shown),
+                format!(
+                    "not on the surface f = {}: f(point) = {} ≠ 0",
+                    surface.text,
+                    f.to_f64()
+                ),
+            ));
+        }
+        Ok(grad)
     }
 
     /// One number in `T`: exact types refuse irrational values, naming the key and value.
@@ -574,6 +671,17 @@ fn short(item: &Item) -> String {
         s.to_string()
     }
 }
+
+/// The keys a scene may have at its top level.
+const TOP_KEYS: &[&str] = &[
+    "name",
+    "description",
+    "body",
+    "contact",
+    "solve",
+    "constraints",
+    "surface",
+];
 
 /// Reads values out of a document, turning every problem into a [`SceneError`].
 struct Reader<'a> {
@@ -749,8 +857,14 @@ impl Reader<'_> {
             ],
         )?;
         let point = self.triple(self.get(t, "point", &at)?, &format!("{at}.point"))?;
-        let normal = self.triple(self.get(t, "normal", &at)?, &format!("{at}.normal"))?;
-        self.nonzero(&normal, &format!("{at}.normal"), "a normal")?;
+        let normal = match t.get("normal") {
+            None => None,
+            Some(item) => {
+                let n = self.triple(item, &format!("{at}.normal"))?;
+                self.nonzero(&n, &format!("{at}.normal"), "a normal")?;
+                Some(n)
+            }
+        };
         let tangent = match t.get("tangent") {
             None => None,
             Some(item) => {
@@ -795,6 +909,27 @@ impl Reader<'_> {
             tangent,
             k_newton,
             k_poisson,
+        })
+    }
+
+    fn surface(&self, item: &Item) -> Result<SurfaceSpec, SceneError> {
+        let t = item
+            .as_table_like()
+            .ok_or_else(|| self.err("surface", Some(short(item)), "must be a table: [surface]"))?;
+        self.only_keys(t, "surface", &["f"])?;
+        let f = self.get(t, "f", "surface")?;
+        let text = f.as_str().ok_or_else(|| {
+            self.err(
+                "surface.f",
+                Some(short(f)),
+                "must be a string, e.g. \"x^2 + y^2/4 + z^2/9 - 1\"",
+            )
+        })?;
+        let surface =
+            Surface::parse(text).map_err(|e| self.err("surface.f", Some(short(f)), e.message))?;
+        Ok(SurfaceSpec {
+            text: text.to_string(),
+            surface,
         })
     }
 

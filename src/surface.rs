@@ -1257,6 +1257,29 @@ mod tests {
     }
 
     #[test]
+    fn nesting_at_the_limit_fits_the_stack() {
+        // Parse, differentiate, evaluate and print at close to 200 levels (debug build, test thread).
+        let mut shapes = Vec::new();
+        let (mut a, mut b, mut c) = ("x".to_string(), "y".to_string(), "z".to_string());
+        for k in 0..195 {
+            a = format!("x*({a}) + 1");
+            c = format!("1/({c} + 1)");
+            if k < 95 {
+                // Two levels each: the sign and the parenthesis.
+                b = format!("-({b})^2");
+            }
+        }
+        shapes.extend([a, b, c]);
+        for text in &shapes {
+            let s = surface(text);
+            let p = point([(1, 1), (1, 1), (1, 1)]);
+            assert!(s.value(&p).is_ok(), "{}", quote(text));
+            assert!(s.gradient(&p).is_ok(), "{}", quote(text));
+            assert!(s.gradient_text().iter().all(|t| !t.is_empty()));
+        }
+    }
+
+    #[test]
     fn division_by_zero_at_a_point() {
         let s = surface("1/x + y");
         let e = s.value(&point([(0, 1), (1, 1), (0, 1)])).unwrap_err();

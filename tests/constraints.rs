@@ -1,0 +1,161 @@
+//! Constrained bodies (§9–11), exact property tests: D = I is the free body; the momentum
+//! balance M({v} − {v⁰}) = −Σ P_i {E_ix} + U q holds exactly; Dᵀ η U = 0 for every joint
+//! shorthand; the energy identity (eq. 97) holds.
+
+mod common;
+
+use common::*;
+use inertance::body::Mobility;
+use inertance::constraint::{Constrained, Joint};
+use inertance::restitution::Model;
+use inertance::scalar::{Exact, int};
+use inertance::screw::{Screw, Vec3};
+use inertance::solve::{Impact, Outcome, Problem, SolveError};
+use num_traits::{One, Zero};
+use proptest::prelude::*;
+
+fn joint() -> impl Strategy<Value = Joint<Exact>> {
+    prop_oneof![
+        (vec3(4, 2), direction()).prop_map(|(point, axis)| Joint::Revolute { point, axis }),
+        direction().prop_map(|axis| Joint::Prismatic { axis }),
+        (vec3(4, 2), direction()).prop_map(|(point, axis)| Joint::Cylindrical { point, axis }),
+        vec3(4, 2).prop_map(|point| Joint::Spherical { point }),
+        direction().prop_map(|normal| Joint::Planar { normal }),
+    ]
+}
+
+/// A body with 1–2 joints (kept when their free screws are independent), an allowed twist
+/// v⁰ = D ξ⁰, and 1–3 contacts.
+fn constrained_problem() -> impl Strategy<Value = (Problem<Exact>, Vec<Screw<Exact>>)> {
+    (
+        problem(3),
+        prop::collection::vec(joint(), 1..=2),
+        prop::collection::vec(rational(4, 3), 6),
+    )
+        .prop_map(|(mut p, joints, xi)| {
+            let free: Vec<Screw<Exact>> = joints.iter().flat_map(Joint::free_screws).collect();
+            let mut v0 = Screw::zero();
+            for (s, x) in free.iter().zip(&xi) {
+                v0.add_scaled(x, s);
+            }
+            p.velocity = v0;
+            (p, free)
+        })
+}
+
+/// Solve both models with the constrained mobility; `None` when the joints are dependent or
+/// G is singular (more contacts than the body can answer independently).
+fn solve(
+    p: &Problem<Exact>,
+    free: Vec<Screw<Exact>>,
+) -> Option<(Constrained<Exact>, Impact<Exact>, Vec<Outcome<Exact>>)> {
+    let c = Constrained::new(&p.body, free, None).ok()?;
+    c.check_allowed(&p.velocity)
+        .expect("v⁰ = D ξ⁰ by construction");
+    let mut impact = Impact::new();
+    impact.assemble(p, &c).unwrap();
+    let mut outs = Vec::new();
+    for m in Model::ALL {
+        let mut out = Outcome::default();
+        match impact.solve(p, m, &mut out) {
+            Err(SolveError::Singular { .. }) => return None,
+            other => other.unwrap(),
+        }
+        let mut dv = out.velocity.clone();
+        dv.add_scaled(&-Exact::one(), &p.velocity);
+        c.impulses_into(
+            &dv,
+            out.impulses
+                .iter()
+                .zip(impact.frames.iter().map(|f| &f.axes[0])),
+            &mut out.constraint_impulses,
+        );
+        outs.push(out);
+    }
+    Some((c, impact, outs))
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 128, ..ProptestConfig::default() })]
+
+    /// Every direction free (D = I): exactly the free-body result, and no constraint impulse.
+    #[test]
+    fn all_directions_free_is_the_free_body(p in problem(3)) {
+        let free: Vec<Screw<Exact>> = (0..6).map(|k| {
+            let mut s = Screw::zero();
+            s.0[k] = Exact::one();
+            s
+        }).collect();
+        let mut free_impact = Impact::new();
+        free_impact.assemble(&p, &p.body).unwrap();
+        let Some((c, impact, outs)) = solve(&p, free) else { return Ok(()) };
+        prop_assert!(c.blocked.is_empty());
+        prop_assert_eq!(&impact.g, &free_impact.g);
+        for (m, out) in Model::ALL.iter().zip(&outs) {
+            let mut free_out = Outcome::default();
+            free_impact.solve(&p, *m, &mut free_out).unwrap();
+            prop_assert_eq!(&out.impulses, &free_out.impulses);
+            prop_assert_eq!(&out.velocity, &free_out.velocity);
+            prop_assert!(out.constraint_impulses.is_empty());
+        }
+    }
+
+    /// eq. 76: M({v} − {v⁰}) = −Σ P_i {E_ix} + U q, exactly, with q from the solver; and the
+    /// velocity after impact is allowed by the constraints.
+    #[test]
+    fn momentum_balance_with_constraint_impulses((p, free) in constrained_problem()) {
+        let Some((c, impact, outs)) = solve(&p, free) else { return Ok(()) };
+        for out in &outs {
+            let mut dv = out.velocity.clone();
+            dv.add_scaled(&-Exact::one(), &p.velocity);
+            let lhs = p.body.momentum(&dv);
+            let mut rhs = Screw::zero();
+            for (pi, f) in out.impulses.iter().zip(&impact.frames) {
+                rhs.add_scaled(&-pi.clone(), &f.axes[0]);
+            }
+            for (qa, ua) in out.constraint_impulses.iter().zip(&c.blocked) {
+                rhs.add_scaled(qa, ua);
+            }
+            prop_assert_eq!(lhs, rhs);
+            prop_assert!(c.check_allowed(&out.velocity).is_ok());
+        }
+    }
+
+    /// eq. 82 for every joint shorthand: Dᵀ η U = 0, and dim D + dim U = 6.
+    #[test]
+    fn joints_give_reciprocal_screws(b in body(), joints in prop::collection::vec(joint(), 1..=3)) {
+        let free: Vec<Screw<Exact>> = joints.iter().flat_map(Joint::free_screws).collect();
+        let Ok(c) = Constrained::new(&b, free, None) else { return Ok(()) };
+        prop_assert_eq!(c.free.len() + c.blocked.len(), 6);
+        for d in &c.free {
+            for u in &c.blocked {
+                prop_assert!(d.reciprocal(u).is_zero());
+            }
+        }
+    }
+
+    /// eq. 97 (with E_p from the velocity change and ΔE_c from the kinetic energies), and
+    /// Newton's law at every contact, for constrained bodies.
+    #[test]
+    fn constrained_energy_identity_and_newton_law((p, free) in constrained_problem()) {
+        let Some((_, impact, outs)) = solve(&p, free) else { return Ok(()) };
+        for out in &outs {
+            prop_assert_eq!(out.kinetic_energy_loss.clone(), impact.impulse_work(out) - &out.lost_velocity_energy);
+        }
+        for (i, c) in p.contacts.iter().enumerate() {
+            let after = impact.frames[i].axes[0].reciprocal(&outs[0].velocity);
+            prop_assert_eq!(after, -(c.k_newton.clone() * &impact.before[i][0]));
+        }
+    }
+
+    /// The constrained response is W = D M_red⁻¹ Dᵀ η: symmetric in the inertance sense,
+    /// {a}ᵀ η W {b} = {b}ᵀ η W {a}, and W{E} lies in the span of D.
+    #[test]
+    fn constrained_mobility_is_symmetric((p, free) in constrained_problem(), a in vec3(3, 2), n in direction()) {
+        let Ok(c) = Constrained::new(&p.body, free, None) else { return Ok(()) };
+        let e1 = Screw::axis(&a, &n);
+        let e2 = Screw::axis(&n, &Vec3::new(int(1), int(-1), int(2)));
+        prop_assert_eq!(e1.reciprocal(&c.response(&e2)), e2.reciprocal(&c.response(&e1)));
+        prop_assert!(c.check_allowed(&c.response(&e1)).is_ok());
+    }
+}
