@@ -35,6 +35,17 @@ pub struct Solved {
 
 /// Solve `scene` in the scalar type `T` for `models` (the scene's own when `None`).
 pub fn run<T: Scalar>(scene: &Scene, models: Option<&[Model]>) -> Result<Solved, RunError> {
+    run_with::<T>(scene, models, false)
+}
+
+/// As [`run`]; with `allow_singular`, a singular G (Δ = 0) is not an error: the report holds
+/// the model-independent part (frames, inertances, Δ, velocities before impact) and no model
+/// (used by `check` for the paper's singular examples).
+pub fn run_with<T: Scalar>(
+    scene: &Scene,
+    models: Option<&[Model]>,
+    allow_singular: bool,
+) -> Result<Solved, RunError> {
     let models = models.unwrap_or(&scene.models);
     let problem = scene.problem::<T>()?;
     let constrained = match scene.constraint_screws::<T>()? {
@@ -67,6 +78,12 @@ pub fn run<T: Scalar>(scene: &Scene, models: Option<&[Model]>) -> Result<Solved,
     })?;
     let mut outcomes = Vec::with_capacity(models.len());
     let mut identity = Vec::with_capacity(models.len());
+    let singular = impact.rank < impact.contacts();
+    let models: &[Model] = if singular && allow_singular {
+        &[]
+    } else {
+        models
+    };
     for &m in models {
         let mut out = Outcome::default();
         impact.solve(&problem, m, &mut out)?;

@@ -159,3 +159,121 @@ proptest! {
         prop_assert!(c.check_allowed(&c.response(&e1)).is_ok());
     }
 }
+
+/// Example 5 (§11): the bar OA turning about OZ at O = (0, −l, 0), hit at A1 = (0, −a, 0) and
+/// A2 = (0, b, 0) along +x, turning with ω = 1: the constraint and the assembled impact.
+fn example_5(
+    m: &Exact,
+    jz: &Exact,
+    l: &Exact,
+    a: &Exact,
+    b: &Exact,
+) -> (Constrained<Exact>, Impact<Exact>) {
+    use inertance::body::RigidBody;
+    use inertance::contact::Contact;
+    let zero = Exact::zero;
+    let x = Vec3::new(Exact::one(), zero(), zero());
+    let body = RigidBody {
+        mass: m.clone(),
+        inertia: Vec3::new(jz.clone(), jz.clone(), jz.clone()),
+    };
+    let joint = Joint::Revolute {
+        point: Vec3::new(zero(), -l.clone(), zero()),
+        axis: Vec3::new(zero(), zero(), Exact::one()),
+    };
+    let c = Constrained::new(&body, joint.free_screws(), None).unwrap();
+    let contact = |y: Exact| Contact {
+        point: Vec3::new(zero(), y, zero()),
+        normal: x.clone(),
+        tangent: None,
+        k_newton: zero(),
+        k_poisson: zero(),
+    };
+    // The admissible twist: ω = 1 about OZ at O, {v⁰} = D = [0 0 1 −l 0 0].
+    let p = Problem {
+        body,
+        velocity: c.free[0].clone(),
+        contacts: vec![contact(-a.clone()), contact(b.clone())],
+    };
+    let mut impact = Impact::new();
+    impact.assemble(&p, &c).unwrap();
+    (c, impact)
+}
+
+/// rank [G | rhs] for a 2×2 G.
+fn augmented_rank(g: &[Exact], rhs: [Exact; 2]) -> usize {
+    let a = vec![
+        g[0].clone(),
+        g[1].clone(),
+        rhs[0].clone(),
+        g[2].clone(),
+        g[3].clone(),
+        rhs[1].clone(),
+    ];
+    inertance::linalg::null_space(&a, 2, 3).0
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 128, ..ProptestConfig::default() })]
+
+    /// Example 5: one degree of freedom and two contacts, so Δ = 0 for every a, b, l
+    /// (rank G = 1), with g_11 = (l − a)²/J_O, g_12 = (l − a)(l + b)/J_O, g_22 = (l + b)²/J_O,
+    /// J_O = J_z + m l² (the paper prints g_12 with (l − b) for (l − a): ERRATA.md).
+    ///
+    /// Compatibility (Rouché–Capelli, eq. 98–101), two ways:
+    /// * with the twist the constraint allows ({v⁰} = ω D, v_C⁰ = −lω i): v_ix⁰ = ω E_i·D
+    ///   is proportional to G's column, so the system is compatible iff k1 = k2;
+    /// * with the paper's input (v_C⁰ = 0, ω⁰ = ω k, which the constraint does not allow):
+    ///   v_1x⁰ = aω, v_2x⁰ = −bω, and compatibility is exactly eq. (101),
+    ///   (1 + k1) a (l + b) = −(1 + k2) b (l − a).
+    #[test]
+    fn example_5_singular_and_compatibility(
+        m in positive(20, 3), jz in positive(20, 3), l in positive(9, 2), a in positive(9, 4), b in positive(9, 4),
+        k1 in coefficient(), k2 in coefficient(),
+    ) {
+        prop_assume!(a != l);
+        let (c, impact) = example_5(&m, &jz, &l, &a, &b);
+        let jo = jz.clone() + m.clone() * &l * &l;
+        prop_assert!(impact.det.is_zero());
+        prop_assert_eq!(impact.rank, 1);
+        let (la, lb) = (l.clone() - &a, l.clone() + &b);
+        prop_assert_eq!(&impact.g, &vec![la.clone() * &la / &jo, la.clone() * &lb / &jo, la.clone() * &lb / &jo, lb.clone() * &lb / &jo]);
+        let one = Exact::one();
+
+        // The admissible twist: compatible iff k1 = k2.
+        let rhs = [(one.clone() + &k1) * &impact.before[0][0], (one.clone() + &k2) * &impact.before[1][0]];
+        prop_assert_eq!(augmented_rank(&impact.g, rhs) == 1, k1 == k2);
+
+        // The paper's twist (v_C⁰ = 0): refused by the solver, and compatible iff eq. (101).
+        let paper = Screw::new(Vec3::new(Exact::zero(), Exact::zero(), one.clone()), Vec3::zeros());
+        prop_assert!(c.check_allowed(&paper).is_err());
+        let v0 = [impact.frames[0].axes[0].reciprocal(&paper), impact.frames[1].axes[0].reciprocal(&paper)];
+        prop_assert_eq!(&v0, &[a.clone(), -b.clone()]);
+        let rhs = [(one.clone() + &k1) * &v0[0], (one.clone() + &k2) * &v0[1]];
+        let eq101 = (one.clone() + &k1) * &a * &lb == -((one.clone() + &k2) * &b * &la);
+        prop_assert_eq!(augmented_rank(&impact.g, rhs) == 1, eq101);
+    }
+}
+
+/// Eq. (102) at a = b = l/2: solving (101) gives k2 = −4 − 3 k1 (negative for every k1 ≥ 0,
+/// so never compatible with k ∈ [0, 1]); the paper's printed k2 = 1/3 − k1 does not satisfy
+/// (101), and neither does its printed general formula (102) (which gives −2/3 − k1).
+#[test]
+fn example_5_eq_102_at_a_equals_b_equals_half_l() {
+    let q = |n: i64, d: i64| Exact::new(n.into(), d.into());
+    let (l, one) = (q(1, 1), Exact::one());
+    let (a, b) = (q(1, 2), q(1, 2));
+    let eq101 = |k1: &Exact, k2: &Exact| {
+        (one.clone() + k1) * &a * (l.clone() + &b) == -((one.clone() + k2) * &b * (l.clone() - &a))
+    };
+    for k1 in [q(0, 1), q(1, 10), q(1, 3), q(1, 1)] {
+        assert!(eq101(&k1, &(q(-4, 1) - q(3, 1) * &k1)));
+        assert!(!eq101(&k1, &(q(1, 3) - &k1)));
+        let printed_102 = (b.clone() * &l
+            - a.clone() * &b
+            - (one.clone() + &k1) * (a.clone() * &b + a.clone() * &l))
+            / (b.clone() * &l + a.clone() * &b);
+        assert_eq!(printed_102, q(-2, 3) - &k1);
+        assert!(!eq101(&k1, &printed_102));
+    }
+}
