@@ -379,3 +379,155 @@ fn bad_flag_is_status_2() {
     let out = inertance(&["frobnicate"]);
     assert_eq!(out.status.code(), Some(2));
 }
+
+const CONSTRAINED: &str = r#"
+[body]
+mass = 10
+inertia = ["10/3", "10/3", "10/3"]
+velocity = [0, 0, 0]
+angular_velocity = [0, 0, 1]
+[[contact]]
+point = [0, "-1/3", 0]
+normal = [1, 0, 0]
+k = 0
+[[contact]]
+point = [0, "1/3", 0]
+normal = [1, 0, 0]
+k = 0
+[constraints]
+free = [[0, 0, 1, -1, 0, 0], [0, 0, 0, 1, 0, 0]]
+blocked = [[0, 1, 0, 0, 0, 0], [0, 0, 1, -1, 0, 0], [0, 0, 0, 1, 0, 0], [0, 0, 0, 0, 1, 0]]
+"#;
+
+/// Solve `CONSTRAINED` with `from` replaced by `to`; expect status 2 and every needle.
+fn rejects_constrained(name: &str, from: &str, to: &str, needles: &[&str]) {
+    assert!(CONSTRAINED.contains(from), "bad test: {from}");
+    let scene = Scene::new(name, &CONSTRAINED.replacen(from, to, 1));
+    let out = inertance(&["solve", scene.path.to_str().unwrap(), "--exact"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{name}: {err}");
+    for n in needles {
+        assert!(err.contains(n), "{name}: expected `{n}` in: {err}");
+    }
+}
+
+#[test]
+fn constrained_scene_reports_constraint_impulses() {
+    let scene = Scene::new("constrained", CONSTRAINED);
+    let v = json(&inertance(&[
+        "solve",
+        scene.path.to_str().unwrap(),
+        "--exact",
+        "--json",
+    ]));
+    assert_eq!(
+        v["effects"],
+        serde_json::json!(["constraints", "newton", "poisson"])
+    );
+    // Example 6, case (i): P1 = 5, P2 = −5, E_p = ΔE_c = 5/3; the paper's {q} = 0.
+    let n = &v["models"]["newton"];
+    assert_eq!(n["impulses"], serde_json::json!(["5", "-5"]));
+    assert_eq!(
+        n["constraint_impulses"],
+        serde_json::json!(["0", "0", "0", "0"])
+    );
+    assert_eq!(n["lost_velocity_energy"], "5/3");
+    assert_eq!(
+        v["constraints"]["reduced_mass"],
+        serde_json::json!([["40/3", "-10"], ["-10", "10"]])
+    );
+    assert_eq!(v["constraints"]["blocked_derived"], false);
+}
+
+#[test]
+fn bad_constraints_name_the_offending_screw() {
+    rejects_constrained(
+        "dependent-free",
+        "free = [[0, 0, 1, -1, 0, 0], [0, 0, 0, 1, 0, 0]]",
+        "free = [[0, 0, 1, -1, 0, 0], [0, 0, 2, -2, 0, 0]]",
+        &["constraints.free[1]", "combination"],
+    );
+    rejects_constrained(
+        "reciprocal",
+        "[0, 0, 0, 0, 1, 0]]",
+        "[0, 0, 0, 0, 0, 1]]",
+        &[
+            "constraints.blocked[3]",
+            "not reciprocal",
+            "constraints.free",
+        ],
+    );
+    rejects_constrained(
+        "dimension",
+        ", [0, 0, 0, 0, 1, 0]]",
+        "]",
+        &["constraints.blocked", "≠ 6"],
+    );
+    rejects_constrained(
+        "velocity",
+        "velocity = [0, 0, 0]",
+        "velocity = [0, 1, 0]",
+        &["body.velocity", "not allowed by the constraints"],
+    );
+    rejects_constrained(
+        "zero-screw",
+        "free = [[0, 0, 1, -1, 0, 0],",
+        "free = [[0, 0, 0, 0, 0, 0],",
+        &["constraints.free[0]", "must not be zero"],
+    );
+    rejects_constrained(
+        "short-screw",
+        "free = [[0, 0, 1, -1, 0, 0],",
+        "free = [[0, 0, 1, -1, 0],",
+        &["constraints.free[0]", "six numbers"],
+    );
+    rejects_constrained(
+        "both-forms",
+        "[constraints]\n",
+        "[[constraints.joint]]\nkind = \"prismatic\"\naxis = [1, 0, 0]\n[constraints]\n",
+        &["not both"],
+    );
+}
+
+#[test]
+fn bad_joints_are_named() {
+    let joints = |body: &str| {
+        CONSTRAINED
+            .split("[constraints]")
+            .next()
+            .unwrap()
+            .to_string()
+            + body
+    };
+    let cases: [(&str, &str, &[&str]); 4] = [
+        (
+            "kind",
+            "[[constraints.joint]]\nkind = \"hinge\"\naxis = [0, 0, 1]\n",
+            &["constraints.joint[0].kind", "hinge", "revolute"],
+        ),
+        (
+            "missing",
+            "[[constraints.joint]]\nkind = \"revolute\"\naxis = [0, 0, 1]\n",
+            &["constraints.joint[0].point", "missing"],
+        ),
+        (
+            "zero-axis",
+            "[[constraints.joint]]\nkind = \"prismatic\"\naxis = [0, 0, 0]\n",
+            &["constraints.joint[0].axis", "zero"],
+        ),
+        (
+            "repeated",
+            "[[constraints.joint]]\nkind = \"prismatic\"\naxis = [1, 0, 0]\n[[constraints.joint]]\nkind = \"prismatic\"\naxis = [2, 0, 0]\n",
+            &["constraints.joint[1]", "already given"],
+        ),
+    ];
+    for (name, body, needles) in cases {
+        let scene = Scene::new(&format!("joint-{name}"), &joints(body));
+        let out = inertance(&["solve", scene.path.to_str().unwrap()]);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{name}: {err}");
+        for n in needles {
+            assert!(err.contains(n), "{name}: expected `{n}` in: {err}");
+        }
+    }
+}
