@@ -18,11 +18,14 @@
 //! [`scalar`] (the field a solve runs in) · [`number`] (exact numbers as written) ·
 //! [`linalg`] (field-only LDLᵀ) · [`screw`] (Plücker coordinates) · [`body`] (mass matrix,
 //! mobility) · [`contact`] (contact frames, §12) · [`restitution`] (Newton, Poisson) ·
-//! [`solve`] (the collision) · [`scene`] (TOML scenes) · [`report`] (tables and JSON) ·
+//! [`solve`] (the collision) · [`constraint`] (ideal constraints, §9–11) · [`surface`]
+//! (implicit surfaces, §12) · [`analysis`] and [`analysis_report`] (degenerate cases, §8) · [`scene`] (TOML scenes) · [`report`] (tables and JSON) ·
 //! [`check`] (the paper's worked examples, checked).
 
 #![deny(missing_docs)]
 
+pub mod analysis;
+pub mod analysis_report;
 pub mod body;
 pub mod check;
 pub mod constraint;

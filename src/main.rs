@@ -9,6 +9,7 @@ use std::process::ExitCode;
 
 use clap::{Parser, Subcommand, ValueEnum};
 
+use inertance::analysis_report::analyze_scene;
 use inertance::check;
 use inertance::pipeline::{RunError, run};
 use inertance::restitution::Model;
@@ -43,6 +44,21 @@ enum Command {
         #[arg(long)]
         json: bool,
     },
+    /// Analyse a scene's degenerate cases: Δ, ranks, compatibility, families of solutions,
+    /// admissibility, coincident points, Newton vs Poisson, conditioning.
+    Analyze {
+        /// The scene file (TOML).
+        scene: PathBuf,
+        /// Decide every rank and sign exactly, in rationals.
+        #[arg(long)]
+        exact: bool,
+        /// Which restitution model(s); default: the scene's `[solve] models`.
+        #[arg(long, value_enum)]
+        model: Option<ModelArg>,
+        /// Print the JSON report instead of the text.
+        #[arg(long)]
+        json: bool,
+    },
     /// Reproduce the paper's worked examples in a derivations directory.
     Check {
         /// The directory of derivations.
@@ -61,6 +77,16 @@ enum ModelArg {
     Both,
 }
 
+impl ModelArg {
+    fn models(self) -> Vec<Model> {
+        match self {
+            ModelArg::Newton => vec![Model::Newton],
+            ModelArg::Poisson => vec![Model::Poisson],
+            ModelArg::Both => Model::ALL.to_vec(),
+        }
+    }
+}
+
 fn main() -> ExitCode {
     let cli = match Cli::try_parse() {
         Ok(c) => c,
@@ -76,6 +102,12 @@ fn main() -> ExitCode {
             model,
             json,
         } => solve(scene, exact, model, json),
+        Command::Analyze {
+            scene,
+            exact,
+            model,
+            json,
+        } => run_analyze(scene, exact, model, json),
         Command::Check { dir, quiet } => run_check(dir, quiet),
     }
 }
@@ -88,11 +120,7 @@ fn solve(path: PathBuf, exact: bool, model: Option<ModelArg>, json: bool) -> Exi
             return ExitCode::from(2);
         }
     };
-    let models: Option<Vec<Model>> = model.map(|m| match m {
-        ModelArg::Newton => vec![Model::Newton],
-        ModelArg::Poisson => vec![Model::Poisson],
-        ModelArg::Both => Model::ALL.to_vec(),
-    });
+    let models = model.map(ModelArg::models);
     let solved = if exact {
         run::<Exact>(&scene, models.as_deref())
     } else {
@@ -118,10 +146,49 @@ fn solve(path: PathBuf, exact: bool, model: Option<ModelArg>, json: bool) -> Exi
             eprintln!(
                 "error: {}: {e}.\n  The simultaneous-collision hypothesis does not fix the impulses here \
                  (§8 of the paper: Δ = 0, e.g. coincident contact points or a body that cannot move along \
-                 the normals independently).",
+                 the normals independently).\n  Run `inertance analyze {}` to see whether the system is compatible, \
+                 the family of solutions and what stays fixed along it.",
+                path.display(),
                 path.display()
             );
             ExitCode::from(3)
+        }
+        Err(RunError::Solve(e)) => {
+            eprintln!("error: {}: {e}", path.display());
+            ExitCode::from(3)
+        }
+    }
+}
+
+fn run_analyze(path: PathBuf, exact: bool, model: Option<ModelArg>, json: bool) -> ExitCode {
+    let scene = match Scene::load(&path) {
+        Ok(s) => s,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return ExitCode::from(2);
+        }
+    };
+    let models = model.map(ModelArg::models);
+    let report = if exact {
+        analyze_scene::<Exact>(&scene, models.as_deref())
+    } else {
+        analyze_scene::<f64>(&scene, models.as_deref())
+    };
+    match report {
+        Ok(r) => {
+            if json {
+                println!(
+                    "{}",
+                    serde_json::to_string_pretty(&r.to_json()).unwrap_or_default()
+                );
+            } else {
+                print!("{}", r.to_text());
+            }
+            ExitCode::SUCCESS
+        }
+        Err(RunError::Scene(e)) => {
+            eprintln!("error: {e}");
+            ExitCode::from(2)
         }
         Err(RunError::Solve(e)) => {
             eprintln!("error: {}: {e}", path.display());

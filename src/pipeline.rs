@@ -10,7 +10,7 @@ use crate::report::Report;
 use crate::restitution::Model;
 use crate::scalar::Scalar;
 use crate::scene::{Scene, SceneError};
-use crate::solve::{Impact, Outcome, SolveError};
+use crate::solve::{Impact, Outcome, Problem, SolveError};
 
 /// Why a scene could not be solved.
 #[derive(Debug, thiserror::Error)]
@@ -47,17 +47,7 @@ pub fn run_with<T: Scalar>(
     allow_singular: bool,
 ) -> Result<Solved, RunError> {
     let models = models.unwrap_or(&scene.models);
-    let problem = scene.problem::<T>()?;
-    let constrained = match scene.constraint_screws::<T>()? {
-        None => None,
-        Some((free, blocked, keys)) => {
-            let c = Constrained::new(&problem.body, free, blocked)
-                .map_err(|e| constraint_error(scene, &keys, e))?;
-            c.check_allowed(&problem.velocity)
-                .map_err(|e| constraint_error(scene, &keys, e))?;
-            Some(c)
-        }
-    };
+    let (problem, constrained) = prepare::<T>(scene)?;
     let mut impact = Impact::new();
     let assembled = match &constrained {
         Some(c) => impact.assemble(&problem, c),
@@ -119,6 +109,23 @@ pub fn run_with<T: Scalar>(
         report,
         energy_identity: identity,
     })
+}
+
+/// The problem in `T` and, for a constrained scene, its validated constraints (with the
+/// initial twist checked against them).
+pub fn prepare<T: Scalar>(scene: &Scene) -> Result<(Problem<T>, Option<Constrained<T>>), RunError> {
+    let problem = scene.problem::<T>()?;
+    let constrained = match scene.constraint_screws::<T>()? {
+        None => None,
+        Some((free, blocked, keys)) => {
+            let c = Constrained::new(&problem.body, free, blocked)
+                .map_err(|e| constraint_error(scene, &keys, e))?;
+            c.check_allowed(&problem.velocity)
+                .map_err(|e| constraint_error(scene, &keys, e))?;
+            Some(c)
+        }
+    };
+    Ok((problem, constrained))
 }
 
 /// A constraint problem as a scene error naming the offending screws.

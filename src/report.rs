@@ -27,28 +27,32 @@ pub struct Value {
 }
 
 impl Value {
-    fn of<T: Scalar>(x: &T) -> Self {
+    /// The value of `x`: f64, and its exact text for exact types.
+    pub fn of<T: Scalar>(x: &T) -> Self {
         Value {
             f64: x.to_f64(),
             exact: x.to_rational().map(|q| crate::number::format_rational(&q)),
         }
     }
 
-    fn surd<T: Scalar>(s: &Surd<T>) -> Self {
+    /// The value of the surd `s`.
+    pub fn surd<T: Scalar>(s: &Surd<T>) -> Self {
         Value {
             f64: s.to_f64(),
             exact: s.exact_text(),
         }
     }
 
-    fn json(&self) -> Json {
+    /// The JSON value: the exact string in exact mode, a number otherwise.
+    pub fn json(&self) -> Json {
         match &self.exact {
             Some(t) => Json::String(t.clone()),
             None => json_f64(self.f64),
         }
     }
 
-    fn text(&self) -> String {
+    /// Readable text: the exact value (with ≈ decimals when not a short decimal), or the f64.
+    pub fn text(&self) -> String {
         match &self.exact {
             Some(t) if t.parse::<f64>().is_err() || t.len() > 14 => {
                 format!("{} ≈ {}", t, fmt_f64(self.f64))

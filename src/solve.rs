@@ -210,15 +210,7 @@ impl<T: Scalar> Impact<T> {
             });
         }
         resize(&mut self.work, n);
-        resize(&mut out.impulses, n);
-        // Right-hand side: (1 + k_i^N) v̂_ix⁰ (eq. 15) or v̂_ix⁰ (eq. 21).
-        for (i, c) in problem.contacts.iter().enumerate() {
-            let v0 = self.before[i][0].clone();
-            out.impulses[i] = match model {
-                Model::Newton => (T::one() + &c.k_newton) * &v0,
-                Model::Poisson => v0,
-            };
-        }
+        self.rhs(problem, model, &mut out.impulses);
         linalg::solve_factored(
             &self.factor,
             n,
@@ -236,6 +228,27 @@ impl<T: Scalar> Impact<T> {
                 }
             }
         }
+        self.complete(problem, out);
+        Ok(())
+    }
+
+    /// The right-hand side of the model's system G x = b: b_i = (1 + k_i^N) v̂_ix⁰ (Newton,
+    /// eq. 15) or v̂_ix⁰ (Poisson, eq. 21, for the compression impulses).
+    pub fn rhs(&self, problem: &Problem<T>, model: Model, b: &mut Vec<T>) {
+        b.clear();
+        for (i, c) in problem.contacts.iter().enumerate() {
+            let v0 = self.before[i][0].clone();
+            b.push(match model {
+                Model::Newton => (T::one() + &c.k_newton) * &v0,
+                Model::Poisson => v0,
+            });
+        }
+    }
+
+    /// Everything that follows from the impulses `out.impulses`: the twist after impact,
+    /// the contact velocities and both energies (eq. 24–26, 28, 32).
+    pub fn complete(&self, problem: &Problem<T>, out: &mut Outcome<T>) {
+        let n = self.n;
         // eq. 24: {v} = {v⁰} − Σ P̂_j W{Ê_jx}.
         out.velocity = problem.velocity.clone();
         for (p, r) in out.impulses.iter().zip(&self.responses) {
@@ -258,7 +271,76 @@ impl<T: Scalar> Impact<T> {
         out.lost_velocity_energy = problem.body.kinetic_energy(&dv);
         out.kinetic_energy_loss =
             self.kinetic_before.clone() - problem.body.kinetic_energy(&out.velocity);
-        Ok(())
+    }
+
+    /// For a singular G (rank r < N): a solution of G x = b with its last N − r pivoted
+    /// entries zero, written into `x` — `None` when b is not in the range of G (the system is
+    /// incompatible). Compatibility is decided on the residual G x − b: exactly zero in exact
+    /// types, negligible against ‖G‖·|x| + |b| in floats.
+    pub fn solve_singular(&mut self, b: &[T], x: &mut Vec<T>) -> Option<()> {
+        let (n, r) = (self.n, self.rank);
+        // Π G Πᵀ = [L11 0; L21 I] diag(D1, 0) [L11ᵀ L21ᵀ; 0 I]: with x2 = 0 the first block
+        // row is L11 D1 L11ᵀ x1 = (Π b)_1.
+        let mut sub = vec![T::zero(); r * r];
+        for i in 0..r {
+            for j in 0..r {
+                sub[i * r + j] = self.factor[i * n + j].clone();
+            }
+        }
+        let mut y: Vec<T> = (0..r).map(|k| b[self.perm[k]].clone()).collect();
+        let identity: Vec<usize> = (0..r).collect();
+        resize(&mut self.work, n);
+        linalg::solve_factored(&sub, r, &identity, &mut y, &mut self.work[..r]);
+        resize(x, n);
+        for (k, yk) in y.into_iter().enumerate() {
+            x[self.perm[k]] = yk;
+        }
+        let mut scale = T::zero();
+        for bi in b {
+            if bi.abs_gt(&scale) {
+                scale = bi.clone();
+            }
+        }
+        for i in 0..n {
+            let mut ri = -b[i].clone();
+            let mut row_scale = scale.clone();
+            for j in 0..n {
+                let t = self.g[i * n + j].clone() * &x[j];
+                if t.abs_gt(&row_scale) {
+                    row_scale = t.clone();
+                }
+                ri += t;
+            }
+            if !ri.is_negligible(&row_scale, 4 * n * n) {
+                return None;
+            }
+        }
+        Some(())
+    }
+
+    /// A basis of the null space of G from its factorization: for each pivot k ≥ rank,
+    /// x = Πᵀ [−L11⁻ᵀ L21ᵀ e_k; e_k].
+    pub fn null_space(&self) -> Vec<Vec<T>> {
+        let (n, r) = (self.n, self.rank);
+        let mut basis = Vec::with_capacity(n - r);
+        for k in r..n {
+            let mut y = vec![T::zero(); n];
+            y[k] = T::one();
+            // L11ᵀ y1 = −L21ᵀ e_k: unit upper triangular, back substitution.
+            for i in (0..r).rev() {
+                let mut s = -self.factor[k * n + i].clone();
+                for j in i + 1..r {
+                    s -= self.factor[j * n + i].clone() * &y[j];
+                }
+                y[i] = s;
+            }
+            let mut x = vec![T::zero(); n];
+            for (pk, yk) in self.perm.iter().zip(y) {
+                x[*pk] = yk;
+            }
+            basis.push(x);
+        }
+        basis
     }
 
     /// Σ_i P̂_i v̂_ix⁰: the right-hand side of the energy identity (eq. 34).

@@ -1,0 +1,379 @@
+//! Degenerate cases (§5, §8, §11): singularity, compatibility, admissibility.
+//!
+//! For each restitution model the impulses solve G x = b (eq. 15, 21). With Δ = det G and the
+//! ranks of G and of [G | b], Rouché–Capelli classifies the system (eq. 61–68, 98–102):
+//!
+//! * `unique` — rank G = N (Δ ≠ 0);
+//! * `singular-compatible` — rank G = rank [G | b] < N: a family x = x_p + Σ t_k z_k with
+//!   G z_k = 0. We report the particular solution of least physical norm Σ P_i² and a basis of
+//!   the null space. **What stays fixed:** the twist change along z is −Σ z_j W{E_jx}, and
+//!   zᵀ G z = ‖Σ z_j W{E_jx}‖² in the positive definite metric η M (eq. 57–58), so for Newton
+//!   (where the impulses are x itself) the velocities after impact and both energies are the
+//!   same for every member of the family; only the impulses vary. For Poisson the impulses
+//!   are (1 + k_i^P) x_i, so the velocities vary unless every k_i^P is equal — reported per
+//!   family;
+//! * `singular-incompatible` — rank [G | b] > rank G: no impulses satisfy the law.
+//!
+//! Physical admissibility (eq. 73–74): a contact is **approaching** when v_ix⁰ > 0 and its
+//! impulse **compressive** when P_i > 0. A tensile impulse (P_i < 0) means the obstacle would
+//! have to pull: the hypothesis that all contacts collide at once fails. A contact that is not
+//! approaching would not collide on its own, but the simultaneous hypothesis stops it anyway.
+//!
+//! In exact types every rank and sign decision is exact. In floats a pivot counts as zero when
+//! it is ≤ N·ε·max g_ii — the tolerance is reported.
+
+use crate::body::Mobility;
+use crate::restitution::Model;
+use crate::scalar::Scalar;
+use crate::screw::Screw;
+use crate::solve::{Impact, Outcome, Problem};
+
+/// The Rouché–Capelli classification of a model's system.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Classification {
+    /// rank G = N.
+    Unique,
+    /// rank G = rank [G | b] < N.
+    SingularCompatible,
+    /// rank [G | b] > rank G.
+    SingularIncompatible,
+}
+
+impl Classification {
+    /// The name used in reports (a JSON contract).
+    pub fn name(self) -> &'static str {
+        match self {
+            Classification::Unique => "unique",
+            Classification::SingularCompatible => "singular-compatible",
+            Classification::SingularIncompatible => "singular-incompatible",
+        }
+    }
+}
+
+/// Per contact: is it approaching, is its impulse compressive (`None` without impulses)?
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Admissibility {
+    /// v_ix⁰ > 0 (eq. 74).
+    pub approaching: bool,
+    /// P_i > 0 (eq. 73), for the unique solution or the family's particular one.
+    pub compressive: Option<bool>,
+    /// Whether P_i changes along the family (singular-compatible only).
+    pub varies: bool,
+}
+
+/// The analysis of one model.
+#[derive(Clone, Debug)]
+pub struct ModelAnalysis<T: Scalar> {
+    /// Which model.
+    pub model: Model,
+    /// rank [G | b].
+    pub augmented_rank: usize,
+    /// The classification.
+    pub classification: Classification,
+    /// The impulses (hatted, see [`crate::contact`]) and everything after impact: the unique
+    /// solution, or the family's least-norm member; `None` when incompatible.
+    pub outcome: Option<Outcome<T>>,
+    /// A basis of the impulse family's directions (hatted), empty unless singular-compatible.
+    pub family: Vec<Vec<T>>,
+    /// Whether the twist after impact is the same for every member of the family.
+    pub twist_fixed: bool,
+    /// Per contact.
+    pub admissible: Vec<Admissibility>,
+    /// ΔE_c < 0 (for the reported outcome).
+    pub energy_gain: Option<bool>,
+}
+
+/// A pair of contacts at the same point.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Coincidence<T: Scalar> {
+    /// The contacts (0-based), i < j.
+    pub pair: (usize, usize),
+    /// Whether their normals are parallel too ({E_ix} ∥ {E_jx}, so Δ = 0).
+    pub same_axis: bool,
+    /// The single-impulse reduction (eq. 69–72), hatted: (1 + k_i) v̂_ix⁰ / ĝ_ii for Newton
+    /// and for Poisson, the total impulse of the merged contact.
+    pub single_impulse: [T; 2],
+}
+
+/// The analysis of a scene.
+#[derive(Clone, Debug)]
+pub struct Analysis<T: Scalar> {
+    /// rank G.
+    pub rank: usize,
+    /// The zero-pivot tolerance used (floats), relative quantities in the units of G.
+    pub tolerance: Option<f64>,
+    /// Per model.
+    pub models: Vec<ModelAnalysis<T>>,
+    /// Whether Newton and Poisson give the same impulses, and why.
+    pub newton_equals_poisson: Option<(bool, String)>,
+    /// Contacts at the same point.
+    pub coincident: Vec<Coincidence<T>>,
+}
+
+/// Analyse the assembled `impact` of `problem` for `models`.
+pub fn analyze<T: Scalar>(
+    problem: &Problem<T>,
+    mobility: &impl Mobility<T>,
+    impact: &mut Impact<T>,
+    models: &[Model],
+) -> Analysis<T> {
+    let n = impact.contacts();
+    let tolerance = if T::IS_EXACT {
+        None
+    } else {
+        let gmax = (0..n)
+            .map(|i| impact.g[i * n + i].to_f64())
+            .fold(0.0, f64::max);
+        Some(n as f64 * T::epsilon_f64() * gmax)
+    };
+    let mut out_models = Vec::with_capacity(models.len());
+    for &model in models {
+        out_models.push(analyze_model(problem, mobility, impact, model));
+    }
+    let newton_equals_poisson = newton_equals_poisson(problem, impact, &out_models);
+    let coincident = coincident(problem, impact);
+    Analysis {
+        rank: impact.rank,
+        tolerance,
+        models: out_models,
+        newton_equals_poisson,
+        coincident,
+    }
+}
+
+fn analyze_model<T: Scalar>(
+    problem: &Problem<T>,
+    mobility: &impl Mobility<T>,
+    impact: &mut Impact<T>,
+    model: Model,
+) -> ModelAnalysis<T> {
+    let n = impact.contacts();
+    let approaching: Vec<bool> = impact.before.iter().map(|v| v[0].signum_i8() > 0).collect();
+    let scale = |i: usize, model: Model| -> T {
+        match model {
+            Model::Newton => T::one(),
+            Model::Poisson => T::one() + &problem.contacts[i].k_poisson,
+        }
+    };
+    if impact.rank == n {
+        let mut out = Outcome::default();
+        let solved = impact.solve(problem, model, &mut out);
+        // rank = N, so the solve cannot fail.
+        let ok = solved.is_ok();
+        let admissible = (0..n)
+            .map(|i| Admissibility {
+                approaching: approaching[i],
+                compressive: ok.then(|| out.impulses[i].signum_i8() > 0),
+                varies: false,
+            })
+            .collect();
+        let gain = ok.then(|| out.kinetic_energy_loss.signum_i8() < 0);
+        return ModelAnalysis {
+            model,
+            augmented_rank: n,
+            classification: Classification::Unique,
+            outcome: ok.then_some(out),
+            family: Vec::new(),
+            twist_fixed: true,
+            admissible,
+            energy_gain: gain,
+        };
+    }
+    let mut b = Vec::new();
+    impact.rhs(problem, model, &mut b);
+    let mut x = Vec::new();
+    if impact.solve_singular(&b, &mut x).is_none() {
+        return ModelAnalysis {
+            model,
+            augmented_rank: impact.rank + 1,
+            classification: Classification::SingularIncompatible,
+            outcome: None,
+            family: Vec::new(),
+            twist_fixed: false,
+            admissible: approaching
+                .iter()
+                .map(|&a| Admissibility {
+                    approaching: a,
+                    compressive: None,
+                    varies: false,
+                })
+                .collect(),
+            energy_gain: None,
+        };
+    }
+    // The impulses: x (Newton) or (1 + k_i^P) x_i (Poisson), and the same map on the basis.
+    let mut impulses: Vec<T> = (0..n).map(|i| scale(i, model) * &x[i]).collect();
+    let family: Vec<Vec<T>> = impact
+        .null_space()
+        .into_iter()
+        .map(|z| (0..n).map(|i| scale(i, model) * &z[i]).collect())
+        .collect();
+    least_norm(&mut impulses, &family, impact);
+    let mut out = Outcome::default();
+    out.compression = match model {
+        Model::Newton => Vec::new(),
+        Model::Poisson => (0..n)
+            .map(|i| impulses[i].clone() / scale(i, model))
+            .collect(),
+    };
+    out.impulses = impulses;
+    impact.complete(problem, &mut out);
+    // The twist change along each direction of the family: −Σ z_j W{E_jx}.
+    let twist_fixed = family.iter().all(|z| {
+        let mut dv = Screw::zero();
+        for (zj, f) in z.iter().zip(&impact.frames) {
+            dv.add_scaled(zj, &mobility.response(&f.axes[0]));
+        }
+        let reference = problem
+            .velocity
+            .reciprocal(&problem.body.momentum(&problem.velocity));
+        problem
+            .body
+            .kinetic_energy(&dv)
+            .is_negligible(&reference, 16 * n)
+    });
+    let admissible = (0..n)
+        .map(|i| Admissibility {
+            approaching: approaching[i],
+            compressive: Some(out.impulses[i].signum_i8() > 0),
+            varies: family.iter().any(|z| !z[i].is_negligible(&T::one(), n)),
+        })
+        .collect();
+    let gain = Some(out.kinetic_energy_loss.signum_i8() < 0);
+    ModelAnalysis {
+        model,
+        augmented_rank: impact.rank,
+        classification: Classification::SingularCompatible,
+        outcome: Some(out),
+        family,
+        twist_fixed,
+        admissible,
+        energy_gain: gain,
+    }
+}
+
+/// Replace `p` by the member of p + span(basis) of least physical norm Σ (P̂_i |x̂_i|)²:
+/// solve (Bᵀ W B) c = Bᵀ W p with W = diag(|x̂_i|²) and set p ← p − B c.
+fn least_norm<T: Scalar>(p: &mut [T], basis: &[Vec<T>], impact: &Impact<T>) {
+    let k = basis.len();
+    if k == 0 {
+        return;
+    }
+    let w: Vec<T> = impact.frames.iter().map(|f| f.norm2[0].clone()).collect();
+    let dot = |a: &[T], b: &[T]| -> T {
+        let mut s = T::zero();
+        for i in 0..a.len() {
+            s += a[i].clone() * &b[i] * &w[i];
+        }
+        s
+    };
+    let mut gram = vec![T::zero(); k * k];
+    let mut rhs = Vec::with_capacity(k);
+    for a in 0..k {
+        for c in 0..k {
+            gram[a * k + c] = dot(&basis[a], &basis[c]);
+        }
+        rhs.push(dot(&basis[a], p));
+    }
+    let mut perm = vec![0; k];
+    if crate::linalg::factor_psd(&mut gram, k, &mut perm).is_ok_and(|f| f.rank == k) {
+        let mut work = vec![T::zero(); k];
+        crate::linalg::solve_factored(&gram, k, &perm, &mut rhs, &mut work);
+        for (z, c) in basis.iter().zip(&rhs) {
+            for i in 0..p.len() {
+                p[i] -= z[i].clone() * c;
+            }
+        }
+    }
+}
+
+/// eq. 50–55: equal impulses, and why.
+fn newton_equals_poisson<T: Scalar>(
+    problem: &Problem<T>,
+    impact: &Impact<T>,
+    models: &[ModelAnalysis<T>],
+) -> Option<(bool, String)> {
+    let newton = models.iter().find(|m| m.model == Model::Newton)?;
+    let poisson = models.iter().find(|m| m.model == Model::Poisson)?;
+    let n = impact.contacts();
+    let equal = match (&newton.outcome, &poisson.outcome) {
+        (Some(a), Some(b)) => {
+            (0..n).all(|i| {
+                let d = a.impulses[i].clone() - &b.impulses[i];
+                let reference = if a.impulses[i].abs_gt(&b.impulses[i]) {
+                    a.impulses[i].clone()
+                } else {
+                    b.impulses[i].clone()
+                };
+                d.is_negligible(&reference, 16 * n)
+            }) && newton.family.len() == poisson.family.len()
+        }
+        (None, None) => newton.classification == poisson.classification,
+        _ => false,
+    };
+    let cs = &problem.contacts;
+    let same_k = cs
+        .iter()
+        .all(|c| c.k_newton == c.k_poisson && c.k_newton == cs[0].k_newton);
+    let diagonal = (0..n).all(|i| {
+        (0..n).all(|j| i == j || impact.g[i * n + j].is_negligible(&impact.g[i * n + i], 16 * n))
+    });
+    let reason = match (equal, same_k, diagonal) {
+        (true, true, _) => "equal coefficients at every contact (k_i^N = k_i^P = k): eq. 55, first possibility".to_string(),
+        (true, false, true) => "g_ij = 0 for i ≠ j: every contact answers only its own impulse (eq. 55, second possibility; eq. 59–60)".to_string(),
+        (true, false, false) => "equal here although the coefficients differ and G is not diagonal (a special right-hand side, eq. 53–54)".to_string(),
+        (false, _, _) => "the coefficients differ and some g_ij ≠ 0 (i ≠ j), so eq. 53–54 fail".to_string(),
+    };
+    Some((equal, reason))
+}
+
+/// Pairs of contacts at the same point (A_i ≡ A_j, §8), with the single-impulse reduction.
+fn coincident<T: Scalar>(problem: &Problem<T>, impact: &Impact<T>) -> Vec<Coincidence<T>> {
+    let n = impact.contacts();
+    let mut out = Vec::new();
+    for i in 0..n {
+        for j in i + 1..n {
+            let (pi, pj) = (&problem.contacts[i].point, &problem.contacts[j].point);
+            let d = pi - pj;
+            let reference = crate::screw::norm2(pi) + crate::screw::norm2(pj);
+            if !crate::screw::norm2(&d).is_negligible(&reference, 3) {
+                continue;
+            }
+            let (ni, nj) = (&problem.contacts[i].normal, &problem.contacts[j].normal);
+            let cross = ni.cross(nj);
+            let same_axis = crate::screw::norm2(&cross)
+                .is_negligible(&(crate::screw::norm2(ni) * crate::screw::norm2(nj)), 3)
+                && crate::screw::dot(ni, nj).signum_i8() > 0;
+            let c = &problem.contacts[i];
+            let gii = impact.g[i * n + i].clone();
+            let v0 = impact.before[i][0].clone();
+            let single = [
+                (T::one() + &c.k_newton) * &v0 / gii.clone(), // eq. 70
+                (T::one() + &c.k_poisson) * &v0 / gii,        // eq. 72
+            ];
+            out.push(Coincidence {
+                pair: (i, j),
+                same_axis,
+                single_impulse: single,
+            });
+        }
+    }
+    out
+}
+
+/// The 2-norm condition number of a symmetric positive semidefinite matrix (row-major, n×n),
+/// λ_max/λ_min from its eigenvalues in f64 (∞ when singular to working precision).
+pub fn condition_number(g: &[f64], n: usize) -> f64 {
+    if n == 0 {
+        return 1.0;
+    }
+    let m = nalgebra::DMatrix::from_row_slice(n, n, g);
+    let eig = m.symmetric_eigenvalues();
+    let max = eig.iter().cloned().fold(f64::MIN, f64::max);
+    let min = eig.iter().cloned().fold(f64::MAX, f64::min);
+    if min <= max * n as f64 * f64::EPSILON || min <= 0.0 {
+        f64::INFINITY
+    } else {
+        max / min
+    }
+}

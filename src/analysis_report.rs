@@ -1,0 +1,387 @@
+//! `inertance analyze`: the analysis of a scene as a table or JSON (keys documented in the
+//! README, "analyze").
+
+use serde_json::{Map, Value as Json, json};
+
+use crate::analysis::{Analysis, Classification, analyze, condition_number};
+use crate::constraint::Constrained;
+use crate::contact::Surd;
+use crate::pipeline::{RunError, prepare};
+use crate::report::Value;
+use crate::restitution::Model;
+use crate::scalar::Scalar;
+use crate::scene::Scene;
+use crate::solve::Impact;
+
+/// The readout of an analysis, scalar-free.
+#[derive(Clone, Debug)]
+pub struct AnalysisReport {
+    /// The scene's name.
+    pub scene: String,
+    /// `"f64"` or `"exact"`.
+    pub scalar: &'static str,
+    /// N.
+    pub contacts: usize,
+    /// Δ = det G (physical, unit normals).
+    pub det: Value,
+    /// rank G.
+    pub rank: usize,
+    /// cond₂(G) = λ_max/λ_min.
+    pub condition_number: f64,
+    /// The zero-pivot tolerance (floats).
+    pub tolerance: Option<f64>,
+    /// Per model.
+    pub models: Vec<ModelReport>,
+    /// (equal, reason).
+    pub newton_equals_poisson: Option<(bool, String)>,
+    /// Coincident contact pairs (1-based in text), whether the axes coincide, and the
+    /// single-impulse reduction (Newton, Poisson).
+    pub coincident: Vec<((usize, usize), bool, [Value; 2])>,
+}
+
+/// One model's analysis, readable.
+#[derive(Clone, Debug)]
+pub struct ModelReport {
+    /// The model.
+    pub model: Model,
+    /// rank [G | b].
+    pub augmented_rank: usize,
+    /// The classification.
+    pub classification: Classification,
+    /// The impulses: unique, or the family's least-norm member.
+    pub impulses: Option<Vec<Value>>,
+    /// The family's directions (impulse space), empty unless singular-compatible.
+    pub family: Vec<Vec<Value>>,
+    /// Whether the velocities after impact are the same across the family.
+    pub twist_fixed: bool,
+    /// (approaching, compressive, varies along the family).
+    pub admissible: Vec<(bool, Option<bool>, bool)>,
+    /// ΔE_c < 0.
+    pub energy_gain: Option<bool>,
+    /// The velocity after impact [ω; v_C] of the reported solution.
+    pub twist: Option<Vec<Value>>,
+    /// (E_p, ΔE_c) of the reported solution.
+    pub energies: Option<[Value; 2]>,
+    /// Plain-language verdicts.
+    pub verdicts: Vec<String>,
+}
+
+/// Analyse `scene` in the scalar type `T`.
+pub fn analyze_scene<T: Scalar>(
+    scene: &Scene,
+    models: Option<&[Model]>,
+) -> Result<AnalysisReport, RunError> {
+    let models = models.unwrap_or(&scene.models);
+    let (problem, constrained) = prepare::<T>(scene)?;
+    let mut impact = Impact::new();
+    let analysis: Analysis<T> = match &constrained {
+        Some(c) => {
+            impact.assemble(&problem, c)?;
+            analyze(&problem, c, &mut impact, models)
+        }
+        None => {
+            impact.assemble(&problem, &problem.body)?;
+            analyze(&problem, &problem.body, &mut impact, models)
+        }
+    };
+    let _: Option<&Constrained<T>> = constrained.as_ref();
+    let n = impact.contacts();
+    let norm2: Vec<T> = impact.frames.iter().map(|f| f.norm2[0].clone()).collect();
+    let mut norms = T::one();
+    for w in &norm2 {
+        norms *= w;
+    }
+    let det = Value::of(&(impact.det.clone() / &norms));
+    // The physical G: g_ij / (|x̂_i||x̂_j|), in f64 for its eigenvalues.
+    let g: Vec<f64> = (0..n * n)
+        .map(|k| Surd::over_norm(&impact.g[k], &(norm2[k / n].clone() * &norm2[k % n])).to_f64())
+        .collect();
+    let cond = condition_number(&g, n);
+    let impulse = |p: &T, i: usize| -> Value { Value::surd(&Surd::times_norm(p, &norm2[i])) };
+    let model_reports = analysis
+        .models
+        .iter()
+        .map(|m| {
+            let impulses = m.outcome.as_ref().map(|o| o.impulses.iter().enumerate().map(|(i, p)| impulse(p, i)).collect::<Vec<_>>());
+            let admissible: Vec<(bool, Option<bool>, bool)> =
+                m.admissible.iter().map(|a| (a.approaching, a.compressive, a.varies)).collect();
+            let mut verdicts = Vec::new();
+            match m.classification {
+                Classification::Unique => {}
+                Classification::SingularCompatible => verdicts.push(format!(
+                    "Δ = 0 but the system is compatible: a {}-parameter family of impulses satisfies the law; {}",
+                    m.family.len(),
+                    if m.twist_fixed {
+                        "the velocities after impact and both energies are the same for every member — only the impulses are undetermined"
+                    } else {
+                        "the velocities after impact change along the family (Poisson with unequal k_i)"
+                    }
+                )),
+                Classification::SingularIncompatible => verdicts.push(
+                    "Δ = 0 and the system is incompatible: no impulses make every contact obey the law at once; the simultaneous-collision hypothesis cannot hold".into(),
+                ),
+            }
+            for (i, (approaching, compressive, varies)) in admissible.iter().enumerate() {
+                let v0 = Value::surd(&Surd::over_norm(&impact.before[i][0], &norm2[i]));
+                if !approaching {
+                    verdicts.push(format!(
+                        "contact A{} is not approaching (v_{}x⁰ = {} ≤ 0, eq. 74): on its own it would not collide, yet the simultaneous-collision hypothesis stops it",
+                        i + 1,
+                        i + 1,
+                        v0.text()
+                    ));
+                }
+                if *compressive == Some(false) {
+                    let shown = impulses.as_ref().map(|v| v[i].text()).unwrap_or_default();
+                    let zero = m.outcome.as_ref().is_some_and(|o| o.impulses[i].signum_i8() == 0);
+                    let family = if *varies { " (for the least-norm member of the family)" } else { "" };
+                    verdicts.push(if zero {
+                        format!(
+                            "the impulse at A{} is zero (eq. 73){family}: this contact takes no part in the collision",
+                            i + 1
+                        )
+                    } else {
+                        format!(
+                            "the impulse at A{} is tensile (P{} = {shown} < 0, eq. 73){family}: the obstacle would have to pull; the hypothesis that all contacts collide simultaneously fails here",
+                            i + 1,
+                            i + 1
+                        )
+                    });
+                }
+            }
+            if m.energy_gain == Some(true) {
+                verdicts.push("ΔE_c < 0: the collision would gain kinetic energy".into());
+            }
+            ModelReport {
+                model: m.model,
+                augmented_rank: m.augmented_rank,
+                classification: m.classification,
+                impulses,
+                family: m.family.iter().map(|z| z.iter().enumerate().map(|(i, p)| impulse(p, i)).collect()).collect(),
+                twist_fixed: m.twist_fixed,
+                admissible,
+                energy_gain: m.energy_gain,
+                twist: m.outcome.as_ref().map(|o| o.velocity.as_slice().iter().map(Value::of).collect()),
+                energies: m.outcome.as_ref().map(|o| [Value::of(&o.lost_velocity_energy), Value::of(&o.kinetic_energy_loss)]),
+                verdicts,
+            }
+        })
+        .collect();
+    let coincident = analysis
+        .coincident
+        .iter()
+        .map(|c| {
+            let (i, _) = c.pair;
+            (
+                c.pair,
+                c.same_axis,
+                [
+                    impulse(&c.single_impulse[0], i),
+                    impulse(&c.single_impulse[1], i),
+                ],
+            )
+        })
+        .collect();
+    Ok(AnalysisReport {
+        scene: scene.name.clone(),
+        scalar: T::NAME,
+        contacts: n,
+        det,
+        rank: analysis.rank,
+        condition_number: cond,
+        tolerance: analysis.tolerance,
+        models: model_reports,
+        newton_equals_poisson: analysis.newton_equals_poisson,
+        coincident,
+    })
+}
+
+fn json_f64(x: f64) -> Json {
+    // JSON has no infinity: an infinite condition number is written as the string "inf".
+    serde_json::Number::from_f64(x)
+        .map(Json::Number)
+        .unwrap_or_else(|| Json::String("inf".into()))
+}
+
+impl AnalysisReport {
+    /// The JSON report.
+    pub fn to_json(&self) -> Json {
+        let vec = |v: &[Value]| Json::Array(v.iter().map(Value::json).collect());
+        let mut models = Map::new();
+        for m in &self.models {
+            let mut o = Map::new();
+            o.insert("det".into(), self.det.json());
+            o.insert("rank".into(), json!(self.rank));
+            o.insert("augmented_rank".into(), json!(m.augmented_rank));
+            o.insert("classification".into(), json!(m.classification.name()));
+            o.insert(
+                "admissible".into(),
+                Json::Array(m.admissible.iter().map(|(a, c, v)| json!({"approaching": a, "compressive": c, "varies_along_family": v})).collect()),
+            );
+            o.insert("energy_gain".into(), json!(m.energy_gain));
+            o.insert(
+                "impulses".into(),
+                m.impulses.as_ref().map_or(Json::Null, |p| vec(p)),
+            );
+            if m.classification == Classification::SingularCompatible {
+                o.insert(
+                    "family".into(),
+                    json!({
+                        "particular": m.impulses.as_ref().map(|p| vec(p)),
+                        "null_space": m.family.iter().map(|z| vec(z)).collect::<Vec<_>>(),
+                        "velocities_fixed": m.twist_fixed,
+                        "energies_fixed": m.twist_fixed,
+                        "impulses_fixed": m.admissible.iter().map(|a| !a.2).collect::<Vec<_>>(),
+                    }),
+                );
+            }
+            o.insert(
+                "twist_after".into(),
+                m.twist.as_ref().map_or(Json::Null, |t| vec(t)),
+            );
+            if let Some([ep, de]) = &m.energies {
+                o.insert("lost_velocity_energy".into(), Value::json(ep));
+                o.insert("kinetic_energy_loss".into(), Value::json(de));
+            }
+            o.insert("verdicts".into(), json!(m.verdicts));
+            models.insert(m.model.name().into(), Json::Object(o));
+        }
+        let mut top = json!({
+            "scene": self.scene,
+            "scalar": self.scalar,
+            "contacts": self.contacts,
+            "det": self.det.json(),
+            "rank": self.rank,
+            "condition_number": json_f64(self.condition_number),
+            "models": Json::Object(models),
+            "coincident": self.coincident.iter().map(|((i, j), same, single)| json!({
+                "contacts": [i + 1, j + 1],
+                "same_axis": same,
+                "single_impulse": {"newton": Value::json(&single[0]), "poisson": Value::json(&single[1])},
+            })).collect::<Vec<_>>(),
+        });
+        if let Some(obj) = top.as_object_mut() {
+            if let Some((equal, reason)) = &self.newton_equals_poisson {
+                obj.insert(
+                    "newton_equals_poisson".into(),
+                    json!({"equal": equal, "reason": reason}),
+                );
+            }
+            if let Some(t) = self.tolerance {
+                obj.insert("rank_tolerance".into(), json_f64(t));
+                obj.insert(
+                    "forward_error_estimate".into(),
+                    json_f64(self.condition_number * f64::EPSILON * self.contacts as f64),
+                );
+            }
+        }
+        top
+    }
+
+    /// The readable report.
+    pub fn to_text(&self) -> String {
+        let mut s = format!("{} — analysis in {}\n\n", self.scene, self.scalar);
+        s += &format!(
+            "Δ = det G = {}, rank G = {} of {}",
+            self.det.text(),
+            self.rank,
+            self.contacts
+        );
+        match self.tolerance {
+            Some(t) => s += &format!(" (pivots ≤ N·ε·max g_ii = {t:.3e} count as zero)\n"),
+            None => s += " (decided exactly)\n",
+        }
+        let c = self.condition_number;
+        s += &format!(
+            "cond₂(G) = {}",
+            if !c.is_finite() {
+                "∞".into()
+            } else if c < 1e6 {
+                format!("{c:.6}")
+            } else {
+                format!("{c:.3e}")
+            }
+        );
+        if self.tolerance.is_some() && self.condition_number.is_finite() {
+            s += &format!(
+                ", forward error of the impulses ≲ cond·N·ε = {:.1e} (relative)",
+                self.condition_number * f64::EPSILON * self.contacts as f64
+            );
+        }
+        s += "\n";
+        for ((i, j), same, single) in &self.coincident {
+            s += &format!(
+                "A{} ≡ A{}: coincident points{} — single-impulse reduction (eq. 69–72): P = {} (Newton), {} (Poisson)\n",
+                i + 1,
+                j + 1,
+                if *same {
+                    " with the same normal ({E_ix} = {E_jx}, so Δ = 0)"
+                } else {
+                    " with different normals"
+                },
+                single[0].text(),
+                single[1].text()
+            );
+        }
+        for m in &self.models {
+            s += &format!(
+                "\n{}: {} (rank [G | b] = {})\n",
+                m.model,
+                m.classification.name(),
+                m.augmented_rank
+            );
+            if let Some(p) = &m.impulses {
+                let label = if m.classification == Classification::Unique {
+                    "impulses"
+                } else {
+                    "least-norm impulses"
+                };
+                s += &format!(
+                    "  {label}: {}\n",
+                    p.iter().map(Value::text).collect::<Vec<_>>().join(", ")
+                );
+            }
+            for z in &m.family {
+                s += &format!(
+                    "  + t · ({})\n",
+                    z.iter().map(Value::text).collect::<Vec<_>>().join(", ")
+                );
+            }
+            if let Some([ep, de]) = &m.energies {
+                s += &format!(
+                    "  E_p = {}, ΔE_c = {}{}\n",
+                    ep.text(),
+                    de.text(),
+                    if m.family.is_empty() || !m.twist_fixed {
+                        ""
+                    } else {
+                        " (the same for the whole family)"
+                    }
+                );
+            }
+            for (i, (a, c, v)) in m.admissible.iter().enumerate() {
+                s += &format!(
+                    "  A{}: {}, impulse {}{}\n",
+                    i + 1,
+                    if *a { "approaching" } else { "NOT approaching" },
+                    match c {
+                        Some(true) => "compressive",
+                        Some(false) => "NOT compressive",
+                        None => "—",
+                    },
+                    if *v { " (varies along the family)" } else { "" }
+                );
+            }
+            for v in &m.verdicts {
+                s += &format!("  ! {v}\n");
+            }
+        }
+        if let Some((equal, reason)) = &self.newton_equals_poisson {
+            s += &format!(
+                "\nNewton {} Poisson: {reason}\n",
+                if *equal { "=" } else { "≠" }
+            );
+        }
+        s
+    }
+}
