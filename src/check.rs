@@ -619,6 +619,7 @@ pub fn lookup(r: &Report, q: &str) -> Result<Vec<Value>, String> {
                 "dEc" => return Ok(vec![mr.kinetic_energy_loss.clone()]),
                 "omega" => return Ok(mr.angular_velocity.to_vec()),
                 "vC" => return Ok(mr.velocity.to_vec()),
+                "q" if r.constraints.is_some() => return Ok(mr.constraint_impulses.clone()),
                 "twist" => {
                     return Ok(mr
                         .angular_velocity
