@@ -377,3 +377,12 @@ pub fn condition_number(g: &[f64], n: usize) -> f64 {
         max / min
     }
 }
+
+/// λ_max of a symmetric matrix (row-major, n×n), in f64.
+pub fn largest_eigenvalue(g: &[f64], n: usize) -> f64 {
+    nalgebra::DMatrix::from_row_slice(n, n, g)
+        .symmetric_eigenvalues()
+        .iter()
+        .cloned()
+        .fold(f64::MIN, f64::max)
+}

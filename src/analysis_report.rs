@@ -3,7 +3,7 @@
 
 use serde_json::{Map, Value as Json, json};
 
-use crate::analysis::{Analysis, Classification, analyze, condition_number};
+use crate::analysis::{Analysis, Classification, analyze, condition_number, largest_eigenvalue};
 use crate::constraint::Constrained;
 use crate::contact::Surd;
 use crate::pipeline::{RunError, prepare};
@@ -30,6 +30,8 @@ pub struct AnalysisReport {
     pub condition_number: f64,
     /// The zero-pivot tolerance (floats).
     pub tolerance: Option<f64>,
+    /// T⁰ = ½ {v⁰}ᵀ η M {v⁰}: the scale of both energies (ΔE_c = T⁰ − T is a difference).
+    pub kinetic_energy_before: Value,
     /// Per model.
     pub models: Vec<ModelReport>,
     /// (equal, reason).
@@ -96,7 +98,25 @@ pub fn analyze_scene<T: Scalar>(
     let g: Vec<f64> = (0..n * n)
         .map(|k| Surd::over_norm(&impact.g[k], &(norm2[k / n].clone() * &norm2[k % n])).to_f64())
         .collect();
-    let cond = condition_number(&g, n);
+    // cond₂ = λ_max(G)·λ_max(G⁻¹) for a symmetric positive definite G. In exact types G⁻¹ is
+    // computed exactly and then rounded, so its eigenvalues are accurate even when G is far
+    // too ill-conditioned for f64 eigenvalues of G itself to resolve λ_min.
+    let cond = if T::IS_EXACT && impact.rank == n && n > 0 {
+        let mut inv = vec![0.0; n * n];
+        for j in 0..n {
+            let mut col: Vec<T> = (0..n)
+                .map(|i| if i == j { T::one() } else { T::zero() })
+                .collect();
+            impact.solve_system(&mut col);
+            for (i, x) in col.iter().enumerate() {
+                // The physical inverse: S Ĝ⁻¹ S with S = diag(|x̂_i|).
+                inv[i * n + j] = Surd::times_norm(x, &(norm2[i].clone() * &norm2[j])).to_f64();
+            }
+        }
+        largest_eigenvalue(&g, n) * largest_eigenvalue(&inv, n)
+    } else {
+        condition_number(&g, n)
+    };
     let impulse = |p: &T, i: usize| -> Value { Value::surd(&Surd::times_norm(p, &norm2[i])) };
     let model_reports = analysis
         .models
@@ -190,6 +210,7 @@ pub fn analyze_scene<T: Scalar>(
         rank: analysis.rank,
         condition_number: cond,
         tolerance: analysis.tolerance,
+        kinetic_energy_before: Value::of(&impact.kinetic_before),
         models: model_reports,
         newton_equals_poisson: analysis.newton_equals_poisson,
         coincident,
@@ -253,6 +274,7 @@ impl AnalysisReport {
             "det": self.det.json(),
             "rank": self.rank,
             "condition_number": json_f64(self.condition_number),
+            "kinetic_energy_before": self.kinetic_energy_before.json(),
             "models": Json::Object(models),
             "coincident": self.coincident.iter().map(|((i, j), same, single)| json!({
                 "contacts": [i + 1, j + 1],

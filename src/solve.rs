@@ -273,6 +273,16 @@ impl<T: Scalar> Impact<T> {
             self.kinetic_before.clone() - problem.body.kinetic_energy(&out.velocity);
     }
 
+    /// Solve G x = b in place for a nonsingular G (b becomes x); `false` when G is singular.
+    pub fn solve_system(&mut self, b: &mut [T]) -> bool {
+        if self.rank < self.n {
+            return false;
+        }
+        resize(&mut self.work, self.n);
+        linalg::solve_factored(&self.factor, self.n, &self.perm, b, &mut self.work);
+        true
+    }
+
     /// For a singular G (rank r < N): a solution of G x = b with its last N − r pivoted
     /// entries zero, written into `x` — `None` when b is not in the range of G (the system is
     /// incompatible). Compatibility is decided on the residual G x − b: exactly zero in exact

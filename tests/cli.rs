@@ -531,3 +531,72 @@ fn bad_joints_are_named() {
         }
     }
 }
+
+#[test]
+fn analyze_json_has_the_contract_keys() {
+    let scene = Scene::new(
+        "analyze",
+        &CONSTRAINED.replace("k = 0\n[constraints]", "k = 0.5\n[constraints]"),
+    );
+    let v = json(&inertance(&[
+        "analyze",
+        scene.path.to_str().unwrap(),
+        "--exact",
+        "--json",
+    ]));
+    let n = &v["models"]["newton"];
+    assert_eq!(n["det"], "1/75");
+    assert_eq!(n["rank"], 2);
+    assert_eq!(n["augmented_rank"], 2);
+    assert_eq!(n["classification"], "unique");
+    // Example 6: A2 separates (v_2x⁰ = −1/3) and takes a tensile impulse.
+    assert_eq!(n["admissible"][0]["approaching"], true);
+    assert_eq!(n["admissible"][0]["compressive"], true);
+    assert_eq!(n["admissible"][1]["approaching"], false);
+    assert_eq!(n["admissible"][1]["compressive"], false);
+    assert_eq!(n["energy_gain"], false);
+    assert!(
+        n["verdicts"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .any(|s| s.as_str().unwrap().contains("tensile"))
+    );
+    // k1 = 0 ≠ k2 = 0.5 and g12 ≠ 0.
+    assert_eq!(v["newton_equals_poisson"]["equal"], false);
+    assert!(v["newton_equals_poisson"]["reason"].is_string());
+    assert!((v["condition_number"].as_f64().unwrap() - 3.0).abs() < 1e-12);
+}
+
+#[test]
+fn analyze_classifies_singular_scenes_in_both_modes() {
+    let text = GOOD.replace("point = [0, 4, 0]", "point = [0, -2, 0]");
+    let scene = Scene::new("analyze-singular", &text);
+    for exact in [true, false] {
+        let mut args = vec!["analyze", scene.path.to_str().unwrap(), "--json"];
+        if exact {
+            args.push("--exact");
+        }
+        let v = json(&inertance(&args));
+        // Coincident points with k1 = 0.3 ≠ k2 = 0.2: Newton incompatible, Poisson compatible.
+        assert_eq!(
+            v["models"]["newton"]["classification"], "singular-incompatible",
+            "exact: {exact}"
+        );
+        assert_eq!(
+            v["models"]["poisson"]["classification"], "singular-compatible",
+            "exact: {exact}"
+        );
+        assert_eq!(v["models"]["newton"]["rank"], 1);
+        assert_eq!(v["models"]["newton"]["augmented_rank"], 2);
+        assert_eq!(v["coincident"][0]["contacts"], serde_json::json!([1, 2]));
+        assert_eq!(v["coincident"][0]["same_axis"], true);
+        let family = &v["models"]["poisson"]["family"];
+        assert_eq!(family["null_space"].as_array().unwrap().len(), 1);
+        assert_eq!(exact, v.get("rank_tolerance").is_none());
+    }
+    // `solve` on it points to `analyze`.
+    let out = inertance(&["solve", scene.path.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(3));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("inertance analyze"));
+}
