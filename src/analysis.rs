@@ -209,14 +209,11 @@ fn analyze_model<T: Scalar>(
         .map(|z| (0..n).map(|i| scale(i, model) * &z[i]).collect())
         .collect();
     least_norm(&mut impulses, &family, impact);
-    let mut out = Outcome::default();
-    out.compression = match model {
+    let compression = match model {
         Model::Newton => Vec::new(),
-        Model::Poisson => (0..n)
-            .map(|i| impulses[i].clone() / scale(i, model))
-            .collect(),
+        Model::Poisson => (0..n).map(|i| impulses[i].clone() / scale(i, model)).collect(),
     };
-    out.impulses = impulses;
+    let mut out = Outcome { impulses, compression, ..Outcome::default() };
     impact.complete(problem, &mut out);
     // The twist change along each direction of the family: −Σ z_j W{E_jx}.
     let twist_fixed = family.iter().all(|z| {

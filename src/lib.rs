@@ -23,6 +23,8 @@
 //! [`check`] (the paper's worked examples, checked).
 
 #![deny(missing_docs)]
+// Index loops over i, j read like the paper's sums (g_ij, Σ_j P_j g_ij); keep them.
+#![allow(clippy::needless_range_loop)]
 
 pub mod analysis;
 pub mod analysis_report;

@@ -477,6 +477,18 @@ impl Report {
                     ""
                 }
             );
+            let m = c
+                .reduced_mass
+                .iter()
+                .map(|r| {
+                    format!(
+                        "[{}]",
+                        r.iter().map(Value::text).collect::<Vec<_>>().join(", ")
+                    )
+                })
+                .collect::<Vec<_>>()
+                .join(" ");
+            out += &format!("  M_red = Dᵀ η M D = {m}\n");
         }
         out += "\nBefore impact:\n";
         for (i, b) in self.contacts_before.iter().enumerate() {

@@ -43,12 +43,15 @@ fn constrained_problem() -> impl Strategy<Value = (Problem<Exact>, Vec<Screw<Exa
         })
 }
 
+/// A constrained solve: the constraints, the assembled impact, both models' outcomes.
+type Solved = (Constrained<Exact>, Impact<Exact>, Vec<Outcome<Exact>>);
+
 /// Solve both models with the constrained mobility; `None` when the joints are dependent or
 /// G is singular (more contacts than the body can answer independently).
 fn solve(
     p: &Problem<Exact>,
     free: Vec<Screw<Exact>>,
-) -> Option<(Constrained<Exact>, Impact<Exact>, Vec<Outcome<Exact>>)> {
+) -> Option<Solved> {
     let c = Constrained::new(&p.body, free, None).ok()?;
     c.check_allowed(&p.velocity)
         .expect("v⁰ = D ξ⁰ by construction");
