@@ -211,9 +211,15 @@ fn analyze_model<T: Scalar>(
     least_norm(&mut impulses, &family, impact);
     let compression = match model {
         Model::Newton => Vec::new(),
-        Model::Poisson => (0..n).map(|i| impulses[i].clone() / scale(i, model)).collect(),
+        Model::Poisson => (0..n)
+            .map(|i| impulses[i].clone() / scale(i, model))
+            .collect(),
     };
-    let mut out = Outcome { impulses, compression, ..Outcome::default() };
+    let mut out = Outcome {
+        impulses,
+        compression,
+        ..Outcome::default()
+    };
     impact.complete(problem, &mut out);
     // The twist change along each direction of the family: −Σ z_j W{E_jx}.
     let twist_fixed = family.iter().all(|z| {

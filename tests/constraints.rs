@@ -48,10 +48,7 @@ type Solved = (Constrained<Exact>, Impact<Exact>, Vec<Outcome<Exact>>);
 
 /// Solve both models with the constrained mobility; `None` when the joints are dependent or
 /// G is singular (more contacts than the body can answer independently).
-fn solve(
-    p: &Problem<Exact>,
-    free: Vec<Screw<Exact>>,
-) -> Option<Solved> {
+fn solve(p: &Problem<Exact>, free: Vec<Screw<Exact>>) -> Option<Solved> {
     let c = Constrained::new(&p.body, free, None).ok()?;
     c.check_allowed(&p.velocity)
         .expect("v⁰ = D ξ⁰ by construction");
@@ -278,5 +275,48 @@ fn example_5_eq_102_at_a_equals_b_equals_half_l() {
             / (b.clone() * &l + a.clone() * &b);
         assert_eq!(printed_102, q(-2, 3) - &k1);
         assert!(!eq101(&k1, &printed_102));
+    }
+}
+
+/// Remark 2: Example 6's bar (revolute joint at O about z + sliding along OX) gives exactly
+/// the free body's impulses and velocities after impact, for every k1, k2 — the motion is
+/// free along every direction the impulses act on — and its constraint impulses vanish.
+#[test]
+fn remark_2_example_6_equals_the_free_body() {
+    use inertance::pipeline::run;
+    use inertance::scene::Scene;
+    let base = "[body]\nmass = 10\ninertia = [\"10/3\", \"10/3\", \"10/3\"]\nvelocity = [0, 0, 0]\nangular_velocity = [0, 0, 1]\n\
+        [[contact]]\npoint = [0, \"-1/3\", 0]\nnormal = [1, 0, 0]\ntangent = [0, 1, 0]\nk = K1\n\
+        [[contact]]\npoint = [0, \"1/3\", 0]\nnormal = [1, 0, 0]\ntangent = [0, 1, 0]\nk = K2\n";
+    let joints = "[[constraints.joint]]\nkind = \"revolute\"\npoint = [0, -1, 0]\naxis = [0, 0, 1]\n\
+        [[constraints.joint]]\nkind = \"prismatic\"\naxis = [1, 0, 0]\n";
+    for (k1, k2) in [("0", "0"), ("0", "0.5"), ("1", "0.5"), ("0.3", "0.7")] {
+        let text = base.replace("K1", k1).replace("K2", k2);
+        let free = run::<Exact>(&Scene::parse(&text, "free").unwrap(), None)
+            .unwrap()
+            .report;
+        let held = run::<Exact>(
+            &Scene::parse(&format!("{text}{joints}"), "held").unwrap(),
+            None,
+        )
+        .unwrap()
+        .report;
+        for (f, h) in free.models.iter().zip(&held.models) {
+            assert_eq!(f.impulses, h.impulses, "k = ({k1}, {k2})");
+            assert_eq!(
+                (&f.angular_velocity, &f.velocity),
+                (&h.angular_velocity, &h.velocity)
+            );
+            assert_eq!(
+                (&f.lost_velocity_energy, &f.kinetic_energy_loss),
+                (&h.lost_velocity_energy, &h.kinetic_energy_loss)
+            );
+            assert!(
+                h.constraint_impulses
+                    .iter()
+                    .all(|q| q.exact.as_deref() == Some("0"))
+            );
+        }
+        assert_eq!(free.inertance, held.inertance);
     }
 }
