@@ -32,6 +32,7 @@ pub mod body;
 pub mod check;
 pub mod constraint;
 pub mod contact;
+pub mod dd;
 pub mod linalg;
 pub mod number;
 pub mod pipeline;

@@ -12,6 +12,7 @@
 //! |---|---|---|
 //! | `f32` | `"f32"` | `|x| ≤ n·ε·|reference|` |
 //! | `f64` | `"f64"` | `|x| ≤ n·ε·|reference|` |
+//! | [`DoubleDouble`](crate::dd::DoubleDouble) | `"double-double"` | `|x| ≤ n·2⁻¹⁰⁴·|reference|` |
 //! | [`Exact`] = `BigRational` | `"exact"` | `x = 0` |
 
 use std::fmt::Debug;
@@ -101,6 +102,12 @@ pub trait Scalar: Field {
     /// The exact rational value, for exact types.
     fn to_rational(&self) -> Option<BigRational>;
 
+    /// The exact value of this representation (for floats, their binary value), to measure
+    /// errors against an exact result; `None` for NaN and infinities.
+    fn exact_value(&self) -> Option<BigRational> {
+        self.to_rational()
+    }
+
     /// Is `self` zero, relative to the magnitude `reference` of the quantities it was computed
     /// from, in a problem of dimension `n`? Exact types answer `self == 0`; floats answer
     /// `|self| ≤ n·ε·|reference|`, the rounding error of an `n`-term computation at that scale.
@@ -135,6 +142,9 @@ macro_rules! float_scalar {
             }
             fn to_rational(&self) -> Option<BigRational> {
                 None
+            }
+            fn exact_value(&self) -> Option<BigRational> {
+                BigRational::from_float(*self)
             }
             fn is_negligible(&self, reference: &Self, n: usize) -> bool {
                 self.abs() <= (n.max(1) as $t) * <$t>::EPSILON * reference.abs()

@@ -1,0 +1,263 @@
+//! Double-double arithmetic: a value hi + lo with |lo| ≤ ½ulp(hi), about 106 significant bits.
+//!
+//! Built from the error-free transformations two-sum (Knuth) and two-product (one fused
+//! multiply-add), after Hida, Li and Bailey's QD library ("accurate" addition, so sums of
+//! values of opposite sign stay accurate). A small type of our own rather than a crate
+//! because the solver needs exactly what [`Scalar`] asks — field operations by value and by
+//! reference, a correctly rounded conversion from an exact rational (hi = ○(q), lo = ○(q − hi)),
+//! and the exact value back ([`Scalar::exact_value`]) to measure errors against exact results —
+//! and no more (no transcendental functions).
+//!
+//! Unit roundoff 2⁻¹⁰⁴ ≈ 4.9·10⁻³² for +, −, ×; ÷ is accurate to a few units of it.
+
+use std::cmp::Ordering;
+use std::fmt;
+use std::ops::{Add, AddAssign, Div, DivAssign, Mul, MulAssign, Neg, Sub, SubAssign};
+
+use num_rational::BigRational;
+use num_traits::{One, Zero};
+
+use crate::scalar::Scalar;
+
+/// A double-double number hi + lo.
+#[derive(Clone, Copy, PartialEq, Default)]
+pub struct DoubleDouble {
+    hi: f64,
+    lo: f64,
+}
+
+/// s + e = a + b exactly (Knuth's two-sum).
+#[inline]
+fn two_sum(a: f64, b: f64) -> (f64, f64) {
+    let s = a + b;
+    let bb = s - a;
+    (s, (a - (s - bb)) + (b - bb))
+}
+
+/// s + e = a + b exactly, for |a| ≥ |b|.
+#[inline]
+fn quick_two_sum(a: f64, b: f64) -> (f64, f64) {
+    let s = a + b;
+    (s, b - (s - a))
+}
+
+/// p + e = a·b exactly (one fused multiply-add).
+#[inline]
+fn two_prod(a: f64, b: f64) -> (f64, f64) {
+    let p = a * b;
+    (p, a.mul_add(b, -p))
+}
+
+impl DoubleDouble {
+    /// hi + lo, normalised.
+    pub fn new(hi: f64, lo: f64) -> Self {
+        let (hi, lo) = two_sum(hi, lo);
+        DoubleDouble { hi, lo }
+    }
+
+    /// The leading part.
+    pub fn hi(self) -> f64 {
+        self.hi
+    }
+
+    /// The trailing part.
+    pub fn lo(self) -> f64 {
+        self.lo
+    }
+
+    fn abs(self) -> Self {
+        if self.hi < 0.0 || (self.hi == 0.0 && self.lo < 0.0) { -self } else { self }
+    }
+}
+
+impl fmt::Debug for DoubleDouble {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "dd({:e} + {:e})", self.hi, self.lo)
+    }
+}
+
+impl Add for DoubleDouble {
+    type Output = Self;
+    #[inline]
+    fn add(self, b: Self) -> Self {
+        let (s, e) = two_sum(self.hi, b.hi);
+        let (t, f) = two_sum(self.lo, b.lo);
+        let (s, e) = quick_two_sum(s, e + t);
+        let (hi, lo) = quick_two_sum(s, e + f);
+        DoubleDouble { hi, lo }
+    }
+}
+
+impl Neg for DoubleDouble {
+    type Output = Self;
+    #[inline]
+    fn neg(self) -> Self {
+        DoubleDouble { hi: -self.hi, lo: -self.lo }
+    }
+}
+
+impl Sub for DoubleDouble {
+    type Output = Self;
+    #[inline]
+    fn sub(self, b: Self) -> Self {
+        self + (-b)
+    }
+}
+
+impl Mul for DoubleDouble {
+    type Output = Self;
+    #[inline]
+    fn mul(self, b: Self) -> Self {
+        let (p, e) = two_prod(self.hi, b.hi);
+        let e = e + (self.hi * b.lo + self.lo * b.hi);
+        let (hi, lo) = quick_two_sum(p, e);
+        DoubleDouble { hi, lo }
+    }
+}
+
+impl Div for DoubleDouble {
+    type Output = Self;
+    #[inline]
+    fn div(self, b: Self) -> Self {
+        // Three correction steps of long division on the leading parts.
+        let q1 = self.hi / b.hi;
+        let r = self - b * DoubleDouble { hi: q1, lo: 0.0 };
+        let q2 = r.hi / b.hi;
+        let r = r - b * DoubleDouble { hi: q2, lo: 0.0 };
+        let q3 = r.hi / b.hi;
+        let (hi, lo) = quick_two_sum(q1, q2);
+        DoubleDouble { hi, lo } + DoubleDouble { hi: q3, lo: 0.0 }
+    }
+}
+
+macro_rules! by_ref_and_assign {
+    ($($tr:ident $m:ident $atr:ident $am:ident),*) => {$(
+        impl<'a> $tr<&'a DoubleDouble> for DoubleDouble {
+            type Output = DoubleDouble;
+            #[inline]
+            fn $m(self, b: &'a DoubleDouble) -> DoubleDouble { $tr::$m(self, *b) }
+        }
+        impl $atr for DoubleDouble {
+            #[inline]
+            fn $am(&mut self, b: DoubleDouble) { *self = $tr::$m(*self, b) }
+        }
+        impl<'a> $atr<&'a DoubleDouble> for DoubleDouble {
+            #[inline]
+            fn $am(&mut self, b: &'a DoubleDouble) { *self = $tr::$m(*self, *b) }
+        }
+    )*};
+}
+
+by_ref_and_assign!(Add add AddAssign add_assign, Sub sub SubAssign sub_assign, Mul mul MulAssign mul_assign, Div div DivAssign div_assign);
+
+impl Zero for DoubleDouble {
+    fn zero() -> Self {
+        DoubleDouble { hi: 0.0, lo: 0.0 }
+    }
+    fn is_zero(&self) -> bool {
+        self.hi == 0.0
+    }
+}
+
+impl One for DoubleDouble {
+    fn one() -> Self {
+        DoubleDouble { hi: 1.0, lo: 0.0 }
+    }
+}
+
+/// 2⁻¹⁰⁴: the unit roundoff of double-double arithmetic.
+const EPSILON: f64 = 4.930380657631324e-32;
+
+impl Scalar for DoubleDouble {
+    const NAME: &'static str = "double-double";
+    const IS_EXACT: bool = false;
+
+    fn from_rational(q: &BigRational) -> Self {
+        let hi = crate::number::rational_to_f64(q);
+        let rest = match BigRational::from_float(hi) {
+            Some(h) => q - h,
+            None => return DoubleDouble { hi, lo: 0.0 },
+        };
+        DoubleDouble::new(hi, crate::number::rational_to_f64(&rest))
+    }
+    fn from_f64(x: f64) -> Option<Self> {
+        Some(DoubleDouble { hi: x, lo: 0.0 })
+    }
+    fn to_f64(&self) -> f64 {
+        self.hi + self.lo
+    }
+    fn to_rational(&self) -> Option<BigRational> {
+        None
+    }
+    fn exact_value(&self) -> Option<BigRational> {
+        Some(BigRational::from_float(self.hi)? + BigRational::from_float(self.lo)?)
+    }
+    fn is_negligible(&self, reference: &Self, n: usize) -> bool {
+        let tol = (n.max(1) as f64) * EPSILON;
+        self.abs().hi <= tol * reference.abs().hi
+    }
+    fn abs_gt(&self, other: &Self) -> bool {
+        let (a, b) = (self.abs(), other.abs());
+        match a.hi.partial_cmp(&b.hi) {
+            Some(Ordering::Greater) => true,
+            Some(Ordering::Equal) => a.lo > b.lo,
+            _ => false,
+        }
+    }
+    fn signum_i8(&self) -> i8 {
+        if self.hi > 0.0 || (self.hi == 0.0 && self.lo > 0.0) {
+            1
+        } else if self.hi < 0.0 || (self.hi == 0.0 && self.lo < 0.0) {
+            -1
+        } else {
+            0
+        }
+    }
+    fn epsilon_f64() -> f64 {
+        EPSILON
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use num_bigint::BigInt;
+
+    fn q(n: i64, d: i64) -> BigRational {
+        BigRational::new(BigInt::from(n), BigInt::from(d))
+    }
+
+    fn error(x: DoubleDouble, exact: &BigRational) -> f64 {
+        let diff = x.exact_value().unwrap() - exact;
+        (crate::number::rational_to_f64(&diff) / crate::number::rational_to_f64(exact)).abs()
+    }
+
+    #[test]
+    fn one_third_to_106_bits() {
+        let third = DoubleDouble::from_rational(&q(1, 3));
+        assert!(error(third, &q(1, 3)) < 2.0 * EPSILON);
+        let one = third + third + third;
+        assert!(error(one, &q(1, 1)) < 4.0 * EPSILON);
+        let x = DoubleDouble::one() / DoubleDouble::from_rational(&q(3, 1));
+        assert!(error(x, &q(1, 3)) < 4.0 * EPSILON);
+    }
+
+    #[test]
+    fn arithmetic_is_accurate_to_a_few_units_of_2_pow_minus_104() {
+        // (1/7)·(22/7) − (1/3)/(5/11), computed in double-double against the exact value.
+        let (a, b, c, d) = (q(1, 7), q(22, 7), q(1, 3), q(5, 11));
+        let exact = a.clone() * &b - c.clone() / &d;
+        let f = |r: &BigRational| DoubleDouble::from_rational(r);
+        let dd = f(&a) * f(&b) - f(&c) / f(&d);
+        assert!(error(dd, &exact) < 16.0 * EPSILON, "{}", error(dd, &exact));
+    }
+
+    #[test]
+    fn cancellation_keeps_the_low_part() {
+        let big = DoubleDouble::from_rational(&q(1, 1)) + DoubleDouble::from_f64(1e-20).unwrap();
+        let diff = big - DoubleDouble::one();
+        assert!((diff.to_f64() - 1e-20).abs() < 1e-36);
+        assert_eq!(diff.signum_i8(), 1);
+        assert!(DoubleDouble::from_f64(-2.0).unwrap().abs_gt(&DoubleDouble::one()));
+    }
+}
