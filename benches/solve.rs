@@ -21,10 +21,12 @@ angular_velocity = [0, 0, 0.4]
 [[contact]]
 point = [0, -2, 0]
 normal = [1, 0, 0]
+tangent = [0, 1, 0]
 k = 0.3
 [[contact]]
 point = [0, 4, 0]
 normal = [1, 0, 0]
+tangent = [0, 1, 0]
 k = 0.2
 "#;
 
@@ -50,49 +52,131 @@ fn bench_scalar<T: Scalar>(c: &mut Criterion, scene: &Scene) {
     });
 }
 
-/// The planar two-contact Newton + Poisson solve written out by hand (eq. 17–20, 22–24, 31):
-/// the floor the generic f64 path is measured against.
+/// The two-contact free-body solve written out by hand in f64, with no abstraction at all,
+/// computing every output the generic solve computes: the contact frames (x = n, y given,
+/// z = x × y), the inertances g_ij,xx/yx/zx (eq. 57), the contact velocities before impact,
+/// Newton and Poisson impulses by Cramer's rule (eq. 20, 22–23), the twist after impact
+/// (eq. 24), the contact velocities after impact (eq. 13, 25–26) and both energies (eq. 28,
+/// 32). Unit normals and tangents, as the paper writes them. This is the floor the generic
+/// f64 path is measured against.
 #[inline(never)]
-fn closed_form(m: f64, jz: f64, y: [f64; 2], v: [f64; 2], w: f64, k: [f64; 2]) -> [f64; 8] {
-    let f = [-y[0], -y[1]];
-    let (g11, g12, g22) = (
-        1.0 / m + f[0] * f[0] / jz,
-        1.0 / m + f[0] * f[1] / jz,
-        1.0 / m + f[1] * f[1] / jz,
-    );
-    let det = g11 * g22 - g12 * g12;
-    let v0 = [v[0] + f[0] * w, v[0] + f[1] * w];
-    let r = [(1.0 + k[0]) * v0[0], (1.0 + k[1]) * v0[1]];
-    let pn = [
-        (r[0] * g22 - r[1] * g12) / det,
-        (g11 * r[1] - g12 * r[0]) / det,
-    ];
-    let pc = [
-        (v0[0] * g22 - v0[1] * g12) / det,
-        (g11 * v0[1] - g12 * v0[0]) / det,
-    ];
-    let pp = [(1.0 + k[0]) * pc[0], (1.0 + k[1]) * pc[1]];
-    let mut out = [0.0; 8];
-    for (o, p) in out.chunks_mut(4).zip([pn, pp]) {
-        let wz = w - (p[0] * f[0] + p[1] * f[1]) / jz;
-        let vx = v[0] - (p[0] + p[1]) / m;
-        let ep = 0.5 * (p[0] * p[0] * g11 + 2.0 * p[0] * p[1] * g12 + p[1] * p[1] * g22);
-        let de = 0.5 * (m * (v[0] * v[0] - vx * vx) + jz * (w * w - wz * wz));
-        o.copy_from_slice(&[p[0], p[1], ep, de]);
+fn closed_form(
+    m: f64,
+    j: [f64; 3],
+    w: [f64; 3],
+    v: [f64; 3],
+    p: [[f64; 3]; 2],
+    n: [[f64; 3]; 2],
+    y: [[f64; 3]; 2],
+    k: [f64; 2],
+) -> [f64; 48] {
+    let cross = |a: [f64; 3], b: [f64; 3]| {
+        [
+            a[1] * b[2] - a[2] * b[1],
+            a[2] * b[0] - a[0] * b[2],
+            a[0] * b[1] - a[1] * b[0],
+        ]
+    };
+    let dot = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+    // Frames: axes (x, y, z) and their moments r × axis.
+    let mut axes = [[[0.0; 3]; 3]; 2];
+    let mut moments = [[[0.0; 3]; 3]; 2];
+    let mut before = [[0.0; 3]; 2];
+    for c in 0..2 {
+        axes[c] = [n[c], y[c], cross(n[c], y[c])];
+        let va = [
+            v[0] + w[1] * p[c][2] - w[2] * p[c][1],
+            v[1] + w[2] * p[c][0] - w[0] * p[c][2],
+            v[2] + w[0] * p[c][1] - w[1] * p[c][0],
+        ];
+        for a in 0..3 {
+            moments[c][a] = cross(p[c], axes[c][a]);
+            before[c][a] = dot(axes[c][a], va);
+        }
+    }
+    // g[a][i][j] = {E_ia}ᵀ η M⁻¹ {E_jx}.
+    let mut g = [[[0.0; 2]; 2]; 3];
+    for a in 0..3 {
+        for i in 0..2 {
+            for jj in 0..2 {
+                let (u, s) = (axes[i][a], moments[i][a]);
+                let (un, sn) = (axes[jj][0], moments[jj][0]);
+                g[a][i][jj] = dot(u, un) / m
+                    + s[0] * sn[0] / j[0]
+                    + s[1] * sn[1] / j[1]
+                    + s[2] * sn[2] / j[2];
+            }
+        }
+    }
+    let det = g[0][0][0] * g[0][1][1] - g[0][0][1] * g[0][1][0];
+    let t0 = 0.5 * (m * dot(v, v) + j[0] * w[0] * w[0] + j[1] * w[1] * w[1] + j[2] * w[2] * w[2]);
+    let mut out = [0.0; 48];
+    for (model, o) in out.chunks_mut(24).enumerate() {
+        let r = if model == 0 {
+            [(1.0 + k[0]) * before[0][0], (1.0 + k[1]) * before[1][0]]
+        } else {
+            [before[0][0], before[1][0]]
+        };
+        let mut pi = [
+            (r[0] * g[0][1][1] - r[1] * g[0][0][1]) / det,
+            (g[0][0][0] * r[1] - g[0][1][0] * r[0]) / det,
+        ];
+        if model == 1 {
+            o[2] = pi[0];
+            o[3] = pi[1];
+            pi = [(1.0 + k[0]) * pi[0], (1.0 + k[1]) * pi[1]];
+        }
+        o[0] = pi[0];
+        o[1] = pi[1];
+        let mut w1 = w;
+        let mut v1 = v;
+        for c in 0..2 {
+            for q in 0..3 {
+                w1[q] -= pi[c] * moments[c][0][q] / j[q];
+                v1[q] -= pi[c] * n[c][q] / m;
+            }
+        }
+        o[4..7].copy_from_slice(&w1);
+        o[7..10].copy_from_slice(&v1);
+        for c in 0..2 {
+            for a in 0..3 {
+                o[10 + 3 * c + a] = before[c][a] - g[a][c][0] * pi[0] - g[a][c][1] * pi[1];
+            }
+        }
+        let (dw, dv) = (
+            [w1[0] - w[0], w1[1] - w[1], w1[2] - w[2]],
+            [v1[0] - v[0], v1[1] - v[1], v1[2] - v[2]],
+        );
+        o[16] = 0.5
+            * (m * dot(dv, dv)
+                + j[0] * dw[0] * dw[0]
+                + j[1] * dw[1] * dw[1]
+                + j[2] * dw[2] * dw[2]);
+        o[17] = t0
+            - 0.5
+                * (m * dot(v1, v1)
+                    + j[0] * w1[0] * w1[0]
+                    + j[1] * w1[1] * w1[1]
+                    + j[2] * w1[2] * w1[2]);
+        o[18..21].copy_from_slice(&before[0]);
+        o[21..24].copy_from_slice(&before[1]);
     }
     out
 }
 
 fn benches(c: &mut Criterion) {
     let scene = Scene::parse(EXAMPLE_3, "example 3").unwrap();
+    let (x, yy) = ([1.0, 0.0, 0.0], [0.0, 1.0, 0.0]);
     c.bench_function("example3/closed-form-f64", |b| {
         b.iter(|| {
             black_box(closed_form(
                 black_box(1.0),
-                12.0,
-                [-2.0, 4.0],
-                [3.0, 2.0],
-                0.4,
+                [12.0, 1.6, 12.0],
+                [0.0, 0.0, 0.4],
+                [3.0, 2.0, 0.0],
+                [[0.0, -2.0, 0.0], [0.0, 4.0, 0.0]],
+                [x, x],
+                [yy, yy],
                 [0.3, 0.2],
             ))
         })

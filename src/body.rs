@@ -45,10 +45,15 @@ impl<T: Scalar> RigidBody<T> {
         )
     }
 
-    /// ½ {v}ᵀ [η][M] {v} = ½ (ωᵀ J ω + m |v_C|²) (eq. 28, 32).
+    /// ½ {v}ᵀ [η][M] {v} = ½ (ωᵀ J ω + m |v_C|²) (eq. 28, 32), written out (J is diagonal).
+    #[inline]
     pub fn kinetic_energy(&self, v: &Screw<T>) -> T {
-        let half = T::one() / (T::one() + T::one());
-        half * v.reciprocal(&self.momentum(v))
+        let s = v.as_slice();
+        let mut rot = self.inertia[0].clone() * &s[0] * &s[0];
+        rot += self.inertia[1].clone() * &s[1] * &s[1];
+        rot += self.inertia[2].clone() * &s[2] * &s[2];
+        let trans = s[3].clone() * &s[3] + s[4].clone() * &s[4] + s[5].clone() * &s[5];
+        (rot + self.mass.clone() * trans) / (T::one() + T::one())
     }
 }
 

@@ -42,16 +42,19 @@ impl<T: Scalar> Screw<T> {
     }
 
     /// The first three coordinates (ω of a twist, the direction of an axis).
+    #[inline]
     pub fn top(&self) -> Vec3<T> {
         self.0.fixed_rows::<3>(0).into_owned()
     }
 
     /// The last three coordinates (v_C of a twist, the moment of an axis about C).
+    #[inline]
     pub fn bottom(&self) -> Vec3<T> {
         self.0.fixed_rows::<3>(3).into_owned()
     }
 
     /// The mixed product {self}ᵀ [η] {other} of eq. (6): top·bottom' + bottom·top'.
+    #[inline]
     pub fn reciprocal(&self, other: &Screw<T>) -> T {
         let mut s = T::zero();
         for i in 0..3 {
@@ -62,6 +65,7 @@ impl<T: Scalar> Screw<T> {
     }
 
     /// `self + c · other`, in place (the update {v} ← {v} − P M⁻¹{E} of eq. 24).
+    #[inline]
     pub fn add_scaled(&mut self, c: &T, other: &Screw<T>) {
         for i in 0..6 {
             self.0[i] += c.clone() * &other.0[i];

@@ -168,10 +168,11 @@ impl<T: Scalar> Impact<T> {
         self.before.clear();
         self.responses.clear();
         for (i, c) in problem.contacts.iter().enumerate() {
-            let f = ContactFrame::new(i, c, &problem.velocity)?;
+            self.frames
+                .push(ContactFrame::new(i, c, &problem.velocity)?);
+            let f = &self.frames[i];
             self.before.push(f.velocity(&problem.velocity));
             self.responses.push(mobility.response(&f.axes[0]));
-            self.frames.push(f);
         }
         resize(&mut self.g, n * n);
         resize(&mut self.g_yx, n * n);
