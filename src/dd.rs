@@ -66,7 +66,11 @@ impl DoubleDouble {
     }
 
     fn abs(self) -> Self {
-        if self.hi < 0.0 || (self.hi == 0.0 && self.lo < 0.0) { -self } else { self }
+        if self.hi < 0.0 || (self.hi == 0.0 && self.lo < 0.0) {
+            -self
+        } else {
+            self
+        }
     }
 }
 
@@ -92,7 +96,10 @@ impl Neg for DoubleDouble {
     type Output = Self;
     #[inline]
     fn neg(self) -> Self {
-        DoubleDouble { hi: -self.hi, lo: -self.lo }
+        DoubleDouble {
+            hi: -self.hi,
+            lo: -self.lo,
+        }
     }
 }
 
@@ -258,6 +265,10 @@ mod tests {
         let diff = big - DoubleDouble::one();
         assert!((diff.to_f64() - 1e-20).abs() < 1e-36);
         assert_eq!(diff.signum_i8(), 1);
-        assert!(DoubleDouble::from_f64(-2.0).unwrap().abs_gt(&DoubleDouble::one()));
+        assert!(
+            DoubleDouble::from_f64(-2.0)
+                .unwrap()
+                .abs_gt(&DoubleDouble::one())
+        );
     }
 }

@@ -28,6 +28,7 @@
 
 pub mod analysis;
 pub mod analysis_report;
+pub mod bench;
 pub mod body;
 pub mod check;
 pub mod constraint;
@@ -43,3 +44,4 @@ pub mod scene;
 pub mod screw;
 pub mod solve;
 pub mod surface;
+pub mod sweep;

@@ -59,6 +59,24 @@ enum Command {
         #[arg(long)]
         json: bool,
     },
+    /// Show what accuracy costs in time: every scalar type on a corpus, against exact.
+    Bench {
+        /// A smaller corpus and shorter timings (under a minute).
+        #[arg(long)]
+        quick: bool,
+        /// Print JSON instead of the tables.
+        #[arg(long)]
+        json: bool,
+        /// Write an SVG plot of error versus time (and cost versus N) to this file.
+        #[arg(long, value_name = "FILE.svg")]
+        plot: Option<PathBuf>,
+        /// Time only this scene, in every scalar type (ns per solve, JSON with --json).
+        #[arg(long, value_name = "SCENE")]
+        scene: Option<PathBuf>,
+        /// The hard-case corpus to include, when present.
+        #[arg(long, default_value = "tests/hard_cases")]
+        hard_cases: PathBuf,
+    },
     /// Reproduce the paper's worked examples in a derivations directory.
     Check {
         /// The directory of derivations.
@@ -109,6 +127,13 @@ fn main() -> ExitCode {
             json,
         } => run_analyze(scene, exact, model, json),
         Command::Check { dir, quiet } => run_check(dir, quiet),
+        Command::Bench {
+            quick,
+            json,
+            plot,
+            scene,
+            hard_cases,
+        } => run_bench(quick, json, plot, scene, hard_cases),
     }
 }
 
@@ -195,6 +220,68 @@ fn run_analyze(path: PathBuf, exact: bool, model: Option<ModelArg>, json: bool) 
             ExitCode::from(3)
         }
     }
+}
+
+fn run_bench(
+    quick: bool,
+    json: bool,
+    plot: Option<PathBuf>,
+    scene: Option<PathBuf>,
+    hard_cases: PathBuf,
+) -> ExitCode {
+    if let Some(path) = scene {
+        let scene = match Scene::load(&path) {
+            Ok(s) => s,
+            Err(e) => {
+                eprintln!("error: {e}");
+                return ExitCode::from(2);
+            }
+        };
+        let times = inertance::bench::time_scene(&scene, quick);
+        if json {
+            let ns: serde_json::Map<String, serde_json::Value> = times
+                .iter()
+                .map(|(name, t)| {
+                    (
+                        name.to_string(),
+                        t.map_or(serde_json::Value::Null, |x| serde_json::json!(x)),
+                    )
+                })
+                .collect();
+            println!(
+                "{}",
+                serde_json::json!({"scene": scene.name, "ns_per_solve": ns})
+            );
+        } else {
+            for (name, t) in times {
+                println!(
+                    "{name:>14}: {}",
+                    t.map_or("singular".to_string(), |x| format!("{x:.0} ns per solve"))
+                );
+            }
+        }
+        return ExitCode::SUCCESS;
+    }
+    let report = inertance::bench::run(&inertance::bench::BenchOptions {
+        quick,
+        hard_cases: Some(hard_cases),
+    });
+    if json {
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&report.to_json()).unwrap_or_default()
+        );
+    } else {
+        print!("{}", report.to_text());
+    }
+    if let Some(path) = plot {
+        if let Err(e) = report.plot(&path) {
+            eprintln!("error: cannot write the plot: {e}");
+            return ExitCode::from(1);
+        }
+        eprintln!("plot written to {}", path.display());
+    }
+    ExitCode::SUCCESS
 }
 
 fn run_check(dir: PathBuf, quiet: bool) -> ExitCode {

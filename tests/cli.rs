@@ -600,3 +600,56 @@ fn analyze_classifies_singular_scenes_in_both_modes() {
     assert_eq!(out.status.code(), Some(3));
     assert!(String::from_utf8_lossy(&out.stderr).contains("inertance analyze"));
 }
+
+#[test]
+fn bench_quick_json_and_plot() {
+    let dir = std::env::temp_dir().join(format!("inertance-bench-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let plot = dir.join("bench.svg");
+    let out = Command::new(env!("CARGO_BIN_EXE_inertance"))
+        .args([
+            "bench",
+            "--quick",
+            "--json",
+            "--plot",
+            plot.to_str().unwrap(),
+        ])
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .output()
+        .unwrap();
+    let v = json(&out);
+    let rows = v["scalars"].as_array().unwrap();
+    let names: Vec<&str> = rows.iter().map(|r| r["scalar"].as_str().unwrap()).collect();
+    assert_eq!(names, ["f32", "f64", "double-double", "exact"]);
+    // The ladder: each type at least as accurate as the one before, exact exactly.
+    let err = |i: usize| rows[i]["max_relative_error"].as_f64().unwrap();
+    assert!(
+        err(0) < 1e-4 && err(1) < 1e-12 && err(2) < 1e-28 && err(3) == 0.0,
+        "{rows:?}"
+    );
+    assert!(v["scenes"]["hard_cases"].as_u64().unwrap() > 0);
+    assert!(
+        v["scaling"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .any(|s| s["contacts"] == 24)
+    );
+    assert!(std::fs::read_to_string(&plot).unwrap().starts_with("<svg"));
+    let _ = std::fs::remove_dir_all(dir);
+}
+
+#[test]
+fn bench_one_scene_reports_every_scalar() {
+    let scene = Scene::new("bench-scene", GOOD);
+    let v = json(&inertance(&[
+        "bench",
+        "--quick",
+        "--json",
+        "--scene",
+        scene.path.to_str().unwrap(),
+    ]));
+    for s in ["f32", "f64", "double-double", "exact"] {
+        assert!(v["ns_per_solve"][s].as_f64().unwrap() > 0.0, "{s}");
+    }
+}

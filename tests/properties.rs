@@ -276,3 +276,28 @@ fn singular_g_is_detected_exactly() {
         })
     );
 }
+
+proptest! {
+    #![proptest_config(config())]
+
+    /// Double-double runs the same code: on the same well-conditioned scenes its error is the
+    /// f64 claim scaled by 2⁻¹⁰⁴/2⁻⁵³: 10⁴·2⁻¹⁰⁴ ≈ 5·10⁻²⁸, so 1e-27 — measured on the exact
+    /// stored value (hi + lo), not on a rounding of it.
+    #[test]
+    fn double_double_matches_exact_to_about_106_bits(p in problem(4)) {
+        use inertance::dd::DoubleDouble;
+        let Some((impact, ne, _)) = solve_exact(&p) else { return Ok(()) };
+        prop_assume!(well_conditioned(&impact));
+        let pd = convert::<DoubleDouble>(&p);
+        let mut impact_d = Impact::new();
+        impact_d.assemble(&pd, &pd.body).unwrap();
+        let mut out = Outcome::default();
+        impact_d.solve(&pd, Model::Newton, &mut out).unwrap();
+        let scale = ne.velocity.as_slice().iter().map(|x| x.to_f64().abs()).fold(0.0, f64::max);
+        for (a, e) in out.velocity.as_slice().iter().zip(ne.velocity.as_slice()) {
+            let diff = a.exact_value().unwrap() - e;
+            let err = diff.to_f64().abs() / scale.max(f64::MIN_POSITIVE);
+            prop_assert!(scale == 0.0 || err <= 1e-27, "{err:e}");
+        }
+    }
+}

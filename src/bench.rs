@@ -1,0 +1,602 @@
+//! `inertance bench`: what each digit of accuracy costs in time.
+//!
+//! The same solve (assemble, then Newton and Poisson with every output) runs in every scalar
+//! type on one corpus — seeded random well-conditioned scenes, plus the hard cases of
+//! `tests/hard_cases/` when that folder is present — and is compared with the exact result:
+//! the time per solve (median over the corpus of per-scene medians) and the relative error
+//! (per scene, the largest over impulses, twist after impact and energies, each relative to
+//! its group's scale; energies relative to T⁰). Errors are measured on each type's exact
+//! stored value ([`Scalar::exact_value`]), so a double-double's 10⁻³⁰ is not rounded away.
+//!
+//! The cost growth with the number of contacts is measured on `assemble` + `analyze` (both
+//! models): a free body has six independent directions, so beyond six contacts G is always
+//! singular and `analyze` (the family of solutions) is the operation that works for every N.
+
+use std::path::Path;
+use std::time::{Duration, Instant};
+
+use num_rational::BigRational;
+use num_traits::Signed;
+use serde_json::{Value as Json, json};
+
+use crate::analysis::analyze;
+use crate::dd::DoubleDouble;
+use crate::restitution::Model;
+use crate::scalar::{Exact, Scalar};
+use crate::scene::Scene;
+use crate::solve::{Impact, Outcome, Problem};
+
+/// Options of a bench run.
+#[derive(Clone, Debug)]
+pub struct BenchOptions {
+    /// Fewer scenes and a shorter time budget (under a minute in all).
+    pub quick: bool,
+    /// Include `tests/hard_cases/*.toml` from this folder when it exists.
+    pub hard_cases: Option<std::path::PathBuf>,
+}
+
+/// One scalar type's line of the table.
+#[derive(Clone, Debug)]
+pub struct ScalarRow {
+    /// The scalar's name.
+    pub name: &'static str,
+    /// Median time per solve over the well-conditioned scenes, ns.
+    pub median_ns: f64,
+    /// Median relative error over the well-conditioned scenes.
+    pub median_error: f64,
+    /// Largest relative error over the well-conditioned scenes.
+    pub max_error: f64,
+    /// Over the hard cases (`None` without them): the largest relative error among those this
+    /// type solves, and how many it declares singular (cond·ε too large for the type).
+    pub max_error_hard: Option<(f64, usize)>,
+}
+
+/// A bench run's results.
+#[derive(Clone, Debug)]
+pub struct BenchReport {
+    /// Well-conditioned scenes and hard cases used.
+    pub scenes: (usize, usize),
+    /// One row per scalar type, f32 → exact.
+    pub rows: Vec<ScalarRow>,
+    /// (N, [ns per assemble + analyze, per scalar in `rows` order; `None` when skipped]).
+    pub scaling: Vec<(usize, Vec<Option<f64>>)>,
+}
+
+/// A small deterministic generator (SplitMix64), so the corpus is the same on every machine.
+struct Seeded(u64);
+
+impl Seeded {
+    fn next(&mut self) -> u64 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^ (z >> 31)
+    }
+
+    /// A decimal with one fractional digit in [lo, hi].
+    fn decimal(&mut self, lo: i64, hi: i64) -> String {
+        let span = (hi - lo) as u64 * 10 + 1;
+        let x = lo * 10 + (self.next() % span) as i64;
+        format!("{}", x as f64 / 10.0)
+    }
+}
+
+/// A random scene with `n` contacts (exactly rational: every number a short decimal).
+fn random_scene(rng: &mut Seeded, n: usize) -> Option<Scene> {
+    let v = |rng: &mut Seeded, lo, hi| {
+        format!(
+            "[{}, {}, {}]",
+            rng.decimal(lo, hi),
+            rng.decimal(lo, hi),
+            rng.decimal(lo, hi)
+        )
+    };
+    let mut text = format!(
+        "[body]\nmass = {}\ninertia = [{}, {}, {}]\nvelocity = {}\nangular_velocity = {}\n",
+        rng.decimal(1, 9),
+        rng.decimal(1, 5),
+        rng.decimal(1, 5),
+        rng.decimal(1, 5),
+        v(rng, -3, 3),
+        v(rng, -1, 1)
+    );
+    for _ in 0..n {
+        let mut normal = v(rng, -2, 2);
+        if normal == "[0, 0, 0]" {
+            normal = "[1, 0, 0]".into();
+        }
+        text += &format!(
+            "[[contact]]\npoint = {}\nnormal = {normal}\nk_newton = {}\nk_poisson = {}\n",
+            v(rng, -2, 2),
+            rng.decimal(0, 1),
+            rng.decimal(0, 1)
+        );
+    }
+    Scene::parse(&text, "generated").ok()
+}
+
+/// The exact outputs of one solve, grouped: impulses, twist after, energies.
+struct Outputs {
+    groups: [Vec<BigRational>; 3],
+    kinetic_before: BigRational,
+}
+
+fn outputs<T: Scalar>(impact: &Impact<T>, outs: &[Outcome<T>]) -> Option<Outputs> {
+    let x = |v: &T| v.exact_value();
+    let mut groups: [Vec<BigRational>; 3] = [Vec::new(), Vec::new(), Vec::new()];
+    for o in outs {
+        for p in &o.impulses {
+            groups[0].push(x(p)?);
+        }
+        for v in o.velocity.as_slice() {
+            groups[1].push(x(v)?);
+        }
+        groups[2].push(x(&o.lost_velocity_energy)?);
+        groups[2].push(x(&o.kinetic_energy_loss)?);
+    }
+    Some(Outputs {
+        groups,
+        kinetic_before: x(&impact.kinetic_before)?,
+    })
+}
+
+/// The largest relative error of `a` against the exact `e` (see the module docs).
+fn relative_error(a: &Outputs, e: &Outputs) -> f64 {
+    let mut worst = 0f64;
+    for (g, (ga, ge)) in a.groups.iter().zip(&e.groups).enumerate() {
+        let mut scale = ge.iter().fold(BigRational::from_integer(0.into()), |m, x| {
+            if x.abs() > m { x.abs() } else { m }
+        });
+        if g == 2 && e.kinetic_before > scale {
+            scale = e.kinetic_before.clone();
+        }
+        if scale == BigRational::from_integer(0.into()) {
+            continue;
+        }
+        for (x, y) in ga.iter().zip(ge) {
+            let err = crate::number::rational_to_f64(&((x - y).abs() / &scale));
+            worst = worst.max(err);
+        }
+    }
+    worst
+}
+
+/// Solve both models; `None` if G is singular in this type.
+fn solve_all<T: Scalar>(
+    p: &Problem<T>,
+    impact: &mut Impact<T>,
+    outs: &mut [Outcome<T>; 2],
+) -> Option<()> {
+    impact.assemble(p, &p.body).ok()?;
+    impact.solve(p, Model::Newton, &mut outs[0]).ok()?;
+    impact.solve(p, Model::Poisson, &mut outs[1]).ok()
+}
+
+/// Median wall time of one solve of `p` (ns), repeating until each of three samples takes
+/// at least `budget`.
+fn time_solve<T: Scalar>(p: &Problem<T>, budget: Duration) -> Option<f64> {
+    let mut impact = Impact::new();
+    let mut outs = [Outcome::default(), Outcome::default()];
+    solve_all(p, &mut impact, &mut outs)?;
+    let mut samples = Vec::with_capacity(3);
+    for _ in 0..3 {
+        let (mut reps, start) = (0u64, Instant::now());
+        while start.elapsed() < budget || reps == 0 {
+            solve_all(std::hint::black_box(p), &mut impact, &mut outs)?;
+            reps += 1;
+        }
+        samples.push(start.elapsed().as_nanos() as f64 / reps as f64);
+    }
+    samples.sort_by(f64::total_cmp);
+    Some(samples[1])
+}
+
+fn median(mut v: Vec<f64>) -> f64 {
+    if v.is_empty() {
+        return f64::NAN;
+    }
+    v.sort_by(f64::total_cmp);
+    v[v.len() / 2]
+}
+
+/// Times and errors of one scalar type over the corpus.
+fn measure<T: Scalar>(
+    well: &[(Scene, Outputs)],
+    hard: &[(Scene, Outputs)],
+    budget: Duration,
+) -> ScalarRow {
+    let run = |set: &[(Scene, Outputs)], timed: bool| -> (Vec<f64>, Vec<f64>) {
+        let (mut times, mut errors) = (Vec::new(), Vec::new());
+        for (scene, exact) in set {
+            let Ok(p) = scene.problem::<T>() else {
+                continue;
+            };
+            let mut impact = Impact::new();
+            let mut outs = [Outcome::default(), Outcome::default()];
+            match solve_all(&p, &mut impact, &mut outs).and_then(|_| outputs(&impact, &outs)) {
+                Some(o) => errors.push(relative_error(&o, exact)),
+                // Singular in this type (or a non-finite result): no usable answer at all.
+                None => errors.push(f64::INFINITY),
+            }
+            if timed {
+                if let Some(t) = time_solve(&p, budget) {
+                    times.push(t);
+                }
+            }
+        }
+        (times, errors)
+    };
+    let (times, errors) = run(well, true);
+    let (_, hard_errors) = run(hard, false);
+    ScalarRow {
+        name: T::NAME,
+        median_ns: median(times),
+        median_error: median(errors.clone()),
+        max_error: errors.iter().cloned().fold(0.0, f64::max),
+        max_error_hard: (!hard.is_empty()).then(|| {
+            let solved = hard_errors
+                .iter()
+                .cloned()
+                .filter(|e| e.is_finite())
+                .fold(0.0, f64::max);
+            (
+                solved,
+                hard_errors.iter().filter(|e| e.is_infinite()).count(),
+            )
+        }),
+    }
+}
+
+/// ns per assemble + analyze (both models) of `scene` in `T`, within `budget`.
+fn time_analyze<T: Scalar>(scene: &Scene, budget: Duration) -> Option<f64> {
+    let p = scene.problem::<T>().ok()?;
+    let (mut reps, start) = (0u64, Instant::now());
+    while start.elapsed() < budget || reps == 0 {
+        let mut impact = Impact::new();
+        impact.assemble(&p, &p.body).ok()?;
+        std::hint::black_box(analyze(&p, &p.body, &mut impact, &Model::ALL));
+        reps += 1;
+    }
+    Some(start.elapsed().as_nanos() as f64 / reps as f64)
+}
+
+/// Run the bench.
+pub fn run(opts: &BenchOptions) -> BenchReport {
+    let mut rng = Seeded(0x1e47_a9ce);
+    let count = if opts.quick { 8 } else { 32 };
+    let budget = Duration::from_millis(if opts.quick { 4 } else { 40 });
+    let exact_of = |scene: &Scene| -> Option<Outputs> {
+        let p = scene.problem::<Exact>().ok()?;
+        let mut impact = Impact::new();
+        let mut outs = [Outcome::default(), Outcome::default()];
+        solve_all(&p, &mut impact, &mut outs)?;
+        outputs(&impact, &outs)
+    };
+    // Well-conditioned: cond₂(G) ≤ 10⁴ by the f64 eigenvalues of G.
+    let mut well = Vec::new();
+    while well.len() < count {
+        let n = [2, 2, 3, 4, 6][well.len() % 5];
+        let Some(scene) = random_scene(&mut rng, n) else {
+            continue;
+        };
+        let Ok(p) = scene.problem::<f64>() else {
+            continue;
+        };
+        let mut impact = Impact::new();
+        if impact.assemble(&p, &p.body).is_err() || impact.rank < n {
+            continue;
+        }
+        if crate::analysis::condition_number(&impact.g, n) > 1e4 {
+            continue;
+        }
+        if let Some(e) = exact_of(&scene) {
+            well.push((scene, e));
+        }
+    }
+    let mut hard = Vec::new();
+    if let Some(dir) = opts.hard_cases.as_deref().filter(|d| d.is_dir()) {
+        let mut files: Vec<_> = std::fs::read_dir(dir)
+            .into_iter()
+            .flatten()
+            .flatten()
+            .map(|e| e.path())
+            .collect();
+        files.sort();
+        for f in files
+            .iter()
+            .filter(|f| f.extension().is_some_and(|x| x == "toml"))
+        {
+            if let Ok(scene) = Scene::load(f) {
+                if let Some(e) = exact_of(&scene) {
+                    hard.push((scene, e));
+                }
+            }
+        }
+    }
+    let rows = vec![
+        measure::<f32>(&well, &hard, budget),
+        measure::<f64>(&well, &hard, budget),
+        measure::<DoubleDouble>(&well, &hard, budget),
+        measure::<Exact>(&well, &hard, budget),
+    ];
+    let sizes: &[usize] = if opts.quick {
+        &[2, 3, 6, 12, 24]
+    } else {
+        &[2, 3, 4, 6, 8, 12, 16, 24]
+    };
+    let scaling = sizes
+        .iter()
+        .filter_map(|&n| {
+            let scene = random_scene(&mut rng, n)?;
+            let b = budget;
+            let exact_limit = if opts.quick { 12 } else { 24 };
+            Some((
+                n,
+                vec![
+                    time_analyze::<f32>(&scene, b),
+                    time_analyze::<f64>(&scene, b),
+                    time_analyze::<DoubleDouble>(&scene, b),
+                    (n <= exact_limit)
+                        .then(|| time_analyze::<Exact>(&scene, b))
+                        .flatten(),
+                ],
+            ))
+        })
+        .collect();
+    BenchReport {
+        scenes: (well.len(), hard.len()),
+        rows,
+        scaling,
+    }
+}
+
+/// Time one scene in every scalar type (ns per solve; `None` when singular in that type).
+pub fn time_scene(scene: &Scene, quick: bool) -> Vec<(&'static str, Option<f64>)> {
+    let budget = Duration::from_millis(if quick { 20 } else { 200 });
+    vec![
+        (
+            "f32",
+            scene
+                .problem::<f32>()
+                .ok()
+                .and_then(|p| time_solve(&p, budget)),
+        ),
+        (
+            "f64",
+            scene
+                .problem::<f64>()
+                .ok()
+                .and_then(|p| time_solve(&p, budget)),
+        ),
+        (
+            "double-double",
+            scene
+                .problem::<DoubleDouble>()
+                .ok()
+                .and_then(|p| time_solve(&p, budget)),
+        ),
+        (
+            "exact",
+            scene
+                .problem::<Exact>()
+                .ok()
+                .and_then(|p| time_solve(&p, budget)),
+        ),
+    ]
+}
+
+fn fmt_ns(ns: f64) -> String {
+    if !ns.is_finite() {
+        "—".into()
+    } else if ns < 1e3 {
+        format!("{ns:.0} ns")
+    } else if ns < 1e6 {
+        format!("{:.1} µs", ns / 1e3)
+    } else {
+        format!("{:.1} ms", ns / 1e6)
+    }
+}
+
+fn fmt_err(e: f64) -> String {
+    if e == 0.0 {
+        "0".into()
+    } else if e.is_infinite() {
+        "singular".into()
+    } else {
+        format!("{e:.1e}")
+    }
+}
+
+impl BenchReport {
+    /// The readable tables.
+    pub fn to_text(&self) -> String {
+        let mut s = format!(
+            "inertance bench: {} well-conditioned scenes (N = 2–6, cond₂ G ≤ 1e4){}; one solve = assemble + Newton + Poisson, every output\n\n",
+            self.scenes.0,
+            if self.scenes.1 > 0 {
+                format!(", {} hard cases", self.scenes.1)
+            } else {
+                String::new()
+            }
+        );
+        s += "| scalar | median time per solve | median rel. error | max rel. error | max rel. error, hard cases |\n|---|---|---|---|---|\n";
+        for r in &self.rows {
+            s += &format!(
+                "| {} | {} | {} | {} | {} |\n",
+                r.name,
+                fmt_ns(r.median_ns),
+                fmt_err(r.median_error),
+                fmt_err(r.max_error),
+                r.max_error_hard
+                    .map_or("—".into(), |(e, singular)| if singular > 0 {
+                        format!("{} ({singular} declared singular)", fmt_err(e))
+                    } else {
+                        fmt_err(e)
+                    })
+            );
+        }
+        s += "\nCost growth with N (assemble + analyze, both models):\n\n| N |";
+        for r in &self.rows {
+            s += &format!(" {} |", r.name);
+        }
+        s += "\n|---|";
+        s += &"---|".repeat(self.rows.len());
+        s += "\n";
+        for (n, times) in &self.scaling {
+            s += &format!("| {n} |");
+            for t in times {
+                s += &format!(" {} |", t.map_or("—".into(), fmt_ns));
+            }
+            s += "\n";
+        }
+        s
+    }
+
+    /// The JSON report.
+    pub fn to_json(&self) -> Json {
+        let num = |x: f64| {
+            serde_json::Number::from_f64(x)
+                .map(Json::Number)
+                .unwrap_or(Json::Null)
+        };
+        json!({
+            "scenes": {"well_conditioned": self.scenes.0, "hard_cases": self.scenes.1},
+            "scalars": self.rows.iter().map(|r| json!({
+                "scalar": r.name,
+                "median_ns_per_solve": num(r.median_ns),
+                "median_relative_error": num(r.median_error),
+                "max_relative_error": num(r.max_error),
+                "max_relative_error_hard_cases": r.max_error_hard.map(|h| num(h.0)),
+                "hard_cases_declared_singular": r.max_error_hard.map(|h| h.1),
+            })).collect::<Vec<_>>(),
+            "scaling": self.scaling.iter().map(|(n, t)| json!({
+                "contacts": n,
+                "ns_per_assemble_and_analyze": self.rows.iter().zip(t).map(|(r, x)| (r.name.to_string(), x.map(num).unwrap_or(Json::Null))).collect::<serde_json::Map<_, _>>(),
+            })).collect::<Vec<_>>(),
+        })
+    }
+
+    /// Write the plot: error versus time per scalar type (log–log; exact results, error 0,
+    /// are drawn on the floor 10⁻³⁵), and the cost growth with N.
+    pub fn plot(&self, path: &Path) -> Result<(), String> {
+        use plotters::prelude::*;
+        let tmp = path.with_extension("svg.tmp");
+        let result = (|| -> Result<(), Box<dyn std::error::Error>> {
+            let root = SVGBackend::new(&tmp, (1100, 480)).into_drawing_area();
+            root.fill(&WHITE)?;
+            let (left, right) = root.split_horizontally(560);
+            let floor = 1e-35f64;
+            let tmax = self
+                .rows
+                .iter()
+                .map(|r| r.median_ns)
+                .filter(|x| x.is_finite())
+                .fold(1.0, f64::max)
+                * 10.0;
+            let mut chart = ChartBuilder::on(&left)
+                .caption("accuracy vs time per solve", ("sans-serif", 18))
+                .margin(12)
+                .x_label_area_size(40)
+                .y_label_area_size(60)
+                .build_cartesian_2d((10f64..tmax).log_scale(), (floor..1f64).log_scale())?;
+            chart
+                .configure_mesh()
+                .x_desc("median time per solve [ns]")
+                .y_desc("relative error (median ●, max ▲)")
+                .x_label_formatter(&|x| format!("{x:.0e}"))
+                .y_label_formatter(&|y| format!("{y:.0e}"))
+                .y_labels(12)
+                .draw()?;
+            let colors = [RED, BLUE, GREEN, BLACK];
+            for (r, c) in self.rows.iter().zip(colors) {
+                let y = |e: f64| {
+                    if e > 0.0 && e.is_finite() {
+                        e.max(floor)
+                    } else if e == 0.0 {
+                        floor
+                    } else {
+                        1.0
+                    }
+                };
+                let (x, med, max) = (r.median_ns, y(r.median_error), y(r.max_error));
+                if !x.is_finite() {
+                    continue;
+                }
+                chart.draw_series(LineSeries::new(vec![(x, med), (x, max)], c.stroke_width(2)))?;
+                chart.draw_series(std::iter::once(TriangleMarker::new(
+                    (x, max),
+                    6,
+                    c.filled(),
+                )))?;
+                chart
+                    .draw_series(std::iter::once(Circle::new((x, med), 6, c.filled())))?
+                    .label(if r.median_error == 0.0 {
+                        format!("{} (error 0)", r.name)
+                    } else {
+                        r.name.to_string()
+                    })
+                    .legend(move |(px, py)| Circle::new((px, py), 5, c.filled()));
+            }
+            chart
+                .configure_series_labels()
+                .background_style(WHITE.mix(0.8))
+                .border_style(BLACK)
+                .position(SeriesLabelPosition::UpperRight)
+                .draw()?;
+
+            let nmax = self.scaling.iter().map(|(n, _)| *n).max().unwrap_or(2) as f64;
+            let tops = self
+                .scaling
+                .iter()
+                .flat_map(|(_, t)| t.iter().flatten().cloned())
+                .fold(10.0, f64::max)
+                * 3.0;
+            let mut growth = ChartBuilder::on(&right)
+                .caption(
+                    "cost growth with N (assemble + analyze)",
+                    ("sans-serif", 18),
+                )
+                .margin(12)
+                .x_label_area_size(40)
+                .y_label_area_size(60)
+                .build_cartesian_2d((2f64..nmax).log_scale(), (10f64..tops).log_scale())?;
+            growth
+                .configure_mesh()
+                .x_desc("contacts N")
+                .y_desc("time [ns]")
+                .x_label_formatter(&|x| format!("{x:.0}"))
+                .y_label_formatter(&|y| format!("{y:.0e}"))
+                .draw()?;
+            for (k, (r, c)) in self.rows.iter().zip(colors).enumerate() {
+                let pts: Vec<(f64, f64)> = self
+                    .scaling
+                    .iter()
+                    .filter_map(|(n, t)| t[k].map(|x| (*n as f64, x)))
+                    .collect();
+                growth
+                    .draw_series(LineSeries::new(pts.clone(), c.stroke_width(2)))?
+                    .label(r.name)
+                    .legend(move |(px, py)| {
+                        PathElement::new(vec![(px, py), (px + 16, py)], c.stroke_width(2))
+                    });
+                growth.draw_series(pts.into_iter().map(|p| Circle::new(p, 3, c.filled())))?;
+            }
+            growth
+                .configure_series_labels()
+                .background_style(WHITE.mix(0.8))
+                .border_style(BLACK)
+                .position(SeriesLabelPosition::UpperLeft)
+                .draw()?;
+            root.present()?;
+            Ok(())
+        })();
+        match result {
+            Ok(()) => std::fs::rename(&tmp, path).map_err(|e| format!("{}: {e}", path.display())),
+            Err(e) => {
+                let _ = std::fs::remove_file(&tmp);
+                Err(format!("{}: {e}", path.display()))
+            }
+        }
+    }
+}
