@@ -59,6 +59,32 @@ enum Command {
         #[arg(long)]
         json: bool,
     },
+    /// Solve a scene over a grid of one or two varied inputs, in parallel, streamed to CSV.
+    Sweep {
+        /// The scene file (TOML).
+        scene: PathBuf,
+        /// PATH=START:STOP:COUNT, e.g. 'contact[1].k=0:1:101' (once or twice).
+        #[arg(long, required = true, value_name = "PATH=START:STOP:COUNT")]
+        vary: Vec<String>,
+        /// Solve in exact rationals (adds exact columns).
+        #[arg(long)]
+        exact: bool,
+        /// The CSV file to write.
+        #[arg(long, value_name = "FILE.csv")]
+        out: PathBuf,
+        /// Write an SVG plot of chosen outputs against the first varied input.
+        #[arg(long, value_name = "FILE.svg")]
+        plot: Option<PathBuf>,
+        /// Outputs to plot, comma-separated (e.g. P1,P2,dEc or newton_P1); default P1…PN and dEc.
+        #[arg(long, value_delimiter = ',')]
+        outputs: Vec<String>,
+        /// Solve only slice I of N (1-based), for array jobs; the CSVs concatenate.
+        #[arg(long, value_name = "I/N")]
+        shard: Option<String>,
+        /// Worker threads (default: all cores).
+        #[arg(long)]
+        threads: Option<usize>,
+    },
     /// Show what accuracy costs in time: every scalar type on a corpus, against exact.
     Bench {
         /// A smaller corpus and shorter timings (under a minute).
@@ -114,6 +140,16 @@ fn main() -> ExitCode {
         }
     };
     match cli.command {
+        Command::Sweep {
+            scene,
+            vary,
+            exact,
+            out,
+            plot,
+            outputs,
+            shard,
+            threads,
+        } => run_sweep(scene, vary, exact, out, plot, outputs, shard, threads),
         Command::Solve {
             scene,
             exact,
@@ -218,6 +254,59 @@ fn run_analyze(path: PathBuf, exact: bool, model: Option<ModelArg>, json: bool) 
         Err(RunError::Solve(e)) => {
             eprintln!("error: {}: {e}", path.display());
             ExitCode::from(3)
+        }
+    }
+}
+
+#[allow(clippy::too_many_arguments)] // one argument per command-line flag
+fn run_sweep(
+    scene: PathBuf,
+    vary: Vec<String>,
+    exact: bool,
+    out: PathBuf,
+    plot: Option<PathBuf>,
+    outputs: Vec<String>,
+    shard: Option<String>,
+    threads: Option<usize>,
+) -> ExitCode {
+    use inertance::sweep::{Shard, SweepOptions, Vary, sweep};
+    let parsed = vary
+        .iter()
+        .map(|v| Vary::parse(v))
+        .collect::<Result<Vec<_>, _>>();
+    let shard = shard.as_deref().map(Shard::parse).transpose();
+    let (vary, shard) = match (parsed, shard) {
+        (Ok(v), Ok(s)) => (v, s),
+        (Err(e), _) | (_, Err(e)) => {
+            eprintln!("error: {e}");
+            return ExitCode::from(e.exit_code());
+        }
+    };
+    let opts = SweepOptions {
+        scene,
+        vary,
+        exact,
+        out: out.clone(),
+        plot,
+        plot_outputs: outputs,
+        shard,
+        threads,
+        progress: true,
+    };
+    match sweep(&opts) {
+        Ok(s) => {
+            eprintln!(
+                "{} points ({} singular) in {:.2} s → {}",
+                s.points,
+                s.singular,
+                s.seconds,
+                out.display()
+            );
+            ExitCode::SUCCESS
+        }
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::from(e.exit_code())
         }
     }
 }

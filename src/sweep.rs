@@ -42,8 +42,9 @@
 //! `--shard I/N` ([`Shard`], 1 ≤ I ≤ N, 1-based like Slurm's `--array=1-N` and
 //! `$SLURM_ARRAY_TASK_ID`) solves the contiguous block of global points
 //! `[⌊(I−1)·P/N⌋, ⌊I·P/N⌋)` of the P-point grid: the shards are disjoint, cover the grid, and
-//! depend only on (I, N, P) (a shard is empty when N > P). **Every shard writes its own header line**, so each file is a
-//! valid CSV on its own; concatenate in shard order dropping all but the first header:
+//! depend only on (I, N, P) (a shard is empty when N > P). **Every shard writes its own
+//! header line**, so each file is a valid CSV on its own; concatenate in shard order dropping
+//! all but the first header:
 //!
 //! ```sh
 //! { cat out-1.csv; for i in $(seq 2 N); do tail -n +2 out-$i.csv; done; } > out.csv
