@@ -1,12 +1,17 @@
-//! The cost of a solve per scalar type on the paper's Example 3 (free body, two contacts,
-//! Newton and Poisson, every output), with a hand-written f64 closed form (eq. 17–20, no
-//! abstraction at all) as the baseline.
+//! The cost of a solve per scalar type: the paper's Example 3 (free body, two contacts, Newton
+//! and Poisson, every output) with a hand-written f64 closed form as the baseline; N = 3 and 6
+//! contacts (solve) and 12, 24 (assemble + analyze: beyond six contacts a free body is always
+//! singular); a constrained scene (Example 6); building a scene apart from solving it; and a
+//! batch of scenes. At the end it prints the ratio generic f64 / hand-written baseline,
+//! measured in the same run.
 //!
 //! `cargo bench --bench solve`
 
 use std::hint::black_box;
 
-use criterion::{Criterion, criterion_group, criterion_main};
+use criterion::Criterion;
+use inertance::analysis::analyze;
+use inertance::dd::DoubleDouble;
 use inertance::restitution::Model;
 use inertance::scalar::{Exact, Scalar};
 use inertance::scene::Scene;
@@ -164,30 +169,137 @@ fn closed_form(
     out
 }
 
-fn benches(c: &mut Criterion) {
-    let scene = Scene::parse(EXAMPLE_3, "example 3").unwrap();
-    let (x, yy) = ([1.0, 0.0, 0.0], [0.0, 1.0, 0.0]);
-    c.bench_function("example3/closed-form-f64", |b| {
+/// A scene with `n` contacts spread over a box (deterministic), as TOML.
+fn many_contacts(n: usize) -> String {
+    let mut t = String::from("[body]\nmass = 5\ninertia = [1.5, 2, 2.5]\nvelocity = [1, -0.5, 0.25]\nangular_velocity = [0.3, 0.2, -0.1]\n");
+    for i in 0..n {
+        let f = i as f64;
+        t += &format!(
+            "[[contact]]\npoint = [{:.1}, {:.1}, {:.1}]\nnormal = [{:.1}, {:.1}, 1]\nk = 0.{}\n",
+            (f * 0.7).sin() * 2.0,
+            (f * 1.3).cos() * 2.0,
+            (f * 0.4).sin(),
+            (f * 2.1).cos(),
+            (f * 0.9).sin(),
+            i % 10
+        );
+    }
+    t
+}
+
+const EXAMPLE_6: &str = r#"
+[body]
+mass = 10
+inertia = ["10/3", "10/3", "10/3"]
+velocity = [0, 0, 0]
+angular_velocity = [0, 0, 1]
+[[contact]]
+point = [0, "-1/3", 0]
+normal = [1, 0, 0]
+tangent = [0, 1, 0]
+k = 0.5
+[[contact]]
+point = [0, "1/3", 0]
+normal = [1, 0, 0]
+tangent = [0, 1, 0]
+k = 0.25
+[[constraints.joint]]
+kind = "revolute"
+point = [0, -1, 0]
+axis = [0, 0, 1]
+[[constraints.joint]]
+kind = "prismatic"
+axis = [1, 0, 0]
+"#;
+
+fn bench_contacts<T: Scalar>(c: &mut Criterion, n: usize) {
+    let scene = Scene::parse(&many_contacts(n), "many").unwrap();
+    let p = scene.problem::<T>().unwrap();
+    if n <= 6 {
+        let (mut impact, mut a, mut b) = (Impact::new(), Outcome::default(), Outcome::default());
+        c.bench_function(&format!("contacts-{n}/solve/{}", T::NAME), |bch| bch.iter(|| solve_both(black_box(&p), &mut impact, &mut a, &mut b)));
+    } else {
+        c.bench_function(&format!("contacts-{n}/analyze/{}", T::NAME), |bch| {
+            bch.iter(|| {
+                let mut impact = Impact::new();
+                impact.assemble(black_box(&p), &p.body).unwrap();
+                black_box(analyze(&p, &p.body, &mut impact, &Model::ALL))
+            })
+        });
+    }
+}
+
+fn bench_constrained<T: Scalar>(c: &mut Criterion) {
+    let scene = Scene::parse(EXAMPLE_6, "example 6").unwrap();
+    let (p, held) = inertance::pipeline::prepare::<T>(&scene).unwrap();
+    let held = held.unwrap();
+    let (mut impact, mut out) = (Impact::new(), Outcome::default());
+    c.bench_function(&format!("example6-constrained/{}", T::NAME), |b| {
         b.iter(|| {
-            black_box(closed_form(
-                black_box(1.0),
-                [12.0, 1.6, 12.0],
-                [0.0, 0.0, 0.4],
-                [3.0, 2.0, 0.0],
-                [[0.0, -2.0, 0.0], [0.0, 4.0, 0.0]],
-                [x, x],
-                [yy, yy],
-                [0.3, 0.2],
-            ))
+            impact.assemble(black_box(&p), &held).unwrap();
+            impact.solve(&p, Model::Newton, &mut out).unwrap();
+            impact.solve(&p, Model::Poisson, &mut out).unwrap();
         })
-    });
-    bench_scalar::<f64>(c, &scene);
-    bench_scalar::<f32>(c, &scene);
-    bench_scalar::<Exact>(c, &scene);
-    c.bench_function("example3/parse-scene", |b| {
-        b.iter(|| Scene::parse(black_box(EXAMPLE_3), "example 3").unwrap())
     });
 }
 
-criterion_group!(solve, benches);
-criterion_main!(solve);
+fn benches(c: &mut Criterion) {
+    let scene = Scene::parse(EXAMPLE_3, "example 3").unwrap();
+    let (x, yy) = ([1.0, 0.0, 0.0], [0.0, 1.0, 0.0]);
+    c.bench_function("example3/closed-form-f64", |b| b.iter(|| black_box(baseline(x, yy))));
+    bench_scalar::<f32>(c, &scene);
+    bench_scalar::<f64>(c, &scene);
+    bench_scalar::<DoubleDouble>(c, &scene);
+    bench_scalar::<Exact>(c, &scene);
+    c.bench_function("example3/parse-scene", |b| b.iter(|| Scene::parse(black_box(EXAMPLE_3), "example 3").unwrap()));
+    c.bench_function("example3/build-problem-f64", |b| b.iter(|| black_box(&scene).problem::<f64>().unwrap()));
+    for n in [3, 6, 12, 24] {
+        bench_contacts::<f64>(c, n);
+        bench_contacts::<DoubleDouble>(c, n);
+        if n <= 12 {
+            bench_contacts::<Exact>(c, n);
+        }
+    }
+    bench_constrained::<f64>(c);
+    bench_constrained::<Exact>(c);
+    // A batch: 256 different scenes solved one after another, buffers reused.
+    let batch: Vec<Problem<f64>> = (0..256)
+        .map(|i| Scene::parse(&EXAMPLE_3.replace("k = 0.3", &format!("k = 0.{}", i % 10)).replace("[3, 2, 0]", &format!("[3, {}, 0]", i % 7)), "batch").unwrap().problem::<f64>().unwrap())
+        .collect();
+    let (mut impact, mut n, mut q) = (Impact::new(), Outcome::default(), Outcome::default());
+    c.bench_function("batch-256/f64", |b| b.iter(|| for p in &batch { solve_both(black_box(p), &mut impact, &mut n, &mut q) }));
+}
+
+fn baseline(x: [f64; 3], yy: [f64; 3]) -> [f64; 48] {
+    closed_form(black_box(1.0), [12.0, 1.6, 12.0], [0.0, 0.0, 0.4], [3.0, 2.0, 0.0], [[0.0, -2.0, 0.0], [0.0, 4.0, 0.0]], [x, x], [yy, yy], [0.3, 0.2])
+}
+
+/// generic f64 / hand-written baseline on Example 3, timed back to back in this run.
+fn ratio() -> f64 {
+    let scene = Scene::parse(EXAMPLE_3, "example 3").unwrap();
+    let p = scene.problem::<f64>().unwrap();
+    let (mut impact, mut a, mut b) = (Impact::new(), Outcome::default(), Outcome::default());
+    let (x, yy) = ([1.0, 0.0, 0.0], [0.0, 1.0, 0.0]);
+    let reps = 200_000;
+    let mut best = f64::INFINITY;
+    for _ in 0..5 {
+        let t = std::time::Instant::now();
+        for _ in 0..reps {
+            black_box(baseline(x, yy));
+        }
+        let base = t.elapsed().as_secs_f64();
+        let t = std::time::Instant::now();
+        for _ in 0..reps {
+            solve_both(black_box(&p), &mut impact, &mut a, &mut b);
+        }
+        best = best.min(t.elapsed().as_secs_f64() / base);
+    }
+    best
+}
+
+fn main() {
+    let mut c = Criterion::default().configure_from_args();
+    benches(&mut c);
+    c.final_summary();
+    println!("\ngeneric f64 solve / hand-written closed form (Example 3, every output): {:.2}×", ratio());
+}

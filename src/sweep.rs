@@ -705,12 +705,12 @@ impl Plan {
                 fields.push(format_rational(q));
             }
         }
-        let mut per_model: Vec<Option<&ModelReport>> = Vec::with_capacity(self.models.len());
+        let mut per_model: Vec<Option<Vec<f64>>> = Vec::with_capacity(self.models.len());
         for m in &self.models {
             let r = report
                 .as_ref()
                 .and_then(|r| r.models.iter().find(|x| x.model == *m));
-            per_model.push(r);
+            per_model.push(r.map(model_values));
             match r {
                 None => fields.extend(std::iter::repeat_n(String::new(), self.model_width())),
                 Some(r) => {
@@ -731,9 +731,11 @@ impl Plan {
         let ys = self
             .series
             .iter()
-            .map(|s| match per_model[s.model] {
-                Some(r) => model_values(r).get(s.output).copied().unwrap_or(f64::NAN),
-                None => f64::NAN,
+            .map(|s| {
+                per_model[s.model]
+                    .as_ref()
+                    .and_then(|v| v.get(s.output).copied())
+                    .unwrap_or(f64::NAN)
             })
             .collect();
         Ok(Row {

@@ -1,0 +1,717 @@
+#!/usr/bin/env python3
+"""Peer comparison for `inertance`: the same two-contact free-body scenes solved by
+
+  * Pinocchio's ``impulseDynamics`` (Newton restitution, one coefficient for every contact),
+  * Pinocchio's rigid-body algebra (crba + frame Jacobians) with the impulse system solved in numpy,
+  * a numpy closed form of the paper (eq. 57, 8, 20, 22-24, 28, 32),
+  * SymPy in exact rationals,
+
+checked against ``inertance solve SCENE --json`` (f64) and ``--json --exact``, and timed per solve as
+a ratio to inertance's own in-process time per solve (``inertance bench --scene SCENE --json``).
+
+Run from anywhere:  python3 benches/peers/compare.py        (see benches/peers/README.md)
+
+Not part of CI.  Exit status: 0 when every peer agrees with inertance, 1 otherwise.
+"""
+
+from __future__ import annotations
+
+import argparse
+import datetime
+import json
+import math
+import os
+import platform
+import random
+import statistics
+import subprocess
+import sys
+import tempfile
+import timeit
+from dataclasses import dataclass, field
+from fractions import Fraction as F
+from pathlib import Path
+
+import numpy as np
+import pinocchio as pin
+import sympy as sp
+
+REPO = Path(__file__).resolve().parents[2]
+
+# Agreement tolerance of every f64 peer against inertance f64 (see README.md, "Agreement"):
+# all scenes have cond(G) <= 50, so backward-stable solves differ by ~cond*eps ~ 1e-14; 1e-9 leaves
+# four orders of margin for rounding and still catches any convention error (those are O(1)).
+RTOL = 1e-9
+# Pinocchio's RigidConstraintModel path needs a proximal regularisation (two 3-D point contacts on
+# one body give a rank-5 Delassus matrix); its bias is ~mu * |lambda| / sigma_min.
+PROX_MU = 1e-12
+
+
+# ----------------------------------------------------------------------------------------------
+# Scenes (exact rational data; f64 values are the correctly rounded floats of the same rationals)
+# ----------------------------------------------------------------------------------------------
+
+
+@dataclass
+class Contact:
+    point: tuple  # A_i from C, body axes (Fractions)
+    normal: tuple  # outward normal, any length (Fractions)
+    k_newton: F
+    k_poisson: F
+
+
+@dataclass
+class Scene:
+    name: str
+    description: str
+    mass: F
+    inertia: tuple  # (Jx, Jy, Jz) central principal moments
+    velocity: tuple  # v_C before impact
+    angular_velocity: tuple  # omega before impact
+    contacts: list = field(default_factory=list)
+
+    @property
+    def equal_k(self) -> bool:
+        ks = {c.k_newton for c in self.contacts} | {c.k_poisson for c in self.contacts}
+        return len(ks) == 1
+
+    @property
+    def k(self) -> F:
+        return self.contacts[0].k_newton
+
+
+def _num(x: F) -> str:
+    """A number as the inertance schema reads it exactly: an integer, or a "p/q" string."""
+    x = F(x)
+    return str(x.numerator) if x.denominator == 1 else f'"{x.numerator}/{x.denominator}"'
+
+
+def _vec(v) -> str:
+    return "[" + ", ".join(_num(x) for x in v) + "]"
+
+
+def scene_toml(s: Scene) -> str:
+    out = [f'name = "{s.name}"', f'description = "{s.description}"', "[body]",
+           f"mass = {_num(s.mass)}", f"inertia = {_vec(s.inertia)}",
+           f"velocity = {_vec(s.velocity)}", f"angular_velocity = {_vec(s.angular_velocity)}"]
+    for c in s.contacts:
+        out += ["[[contact]]", f"point = {_vec(c.point)}", f"normal = {_vec(c.normal)}"]
+        if c.k_newton == c.k_poisson:
+            out.append(f"k = {_num(c.k_newton)}")
+        else:
+            out += [f"k_newton = {_num(c.k_newton)}", f"k_poisson = {_num(c.k_poisson)}"]
+    out += ["[solve]", 'models = ["newton", "poisson"]', ""]
+    return "\n".join(out)
+
+
+def example3(name, desc, velocity, k1, k2) -> Scene:
+    """Example 3 of the paper: the planar bar on two supports."""
+    return Scene(name, desc, F(1), (F(12), F(8, 5), F(12)), velocity, (F(0), F(0), F(2, 5)), [
+        Contact((F(0), F(-2), F(0)), (F(1), F(0), F(0)), k1, k1),
+        Contact((F(0), F(4), F(0)), (F(1), F(0), F(0)), k2, k2),
+    ])
+
+
+# Rational unit vectors from Pythagorean quadruples a^2 + b^2 + c^2 = d^2.
+_QUADRUPLES = [(1, 2, 2, 3), (2, 3, 6, 7), (1, 4, 8, 9), (4, 4, 7, 9), (2, 6, 9, 11),
+               (6, 6, 7, 11), (3, 4, 12, 13), (2, 10, 11, 15), (1, 12, 12, 17), (8, 9, 12, 17)]
+
+
+def _unit(rng: random.Random) -> tuple:
+    a, b, c, d = rng.choice(_QUADRUPLES)
+    comps = [a, b, c]
+    rng.shuffle(comps)
+    return tuple(F(x * rng.choice((-1, 1)), d) for x in comps)
+
+
+def _rat(rng, lo, hi, den):
+    return F(rng.randint(lo * den, hi * den), den)
+
+
+def random_scene(rng: random.Random, idx: int) -> Scene:
+    """A random well-conditioned 3-D two-contact scene with one restitution coefficient.
+
+    Rejection sampling until: both contacts approach (v_ix^0 > 0, eq. 74), both Newton impulses are
+    compressive (P_i > 0, eq. 73), and cond_2(G) <= 50.  Inertia is that of a solid box a x b x c,
+    so the moments are physical (triangle inequalities)."""
+    while True:
+        m = _rat(rng, 1, 3, 4)
+        a, b, c = (_rat(rng, 1, 3, 4) for _ in range(3))
+        if min(a, b, c) <= 0:
+            continue
+        inertia = (m * (b * b + c * c) / 12, m * (a * a + c * c) / 12, m * (a * a + b * b) / 12)
+        vel = tuple(_rat(rng, -3, 3, 4) for _ in range(3))
+        omg = tuple(_rat(rng, -1, 1, 4) for _ in range(3))
+        k = F(rng.randint(0, 10), 10)
+        contacts = [Contact(tuple(_rat(rng, -2, 2, 4) for _ in range(3)), _unit(rng), k, k)
+                    for _ in range(2)]
+        s = Scene(f"random-{idx}", f"random 3-D scene {idx}, k = {k}", m, inertia, vel, omg, contacts)
+        ex = sympy_solve(SympyInputs(s))
+        v0 = ex["v0"]
+        G = np.array(ex["G"].tolist(), dtype=float)
+        if min(v0) <= 0 or min(ex["newton"]["impulses"]) <= 0 or np.linalg.cond(G) > 50:
+            continue
+        return s
+
+
+def build_scenes(seed: int, n_random: int) -> list:
+    scenes = [
+        example3("example-3", "Example 3 of the paper, k1 = 0.3, k2 = 0.2 (no Pinocchio impulseDynamics)",
+                 (F(3), F(2), F(0)), F(3, 10), F(1, 5)),
+        example3("example-3-equal-k", "Example 3 with k1 = k2 = 0.3",
+                 (F(3), F(2), F(0)), F(3, 10), F(3, 10)),
+        example3("example-3-no-slip", "Example 3, k = 0.3, v_C0 = (3, 0, 0): no tangential velocity",
+                 (F(3), F(0), F(0)), F(3, 10), F(3, 10)),
+    ]
+    rng = random.Random(seed)
+    scenes += [random_scene(rng, i + 1) for i in range(n_random)]
+    return scenes
+
+
+# ----------------------------------------------------------------------------------------------
+# Results in one shape: {"G", "det", "newton": {...}, "poisson": {...}}
+# ----------------------------------------------------------------------------------------------
+
+QUANTITIES = ("impulses", "velocity", "angular_velocity", "lost_velocity_energy", "kinetic_energy_loss")
+
+
+def from_inertance(j: dict, conv) -> dict:
+    out = {"G": [[conv(x) for x in row] for row in j["inertance"]], "det": conv(j["det"])}
+    for model in ("newton", "poisson"):
+        mj = j["models"][model]
+        r = {q: (conv(mj[q]) if not isinstance(mj[q], list) else [conv(x) for x in mj[q]])
+             for q in QUANTITIES}
+        if model == "poisson":
+            r["compression_impulses"] = [conv(x) for x in mj["compression_impulses"]]
+        out[model] = r
+    return out
+
+
+# ----------------------------------------------------------------------------------------------
+# Peer 1: numpy closed form (eq. 57 for G, eq. 8 for v_ix^0, eq. 20/22/23 by Cramer, eq. 24, 28, 32)
+# ----------------------------------------------------------------------------------------------
+
+
+class NumpyInputs:
+    def __init__(self, s: Scene):
+        self.m = float(s.mass)
+        self.J = np.array([float(x) for x in s.inertia])
+        self.vC = np.array([float(x) for x in s.velocity])
+        self.w = np.array([float(x) for x in s.angular_velocity])
+        self.R = np.array([[float(x) for x in c.point] for c in s.contacts])
+        self.Nraw = np.array([[float(x) for x in c.normal] for c in s.contacts])
+        self.kN = np.array([float(c.k_newton) for c in s.contacts])
+        self.kP = np.array([float(c.k_poisson) for c in s.contacts])
+
+
+_ROT1, _ROT2 = np.array([1, 2, 0]), np.array([2, 0, 1])
+
+
+def numpy_solve(x: NumpyInputs) -> dict:
+    m, J, vC, w = x.m, x.J, x.vC, x.w
+    N = x.Nraw / np.sqrt((x.Nraw * x.Nraw).sum(axis=1))[:, None]  # x_i: (a, b, c), eq. 2
+    R = x.R
+    # (d, e, f) = S_i x_i = A_i x x_i (eq. 3-4), written out: np.cross costs ~20 us on 2x3 arrays
+    D = R.take(_ROT1, 1) * N.take(_ROT2, 1) - R.take(_ROT2, 1) * N.take(_ROT1, 1)
+    G = N @ N.T / m + (D / J) @ D.T  # eq. 57
+    v0 = N @ vC + D @ w  # v_ix^0, eq. 8
+    det = G[0, 0] * G[1, 1] - G[0, 1] * G[1, 0]
+
+    def cramer(b):  # eq. 20 / 22
+        return np.array([(b[0] * G[1, 1] - G[0, 1] * b[1]) / det,
+                         (G[0, 0] * b[1] - b[0] * G[1, 0]) / det])
+
+    T0 = 0.5 * (m * (vC @ vC) + J @ (w * w))
+
+    def after(P):
+        dv = -(P @ N) / m  # eq. 24, translational part of M^-1 E_ix
+        dw = -(P @ D) / J  # eq. 24, rotational part
+        v1, w1 = vC + dv, w + dw
+        Ep = 0.5 * (m * (dv @ dv) + J @ (dw * dw))  # eq. 28
+        dEc = T0 - 0.5 * (m * (v1 @ v1) + J @ (w1 * w1))  # eq. 32
+        return {"impulses": P, "velocity": v1, "angular_velocity": w1,
+                "lost_velocity_energy": Ep, "kinetic_energy_loss": dEc}
+
+    PN = cramer((1.0 + x.kN) * v0)  # Newton, eq. 15, 20
+    PC = cramer(v0)  # Poisson compression, eq. 21-22
+    poisson = after((1.0 + x.kP) * PC)  # eq. 23
+    poisson["compression_impulses"] = PC
+    return {"G": G, "det": det, "newton": after(PN), "poisson": poisson}
+
+
+# ----------------------------------------------------------------------------------------------
+# Peer 2: SymPy, exact rationals (same equations, general LU solve instead of Cramer)
+# ----------------------------------------------------------------------------------------------
+
+
+class SympyInputs:
+    def __init__(self, s: Scene):
+        R = lambda x: sp.Rational(x.numerator, x.denominator)  # noqa: E731
+        self.m = R(s.mass)
+        self.J = [R(x) for x in s.inertia]
+        self.vC = sp.Matrix([R(x) for x in s.velocity])
+        self.w = sp.Matrix([R(x) for x in s.angular_velocity])
+        self.pts = [sp.Matrix([R(x) for x in c.point]) for c in s.contacts]
+        self.nrm = [sp.Matrix([R(x) for x in c.normal]) for c in s.contacts]
+        self.kN = [R(c.k_newton) for c in s.contacts]
+        self.kP = [R(c.k_poisson) for c in s.contacts]
+
+
+def sympy_solve(x: SympyInputs) -> dict:
+    m, J, vC, w = x.m, x.J, x.vC, x.w
+    n = len(x.pts)
+    X = [nr / sp.sqrt(nr.dot(nr)) for nr in x.nrm]  # exact; a rational unit normal stays rational
+    D = [p.cross(a) for p, a in zip(x.pts, X)]
+    Jinv = sp.diag(*[1 / j for j in J])
+    Jd = sp.diag(*J)
+    G = sp.Matrix(n, n, lambda i, j: X[i].dot(X[j]) / m + (D[i].T * Jinv * D[j])[0])  # eq. 57
+    v0 = [X[i].dot(vC) + D[i].dot(w) for i in range(n)]  # eq. 8
+    T0 = (m * vC.dot(vC) + (w.T * Jd * w)[0]) / 2
+
+    def after(P):
+        dv = -sum((P[i] * X[i] for i in range(n)), sp.zeros(3, 1)) / m
+        dw = -Jinv * sum((P[i] * D[i] for i in range(n)), sp.zeros(3, 1))
+        v1, w1 = vC + dv, w + dw
+        Ep = (m * dv.dot(dv) + (dw.T * Jd * dw)[0]) / 2
+        dEc = T0 - (m * v1.dot(v1) + (w1.T * Jd * w1)[0]) / 2
+        return {"impulses": list(P), "velocity": list(v1), "angular_velocity": list(w1),
+                "lost_velocity_energy": Ep, "kinetic_energy_loss": dEc}
+
+    PN = G.LUsolve(sp.Matrix([(1 + x.kN[i]) * v0[i] for i in range(n)]))
+    PC = G.LUsolve(sp.Matrix(v0))
+    poisson = after([(1 + x.kP[i]) * PC[i] for i in range(n)])
+    poisson["compression_impulses"] = list(PC)
+    return {"G": G, "det": G.det(), "v0": v0, "X": X, "D": D,
+            "newton": after(list(PN)), "poisson": poisson}
+
+
+def sympy_no_slip(s: Scene, ex: dict) -> bool:
+    """True when Pinocchio's 3-D contacts reproduce the frictionless solution exactly: for the
+    frictionless (normal-only) Newton solution, every contact point's whole velocity after impact
+    is -k times its whole velocity before.  Then zero tangential impulses satisfy the 3-D contact
+    law, and since impulse dynamics is the M-metric projection onto that law (a unique velocity),
+    Pinocchio's CONTACT_3D answer is the frictionless one."""
+    if not s.equal_k:
+        return False
+    x = SympyInputs(s)
+    k = x.kN[0]
+    v1 = sp.Matrix(ex["newton"]["velocity"])
+    w1 = sp.Matrix(ex["newton"]["angular_velocity"])
+    for p in x.pts:
+        before = x.vC + x.w.cross(p)
+        after_ = v1 + w1.cross(p)
+        if after_ != -k * before:
+            return False
+    return True
+
+
+# ----------------------------------------------------------------------------------------------
+# Peer 3: Pinocchio.  Conventions (README.md, "Conventions"): the free-flyer velocity is
+# v = [v_C; omega] in the body frame (= the paper's Cxyz: the CoM is at the joint origin and the
+# principal axes are the joint axes); the paper's twist is eta v = [omega; v_C].  The row of the
+# normal-only constraint Jacobian of contact i is n_i^T J_frame,lin = [n_i; A_i x n_i]^T, i.e.
+# the paper's {E_ix} read in [force; moment] order, so G = J M^-1 J^T (Delassus matrix) and
+# Pinocchio's impulse lambda = -P (M dv = J^T lambda vs. M dv = -sum P_i E_ix).
+# ----------------------------------------------------------------------------------------------
+
+
+class PinScene:
+    def __init__(self, s: Scene):
+        x = NumpyInputs(s)
+        model = pin.Model()
+        jid = model.addJoint(0, pin.JointModelFreeFlyer(), pin.SE3.Identity(), "body")
+        model.appendBodyToJoint(jid, pin.Inertia(x.m, np.zeros(3), np.diag(x.J)), pin.SE3.Identity())
+        self.fids = [model.addFrame(pin.Frame(f"A{i + 1}", jid, pin.SE3(np.eye(3), x.R[i]),
+                                              pin.FrameType.OP_FRAME)) for i in range(len(x.R))]
+        self.model, self.data = model, model.createData()
+        self.q = pin.neutral(model)  # identity pose: world axes = body axes
+        self.v0 = np.concatenate([x.vC, x.w])  # Pinocchio order [v; omega]
+        self.N = x.Nraw / np.sqrt((x.Nraw * x.Nraw).sum(axis=1))[:, None]
+        self.kN, self.kP = x.kN, x.kP
+        self.e = float(s.k) if s.equal_k else None
+        M = pin.crba(model, self.data, self.q)
+        assert np.array_equal(M, M.T), "crba returned a non-symmetric M"
+        # RigidConstraintModel path (3-D point contacts), set up once
+        self.cms = pin.StdVec_RigidConstraintModel()
+        for r in x.R:
+            self.cms.append(pin.RigidConstraintModel(pin.ContactType.CONTACT_3D, model, jid,
+                                                     pin.SE3(np.eye(3), r), pin.ReferenceFrame.LOCAL))
+        self.cds = pin.StdVec_RigidConstraintData()
+        for cm in self.cms:
+            self.cds.append(cm.createData())
+        pin.initConstraintDynamics(model, self.data, self.cms, self.cds)
+        self.prox = pin.ProximalSettings(1e-14, 1e-14, PROX_MU, 100)
+
+    def normal_jacobian(self) -> np.ndarray:
+        """Rows n_i^T J_lin(A_i): the normal velocity of each contact point, from Pinocchio's
+        kinematics (computeJointJacobians + getFrameJacobian, LOCAL frame = body axes)."""
+        pin.computeJointJacobians(self.model, self.data, self.q)
+        return np.array([n @ pin.getFrameJacobian(self.model, self.data, f, pin.ReferenceFrame.LOCAL)[:3]
+                         for f, n in zip(self.fids, self.N)])
+
+    def _outputs(self, M, v_after, P) -> dict:
+        dv = v_after - self.v0
+        Ep = 0.5 * dv @ M @ dv  # eq. 28 (M is Pinocchio's [v; omega] mass matrix)
+        dEc = 0.5 * (self.v0 @ M @ self.v0 - v_after @ M @ v_after)  # eq. 32
+        return {"impulses": P, "velocity": v_after[:3], "angular_velocity": v_after[3:],
+                "lost_velocity_energy": Ep, "kinetic_energy_loss": dEc}
+
+    def impulse_dynamics(self) -> dict:
+        """pin.impulseDynamics(model, data, q, v_before, J, r_coeff, damping=0): Newton's law
+        J v+ = -e J v- with the normal-only Jacobian; internally crba + Cholesky of J M^-1 J^T."""
+        Jn = self.normal_jacobian()
+        v_after = pin.impulseDynamics(self.model, self.data, self.q, self.v0, Jn, self.e, 0.0)
+        P = -self.data.impulse_c
+        r = self._outputs(self.data.M, v_after, P)
+        return {"newton": r, "poisson": r}  # equal coefficients: Poisson = Newton (eq. 50-55)
+
+    def impulse_dynamics_call(self, Jn) -> np.ndarray:
+        """The bare impulseDynamics call with a precomputed Jacobian (timing floor)."""
+        return pin.impulseDynamics(self.model, self.data, self.q, self.v0, Jn, self.e, 0.0)
+
+    def contact3d(self) -> dict:
+        """impulseDynamics with RigidConstraintModel CONTACT_3D at each point (the whole point
+        velocity obeys v+ = -e v-); valid only for scenes that pass sympy_no_slip."""
+        v_after = pin.impulseDynamics(self.model, self.data, self.q, self.v0, self.cms, self.cds,
+                                      self.e, self.prox)
+        lam = self.data.impulse_c.reshape(-1, 3)  # per contact, body axes (LOCAL, identity rotation)
+        P = -np.einsum("ij,ij->i", lam, self.N)
+        tang = lam + P[:, None] * self.N  # tangential part of each contact impulse
+        r = self._outputs(self.data.M, v_after, P)
+        r["tangential_impulse"] = float(np.abs(tang).max())
+        return {"newton": r, "poisson": r}
+
+    def algebra(self) -> dict:
+        """Pinocchio's algebra, our solve: M = crba, J = normal rows of the frame Jacobians,
+        G = J M^-1 J^T, then Newton and Poisson with a coefficient per contact."""
+        M = pin.crba(self.model, self.data, self.q)
+        Jn = self.normal_jacobian()
+        MinvJt = np.linalg.solve(M, Jn.T)
+        G = Jn @ MinvJt
+        v0n = Jn @ self.v0
+        sol = np.linalg.solve(G, np.column_stack(((1.0 + self.kN) * v0n, v0n)))  # Newton | Poisson c.
+        PN, PC = sol[:, 0], sol[:, 1]
+        PP = (1.0 + self.kP) * PC
+        out = {"G": G, "det": np.linalg.det(G)}
+        for name, P in (("newton", PN), ("poisson", PP)):
+            out[name] = self._outputs(M, self.v0 - MinvJt @ P, P)
+        out["poisson"]["compression_impulses"] = PC
+        return out
+
+
+# ----------------------------------------------------------------------------------------------
+# Agreement
+# ----------------------------------------------------------------------------------------------
+
+
+def compare_f64(peer: dict, ref: dict, T0: float, models=("newton", "poisson"), with_G=True) -> float:
+    """Largest relative difference: vectors normwise (inf-norm, relative to the reference's norm),
+    E_p relative to itself, Delta E_c relative to T0 (it is a difference of kinetic energies)."""
+    worst = 0.0
+
+    def rel(a, b, scale=None):
+        a, b = np.atleast_1d(np.asarray(a, float)), np.atleast_1d(np.asarray(b, float))
+        s = scale if scale is not None else max(np.abs(b).max(), 1e-300)
+        return float(np.abs(a - b).max() / s)
+
+    if with_G and "G" in peer:
+        worst = max(worst, rel(peer["G"], ref["G"]), rel(peer["det"], ref["det"]))
+    for m in models:
+        p, r = peer[m], ref[m]
+        for q in ("impulses", "velocity", "angular_velocity", "lost_velocity_energy"):
+            worst = max(worst, rel(p[q], r[q]))
+        worst = max(worst, rel(p["kinetic_energy_loss"], r["kinetic_energy_loss"], T0))
+        if "compression_impulses" in p:
+            worst = max(worst, rel(p["compression_impulses"], r["compression_impulses"]))
+    return worst
+
+
+def compare_exact(peer: dict, ref: dict) -> list:
+    """Exact equality of every value; returns the list of mismatching keys."""
+    bad = []
+
+    def eq(a, b):
+        return sp.Rational(a) == b if isinstance(a, sp.Rational) and isinstance(b, sp.Rational) \
+            else sp.simplify(a - b) == 0
+
+    if not all(eq(a, b) for a, b in zip(list(peer["G"]), [x for row in ref["G"] for x in row])):
+        bad.append("G")
+    if not eq(peer["det"], ref["det"]):
+        bad.append("det")
+    for m in ("newton", "poisson"):
+        for q, v in ref[m].items():
+            pv = peer[m][q]
+            ok = all(eq(a, b) for a, b in zip(pv, v)) if isinstance(v, list) else eq(pv, v)
+            if not ok:
+                bad.append(f"{m}.{q}")
+    return bad
+
+
+# ----------------------------------------------------------------------------------------------
+# inertance: binary, solve, bench
+# ----------------------------------------------------------------------------------------------
+
+
+def inertance_bin(path: str | None, rebuild: bool) -> Path:
+    b = Path(path) if path else REPO / "target" / "release" / "inertance"
+    if rebuild or not b.exists():
+        if path:
+            sys.exit(f"error: {b} does not exist")
+        print(f"building {b} (cargo build --release) ...", file=sys.stderr, flush=True)
+        subprocess.run(["cargo", "build", "--release"], cwd=REPO, check=True)
+    return b
+
+
+def run_json(cmd: list) -> dict:
+    p = subprocess.run([str(c) for c in cmd], capture_output=True, text=True)
+    if p.returncode != 0:
+        raise RuntimeError(f"{' '.join(map(str, cmd))} exited {p.returncode}: {p.stderr.strip()}")
+    return json.loads(p.stdout)
+
+
+def inertance_bench(binary: Path, scene_path: Path):
+    """ns per solve from `inertance bench --scene SCENE --json`, or (None, reason)."""
+    p = subprocess.run([str(binary), "bench", "--scene", str(scene_path), "--json"],
+                       capture_output=True, text=True)
+    if p.returncode != 0:
+        first = (p.stderr.strip().splitlines() or ["no output"])[0]
+        return None, f"`inertance bench` failed (exit {p.returncode}: {first})"
+    try:
+        ns = json.loads(p.stdout)["ns_per_solve"]
+    except (ValueError, KeyError) as e:
+        return None, f"`inertance bench` printed unexpected JSON ({e})"
+    return ns, None
+
+
+# ----------------------------------------------------------------------------------------------
+# Timing
+# ----------------------------------------------------------------------------------------------
+
+
+def time_per_call(fn, repeat: int, min_time: float) -> float:
+    """Median over `repeat` runs of the mean time per call; each run lasts >= min_time seconds
+    (timeit, garbage collection off).  Everything the callable needs is built beforehand."""
+    fn()  # warm-up
+    t = timeit.Timer(fn)
+    number = 1
+    while True:
+        if t.timeit(number) >= min_time:
+            break
+        number *= 2
+    return statistics.median(t.repeat(repeat=repeat, number=number)) / number
+
+
+def fmt_time(s: float | None) -> str:
+    if s is None:
+        return "—"
+    ns = s * 1e9
+    if ns < 1e3:
+        return f"{ns:.0f} ns"
+    if ns < 1e6:
+        return f"{ns / 1e3:.3g} µs"
+    if ns < 1e9:
+        return f"{ns / 1e6:.3g} ms"
+    return f"{ns / 1e9:.3g} s"
+
+
+def fmt_ratio(r: float | None) -> str:
+    if r is None:
+        return "—"
+    return f"{r:.3g}×" if r < 1000 else f"{r:,.0f}×"
+
+
+# ----------------------------------------------------------------------------------------------
+# Main
+# ----------------------------------------------------------------------------------------------
+
+
+def machine_info(binary: Path) -> list:
+    cpu = platform.processor() or "unknown"
+    try:
+        for line in Path("/proc/cpuinfo").read_text().splitlines():
+            if line.startswith("model name"):
+                cpu = line.split(":", 1)[1].strip()
+                break
+    except OSError:
+        pass
+    try:
+        ver = subprocess.run([str(binary), "--version"], capture_output=True, text=True).stdout.strip()
+    except OSError:
+        ver = "?"
+    return [
+        f"date      {datetime.datetime.now(datetime.timezone.utc).strftime('%Y-%m-%d %H:%M UTC')}",
+        f"machine   {platform.platform()}; {cpu}; {os.cpu_count()} logical CPUs",
+        f"python    {platform.python_version()} ({platform.python_implementation()})",
+        f"versions  pin {pin.__version__}, numpy {np.__version__}, sympy {sp.__version__}; {ver}",
+        f"binary    {binary}",
+        "load      1-min load average {:.2f} at start (other work on the machine disturbs timings)".format(
+            os.getloadavg()[0]) if hasattr(os, "getloadavg") else "load      unknown",
+    ]
+
+
+METHODS = [
+    # key, label, reference ("f64" or "exact")
+    ("numpy", "numpy closed form (eq. 57, 20, 24)", "f64"),
+    ("pin_id", "pinocchio impulseDynamics, normal J", "f64"),
+    ("pin_id_call", "  … the impulseDynamics call alone", "f64"),
+    ("pin_alg", "pinocchio crba+Jacobians, numpy solve", "f64"),
+    ("pin_3d", "pinocchio impulseDynamics, CONTACT_3D", "f64"),
+    ("sympy", "sympy exact (Rational, LUsolve)", "exact"),
+]
+
+
+def main() -> int:
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--seed", type=int, default=1924, help="seed of the random scenes (default 1924)")
+    ap.add_argument("--random", type=int, default=4, help="number of random scenes (default 4)")
+    ap.add_argument("--repeat", type=int, default=7, help="timing runs per method (median; default 7)")
+    ap.add_argument("--min-time", type=float, default=0.2, help="seconds per timing run (default 0.2)")
+    ap.add_argument("--inertance", help="path to the inertance binary (default target/release/inertance)")
+    ap.add_argument("--rebuild", action="store_true", help="run `cargo build --release` first")
+    ap.add_argument("--keep", help="write the scene TOML files to this directory and keep them")
+    args = ap.parse_args()
+
+    binary = inertance_bin(args.inertance, args.rebuild)
+    print("inertance peer comparison (benches/peers/compare.py)")
+    for line in machine_info(binary):
+        print("  " + line)
+    print(f"  timing    median of {args.repeat} runs of >= {args.min_time} s each (timeit, gc off); "
+          f"agreement: f64 peers within {RTOL:g} relative of inertance f64, sympy == inertance --exact")
+    print()
+
+    scenes = build_scenes(args.seed, args.random)
+    tmp = tempfile.TemporaryDirectory(prefix="inertance-peers-")
+    outdir = Path(args.keep) if args.keep else Path(tmp.name)
+    outdir.mkdir(parents=True, exist_ok=True)
+
+    all_ok = True
+    bench_reason = None
+    ratios = {key: {"f64": [], "exact": []} for key, _, _ in METHODS}
+    times = {key: [] for key, _, _ in METHODS}
+    inert_times = {"f64": [], "exact": []}
+
+    for s in scenes:
+        path = outdir / f"{s.name}.toml"
+        path.write_text(scene_toml(s))
+        ref64 = from_inertance(run_json([binary, "solve", path, "--json"]), float)
+        refex = from_inertance(run_json([binary, "solve", path, "--json", "--exact"]), sp.sympify)
+        ns, why = inertance_bench(binary, path)
+        if ns is None:
+            bench_reason = why
+
+        xs, xn, ps = SympyInputs(s), NumpyInputs(s), PinScene(s)
+        ex = sympy_solve(xs)
+        T0 = float((xs.m * xs.vC.dot(xs.vC) + sum(j * wi * wi for j, wi in zip(xs.J, xs.w))) / 2)
+        G = np.array(ex["G"].tolist(), dtype=float)
+        no_slip = sympy_no_slip(s, ex)
+
+        # -- agreement --------------------------------------------------------------------------
+        agree, runners = {}, {}
+        agree["numpy"] = f"{compare_f64(numpy_solve(xn), ref64, T0):.1e}"
+        runners["numpy"] = lambda xn=xn: numpy_solve(xn)
+        agree["pin_alg"] = f"{compare_f64(ps.algebra(), ref64, T0):.1e}"
+        runners["pin_alg"] = ps.algebra
+        if s.equal_k:
+            agree["pin_id"] = f"{compare_f64(ps.impulse_dynamics(), ref64, T0, with_G=False):.1e}"
+            runners["pin_id"] = ps.impulse_dynamics
+            Jn = ps.normal_jacobian()
+            agree["pin_id_call"] = "(same)"
+            runners["pin_id_call"] = lambda ps=ps, Jn=Jn: ps.impulse_dynamics_call(Jn)
+        if no_slip:
+            r3 = ps.contact3d()
+            d = compare_f64(r3, ref64, T0, with_G=False)
+            tang = r3["newton"]["tangential_impulse"] / max(np.abs(r3["newton"]["impulses"]).max(), 1e-300)
+            agree["pin_3d"] = f"{max(d, tang):.1e}"
+            runners["pin_3d"] = ps.contact3d
+        bad = compare_exact(ex, refex)
+        agree["sympy"] = "exact ==" if not bad else "DIFFERS: " + ", ".join(bad)
+        runners["sympy"] = lambda xs=xs: sympy_solve(xs)
+
+        failed = [k for k, v in agree.items()
+                  if (k == "sympy" and bad) or (k != "sympy" and v != "(same)" and float(v) > RTOL)]
+        all_ok &= not failed
+
+        # -- timing -----------------------------------------------------------------------------
+        t_f64 = ns["f64"] * 1e-9 if ns and ns.get("f64") is not None else None
+        t_ex = ns["exact"] * 1e-9 if ns and ns.get("exact") is not None else None
+        if t_f64:
+            inert_times["f64"].append(t_f64)
+        if t_ex:
+            inert_times["exact"].append(t_ex)
+
+        ks = ", ".join(str(c.k_newton) if c.k_newton == c.k_poisson else f"{c.k_newton}/{c.k_poisson}"
+                       for c in s.contacts)
+        print(f"── {s.name}: {s.description}")
+        print(f"   m = {s.mass}, J = ({', '.join(map(str, s.inertia))}), k = ({ks}), "
+              f"cond₂(G) = {np.linalg.cond(G):.3g}, Δ = {ex['det']}")
+        hdr = f"   {'method':<40} {'time/solve':>11} {'÷ inert. f64':>15} {'÷ inert. exact':>15}  agreement"
+        print(hdr)
+        print("   " + "─" * (len(hdr) - 3))
+        unavailable = "inertance timing unavailable"
+        if ns:
+            for key in ("f32", "f64", "double-double", "exact"):
+                if key in ns and ns[key] is not None:
+                    t = ns[key] * 1e-9
+                    print(f"   {'inertance ' + key + ' (bench)':<40} {fmt_time(t):>11} "
+                          f"{fmt_ratio(t / t_f64 if t_f64 else None):>15} "
+                          f"{fmt_ratio(t / t_ex if t_ex else None):>15}  (reference)")
+        else:
+            print(f"   {'inertance f64 / exact':<40} {unavailable}")
+        for key, label, _ in METHODS:
+            if key not in runners:
+                why_na = {"pin_id": "n/a: one r_coeff only, k differ",
+                          "pin_id_call": "n/a",
+                          "pin_3d": "n/a: 3-D contacts would also stop sliding"}[key]
+                print(f"   {label:<40} {'—':>11} {'—':>15} {'—':>15}  {why_na}")
+                continue
+            t = time_per_call(runners[key], args.repeat if key != "sympy" else max(3, args.repeat // 2),
+                              args.min_time)
+            times[key].append(t)
+            if ns:
+                r64 = t / t_f64 if t_f64 else None
+                rex = t / t_ex if t_ex else None
+                if r64:
+                    ratios[key]["f64"].append(r64)
+                if rex:
+                    ratios[key]["exact"].append(rex)
+                cols = f"{fmt_ratio(r64):>15} {fmt_ratio(rex):>15}"
+            else:
+                cols = f"{unavailable:>31}"
+            flag = "  ✗ FAIL" if key in failed else ""
+            print(f"   {label:<40} {fmt_time(t):>11} {cols}  {agree[key]}{flag}")
+        print()
+
+    # -- summary ----------------------------------------------------------------------------------
+    def gmean(v):
+        return math.exp(sum(math.log(x) for x in v) / len(v)) if v else None
+
+    print(f"── summary over {len(scenes)} scenes (geometric means; a peer's mean is over the scenes it solves)")
+    hdr = f"   {'method':<40} {'scenes':>6} {'time/solve':>11} {'÷ inert. f64':>15} {'÷ inert. exact':>15}"
+    print(hdr)
+    print("   " + "─" * (len(hdr) - 3))
+    if inert_times["f64"]:
+        print(f"   {'inertance f64 (bench)':<40} {len(inert_times['f64']):>6} "
+              f"{fmt_time(gmean(inert_times['f64'])):>11}")
+    if inert_times["exact"]:
+        print(f"   {'inertance exact (bench)':<40} {len(inert_times['exact']):>6} "
+              f"{fmt_time(gmean(inert_times['exact'])):>11}")
+    for key, label, _ in METHODS:
+        if not times[key]:
+            continue
+        if bench_reason is None:
+            cols = f"{fmt_ratio(gmean(ratios[key]['f64'])):>15} {fmt_ratio(gmean(ratios[key]['exact'])):>15}"
+        else:
+            cols = "  inertance timing unavailable"
+        print(f"   {label:<40} {len(times[key]):>6} {fmt_time(gmean(times[key])):>11} {cols}")
+    print()
+    if bench_reason:
+        print(f"inertance timing unavailable: {bench_reason}; peers were timed, ratios were not.")
+    print("agreement: " + ("every peer agrees with inertance" if all_ok else "SOME PEER DISAGREES (see ✗)"))
+    if args.keep:
+        print(f"scenes kept in {outdir}")
+    tmp.cleanup()
+    return 0 if all_ok else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())
