@@ -171,7 +171,9 @@ fn closed_form(
 
 /// A scene with `n` contacts spread over a box (deterministic), as TOML.
 fn many_contacts(n: usize) -> String {
-    let mut t = String::from("[body]\nmass = 5\ninertia = [1.5, 2, 2.5]\nvelocity = [1, -0.5, 0.25]\nangular_velocity = [0.3, 0.2, -0.1]\n");
+    let mut t = String::from(
+        "[body]\nmass = 5\ninertia = [1.5, 2, 2.5]\nvelocity = [1, -0.5, 0.25]\nangular_velocity = [0.3, 0.2, -0.1]\n",
+    );
     for i in 0..n {
         let f = i as f64;
         t += &format!(
@@ -217,7 +219,9 @@ fn bench_contacts<T: Scalar>(c: &mut Criterion, n: usize) {
     let p = scene.problem::<T>().unwrap();
     if n <= 6 {
         let (mut impact, mut a, mut b) = (Impact::new(), Outcome::default(), Outcome::default());
-        c.bench_function(&format!("contacts-{n}/solve/{}", T::NAME), |bch| bch.iter(|| solve_both(black_box(&p), &mut impact, &mut a, &mut b)));
+        c.bench_function(&format!("contacts-{n}/solve/{}", T::NAME), |bch| {
+            bch.iter(|| solve_both(black_box(&p), &mut impact, &mut a, &mut b))
+        });
     } else {
         c.bench_function(&format!("contacts-{n}/analyze/{}", T::NAME), |bch| {
             bch.iter(|| {
@@ -246,13 +250,19 @@ fn bench_constrained<T: Scalar>(c: &mut Criterion) {
 fn benches(c: &mut Criterion) {
     let scene = Scene::parse(EXAMPLE_3, "example 3").unwrap();
     let (x, yy) = ([1.0, 0.0, 0.0], [0.0, 1.0, 0.0]);
-    c.bench_function("example3/closed-form-f64", |b| b.iter(|| black_box(baseline(x, yy))));
+    c.bench_function("example3/closed-form-f64", |b| {
+        b.iter(|| black_box(baseline(x, yy)))
+    });
     bench_scalar::<f32>(c, &scene);
     bench_scalar::<f64>(c, &scene);
     bench_scalar::<DoubleDouble>(c, &scene);
     bench_scalar::<Exact>(c, &scene);
-    c.bench_function("example3/parse-scene", |b| b.iter(|| Scene::parse(black_box(EXAMPLE_3), "example 3").unwrap()));
-    c.bench_function("example3/build-problem-f64", |b| b.iter(|| black_box(&scene).problem::<f64>().unwrap()));
+    c.bench_function("example3/parse-scene", |b| {
+        b.iter(|| Scene::parse(black_box(EXAMPLE_3), "example 3").unwrap())
+    });
+    c.bench_function("example3/build-problem-f64", |b| {
+        b.iter(|| black_box(&scene).problem::<f64>().unwrap())
+    });
     for n in [3, 6, 12, 24] {
         bench_contacts::<f64>(c, n);
         bench_contacts::<DoubleDouble>(c, n);
@@ -264,14 +274,39 @@ fn benches(c: &mut Criterion) {
     bench_constrained::<Exact>(c);
     // A batch: 256 different scenes solved one after another, buffers reused.
     let batch: Vec<Problem<f64>> = (0..256)
-        .map(|i| Scene::parse(&EXAMPLE_3.replace("k = 0.3", &format!("k = 0.{}", i % 10)).replace("[3, 2, 0]", &format!("[3, {}, 0]", i % 7)), "batch").unwrap().problem::<f64>().unwrap())
+        .map(|i| {
+            Scene::parse(
+                &EXAMPLE_3
+                    .replace("k = 0.3", &format!("k = 0.{}", i % 10))
+                    .replace("[3, 2, 0]", &format!("[3, {}, 0]", i % 7)),
+                "batch",
+            )
+            .unwrap()
+            .problem::<f64>()
+            .unwrap()
+        })
         .collect();
     let (mut impact, mut n, mut q) = (Impact::new(), Outcome::default(), Outcome::default());
-    c.bench_function("batch-256/f64", |b| b.iter(|| for p in &batch { solve_both(black_box(p), &mut impact, &mut n, &mut q) }));
+    c.bench_function("batch-256/f64", |b| {
+        b.iter(|| {
+            for p in &batch {
+                solve_both(black_box(p), &mut impact, &mut n, &mut q)
+            }
+        })
+    });
 }
 
 fn baseline(x: [f64; 3], yy: [f64; 3]) -> [f64; 48] {
-    closed_form(black_box(1.0), [12.0, 1.6, 12.0], [0.0, 0.0, 0.4], [3.0, 2.0, 0.0], [[0.0, -2.0, 0.0], [0.0, 4.0, 0.0]], [x, x], [yy, yy], [0.3, 0.2])
+    closed_form(
+        black_box(1.0),
+        [12.0, 1.6, 12.0],
+        [0.0, 0.0, 0.4],
+        [3.0, 2.0, 0.0],
+        [[0.0, -2.0, 0.0], [0.0, 4.0, 0.0]],
+        [x, x],
+        [yy, yy],
+        [0.3, 0.2],
+    )
 }
 
 /// generic f64 / hand-written baseline on Example 3, timed back to back in this run.
@@ -301,5 +336,8 @@ fn main() {
     let mut c = Criterion::default().configure_from_args();
     benches(&mut c);
     c.final_summary();
-    println!("\ngeneric f64 solve / hand-written closed form (Example 3, every output): {:.2}×", ratio());
+    println!(
+        "\ngeneric f64 solve / hand-written closed form (Example 3, every output): {:.2}×",
+        ratio()
+    );
 }

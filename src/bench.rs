@@ -309,7 +309,13 @@ pub fn run(opts: &BenchOptions) -> BenchReport {
             .filter(|f| f.extension().is_some_and(|x| x == "toml"))
         {
             // The bench times the free-body solve; constrained hard cases stay in the tests.
-            if let Ok(scene) = Scene::load(f).map_err(|_| ()).and_then(|s| if s.constraints.is_some() { Err(()) } else { Ok(s) }) {
+            if let Ok(scene) = Scene::load(f).map_err(|_| ()).and_then(|s| {
+                if s.constraints.is_some() {
+                    Err(())
+                } else {
+                    Ok(s)
+                }
+            }) {
                 if let Some(e) = exact_of(&scene) {
                     hard.push((scene, e));
                 }
@@ -488,40 +494,45 @@ impl BenchReport {
             let root = SVGBackend::new(&tmp, (1100, 480)).into_drawing_area();
             root.fill(&WHITE)?;
             let (left, right) = root.split_horizontally(560);
-            let floor = 1e-35f64;
+            // Exponents on linear axes, labelled as powers of ten: plotters' log axes stop
+            // labelling long before 10⁻³⁵, where the double-double and exact points sit.
+            let floor = -35f64;
             let tmax = self
                 .rows
                 .iter()
                 .map(|r| r.median_ns)
                 .filter(|x| x.is_finite())
-                .fold(1.0, f64::max)
-                * 10.0;
+                .fold(10.0, f64::max)
+                .log10()
+                .ceil()
+                + 1.0;
             let mut chart = ChartBuilder::on(&left)
                 .caption("accuracy vs time per solve", ("sans-serif", 18))
                 .margin(12)
                 .x_label_area_size(40)
                 .y_label_area_size(60)
-                .build_cartesian_2d((10f64..tmax).log_scale(), (floor..1f64).log_scale())?;
+                .build_cartesian_2d(1f64..tmax, floor..0f64)?;
             chart
                 .configure_mesh()
                 .x_desc("median time per solve [ns]")
                 .y_desc("relative error (median ●, max ▲)")
-                .x_label_formatter(&|x| format!("{x:.0e}"))
-                .y_label_formatter(&|y| format!("{y:.0e}"))
-                .y_labels(12)
+                .x_label_formatter(&|x| format!("1e{x:.0}"))
+                .y_label_formatter(&|y| format!("1e{y:.0}"))
+                .x_labels(8)
+                .y_labels(8)
                 .draw()?;
             let colors = [RED, BLUE, GREEN, BLACK];
             for (r, c) in self.rows.iter().zip(colors) {
                 let y = |e: f64| {
                     if e > 0.0 && e.is_finite() {
-                        e.max(floor)
+                        e.log10().max(floor)
                     } else if e == 0.0 {
                         floor
                     } else {
-                        1.0
+                        0.0
                     }
                 };
-                let (x, med, max) = (r.median_ns, y(r.median_error), y(r.max_error));
+                let (x, med, max) = (r.median_ns.log10(), y(r.median_error), y(r.max_error));
                 if !x.is_finite() {
                     continue;
                 }
@@ -534,7 +545,7 @@ impl BenchReport {
                 chart
                     .draw_series(std::iter::once(Circle::new((x, med), 6, c.filled())))?
                     .label(if r.median_error == 0.0 {
-                        format!("{} (error 0)", r.name)
+                        format!("{} (error 0, drawn at 1e-35)", r.name)
                     } else {
                         r.name.to_string()
                     })
