@@ -220,10 +220,8 @@ fn measure<T: Scalar>(
                 // Singular in this type (or a non-finite result): no usable answer at all.
                 None => errors.push(f64::INFINITY),
             }
-            if timed {
-                if let Some(t) = time_solve(&p, budget) {
-                    times.push(t);
-                }
+            if let Some(t) = timed.then(|| time_solve(&p, budget)).flatten() {
+                times.push(t);
             }
         }
         (times, errors)
@@ -309,16 +307,12 @@ pub fn run(opts: &BenchOptions) -> BenchReport {
             .filter(|f| f.extension().is_some_and(|x| x == "toml"))
         {
             // The bench times the free-body solve; constrained hard cases stay in the tests.
-            if let Ok(scene) = Scene::load(f).map_err(|_| ()).and_then(|s| {
-                if s.constraints.is_some() {
-                    Err(())
-                } else {
-                    Ok(s)
-                }
-            }) {
-                if let Some(e) = exact_of(&scene) {
-                    hard.push((scene, e));
-                }
+            let Ok(scene) = Scene::load(f) else { continue };
+            if scene.constraints.is_some() {
+                continue;
+            }
+            if let Some(e) = exact_of(&scene) {
+                hard.push((scene, e));
             }
         }
     }
