@@ -65,6 +65,7 @@ fn bench_scalar<T: Scalar>(c: &mut Criterion, scene: &Scene) {
 /// 32). Unit normals and tangents, as the paper writes them. This is the floor the generic
 /// f64 path is measured against.
 #[inline(never)]
+#[allow(clippy::too_many_arguments)] // the inputs of the problem, spelled out on purpose
 fn closed_form(
     m: f64,
     j: [f64; 3],
