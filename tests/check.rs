@@ -74,13 +74,29 @@ set contact[0].k = 1
 ```
 "#;
 
-fn scratch(name: &str, derivation: &str, errata: &str) -> PathBuf {
+/// A scratch derivations folder, removed when dropped.
+struct Scratch(PathBuf);
+
+impl std::ops::Deref for Scratch {
+    type Target = Path;
+    fn deref(&self) -> &Path {
+        &self.0
+    }
+}
+
+impl Drop for Scratch {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_dir_all(&self.0);
+    }
+}
+
+fn scratch(name: &str, derivation: &str, errata: &str) -> Scratch {
     let dir = std::env::temp_dir().join(format!("inertance-check-{}-{name}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
     std::fs::write(dir.join("ex.md"), derivation).unwrap();
     std::fs::write(dir.join("ERRATA.md"), errata).unwrap();
-    dir
+    Scratch(dir)
 }
 
 fn verdicts(dir: &Path) -> Vec<(String, Verdict)> {
@@ -113,7 +129,6 @@ fn a_wrong_printed_value_fails_unless_listed() {
         Verdict::KnownErratum("test: wrong on purpose".into())
     );
     assert_eq!(v[1].1, Verdict::KnownErratum("test".into()));
-    let _ = std::fs::remove_dir_all(dir);
 }
 
 #[test]
