@@ -173,13 +173,18 @@ fn main() -> ExitCode {
     }
 }
 
+/// Read a scene, or report why not (status 2).
+fn load(path: &std::path::Path) -> Result<Scene, ExitCode> {
+    Scene::load(path).map_err(|e| {
+        eprintln!("error: {e}");
+        ExitCode::from(2)
+    })
+}
+
 fn solve(path: PathBuf, exact: bool, model: Option<ModelArg>, json: bool) -> ExitCode {
-    let scene = match Scene::load(&path) {
+    let scene = match load(&path) {
         Ok(s) => s,
-        Err(e) => {
-            eprintln!("error: {e}");
-            return ExitCode::from(2);
-        }
+        Err(code) => return code,
     };
     let models = model.map(ModelArg::models);
     let solved = if exact {
@@ -222,12 +227,9 @@ fn solve(path: PathBuf, exact: bool, model: Option<ModelArg>, json: bool) -> Exi
 }
 
 fn run_analyze(path: PathBuf, exact: bool, model: Option<ModelArg>, json: bool) -> ExitCode {
-    let scene = match Scene::load(&path) {
+    let scene = match load(&path) {
         Ok(s) => s,
-        Err(e) => {
-            eprintln!("error: {e}");
-            return ExitCode::from(2);
-        }
+        Err(code) => return code,
     };
     let models = model.map(ModelArg::models);
     let report = if exact {
@@ -319,12 +321,9 @@ fn run_bench(
     hard_cases: PathBuf,
 ) -> ExitCode {
     if let Some(path) = scene {
-        let scene = match Scene::load(&path) {
+        let scene = match load(&path) {
             Ok(s) => s,
-            Err(e) => {
-                eprintln!("error: {e}");
-                return ExitCode::from(2);
-            }
+            Err(code) => return code,
         };
         let times = inertance::bench::time_scene(&scene, quick);
         if json {
