@@ -56,6 +56,9 @@ pub fn factor_psd<T: Scalar>(
             scale = a[i * n + i].clone();
         }
     }
+    if n == 2 {
+        return factor_2x2(a, perm, scale);
+    }
     for k in 0..n {
         // Diagonal pivoting: the largest remaining diagonal entry.
         let mut p = k;
@@ -114,6 +117,45 @@ pub fn factor_psd<T: Scalar>(
     Ok(Factorization { rank: n, scale })
 }
 
+/// The same factorization written out for N = 2, the paper's case (its general loop costs
+/// more in bookkeeping than in arithmetic there): pivot on the larger diagonal g_pp, then
+/// l = g_qp / g_pp and d_2 = g_qq − l·g_qp. Same decisions as the loop; tested against it.
+fn factor_2x2<T: Scalar>(
+    a: &mut [T],
+    perm: &mut [usize],
+    scale: T,
+) -> Result<Factorization<T>, NotSemidefinite> {
+    let (p, q) = if a[3].abs_gt(&a[0]) { (1, 0) } else { (0, 1) };
+    perm[0] = p;
+    perm[1] = q;
+    let (gpp, gqq, gqp) = (a[3 * p].clone(), a[3 * q].clone(), a[2 * q + p].clone());
+    if gpp.is_negligible(&scale, 2) {
+        // The larger diagonal is zero: a semidefinite matrix is then zero.
+        if !gqp.is_negligible(&scale, 2) || !gqq.is_negligible(&scale, 2) {
+            return Err(NotSemidefinite { index: 0 });
+        }
+        a.iter_mut().for_each(|x| *x = T::zero());
+        return Ok(Factorization { rank: 0, scale });
+    }
+    if gpp.signum_i8() < 0 {
+        return Err(NotSemidefinite { index: 0 });
+    }
+    let l = gqp.clone() / &gpp;
+    let d2 = gqq - l.clone() * &gqp;
+    let rank = if d2.is_negligible(&scale, 2) {
+        1
+    } else if d2.signum_i8() < 0 {
+        return Err(NotSemidefinite { index: 1 });
+    } else {
+        2
+    };
+    a[0] = gpp;
+    a[1] = gqp;
+    a[2] = l;
+    a[3] = if rank == 2 { d2 } else { T::zero() };
+    Ok(Factorization { rank, scale })
+}
+
 /// Swap rows and columns `k` and `p` of the symmetric matrix `a` (the part not yet factored,
 /// plus the rows of L computed so far).
 fn swap_symmetric<T: Scalar>(a: &mut [T], n: usize, k: usize, p: usize) {
@@ -128,6 +170,16 @@ fn swap_symmetric<T: Scalar>(a: &mut [T], n: usize, k: usize, p: usize) {
 /// Solve G x = b with a full-rank factorization from [`factor_psd`]. `b` is overwritten by x;
 /// `work` is scratch of length `n`.
 pub fn solve_factored<T: Scalar>(a: &[T], n: usize, perm: &[usize], b: &mut [T], work: &mut [T]) {
+    if n == 2 {
+        // L D Lᵀ y = Π b written out: y₁ = b_p/d₁ − l·y₂, y₂ = (b_q − l·b_p)/d₂.
+        let (p, q) = (perm[0], perm[1]);
+        let (d1, l, d2) = (&a[0], &a[2], &a[3]);
+        let y2 = (b[q].clone() - l.clone() * &b[p]) / d2;
+        let y1 = b[p].clone() / d1 - l.clone() * &y2;
+        b[p] = y1;
+        b[q] = y2;
+        return;
+    }
     // Π G Πᵀ (Π x) = Π b  ⇒  L D Lᵀ y = Π b,  x = Πᵀ y.
     for k in 0..n {
         work[k] = b[perm[k]].clone();
@@ -278,6 +330,44 @@ mod tests {
         assert_eq!(basis, vec![vec![q(3), q(-1), q(1)]]);
         let (rank, basis) = null_space(&[q(0), q(0)], 1, 2);
         assert_eq!((rank, basis.len()), (0, 2));
+    }
+
+    /// The written-out 2×2 factorization reconstructs Π G Πᵀ = L D Lᵀ and solves exactly,
+    /// also when singular.
+    #[test]
+    fn two_by_two_factorization_is_exact() {
+        for rows in [
+            [[1, 2, 0], [0, 1, 3]],
+            [[3, 0, 1], [1, 1, 1]],
+            [[0, 0, 1], [5, 1, 0]],
+            [[1, 2, 3], [2, 4, 6]],
+        ] {
+            let g = gram(&rows);
+            let mut f = g.clone();
+            let mut perm = [0; 2];
+            let fac = factor_psd(&mut f, 2, &mut perm).unwrap();
+            let (d1, l, d2) = (f[0].clone(), f[2].clone(), f[3].clone());
+            let pg = |i: usize, j: usize| g[perm[i] * 2 + perm[j]].clone();
+            assert_eq!(pg(0, 0), d1.clone());
+            assert_eq!(pg(1, 0), l.clone() * &d1);
+            assert_eq!(pg(1, 1), l.clone() * &l * &d1 + &d2);
+            assert_eq!(fac.rank, if d2.is_zero() { 1 } else { 2 });
+            assert_eq!(
+                determinant(&f, 2),
+                g[0].clone() * &g[3] - g[1].clone() * &g[2]
+            );
+            if fac.rank == 2 {
+                let x = [q(2), q(-7)];
+                let mut b = vec![
+                    g[0].clone() * &x[0] + g[1].clone() * &x[1],
+                    g[2].clone() * &x[0] + g[3].clone() * &x[1],
+                ];
+                solve_factored(&f, 2, &perm, &mut b, &mut [q(0), q(0)]);
+                assert_eq!(b, x.to_vec());
+            }
+        }
+        let mut zero = vec![q(0); 4];
+        assert_eq!(factor_psd(&mut zero, 2, &mut [0; 2]).unwrap().rank, 0);
     }
 
     #[test]

@@ -25,10 +25,11 @@ pub struct Screw<T: Scalar>(pub SVector<T, 6>);
 
 impl<T: Scalar> Screw<T> {
     /// The screw [top; bottom].
+    #[inline]
     pub fn new(top: Vec3<T>, bottom: Vec3<T>) -> Self {
-        Screw(SVector::<T, 6>::from_iterator(
-            top.iter().chain(bottom.iter()).cloned(),
-        ))
+        let [a, b, c] = <[T; 3]>::from(top);
+        let [d, e, f] = <[T; 3]>::from(bottom);
+        Screw(SVector::<T, 6>::new(a, b, c, d, e, f))
     }
 
     /// The zero screw.
@@ -37,6 +38,7 @@ impl<T: Scalar> Screw<T> {
     }
 
     /// The screw of the axis through `point` with direction `direction`: [u; r × u] (eq. 3–4).
+    #[inline]
     pub fn axis(point: &Vec3<T>, direction: &Vec3<T>) -> Self {
         Self::new(direction.clone(), point.cross(direction))
     }

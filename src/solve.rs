@@ -164,9 +164,9 @@ impl<T: Scalar> Impact<T> {
     ) -> Result<(), SolveError> {
         let n = problem.contacts.len();
         self.n = n;
-        self.frames.clear();
         self.before.clear();
         self.responses.clear();
+        self.frames.clear();
         for (i, c) in problem.contacts.iter().enumerate() {
             self.frames
                 .push(ContactFrame::new(i, c, &problem.velocity)?);
@@ -174,19 +174,17 @@ impl<T: Scalar> Impact<T> {
             self.before.push(f.velocity(&problem.velocity));
             self.responses.push(mobility.response(&f.axes[0]));
         }
-        resize(&mut self.g, n * n);
-        resize(&mut self.g_yx, n * n);
-        resize(&mut self.g_zx, n * n);
-        for i in 0..n {
-            for j in 0..n {
-                let r = &self.responses[j];
-                self.g[i * n + j] = self.frames[i].axes[0].reciprocal(r);
-                self.g_yx[i * n + j] = self.frames[i].axes[1].reciprocal(r);
-                self.g_zx[i * n + j] = self.frames[i].axes[2].reciprocal(r);
+        self.g.clear();
+        self.g_yx.clear();
+        self.g_zx.clear();
+        for f in &self.frames {
+            for r in &self.responses {
+                self.g.push(f.axes[0].reciprocal(r));
+                self.g_yx.push(f.axes[1].reciprocal(r));
+                self.g_zx.push(f.axes[2].reciprocal(r));
             }
         }
-        self.factor.clear();
-        self.factor.extend(self.g.iter().cloned());
+        self.factor.clone_from(&self.g);
         self.perm.resize(n, 0);
         let fac = linalg::factor_psd(&mut self.factor, n, &mut self.perm)?;
         self.rank = fac.rank;
@@ -210,7 +208,8 @@ impl<T: Scalar> Impact<T> {
                 contacts: n,
             });
         }
-        resize(&mut self.work, n);
+        // Scratch for the general solve; it writes every entry before reading it.
+        self.work.resize(n, T::zero());
         self.rhs(problem, model, &mut out.impulses);
         linalg::solve_factored(
             &self.factor,
@@ -267,8 +266,7 @@ impl<T: Scalar> Impact<T> {
             out.after.push(v);
         }
         // eq. 28 from the velocity change, eq. 32 from the kinetic energies.
-        let mut dv = out.velocity.clone();
-        dv.add_scaled(&-T::one(), &problem.velocity);
+        let dv = Screw(out.velocity.0.clone() - problem.velocity.0.clone());
         out.lost_velocity_energy = problem.body.kinetic_energy(&dv);
         out.kinetic_energy_loss =
             self.kinetic_before.clone() - problem.body.kinetic_energy(&out.velocity);
