@@ -151,14 +151,6 @@ pub struct Surd<T: Scalar> {
 }
 
 impl<T: Scalar> Surd<T> {
-    /// A rational value (r = 1).
-    pub fn rational(q: T) -> Self {
-        Surd {
-            coeff: q,
-            radicand: T::one(),
-        }
-    }
-
     /// raw · |a| for an axis with |a|² = `norm2`: raw·√(norm2) (an impulse, P = P̂ |x̂|).
     pub fn times_norm(raw: &T, norm2: &T) -> Self {
         Surd {
