@@ -45,3 +45,4 @@ pub mod screw;
 pub mod solve;
 pub mod surface;
 pub mod sweep;
+pub mod symbolic;
