@@ -193,36 +193,8 @@ fn solve(path: PathBuf, exact: bool, model: Option<ModelArg>, json: bool) -> Exi
         run::<f64>(&scene, models.as_deref())
     };
     match solved {
-        Ok(s) => {
-            if json {
-                println!(
-                    "{}",
-                    serde_json::to_string_pretty(&s.report.to_json()).unwrap_or_default()
-                );
-            } else {
-                print!("{}", s.report.to_table());
-            }
-            ExitCode::SUCCESS
-        }
-        Err(RunError::Scene(e)) => {
-            eprintln!("error: {e}");
-            ExitCode::from(2)
-        }
-        Err(RunError::Solve(e @ SolveError::Singular { .. })) => {
-            eprintln!(
-                "error: {}: {e}.\n  The simultaneous-collision hypothesis does not fix the impulses here \
-                 (§8 of the paper: Δ = 0, e.g. coincident contact points or a body that cannot move along \
-                 the normals independently).\n  Run `inertance analyze {}` to see whether the system is compatible, \
-                 the family of solutions and what stays fixed along it.",
-                path.display(),
-                path.display()
-            );
-            ExitCode::from(3)
-        }
-        Err(RunError::Solve(e)) => {
-            eprintln!("error: {}: {e}", path.display());
-            ExitCode::from(3)
-        }
+        Ok(s) => emit(json, || s.report.to_json(), || s.report.to_table()),
+        Err(e) => fail(&path, e),
     }
 }
 
@@ -238,22 +210,48 @@ fn run_analyze(path: PathBuf, exact: bool, model: Option<ModelArg>, json: bool) 
         analyze_scene::<f64>(&scene, models.as_deref())
     };
     match report {
-        Ok(r) => {
-            if json {
-                println!(
-                    "{}",
-                    serde_json::to_string_pretty(&r.to_json()).unwrap_or_default()
-                );
-            } else {
-                print!("{}", r.to_text());
-            }
-            ExitCode::SUCCESS
-        }
-        Err(RunError::Scene(e)) => {
+        Ok(r) => emit(json, || r.to_json(), || r.to_text()),
+        Err(e) => fail(&path, e),
+    }
+}
+
+/// Print a report as pretty JSON or as text; status 0.
+fn emit(
+    json: bool,
+    to_json: impl FnOnce() -> serde_json::Value,
+    to_text: impl FnOnce() -> String,
+) -> ExitCode {
+    if json {
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&to_json()).unwrap_or_default()
+        );
+    } else {
+        print!("{}", to_text());
+    }
+    ExitCode::SUCCESS
+}
+
+/// A failed run: bad input is status 2; no unique solution (or a frame that cannot be
+/// built) is status 3, with a pointer to `analyze` for a singular G.
+fn fail(path: &std::path::Path, error: RunError) -> ExitCode {
+    match error {
+        RunError::Scene(e) => {
             eprintln!("error: {e}");
             ExitCode::from(2)
         }
-        Err(RunError::Solve(e)) => {
+        RunError::Solve(e @ SolveError::Singular { .. }) => {
+            eprintln!(
+                "error: {}: {e}.\n  The simultaneous-collision hypothesis does not fix the impulses here \
+                 (§8 of the paper: Δ = 0, e.g. coincident contact points or a body that cannot move along \
+                 the normals independently).\n  Run `inertance analyze {}` to see whether the system is compatible, \
+                 the family of solutions and what stays fixed along it.",
+                path.display(),
+                path.display()
+            );
+            ExitCode::from(3)
+        }
+        RunError::Solve(e) => {
             eprintln!("error: {}: {e}", path.display());
             ExitCode::from(3)
         }
