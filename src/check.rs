@@ -673,13 +673,11 @@ fn angle_value(
         (_, None) => Value {
             f64: f64::NAN,
             exact: Some("undefined (no tangential velocity)".into()),
+            latex: None,
         },
         (0, Some(a)) => a.cos.clone(),
         (1, Some(a)) => a.sin.clone(),
-        (_, Some(a)) => Value {
-            f64: a.degrees,
-            exact: None,
-        },
+        (_, Some(a)) => Value::float(a.degrees),
     };
     Some(vec![v])
 }

@@ -177,9 +177,24 @@ impl<T: Scalar> Surd<T> {
     }
 
     /// The exact text `p/q` or `c*sqrt(r)`, for exact types.
+    ///
+    /// Beyond rationals (the symbolic type), the value q·√r is formed exactly when √r is
+    /// (a rational r becomes a radical); otherwise `None`.
     pub fn exact_text(&self) -> Option<String> {
-        let (q, r) = (self.coeff.to_rational()?, self.radicand.to_rational()?);
-        Some(crate::number::format_surd(&q, &r))
+        if let (Some(q), Some(r)) = (self.coeff.to_rational(), self.radicand.to_rational()) {
+            return Some(crate::number::format_surd(&q, &r));
+        }
+        self.exact_value()?.exact_text()
+    }
+
+    /// The exact value in LaTeX, for types with a LaTeX form of their own.
+    pub fn latex_text(&self) -> Option<String> {
+        self.exact_value()?.latex_text()
+    }
+
+    /// q·√r as one value of the type, when √r is exactly representable.
+    fn exact_value(&self) -> Option<T> {
+        Some(self.coeff.clone() * &self.radicand.sqrt_exact()?)
     }
 }
 

@@ -22,8 +22,10 @@ use crate::solve::{Impact, Outcome};
 pub struct Value {
     /// The value (rounded, in exact mode).
     pub f64: f64,
-    /// `p/q` or `c*sqrt(r)`, in exact mode.
+    /// `p/q` or `c*sqrt(r)`, in exact mode; an expression in symbolic mode.
     pub exact: Option<String>,
+    /// The LaTeX form, in symbolic mode.
+    pub latex: Option<String>,
 }
 
 impl Value {
@@ -31,7 +33,8 @@ impl Value {
     pub fn of<T: Scalar>(x: &T) -> Self {
         Value {
             f64: x.to_f64(),
-            exact: x.to_rational().map(|q| crate::number::format_rational(&q)),
+            exact: x.exact_text(),
+            latex: x.latex_text(),
         }
     }
 
@@ -40,6 +43,16 @@ impl Value {
         Value {
             f64: s.to_f64(),
             exact: s.exact_text(),
+            latex: s.latex_text(),
+        }
+    }
+
+    /// A number without exact form (an angle, a float result).
+    pub fn float(x: f64) -> Self {
+        Value {
+            f64: x,
+            exact: None,
+            latex: None,
         }
     }
 
@@ -54,6 +67,7 @@ impl Value {
     /// Readable text: the exact value (with ≈ decimals when not a short decimal), or the f64.
     pub fn text(&self) -> String {
         match &self.exact {
+            Some(t) if self.f64.is_nan() => t.clone(),
             Some(t) if t.parse::<f64>().is_err() || t.len() > 14 => {
                 format!("{} ≈ {}", t, fmt_f64(self.f64))
             }

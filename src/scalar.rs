@@ -22,6 +22,8 @@ use num_bigint::BigInt;
 use num_rational::BigRational;
 use num_traits::{One, Signed, Zero};
 
+use crate::number::Number;
+
 /// Exact rational arithmetic: the reference scalar of the toolkit.
 pub type Exact = BigRational;
 
@@ -123,6 +125,39 @@ pub trait Scalar: Field {
 
     /// Machine epsilon (zero for exact types): the unit of a tolerance claim.
     fn epsilon_f64() -> f64;
+
+    /// The value of a scene number in this type. Exact types take its exact value and refuse
+    /// an irrational one (the symbolic type evaluates radicals and symbols exactly); floats
+    /// take the rounded value. The error says why, for a message that names key and value.
+    fn from_number(n: &Number) -> Result<Self, String> {
+        match &n.exact {
+            Ok(q) => Ok(Self::from_rational(q)),
+            Err(why) => Self::from_f64(n.approx).ok_or_else(|| {
+                format!(
+                    "not a rational number ({why}); exact mode reads every number exactly, so \
+                     write it as a fraction or run without --exact"
+                )
+            }),
+        }
+    }
+
+    /// The exact value as text (`p/q`; an expression for the symbolic type), `None` for floats.
+    fn exact_text(&self) -> Option<String> {
+        self.to_rational().map(|q| crate::number::format_rational(&q))
+    }
+
+    /// The exact value in LaTeX, when the type has a form of its own (the symbolic type);
+    /// `None` means the plain [`Scalar::exact_text`] serves.
+    fn latex_text(&self) -> Option<String> {
+        None
+    }
+
+    /// √self when it is exactly representable in this type (a rational square for
+    /// rationals; any rational ≥ 0 for the symbolic type, as a radical); `None` otherwise and
+    /// for floats (reports evaluate those instead).
+    fn sqrt_exact(&self) -> Option<Self> {
+        None
+    }
 }
 
 macro_rules! float_scalar {
@@ -204,6 +239,14 @@ impl Scalar for BigRational {
     }
     fn epsilon_f64() -> f64 {
         0.0
+    }
+    fn sqrt_exact(&self) -> Option<Self> {
+        if self.is_negative() {
+            return None;
+        }
+        let (n, d) = (self.numer().sqrt(), self.denom().sqrt());
+        let root = BigRational::new(n, d);
+        (&root * &root == *self).then_some(root)
     }
 }
 

@@ -564,18 +564,12 @@ impl Scene {
 
     /// One number in `T`: exact types refuse irrational values, naming the key and value.
     fn value<T: Scalar>(&self, n: &Number, key: &str) -> Result<T, SceneError> {
-        match &n.exact {
-            Ok(q) => Ok(T::from_rational(q)),
-            Err(why) => T::from_f64(n.approx).ok_or_else(|| SceneError {
-                file: self.file.clone(),
-                key: key.to_string(),
-                value: Some(n.text.clone()),
-                message: format!(
-                    "not a rational number ({why}); exact mode reads every number exactly, \
-                     so write it as a fraction or run without --exact"
-                ),
-            }),
-        }
+        T::from_number(n).map_err(|message| SceneError {
+            file: self.file.clone(),
+            key: key.to_string(),
+            value: Some(n.text.clone()),
+            message,
+        })
     }
 }
 

@@ -35,6 +35,7 @@
 //! assert_eq!(conditions, ["m ≠ 0", "Jz ≠ 0"]);
 //! ```
 
+pub mod factor;
 pub mod poly;
 mod radical;
 pub mod ratfun;
@@ -43,6 +44,7 @@ mod symbols;
 use std::cell::RefCell;
 use std::fmt;
 
+pub use factor::{Factored, factor};
 pub use poly::Poly;
 pub use ratfun::RatFun;
 

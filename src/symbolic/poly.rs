@@ -274,6 +274,15 @@ impl Poly {
         Poly::var(symbols::intern(Key::Free(name.to_owned()), None))
     }
 
+    /// The single term c·m (m must be reduced: no related symbol squared).
+    pub(crate) fn term(m: Monomial, c: BigRational) -> Self {
+        if c.is_zero() {
+            Poly::zero()
+        } else {
+            Poly { terms: vec![(m, c)] }
+        }
+    }
+
     /// The symbol with id `id`.
     pub(crate) fn var(id: u32) -> Self {
         Poly {

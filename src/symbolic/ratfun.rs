@@ -739,6 +739,19 @@ impl Scalar for RatFun {
     fn epsilon_f64() -> f64 {
         0.0
     }
+
+    fn exact_text(&self) -> Option<String> {
+        Some(self.to_text())
+    }
+
+    fn latex_text(&self) -> Option<String> {
+        Some(self.to_latex())
+    }
+
+    /// √q for a rational constant q ≥ 0, as an exact radical; `None` otherwise.
+    fn sqrt_exact(&self) -> Option<Self> {
+        RatFun::sqrt(&self.to_rational()?)
+    }
 }
 
 #[cfg(test)]

@@ -1,0 +1,249 @@
+//! A readable factored form of a polynomial: content, monomial, and the factors that content
+//! extraction with respect to one symbol at a time reveals.
+//!
+//! For p with a symbol x, write p = Σ_e c_e(other symbols)·x^e. If the leading coefficient
+//! c_d (or the trailing one) divides every c_e exactly, then p = c_d · (p / c_d) with p / c_d
+//! monic in x, and both parts are split again. This finds the factors a hand derivation shows
+//! — (k₁ − k₂), (l + b), ω in a compatibility condition such as eq. (100)–(102) — but it is
+//! no complete multivariate factorization: an irreducible-looking factor may still split
+//! (e.g. a quadratic in x with non-constant roots in the other symbols). Every returned
+//! factorization is exact: the product of the factors equals the polynomial.
+
+use std::collections::BTreeMap;
+
+use num_rational::BigRational;
+use num_traits::{One, Signed, Zero};
+
+use super::poly::{Monomial, Poly};
+use super::symbols;
+
+/// p = constant · Π f_i^{e_i}: each f_i non-constant with coprime integer coefficients and a
+/// positive leading coefficient, distinct; monomial factors (single symbols) first.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Factored {
+    /// The rational constant in front (0 for the zero polynomial).
+    pub constant: BigRational,
+    /// The factors with their multiplicities.
+    pub factors: Vec<(Poly, u32)>,
+}
+
+impl Factored {
+    /// The product, expanded (equals the polynomial it came from).
+    pub fn expand(&self) -> Poly {
+        let mut p = Poly::constant(self.constant.clone());
+        for (f, e) in &self.factors {
+            p = &p * &f.pow(*e);
+        }
+        p
+    }
+
+    /// Plain text: `-2*m*(b + l)^2*(k1 - k2)`.
+    pub fn to_text(&self) -> String {
+        self.render(false)
+    }
+
+    /// LaTeX: `-2 m \left(b + l\right)^{2} \left(k_{1} - k_{2}\right)`.
+    pub fn to_latex(&self) -> String {
+        self.render(true)
+    }
+
+    fn render(&self, latex: bool) -> String {
+        if self.factors.is_empty() {
+            return Poly::constant(self.constant.clone()).to_text();
+        }
+        let mut items: Vec<String> = Vec::new();
+        let c = &self.constant;
+        let sign = if c.is_negative() { "-" } else { "" };
+        if !c.abs().is_one() {
+            let t = crate::number::format_rational(&c.abs());
+            items.push(if latex && !c.denom().is_one() {
+                format!("\\frac{{{}}}{{{}}}", c.numer().abs(), c.denom())
+            } else {
+                t
+            });
+        }
+        for (f, e) in &self.factors {
+            let body = if latex { f.to_latex() } else { f.to_text() };
+            let base = match (f.len() > 1, latex) {
+                (false, _) => body,
+                (true, false) => format!("({body})"),
+                (true, true) => format!("\\left({body}\\right)"),
+            };
+            items.push(match (e, latex) {
+                (1, _) => base,
+                (e, false) => format!("{base}^{e}"),
+                (e, true) => format!("{base}^{{{e}}}"),
+            });
+        }
+        let sep = if latex { " " } else { "*" };
+        format!("{sign}{}", items.join(sep))
+    }
+}
+
+/// The factored form of `p` (see the [module docs](self)).
+pub fn factor(p: &Poly) -> Factored {
+    let (constant, prim) = p.primitive();
+    if prim.is_zero() || prim.total_degree() == 0 {
+        return Factored {
+            constant: if prim.is_zero() {
+                BigRational::zero()
+            } else {
+                p.leading_coefficient()
+            },
+            factors: Vec::new(),
+        };
+    }
+    let mut factors: Vec<(Poly, u32)> = Vec::new();
+    let mono = prim.monomial_gcd();
+    for &(v, e) in mono.vars() {
+        factors.push((Poly::var(v), e));
+    }
+    factors.sort_by_key(|(f, _)| f.to_text());
+    let rest = prim
+        .div_monomial(&mono)
+        .expect("the monomial content divides every term");
+    let mut found = Vec::new();
+    split(rest, &mut found);
+    let mut constant = constant;
+    let mut polys: Vec<(Poly, u32)> = Vec::new();
+    for f in found {
+        let (c, f) = f.primitive();
+        constant *= c;
+        // Shown with a positive leading term.
+        let f = if f.display_sign() < 0 {
+            constant = -constant;
+            -f
+        } else {
+            f
+        };
+        if f.total_degree() == 0 {
+            continue;
+        }
+        match polys.iter_mut().find(|(g, _)| *g == f) {
+            Some((_, e)) => *e += 1,
+            None => polys.push((f, 1)),
+        }
+    }
+    polys.sort_by_key(|(f, _)| (f.len(), f.to_text()));
+    factors.extend(polys);
+    Factored { constant, factors }
+}
+
+/// Split `p` (no monomial content) into factors by content extraction, appending them.
+fn split(p: Poly, out: &mut Vec<Poly>) {
+    if p.total_degree() == 0 {
+        out.push(p);
+        return;
+    }
+    let table = symbols::snapshot();
+    for x in p.symbol_ids() {
+        if table.relation(x).is_some() {
+            continue; // sin θ, radicals: coefficients are only defined modulo the relation
+        }
+        let coeffs = coefficients_in(&p, x);
+        if coeffs.len() < 2 {
+            continue;
+        }
+        let lead = coeffs.values().next_back().expect("two or more coefficients");
+        let trail = coeffs.values().next().expect("two or more coefficients");
+        // A perfect power c·(x + t)^d, t = c_{d−1} / (d·c) (the binomial theorem).
+        let d = *coeffs.keys().next_back().expect("two or more coefficients");
+        if d >= 2
+            && let Some(c) = lead.constant_value()
+            && let Some(below) = coeffs.get(&(d - 1))
+        {
+            let t = below.scale(&(c * BigRational::from_integer(d.into())).recip());
+            let g = &Poly::var(x) + &t;
+            if let Some(q) = p.div_exact(&g) {
+                out.push(g);
+                split(q, out);
+                return;
+            }
+        }
+        for d in [lead, trail] {
+            if d.total_degree() == 0 {
+                continue;
+            }
+            if let Some(q) = p.div_exact(d) {
+                let d = d.clone();
+                split(d, out);
+                split(q, out);
+                return;
+            }
+        }
+    }
+    out.push(p);
+}
+
+/// p as Σ_e c_e x^e: the map e ↦ c_e (the symbol x removed from each term).
+fn coefficients_in(p: &Poly, x: u32) -> BTreeMap<u32, Poly> {
+    let mut map: BTreeMap<u32, Poly> = BTreeMap::new();
+    for (m, c) in p.terms() {
+        let e = m.exponent(x);
+        let rest = m
+            .div(&Monomial::var(x, e))
+            .expect("x^e divides a monomial with exponent e");
+        let term = Poly::term(rest, c.clone());
+        let slot = map.entry(e).or_insert_with(Poly::zero);
+        *slot = &*slot + &term;
+    }
+    map
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn s(name: &str) -> Poly {
+        Poly::symbol(name)
+    }
+    fn n(k: i64) -> Poly {
+        Poly::from_integer(k)
+    }
+
+    #[test]
+    fn compatibility_condition_of_a_singular_bar() {
+        // -2*omega*(l + b)^2*(k1 - k2)*m: the shape of eq. (100)–(101) for the allowed twist.
+        let (k1, k2, l, b, w, m) = (s("k1"), s("k2"), s("l"), s("b"), s("omega"), s("m"));
+        let lb = &l + &b;
+        let p = &(&(&n(-2) * &w) * &(&lb * &lb)) * &(&(&k1 - &k2) * &m);
+        let f = factor(&p);
+        assert_eq!(f.expand(), p);
+        assert_eq!(f.constant, BigRational::from_integer((-2).into()));
+        let texts: Vec<String> = f.factors.iter().map(|(g, e)| format!("{g}^{e}")).collect();
+        assert!(texts.contains(&"k1 - k2^1".to_string()), "{texts:?}");
+        assert!(texts.contains(&"b + l^2".to_string()), "{texts:?}");
+        assert!(texts.contains(&"m^1".to_string()), "{texts:?}");
+        assert!(texts.contains(&"omega^1".to_string()), "{texts:?}");
+        assert_eq!(f.to_text(), "-2*m*omega*(b + l)^2*(k1 - k2)");
+    }
+
+    #[test]
+    fn irreducible_and_constant_inputs() {
+        let (x, y) = (s("x"), s("y"));
+        let p = &(&x * &x) + &(&y * &y);
+        let f = factor(&p);
+        assert_eq!(f.factors, vec![(p.clone(), 1)]);
+        assert_eq!(factor(&n(6)).to_text(), "6");
+        assert_eq!(factor(&Poly::zero()).to_text(), "0");
+        // Rational content goes in front.
+        let half = Poly::constant(BigRational::new(1.into(), 2.into()));
+        let f = factor(&(&half * &(&x + &y)));
+        assert_eq!(f.to_text(), "1/2*(x + y)");
+        assert_eq!(f.to_latex(), "\\frac{1}{2} \\left(x + y\\right)");
+    }
+
+    #[test]
+    fn products_of_binomials_expand_back() {
+        let (a, b, c) = (s("a"), s("b"), s("c"));
+        let p = &(&(&a - &b) * &(&b + &c)) * &(&(&a - &b) * &(&a + &n(3)));
+        let f = factor(&p);
+        assert_eq!(f.expand(), p);
+        assert!(
+            f.factors
+                .iter()
+                .any(|(g, e)| (*g == &a - &b || *g == &b - &a) && *e == 2),
+            "{f:?}"
+        );
+    }
+}
