@@ -15,7 +15,8 @@
 //!
 //! ## Modules, one idea each
 //!
-//! [`scalar`] (the field a solve runs in) · [`number`] (exact numbers as written) ·
+//! [`scalar`] (the field a solve runs in) · [`expr`] (the one expression grammar) ·
+//! [`number`] (exact numbers as written) ·
 //! [`linalg`] (field-only LDLᵀ) · [`screw`] (Plücker coordinates) · [`body`] (mass matrix,
 //! mobility) · [`contact`] (contact frames, §12) · [`restitution`] (Newton, Poisson) ·
 //! [`solve`] (the collision) · [`constraint`] (ideal constraints, §9–11) · [`surface`]
@@ -34,6 +35,7 @@ pub mod check;
 pub mod constraint;
 pub mod contact;
 pub mod dd;
+pub mod expr;
 pub mod linalg;
 pub mod number;
 pub mod pipeline;

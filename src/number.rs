@@ -5,6 +5,11 @@
 //! author meant, so `0.1` is exactly 1/10 and never the nearest binary float; expressions that
 //! are not rational (`sqrt(5)`) carry the reason instead, and f64 mode still gets a value.
 //!
+//! The grammar is the crate's one expression grammar, parsed by [`crate::expr`]; this module
+//! evaluates its tree. [`parse_number`] accepts no names besides the grammar's own;
+//! [`parse_number_with`] also accepts declared symbols, and a number that names one has no
+//! value here (its exact form is [`crate::expr::symbolic`]'s business).
+//!
 //! Evaluation tracks, besides rationals, rational multiples of pi, so that angles such as
 //! `30 deg` or `pi/6` give exact sines and cosines where those are rational (Niven's theorem).
 //! Limitation: other irrational values are not tracked symbolically, so cancellations such as
@@ -16,6 +21,8 @@ use num_bigint::{BigInt, BigUint};
 use num_rational::BigRational;
 use num_traits::{One, Signed, ToPrimitive, Zero};
 
+use crate::expr::{self, Func, Kind, Lit, MAX_DECIMAL_EXPONENT, Node, Op, Wording};
+
 /// A number as written in a scene: its text, its exact rational value when it has one, and its f64 value.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Number {
@@ -23,8 +30,12 @@ pub struct Number {
     pub text: String,
     /// Ok(q) when the expression is rational; Err(reason) says why not, e.g. "sqrt(5) is irrational".
     pub exact: Result<BigRational, String>,
-    /// Best f64 value: the correctly rounded exact value when rational, else the f64 evaluation.
+    /// Best f64 value: the correctly rounded exact value when rational, else the f64 evaluation;
+    /// NaN when the number names a symbol.
     pub approx: f64,
+    /// The declared symbols the text names, sorted and without duplicates (see
+    /// [`parse_number_with`]); empty for an ordinary number.
+    pub symbols: Vec<String>,
 }
 
 /// Why a text could not be read as a finite number.
@@ -46,57 +57,109 @@ pub enum NumberError {
         /// nan, inf, division by zero, root of a negative number or overflow of f64.
         reason: String,
     },
+    /// The text is well formed and finite but has no exact symbolic value (only from
+    /// [`crate::expr::symbolic`]), e.g. `cos(20 deg)` or `sqrt(m)`.
+    #[error("'{text}' has no exact symbolic value: {reason}")]
+    Inexact {
+        /// The text that was read.
+        text: String,
+        /// Which sub-expression, and why.
+        reason: String,
+    },
 }
 
 /// Exact values wider than this many bits (numerator or denominator) are given up on:
 /// no scene needs them, and the gcd behind every rational operation is quadratic in the size.
-const MAX_EXACT_BITS: u64 = 16_384;
-/// Decimal exponents beyond this are not read exactly (10^5000 already exceeds `MAX_EXACT_BITS`).
-const MAX_DECIMAL_EXPONENT: i64 = 5_000;
-/// Deeper nesting is refused so that no input can overflow the stack.
-const MAX_DEPTH: usize = 200;
+pub(crate) const MAX_EXACT_BITS: u64 = 16_384;
 /// Square factors are found by trial division up to this bound (plus a perfect-square test of the rest).
 const TRIAL_DIVISION_BOUND: u32 = 10_000;
 /// Names the expression grammar knows, listed in the error for an unknown name.
 const KNOWN_NAMES: &str = "pi, deg, sqrt, sin, cos, tan";
+/// Syntax messages of numbers.
+const WORDING: Wording = Wording {
+    input: "input",
+    operand: "a number, 'pi', a function or '('",
+};
 
 /// Parse a number or expression.
 ///
 /// Accepts TOML numeric literals too (underscores between digits, leading '+', exponent,
-/// `0x..`, `0o..`, `0b..` integers) and the expression grammar
-/// `+ - * / ^ ( )`, `pi`, `X deg`, `sqrt sin cos tan`. Rejects nan/inf (NotFinite).
-/// Syntax errors take precedence over value errors, so the author sees typos first.
+/// `0x..`, `0o..`, `0b..` integers) and the expression grammar of [`crate::expr`]
+/// (`+ - * / ^ ( )`, `pi`, `X deg`, `sqrt sin cos tan`), without names. Rejects nan/inf
+/// (NotFinite). Syntax errors take precedence over value errors, so the author sees typos first.
 ///
 /// # Errors
-/// [`NumberError::Syntax`] for text outside the grammar or nesting deeper than 200 levels;
-/// [`NumberError::NotFinite`] for nan/inf, division by zero, even roots of negative numbers,
-/// tan at a pole, and values that overflow f64.
+/// [`NumberError::Syntax`] for text outside the grammar, an unknown name or nesting deeper
+/// than 200 levels; [`NumberError::NotFinite`] for nan/inf, division by zero, even roots of
+/// negative numbers, tan at a pole, and values that overflow f64.
 pub fn parse_number(text: &str) -> Result<Number, NumberError> {
+    parse_number_with(text, &[])
+}
+
+/// [`parse_number`], with the names in `symbols` allowed as symbols.
+///
+/// A number that names one of them has no value: `exact` is `Err("m*g/2 names the symbols
+/// g, m")`, `approx` is NaN and `symbols` lists them; its rational parts are still checked
+/// (`m/0` is NotFinite). Whether it has an exact symbolic form is left to
+/// [`crate::expr::symbolic`]. A name neither known nor declared is the usual syntax error,
+/// whose message also lists the declared symbols.
+///
+/// # Errors
+/// As [`parse_number`].
+pub fn parse_number_with(text: &str, symbols: &[String]) -> Result<Number, NumberError> {
     let src = text.trim();
+    let root = parse_checked(src, symbols)?;
+    evaluate(src, &root)
+}
+
+/// Parse `src` (trimmed) and check that every name in it is declared in `symbols`: the syntax
+/// half of [`parse_number_with`], shared with [`crate::expr::symbolic`].
+pub(crate) fn parse_checked(src: &str, symbols: &[String]) -> Result<Node, NumberError> {
     let syntax = |reason: String| NumberError::Syntax {
         text: src.to_string(),
         reason,
     };
-    if src.is_empty() {
-        return Err(syntax("empty input".to_string()));
+    let root = expr::parse(src, &WORDING).map_err(syntax)?;
+    let undeclared = root.names().into_iter().find(|n| match &n.kind {
+        Kind::Name(name) => !symbols.iter().any(|s| s.as_str() == &**name),
+        _ => false,
+    });
+    if let Some(node) = undeclared {
+        let mut declared: Vec<&str> = symbols
+            .iter()
+            .map(String::as_str)
+            .filter(|s| expr::is_symbol_name(s))
+            .collect();
+        declared.sort_unstable();
+        declared.dedup();
+        let known = if declared.is_empty() {
+            KNOWN_NAMES.to_string()
+        } else {
+            format!("{KNOWN_NAMES}; declared symbols: {}", declared.join(", "))
+        };
+        return Err(syntax(expr::unknown_name(src, node, &known)));
     }
-    let toks = lex(src).map_err(syntax)?;
-    let mut parser = Parser {
-        src,
-        toks,
-        pos: 0,
-        depth: 0,
-    };
-    let root = parser.expr().map_err(syntax)?;
-    if parser.peek().kind != TokKind::End {
-        return Err(syntax(
-            parser.unexpected("an operator or the end of the input"),
-        ));
+    Ok(root)
+}
+
+/// The number written by `node`, a sub-tree of `src` whose names all count as declared
+/// symbols; the number's text (and that of its errors) is the node's span.
+pub(crate) fn evaluate(src: &str, node: &Node) -> Result<Number, NumberError> {
+    let text = src.get(node.start..node.end).unwrap_or(src);
+    let value = Eval { src, whole: text }.eval(node)?;
+    let symbols = symbol_names(node);
+    if matches!(value.ex, Exact::Sym) {
+        let s = if symbols.len() == 1 { "" } else { "s" };
+        return Ok(Number {
+            text: text.to_string(),
+            exact: Err(format!("{text} names the symbol{s} {}", symbols.join(", "))),
+            approx: f64::NAN,
+            symbols,
+        });
     }
-    let value = Eval { src }.eval(&root)?;
     if !value.f.is_finite() {
         return Err(NumberError::NotFinite {
-            text: src.to_string(),
+            text: text.to_string(),
             reason: if value.f.is_nan() {
                 "the value is not a number".to_string()
             } else {
@@ -107,15 +170,32 @@ pub fn parse_number(text: &str) -> Result<Number, NumberError> {
     let exact = match value.ex {
         Exact::Rat(q) => Ok(q),
         Exact::Pi(_) => Err(format!(
-            "{src} is irrational (a non-zero rational multiple of pi)"
+            "{text} is irrational (a non-zero rational multiple of pi)"
         )),
         Exact::No(reason) => Err(reason),
+        Exact::Sym => Err(String::new()), // handled above
     };
     Ok(Number {
-        text: src.to_string(),
+        text: text.to_string(),
         exact,
         approx: value.f,
+        symbols,
     })
+}
+
+/// The names in `node`, sorted, without duplicates.
+fn symbol_names(node: &Node) -> Vec<String> {
+    let mut names: Vec<String> = node
+        .names()
+        .into_iter()
+        .filter_map(|n| match &n.kind {
+            Kind::Name(name) => Some(name.to_string()),
+            _ => None,
+        })
+        .collect();
+    names.sort_unstable();
+    names.dedup();
+    names
 }
 
 /// Exact decimal literal -> rational: "0.1" -> 1/10, "-3e-2" -> -3/100, "1_000.5" -> 2001/2.
@@ -132,7 +212,7 @@ pub fn parse_decimal(text: &str) -> Option<BigRational> {
     if !body.starts_with(|c: char| c.is_ascii_digit() || c == '.') {
         return None;
     }
-    let (lit, end) = scan_literal(body, 0).ok()?;
+    let (lit, end) = expr::scan_literal(body, 0).ok()?;
     if end != body.len() {
         return None;
     }
@@ -308,7 +388,7 @@ fn split_square(n: &BigInt) -> (BigInt, BigInt) {
 }
 
 /// The exact q-th root of x >= 0 when x is a perfect q-th power.
-fn exact_root(x: &BigInt, q: u32) -> Option<BigInt> {
+pub(crate) fn exact_root(x: &BigInt, q: u32) -> Option<BigInt> {
     if q < 2 || *x <= BigInt::one() {
         return Some(x.clone());
     }
@@ -317,465 +397,6 @@ fn exact_root(x: &BigInt, q: u32) -> Option<BigInt> {
     }
     let root = x.nth_root(q);
     (root.pow(q) == *x).then_some(root)
-}
-
-/// 1-based character position of a byte offset, for messages.
-fn char_pos(src: &str, byte: usize) -> usize {
-    src.get(..byte).map_or(byte, |s| s.chars().count()) + 1
-}
-
-// ---------------------------------------------------------------------------------------------
-// Lexer
-
-/// A numeric literal: exact value (None when its exponent is out of range) and f64 value.
-#[derive(Debug, Clone, PartialEq)]
-struct Lit {
-    exact: Option<BigRational>,
-    approx: f64,
-}
-
-#[derive(Debug, Clone, PartialEq)]
-enum TokKind {
-    Num(Lit),
-    Ident,
-    Sym(u8),
-    End,
-}
-
-#[derive(Debug, Clone)]
-struct Tok {
-    kind: TokKind,
-    start: usize,
-    end: usize,
-}
-
-fn lex(src: &str) -> Result<Vec<Tok>, String> {
-    let bytes = src.as_bytes();
-    let mut toks = Vec::new();
-    let mut i = 0;
-    while let Some(c) = src[i..].chars().next() {
-        let start = i;
-        let digit_at = |j: usize| bytes.get(j).is_some_and(u8::is_ascii_digit);
-        if c.is_whitespace() {
-            i += c.len_utf8();
-            continue;
-        } else if c.is_ascii_digit() || (c == '.' && digit_at(i + 1)) {
-            let (lit, end) = scan_literal(src, i)
-                .map_err(|(reason, at)| format!("{reason} at position {}", char_pos(src, at)))?;
-            if let Some(&b) = bytes.get(end).filter(|b| matches!(b, b'.' | b'_')) {
-                return Err(format!(
-                    "unexpected '{}' after a number at position {}",
-                    b as char,
-                    char_pos(src, end)
-                ));
-            }
-            toks.push(Tok {
-                kind: TokKind::Num(lit),
-                start,
-                end,
-            });
-            i = end;
-        } else if c.is_ascii_alphabetic() {
-            i += 1;
-            while bytes
-                .get(i)
-                .is_some_and(|b| b.is_ascii_alphanumeric() || *b == b'_')
-            {
-                i += 1;
-            }
-            toks.push(Tok {
-                kind: TokKind::Ident,
-                start,
-                end: i,
-            });
-        } else if "+-*/^()".contains(c) {
-            i += 1;
-            toks.push(Tok {
-                kind: TokKind::Sym(c as u8),
-                start,
-                end: i,
-            });
-        } else {
-            return Err(format!(
-                "unexpected character '{c}' at position {}",
-                char_pos(src, i)
-            ));
-        }
-    }
-    toks.push(Tok {
-        kind: TokKind::End,
-        start: src.len(),
-        end: src.len(),
-    });
-    Ok(toks)
-}
-
-/// A run of digits of `radix` with TOML underscores (only between two digits), from byte `i`.
-/// Returns the digits without underscores and the end offset; errors carry a byte offset.
-fn digit_run(s: &str, mut i: usize, radix: u32) -> Result<(String, usize), (String, usize)> {
-    let bytes = s.as_bytes();
-    let is_digit = |j: usize| bytes.get(j).is_some_and(|&b| (b as char).is_digit(radix));
-    let mut digits = String::new();
-    while let Some(&b) = bytes.get(i) {
-        if (b as char).is_digit(radix) {
-            digits.push(b as char);
-        } else if b == b'_' {
-            if !(i > 0 && is_digit(i - 1) && is_digit(i + 1)) {
-                return Err(("'_' must stand between two digits".to_string(), i));
-            }
-        } else {
-            break;
-        }
-        i += 1;
-    }
-    Ok((digits, i))
-}
-
-/// Scan one unsigned numeric literal starting at byte `i` of `s`; returns it and its end offset.
-fn scan_literal(s: &str, i: usize) -> Result<(Lit, usize), (String, usize)> {
-    let bytes = s.as_bytes();
-    let radix = match (bytes.get(i), bytes.get(i + 1)) {
-        (Some(b'0'), Some(b'x')) => Some(16),
-        (Some(b'0'), Some(b'o')) => Some(8),
-        (Some(b'0'), Some(b'b')) => Some(2),
-        _ => None,
-    };
-    if let Some(radix) = radix {
-        let (digits, end) = digit_run(s, i + 2, radix)?;
-        if digits.is_empty() || bytes.get(end).is_some_and(u8::is_ascii_alphanumeric) {
-            return Err((format!("malformed base-{radix} integer"), i));
-        }
-        let n = BigInt::parse_bytes(digits.as_bytes(), radix)
-            .ok_or_else(|| (format!("malformed base-{radix} integer"), i))?;
-        let q = BigRational::from_integer(n);
-        let approx = rational_to_f64(&q);
-        return Ok((
-            Lit {
-                exact: Some(q),
-                approx,
-            },
-            end,
-        ));
-    }
-
-    let (int, mut end) = digit_run(s, i, 10)?;
-    let mut frac = String::new();
-    if bytes.get(end) == Some(&b'.') {
-        (frac, end) = digit_run(s, end + 1, 10)?;
-    }
-    if int.is_empty() && frac.is_empty() {
-        return Err(("expected digits".to_string(), i));
-    }
-    let mut exp_text = String::from("0");
-    let mut exp_negative = false;
-    if matches!(bytes.get(end), Some(b'e' | b'E')) {
-        let mut j = end + 1;
-        if let Some(&sign @ (b'+' | b'-')) = bytes.get(j) {
-            exp_negative = sign == b'-';
-            j += 1;
-        }
-        let (digits, e) = digit_run(s, j, 10)?;
-        if digits.is_empty() {
-            return Err(("the exponent needs digits".to_string(), j));
-        }
-        (exp_text, end) = (digits, e);
-    }
-
-    let mantissa = format!("{int}{frac}");
-    // The f64 parser rounds correctly and saturates huge exponents, so it serves as fallback.
-    let approx_text = format!(
-        "{}.{}e{}{}",
-        if int.is_empty() { "0" } else { &int },
-        if frac.is_empty() { "0" } else { &frac },
-        if exp_negative { "-" } else { "" },
-        exp_text
-    );
-    let approx = approx_text.parse::<f64>().unwrap_or(f64::NAN);
-    let exact = if mantissa.bytes().all(|b| b == b'0') {
-        Some(BigRational::zero())
-    } else {
-        exp_text
-            .parse::<i64>()
-            .ok()
-            .map(|e| if exp_negative { -e } else { e })
-            .and_then(|e| e.checked_sub(frac.len() as i64))
-            .filter(|e| e.abs() <= MAX_DECIMAL_EXPONENT)
-            .and_then(|e| {
-                let m = BigInt::parse_bytes(mantissa.as_bytes(), 10)?;
-                let p = BigInt::from(10u32).pow(e.unsigned_abs() as u32);
-                Some(if e >= 0 {
-                    BigRational::from_integer(m * p)
-                } else {
-                    BigRational::new(m, p)
-                })
-            })
-    };
-    Ok((Lit { exact, approx }, end))
-}
-
-// ---------------------------------------------------------------------------------------------
-// Parser: builds a tree whose depth is bounded by MAX_DEPTH (sums and products are flat lists,
-// so long chains like 1+1+...+1 do not deepen it), then the tree is evaluated.
-
-#[derive(Debug, Clone, Copy, PartialEq)]
-enum Func {
-    Sqrt,
-    Sin,
-    Cos,
-    Tan,
-}
-
-#[derive(Debug)]
-enum Kind {
-    Lit(Box<Lit>),
-    Pi,
-    /// nan / inf written as a name: well formed, but never finite.
-    NonFinite,
-    Neg(Box<Node>),
-    /// first (op rhs)*, with op one of + - * /.
-    Chain(Box<Node>, Vec<(u8, Node)>),
-    Pow(Box<Node>, Box<Node>),
-    Deg(Box<Node>),
-    Call(Func, Box<Node>),
-}
-
-#[derive(Debug)]
-struct Node {
-    /// Byte range in the source, to quote sub-expressions in messages.
-    start: usize,
-    end: usize,
-    kind: Kind,
-}
-
-struct Parser<'a> {
-    src: &'a str,
-    toks: Vec<Tok>,
-    pos: usize,
-    depth: usize,
-}
-
-impl Parser<'_> {
-    fn peek(&self) -> &Tok {
-        // `lex` always ends the list with End, and `pos` never passes it.
-        &self.toks[self.pos.min(self.toks.len() - 1)]
-    }
-
-    /// Consume the current token (End stays put) and return its byte range.
-    fn advance(&mut self) -> (usize, usize) {
-        let tok = self.peek();
-        let span = (tok.start, tok.end);
-        if tok.kind != TokKind::End {
-            self.pos += 1;
-        }
-        span
-    }
-
-    fn sym(&self) -> Option<u8> {
-        match self.peek().kind {
-            TokKind::Sym(c) => Some(c),
-            _ => None,
-        }
-    }
-
-    fn ident(&self) -> Option<&str> {
-        let tok = self.peek();
-        (tok.kind == TokKind::Ident).then(|| &self.src[tok.start..tok.end])
-    }
-
-    fn unexpected(&self, expected: &str) -> String {
-        let tok = self.peek();
-        match tok.kind {
-            TokKind::End => format!("unexpected end of input, expected {expected}"),
-            _ => format!(
-                "unexpected '{}' at position {}, expected {expected}",
-                &self.src[tok.start..tok.end],
-                char_pos(self.src, tok.start)
-            ),
-        }
-    }
-
-    /// expr := term (('+' | '-') term)*
-    fn expr(&mut self) -> Result<Node, String> {
-        self.chain(b"+-", Self::term)
-    }
-
-    /// term := unary (('*' | '/') unary)*
-    fn term(&mut self) -> Result<Node, String> {
-        self.chain(b"*/", Self::unary)
-    }
-
-    /// Left-associative chain of `operand`s joined by `ops`, kept flat.
-    ///
-    /// The recursive parser functions use `and_then`/`map` instead of `?`: every nesting level
-    /// pays for their frames, and in debug builds each `?` adds temporaries.
-    fn chain(
-        &mut self,
-        ops: &[u8],
-        operand: fn(&mut Self) -> Result<Node, String>,
-    ) -> Result<Node, String> {
-        operand(self).and_then(|first| {
-            let mut rest = Vec::new();
-            while let Some(op) = self.sym().filter(|c| ops.contains(c)) {
-                self.advance();
-                rest.push((op, operand(self)?));
-            }
-            Ok(match rest.last() {
-                None => first,
-                Some((_, last)) => Node {
-                    start: first.start,
-                    end: last.end,
-                    kind: Kind::Chain(Box::new(first), rest),
-                },
-            })
-        })
-    }
-
-    /// unary := ('-' | '+') unary | power. Every level of nesting passes here, so depth is counted here.
-    fn unary(&mut self) -> Result<Node, String> {
-        if self.depth >= MAX_DEPTH {
-            return Err(self.too_deep());
-        }
-        self.depth += 1;
-        let node = match self.sym() {
-            Some(sign @ (b'-' | b'+')) => {
-                let start = self.advance().0;
-                self.unary().map(|inner| Node {
-                    start,
-                    end: inner.end,
-                    kind: if sign == b'-' {
-                        Kind::Neg(Box::new(inner))
-                    } else {
-                        inner.kind
-                    },
-                })
-            }
-            _ => self.power(),
-        };
-        self.depth -= 1;
-        node
-    }
-
-    #[cold]
-    fn too_deep(&self) -> String {
-        format!(
-            "nested more than {MAX_DEPTH} levels deep at position {}",
-            char_pos(self.src, self.peek().start)
-        )
-    }
-
-    /// power := postfix ('^' unary)?  (right-associative through unary)
-    fn power(&mut self) -> Result<Node, String> {
-        self.postfix().and_then(|base| {
-            if self.sym() != Some(b'^') {
-                return Ok(base);
-            }
-            self.advance();
-            self.unary().map(|exp| Node {
-                start: base.start,
-                end: exp.end,
-                kind: Kind::Pow(Box::new(base), Box::new(exp)),
-            })
-        })
-    }
-
-    /// postfix := atom ('deg')?
-    fn postfix(&mut self) -> Result<Node, String> {
-        self.atom().map(|atom| {
-            if self.ident() != Some("deg") {
-                return atom;
-            }
-            let end = self.advance().1;
-            Node {
-                start: atom.start,
-                end,
-                kind: Kind::Deg(Box::new(atom)),
-            }
-        })
-    }
-
-    /// atom := literal | 'pi' | func '(' expr ')' | '(' expr ')'
-    ///
-    /// Only the recursive cases live here; the leaves are parsed by `leaf`.
-    fn atom(&mut self) -> Result<Node, String> {
-        let start = self.peek().start;
-        let func = if self.sym() == Some(b'(') {
-            self.advance();
-            None
-        } else {
-            match self.function() {
-                Ok(Some(func)) => Some(func),
-                Ok(None) => return self.leaf(),
-                Err(e) => return Err(e),
-            }
-        };
-        self.expr().and_then(|inner| {
-            self.close().map(|end| match func {
-                None => Node {
-                    start,
-                    end,
-                    ..inner
-                },
-                Some(func) => Node {
-                    start,
-                    end,
-                    kind: Kind::Call(func, Box::new(inner)),
-                },
-            })
-        })
-    }
-
-    /// A function name followed by '(' (both consumed), or None when the next token is no function.
-    fn function(&mut self) -> Result<Option<Func>, String> {
-        let func = match self.ident() {
-            Some("sqrt") => Func::Sqrt,
-            Some("sin") => Func::Sin,
-            Some("cos") => Func::Cos,
-            Some("tan") => Func::Tan,
-            _ => return Ok(None),
-        };
-        let (start, end) = self.advance();
-        if self.sym() != Some(b'(') {
-            let name = &self.src[start..end];
-            return Err(self.unexpected(&format!("'(' after '{name}'")));
-        }
-        self.advance();
-        Ok(Some(func))
-    }
-
-    /// A number, 'pi', or a nan/inf name.
-    fn leaf(&mut self) -> Result<Node, String> {
-        let tok = self.peek();
-        let (start, end) = (tok.start, tok.end);
-        let kind = match &tok.kind {
-            TokKind::Num(lit) => Kind::Lit(Box::new(lit.clone())),
-            TokKind::Ident => match &self.src[start..end] {
-                "pi" => Kind::Pi,
-                name if ["nan", "inf", "infinity"]
-                    .contains(&name.to_ascii_lowercase().as_str()) =>
-                {
-                    Kind::NonFinite
-                }
-                "deg" => return Err(self.unexpected("a number, 'pi', a function or '('")),
-                name => {
-                    return Err(format!(
-                        "unknown name '{name}' at position {} (known names: {KNOWN_NAMES})",
-                        char_pos(self.src, start)
-                    ));
-                }
-            },
-            _ => return Err(self.unexpected("a number, 'pi', a function or '('")),
-        };
-        self.advance();
-        Ok(Node { start, end, kind })
-    }
-
-    /// Consume ')' and return its end offset.
-    fn close(&mut self) -> Result<usize, String> {
-        if self.sym() != Some(b')') {
-            return Err(self.unexpected("')'"));
-        }
-        Ok(self.advance().1)
-    }
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -789,6 +410,8 @@ enum Exact {
     Pi(BigRational),
     /// No exact value; the reason names the innermost culprit.
     No(String),
+    /// Names a declared symbol: no value at all (the f64 side is NaN).
+    Sym,
 }
 
 #[derive(Debug)]
@@ -798,7 +421,10 @@ struct Value {
 }
 
 struct Eval<'a> {
+    /// The source, for quoting sub-expressions.
     src: &'a str,
+    /// The text of the number evaluated (the text of its errors).
+    whole: &'a str,
 }
 
 fn bits(q: &BigRational) -> u64 {
@@ -820,7 +446,7 @@ impl Eval<'_> {
 
     fn not_finite(&self, reason: String) -> NumberError {
         NumberError::NotFinite {
-            text: self.src.to_string(),
+            text: self.whole.to_string(),
             reason,
         }
     }
@@ -832,6 +458,7 @@ impl Eval<'_> {
             Exact::Pi(q) if q.is_zero() => (0.0, Exact::Rat(q)),
             Exact::Rat(q) => (rational_to_f64(&q), Exact::Rat(q)),
             Exact::Pi(q) => (rational_to_f64(&q) * PI, Exact::Pi(q)),
+            Exact::Sym => return Ok(Value { ex: Exact::Sym, f }),
             no => (f, no),
         };
         let ex = match ex {
@@ -858,6 +485,7 @@ impl Eval<'_> {
             Kind::Lit(lit) => self.literal(lit, text),
             Kind::Pi => self.value(Exact::Pi(BigRational::one()), PI, text),
             Kind::NonFinite => Err(self.not_finite_name(text)),
+            Kind::Name(_) => self.value(Exact::Sym, f64::NAN, text),
             Kind::Neg(inner) => self.eval(inner).and_then(|v| self.negate(v, text)),
             Kind::Chain(first, rest) => self.chain(node.start, first, rest),
             Kind::Pow(base, exp) => self
@@ -869,7 +497,7 @@ impl Eval<'_> {
         }
     }
 
-    fn chain(&self, start: usize, first: &Node, rest: &[(u8, Node)]) -> Result<Value, NumberError> {
+    fn chain(&self, start: usize, first: &Node, rest: &[(Op, Node)]) -> Result<Value, NumberError> {
         rest.iter().fold(self.eval(first), |acc, (op, rhs)| {
             // Quote the chain up to this operand, e.g. "2*3/0".
             acc.and_then(|a| {
@@ -913,6 +541,7 @@ impl Eval<'_> {
             f = (-b.f).powf(e.f) * if odd(r.numer()) { -1.0 } else { 1.0 };
         }
         let ex = match (&b.ex, &e.ex) {
+            (Exact::Sym, _) | (_, Exact::Sym) => Exact::Sym,
             (Exact::No(r), _) | (_, Exact::No(r)) => Exact::No(r.clone()),
             (_, Exact::Pi(_)) => irrational(),
             (Exact::Pi(_), Exact::Rat(n)) if n.is_zero() => Exact::Rat(int(1)),
@@ -936,6 +565,7 @@ impl Eval<'_> {
         let negative = match &v.ex {
             Exact::Rat(q) | Exact::Pi(q) => q.is_negative(),
             Exact::No(_) => v.f < 0.0,
+            Exact::Sym => false,
         };
         if negative {
             return Err(self.not_finite(format!("square root of a negative number in '{text}'")));
@@ -976,34 +606,35 @@ impl Eval<'_> {
         self.value(ex, f, text)
     }
 
-    fn binary(&self, op: u8, a: Value, b: Value, text: &str) -> Result<Value, NumberError> {
-        use Exact::{No, Pi, Rat};
+    fn binary(&self, op: Op, a: Value, b: Value, text: &str) -> Result<Value, NumberError> {
+        use Exact::{No, Pi, Rat, Sym};
         let irrational = || No(format!("{text} is irrational"));
         let f = match op {
-            b'+' => a.f + b.f,
-            b'-' => a.f - b.f,
-            b'*' => a.f * b.f,
-            _ => a.f / b.f,
+            Op::Add => a.f + b.f,
+            Op::Sub => a.f - b.f,
+            Op::Mul => a.f * b.f,
+            Op::Div => a.f / b.f,
         };
-        if op == b'/' && matches!(&b.ex, Rat(q) if q.is_zero()) {
+        if op == Op::Div && matches!(&b.ex, Rat(q) if q.is_zero()) {
             return Err(self.not_finite(format!("division by zero in '{text}'")));
         }
         let ex = match (op, a.ex, b.ex) {
+            (_, Sym, _) | (_, _, Sym) => Sym,
             (_, No(r), _) | (_, _, No(r)) => No(r),
-            (b'+', Rat(x), Rat(y)) => Rat(x + y),
-            (b'-', Rat(x), Rat(y)) => Rat(x - y),
-            (b'*', Rat(x), Rat(y)) => Rat(x * y),
-            (b'/', Rat(x), Rat(y)) => Rat(x / y),
+            (Op::Add, Rat(x), Rat(y)) => Rat(x + y),
+            (Op::Sub, Rat(x), Rat(y)) => Rat(x - y),
+            (Op::Mul, Rat(x), Rat(y)) => Rat(x * y),
+            (Op::Div, Rat(x), Rat(y)) => Rat(x / y),
             // Sums of angles stay angles; adding a non-zero rational to one does not.
-            (b'+', Pi(x), Pi(y)) => Pi(x + y),
-            (b'-', Pi(x), Pi(y)) => Pi(x - y),
-            (b'+' | b'-', Pi(x), Rat(y)) if y.is_zero() => Pi(x),
-            (b'+', Rat(x), Pi(y)) if x.is_zero() => Pi(y),
-            (b'-', Rat(x), Pi(y)) if x.is_zero() => Pi(-y),
-            (b'*', Rat(x), Pi(y)) | (b'*', Pi(y), Rat(x)) => Pi(x * y),
-            (b'/', Pi(x), Rat(y)) => Pi(x / y),
-            (b'/', Pi(x), Pi(y)) => Rat(x / y),
-            (b'/', Rat(x), Pi(_)) if x.is_zero() => Rat(x),
+            (Op::Add, Pi(x), Pi(y)) => Pi(x + y),
+            (Op::Sub, Pi(x), Pi(y)) => Pi(x - y),
+            (Op::Add | Op::Sub, Pi(x), Rat(y)) if y.is_zero() => Pi(x),
+            (Op::Add, Rat(x), Pi(y)) if x.is_zero() => Pi(y),
+            (Op::Sub, Rat(x), Pi(y)) if x.is_zero() => Pi(-y),
+            (Op::Mul, Rat(x), Pi(y)) | (Op::Mul, Pi(y), Rat(x)) => Pi(x * y),
+            (Op::Div, Pi(x), Rat(y)) => Pi(x / y),
+            (Op::Div, Pi(x), Pi(y)) => Rat(x / y),
+            (Op::Div, Rat(x), Pi(_)) if x.is_zero() => Rat(x),
             _ => irrational(),
         };
         self.value(ex, f, text)
@@ -1345,6 +976,68 @@ mod tests {
         ] {
             let _ = parse_number(text);
         }
+    }
+
+    fn with(text: &str, symbols: &[&str]) -> Result<Number, NumberError> {
+        let symbols: Vec<String> = symbols.iter().map(|s| s.to_string()).collect();
+        parse_number_with(text, &symbols)
+    }
+
+    #[test]
+    fn declared_symbols() {
+        let n = with(" m*g/2 ", &["m", "g", "k1"]).unwrap();
+        assert_eq!(n.text, "m*g/2");
+        assert_eq!(n.exact, Err("m*g/2 names the symbols g, m".to_string()));
+        assert!(n.approx.is_nan());
+        assert_eq!(n.symbols, ["g", "m"]);
+        let n = with("cos(theta)*sqrt(k1) + theta", &["theta", "k1"]).unwrap();
+        assert_eq!(
+            n.exact,
+            Err("cos(theta)*sqrt(k1) + theta names the symbols k1, theta".to_string())
+        );
+        assert_eq!(n.symbols, ["k1", "theta"]);
+        assert_eq!(
+            with("-m deg", &["m"]).unwrap().exact,
+            Err("-m deg names the symbol m".to_string())
+        );
+        // Ordinary numbers are unaffected by declarations.
+        let n = with("1/3", &["m"]).unwrap();
+        assert_eq!((n.exact, n.symbols), (Ok(q(1, 3)), Vec::new()));
+        assert_eq!(parse_number("0.1").unwrap().symbols, Vec::<String>::new());
+        // The rational parts are still checked.
+        for text in [
+            "m/0",
+            "m + 1/0",
+            "m*inf",
+            "sqrt(-1)*m",
+            "m^(0^-1)",
+            "m*1e99999",
+        ] {
+            assert!(
+                matches!(with(text, &["m"]), Err(NumberError::NotFinite { .. })),
+                "{text}"
+            );
+        }
+        // Undeclared names: the usual syntax error, which also lists the declared symbols.
+        let reason = |text: &str, symbols: &[&str]| match with(text, symbols) {
+            Err(NumberError::Syntax { reason, .. }) => reason,
+            other => panic!("{text}: expected a syntax error, got {other:?}"),
+        };
+        assert_eq!(
+            reason("2*m", &[]),
+            "unknown name 'm' at position 3 (known names: pi, deg, sqrt, sin, cos, tan)"
+        );
+        assert_eq!(reason("2*m", &[]), is_syntax("2*m"));
+        assert_eq!(
+            reason("m + w", &["m", "k1", "m", "not a name"]),
+            "unknown name 'w' at position 5 (known names: pi, deg, sqrt, sin, cos, tan; \
+             declared symbols: k1, m)"
+        );
+        // Syntax errors come first.
+        assert!(reason("m +", &["m"]).contains("end of input"));
+        assert!(reason("1/0 + w", &["m"]).contains("unknown name 'w'"));
+        // Reserved names stay what they are even when declared.
+        assert_eq!(with("pi/pi", &["pi"]).unwrap().exact, Ok(q(1, 1)));
     }
 
     #[test]

@@ -7,13 +7,16 @@
 //! gradient at a rational point is exact), in floats otherwise. Normalising (eq. 105–107) needs
 //! a square root and is left to the caller, as everywhere in the crate.
 //!
-//! Grammar: that of [`crate::number`] (`+ - * / ^ ( )`, decimal literals, `pi`, `X deg`,
-//! `sqrt sin cos tan`) plus the variables `x`, `y`, `z`. Functions and `deg` apply to
-//! constants only; `^` with a base in x, y, z needs a constant integer exponent of magnitude at
-//! most 1000 (negative allowed). Every constant sub-expression is read by [`parse_number`] from
-//! its own source text, so it is exact or irrational exactly as a scene number would be.
+//! Grammar: the crate's one expression grammar, parsed by [`crate::expr`] (`+ - * / ^ ( )`,
+//! TOML literals, `pi`, `X deg`, `sqrt sin cos tan`); its names `x`, `y`, `z` are the variables,
+//! any other name is an error. Functions and `deg` apply to constants only; `^` with a base in
+//! x, y, z needs a constant integer exponent of magnitude at most 1000 (negative allowed).
+//! Every sub-tree free of x, y, z is evaluated as a scene number (as [`parse_number`] would
+//! read its text), so it is exact or irrational exactly as a scene number would be.
 //! Limitation: constants in separate operands are not combined symbolically, so in `x + pi - pi`
 //! the two `pi` stay irrational and exact evaluation refuses them.
+//!
+//! [`parse_number`]: crate::number::parse_number
 
 use std::fmt;
 
@@ -21,11 +24,9 @@ use num_bigint::BigInt;
 use num_rational::BigRational;
 use num_traits::{One, Signed, ToPrimitive, Zero};
 
-use crate::number::{format_rational, parse_number};
+use crate::expr::{self, Kind, Node, Op, Wording, char_pos};
+use crate::number::{self, format_rational};
 use crate::scalar::Scalar;
-
-/// Deeper nesting is refused so that no input can overflow the stack.
-const MAX_DEPTH: usize = 200;
 /// Largest magnitude of an integer exponent on an expression in x, y, z.
 const MAX_EXPONENT: i64 = 1000;
 /// Largest size (in tree nodes copied) of one partial derivative; beyond it the expression is
@@ -40,6 +41,11 @@ const MAX_QUOTE_CHARS: usize = 60;
 const KNOWN_NAMES: &str = "x, y, z, pi, deg, sqrt, sin, cos, tan";
 /// The variables, by index.
 const VARIABLES: [&str; 3] = ["x", "y", "z"];
+/// Syntax messages of surfaces.
+const WORDING: Wording = Wording {
+    input: "expression",
+    operand: "a number, x, y, z, 'pi', a function or '('",
+};
 
 /// An implicit surface f(x, y, z) = 0 with its symbolic gradient.
 ///
@@ -86,23 +92,13 @@ impl Surface {
                 quote(trimmed)
             ))
         };
-        if trimmed.is_empty() {
-            return Err(fail("empty expression".to_string()));
+        let root = expr::parse(text, &WORDING).map_err(fail)?;
+        let unknown = root.names().into_iter().find(|n| variable(n).is_none());
+        if let Some(node) = unknown {
+            return Err(fail(expr::unknown_name(text, node, KNOWN_NAMES)));
         }
-        let toks = lex(text).map_err(fail)?;
-        let mut parser = Parser {
-            src: text,
-            toks,
-            pos: 0,
-            depth: 0,
-        };
-        let root = parser.expr().map_err(fail)?;
-        if parser.peek().kind != TokKind::End {
-            return Err(fail(
-                parser.unexpected("an operator or the end of the expression"),
-            ));
-        }
-        if !root.has_var {
+        // Every name is now a variable.
+        if !root.has_name {
             return Err(fail(
                 "the expression does not contain x, y or z".to_string(),
             ));
@@ -189,373 +185,6 @@ fn scalar_text<T: Scalar>(v: &T) -> String {
     match v.to_rational() {
         Some(q) => format_rational(&q),
         None => v.to_f64().to_string(),
-    }
-}
-
-/// 1-based character position of a byte offset, for messages.
-fn char_pos(src: &str, byte: usize) -> usize {
-    src.get(..byte).map_or(byte, |s| s.chars().count()) + 1
-}
-
-// ---------------------------------------------------------------------------------------------
-// Lexer
-
-#[derive(Debug, Clone, Copy, PartialEq)]
-enum TokKind {
-    Num,
-    Ident,
-    Sym(u8),
-    End,
-}
-
-#[derive(Debug, Clone)]
-struct Tok {
-    kind: TokKind,
-    start: usize,
-    end: usize,
-}
-
-/// The end of the numeric literal starting at byte `i` (the same extent as number.rs reads;
-/// whether it is well formed is decided by [`parse_number`]).
-fn literal_end(b: &[u8], i: usize) -> usize {
-    let run = |mut j: usize, ok: fn(u8) -> bool| {
-        while b.get(j).is_some_and(|&c| ok(c)) {
-            j += 1;
-        }
-        j
-    };
-    let digit = |c: u8| c.is_ascii_digit() || c == b'_';
-    if b.get(i) == Some(&b'0') && matches!(b.get(i + 1), Some(b'x' | b'o' | b'b')) {
-        return run(i + 2, |c| c.is_ascii_alphanumeric() || c == b'_');
-    }
-    let mut j = run(i, digit);
-    if b.get(j) == Some(&b'.') {
-        j = run(j + 1, digit);
-    }
-    if matches!(b.get(j), Some(b'e' | b'E')) {
-        let mut k = j + 1;
-        if matches!(b.get(k), Some(b'+' | b'-')) {
-            k += 1;
-        }
-        j = run(k, digit);
-    }
-    j
-}
-
-fn lex(src: &str) -> Result<Vec<Tok>, String> {
-    let bytes = src.as_bytes();
-    let mut toks = Vec::new();
-    let mut i = 0;
-    while let Some(c) = src.get(i..).and_then(|rest| rest.chars().next()) {
-        let start = i;
-        if c.is_whitespace() {
-            i += c.len_utf8();
-            continue;
-        }
-        let kind = if c.is_ascii_digit()
-            || (c == '.' && bytes.get(i + 1).is_some_and(u8::is_ascii_digit))
-        {
-            i = literal_end(bytes, i);
-            let literal = src.get(start..i).unwrap_or_default();
-            if let Err(e) = parse_number(literal) {
-                return Err(format!(
-                    "malformed number at position {}: {e}",
-                    char_pos(src, start)
-                ));
-            }
-            if let Some(&b) = bytes.get(i).filter(|b| matches!(b, b'.' | b'_')) {
-                return Err(format!(
-                    "unexpected '{}' after a number at position {}",
-                    b as char,
-                    char_pos(src, i)
-                ));
-            }
-            TokKind::Num
-        } else if c.is_ascii_alphabetic() {
-            i += 1;
-            while bytes
-                .get(i)
-                .is_some_and(|b| b.is_ascii_alphanumeric() || *b == b'_')
-            {
-                i += 1;
-            }
-            TokKind::Ident
-        } else if "+-*/^()".contains(c) {
-            i += 1;
-            TokKind::Sym(c as u8)
-        } else {
-            return Err(format!(
-                "unexpected character '{c}' at position {}",
-                char_pos(src, i)
-            ));
-        };
-        toks.push(Tok {
-            kind,
-            start,
-            end: i,
-        });
-    }
-    toks.push(Tok {
-        kind: TokKind::End,
-        start: src.len(),
-        end: src.len(),
-    });
-    Ok(toks)
-}
-
-// ---------------------------------------------------------------------------------------------
-// Parser: a syntax tree with source spans. Sums and products are flat lists, so long chains do
-// not deepen it, and nesting is limited to MAX_DEPTH.
-
-#[derive(Debug)]
-enum Kind {
-    /// A literal, `pi`, or a non-finite name: read from its span by `parse_number`.
-    Const,
-    Var(usize),
-    Neg(Box<Node>),
-    /// first (op rhs)*, with the ops all from `+-` or all from `*/`.
-    Chain(Box<Node>, Vec<(u8, Node)>),
-    Pow(Box<Node>, Box<Node>),
-    /// `X deg`; only the span is needed (constants are re-read from it).
-    Deg,
-    /// `func(X)`; likewise.
-    Call(&'static str),
-}
-
-#[derive(Debug)]
-struct Node {
-    /// Byte range in the source.
-    start: usize,
-    end: usize,
-    /// Whether x, y or z occurs in it.
-    has_var: bool,
-    kind: Kind,
-}
-
-struct Parser<'a> {
-    src: &'a str,
-    toks: Vec<Tok>,
-    pos: usize,
-    depth: usize,
-}
-
-impl Parser<'_> {
-    fn peek(&self) -> &Tok {
-        // `lex` always ends the list with End, and `pos` never passes it.
-        let last = self.toks.len().saturating_sub(1);
-        &self.toks[self.pos.min(last)]
-    }
-
-    /// Consume the current token (End stays put) and return its byte range.
-    fn advance(&mut self) -> (usize, usize) {
-        let tok = self.peek();
-        let span = (tok.start, tok.end);
-        if tok.kind != TokKind::End {
-            self.pos += 1;
-        }
-        span
-    }
-
-    fn sym(&self) -> Option<u8> {
-        match self.peek().kind {
-            TokKind::Sym(c) => Some(c),
-            _ => None,
-        }
-    }
-
-    fn ident(&self) -> Option<&str> {
-        let tok = self.peek();
-        (tok.kind == TokKind::Ident)
-            .then(|| self.src.get(tok.start..tok.end))
-            .flatten()
-    }
-
-    fn unexpected(&self, expected: &str) -> String {
-        let tok = self.peek();
-        match tok.kind {
-            TokKind::End => format!("unexpected end of expression, expected {expected}"),
-            _ => format!(
-                "unexpected '{}' at position {}, expected {expected}",
-                self.src.get(tok.start..tok.end).unwrap_or_default(),
-                char_pos(self.src, tok.start)
-            ),
-        }
-    }
-
-    /// expr := term (('+' | '-') term)*
-    fn expr(&mut self) -> Result<Node, String> {
-        self.chain(b"+-", Self::term)
-    }
-
-    /// term := unary (('*' | '/') unary)*
-    fn term(&mut self) -> Result<Node, String> {
-        self.chain(b"*/", Self::unary)
-    }
-
-    fn chain(
-        &mut self,
-        ops: &[u8],
-        operand: fn(&mut Self) -> Result<Node, String>,
-    ) -> Result<Node, String> {
-        operand(self).and_then(|first| {
-            let mut rest: Vec<(u8, Node)> = Vec::new();
-            while let Some(op) = self.sym().filter(|c| ops.contains(c)) {
-                self.advance();
-                rest.push((op, operand(self)?));
-            }
-            Ok(match rest.last() {
-                None => first,
-                Some((_, last)) => Node {
-                    start: first.start,
-                    end: last.end,
-                    has_var: first.has_var || rest.iter().any(|(_, n)| n.has_var),
-                    kind: Kind::Chain(Box::new(first), rest),
-                },
-            })
-        })
-    }
-
-    /// unary := ('-' | '+') unary | power. Every level of nesting passes here, so depth is
-    /// counted here.
-    fn unary(&mut self) -> Result<Node, String> {
-        if self.depth >= MAX_DEPTH {
-            return Err(format!(
-                "nested more than {MAX_DEPTH} levels deep at position {}",
-                char_pos(self.src, self.peek().start)
-            ));
-        }
-        self.depth += 1;
-        let node = match self.sym() {
-            Some(sign @ (b'-' | b'+')) => {
-                let start = self.advance().0;
-                self.unary().map(|inner| Node {
-                    start,
-                    end: inner.end,
-                    has_var: inner.has_var,
-                    kind: if sign == b'-' {
-                        Kind::Neg(Box::new(inner))
-                    } else {
-                        inner.kind
-                    },
-                })
-            }
-            _ => self.power(),
-        };
-        self.depth -= 1;
-        node
-    }
-
-    /// power := postfix ('^' unary)?  (right-associative through unary)
-    fn power(&mut self) -> Result<Node, String> {
-        self.postfix().and_then(|base| {
-            if self.sym() != Some(b'^') {
-                return Ok(base);
-            }
-            self.advance();
-            self.unary().map(|exp| Node {
-                start: base.start,
-                end: exp.end,
-                has_var: base.has_var || exp.has_var,
-                kind: Kind::Pow(Box::new(base), Box::new(exp)),
-            })
-        })
-    }
-
-    /// postfix := atom ('deg')?
-    fn postfix(&mut self) -> Result<Node, String> {
-        self.atom().map(|atom| {
-            if self.ident() != Some("deg") {
-                return atom;
-            }
-            let end = self.advance().1;
-            Node {
-                start: atom.start,
-                end,
-                has_var: atom.has_var,
-                kind: Kind::Deg,
-            }
-        })
-    }
-
-    /// atom := leaf | func '(' expr ')' | '(' expr ')'
-    fn atom(&mut self) -> Result<Node, String> {
-        let start = self.peek().start;
-        let func = if self.sym() == Some(b'(') {
-            self.advance();
-            None
-        } else {
-            let func = match self.ident() {
-                Some("sqrt") => "sqrt",
-                Some("sin") => "sin",
-                Some("cos") => "cos",
-                Some("tan") => "tan",
-                _ => return self.leaf(),
-            };
-            self.advance();
-            if self.sym() != Some(b'(') {
-                return Err(self.unexpected(&format!("'(' after '{func}'")));
-            }
-            self.advance();
-            Some(func)
-        };
-        self.expr().and_then(|inner| {
-            self.close().map(|end| match func {
-                None => Node {
-                    start,
-                    end,
-                    ..inner
-                },
-                Some(func) => Node {
-                    start,
-                    end,
-                    has_var: inner.has_var,
-                    kind: Kind::Call(func),
-                },
-            })
-        })
-    }
-
-    /// A number, a variable, 'pi', or a non-finite name.
-    fn leaf(&mut self) -> Result<Node, String> {
-        let tok = self.peek();
-        let (start, end) = (tok.start, tok.end);
-        let kind = match tok.kind {
-            TokKind::Num => Kind::Const,
-            TokKind::Ident => match self.src.get(start..end).unwrap_or_default() {
-                "x" => Kind::Var(0),
-                "y" => Kind::Var(1),
-                "z" => Kind::Var(2),
-                "pi" => Kind::Const,
-                name if ["nan", "inf", "infinity"]
-                    .contains(&name.to_ascii_lowercase().as_str()) =>
-                {
-                    Kind::Const
-                }
-                "deg" => return Err(self.unexpected("a number, x, y, z, 'pi', a function or '('")),
-                name => {
-                    return Err(format!(
-                        "unknown name '{name}' at position {} (known names: {KNOWN_NAMES})",
-                        char_pos(self.src, start)
-                    ));
-                }
-            },
-            _ => return Err(self.unexpected("a number, x, y, z, 'pi', a function or '('")),
-        };
-        self.advance();
-        Ok(Node {
-            start,
-            end,
-            has_var: matches!(kind, Kind::Var(_)),
-            kind,
-        })
-    }
-
-    /// Consume ')' and return its end offset.
-    fn close(&mut self) -> Result<usize, String> {
-        if self.sym() != Some(b')') {
-            return Err(self.unexpected("')'"));
-        }
-        Ok(self.advance().1)
     }
 }
 
@@ -670,14 +299,23 @@ fn power(base: Expr, n: i64) -> Expr {
     }
 }
 
-/// Turns the syntax tree into an [`Expr`], reading constant sub-trees with `parse_number`.
+/// The index of the variable a name node stands for.
+fn variable(node: &Node) -> Option<usize> {
+    match &node.kind {
+        Kind::Name(name) => VARIABLES.iter().position(|v| **v == **name),
+        _ => None,
+    }
+}
+
+/// Turns the syntax tree (every name in it a variable) into an [`Expr`], evaluating
+/// sub-trees free of x, y, z as scene numbers.
 struct Builder<'a> {
     src: &'a str,
 }
 
 impl Builder<'_> {
     fn text(&self, start: usize, end: usize) -> &str {
-        self.src.get(start..end).unwrap_or_default().trim()
+        self.src.get(start..end).unwrap_or_default()
     }
 
     fn at(&self, node: &Node) -> String {
@@ -688,10 +326,9 @@ impl Builder<'_> {
         )
     }
 
-    /// A sub-tree free of x, y, z, read from its source text.
+    /// A sub-tree free of x, y, z.
     fn constant(&self, node: &Node) -> Result<Expr, String> {
-        let text = self.text(node.start, node.end);
-        match parse_number(text) {
+        match number::evaluate(self.src, node) {
             Ok(n) => Ok(match n.exact {
                 Ok(q) => Expr::Rational(q),
                 Err(reason) => Expr::Irrational(Box::new(Irrational {
@@ -708,16 +345,18 @@ impl Builder<'_> {
     }
 
     fn build(&self, node: &Node) -> Result<Expr, String> {
-        if !node.has_var {
+        if !node.has_name {
             return self.constant(node);
         }
         match &node.kind {
-            Kind::Const => self.constant(node),
-            Kind::Var(i) => Ok(Expr::Var(*i)),
+            Kind::Lit(_) | Kind::Pi | Kind::NonFinite => self.constant(node),
+            Kind::Name(_) => variable(node)
+                .map(Expr::Var)
+                .ok_or_else(|| expr::unknown_name(self.src, node, KNOWN_NAMES)),
             Kind::Neg(inner) => self.build(inner).map(|e| product(rational(-1), vec![e])),
             Kind::Chain(first, rest) => self.chain(node.start, first, rest),
             Kind::Pow(base, exp) => {
-                if exp.has_var {
+                if exp.has_name {
                     return Err(format!(
                         "an exponent in x, y, z is not supported: {}",
                         self.at(node)
@@ -726,27 +365,28 @@ impl Builder<'_> {
                 let n = self.integer_exponent(node, exp)?;
                 self.build(base).map(|b| power(b, n))
             }
-            Kind::Deg => Err(format!(
+            Kind::Deg(_) => Err(format!(
                 "'deg' of an expression in x, y, z is not supported: {}",
                 self.at(node)
             )),
-            Kind::Call(func) => Err(format!(
-                "{func} of an expression in x, y, z is not supported: {}",
+            Kind::Call(func, _) => Err(format!(
+                "{} of an expression in x, y, z is not supported: {}",
+                func.name(),
                 self.at(node)
             )),
         }
     }
 
-    fn chain(&self, start: usize, first: &Node, rest: &[(u8, Node)]) -> Result<Expr, String> {
+    fn chain(&self, start: usize, first: &Node, rest: &[(Op, Node)]) -> Result<Expr, String> {
         let additive = rest
             .first()
-            .is_some_and(|(op, _)| matches!(op, b'+' | b'-'));
+            .is_some_and(|(op, _)| matches!(op, Op::Add | Op::Sub));
         let mut items = Vec::with_capacity(rest.len() + 1);
         items.push(self.build(first)?);
         for (op, rhs) in rest {
             let item = match op {
-                b'-' => product(rational(-1), vec![self.build(rhs)?]),
-                b'/' if !rhs.has_var => match self.constant(rhs)? {
+                Op::Sub => product(rational(-1), vec![self.build(rhs)?]),
+                Op::Div if !rhs.has_name => match self.constant(rhs)? {
                     Expr::Rational(q) if q.is_zero() => {
                         return Err(format!(
                             "division by zero in '{}' at position {}",
@@ -757,8 +397,8 @@ impl Builder<'_> {
                     Expr::Rational(q) => Expr::Rational(q.recip()),
                     c => Expr::Pow(Box::new(c), -1),
                 },
-                b'/' => power(self.build(rhs)?, -1),
-                _ => self.build(rhs)?,
+                Op::Div => power(self.build(rhs)?, -1),
+                Op::Add | Op::Mul => self.build(rhs)?,
             };
             items.push(item);
         }
@@ -1039,6 +679,7 @@ fn is_atomic(text: &str) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::number::parse_number;
     use crate::scalar::Exact;
 
     fn q(n: i64, d: i64) -> Exact {

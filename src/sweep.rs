@@ -1000,6 +1000,7 @@ impl Slot {
             text: text(q),
             exact: Ok(q.clone()),
             approx: rational_to_f64(q),
+            symbols: Vec::new(),
         };
         match self {
             Slot::Mass => scene.mass = n,
