@@ -12,7 +12,8 @@
 //!
 //! ```expect case1 bar          ← a case: its name, then the scene it runs
 //! set contact[0].k = 1         ← optional overrides of scene values (TOML values)
-//! mode = exact                 ← optional: exact | f64 (default: exact when every input is rational)
+//! mode = exact                 ← optional: exact | f64 (default: exact, with radicals if needed)
+//! symbols = m, k               ← optional: a symbolic case (closed forms, see below)
 //! newton.P1 = 58.07            ← a value as printed in the paper
 //! newton.twist = [0, 0, 3, -0.375, 0, 0]
 //! ```
@@ -21,7 +22,21 @@
 //! **Comparison at the printed precision.** A printed value with d decimals agrees when
 //! |computed − printed| ≤ ½·10⁻ᵈ. A printed integer is a claim of an exact value: in exact
 //! mode it must be equal; in f64 mode it must agree to 10⁻⁹ relative. Angles in degrees are
-//! compared modulo 360°.
+//! compared modulo 360°, by their f64 value (atan2 of exact cosines and sines).
+//!
+//! **Exact by default.** A case runs in exact rationals when every input is rational, and
+//! with exact radicals (the symbolic field with √p and cos/sin of multiples of 15°) when its
+//! inputs are such expressions (`"2/sqrt(5)"`, `"cos(30 deg)"`): then the bound above is
+//! decided exactly, by refining rational enclosures of the radicals until the sign of
+//! ½·10⁻ᵈ ∓ (computed − printed) is certain. `mode = f64` forces floating point.
+//!
+//! **Closed forms as identities.** A case with a line `symbols = m, Jz, y1, …` is symbolic:
+//! its scene's values may name those symbols (`mass = "m"`), the solver runs over rational
+//! functions of them, and each expectation is a closed form in the symbols
+//! (`newton.P1 = m*(1 + k)*omega0*R`). The verdict is *proved* when the derived value and the
+//! closed form are equal as rational functions (modulo the radical and angle relations;
+//! cross-multiplication, no sampling), otherwise the closed form is refuted and must be in
+//! ERRATA.md, whose `computed` column then holds the corrected closed form (itself proved).
 //!
 //! **Known errata.** `derivations/ERRATA.md` holds a table
 //! `| derivation | case | quantity | printed | computed | reason |`. A disagreement listed
@@ -45,6 +60,10 @@ use crate::report::{Report, Value};
 use crate::restitution::Model;
 use crate::scalar::Exact;
 use crate::scene::{Scene, parse_document, set_value};
+use crate::symbolic::RatFun;
+use num_bigint::BigInt;
+use num_rational::BigRational;
+use num_traits::Zero;
 
 /// One case of a derivation: a scene, overrides, and the values the paper prints.
 #[derive(Clone, Debug, PartialEq)]
@@ -57,6 +76,9 @@ pub struct Case {
     pub sets: Vec<(String, String)>,
     /// `Some(true)` for exact, `Some(false)` for f64, `None` for automatic.
     pub exact: Option<bool>,
+    /// `symbols = m, Jz, …`: the case is symbolic — the scene's values may name these
+    /// symbols, and every expectation is a closed form, proved or refuted as an identity.
+    pub symbols: Vec<String>,
     /// (quantity, printed text, line number).
     pub expects: Vec<(String, String, usize)>,
 }
@@ -138,6 +160,7 @@ impl Derivation {
                         scene: scene.to_string(),
                         sets: Vec::new(),
                         exact: None,
+                        symbols: Vec::new(),
                         expects: Vec::new(),
                     };
                     for (k, raw) in body.iter().enumerate() {
@@ -152,6 +175,17 @@ impl Derivation {
                         let (lhs, rhs) = (lhs.trim(), rhs.trim());
                         if let Some(path) = lhs.strip_prefix("set ") {
                             c.sets.push((path.trim().to_string(), rhs.to_string()));
+                        } else if lhs == "symbols" {
+                            c.symbols = rhs
+                                .split(',')
+                                .map(|s| s.trim().to_string())
+                                .filter(|s| !s.is_empty())
+                                .collect();
+                            if let Some(bad) =
+                                c.symbols.iter().find(|s| !crate::expr::is_symbol_name(s))
+                            {
+                                return Err(err(line_no, format!("`{bad}` is not a symbol name")));
+                            }
                         } else if lhs == "mode" {
                             c.exact = match rhs {
                                 "exact" => Some(true),
@@ -298,6 +332,8 @@ pub struct Line {
     pub quantity: String,
     /// As printed in the paper.
     pub printed: String,
+    /// Whether the value is a closed form checked as an identity (a symbolic case).
+    pub identity: bool,
     /// As computed (exact text when exact).
     pub computed: String,
     /// The verdict.
@@ -348,6 +384,7 @@ pub fn check_dir(dir: &Path) -> Result<Vec<FileResult>, FormatError> {
                 quantity: e.quantity.clone(),
                 printed: e.printed.clone(),
                 computed: "—".into(),
+                identity: false,
                 verdict: Verdict::Fail(
                     "ERRATA.md lists this value, but no derivation checks it".into(),
                 ),
@@ -399,17 +436,28 @@ pub fn check_derivation(
             set_value(&mut doc, path, value)
                 .map_err(|e| fmt_err(format!("case `{}`: set {e}", case.name)))?;
         }
-        let scene = Scene::from_document(&doc, &label).map_err(|e| fmt_err(e.to_string()))?;
-        let exact = case.exact.unwrap_or_else(|| scene.is_rational());
-        let solved: Result<Solved, RunError> = if exact {
+        let scene = Scene::from_document_with(&doc, &label, &case.symbols)
+            .map_err(|e| fmt_err(e.to_string()))?;
+        let symbolic = !case.symbols.is_empty();
+        // Exact: in rationals when every input is rational, else with exact radicals.
+        let radical = !symbolic && !scene.is_rational() && scene.problem::<RatFun>().is_ok();
+        let exact = symbolic || case.exact.unwrap_or(scene.is_rational() || radical);
+        let solved: Result<Solved, RunError> = if symbolic || (exact && radical) {
+            run_with::<RatFun>(&scene, None, true)
+        } else if exact {
             run_with::<Exact>(&scene, None, true)
         } else {
             run_with::<f64>(&scene, None, true)
         };
         let solved = solved.map_err(|e| fmt_err(format!("case `{}`: {e}", case.name)))?;
+        crate::symbolic::take_assumptions();
         result.cases.push((
             case.name.clone(),
-            solved.report.scalar,
+            match (symbolic, solved.report.scalar) {
+                (true, _) => "symbolic",
+                (false, "symbolic") => "exact, radicals",
+                (false, s) => s,
+            },
             if solved.report.models.is_empty() {
                 None
             } else {
@@ -441,12 +489,23 @@ pub fn check_derivation(
                 } else {
                     quantity.clone()
                 };
-                let agreed = agrees(p, v, angle).map_err(|m| FormatError {
+                let judge = |p: &str| {
+                    if symbolic {
+                        identical(p, v, &case.symbols)
+                    } else {
+                        agrees(p, v, angle)
+                    }
+                };
+                let agreed = judge(p).map_err(|m| FormatError {
                     file: file.clone(),
                     line: *line_no,
                     message: m,
                 })?;
-                let computed = describe(v, p);
+                let computed = if symbolic {
+                    v.exact.clone().unwrap_or_else(|| "(no exact form)".into())
+                } else {
+                    describe(v, p)
+                };
                 let listed = errata
                     .iter()
                     .enumerate()
@@ -467,7 +526,7 @@ pub fn check_derivation(
                                 "ERRATA.md says the paper prints {}, the derivation {}",
                                 e.printed, p
                             ))
-                        } else if !agrees(&e.computed, v, angle).unwrap_or(false) {
+                        } else if !judge(&e.computed).unwrap_or(false) {
                             Verdict::Fail(format!(
                                 "ERRATA.md's computed value {} is not what is computed",
                                 e.computed
@@ -483,6 +542,7 @@ pub fn check_derivation(
                     printed: p.clone(),
                     computed,
                     verdict,
+                    identity: symbolic,
                 });
             }
         }
@@ -504,13 +564,53 @@ fn split_printed(p: &str) -> Vec<String> {
     }
 }
 
-/// Does the computed `v` agree with the printed text `p` at the printed precision?
+/// Is the closed form `p` (an expression in `symbols`) identical to the derived `v`? Exact:
+/// both sides are read into the symbolic field and compared by cross-multiplication.
+fn identical(p: &str, v: &Value, symbols: &[String]) -> Result<bool, String> {
+    let printed =
+        crate::expr::symbolic(p, symbols).map_err(|e| format!("the closed form `{p}`: {e}"))?;
+    let Some(derived) = v.exact.as_deref() else {
+        return Ok(false);
+    };
+    Ok(crate::expr::symbolic(derived, symbols).is_ok_and(|d| d == printed))
+}
+
+/// The exact verdict |x − q| ≤ ½·10⁻ᵈ for a computed exact value `x` (a rational or a
+/// constant with radicals) and a printed decimal `q` with `d` decimals (`d` = 0: x = q).
+/// `None` when the value has no exact form.
+fn agrees_exactly(v: &Value, q: &BigRational, decimals: usize) -> Option<bool> {
+    let x = crate::expr::symbolic(v.exact.as_deref()?, &[]).ok()?;
+    if !x.is_constant() {
+        return None;
+    }
+    let diff = x - RatFun::constant(q.clone());
+    if decimals == 0 {
+        return Some(diff.is_zero());
+    }
+    let half = RatFun::constant(BigRational::new(
+        1.into(),
+        BigInt::from(2) * BigInt::from(10).pow(decimals as u32),
+    ));
+    let above = (diff.clone() - &half).constant_sign()?;
+    let below = (diff + &half).constant_sign()?;
+    Some(above <= 0 && below >= 0)
+}
+
+/// Does the computed `v` agree with the printed text `p` at the printed precision? Decided
+/// exactly when the computation was exact (rationals or radicals); angles, which are
+/// transcendental, and f64 runs by the f64 value.
 fn agrees(p: &str, v: &Value, angle: bool) -> Result<bool, String> {
     let text = p.trim();
     let Some(decimals) = printed_decimals(text) else {
         return Err(format!("`{text}` is not a printed decimal number"));
     };
     let printed = parse_number(text).map_err(|e| e.to_string())?;
+    if !angle
+        && let Ok(q) = &printed.exact
+        && let Some(verdict) = agrees_exactly(v, q, decimals)
+    {
+        return Ok(verdict);
+    }
     let pv = printed.approx;
     let mut diff = v.f64 - pv;
     if angle {
@@ -685,7 +785,7 @@ fn angle_value(
 /// Render the results as the `check` report; returns the text and whether everything passed.
 pub fn render(results: &[FileResult]) -> (String, bool) {
     let mut out = String::new();
-    let (mut ok, mut errata, mut fail, mut identity_fail) = (0, 0, 0, 0);
+    let (mut ok, mut proved, mut errata, mut fail, mut identity_fail) = (0, 0, 0, 0, 0);
     for r in results {
         let _ = writeln!(out, "{}", r.path.display());
         for (case, scalar, identity) in &r.cases {
@@ -700,6 +800,10 @@ pub fn render(results: &[FileResult]) -> (String, bool) {
             }
             for l in r.lines.iter().filter(|l| &l.case == case) {
                 let (tag, note) = match &l.verdict {
+                    Verdict::Reproduced if l.identity => {
+                        proved += 1;
+                        ("proved ", String::new())
+                    }
                     Verdict::Reproduced => {
                         ok += 1;
                         ("ok     ", String::new())
@@ -740,8 +844,8 @@ pub fn render(results: &[FileResult]) -> (String, bool) {
     }
     let _ = writeln!(
         out,
-        "\n{} values checked: {ok} reproduced, {errata} known errata (derivations/ERRATA.md), {fail} failed{}",
-        ok + errata + fail,
+        "\n{} values checked: {ok} reproduced, {proved} closed forms proved identities, {errata} known errata (derivations/ERRATA.md), {fail} failed{}",
+        ok + proved + errata + fail,
         if identity_fail > 0 {
             format!("; energy identity failed in {identity_fail} cases")
         } else {

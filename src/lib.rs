@@ -21,7 +21,8 @@
 //! mobility) · [`contact`] (contact frames, §12) · [`restitution`] (Newton, Poisson) ·
 //! [`solve`] (the collision) · [`constraint`] (ideal constraints, §9–11) · [`surface`]
 //! (implicit surfaces, §12) · [`analysis`] and [`analysis_report`] (degenerate cases, §8) · [`scene`] (TOML scenes) · [`report`] (tables and JSON) ·
-//! [`check`] (the paper's worked examples, checked).
+//! [`check`] (the paper's worked examples, checked) · [`symbolic`] and [`derive`] (closed forms
+//! derived by the same solver over rational functions).
 
 #![deny(missing_docs)]
 // Index loops over i, j read like the paper's sums (g_ij, Σ_j P_j g_ij); keep them.
@@ -35,6 +36,7 @@ pub mod check;
 pub mod constraint;
 pub mod contact;
 pub mod dd;
+pub mod derive;
 pub mod expr;
 pub mod linalg;
 pub mod number;

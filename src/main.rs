@@ -2,7 +2,7 @@
 //!
 //! Exit status: 0 success; 1 `check` found a disagreement not in ERRATA.md; 2 bad input (an
 //! unreadable or invalid scene, a malformed derivation, a bad flag); 3 the collision has no
-//! unique solution (Δ = 0).
+//! unique solution (Δ = 0; `derive` reports a singular family instead).
 
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -56,6 +56,25 @@ enum Command {
         #[arg(long, value_enum)]
         model: Option<ModelArg>,
         /// Print the JSON report instead of the text.
+        #[arg(long)]
+        json: bool,
+    },
+    /// Derive the closed forms of a scene whose values name symbols: impulses, velocities
+    /// after impact, E_p, ΔE_c, Δ and q as expressions, with the conditions they hold under;
+    /// for a singular family, the compatibility conditions.
+    Derive {
+        /// The scene file (TOML); values may be expressions in the symbols, e.g. mass = "m".
+        scene: PathBuf,
+        /// The symbols the scene's values may name, comma-separated (e.g. m,Jz,a,b,k1,k2).
+        #[arg(long, value_delimiter = ',', required = true)]
+        symbols: Vec<String>,
+        /// Which restitution model(s); default: the scene's `[solve] models`.
+        #[arg(long, value_enum)]
+        model: Option<ModelArg>,
+        /// Print LaTeX (an aligned block) instead of plain text.
+        #[arg(long, conflicts_with = "json")]
+        latex: bool,
+        /// Print JSON (the report's keys with expression strings, plus conditions).
         #[arg(long)]
         json: bool,
     },
@@ -163,6 +182,13 @@ fn main() -> ExitCode {
             json,
         } => run_analyze(scene, exact, model, json),
         Command::Check { dir, quiet } => run_check(dir, quiet),
+        Command::Derive {
+            scene,
+            symbols,
+            model,
+            latex,
+            json,
+        } => run_derive(scene, symbols, model, latex, json),
         Command::Bench {
             quick,
             json,
@@ -211,6 +237,35 @@ fn run_analyze(path: PathBuf, exact: bool, model: Option<ModelArg>, json: bool) 
     };
     match report {
         Ok(r) => emit(json, || r.to_json(), || r.to_text()),
+        Err(e) => fail(&path, e),
+    }
+}
+
+fn run_derive(
+    path: PathBuf,
+    symbols: Vec<String>,
+    model: Option<ModelArg>,
+    latex: bool,
+    json: bool,
+) -> ExitCode {
+    let symbols: Vec<String> = symbols.iter().map(|s| s.trim().to_string()).collect();
+    if let Some(bad) = symbols.iter().find(|s| !inertance::expr::is_symbol_name(s)) {
+        eprintln!(
+            "error: --symbols: '{bad}' is not a symbol name (a letter or '_', then letters, digits, '_'; \
+             not one of the grammar's names pi, deg, sqrt, sin, cos, tan, nan, inf)"
+        );
+        return ExitCode::from(2);
+    }
+    let scene = match Scene::load_with(&path, &symbols) {
+        Ok(s) => s,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return ExitCode::from(2);
+        }
+    };
+    let models = model.map(ModelArg::models);
+    match inertance::derive::derive(&scene, &symbols, models.as_deref()) {
+        Ok(d) => emit(json, || d.to_json(), || d.to_text(latex)),
         Err(e) => fail(&path, e),
     }
 }

@@ -143,7 +143,8 @@ pub trait Scalar: Field {
 
     /// The exact value as text (`p/q`; an expression for the symbolic type), `None` for floats.
     fn exact_text(&self) -> Option<String> {
-        self.to_rational().map(|q| crate::number::format_rational(&q))
+        self.to_rational()
+            .map(|q| crate::number::format_rational(&q))
     }
 
     /// The exact value in LaTeX, when the type has a form of its own (the symbolic type);

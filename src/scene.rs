@@ -36,7 +36,7 @@ use toml_edit::{DocumentMut, Item, Table, TableLike, Value};
 use crate::body::RigidBody;
 use crate::constraint::Joint;
 use crate::contact::Contact;
-use crate::number::{Number, parse_number};
+use crate::number::{Number, parse_number_with};
 use crate::restitution::Model;
 use crate::scalar::Scalar;
 use crate::screw::{Screw, Vec3, norm2};
@@ -189,6 +189,12 @@ pub struct Scene {
 impl Scene {
     /// Read and validate the scene file at `path`.
     pub fn load(path: &std::path::Path) -> Result<Scene, SceneError> {
+        Scene::load_with(path, &[])
+    }
+
+    /// As [`Scene::load`], with values allowed to name the `symbols` (for `inertance derive`):
+    /// such a value runs only in the symbolic scalar.
+    pub fn load_with(path: &std::path::Path, symbols: &[String]) -> Result<Scene, SceneError> {
         let file = path.display().to_string();
         let text = std::fs::read_to_string(path).map_err(|e| SceneError {
             file: file.clone(),
@@ -196,18 +202,32 @@ impl Scene {
             value: None,
             message: format!("cannot read the file: {e}"),
         })?;
-        Scene::parse(&text, &file)
+        Scene::parse_with(&text, &file, symbols)
     }
 
     /// Parse and validate scene text; `file` names it in messages.
     pub fn parse(text: &str, file: &str) -> Result<Scene, SceneError> {
+        Scene::parse_with(text, file, &[])
+    }
+
+    /// As [`Scene::parse`], with values allowed to name the `symbols`.
+    pub fn parse_with(text: &str, file: &str, symbols: &[String]) -> Result<Scene, SceneError> {
         let doc = parse_document(text, file)?;
-        Scene::from_document(&doc, file)
+        Scene::from_document_with(&doc, file, symbols)
     }
 
     /// Validate a parsed document.
     pub fn from_document(doc: &DocumentMut, file: &str) -> Result<Scene, SceneError> {
-        let r = Reader { file };
+        Scene::from_document_with(doc, file, &[])
+    }
+
+    /// As [`Scene::from_document`], with values allowed to name the `symbols`.
+    pub fn from_document_with(
+        doc: &DocumentMut,
+        file: &str,
+        symbols: &[String],
+    ) -> Result<Scene, SceneError> {
+        let r = Reader { file, symbols };
         let root = doc.as_table();
         r.only_keys(root, "", TOP_KEYS)?;
         let name = match root.get("name") {
@@ -680,6 +700,8 @@ const TOP_KEYS: &[&str] = &[
 /// Reads values out of a document, turning every problem into a [`SceneError`].
 struct Reader<'a> {
     file: &'a str,
+    /// Names values may use as symbols.
+    symbols: &'a [String],
 }
 
 impl Reader<'_> {
@@ -762,7 +784,8 @@ impl Reader<'_> {
             }
         };
         let shown = v.to_string().trim().to_string();
-        parse_number(&text).map_err(|e| self.err(key, Some(shown), e.to_string()))
+        parse_number_with(&text, self.symbols)
+            .map_err(|e| self.err(key, Some(shown), e.to_string()))
     }
 
     fn number(&self, item: &Item, key: &str) -> Result<Number, SceneError> {
@@ -793,7 +816,7 @@ impl Reader<'_> {
     fn positive(&self, n: &Number, key: &str, why: &str) -> Result<(), SceneError> {
         let ok = match &n.exact {
             Ok(q) => q.is_positive(),
-            Err(_) => n.approx > 0.0,
+            Err(_) => !n.symbols.is_empty() || n.approx > 0.0,
         };
         if ok {
             Ok(())
@@ -805,7 +828,7 @@ impl Reader<'_> {
     fn coefficient(&self, n: Number, key: &str) -> Result<Number, SceneError> {
         let ok = match &n.exact {
             Ok(q) => !q.is_negative() && *q <= num_traits::One::one(),
-            Err(_) => (0.0..=1.0).contains(&n.approx),
+            Err(_) => !n.symbols.is_empty() || (0.0..=1.0).contains(&n.approx),
         };
         if ok {
             Ok(n)
@@ -821,7 +844,7 @@ impl Reader<'_> {
     fn nonzero(&self, t: &[Number; 3], key: &str, what: &str) -> Result<(), SceneError> {
         let zero = t.iter().all(|n| match &n.exact {
             Ok(q) => num_traits::Zero::is_zero(q),
-            Err(_) => n.approx == 0.0,
+            Err(_) => n.symbols.is_empty() && n.approx == 0.0,
         });
         if zero {
             let shown = format!("[{}, {}, {}]", t[0].text, t[1].text, t[2].text);

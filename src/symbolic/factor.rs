@@ -15,6 +15,7 @@ use num_rational::BigRational;
 use num_traits::{One, Signed, Zero};
 
 use super::poly::{Monomial, Poly};
+use super::ratfun::RatFun;
 use super::symbols;
 
 /// p = constant · Π f_i^{e_i}: each f_i non-constant with coprime integer coefficients and a
@@ -78,6 +79,110 @@ impl Factored {
         let sep = if latex { " " } else { "*" };
         format!("{sign}{}", items.join(sep))
     }
+}
+
+/// The readable form of a rational function: numerator and denominator factored (see the
+/// [module docs](self)), common factors cancelled, `num/den` with the constant in front of
+/// the numerator. Exact (the factors multiply back to the value), so it reads back equal.
+pub fn readable(x: &RatFun, latex: bool) -> String {
+    let mut num = factor(x.numer());
+    let mut den = Factored {
+        constant: BigRational::one(),
+        factors: Vec::new(),
+    };
+    for (f, e) in x.denom_factors() {
+        let g = factor(f);
+        den.constant *= pow(&g.constant, *e);
+        for (h, k) in g.factors {
+            match den.factors.iter_mut().find(|(d, _)| *d == h) {
+                Some((_, j)) => *j += k * e,
+                None => den.factors.push((h, k * e)),
+            }
+        }
+    }
+    // A denominator factor may hide inside a numerator factor the heuristic left whole.
+    for (d, j) in den.factors.iter_mut() {
+        let mut extra = 0;
+        for (n, i) in num.factors.iter_mut() {
+            while *j > extra && *i == 1 && n.len() > 1 && *n != *d {
+                match n.div_exact(d) {
+                    Some(q) => {
+                        *n = q;
+                        extra += 1;
+                    }
+                    None => break,
+                }
+            }
+        }
+        *j -= extra;
+    }
+    // The quotients may have become constants or changed sign conventions: normalise.
+    let mut renorm = Factored {
+        constant: num.constant.clone(),
+        factors: Vec::new(),
+    };
+    for (n, i) in std::mem::take(&mut num.factors) {
+        let g = factor(&n);
+        renorm.constant *= pow(&g.constant, i);
+        for (h, k) in g.factors {
+            match renorm.factors.iter_mut().find(|(f, _)| *f == h) {
+                Some((_, e)) => *e += k * i,
+                None => renorm.factors.push((h, k * i)),
+            }
+        }
+    }
+    num = renorm;
+    // Cancel common factors.
+    for (d, j) in den.factors.iter_mut() {
+        if let Some((_, i)) = num.factors.iter_mut().find(|(n, _)| n == d) {
+            let c = (*i).min(*j);
+            *i -= c;
+            *j -= c;
+        }
+    }
+    num.factors.retain(|(_, e)| *e > 0);
+    den.factors.retain(|(_, e)| *e > 0);
+    num.constant /= &den.constant;
+    den.constant = BigRational::one();
+    // The constant's denominator goes below the line.
+    let c = num.constant.clone();
+    if !den.factors.is_empty() && !c.denom().is_one() {
+        num.constant = BigRational::from_integer(c.numer().clone());
+        den.constant = BigRational::from_integer(c.denom().clone());
+    }
+    // A lone polynomial factor keeps its own signs: `vx - w*y1`, not `-(w*y1 - vx)`.
+    let lone = match num.factors.as_slice() {
+        [(f, 1)] if num.constant.abs().is_one() && f.len() > 1 => Some(f.scale(&num.constant)),
+        _ => None,
+    };
+    let n = match (&lone, latex) {
+        (Some(p), false) if den.factors.is_empty() => p.to_text(),
+        (Some(p), false) => format!("({})", p.to_text()),
+        (Some(p), true) => p.to_latex(),
+        (None, false) => num.to_text(),
+        (None, true) => num.to_latex(),
+    };
+    if den.factors.is_empty() {
+        return n;
+    }
+    let d = if latex { den.to_latex() } else { den.to_text() };
+    if latex {
+        return format!("\\frac{{{n}}}{{{d}}}");
+    }
+    let wrap = |t: String, f: &Factored| {
+        let atomic = f.factors.len() + usize::from(!f.constant.abs().is_one()) <= 1;
+        if atomic { t } else { format!("({t})") }
+    };
+    // `a*(b + c)/(d*e)` reads left to right: only the denominator needs parentheses.
+    format!("{n}/{}", wrap(d, &den))
+}
+
+fn pow(q: &BigRational, e: u32) -> BigRational {
+    let mut r = BigRational::one();
+    for _ in 0..e {
+        r *= q;
+    }
+    r
 }
 
 /// The factored form of `p` (see the [module docs](self)).
@@ -144,7 +249,10 @@ fn split(p: Poly, out: &mut Vec<Poly>) {
         if coeffs.len() < 2 {
             continue;
         }
-        let lead = coeffs.values().next_back().expect("two or more coefficients");
+        let lead = coeffs
+            .values()
+            .next_back()
+            .expect("two or more coefficients");
         let trail = coeffs.values().next().expect("two or more coefficients");
         // A perfect power c·(x + t)^d, t = c_{d−1} / (d·c) (the binomial theorem).
         let d = *coeffs.keys().next_back().expect("two or more coefficients");

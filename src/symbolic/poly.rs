@@ -279,7 +279,9 @@ impl Poly {
         if c.is_zero() {
             Poly::zero()
         } else {
-            Poly { terms: vec![(m, c)] }
+            Poly {
+                terms: vec![(m, c)],
+            }
         }
     }
 

@@ -679,6 +679,16 @@ impl Scalar for RatFun {
         None
     }
 
+    /// The exact value of a scene number: rationals as constants, radicals (`"2/sqrt(5)"`,
+    /// `"cos(30 deg)"`) exactly, and expressions in the number's declared symbols as
+    /// rational functions of them ([`crate::expr::symbolic`]).
+    fn from_number(n: &crate::number::Number) -> Result<Self, String> {
+        match &n.exact {
+            Ok(q) => Ok(RatFun::constant(q.clone())),
+            Err(_) => crate::expr::symbolic(&n.text, &n.symbols).map_err(|e| e.to_string()),
+        }
+    }
+
     /// The value of a constant (radicals evaluated from exact enclosures); NaN when the value
     /// has free symbols.
     fn to_f64(&self) -> f64 {
@@ -740,12 +750,14 @@ impl Scalar for RatFun {
         0.0
     }
 
+    /// The readable form: numerator and denominator factored, common factors cancelled
+    /// ([`super::factor::readable`]); it reads back equal.
     fn exact_text(&self) -> Option<String> {
-        Some(self.to_text())
+        Some(super::factor::readable(self, false))
     }
 
     fn latex_text(&self) -> Option<String> {
-        Some(self.to_latex())
+        Some(super::factor::readable(self, true))
     }
 
     /// √q for a rational constant q ≥ 0, as an exact radical; `None` otherwise.

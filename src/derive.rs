@@ -1,0 +1,490 @@
+//! `inertance derive`: the unchanged solver run over the symbolic scalar, so that it derives
+//! the closed forms of a scene whose values name symbols.
+//!
+//! A scene value may be an expression in declared symbols (`mass = "m"`,
+//! `point = [0, "-a", 0]`, `k = "k1"`, `normal = ["cos(theta)", "sin(theta)", 0]`). The
+//! pipeline of `solve` runs in [`RatFun`] — frames, inertances g_ij (eq. 12), Δ = det G, the
+//! Newton and Poisson impulses (eq. 15, 21–23), the twist after impact (eq. 24), the contact
+//! velocities (eq. 13, 25, 26), E_p (eq. 28), ΔE_c (eq. 32) and, for a constrained body, q
+//! (eq. 90–93) — every operation exact, every zero test a proof. What comes out:
+//!
+//! * every quantity as a rational function of the symbols (common content, monomials and
+//!   the factors elimination reintroduces cancelled; see [`crate::symbolic::ratfun`]);
+//! * **the conditions** under which the formulas hold: each division by an expression with
+//!   symbols records that it is ≠ 0 (among them Δ ≠ 0 through the pivots), each sign the
+//!   solver took records > 0 ([`crate::symbolic::Assumption`]);
+//! * **the degenerate locus**: Δ as a factored polynomial — where it vanishes the collision
+//!   is singular (§8);
+//! * the energy identity ΔE_c = −E_p + Σ P_i v_ix⁰ (eq. 34) decided as an identity;
+//! * **for a singular family** (Δ ≡ 0 for every value of the symbols: rank G < N
+//!   identically), instead of impulses: for each model the compatibility conditions
+//!   z_kᵀ b = 0 (one per null vector z_k of the symmetric G; Rouché–Capelli, eq. 61–68 and
+//!   98–102) in factored form, and, where they hold identically, the family of solutions —
+//!   the particular one with its last pivoted entries zero, plus the null directions.
+
+use serde_json::{Value as Json, json};
+
+use crate::pipeline::{RunError, prepare, run_with};
+use crate::report::{Report, Value};
+use crate::restitution::Model;
+use crate::scene::Scene;
+use crate::solve::{Impact, Outcome, SolveError};
+use crate::symbolic::{Assumption, AssumptionKind, Factored, RatFun, factor, take_assumptions};
+
+/// A symbolic derivation of a scene.
+#[derive(Clone, Debug)]
+pub struct Derived {
+    /// The symbols declared.
+    pub symbols: Vec<String>,
+    /// Every quantity, as an expression (`Value::exact`) with its LaTeX form.
+    pub report: Report,
+    /// Δ = det G.
+    pub det: RatFun,
+    /// Δ's numerator, factored: the locus Δ = 0 (`None` when Δ is a nonzero constant).
+    pub locus: Option<Factored>,
+    /// For a singular family (Δ ≡ 0): rank G and what each model needs.
+    pub singular: Option<Singular>,
+    /// Per model solved: whether eq. 34 holds identically.
+    pub energy_identity: Vec<(Model, bool)>,
+    /// The conditions the derivation assumed, in order of first use.
+    pub conditions: Vec<Assumption>,
+}
+
+/// A collision that is singular for every value of the symbols.
+#[derive(Clone, Debug)]
+pub struct Singular {
+    /// rank G (generic: as a matrix of rational functions).
+    pub rank: usize,
+    /// N.
+    pub contacts: usize,
+    /// Per model.
+    pub models: Vec<Family>,
+}
+
+/// A model's system G x = b when G is singular.
+#[derive(Clone, Debug)]
+pub struct Family {
+    /// Which model.
+    pub model: Model,
+    /// z_kᵀ b for each null vector z_k: the system is compatible iff all vanish.
+    pub conditions: Vec<RatFun>,
+    /// Their numerators, factored (the readable form of "= 0").
+    pub factored: Vec<Factored>,
+    /// When every condition vanishes identically: the particular solution (hatted impulses,
+    /// see [`crate::contact`]) and the null directions.
+    pub solution: Option<(Vec<RatFun>, Vec<Vec<RatFun>>)>,
+    /// The outcome of the particular solution (velocities after impact, energies), when
+    /// compatible.
+    pub outcome: Option<Outcome<RatFun>>,
+}
+
+/// Derive `scene` symbolically for `models` (the scene's own when `None`).
+///
+/// # Errors
+/// Bad input ([`RunError::Scene`]) and frames that cannot be built; a singular G is not an
+/// error (see [`Derived::singular`]).
+pub fn derive(
+    scene: &Scene,
+    symbols: &[String],
+    models: Option<&[Model]>,
+) -> Result<Derived, RunError> {
+    let models = models.unwrap_or(&scene.models).to_vec();
+    let solved = run_with::<RatFun>(scene, Some(&models), true)?;
+    // Again, without the report (whose angles divide by tangential speeds the formulas do
+    // not need): the conditions are those of the solve itself, and G, b and the null space
+    // are at hand.
+    take_assumptions();
+    let (problem, constrained) = prepare::<RatFun>(scene)?;
+    let mut impact = Impact::new();
+    match &constrained {
+        Some(c) => impact.assemble(&problem, c),
+        None => impact.assemble(&problem, &problem.body),
+    }
+    .map_err(RunError::Solve)?;
+    if impact.rank == impact.contacts() {
+        for &m in &models {
+            let mut out = Outcome::default();
+            impact.solve(&problem, m, &mut out)?;
+            if let Some(c) = &constrained {
+                let mut dv = out.velocity.clone();
+                dv.add_scaled(&-RatFun::from_integer(1), &problem.velocity);
+                let axes = impact.frames.iter().map(|f| &f.axes[0]);
+                c.impulses_into(
+                    &dv,
+                    out.impulses.iter().zip(axes),
+                    &mut out.constraint_impulses,
+                );
+            }
+        }
+    }
+    let mut norms = RatFun::from_integer(1);
+    for f in &impact.frames {
+        norms *= &f.norm2[0];
+    }
+    let det = impact.det.clone() / &norms;
+    let n = impact.contacts();
+    let singular = if impact.rank < n {
+        let basis = impact.null_space();
+        let mut families = Vec::new();
+        for &m in &models {
+            let mut b = Vec::new();
+            impact.rhs(&problem, m, &mut b);
+            let conditions: Vec<RatFun> = basis
+                .iter()
+                .map(|z| {
+                    z.iter()
+                        .zip(&b)
+                        .fold(RatFun::from_integer(0), |s, (zi, bi)| s + zi.clone() * bi)
+                })
+                .collect();
+            let factored = conditions.iter().map(|c| factor(c.numer())).collect();
+            let compatible = conditions.iter().all(num_traits::Zero::is_zero);
+            let (solution, outcome) = if compatible {
+                let mut x = Vec::new();
+                impact
+                    .solve_singular(&b, &mut x)
+                    .ok_or(RunError::Solve(SolveError::Singular {
+                        rank: impact.rank,
+                        contacts: n,
+                    }))?;
+                let mut out = Outcome::<RatFun>::default();
+                if m == Model::Poisson {
+                    out.compression.clone_from(&x);
+                    for (p, c) in x.iter_mut().zip(&problem.contacts) {
+                        *p *= RatFun::from_integer(1) + &c.k_poisson;
+                    }
+                }
+                out.impulses.clone_from(&x);
+                impact.complete(&problem, &mut out);
+                (Some((x, basis.clone())), Some(out))
+            } else {
+                (None, None)
+            };
+            families.push(Family {
+                model: m,
+                conditions,
+                factored,
+                solution,
+                outcome,
+            });
+        }
+        Some(Singular {
+            rank: impact.rank,
+            contacts: n,
+            models: families,
+        })
+    } else {
+        None
+    };
+    let locus = if det.is_constant() {
+        None
+    } else {
+        Some(factor(det.numer()))
+    };
+    let energy_identity = solved
+        .report
+        .models
+        .iter()
+        .map(|r| r.model)
+        .zip(solved.energy_identity.iter().copied())
+        .collect();
+    Ok(Derived {
+        symbols: symbols.to_vec(),
+        report: solved.report,
+        det,
+        locus,
+        singular,
+        energy_identity,
+        conditions: take_assumptions(),
+    })
+}
+
+/// Quantities of a report as (name, value) lines, named as in `inertance check`.
+fn quantities(r: &Report) -> Vec<(String, Vec<(String, Value)>)> {
+    let n = r.inertance.len();
+    let mut sections = Vec::new();
+    let mut g = Vec::new();
+    for i in 0..n {
+        for j in i..n {
+            g.push((format!("g{}{}xx", i + 1, j + 1), r.inertance[i][j].clone()));
+        }
+    }
+    for (i, c) in r.contacts_before.iter().enumerate() {
+        g.push((format!("v{}x0", i + 1), c.components[0].clone()));
+    }
+    if let Some(c) = &r.constraints {
+        let d = c.reduced_mass.len();
+        for a in 0..d {
+            for b in a..d {
+                let name = if d == 1 {
+                    "Mred".to_string()
+                } else {
+                    format!("Mred[{}]", a * d + b)
+                };
+                g.push((name, c.reduced_mass[a][b].clone()));
+            }
+        }
+    }
+    sections.push(("inertances and velocities before impact".to_string(), g));
+    for mr in &r.models {
+        let m = mr.model.name();
+        let mut v = Vec::new();
+        for (i, p) in mr.impulses.iter().enumerate() {
+            if p.exact.is_some() {
+                v.push((format!("{m}.P{}", i + 1), p.clone()));
+            } else {
+                // |n_i| has no exact form: the impulse as a multiple of the normal as written.
+                v.push((
+                    format!("{m}.P{}/|n{}|", i + 1, i + 1),
+                    mr.impulse_multiples[i].clone(),
+                ));
+            }
+        }
+        if let Some(pc) = &mr.compression_impulses {
+            for (i, p) in pc.iter().enumerate() {
+                v.push((format!("{m}.P{}c", i + 1), p.clone()));
+            }
+        }
+        for (k, w) in mr.angular_velocity.iter().enumerate() {
+            v.push((format!("{m}.omega[{k}]"), w.clone()));
+        }
+        for (k, w) in mr.velocity.iter().enumerate() {
+            v.push((format!("{m}.vC[{k}]"), w.clone()));
+        }
+        for (i, c) in mr.contacts.iter().enumerate() {
+            v.push((format!("{m}.v{}x", i + 1), c.components[0].clone()));
+        }
+        v.push((format!("{m}.Ep"), mr.lost_velocity_energy.clone()));
+        v.push((format!("{m}.dEc"), mr.kinetic_energy_loss.clone()));
+        for (k, q) in mr.constraint_impulses.iter().enumerate() {
+            v.push((format!("{m}.q[{k}]"), q.clone()));
+        }
+        sections.push((format!("{m} (after impact)"), v));
+    }
+    sections
+}
+
+fn text_of(v: &Value) -> String {
+    v.exact.clone().unwrap_or_else(|| "(no exact form)".into())
+}
+
+fn latex_of(v: &Value) -> String {
+    v.latex
+        .clone()
+        .or_else(|| v.exact.clone())
+        .unwrap_or_else(|| "\\text{(no exact form)}".into())
+}
+
+fn condition_text(a: &Assumption, latex: bool) -> String {
+    let e = if a.expr.numer().display_sign() < 0 && a.kind == AssumptionKind::NonZero {
+        -a.expr.clone()
+    } else {
+        a.expr.clone()
+    };
+    let t = crate::symbolic::factor::readable(&e, latex);
+    match (a.kind, latex) {
+        (AssumptionKind::NonZero, false) => format!("{t} ≠ 0"),
+        (AssumptionKind::NonZero, true) => format!("{t} \\neq 0"),
+        (AssumptionKind::Positive, _) => format!("{t} > 0"),
+    }
+}
+
+impl Derived {
+    /// Plain text (or LaTeX with `latex`): one `name = expression` per line, quantities named
+    /// as in `inertance check`.
+    pub fn to_text(&self, latex: bool) -> String {
+        let mut out = String::new();
+        let (eq, and) = if latex {
+            (" &= ", " \\\\")
+        } else {
+            (" = ", "")
+        };
+        let val = |v: &Value| if latex { latex_of(v) } else { text_of(v) };
+        out += &format!("derivation of {}\n", self.report.scene);
+        out += &format!("symbols: {}\n", self.symbols.join(", "));
+        out += &format!("effects: {}\n", self.report.effects.join(", "));
+        if latex {
+            out += "\\begin{aligned}\n";
+        }
+        let det = crate::symbolic::factor::readable(&self.det, latex);
+        let det_name = if latex { "\\Delta" } else { "det" };
+        out += &format!("{det_name}{eq}{det}{and}\n");
+        if let Some(locus) = &self.locus {
+            let f = if latex {
+                locus.to_latex()
+            } else {
+                locus.to_text()
+            };
+            if latex {
+                out += &format!("&\\text{{degenerate (Δ = 0) where }} {f} = 0{and}\n");
+            } else {
+                out += &format!("  degenerate (Δ = 0) where {f} = 0\n");
+            }
+        }
+        let sections = quantities(&self.report);
+        for (title, lines) in &sections {
+            if latex {
+                out += &format!("&\\text{{{title}}}{and}\n");
+            } else {
+                out += &format!("{title}:\n");
+            }
+            for (name, v) in lines {
+                if latex {
+                    out += &format!(
+                        "\\mathrm{{{}}}{eq}{}{and}\n",
+                        name.replace('_', "\\_"),
+                        val(v)
+                    );
+                } else {
+                    out += &format!("  {name}{eq}{}\n", val(v));
+                }
+            }
+        }
+        if let Some(s) = &self.singular {
+            out += &self.singular_text(s, latex);
+        }
+        if latex {
+            out += "\\end{aligned}\n";
+        }
+        for (m, ok) in &self.energy_identity {
+            out += &format!(
+                "{m}: energy identity ΔE_c = −E_p + Σ P_i v_ix⁰ (eq. 34) {}\n",
+                if *ok { "holds identically" } else { "FAILS" }
+            );
+        }
+        if self.conditions.is_empty() {
+            out += "conditions: none (the formulas hold for every value of the symbols)\n";
+        } else {
+            out += "conditions (the formulas hold where all of these do):\n";
+            for c in &self.conditions {
+                out += &format!("  {}\n", condition_text(c, latex));
+            }
+        }
+        out
+    }
+
+    fn singular_text(&self, s: &Singular, latex: bool) -> String {
+        let mut out = String::new();
+        let line = |t: String| {
+            if latex {
+                format!("&\\text{{{t}}} \\\\\n")
+            } else {
+                format!("{t}\n")
+            }
+        };
+        out += &line(format!(
+            "Δ = 0 identically: rank G = {} of {} for every value of the symbols (§8, eq. 61–68, 98–102)",
+            s.rank, s.contacts
+        ));
+        let ex = |e: &RatFun| if latex { e.to_latex() } else { e.to_text() };
+        for f in &s.models {
+            let m = f.model.name();
+            match &f.solution {
+                None => {
+                    out += &line(format!(
+                        "{m}: compatible (rank [G | b] = rank G) only where"
+                    ));
+                    for fac in &f.factored {
+                        let t = if latex { fac.to_latex() } else { fac.to_text() };
+                        out += &if latex {
+                            format!("&\\quad {t} = 0 \\\\\n")
+                        } else {
+                            format!("  {t} = 0\n")
+                        };
+                    }
+                }
+                Some((x, dirs)) => {
+                    out += &line(format!(
+                        "{m}: compatible for every value of the symbols; impulses (as multiples of the normals) x + Σ t_k z_k:"
+                    ));
+                    for (i, xi) in x.iter().enumerate() {
+                        out += &if latex {
+                            format!("\\hat P_{{{}}} &= {} \\\\\n", i + 1, ex(xi))
+                        } else {
+                            format!("  {m}.P{}/|n{}| = {}\n", i + 1, i + 1, ex(xi))
+                        };
+                    }
+                    for (k, z) in dirs.iter().enumerate() {
+                        let zs: Vec<String> = z.iter().map(ex).collect();
+                        out += &if latex {
+                            format!(
+                                "z_{{{}}} &= \\left[{}\\right] \\\\\n",
+                                k + 1,
+                                zs.join(",\\ ")
+                            )
+                        } else {
+                            format!("  z{} = [{}]\n", k + 1, zs.join(", "))
+                        };
+                    }
+                    if let Some(o) = &f.outcome {
+                        let tw: Vec<String> = o.velocity.0.iter().map(ex).collect();
+                        out += &if latex {
+                            format!("\\{{v\\}} &= \\left[{}\\right] \\\\\n", tw.join(",\\ "))
+                        } else {
+                            format!("  {m}.twist (particular solution) = [{}]\n", tw.join(", "))
+                        };
+                        if !latex {
+                            out += &format!(
+                                "  {m}.Ep = {}\n  {m}.dEc = {}\n",
+                                ex(&o.lost_velocity_energy),
+                                ex(&o.kinetic_energy_loss)
+                            );
+                        }
+                    }
+                }
+            }
+        }
+        out
+    }
+
+    /// The JSON form: the report's keys (values as expression strings) plus `symbols`,
+    /// `det_locus`, `conditions`, `energy_identity` and `singular`.
+    pub fn to_json(&self) -> Json {
+        let mut j = self.report.to_json();
+        let ex = |e: &RatFun| Json::String(e.to_text());
+        if let Json::Object(map) = &mut j {
+            map.insert("symbols".into(), json!(self.symbols));
+            map.insert("det".into(), ex(&self.det));
+            map.insert(
+                "det_locus".into(),
+                self.locus
+                    .as_ref()
+                    .map_or(Json::Null, |f| Json::String(f.to_text())),
+            );
+            map.insert(
+                "conditions".into(),
+                Json::Array(
+                    self.conditions
+                        .iter()
+                        .map(|c| Json::String(condition_text(c, false)))
+                        .collect(),
+                ),
+            );
+            map.insert(
+                "energy_identity".into(),
+                self.energy_identity
+                    .iter()
+                    .map(|(m, ok)| (m.name().to_string(), json!(ok)))
+                    .collect::<serde_json::Map<_, _>>()
+                    .into(),
+            );
+            map.insert(
+                "singular".into(),
+                self.singular.as_ref().map_or(Json::Null, |s| {
+                    json!({
+                        "rank": s.rank,
+                        "contacts": s.contacts,
+                        "models": s.models.iter().map(|f| json!({
+                            "model": f.model.name(),
+                            "compatible_identically": f.solution.is_some(),
+                            "conditions": f.factored.iter().map(|c| format!("{} = 0", c.to_text())).collect::<Vec<_>>(),
+                            "particular_impulse_multiples": f.solution.as_ref().map(|(x, _)| x.iter().map(RatFun::to_text).collect::<Vec<_>>()),
+                            "null_directions": f.solution.as_ref().map(|(_, z)| z.iter().map(|v| v.iter().map(RatFun::to_text).collect::<Vec<_>>()).collect::<Vec<_>>()),
+                        })).collect::<Vec<_>>(),
+                    })
+                }),
+            );
+        }
+        j
+    }
+}
