@@ -442,7 +442,17 @@ pub fn check_derivation(
         // Exact: in rationals when every input is rational, else with exact radicals.
         let radical = !symbolic && !scene.is_rational() && scene.problem::<RatFun>().is_ok();
         let exact = symbolic || case.exact.unwrap_or(scene.is_rational() || radical);
-        let solved: Result<Solved, RunError> = if symbolic || (exact && radical) {
+        // A symbolic case is derived (so a singular family has its compatibility conditions).
+        let mut family = None;
+        let solved: Result<Solved, RunError> = if symbolic {
+            crate::derive::derive(&scene, &case.symbols, None).map(|d| {
+                family = d.singular;
+                Solved {
+                    energy_identity: d.energy_identity.iter().map(|(_, ok)| *ok).collect(),
+                    report: d.report,
+                }
+            })
+        } else if exact && radical {
             run_with::<RatFun>(&scene, None, true)
         } else if exact {
             run_with::<Exact>(&scene, None, true)
@@ -465,7 +475,13 @@ pub fn check_derivation(
             },
         ));
         for (quantity, printed, line_no) in &case.expects {
-            let values = lookup(&solved.report, quantity).map_err(|m| FormatError {
+            let condition = quantity.ends_with(".compatibility");
+            let values = if condition {
+                compatibility(family.as_ref(), quantity)
+            } else {
+                lookup(&solved.report, quantity)
+            };
+            let values = values.map_err(|m| FormatError {
                 file: file.clone(),
                 line: *line_no,
                 message: m,
@@ -490,7 +506,9 @@ pub fn check_derivation(
                     quantity.clone()
                 };
                 let judge = |p: &str| {
-                    if symbolic {
+                    if symbolic && condition {
+                        same_equation(p, v, &case.symbols)
+                    } else if symbolic {
                         identical(p, v, &case.symbols)
                     } else {
                         agrees(p, v, angle)
@@ -573,6 +591,45 @@ fn identical(p: &str, v: &Value, symbols: &[String]) -> Result<bool, String> {
         return Ok(false);
     };
     Ok(crate::expr::symbolic(derived, symbols).is_ok_and(|d| d == printed))
+}
+
+/// Is the printed condition `p` = 0 the derived compatibility condition `v` = 0, up to a
+/// nonzero constant factor (the same equation, however it is scaled or signed)?
+fn same_equation(p: &str, v: &Value, symbols: &[String]) -> Result<bool, String> {
+    let printed =
+        crate::expr::symbolic(p, symbols).map_err(|e| format!("the condition `{p}`: {e}"))?;
+    if printed.is_zero() {
+        return Ok(v.exact.as_deref() == Some("0"));
+    }
+    let Some(derived) = v.exact.as_deref() else {
+        return Ok(false);
+    };
+    Ok(crate::expr::symbolic(derived, symbols).is_ok_and(|d| {
+        let ratio = d / printed;
+        ratio.is_constant() && !ratio.is_zero()
+    }))
+}
+
+/// `newton.compatibility`, `poisson.compatibility`: for a singular family, the derived
+/// compatibility conditions z_kᵀ b = 0 (their left sides, factored), one per null vector.
+fn compatibility(family: Option<&crate::derive::Singular>, q: &str) -> Result<Vec<Value>, String> {
+    let s = family.ok_or_else(|| {
+        format!("`{q}`: the collision is not singular for every value of the symbols")
+    })?;
+    let model = q.split('.').next().and_then(Model::from_name);
+    let f = s
+        .models
+        .iter()
+        .find(|f| Some(f.model) == model)
+        .ok_or_else(|| format!("`{q}`: unknown model or model not solved"))?;
+    Ok(f.factored
+        .iter()
+        .map(|c| Value {
+            f64: f64::NAN,
+            exact: Some(c.to_text()),
+            latex: Some(c.to_latex()),
+        })
+        .collect())
 }
 
 /// The exact verdict |x − q| ≤ ½·10⁻ᵈ for a computed exact value `x` (a rational or a

@@ -264,6 +264,61 @@ fn quantities(r: &Report) -> Vec<(String, Vec<(String, Value)>)> {
     sections
 }
 
+/// The paper's notation for a quantity named as in `inertance check`: `g12xx` → g_{12xx},
+/// `newton.P1` → P_{1}^{N}, `poisson.dEc` → \Delta E_{c}^{P}, `newton.vC[0]` → v_{Cx}^{N}.
+fn latex_name(name: &str) -> String {
+    let (model, q) = match name.split_once('.') {
+        Some((m, q)) => (if m == "newton" { "^{N}" } else { "^{P}" }, q),
+        None => ("", name),
+    };
+    let axis = |k: &str| match k {
+        "0" => "x",
+        "1" => "y",
+        _ => "z",
+    };
+    let index = |q: &str| -> Option<(String, String)> {
+        let (base, k) = q.strip_suffix(']')?.split_once('[')?;
+        Some((base.to_string(), k.to_string()))
+    };
+    let body = if q == "det" {
+        "\\Delta".to_string()
+    } else if q == "Mred" {
+        "M_{\\mathrm{red}}".to_string()
+    } else if q == "Ep" {
+        "E_{p}".to_string()
+    } else if q == "dEc" {
+        "\\Delta E_{c}".to_string()
+    } else if let Some((base, k)) = index(q) {
+        match base.as_str() {
+            "omega" => format!("\\omega_{{{}}}", axis(&k)),
+            "vC" => format!("v_{{C{}}}", axis(&k)),
+            "q" => format!(
+                "q_{{{}}}",
+                k.parse::<usize>()
+                    .map_or(k.clone(), |i| (i + 1).to_string())
+            ),
+            "Mred" => format!("M_{{\\mathrm{{red}},{k}}}"),
+            _ => format!("\\mathrm{{{q}}}"),
+        }
+    } else if let Some(rest) = q.strip_prefix('g') {
+        format!("g_{{{rest}}}")
+    } else if let Some(i) = q.strip_prefix('P').and_then(|r| r.split_once('/')) {
+        format!("\\hat P_{{{}}}", i.0)
+    } else if let Some(i) = q.strip_prefix('P').and_then(|r| r.strip_suffix('c')) {
+        return format!("P_{{{i}}}^{{c}}");
+    } else if let Some(i) = q.strip_prefix('P') {
+        format!("P_{{{i}}}")
+    } else if let Some(rest) = q.strip_prefix('v') {
+        match rest.strip_suffix('0') {
+            Some(r) => return format!("v_{{{r}}}^{{0}}"),
+            None => format!("v_{{{rest}}}"),
+        }
+    } else {
+        format!("\\mathrm{{{q}}}")
+    };
+    format!("{body}{model}")
+}
+
 fn text_of(v: &Value) -> String {
     v.exact.clone().unwrap_or_else(|| "(no exact form)".into())
 }
@@ -291,18 +346,26 @@ fn condition_text(a: &Assumption, latex: bool) -> String {
 
 impl Derived {
     /// Plain text (or LaTeX with `latex`): one `name = expression` per line, quantities named
-    /// as in `inertance check`.
+    /// as in `inertance check` (in LaTeX, as in the paper: g_{12xx}, P_1^N, ΔE_c^P); the
+    /// prose lines are `%` comments in LaTeX, so the output pastes into a document.
     pub fn to_text(&self, latex: bool) -> String {
         let mut out = String::new();
+        let comment = |t: &str| {
+            if latex {
+                format!("% {t}\n")
+            } else {
+                format!("{t}\n")
+            }
+        };
         let (eq, and) = if latex {
             (" &= ", " \\\\")
         } else {
             (" = ", "")
         };
         let val = |v: &Value| if latex { latex_of(v) } else { text_of(v) };
-        out += &format!("derivation of {}\n", self.report.scene);
-        out += &format!("symbols: {}\n", self.symbols.join(", "));
-        out += &format!("effects: {}\n", self.report.effects.join(", "));
+        out += &comment(&format!("derivation of {}", self.report.scene));
+        out += &comment(&format!("symbols: {}", self.symbols.join(", ")));
+        out += &comment(&format!("effects: {}", self.report.effects.join(", ")));
         if latex {
             out += "\\begin{aligned}\n";
         }
@@ -310,19 +373,16 @@ impl Derived {
         let det_name = if latex { "\\Delta" } else { "det" };
         out += &format!("{det_name}{eq}{det}{and}\n");
         if let Some(locus) = &self.locus {
-            let f = if latex {
-                locus.to_latex()
-            } else {
-                locus.to_text()
-            };
             if latex {
-                out += &format!("&\\text{{degenerate (Δ = 0) where }} {f} = 0{and}\n");
+                out += &format!(
+                    "&\\text{{degenerate ($\\Delta = 0$) where }} {} = 0{and}\n",
+                    locus.to_latex()
+                );
             } else {
-                out += &format!("  degenerate (Δ = 0) where {f} = 0\n");
+                out += &format!("  degenerate (Δ = 0) where {} = 0\n", locus.to_text());
             }
         }
-        let sections = quantities(&self.report);
-        for (title, lines) in &sections {
+        for (title, lines) in &quantities(&self.report) {
             if latex {
                 out += &format!("&\\text{{{title}}}{and}\n");
             } else {
@@ -330,11 +390,7 @@ impl Derived {
             }
             for (name, v) in lines {
                 if latex {
-                    out += &format!(
-                        "\\mathrm{{{}}}{eq}{}{and}\n",
-                        name.replace('_', "\\_"),
-                        val(v)
-                    );
+                    out += &format!("{}{eq}{}{and}\n", latex_name(name), val(v));
                 } else {
                     out += &format!("  {name}{eq}{}\n", val(v));
                 }
@@ -347,17 +403,28 @@ impl Derived {
             out += "\\end{aligned}\n";
         }
         for (m, ok) in &self.energy_identity {
-            out += &format!(
-                "{m}: energy identity ΔE_c = −E_p + Σ P_i v_ix⁰ (eq. 34) {}\n",
+            out += &comment(&format!(
+                "{m}: energy identity ΔE_c = −E_p + Σ P_i v_ix⁰ (eq. 34) {}",
                 if *ok { "holds identically" } else { "FAILS" }
-            );
+            ));
         }
         if self.conditions.is_empty() {
-            out += "conditions: none (the formulas hold for every value of the symbols)\n";
+            out += &comment("conditions: none (the formulas hold for every value of the symbols)");
         } else {
-            out += "conditions (the formulas hold where all of these do):\n";
-            for c in &self.conditions {
-                out += &format!("  {}\n", condition_text(c, latex));
+            out += &comment("conditions (the formulas hold where all of these do):");
+            if latex {
+                out += "\\begin{gathered}\n";
+                let items: Vec<String> = self
+                    .conditions
+                    .iter()
+                    .map(|c| condition_text(c, true))
+                    .collect();
+                out += &items.join(", \\\\\n");
+                out += "\n\\end{gathered}\n";
+            } else {
+                for c in &self.conditions {
+                    out += &format!("  {}\n", condition_text(c, false));
+                }
             }
         }
         out
@@ -373,10 +440,10 @@ impl Derived {
             }
         };
         out += &line(format!(
-            "Δ = 0 identically: rank G = {} of {} for every value of the symbols (§8, eq. 61–68, 98–102)",
+            "det = 0 identically: rank G = {} of {} for every value of the symbols (§8, eq. 61–68, 98–102)",
             s.rank, s.contacts
         ));
-        let ex = |e: &RatFun| if latex { e.to_latex() } else { e.to_text() };
+        let ex = |e: &RatFun| crate::symbolic::factor::readable(e, latex);
         for f in &s.models {
             let m = f.model.name();
             match &f.solution {

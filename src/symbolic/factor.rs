@@ -142,6 +142,10 @@ pub fn readable(x: &RatFun, latex: bool) -> String {
     }
     num.factors.retain(|(_, e)| *e > 0);
     den.factors.retain(|(_, e)| *e > 0);
+    for f in [&mut num, &mut den] {
+        f.factors
+            .sort_by_key(|(p, _)| (p.len() > 1, p.len(), p.to_text()));
+    }
     num.constant /= &den.constant;
     den.constant = BigRational::one();
     // The constant's denominator goes below the line.
@@ -165,7 +169,12 @@ pub fn readable(x: &RatFun, latex: bool) -> String {
     if den.factors.is_empty() {
         return n;
     }
-    let d = if latex { den.to_latex() } else { den.to_text() };
+    let d = match den.factors.as_slice() {
+        // A lone factor needs no parentheses under a fraction bar.
+        [(f, 1)] if latex && den.constant.is_one() => f.to_latex(),
+        _ if latex => den.to_latex(),
+        _ => den.to_text(),
+    };
     if latex {
         return format!("\\frac{{{n}}}{{{d}}}");
     }
