@@ -16,6 +16,7 @@ use inertance::restitution::Model;
 use inertance::scalar::Exact;
 use inertance::scene::Scene;
 use inertance::solve::SolveError;
+use inertance::symbolic::RatFun;
 
 #[derive(Parser)]
 #[command(
@@ -34,7 +35,8 @@ enum Command {
     Solve {
         /// The scene file (TOML).
         scene: PathBuf,
-        /// Compute in exact rationals (every number read exactly as written).
+        /// Compute exactly: in rationals (every number read exactly as written), or with exact
+        /// radicals when the scene has them ("2/sqrt(5)", "cos(30 deg)").
         #[arg(long)]
         exact: bool,
         /// Which restitution model(s); default: the scene's `[solve] models`.
@@ -49,7 +51,7 @@ enum Command {
     Analyze {
         /// The scene file (TOML).
         scene: PathBuf,
-        /// Decide every rank and sign exactly, in rationals.
+        /// Decide every rank and sign exactly, in rationals (or with exact radicals).
         #[arg(long)]
         exact: bool,
         /// Which restitution model(s); default: the scene's `[solve] models`.
@@ -213,7 +215,10 @@ fn solve(path: PathBuf, exact: bool, model: Option<ModelArg>, json: bool) -> Exi
         Err(code) => return code,
     };
     let models = model.map(ModelArg::models);
-    let solved = if exact {
+    let solved = if exact && !scene.is_rational() {
+        // Radicals ("2/sqrt(5)", "cos(30 deg)") run exactly in the symbolic field.
+        run::<RatFun>(&scene, models.as_deref())
+    } else if exact {
         run::<Exact>(&scene, models.as_deref())
     } else {
         run::<f64>(&scene, models.as_deref())
@@ -230,7 +235,9 @@ fn run_analyze(path: PathBuf, exact: bool, model: Option<ModelArg>, json: bool) 
         Err(code) => return code,
     };
     let models = model.map(ModelArg::models);
-    let report = if exact {
+    let report = if exact && !scene.is_rational() {
+        analyze_scene::<RatFun>(&scene, models.as_deref())
+    } else if exact {
         analyze_scene::<Exact>(&scene, models.as_deref())
     } else {
         analyze_scene::<f64>(&scene, models.as_deref())

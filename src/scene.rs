@@ -25,6 +25,12 @@
 //! is kept, so in exact mode `0.1` is exactly 1/10; an irrational expression is refused in
 //! exact mode and evaluated in floating point otherwise.
 //!
+//! **Symbols.** Read with [`Scene::load_with`] (as `inertance derive --symbols m,k1,…` does), a
+//! value may be an expression in the declared symbols (`mass = "m"`, `point = [0, "-a", 0]`,
+//! `normal = ["cos(theta)", "sin(theta)", 0]`); such a scene runs only in the symbolic scalar
+//! ([`crate::symbolic::RatFun`]), and the range checks (mass > 0, k ∈ [0, 1]) are left to the
+//! reader of the derived formulas. Undeclared names are errors, so a typo is not a symbol.
+//!
 //! Keys are addressed as paths, `body.mass`, `contact[1].k` (contacts counted from 0), both
 //! in error messages and in [`set_value`], which overrides one value of a scene.
 
@@ -784,8 +790,13 @@ impl Reader<'_> {
             }
         };
         let shown = v.to_string().trim().to_string();
-        parse_number_with(&text, self.symbols)
-            .map_err(|e| self.err(key, Some(shown), e.to_string()))
+        parse_number_with(&text, self.symbols).map_err(|e| {
+            let mut message = e.to_string();
+            if self.symbols.is_empty() && message.contains("unknown name") {
+                message += "; a symbolic scene is for `inertance derive SCENE --symbols NAME,…`";
+            }
+            self.err(key, Some(shown), message)
+        })
     }
 
     fn number(&self, item: &Item, key: &str) -> Result<Number, SceneError> {

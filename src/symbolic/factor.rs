@@ -209,10 +209,20 @@ pub fn factor(p: &Poly) -> Factored {
     }
     let mut factors: Vec<(Poly, u32)> = Vec::new();
     let mono = prim.monomial_gcd();
+    let table = symbols::snapshot();
+    // Radicals in the monomial content form one factor (√2·√3 shows as √6), first.
+    let mut root = Poly::one();
     for &(v, e) in mono.vars() {
-        factors.push((Poly::var(v), e));
+        if table.is_radical(v) {
+            root = &root * &Poly::var(v);
+        } else {
+            factors.push((Poly::var(v), e));
+        }
     }
     factors.sort_by_key(|(f, _)| f.to_text());
+    if !root.is_one() {
+        factors.insert(0, (root, 1));
+    }
     let rest = prim
         .div_monomial(&mono)
         .expect("the monomial content divides every term");

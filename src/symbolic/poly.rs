@@ -822,12 +822,18 @@ impl DisplayTerm {
     /// |coefficient| and factors.
     fn render(&self, latex: bool) -> String {
         let mut factors: Vec<String> = Vec::new();
-        for (p, l) in &self.radicals {
-            factors.push(if latex {
-                l.clone()
-            } else {
-                format!("sqrt({p})")
-            });
+        // √p·√q·… shown as one root √(pq…) (it reads back as the same product of primes).
+        match self.radicals.as_slice() {
+            [] => {}
+            [(_, l)] if latex => factors.push(l.clone()),
+            rs => {
+                let n: BigInt = rs.iter().map(|r| &r.0).product();
+                factors.push(if latex {
+                    format!("\\sqrt{{{n}}}")
+                } else {
+                    format!("sqrt({n})")
+                });
+            }
         }
         for (name, l, e) in &self.free {
             factors.push(match (latex, *e) {
