@@ -912,3 +912,58 @@ pub fn render(results: &[FileResult]) -> (String, bool) {
     let passed = fail == 0 && identity_fail == 0;
     (out, passed)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn exact(text: &str) -> Value {
+        let x = crate::expr::symbolic(text, &[]).unwrap();
+        Value::of(&x)
+    }
+
+    /// Printed decimals of radicals are judged exactly: √2 = 1.41421356…, so 1.4142136 (7
+    /// decimals, |error| ≈ 3.8·10⁻⁸ ≤ 5·10⁻⁸) agrees and 1.4142135 (≈ 6.2·10⁻⁸) does not.
+    #[test]
+    fn radicals_against_printed_decimals() {
+        let r2 = exact("sqrt(2)");
+        assert_eq!(agrees("1.4142136", &r2, false), Ok(true));
+        assert_eq!(agrees("1.4142135", &r2, false), Ok(false));
+        assert_eq!(agrees("1.41421", &r2, false), Ok(true));
+        assert_eq!(agrees("1.41422", &r2, false), Ok(false));
+        // A printed integer claims equality.
+        assert_eq!(agrees("2", &exact("sqrt(2)*sqrt(2)"), false), Ok(true));
+        assert_eq!(
+            agrees("1", &exact("cos(30 deg)^2 + sin(30 deg)^2"), false),
+            Ok(true)
+        );
+        assert_eq!(agrees("1", &r2, false), Ok(false));
+    }
+
+    /// The bound is decided exactly, even where the f64 value sits on the boundary: the exact
+    /// 1/8 + 10⁻³⁰ lies just outside ½·10⁻² of the printed 0.13 — f64 cannot see the
+    /// difference — and exactly 1/8 lies on the bound, which agrees (≤).
+    #[test]
+    fn the_half_unit_bound_is_exact() {
+        let on = exact("1/8");
+        assert_eq!(agrees("0.13", &on, false), Ok(true));
+        assert_eq!(agrees("0.12", &on, false), Ok(true));
+        let below = exact("1/8 - 10^(-30)");
+        assert_eq!(below.f64, 0.125);
+        assert_eq!(agrees("0.13", &below, false), Ok(false));
+        assert_eq!(agrees("0.12", &below, false), Ok(true));
+    }
+
+    #[test]
+    fn closed_forms_are_compared_as_rational_functions() {
+        let syms: Vec<String> = ["m", "Jz", "y1"].iter().map(|s| s.to_string()).collect();
+        let derived = Value::of(&crate::expr::symbolic("(m*y1^2 + Jz)/(Jz*m)", &syms).unwrap());
+        assert_eq!(identical("1/m + y1^2/Jz", &derived, &syms), Ok(true));
+        assert_eq!(identical("1/m + y1/Jz", &derived, &syms), Ok(false));
+        assert!(identical("1/m +", &derived, &syms).is_err());
+        // Conditions: the same equation up to a nonzero constant factor.
+        let c = Value::of(&crate::expr::symbolic("2*m*(y1 - Jz)", &syms).unwrap());
+        assert_eq!(same_equation("Jz*m - m*y1", &c, &syms), Ok(true));
+        assert_eq!(same_equation("y1 - Jz", &c, &syms), Ok(false));
+    }
+}

@@ -508,7 +508,8 @@ impl Derived {
     /// `det_locus`, `conditions`, `energy_identity` and `singular`.
     pub fn to_json(&self) -> Json {
         let mut j = self.report.to_json();
-        let ex = |e: &RatFun| Json::String(e.to_text());
+        let text = |e: &RatFun| crate::symbolic::factor::readable(e, false);
+        let ex = |e: &RatFun| Json::String(text(e));
         if let Json::Object(map) = &mut j {
             map.insert("symbols".into(), json!(self.symbols));
             map.insert("det".into(), ex(&self.det));
@@ -545,8 +546,8 @@ impl Derived {
                             "model": f.model.name(),
                             "compatible_identically": f.solution.is_some(),
                             "conditions": f.factored.iter().map(|c| format!("{} = 0", c.to_text())).collect::<Vec<_>>(),
-                            "particular_impulse_multiples": f.solution.as_ref().map(|(x, _)| x.iter().map(RatFun::to_text).collect::<Vec<_>>()),
-                            "null_directions": f.solution.as_ref().map(|(_, z)| z.iter().map(|v| v.iter().map(RatFun::to_text).collect::<Vec<_>>()).collect::<Vec<_>>()),
+                            "particular_impulse_multiples": f.solution.as_ref().map(|(x, _)| x.iter().map(text).collect::<Vec<_>>()),
+                            "null_directions": f.solution.as_ref().map(|(_, z)| z.iter().map(|v| v.iter().map(text).collect::<Vec<_>>()).collect::<Vec<_>>()),
                         })).collect::<Vec<_>>(),
                     })
                 }),
