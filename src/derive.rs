@@ -71,11 +71,16 @@ pub struct Family {
     /// Their numerators, factored (the readable form of "= 0").
     pub factored: Vec<Factored>,
     /// When every condition vanishes identically: the particular solution (hatted impulses,
-    /// see [`crate::contact`]) and the null directions.
+    /// see [`crate::contact`]) and the directions of the family in impulse space (the null
+    /// vectors z_k; for Poisson diag(1 + k_i^P) z_k).
     pub solution: Option<(Vec<RatFun>, Vec<Vec<RatFun>>)>,
     /// The outcome of the particular solution (velocities after impact, energies), when
     /// compatible.
     pub outcome: Option<Outcome<RatFun>>,
+    /// Per null direction z_k, the change of the twist after impact per unit t_k:
+    /// −Σ_j c_j z_kj W{E_jx} with c_j = 1 (Newton) or 1 + k_j^P (Poisson). Zero for Newton
+    /// (G z = 0 ⇒ W E z = 0, eq. 57–58); for Poisson zero only when the c_j agree along z.
+    pub twist_change: Vec<Vec<RatFun>>,
 }
 
 /// Derive `scene` symbolically for `models` (the scene's own when `None`).
@@ -156,9 +161,44 @@ pub fn derive(
                 }
                 out.impulses.clone_from(&x);
                 impact.complete(&problem, &mut out);
-                (Some((x, basis.clone())), Some(out))
+                // In impulse space: P = diag(1 + k^P)(x^c + Σ t_k z_k) for Poisson.
+                let dirs: Vec<Vec<RatFun>> = basis
+                    .iter()
+                    .map(|z| {
+                        z.iter()
+                            .zip(&problem.contacts)
+                            .map(|(zj, c)| match m {
+                                Model::Newton => zj.clone(),
+                                Model::Poisson => {
+                                    zj.clone() * (RatFun::from_integer(1) + &c.k_poisson)
+                                }
+                            })
+                            .collect()
+                    })
+                    .collect();
+                (Some((x, dirs)), Some(out))
             } else {
                 (None, None)
+            };
+            let twist_change = if solution.is_some() {
+                basis
+                    .iter()
+                    .map(|z| {
+                        let mut dv = crate::screw::Screw::<RatFun>::zero();
+                        for ((zj, r), c) in z.iter().zip(&impact.responses).zip(&problem.contacts) {
+                            let scale = match m {
+                                Model::Newton => zj.clone(),
+                                Model::Poisson => {
+                                    zj.clone() * (RatFun::from_integer(1) + &c.k_poisson)
+                                }
+                            };
+                            dv.add_scaled(&-scale, r);
+                        }
+                        dv.0.iter().cloned().collect()
+                    })
+                    .collect()
+            } else {
+                Vec::new()
             };
             families.push(Family {
                 model: m,
@@ -166,6 +206,7 @@ pub fn derive(
                 factored,
                 solution,
                 outcome,
+                twist_change,
             });
         }
         Some(Singular {
@@ -176,7 +217,8 @@ pub fn derive(
     } else {
         None
     };
-    let locus = if det.is_constant() {
+    // Only the numerator can vanish (the denominator's factors are assumed nonzero).
+    let locus = if det.numer().is_constant() {
         None
     } else {
         Some(factor(det.numer()))
@@ -483,6 +525,32 @@ impl Derived {
                             format!("  z{} = [{}]\n", k + 1, zs.join(", "))
                         };
                     }
+                    let varies: Vec<&Vec<RatFun>> = f
+                        .twist_change
+                        .iter()
+                        .filter(|d| !d.iter().all(num_traits::Zero::is_zero))
+                        .collect();
+                    if varies.is_empty() {
+                        out += &line(format!(
+                            "{m}: the twist after impact and both energies are the same for every member of the family"
+                        ));
+                    } else {
+                        out += &line(format!(
+                            "{m}: the twist after impact VARIES along the family (P_i = (1 + k_i) P_i^c with unequal k_i); per unit t_k it changes by:"
+                        ));
+                        for (k, d) in varies.iter().enumerate() {
+                            let ds: Vec<String> = d.iter().map(ex).collect();
+                            out += &if latex {
+                                format!(
+                                    "\\delta\\{{v\\}}_{{{}}} &= \\left[{}\\right] \\\\\n",
+                                    k + 1,
+                                    ds.join(",\\ ")
+                                )
+                            } else {
+                                format!("  d(twist)/dt{} = [{}]\n", k + 1, ds.join(", "))
+                            };
+                        }
+                    }
                     if let Some(o) = &f.outcome {
                         let tw: Vec<String> = o.velocity.0.iter().map(ex).collect();
                         out += &if latex {
@@ -548,6 +616,7 @@ impl Derived {
                             "conditions": f.factored.iter().map(|c| format!("{} = 0", c.to_text())).collect::<Vec<_>>(),
                             "particular_impulse_multiples": f.solution.as_ref().map(|(x, _)| x.iter().map(text).collect::<Vec<_>>()),
                             "null_directions": f.solution.as_ref().map(|(_, z)| z.iter().map(|v| v.iter().map(text).collect::<Vec<_>>()).collect::<Vec<_>>()),
+                            "twist_change_per_direction": f.twist_change.iter().map(|v| v.iter().map(text).collect::<Vec<_>>()).collect::<Vec<_>>(),
                         })).collect::<Vec<_>>(),
                     })
                 }),

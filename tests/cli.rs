@@ -355,18 +355,31 @@ fn unreadable_file() {
     );
 }
 
+/// `--exact` runs radicals exactly (m = √2: P_i scale with m, so they carry √2), and refuses
+/// a number with no exact form (cos 20° is no radical), naming the key and the value.
 #[test]
-fn irrational_input_is_refused_in_exact_mode_only() {
+fn exact_mode_takes_radicals_and_refuses_transcendental_input() {
+    let scene = Scene::new("radical", &GOOD.replace("mass = 1", "mass = \"sqrt(2)\""));
+    let path = scene.path.to_str().unwrap();
+    let j = json(&inertance(&["solve", path, "--exact", "--json"]));
+    assert_eq!(j["scalar"], "symbolic");
+    let p1 = j["models"]["newton"]["impulses"][0].as_str().unwrap();
+    assert!(p1.contains("sqrt(2)"), "{p1}");
+    let floats = json(&inertance(&["solve", path, "--json"]));
+    let exact_p1 = inertance::expr::symbolic(p1, &[]).unwrap();
+    let f = floats["models"]["newton"]["impulses"][0].as_f64().unwrap();
+    assert!((inertance::scalar::Scalar::to_f64(&exact_p1) - f).abs() <= 1e-12 * f.abs());
+
     let scene = Scene::new(
-        "irrational",
-        &GOOD.replace("mass = 1", "mass = \"sqrt(2)\""),
+        "transcendental",
+        &GOOD.replace("mass = 1", "mass = \"cos(20 deg)\""),
     );
     let path = scene.path.to_str().unwrap();
     let out = inertance(&["solve", path, "--exact"]);
     let err = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(2), "{err}");
     assert!(
-        err.contains("body.mass") && err.contains("sqrt(2)") && err.contains("not a rational"),
+        err.contains("body.mass") && err.contains("cos(20 deg)") && err.contains("no exact"),
         "{err}"
     );
     assert!(inertance(&["solve", path]).status.success());

@@ -163,6 +163,10 @@ fn a_singular_family_gets_its_compatibility_conditions() {
                 let twist: Vec<RatFun> = out.velocity.0.iter().cloned().collect();
                 let expect = ["0", "0", "-k1*omega", "k1*l*omega", "0", "0"].map(e);
                 assert_eq!(twist, expect.to_vec());
+                // … but with P_i = (1 + k_i) P_i^c the twist moves along the family unless
+                // k1 = k2: per unit parameter, δω_z = −(b + l)(k1 − k2)/(J_z + m l²).
+                assert_eq!(f.twist_change.len(), 1);
+                assert_eq!(f.twist_change[0][2], e("-(b + l)*(k1 - k2)/(Jz + m*l^2)"));
             }
         }
     }
