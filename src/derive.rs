@@ -27,6 +27,7 @@ use serde_json::{Value as Json, json};
 use crate::pipeline::{RunError, prepare, run_with};
 use crate::report::{Report, Value};
 use crate::restitution::Model;
+use crate::scalar::Scalar;
 use crate::scene::Scene;
 use crate::solve::{Impact, Outcome, SolveError};
 use crate::symbolic::{Assumption, AssumptionKind, Factored, RatFun, factor, take_assumptions};
@@ -106,6 +107,12 @@ pub fn derive(
         None => impact.assemble(&problem, &problem.body),
     }
     .map_err(RunError::Solve)?;
+    // The printed quantities carry the normals' norms (P_i = P̂_i |n_i|, v_ix = v̂_ix / |n_i|,
+    // g_ij = ĝ_ij / (|n_i| |n_j|)): their conditions (|n_i|² ≠ 0, a base of √ positive).
+    for f in &impact.frames {
+        let _ = f.norm2[0].sqrt_exact();
+        let _ = RatFun::from_integer(1) / &f.norm2[0];
+    }
     if impact.rank == impact.contacts() {
         for &m in &models {
             let mut out = Outcome::default();

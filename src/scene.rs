@@ -581,7 +581,7 @@ impl Scene {
                 format!(
                     "not on the surface f = {}: f(point) = {} ≠ 0",
                     surface.text,
-                    f.to_f64()
+                    f.exact_text().unwrap_or_else(|| f.to_f64().to_string())
                 ),
             ));
         }
@@ -953,8 +953,8 @@ impl Reader<'_> {
                 "must be a string, e.g. \"x^2 + y^2/4 + z^2/9 - 1\"",
             )
         })?;
-        let surface =
-            Surface::parse(text).map_err(|e| self.err("surface.f", Some(short(f)), e.message))?;
+        let surface = Surface::parse_with(text, self.symbols)
+            .map_err(|e| self.err("surface.f", Some(short(f)), e.message))?;
         Ok(SurfaceSpec {
             text: text.to_string(),
             surface,

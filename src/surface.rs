@@ -85,6 +85,13 @@ impl Surface {
     /// constants that are not finite (`1/0`, `sqrt(-1)`), an expression free of x, y and z, and
     /// derivatives too large to build. The message says what and at which character position.
     pub fn parse(text: &str) -> Result<Surface, SurfaceError> {
+        Surface::parse_with(text, &[])
+    }
+
+    /// As [`Surface::parse`], with names in `symbols` allowed as symbolic constants
+    /// (`x^2 + y^2 + z^2 - R^2` with R declared): such a surface evaluates only in the
+    /// symbolic scalar (`inertance derive`).
+    pub fn parse_with(text: &str, symbols: &[String]) -> Result<Surface, SurfaceError> {
         let trimmed = text.trim();
         let fail = |reason: String| {
             SurfaceError::new(format!(
@@ -93,12 +100,19 @@ impl Surface {
             ))
         };
         let root = expr::parse(text, &WORDING).map_err(fail)?;
-        let unknown = root.names().into_iter().find(|n| variable(n).is_none());
+        let declared = |n: &Node| match &n.kind {
+            Kind::Name(name) => symbols.iter().any(|s| s.as_str() == &**name),
+            _ => false,
+        };
+        let unknown = root
+            .names()
+            .into_iter()
+            .find(|n| variable(n).is_none() && !declared(n));
         if let Some(node) = unknown {
             return Err(fail(expr::unknown_name(text, node, KNOWN_NAMES)));
         }
-        // Every name is now a variable.
-        if !root.has_name {
+        // Every name is now a variable or a declared symbol.
+        if !has_variable(&root) {
             return Err(fail(
                 "the expression does not contain x, y or z".to_string(),
             ));
@@ -199,6 +213,8 @@ struct Irrational {
     text: String,
     approx: f64,
     reason: String,
+    /// Declared symbols it names (then it has a value only in the symbolic scalar).
+    symbols: Vec<String>,
 }
 
 #[derive(Clone, Debug)]
@@ -299,6 +315,11 @@ fn power(base: Expr, n: i64) -> Expr {
     }
 }
 
+/// Whether x, y or z occurs in the sub-tree.
+fn has_variable(node: &Node) -> bool {
+    node.has_name && node.names().into_iter().any(|n| variable(n).is_some())
+}
+
 /// The index of the variable a name node stands for.
 fn variable(node: &Node) -> Option<usize> {
     match &node.kind {
@@ -335,6 +356,7 @@ impl Builder<'_> {
                     text: n.text,
                     approx: n.approx,
                     reason,
+                    symbols: n.symbols,
                 })),
             }),
             Err(e) => Err(format!(
@@ -345,7 +367,7 @@ impl Builder<'_> {
     }
 
     fn build(&self, node: &Node) -> Result<Expr, String> {
-        if !node.has_name {
+        if !has_variable(node) {
             return self.constant(node);
         }
         match &node.kind {
@@ -356,7 +378,7 @@ impl Builder<'_> {
             Kind::Neg(inner) => self.build(inner).map(|e| product(rational(-1), vec![e])),
             Kind::Chain(first, rest) => self.chain(node.start, first, rest),
             Kind::Pow(base, exp) => {
-                if exp.has_name {
+                if has_variable(exp) {
                     return Err(format!(
                         "an exponent in x, y, z is not supported: {}",
                         self.at(node)
@@ -386,7 +408,7 @@ impl Builder<'_> {
         for (op, rhs) in rest {
             let item = match op {
                 Op::Sub => product(rational(-1), vec![self.build(rhs)?]),
-                Op::Div if !rhs.has_name => match self.constant(rhs)? {
+                Op::Div if !has_variable(rhs) => match self.constant(rhs)? {
                     Expr::Rational(q) if q.is_zero() => {
                         return Err(format!(
                             "division by zero in '{}' at position {}",
@@ -495,7 +517,13 @@ fn evaluate<T: Scalar>(e: &Expr, p: &[T; 3]) -> Result<T, String> {
 fn eval<T: Scalar>(e: &Expr, p: &[T; 3]) -> Result<T, String> {
     match e {
         Expr::Rational(q) => Ok(T::from_rational(q)),
-        Expr::Irrational(c) => T::from_f64(c.approx).ok_or_else(|| {
+        Expr::Irrational(c) => T::from_number(&crate::number::Number {
+            text: c.text.clone(),
+            exact: Err(c.reason.clone()),
+            approx: c.approx,
+            symbols: c.symbols.clone(),
+        })
+        .map_err(|_| {
             format!(
                 "the constant '{}' has no exact value ({}); use a floating-point scalar",
                 quote(&c.text),

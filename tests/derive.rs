@@ -172,6 +172,52 @@ fn a_singular_family_gets_its_compatibility_conditions() {
     }
 }
 
+/// A surface with a symbolic coefficient: the sphere x² + y² + z² = R² hit at (R, 0, 0) and
+/// (0, R, 0); ∇f = (2R, 0, 0) has the exact norm 2R (assuming R > 0, listed).
+#[test]
+fn normals_from_a_symbolic_surface() {
+    let text = r#"
+name = "sphere, symbolic surface"
+[body]
+mass = "m"
+inertia = ["2*m*R^2/5", "2*m*R^2/5", "2*m*R^2/5"]
+velocity = ["v0", 0, 0]
+angular_velocity = [0, 0, 0]
+[surface]
+f = "x^2 + y^2 + z^2 - R^2"
+[[contact]]
+point = ["R", 0, 0]
+k = "k1"
+[[contact]]
+point = [0, "R", 0]
+k = "k2"
+[solve]
+models = ["newton"]
+"#;
+    let symbols = names(&["m", "R", "v0", "k1", "k2"]);
+    let scene = Scene::parse_with(text, "sphere.toml", &symbols).unwrap();
+    let d = derive(&scene, &symbols, None).unwrap();
+    let e = |t: &str| expr(t, &symbols);
+    assert_eq!(
+        derived(&d.report, "newton.P1", &symbols),
+        e("m*(1 + k1)*v0")
+    );
+    assert_eq!(derived(&d.report, "newton.P2", &symbols), e("0"));
+    assert_eq!(derived(&d.report, "g11xx", &symbols), e("1/m"));
+    let conditions: Vec<String> = d.conditions.iter().map(|c| c.to_string()).collect();
+    assert!(conditions.contains(&"R > 0".to_string()), "{conditions:?}");
+    // A point off the surface is named, with f there as an expression.
+    let off = text.replace("point = [\"R\", 0, 0]", "point = [\"2*R\", 0, 0]");
+    let err = Scene::parse_with(&off, "sphere.toml", &symbols)
+        .and_then(|s| s.problem::<RatFun>())
+        .unwrap_err();
+    assert!(
+        err.to_string().contains("contact[0].point")
+            && err.to_string().contains("f(point) = 3*R^2"),
+        "{err}"
+    );
+}
+
 /// Substitute rational values for the symbols of a scene template (whole-word names).
 fn instantiate(template: &str, values: &HashMap<String, Exact>) -> String {
     let mut out = String::new();

@@ -760,9 +760,46 @@ impl Scalar for RatFun {
         Some(super::factor::readable(self, true))
     }
 
-    /// √q for a rational constant q ≥ 0, as an exact radical; `None` otherwise.
+    /// √x when x is a perfect square up to a rational constant (a radical): c·Π f_i^{2e_i} /
+    /// Π d_j^{2e_j} with c ≥ 0 rational has the root √c·Π f_i^{e_i} / Π d_j^{e_j}, taking
+    /// each base with odd e positive — recorded as the assumption f > 0 (√(4R²) = 2R for
+    /// R > 0). `None` otherwise (the caller evaluates or leaves the norm symbolic).
     fn sqrt_exact(&self) -> Option<Self> {
-        RatFun::sqrt(&self.to_rational()?)
+        if let Some(q) = self.to_rational() {
+            return RatFun::sqrt(&q);
+        }
+        let num = super::factor::factor(&self.num);
+        let mut c = num.constant.clone();
+        let mut parts: Vec<(Poly, i64)> = num
+            .factors
+            .iter()
+            .map(|(f, e)| (f.clone(), i64::from(*e)))
+            .collect();
+        for (d, e) in &self.den {
+            let g = super::factor::factor(d);
+            for _ in 0..*e {
+                c /= &g.constant;
+            }
+            for (f, k) in g.factors {
+                parts.push((f, -i64::from(k * e)));
+            }
+        }
+        if parts.iter().any(|(_, e)| e % 2 != 0) {
+            return None;
+        }
+        let mut root = RatFun::sqrt(&c)?;
+        for (f, e) in parts {
+            let half = (e / 2).unsigned_abs() as u32;
+            if half % 2 == 1 && !f.is_constant() {
+                record(Assumption {
+                    expr: RatFun::from_poly(f.clone()),
+                    kind: AssumptionKind::Positive,
+                });
+            }
+            let p = RatFun::from_poly(f.pow(half));
+            root = if e > 0 { root * p } else { root / p };
+        }
+        Some(root)
     }
 }
 
@@ -818,6 +855,26 @@ mod tests {
             }
             take_assumptions();
         }
+    }
+
+    #[test]
+    fn square_roots_of_perfect_squares() {
+        take_assumptions();
+        let (r, a, b, m) = (s("R"), s("a"), s("b"), s("m"));
+        let x = n(4) * &r * &r / n(9);
+        assert_eq!(x.sqrt_exact(), Some(n(2) * &r / n(3)));
+        let conditions: Vec<String> = take_assumptions().iter().map(|c| c.to_string()).collect();
+        assert_eq!(conditions, ["R > 0"]);
+        // (a + b)² m⁴ / (2 R²): √2 stays a radical, m² needs no sign.
+        let ab = a.clone() + &b;
+        let y = ab.clone() * &ab * &m.pow(4) / (n(2) * &r * &r);
+        let root = y.sqrt_exact().unwrap();
+        assert_eq!(root.clone() * &root, y);
+        assert_eq!(root, ab * &m * &m / (sqrt(2) * &r));
+        assert_eq!(r.sqrt_exact(), None);
+        assert_eq!((r.clone() * &r + n(1)).sqrt_exact(), None);
+        assert_eq!(n(-4).sqrt_exact(), None);
+        take_assumptions();
     }
 
     #[test]
