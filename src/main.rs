@@ -283,15 +283,19 @@ fn emit(
     to_json: impl FnOnce() -> serde_json::Value,
     to_text: impl FnOnce() -> String,
 ) -> ExitCode {
-    if json {
-        println!(
-            "{}",
-            serde_json::to_string_pretty(&to_json()).unwrap_or_default()
-        );
+    let text = if json {
+        serde_json::to_string_pretty(&to_json()).unwrap_or_default() + "\n"
     } else {
-        print!("{}", to_text());
-    }
+        to_text()
+    };
+    print_out(&text);
     ExitCode::SUCCESS
+}
+
+/// Write to stdout; a closed pipe (`inertance derive … | head`) ends the output quietly.
+fn print_out(text: &str) {
+    use std::io::Write;
+    let _ = std::io::stdout().lock().write_all(text.as_bytes());
 }
 
 /// A failed run: bad input is status 2; no unique solution (or a frame that cannot be
@@ -446,14 +450,17 @@ fn run_check(dir: PathBuf, quiet: bool) -> ExitCode {
     };
     let (text, passed) = check::render(&results);
     if quiet {
+        let mut kept = String::new();
         for line in text.lines() {
             let t = line.trim_start();
-            if !t.starts_with("ok ") && !t.starts_with("case ") {
-                println!("{line}");
+            if !t.starts_with("ok ") && !t.starts_with("proved ") && !t.starts_with("case ") {
+                kept += line;
+                kept.push('\n');
             }
         }
+        print_out(&kept);
     } else {
-        print!("{text}");
+        print_out(&text);
     }
     if passed {
         ExitCode::SUCCESS

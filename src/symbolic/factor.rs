@@ -304,17 +304,20 @@ fn split(p: Poly, out: &mut Vec<Poly>) {
 
 /// p as Σ_e c_e x^e: the map e ↦ c_e (the symbol x removed from each term).
 fn coefficients_in(p: &Poly, x: u32) -> BTreeMap<u32, Poly> {
-    let mut map: BTreeMap<u32, Poly> = BTreeMap::new();
+    let mut groups: BTreeMap<u32, Vec<(Monomial, BigRational)>> = BTreeMap::new();
     for (m, c) in p.terms() {
         let e = m.exponent(x);
         let rest = m
             .div(&Monomial::var(x, e))
             .expect("x^e divides a monomial with exponent e");
-        let term = Poly::term(rest, c.clone());
-        let slot = map.entry(e).or_insert_with(Poly::zero);
-        *slot = &*slot + &term;
+        groups.entry(e).or_default().push((rest, c.clone()));
     }
-    map
+    // Dividing the terms of one group by the same x^e keeps them distinct and in order
+    // (the monomial order is multiplicative), so each group is a polynomial as it stands.
+    groups
+        .into_iter()
+        .map(|(e, terms)| (e, Poly::from_sorted_terms(terms)))
+        .collect()
 }
 
 #[cfg(test)]

@@ -274,15 +274,11 @@ impl Poly {
         Poly::var(symbols::intern(Key::Free(name.to_owned()), None))
     }
 
-    /// The single term c·m (m must be reduced: no related symbol squared).
-    pub(crate) fn term(m: Monomial, c: BigRational) -> Self {
-        if c.is_zero() {
-            Poly::zero()
-        } else {
-            Poly {
-                terms: vec![(m, c)],
-            }
-        }
+    /// The polynomial with these terms: distinct reduced monomials, nonzero coefficients,
+    /// already in the monomial order (leading first).
+    pub(crate) fn from_sorted_terms(terms: Vec<Term>) -> Self {
+        debug_assert!(terms.windows(2).all(|w| w[0].0 > w[1].0));
+        Poly { terms }
     }
 
     /// The symbol with id `id`.

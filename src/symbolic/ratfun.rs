@@ -768,6 +768,20 @@ impl Scalar for RatFun {
         if let Some(q) = self.to_rational() {
             return RatFun::sqrt(&q);
         }
+        // Quick rejection: the leading monomial of a square is a square (the order is
+        // multiplicative; with related symbols reduction may break this, so only without).
+        let table = symbols::snapshot();
+        let free_of_relations =
+            |p: &Poly| p.symbol_ids().iter().all(|&v| table.relation(v).is_none());
+        let odd_lead = |p: &Poly| {
+            free_of_relations(p)
+                && p.terms()
+                    .first()
+                    .is_some_and(|(m, _)| m.vars().iter().any(|&(_, e)| e % 2 == 1))
+        };
+        if odd_lead(&self.num) || self.den.iter().any(|(d, e)| e % 2 == 1 && odd_lead(d)) {
+            return None;
+        }
         let num = super::factor::factor(&self.num);
         let mut c = num.constant.clone();
         let mut parts: Vec<(Poly, i64)> = num
