@@ -237,6 +237,22 @@ pub fn derive(
         .map(|r| r.model)
         .zip(solved.energy_identity.iter().copied())
         .collect();
+    let conditions = take_assumptions();
+    // A division by an expression that is identically zero: some value is 0 in disguise.
+    if let Some(c) = conditions
+        .iter()
+        .find(|c| num_traits::Zero::is_zero(&c.expr))
+    {
+        return Err(RunError::Scene(crate::scene::SceneError {
+            file: scene.file.clone(),
+            key: String::new(),
+            value: None,
+            message: format!(
+                "the derivation needs a value that is identically zero to be nonzero ({c}): \
+                 a symbolic input makes the collision degenerate (a zero normal, mass or moment?)"
+            ),
+        }));
+    }
     Ok(Derived {
         symbols: symbols.to_vec(),
         report: solved.report,
@@ -244,7 +260,7 @@ pub fn derive(
         locus,
         singular,
         energy_identity,
-        conditions: take_assumptions(),
+        conditions,
     })
 }
 

@@ -703,6 +703,11 @@ const TOP_KEYS: &[&str] = &[
     "surface",
 ];
 
+/// Whether a value in symbols is identically zero (`"m - m"`).
+fn symbolic_zero(n: &Number) -> bool {
+    crate::expr::symbolic(&n.text, &n.symbols).is_ok_and(|x| num_traits::Zero::is_zero(&x))
+}
+
 /// Reads values out of a document, turning every problem into a [`SceneError`].
 struct Reader<'a> {
     file: &'a str,
@@ -827,7 +832,9 @@ impl Reader<'_> {
     fn positive(&self, n: &Number, key: &str, why: &str) -> Result<(), SceneError> {
         let ok = match &n.exact {
             Ok(q) => q.is_positive(),
-            Err(_) => !n.symbols.is_empty() || n.approx > 0.0,
+            // A symbolic value's sign is the reader's assumption, but not when it is 0.
+            Err(_) if !n.symbols.is_empty() => !symbolic_zero(n),
+            Err(_) => n.approx > 0.0,
         };
         if ok {
             Ok(())
@@ -855,7 +862,8 @@ impl Reader<'_> {
     fn nonzero(&self, t: &[Number; 3], key: &str, what: &str) -> Result<(), SceneError> {
         let zero = t.iter().all(|n| match &n.exact {
             Ok(q) => num_traits::Zero::is_zero(q),
-            Err(_) => n.symbols.is_empty() && n.approx == 0.0,
+            Err(_) if !n.symbols.is_empty() => symbolic_zero(n),
+            Err(_) => n.approx == 0.0,
         });
         if zero {
             let shown = format!("[{}, {}, {}]", t[0].text, t[1].text, t[2].text);

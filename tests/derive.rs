@@ -436,6 +436,29 @@ fn bad_symbolic_input_is_named() {
         "{}",
         stderr(&out)
     );
+    // Values that are zero in disguise are refused like their numeric forms.
+    let bad = dir.file(
+        "m0.toml",
+        &PLANAR.replace("mass = \"m\"", "mass = \"m - m\""),
+    );
+    let out = inertance(&["derive", &bad, "--symbols", &PLANAR_SYMBOLS.join(",")]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(
+        stderr(&out).contains("body.mass") && stderr(&out).contains("positive"),
+        "{}",
+        stderr(&out)
+    );
+    let bad = dir.file(
+        "n0.toml",
+        &PLANAR.replacen("normal = [1, 0, 0]", "normal = [\"y1 - y1\", 0, 0]", 1),
+    );
+    let out = inertance(&["derive", &bad, "--symbols", &PLANAR_SYMBOLS.join(",")]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(
+        stderr(&out).contains("contact[0].normal") && stderr(&out).contains("zero vector"),
+        "{}",
+        stderr(&out)
+    );
     // A symbolic scene handed to `solve`: named, with a pointer to derive.
     let out = inertance(&["solve", &path]);
     assert_eq!(out.status.code(), Some(2));
