@@ -24,12 +24,13 @@
 
 use serde_json::{Value as Json, json};
 
-use crate::pipeline::{RunError, prepare, run_with};
+use crate::pipeline::{Assembled, RunError, assemble};
 use crate::report::{Report, Value};
 use crate::restitution::Model;
 use crate::scalar::Scalar;
 use crate::scene::Scene;
-use crate::solve::{Impact, Outcome, SolveError};
+use crate::screw::Screw;
+use crate::solve::{Outcome, SolveError};
 use crate::symbolic::{Assumption, AssumptionKind, Factored, RatFun, factor, take_assumptions};
 
 /// A symbolic derivation of a scene.
@@ -95,149 +96,44 @@ pub fn derive(
     models: Option<&[Model]>,
 ) -> Result<Derived, RunError> {
     let models = models.unwrap_or(&scene.models).to_vec();
-    let solved = run_with::<RatFun>(scene, Some(&models), true)?;
-    // Again, without the report (whose angles divide by tangential speeds the formulas do
-    // not need): the conditions are those of the solve itself, and G, b and the null space
-    // are at hand.
     take_assumptions();
-    let (problem, constrained) = prepare::<RatFun>(scene)?;
-    let mut impact = Impact::new();
-    match &constrained {
-        Some(c) => impact.assemble(&problem, c),
-        None => impact.assemble(&problem, &problem.body),
-    }
-    .map_err(RunError::Solve)?;
+    let mut a = assemble::<RatFun>(scene)?;
     // The printed quantities carry the normals' norms (P_i = P̂_i |n_i|, v_ix = v̂_ix / |n_i|,
     // g_ij = ĝ_ij / (|n_i| |n_j|)): their conditions (|n_i|² ≠ 0, a base of √ positive).
-    for f in &impact.frames {
+    for f in &a.impact.frames {
         let _ = f.norm2[0].sqrt_exact();
         let _ = RatFun::from_integer(1) / &f.norm2[0];
     }
-    if impact.rank == impact.contacts() {
+    let mut outcomes = Vec::new();
+    let mut energy_identity = Vec::new();
+    if !a.singular() {
         for &m in &models {
-            let mut out = Outcome::default();
-            impact.solve(&problem, m, &mut out)?;
-            if let Some(c) = &constrained {
-                let mut dv = out.velocity.clone();
-                dv.add_scaled(&-RatFun::from_integer(1), &problem.velocity);
-                let axes = impact.frames.iter().map(|f| &f.axes[0]);
-                c.impulses_into(
-                    &dv,
-                    out.impulses.iter().zip(axes),
-                    &mut out.constraint_impulses,
-                );
-            }
+            let (out, holds) = a.solve(m)?;
+            energy_identity.push((m, holds));
+            outcomes.push((m, out));
         }
     }
-    let mut norms = RatFun::from_integer(1);
-    for f in &impact.frames {
-        norms *= &f.norm2[0];
-    }
-    let det = impact.det.clone() / &norms;
-    let n = impact.contacts();
-    let singular = if impact.rank < n {
-        let basis = impact.null_space();
-        let mut families = Vec::new();
-        for &m in &models {
-            let mut b = Vec::new();
-            impact.rhs(&problem, m, &mut b);
-            let conditions: Vec<RatFun> = basis
-                .iter()
-                .map(|z| {
-                    z.iter()
-                        .zip(&b)
-                        .fold(RatFun::from_integer(0), |s, (zi, bi)| s + zi.clone() * bi)
-                })
-                .collect();
-            let factored = conditions.iter().map(|c| factor(c.numer())).collect();
-            let compatible = conditions.iter().all(num_traits::Zero::is_zero);
-            let (solution, outcome) = if compatible {
-                let mut x = Vec::new();
-                impact
-                    .solve_singular(&b, &mut x)
-                    .ok_or(RunError::Solve(SolveError::Singular {
-                        rank: impact.rank,
-                        contacts: n,
-                    }))?;
-                let mut out = Outcome::<RatFun>::default();
-                if m == Model::Poisson {
-                    out.compression.clone_from(&x);
-                    for (p, c) in x.iter_mut().zip(&problem.contacts) {
-                        *p *= RatFun::from_integer(1) + &c.k_poisson;
-                    }
-                }
-                out.impulses.clone_from(&x);
-                impact.complete(&problem, &mut out);
-                // In impulse space: P = diag(1 + k^P)(x^c + Σ t_k z_k) for Poisson.
-                let dirs: Vec<Vec<RatFun>> = basis
-                    .iter()
-                    .map(|z| {
-                        z.iter()
-                            .zip(&problem.contacts)
-                            .map(|(zj, c)| match m {
-                                Model::Newton => zj.clone(),
-                                Model::Poisson => {
-                                    zj.clone() * (RatFun::from_integer(1) + &c.k_poisson)
-                                }
-                            })
-                            .collect()
-                    })
-                    .collect();
-                (Some((x, dirs)), Some(out))
-            } else {
-                (None, None)
-            };
-            let twist_change = if solution.is_some() {
-                basis
-                    .iter()
-                    .map(|z| {
-                        let mut dv = crate::screw::Screw::<RatFun>::zero();
-                        for ((zj, r), c) in z.iter().zip(&impact.responses).zip(&problem.contacts) {
-                            let scale = match m {
-                                Model::Newton => zj.clone(),
-                                Model::Poisson => {
-                                    zj.clone() * (RatFun::from_integer(1) + &c.k_poisson)
-                                }
-                            };
-                            dv.add_scaled(&-scale, r);
-                        }
-                        dv.0.iter().cloned().collect()
-                    })
-                    .collect()
-            } else {
-                Vec::new()
-            };
-            families.push(Family {
-                model: m,
-                conditions,
-                factored,
-                solution,
-                outcome,
-                twist_change,
-            });
-        }
-        Some(Singular {
-            rank: impact.rank,
-            contacts: n,
-            models: families,
-        })
+    let singular = if a.singular() {
+        Some(singular_family(&mut a, &models)?)
     } else {
         None
     };
+    let mut norms = RatFun::from_integer(1);
+    for f in &a.impact.frames {
+        norms *= &f.norm2[0];
+    }
+    let det = a.impact.det.clone() / &norms;
+    let conditions = take_assumptions();
+    // The report also computes what the formulas do not need (tangential angles divide by
+    // tangential speeds): its conditions are not the formulas' and are dropped.
+    let report = a.report(scene, &outcomes);
+    take_assumptions();
     // Only the numerator can vanish (the denominator's factors are assumed nonzero).
     let locus = if det.numer().is_constant() {
         None
     } else {
         Some(factor(det.numer()))
     };
-    let energy_identity = solved
-        .report
-        .models
-        .iter()
-        .map(|r| r.model)
-        .zip(solved.energy_identity.iter().copied())
-        .collect();
-    let conditions = take_assumptions();
     // A division by an expression that is identically zero: some value is 0 in disguise.
     if let Some(c) = conditions
         .iter()
@@ -255,12 +151,91 @@ pub fn derive(
     }
     Ok(Derived {
         symbols: symbols.to_vec(),
-        report: solved.report,
+        report,
         det,
         locus,
         singular,
         energy_identity,
         conditions,
+    })
+}
+
+/// The singular family of a collision with rank G < N for every value of the symbols: per
+/// model, the compatibility conditions and, where they hold identically, the family.
+fn singular_family(a: &mut Assembled<RatFun>, models: &[Model]) -> Result<Singular, RunError> {
+    let n = a.impact.contacts();
+    let basis = a.impact.null_space();
+    let one = RatFun::from_integer(1);
+    let mut families = Vec::new();
+    for &m in models {
+        let mut b = Vec::new();
+        a.impact.rhs(&a.problem, m, &mut b);
+        let conditions: Vec<RatFun> = basis
+            .iter()
+            .map(|z| {
+                z.iter()
+                    .zip(&b)
+                    .fold(RatFun::from_integer(0), |s, (zi, bi)| s + zi.clone() * bi)
+            })
+            .collect();
+        let factored = conditions.iter().map(|c| factor(c.numer())).collect();
+        let compatible = conditions.iter().all(num_traits::Zero::is_zero);
+        let (mut solution, mut outcome, mut twist_change) = (None, None, Vec::new());
+        if compatible {
+            let mut x = Vec::new();
+            a.impact
+                .solve_singular(&b, &mut x)
+                .ok_or(RunError::Solve(SolveError::Singular {
+                    rank: a.impact.rank,
+                    contacts: n,
+                }))?;
+            // Impulses are c_i x_i, c_i = 1 (Newton) or 1 + k_i^P (Poisson, eq. 23): so are
+            // the family's directions in impulse space.
+            let c: Vec<RatFun> = a
+                .problem
+                .contacts
+                .iter()
+                .map(|k| match m {
+                    Model::Newton => one.clone(),
+                    Model::Poisson => one.clone() + &k.k_poisson,
+                })
+                .collect();
+            let mut out = Outcome::<RatFun>::default();
+            if m == Model::Poisson {
+                out.compression.clone_from(&x);
+            }
+            out.impulses = x.iter().zip(&c).map(|(xi, ci)| xi.clone() * ci).collect();
+            a.impact.complete(&a.problem, &mut out);
+            let dirs: Vec<Vec<RatFun>> = basis
+                .iter()
+                .map(|z| z.iter().zip(&c).map(|(zj, cj)| zj.clone() * cj).collect())
+                .collect();
+            twist_change = dirs
+                .iter()
+                .map(|d| {
+                    let mut dv = Screw::<RatFun>::zero();
+                    for (dj, r) in d.iter().zip(&a.impact.responses) {
+                        dv.add_scaled(&-dj.clone(), r);
+                    }
+                    dv.0.iter().cloned().collect()
+                })
+                .collect();
+            solution = Some((out.impulses.clone(), dirs));
+            outcome = Some(out);
+        }
+        families.push(Family {
+            model: m,
+            conditions,
+            factored,
+            solution,
+            outcome,
+            twist_change,
+        });
+    }
+    Ok(Singular {
+        rank: a.impact.rank,
+        contacts: n,
+        models: families,
     })
 }
 

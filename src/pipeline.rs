@@ -47,6 +47,39 @@ pub fn run_with<T: Scalar>(
     allow_singular: bool,
 ) -> Result<Solved, RunError> {
     let models = models.unwrap_or(&scene.models);
+    let mut a = assemble::<T>(scene)?;
+    let models: &[Model] = if a.singular() && allow_singular {
+        &[]
+    } else {
+        models
+    };
+    let mut outcomes = Vec::with_capacity(models.len());
+    let mut identity = Vec::with_capacity(models.len());
+    for &m in models {
+        let (out, holds) = a.solve(m)?;
+        identity.push(holds);
+        outcomes.push((m, out));
+    }
+    Ok(Solved {
+        report: a.report(scene, &outcomes),
+        energy_identity: identity,
+    })
+}
+
+/// A scene assembled in `T`: its problem, its constraints, and the model-independent part of
+/// the collision (frames, G, its factorization, Δ).
+#[derive(Clone, Debug)]
+pub struct Assembled<T: Scalar> {
+    /// The problem.
+    pub problem: Problem<T>,
+    /// The validated constraints, for a constrained scene.
+    pub constrained: Option<Constrained<T>>,
+    /// The assembled collision.
+    pub impact: Impact<T>,
+}
+
+/// Prepare `scene` in `T` and assemble its collision (a singular G is not an error here).
+pub fn assemble<T: Scalar>(scene: &Scene) -> Result<Assembled<T>, RunError> {
     let (problem, constrained) = prepare::<T>(scene)?;
     let mut impact = Impact::new();
     let assembled = match &constrained {
@@ -66,18 +99,27 @@ pub fn run_with<T: Scalar>(
         }),
         other => RunError::Solve(other),
     })?;
-    let mut outcomes = Vec::with_capacity(models.len());
-    let mut identity = Vec::with_capacity(models.len());
-    let singular = impact.rank < impact.contacts();
-    let models: &[Model] = if singular && allow_singular {
-        &[]
-    } else {
-        models
-    };
-    for &m in models {
+    Ok(Assembled {
+        problem,
+        constrained,
+        impact,
+    })
+}
+
+impl<T: Scalar> Assembled<T> {
+    /// Whether G is singular (rank G < N).
+    pub fn singular(&self) -> bool {
+        self.impact.rank < self.impact.contacts()
+    }
+
+    /// Solve one restitution model: the outcome (with the constraint impulses q for a
+    /// constrained body) and whether the energy identity ΔE_c = −E_p + Σ P̂_i v̂_ix⁰ (eq. 34)
+    /// holds — exactly in exact types, to `16·N·ε·scale` in floats.
+    pub fn solve(&mut self, model: Model) -> Result<(Outcome<T>, bool), SolveError> {
+        let (problem, impact) = (&self.problem, &mut self.impact);
         let mut out = Outcome::default();
-        impact.solve(&problem, m, &mut out)?;
-        if let Some(c) = &constrained {
+        impact.solve(problem, model, &mut out)?;
+        if let Some(c) = &self.constrained {
             let mut dv = out.velocity.clone();
             dv.add_scaled(&-T::one(), &problem.velocity);
             let axes = impact.frames.iter().map(|f| &f.axes[0]);
@@ -87,28 +129,29 @@ pub fn run_with<T: Scalar>(
                 &mut out.constraint_impulses,
             );
         }
-        // eq. 34: ΔE_c + E_p − Σ P̂_i v̂_ix⁰ = 0.
         let work = impact.impulse_work(&out);
         let residual = out.kinetic_energy_loss.clone() + &out.lost_velocity_energy - &work;
         let scale = impact.kinetic_before.clone() + &out.lost_velocity_energy;
-        identity.push(residual.is_negligible(&scale, 16 * problem.contacts.len().max(1)));
-        outcomes.push((m, out));
+        let holds = residual.is_negligible(&scale, 16 * problem.contacts.len().max(1));
+        Ok((out, holds))
     }
-    let mut report = Report::new(
-        &scene.name,
-        scene.effects(models),
-        &impact,
-        &outcomes,
-        constrained.as_ref(),
-    );
-    report.surface = scene
-        .surface
-        .as_ref()
-        .map(|s| (s.text.clone(), s.surface.gradient_text()));
-    Ok(Solved {
-        report,
-        energy_identity: identity,
-    })
+
+    /// The report of the outcomes solved.
+    pub fn report(&self, scene: &Scene, outcomes: &[(Model, Outcome<T>)]) -> Report {
+        let models: Vec<Model> = outcomes.iter().map(|(m, _)| *m).collect();
+        let mut report = Report::new(
+            &scene.name,
+            scene.effects(&models),
+            &self.impact,
+            outcomes,
+            self.constrained.as_ref(),
+        );
+        report.surface = scene
+            .surface
+            .as_ref()
+            .map(|s| (s.text.clone(), s.surface.gradient_text()));
+        report
+    }
 }
 
 /// The problem in `T` and, for a constrained scene, its validated constraints (with the
