@@ -11,11 +11,11 @@ use std::hint::black_box;
 
 use criterion::Criterion;
 use inertance::analysis::analyze;
-use inertance::dd::DoubleDouble;
-use inertance::restitution::Model;
+use inertance::scalar::dd::DoubleDouble;
+use inertance::impact::restitution::Model;
 use inertance::scalar::{Exact, Scalar};
 use inertance::scene::Scene;
-use inertance::solve::{Impact, Outcome, Problem};
+use inertance::impact::solve::{Impact, Outcome, Problem};
 
 const EXAMPLE_3: &str = r#"
 [body]
@@ -236,7 +236,7 @@ fn bench_contacts<T: Scalar>(c: &mut Criterion, n: usize) {
 
 fn bench_constrained<T: Scalar>(c: &mut Criterion) {
     let scene = Scene::parse(EXAMPLE_6, "example 6").unwrap();
-    let (p, held) = inertance::pipeline::prepare::<T>(&scene).unwrap();
+    let (p, held) = inertance::scene::pipeline::prepare::<T>(&scene).unwrap();
     let held = held.unwrap();
     let (mut impact, mut out) = (Impact::new(), Outcome::default());
     c.bench_function(&format!("example6-constrained/{}", T::NAME), |b| {

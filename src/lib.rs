@@ -28,25 +28,12 @@
 // Index loops over i, j read like the paper's sums (g_ij, Σ_j P_j g_ij); keep them.
 #![allow(clippy::needless_range_loop)]
 
-pub mod analysis;
-pub mod analysis_report;
-pub mod bench;
-pub mod body;
-pub mod check;
-pub mod constraint;
-pub mod contact;
-pub mod dd;
-pub mod derive;
-pub mod expr;
-pub mod linalg;
 pub mod number;
-pub mod pipeline;
-pub mod report;
-pub mod restitution;
 pub mod scalar;
+pub mod linalg;
+pub mod mechanics;
+pub mod impact;
+pub mod analysis;
+pub mod report;
 pub mod scene;
-pub mod screw;
-pub mod solve;
-pub mod surface;
-pub mod sweep;
-pub mod symbolic;
+pub mod tools;

@@ -9,14 +9,14 @@ use std::process::ExitCode;
 
 use clap::{Parser, Subcommand, ValueEnum};
 
-use inertance::analysis_report::analyze_scene;
-use inertance::check;
-use inertance::pipeline::{RunError, run};
-use inertance::restitution::Model;
+use inertance::tools::analyze::analyze_scene;
+use inertance::tools::check;
+use inertance::scene::pipeline::{RunError, run};
+use inertance::impact::restitution::Model;
 use inertance::scalar::Exact;
 use inertance::scene::Scene;
-use inertance::solve::SolveError;
-use inertance::symbolic::RatFun;
+use inertance::impact::solve::SolveError;
+use inertance::scalar::symbolic::RatFun;
 
 #[derive(Parser)]
 #[command(
@@ -256,7 +256,7 @@ fn run_derive(
     json: bool,
 ) -> ExitCode {
     let symbols: Vec<String> = symbols.iter().map(|s| s.trim().to_string()).collect();
-    if let Some(bad) = symbols.iter().find(|s| !inertance::expr::is_symbol_name(s)) {
+    if let Some(bad) = symbols.iter().find(|s| !inertance::number::expr::is_symbol_name(s)) {
         eprintln!(
             "error: --symbols: '{bad}' is not a symbol name (a letter or '_', then letters, digits, '_'; \
              not one of the grammar's names pi, deg, sqrt, sin, cos, tan, nan, inf)"
@@ -271,7 +271,7 @@ fn run_derive(
         }
     };
     let models = model.map(ModelArg::models);
-    match inertance::derive::derive(&scene, &symbols, models.as_deref()) {
+    match inertance::tools::derive::derive(&scene, &symbols, models.as_deref()) {
         Ok(d) => emit(json, || d.to_json(), || d.to_text(latex)),
         Err(e) => fail(&path, e),
     }
@@ -335,7 +335,7 @@ fn run_sweep(
     shard: Option<String>,
     threads: Option<usize>,
 ) -> ExitCode {
-    use inertance::sweep::{Shard, SweepOptions, Vary, sweep};
+    use inertance::tools::sweep::{Shard, SweepOptions, Vary, sweep};
     let parsed = vary
         .iter()
         .map(|v| Vary::parse(v))
@@ -389,7 +389,7 @@ fn run_bench(
             Ok(s) => s,
             Err(code) => return code,
         };
-        let times = inertance::bench::time_scene(&scene, quick);
+        let times = inertance::tools::bench::time_scene(&scene, quick);
         if json {
             let ns: serde_json::Map<String, serde_json::Value> = times
                 .iter()
@@ -414,7 +414,7 @@ fn run_bench(
         }
         return ExitCode::SUCCESS;
     }
-    let report = inertance::bench::run(&inertance::bench::BenchOptions {
+    let report = inertance::tools::bench::run(&inertance::tools::bench::BenchOptions {
         quick,
         hard_cases: Some(hard_cases),
     });

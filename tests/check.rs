@@ -4,7 +4,7 @@
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-use inertance::check::{Verdict, check_dir, render};
+use inertance::tools::check::{Verdict, check_dir, render};
 
 #[test]
 fn bundled_derivations_pass() {
@@ -190,7 +190,7 @@ fn printed_precision_is_half_a_unit_in_the_last_place() {
 /// name go unnoticed; both directions are pinned here.
 #[test]
 fn scene_blocks_parse_and_duplicates_are_refused() {
-    use inertance::check::Derivation;
+    use inertance::tools::check::Derivation;
     let one = Derivation::parse(DERIVATION, Path::new("ex.md")).expect("one scene parses");
     assert_eq!(one.scenes.len(), 1);
     assert_eq!(

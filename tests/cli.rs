@@ -366,7 +366,7 @@ fn exact_mode_takes_radicals_and_refuses_transcendental_input() {
     let p1 = j["models"]["newton"]["impulses"][0].as_str().unwrap();
     assert!(p1.contains("sqrt(2)"), "{p1}");
     let floats = json(&inertance(&["solve", path, "--json"]));
-    let exact_p1 = inertance::expr::symbolic(p1, &[]).unwrap();
+    let exact_p1 = inertance::scalar::symbolic::symbolic(p1, &[]).unwrap();
     let f = floats["models"]["newton"]["impulses"][0].as_f64().unwrap();
     assert!((inertance::scalar::Scalar::to_f64(&exact_p1) - f).abs() <= 1e-12 * f.abs());
 

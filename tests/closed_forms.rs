@@ -5,12 +5,12 @@
 mod common;
 
 use common::*;
-use inertance::body::RigidBody;
-use inertance::contact::Contact;
-use inertance::restitution::Model;
+use inertance::mechanics::body::RigidBody;
+use inertance::mechanics::contact::Contact;
+use inertance::impact::restitution::Model;
 use inertance::scalar::{Exact, int};
-use inertance::screw::{Screw, Vec3};
-use inertance::solve::{Problem, solve_free};
+use inertance::mechanics::screw::{Screw, Vec3};
+use inertance::impact::solve::{Problem, solve_free};
 use num_traits::{One, Zero};
 use proptest::prelude::*;
 
@@ -178,7 +178,7 @@ proptest! {
             velocity: Screw::new(Vec3::zeros(), x.clone()),
             contacts: vec![contact(p1.clone(), x.clone(), None, zero()), contact(p2.clone(), x, None, zero())],
         };
-        let mut impact = inertance::solve::Impact::new();
+        let mut impact = inertance::impact::solve::Impact::new();
         impact.assemble(&p, &p.body).unwrap();
         let g = |a: &Vec3<Exact>, c: &Vec3<Exact>| Exact::one() / &b.mass + a[2].clone() * &c[2] / &b.inertia[1] + a[1].clone() * &c[1] / &b.inertia[2];
         prop_assert_eq!(&impact.g, &vec![g(&p1, &p1), g(&p1, &p2), g(&p2, &p1), g(&p2, &p2)]);
@@ -220,7 +220,7 @@ fn planar_equal_ordinates_are_singular() {
             contact(v3(int(-3), int(2), zero()), n, None, zero()),
         ],
     };
-    let mut impact = inertance::solve::Impact::new();
+    let mut impact = inertance::impact::solve::Impact::new();
     impact.assemble(&p, &p.body).unwrap();
     assert!(impact.det.is_zero());
     assert_eq!(impact.rank, 1);

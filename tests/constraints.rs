@@ -5,12 +5,12 @@
 mod common;
 
 use common::*;
-use inertance::body::Mobility;
-use inertance::constraint::{Constrained, Joint};
-use inertance::restitution::Model;
+use inertance::mechanics::body::Mobility;
+use inertance::mechanics::constraint::{Constrained, Joint};
+use inertance::impact::restitution::Model;
 use inertance::scalar::{Exact, int};
-use inertance::screw::{Screw, Vec3};
-use inertance::solve::{Impact, Outcome, Problem, SolveError};
+use inertance::mechanics::screw::{Screw, Vec3};
+use inertance::impact::solve::{Impact, Outcome, Problem, SolveError};
 use num_traits::{One, Zero};
 use proptest::prelude::*;
 
@@ -169,8 +169,8 @@ fn example_5(
     a: &Exact,
     b: &Exact,
 ) -> (Constrained<Exact>, Impact<Exact>) {
-    use inertance::body::RigidBody;
-    use inertance::contact::Contact;
+    use inertance::mechanics::body::RigidBody;
+    use inertance::mechanics::contact::Contact;
     let zero = Exact::zero;
     let x = Vec3::new(Exact::one(), zero(), zero());
     let body = RigidBody {
@@ -283,7 +283,7 @@ fn example_5_eq_102_at_a_equals_b_equals_half_l() {
 /// free along every direction the impulses act on — and its constraint impulses vanish.
 #[test]
 fn remark_2_example_6_equals_the_free_body() {
-    use inertance::pipeline::run;
+    use inertance::scene::pipeline::run;
     use inertance::scene::Scene;
     let base = "[body]\nmass = 10\ninertia = [\"10/3\", \"10/3\", \"10/3\"]\nvelocity = [0, 0, 0]\nangular_velocity = [0, 0, 1]\n\
         [[contact]]\npoint = [0, \"-1/3\", 0]\nnormal = [1, 0, 0]\ntangent = [0, 1, 0]\nk = K1\n\

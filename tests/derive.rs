@@ -7,13 +7,13 @@ use std::collections::HashMap;
 use std::path::PathBuf;
 use std::process::{Command, Output};
 
-use inertance::derive::derive;
-use inertance::expr::symbolic;
-use inertance::pipeline::run;
-use inertance::restitution::Model;
+use inertance::tools::derive::derive;
+use inertance::scalar::symbolic::symbolic;
+use inertance::scene::pipeline::run;
+use inertance::impact::restitution::Model;
 use inertance::scalar::Exact;
 use inertance::scene::Scene;
-use inertance::symbolic::RatFun;
+use inertance::scalar::symbolic::RatFun;
 use num_rational::BigRational;
 use proptest::prelude::*;
 
@@ -78,7 +78,7 @@ fn expr(text: &str, symbols: &[String]) -> RatFun {
 
 /// A derived quantity, read back from its reported text.
 fn derived(report: &inertance::report::Report, q: &str, symbols: &[String]) -> RatFun {
-    let v = inertance::check::lookup(report, q).unwrap();
+    let v = inertance::tools::check::lookup(report, q).unwrap();
     assert_eq!(v.len(), 1, "{q}");
     expr(v[0].exact.as_deref().expect("an exact text"), symbols)
 }
@@ -271,7 +271,7 @@ proptest! {
                   "newton.omega[2]", "poisson.vC[0]", "newton.Ep", "poisson.dEc", "newton.v2x"] {
             let f = derived(&d.report, q, &symbols);
             let at = f.eval(&values).expect("rational at a rational point");
-            let want = inertance::check::lookup(&exact, q).unwrap()[0].exact.clone().unwrap();
+            let want = inertance::tools::check::lookup(&exact, q).unwrap()[0].exact.clone().unwrap();
             let want = inertance::number::parse_number(&want).unwrap().exact.unwrap();
             prop_assert_eq!(at, want, "{}", q);
         }

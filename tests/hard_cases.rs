@@ -25,7 +25,7 @@
 use std::path::PathBuf;
 
 use inertance::analysis::Classification;
-use inertance::analysis_report::{AnalysisReport, ModelReport, analyze_scene};
+use inertance::tools::analyze::{AnalysisReport, ModelReport, analyze_scene};
 use inertance::report::Value;
 use inertance::scalar::Exact;
 use inertance::scene::Scene;

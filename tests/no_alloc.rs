@@ -8,11 +8,11 @@ use std::alloc::{GlobalAlloc, Layout, System};
 use std::cell::Cell;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
-use inertance::body::RigidBody;
-use inertance::contact::Contact;
-use inertance::restitution::Model;
-use inertance::screw::{Screw, Vec3};
-use inertance::solve::{Impact, Outcome, Problem};
+use inertance::mechanics::body::RigidBody;
+use inertance::mechanics::contact::Contact;
+use inertance::impact::restitution::Model;
+use inertance::mechanics::screw::{Screw, Vec3};
+use inertance::impact::solve::{Impact, Outcome, Problem};
 
 struct Counting;
 

@@ -4,11 +4,11 @@
 mod common;
 
 use common::*;
-use inertance::body::inertance_eq57;
-use inertance::restitution::Model;
+use inertance::mechanics::body::inertance_eq57;
+use inertance::impact::restitution::Model;
 use inertance::scalar::{Exact, Scalar};
-use inertance::screw::{Screw, Vec3};
-use inertance::solve::{Impact, Outcome, Problem, SolveError};
+use inertance::mechanics::screw::{Screw, Vec3};
+use inertance::impact::solve::{Impact, Outcome, Problem, SolveError};
 use num_traits::{One, Zero};
 use proptest::prelude::*;
 
@@ -134,7 +134,7 @@ proptest! {
         prop_assume!(!n2.iter().all(|x| x.is_zero()));
         let mut p = Problem { body, velocity: Screw::new(w, v), contacts: Vec::new() };
         for (point, normal, k) in [(n1.clone() * t, n1, k1), (p2, n2, k2)] {
-            p.contacts.push(inertance::contact::Contact {
+            p.contacts.push(inertance::mechanics::contact::Contact {
                 point, normal, tangent: None, k_newton: k.clone(), k_poisson: k,
             });
         }
@@ -266,7 +266,7 @@ proptest! {
 #[test]
 fn singular_g_is_detected_exactly() {
     // Two contacts at the same point with the same normal: Δ = 0 exactly (§8, A1 ≡ A2).
-    let c = inertance::contact::Contact {
+    let c = inertance::mechanics::contact::Contact {
         point: Vec3::new(Exact::one(), Exact::zero(), Exact::zero()),
         normal: Vec3::new(Exact::one(), Exact::one(), Exact::zero()),
         tangent: None,
@@ -274,7 +274,7 @@ fn singular_g_is_detected_exactly() {
         k_poisson: Exact::zero(),
     };
     let p = Problem {
-        body: inertance::body::RigidBody {
+        body: inertance::mechanics::body::RigidBody {
             mass: Exact::one(),
             inertia: Vec3::new(Exact::one(), Exact::one(), Exact::one()),
         },
@@ -306,7 +306,7 @@ proptest! {
     /// stored value (hi + lo), not on a rounding of it.
     #[test]
     fn double_double_matches_exact_to_about_106_bits(p in problem(4)) {
-        use inertance::dd::DoubleDouble;
+        use inertance::scalar::dd::DoubleDouble;
         let Some((impact, ne, _)) = solve_exact(&p) else { return Ok(()) };
         prop_assume!(well_conditioned(&impact));
         let pd = convert::<DoubleDouble>(&p);

@@ -4,10 +4,10 @@
 mod common;
 
 use common::*;
-use inertance::pipeline::run;
+use inertance::scene::pipeline::run;
 use inertance::scalar::Exact;
 use inertance::scene::Scene;
-use inertance::surface::Surface;
+use inertance::mechanics::surface::Surface;
 use num_traits::{One, Zero};
 use proptest::prelude::*;
 
@@ -47,7 +47,7 @@ fn derivation_scene(file: &str, name: &str) -> Scene {
     let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("derivations")
         .join(file);
-    let d = inertance::check::Derivation::load(&path).unwrap();
+    let d = inertance::tools::check::Derivation::load(&path).unwrap();
     Scene::parse(&d.scenes[name].1, name).unwrap()
 }
 

@@ -3,7 +3,7 @@
 
 use std::path::{Path, PathBuf};
 
-use inertance::sweep::{Shard, SweepError, SweepOptions, Vary, sweep};
+use inertance::tools::sweep::{Shard, SweepError, SweepOptions, Vary, sweep};
 
 /// Example 3: a bar on two supports, k1 = 0.3, k2 = 0.2.
 const EXAMPLE_3: &str = r#"

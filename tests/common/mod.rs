@@ -5,11 +5,11 @@
 
 #![allow(dead_code)]
 
-use inertance::body::RigidBody;
-use inertance::contact::Contact;
+use inertance::mechanics::body::RigidBody;
+use inertance::mechanics::contact::Contact;
 use inertance::scalar::{Exact, Scalar, int};
-use inertance::screw::{Screw, Vec3};
-use inertance::solve::Problem;
+use inertance::mechanics::screw::{Screw, Vec3};
+use inertance::impact::solve::Problem;
 use num_bigint::BigInt;
 use proptest::prelude::*;
 

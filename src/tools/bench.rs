@@ -21,11 +21,11 @@ use num_traits::Signed;
 use serde_json::{Value as Json, json};
 
 use crate::analysis::analyze;
-use crate::dd::DoubleDouble;
-use crate::restitution::Model;
+use crate::scalar::dd::DoubleDouble;
+use crate::impact::restitution::Model;
 use crate::scalar::{Exact, Scalar};
 use crate::scene::Scene;
-use crate::solve::{Impact, Outcome, Problem};
+use crate::impact::solve::{Impact, Outcome, Problem};
 
 /// Options of a bench run.
 #[derive(Clone, Debug)]

@@ -22,11 +22,11 @@
 //! In exact types every rank and sign decision is exact. In floats a pivot counts as zero when
 //! it is ≤ N·ε·max g_ii — the tolerance is reported.
 
-use crate::body::Mobility;
-use crate::restitution::Model;
+use crate::mechanics::body::Mobility;
+use crate::impact::restitution::Model;
 use crate::scalar::Scalar;
-use crate::screw::Screw;
-use crate::solve::{Impact, Outcome, Problem};
+use crate::mechanics::screw::Screw;
+use crate::impact::solve::{Impact, Outcome, Problem};
 
 /// The Rouché–Capelli classification of a model's system.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -70,7 +70,7 @@ pub struct ModelAnalysis<T: Scalar> {
     pub augmented_rank: usize,
     /// The classification.
     pub classification: Classification,
-    /// The impulses (hatted, see [`crate::contact`]) and everything after impact: the unique
+    /// The impulses (hatted, see [`crate::mechanics::contact`]) and everything after impact: the unique
     /// solution, or the family's least-norm member; `None` when incompatible.
     pub outcome: Option<Outcome<T>>,
     /// A basis of the impulse family's directions (hatted), empty unless singular-compatible.
@@ -338,15 +338,15 @@ fn coincident<T: Scalar>(problem: &Problem<T>, impact: &Impact<T>) -> Vec<Coinci
         for j in i + 1..n {
             let (pi, pj) = (&problem.contacts[i].point, &problem.contacts[j].point);
             let d = pi - pj;
-            let reference = crate::screw::norm2(pi) + crate::screw::norm2(pj);
-            if !crate::screw::norm2(&d).is_negligible(&reference, 3) {
+            let reference = crate::mechanics::screw::norm2(pi) + crate::mechanics::screw::norm2(pj);
+            if !crate::mechanics::screw::norm2(&d).is_negligible(&reference, 3) {
                 continue;
             }
             let (ni, nj) = (&problem.contacts[i].normal, &problem.contacts[j].normal);
             let cross = ni.cross(nj);
-            let same_axis = crate::screw::norm2(&cross)
-                .is_negligible(&(crate::screw::norm2(ni) * crate::screw::norm2(nj)), 3)
-                && crate::screw::dot(ni, nj).signum_i8() > 0;
+            let same_axis = crate::mechanics::screw::norm2(&cross)
+                .is_negligible(&(crate::mechanics::screw::norm2(ni) * crate::mechanics::screw::norm2(nj)), 3)
+                && crate::mechanics::screw::dot(ni, nj).signum_i8() > 0;
             let c = &problem.contacts[i];
             let gii = impact.g[i * n + i].clone();
             let v0 = impact.before[i][0].clone();

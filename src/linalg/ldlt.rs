@@ -1,6 +1,6 @@
 //! Field-only linear algebra for the inertance matrix G.
 //!
-//! G = [g_ij] is a Gram matrix, g_ij = {E_i}ᵀ η W {E_j} with η W symmetric positive definite
+//! G = \[g_ij\] is a Gram matrix, g_ij = {E_i}ᵀ η W {E_j} with η W symmetric positive definite
 //! (eq. 57–58), so G is symmetric positive **semi**definite. We factor it as
 //!
 //! ```text

@@ -6,12 +6,12 @@
 //! [M] = [[0, m I], [J, 0]],     [M]⁻¹ = [[0, J⁻¹], [m⁻¹ I, 0]],     J = diag(J_x, J_y, J_z),
 //! ```
 //!
-//! so [M]{v} = [m v_C; J ω] is the momentum screw, [η][M] = diag(J, m I) and
-//! [η][M]⁻¹ = diag(m⁻¹ I, J⁻¹) (eq. 56) are symmetric positive definite, and the kinetic
-//! energy is T = ½ {v}ᵀ [η][M] {v} = ½ (ωᵀ J ω + m v_C²) (eq. 32).
+//! so \[M\]{v} = [m v_C; J ω] is the momentum screw, \[η\]\[M\] = diag(J, m I) and
+//! \[η\]\[M\]⁻¹ = diag(m⁻¹ I, J⁻¹) (eq. 56) are symmetric positive definite, and the kinetic
+//! energy is T = ½ {v}ᵀ \[η\]\[M\] {v} = ½ (ωᵀ J ω + m v_C²) (eq. 32).
 
 use crate::scalar::Scalar;
-use crate::screw::{Screw, Vec3, dot};
+use crate::mechanics::screw::{Screw, Vec3, dot};
 
 /// A rigid body in its central principal frame Cxyz.
 #[derive(Clone, Debug, PartialEq)]
@@ -23,15 +23,15 @@ pub struct RigidBody<T: Scalar> {
 }
 
 /// How the body's velocity answers an impulse: the twist change per unit impulse along an
-/// axis screw. A free body answers with [M]⁻¹ (eq. 11); a constrained one with
-/// [D][M_red]⁻¹[D]ᵀ[η] (eq. 85). The solve is written once against this trait.
+/// axis screw. A free body answers with \[M\]⁻¹ (eq. 11); a constrained one with
+/// \[D\]\[M_red\]⁻¹\[D\]ᵀ\[η\] (eq. 85). The solve is written once against this trait.
 pub trait Mobility<T: Scalar> {
     /// W{E}: the twist produced by a unit impulse along the axis screw {E}.
     fn response(&self, e: &Screw<T>) -> Screw<T>;
 }
 
 impl<T: Scalar> RigidBody<T> {
-    /// [M]{v} = [m v_C; J ω], the momentum screw of the twist {v}.
+    /// \[M\]{v} = [m v_C; J ω], the momentum screw of the twist {v}.
     pub fn momentum(&self, v: &Screw<T>) -> Screw<T> {
         let w = v.top();
         let vc = v.bottom();
@@ -45,7 +45,7 @@ impl<T: Scalar> RigidBody<T> {
         )
     }
 
-    /// ½ {v}ᵀ [η][M] {v} = ½ (ωᵀ J ω + m |v_C|²) (eq. 28, 32), written out (J is diagonal).
+    /// ½ {v}ᵀ \[η\]\[M\] {v} = ½ (ωᵀ J ω + m |v_C|²) (eq. 28, 32), written out (J is diagonal).
     #[inline]
     pub fn kinetic_energy(&self, v: &Screw<T>) -> T {
         let s = v.as_slice();
@@ -58,7 +58,7 @@ impl<T: Scalar> RigidBody<T> {
 }
 
 impl<T: Scalar> Mobility<T> for RigidBody<T> {
-    /// [M]⁻¹{E} = [J⁻¹ (r × u); u / m] (eq. 9, 11).
+    /// \[M\]⁻¹{E} = [J⁻¹ (r × u); u / m] (eq. 9, 11).
     fn response(&self, e: &Screw<T>) -> Screw<T> {
         let u = e.top();
         let mu = e.bottom();
@@ -73,7 +73,7 @@ impl<T: Scalar> Mobility<T> for RigidBody<T> {
     }
 }
 
-/// The inertance g = {E_a}ᵀ [η] W {E_b} (eq. 12, 86): the velocity along axis a produced by a
+/// The inertance g = {E_a}ᵀ \[η\] W {E_b} (eq. 12, 86): the velocity along axis a produced by a
 /// unit impulse along axis b.
 pub fn inertance<T: Scalar>(mobility: &impl Mobility<T>, a: &Screw<T>, b: &Screw<T>) -> T {
     a.reciprocal(&mobility.response(b))

@@ -7,7 +7,7 @@
 //! gradient at a rational point is exact), in floats otherwise. Normalising (eq. 105–107) needs
 //! a square root and is left to the caller, as everywhere in the crate.
 //!
-//! Grammar: the crate's one expression grammar, parsed by [`crate::expr`] (`+ - * / ^ ( )`,
+//! Grammar: the crate's one expression grammar, parsed by [`crate::number::expr`] (`+ - * / ^ ( )`,
 //! TOML literals, `pi`, `X deg`, `sqrt sin cos tan`); its names `x`, `y`, `z` are the variables,
 //! any other name is an error. Functions and `deg` apply to constants only; `^` with a base in
 //! x, y, z needs a constant integer exponent of magnitude at most 1000 (negative allowed).
@@ -24,7 +24,7 @@ use num_bigint::BigInt;
 use num_rational::BigRational;
 use num_traits::{One, Signed, ToPrimitive, Zero};
 
-use crate::expr::{self, Kind, Node, Op, Wording, char_pos};
+use crate::number::expr::{self, Kind, Node, Op, Wording, char_pos};
 use crate::number::{self, format_rational};
 use crate::scalar::Scalar;
 /// Largest magnitude of an integer exponent on an expression in x, y, z.

@@ -3,7 +3,7 @@
 //!
 //! Every value carries its f64 approximation and, in exact mode, its exact text: `p/q`, or
 //! `c*sqrt(r)` when a non-unit axis puts a norm into it (an impulse P_i = P̂_i |n_i|, a
-//! velocity component v_ix = v̂_ix / |n_i|, see [`crate::contact`]). Angles are the one
+//! velocity component v_ix = v̂_ix / |n_i|, see [`crate::mechanics::contact`]). Angles are the one
 //! exception: α = atan2(v_z, v_y) is transcendental, so it is a number in both modes (its
 //! cosine and sine are exact surds).
 //!
@@ -11,11 +11,11 @@
 
 use serde_json::{Map, Value as Json, json};
 
-use crate::constraint::Constrained;
-use crate::contact::{ContactFrame, Surd, TangentRule};
-use crate::restitution::Model;
+use crate::mechanics::constraint::Constrained;
+use crate::mechanics::contact::{ContactFrame, Surd, TangentRule};
+use crate::impact::restitution::Model;
 use crate::scalar::Scalar;
-use crate::solve::{Impact, Outcome};
+use crate::impact::solve::{Impact, Outcome};
 
 /// One reported number: f64 always, exact text in exact mode.
 #[derive(Clone, Debug, PartialEq)]
@@ -162,11 +162,11 @@ pub struct Report {
     pub scalar: &'static str,
     /// The effects simulated, e.g. `["newton", "poisson"]`.
     pub effects: Vec<String>,
-    /// G = [g_ij,xx].
+    /// G = \[g_ij,xx\].
     pub inertance: Vec<Vec<Value>>,
-    /// [g_ij,yx].
+    /// \[g_ij,yx\].
     pub inertance_yx: Vec<Vec<Value>>,
-    /// [g_ij,zx].
+    /// \[g_ij,zx\].
     pub inertance_zx: Vec<Vec<Value>>,
     /// Δ = det G.
     pub det: Value,
@@ -268,7 +268,7 @@ impl Report {
                 constraint_impulses: o.constraint_impulses.iter().map(Value::of).collect(),
             })
             .collect();
-        let screw = |s: &crate::screw::Screw<T>| -> [Value; 6] {
+        let screw = |s: &crate::mechanics::screw::Screw<T>| -> [Value; 6] {
             std::array::from_fn(|k| Value::of(&s.0[k]))
         };
         let constraints = constraints.map(|c| {

@@ -25,7 +25,7 @@
 //!   decided exactly (rigorous rational enclosures), without assumptions.
 //!
 //! ```
-//! use inertance::symbolic::{RatFun, take_assumptions};
+//! use inertance::scalar::symbolic::{RatFun, take_assumptions};
 //! let (m, jz, y1) = (RatFun::symbol("m"), RatFun::symbol("Jz"), RatFun::symbol("y1"));
 //! // g_11 of eq. (17) with f_11 = −y1.
 //! let g11 = RatFun::from_integer(1) / &m + y1.clone() * &y1 / &jz;
@@ -35,6 +35,7 @@
 //! assert_eq!(conditions, ["m ≠ 0", "Jz ≠ 0"]);
 //! ```
 
+mod eval;
 pub mod factor;
 pub mod poly;
 mod radical;
@@ -44,6 +45,7 @@ mod symbols;
 use std::cell::RefCell;
 use std::fmt;
 
+pub use eval::{symbol_names, symbolic};
 pub use factor::{Factored, factor};
 pub use poly::Poly;
 pub use ratfun::RatFun;

@@ -21,7 +21,7 @@
 //! is the coordinate axis least aligned with n_i (smallest |n_k|, lowest k on ties).
 
 use crate::scalar::Scalar;
-use crate::screw::{Screw, Vec3, dot, norm2};
+use crate::mechanics::screw::{Screw, Vec3, dot, norm2};
 
 /// One contact as given: the point A_i, the outward normal n_i (axis A_i x_i; need not be a
 /// unit vector), an optional tangent axis y_i, and the restitution coefficients.

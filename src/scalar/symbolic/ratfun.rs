@@ -681,11 +681,11 @@ impl Scalar for RatFun {
 
     /// The exact value of a scene number: rationals as constants, radicals (`"2/sqrt(5)"`,
     /// `"cos(30 deg)"`) exactly, and expressions in the number's declared symbols as
-    /// rational functions of them ([`crate::expr::symbolic`]).
+    /// rational functions of them ([`crate::scalar::symbolic::symbolic`]).
     fn from_number(n: &crate::number::Number) -> Result<Self, String> {
         match &n.exact {
             Ok(q) => Ok(RatFun::constant(q.clone())),
-            Err(_) => crate::expr::symbolic(&n.text, &n.symbols).map_err(|e| e.to_string()),
+            Err(_) => crate::scalar::symbolic::symbolic(&n.text, &n.symbols).map_err(|e| e.to_string()),
         }
     }
 
@@ -820,7 +820,7 @@ impl Scalar for RatFun {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::symbolic::take_assumptions;
+    use crate::scalar::symbolic::take_assumptions;
 
     fn s(name: &str) -> RatFun {
         RatFun::symbol(name)

@@ -28,26 +28,28 @@
 //! **Symbols.** Read with [`Scene::load_with`] (as `inertance derive --symbols m,k1,…` does), a
 //! value may be an expression in the declared symbols (`mass = "m"`, `point = [0, "-a", 0]`,
 //! `normal = ["cos(theta)", "sin(theta)", 0]`); such a scene runs only in the symbolic scalar
-//! ([`crate::symbolic::RatFun`]), and the range checks (mass > 0, k ∈ [0, 1]) are left to the
+//! ([`crate::scalar::symbolic::RatFun`]), and the range checks (mass > 0, k ∈ [0, 1]) are left to the
 //! reader of the derived formulas. Undeclared names are errors, so a typo is not a symbol.
 //!
 //! Keys are addressed as paths, `body.mass`, `contact[1].k` (contacts counted from 0), both
 //! in error messages and in [`set_value`], which overrides one value of a scene.
+
+pub mod pipeline;
 
 use std::fmt;
 
 use num_traits::Signed;
 use toml_edit::{DocumentMut, Item, Table, TableLike, Value};
 
-use crate::body::RigidBody;
-use crate::constraint::Joint;
-use crate::contact::Contact;
+use crate::mechanics::body::RigidBody;
+use crate::mechanics::constraint::Joint;
+use crate::mechanics::contact::Contact;
 use crate::number::{Number, parse_number_with};
-use crate::restitution::Model;
+use crate::impact::restitution::Model;
 use crate::scalar::Scalar;
-use crate::screw::{Screw, Vec3, norm2};
-use crate::solve::Problem;
-use crate::surface::{Surface, SurfaceError};
+use crate::mechanics::screw::{Screw, Vec3, norm2};
+use crate::impact::solve::Problem;
+use crate::mechanics::surface::{Surface, SurfaceError};
 
 /// A scene that failed to read: which file, which key, which value, what is wrong.
 #[derive(Clone, Debug, PartialEq)]
@@ -92,7 +94,7 @@ pub struct ContactSpec {
     pub k_poisson: Number,
 }
 
-/// The kinds of joint a scene may declare (see [`crate::constraint::Joint`]).
+/// The kinds of joint a scene may declare (see [`crate::mechanics::constraint::Joint`]).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum JointKind {
     /// `kind = "revolute"`: `point`, `axis`.
@@ -705,7 +707,7 @@ const TOP_KEYS: &[&str] = &[
 
 /// Whether a value in symbols is identically zero (`"m - m"`).
 fn symbolic_zero(n: &Number) -> bool {
-    crate::expr::symbolic(&n.text, &n.symbols).is_ok_and(|x| num_traits::Zero::is_zero(&x))
+    crate::scalar::symbolic::symbolic(&n.text, &n.symbols).is_ok_and(|x| num_traits::Zero::is_zero(&x))
 }
 
 /// Reads values out of a document, turning every problem into a [`SceneError`].

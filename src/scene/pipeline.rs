@@ -5,12 +5,12 @@
 //! assembles the collision once (frames, inertances, Δ) and runs only the models listed; the
 //! report names the effects it simulated.
 
-use crate::constraint::{Constrained, ConstraintError};
+use crate::mechanics::constraint::{Constrained, ConstraintError};
 use crate::report::Report;
-use crate::restitution::Model;
+use crate::impact::restitution::Model;
 use crate::scalar::Scalar;
 use crate::scene::{Scene, SceneError};
-use crate::solve::{Impact, Outcome, Problem, SolveError};
+use crate::impact::solve::{Impact, Outcome, Problem, SolveError};
 
 /// Why a scene could not be solved.
 #[derive(Debug, thiserror::Error)]

@@ -9,10 +9,10 @@
 //! (eq. 90–93) — every operation exact, every zero test a proof. What comes out:
 //!
 //! * every quantity as a rational function of the symbols (common content, monomials and
-//!   the factors elimination reintroduces cancelled; see [`crate::symbolic::ratfun`]);
+//!   the factors elimination reintroduces cancelled; see [`crate::scalar::symbolic::ratfun`]);
 //! * **the conditions** under which the formulas hold: each division by an expression with
 //!   symbols records that it is ≠ 0 (among them Δ ≠ 0 through the pivots), each sign the
-//!   solver took records > 0 ([`crate::symbolic::Assumption`]);
+//!   solver took records > 0 ([`crate::scalar::symbolic::Assumption`]);
 //! * **the degenerate locus**: Δ as a factored polynomial — where it vanishes the collision
 //!   is singular (§8);
 //! * the energy identity ΔE_c = −E_p + Σ P_i v_ix⁰ (eq. 34) decided as an identity;
@@ -24,14 +24,14 @@
 
 use serde_json::{Value as Json, json};
 
-use crate::pipeline::{Assembled, RunError, assemble};
+use crate::scene::pipeline::{Assembled, RunError, assemble};
 use crate::report::{Report, Value};
-use crate::restitution::Model;
+use crate::impact::restitution::Model;
 use crate::scalar::Scalar;
 use crate::scene::Scene;
-use crate::screw::Screw;
-use crate::solve::{Outcome, SolveError};
-use crate::symbolic::{Assumption, AssumptionKind, Factored, RatFun, factor, take_assumptions};
+use crate::mechanics::screw::Screw;
+use crate::impact::solve::{Outcome, SolveError};
+use crate::scalar::symbolic::{Assumption, AssumptionKind, Factored, RatFun, factor, take_assumptions};
 
 /// A symbolic derivation of a scene.
 #[derive(Clone, Debug)]
@@ -73,7 +73,7 @@ pub struct Family {
     /// Their numerators, factored (the readable form of "= 0").
     pub factored: Vec<Factored>,
     /// When every condition vanishes identically: the particular solution (hatted impulses,
-    /// see [`crate::contact`]) and the directions of the family in impulse space (the null
+    /// see [`crate::mechanics::contact`]) and the directions of the family in impulse space (the null
     /// vectors z_k; for Poisson diag(1 + k_i^P) z_k).
     pub solution: Option<(Vec<RatFun>, Vec<Vec<RatFun>>)>,
     /// The outcome of the particular solution (velocities after impact, energies), when
@@ -376,7 +376,7 @@ fn condition_text(a: &Assumption, latex: bool) -> String {
     } else {
         a.expr.clone()
     };
-    let t = crate::symbolic::factor::readable(&e, latex);
+    let t = crate::scalar::symbolic::factor::readable(&e, latex);
     match (a.kind, latex) {
         (AssumptionKind::NonZero, false) => format!("{t} ≠ 0"),
         (AssumptionKind::NonZero, true) => format!("{t} \\neq 0"),
@@ -409,7 +409,7 @@ impl Derived {
         if latex {
             out += "\\begin{aligned}\n";
         }
-        let det = crate::symbolic::factor::readable(&self.det, latex);
+        let det = crate::scalar::symbolic::factor::readable(&self.det, latex);
         let det_name = if latex { "\\Delta" } else { "det" };
         out += &format!("{det_name}{eq}{det}{and}\n");
         if let Some(locus) = &self.locus {
@@ -483,7 +483,7 @@ impl Derived {
             "det = 0 identically: rank G = {} of {} for every value of the symbols (§8, eq. 61–68, 98–102)",
             s.rank, s.contacts
         ));
-        let ex = |e: &RatFun| crate::symbolic::factor::readable(e, latex);
+        let ex = |e: &RatFun| crate::scalar::symbolic::factor::readable(e, latex);
         for f in &s.models {
             let m = f.model.name();
             match &f.solution {
@@ -574,7 +574,7 @@ impl Derived {
     /// `det_locus`, `conditions`, `energy_identity` and `singular`.
     pub fn to_json(&self) -> Json {
         let mut j = self.report.to_json();
-        let text = |e: &RatFun| crate::symbolic::factor::readable(e, false);
+        let text = |e: &RatFun| crate::scalar::symbolic::factor::readable(e, false);
         let ex = |e: &RatFun| Json::String(text(e));
         if let Json::Object(map) = &mut j {
             map.insert("symbols".into(), json!(self.symbols));

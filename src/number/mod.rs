@@ -5,10 +5,10 @@
 //! author meant, so `0.1` is exactly 1/10 and never the nearest binary float; expressions that
 //! are not rational (`sqrt(5)`) carry the reason instead, and f64 mode still gets a value.
 //!
-//! The grammar is the crate's one expression grammar, parsed by [`crate::expr`]; this module
+//! The grammar is the crate's one expression grammar, parsed by [`crate::number::expr`]; this module
 //! evaluates its tree. [`parse_number`] accepts no names besides the grammar's own;
 //! [`parse_number_with`] also accepts declared symbols, and a number that names one has no
-//! value here (its exact form is [`crate::expr::symbolic`]'s business).
+//! value here (its exact form is [`crate::scalar::symbolic::symbolic`]'s business).
 //!
 //! Evaluation tracks, besides rationals, rational multiples of pi, so that angles such as
 //! `30 deg` or `pi/6` give exact sines and cosines where those are rational (Niven's theorem).
@@ -17,11 +17,17 @@
 
 use std::f64::consts::PI;
 
-use num_bigint::{BigInt, BigUint};
+use num_bigint::BigInt;
 use num_rational::BigRational;
 use num_traits::{One, Signed, ToPrimitive, Zero};
 
-use crate::expr::{self, Func, Kind, Lit, MAX_DECIMAL_EXPONENT, Node, Op, Wording};
+pub mod expr;
+mod rational;
+
+use expr::{Func, Kind, Lit, MAX_DECIMAL_EXPONENT, Node, Op, Wording};
+
+pub(crate) use rational::exact_root;
+pub use rational::{canonical_surd, format_rational, format_surd, rational_to_f64, surd_to_f64};
 
 /// A number as written in a scene: its text, its exact rational value when it has one, and its f64 value.
 #[derive(Clone, Debug, PartialEq)]
@@ -58,7 +64,7 @@ pub enum NumberError {
         reason: String,
     },
     /// The text is well formed and finite but has no exact symbolic value (only from
-    /// [`crate::expr::symbolic`]), e.g. `cos(20 deg)` or `sqrt(m)`.
+    /// [`crate::scalar::symbolic::symbolic`]), e.g. `cos(20 deg)` or `sqrt(m)`.
     #[error("'{text}' has no exact symbolic value: {reason}")]
     Inexact {
         /// The text that was read.
@@ -71,8 +77,6 @@ pub enum NumberError {
 /// Exact values wider than this many bits (numerator or denominator) are given up on:
 /// no scene needs them, and the gcd behind every rational operation is quadratic in the size.
 pub(crate) const MAX_EXACT_BITS: u64 = 16_384;
-/// Square factors are found by trial division up to this bound (plus a perfect-square test of the rest).
-const TRIAL_DIVISION_BOUND: u32 = 10_000;
 /// Names the expression grammar knows, listed in the error for an unknown name.
 const KNOWN_NAMES: &str = "pi, deg, sqrt, sin, cos, tan";
 /// Syntax messages of numbers.
@@ -84,7 +88,7 @@ const WORDING: Wording = Wording {
 /// Parse a number or expression.
 ///
 /// Accepts TOML numeric literals too (underscores between digits, leading '+', exponent,
-/// `0x..`, `0o..`, `0b..` integers) and the expression grammar of [`crate::expr`]
+/// `0x..`, `0o..`, `0b..` integers) and the expression grammar of [`crate::number::expr`]
 /// (`+ - * / ^ ( )`, `pi`, `X deg`, `sqrt sin cos tan`), without names. Rejects nan/inf
 /// (NotFinite). Syntax errors take precedence over value errors, so the author sees typos first.
 ///
@@ -101,7 +105,7 @@ pub fn parse_number(text: &str) -> Result<Number, NumberError> {
 /// A number that names one of them has no value: `exact` is `Err("m*g/2 names the symbols
 /// g, m")`, `approx` is NaN and `symbols` lists them; its rational parts are still checked
 /// (`m/0` is NotFinite). Whether it has an exact symbolic form is left to
-/// [`crate::expr::symbolic`]. A name neither known nor declared is the usual syntax error,
+/// [`crate::scalar::symbolic::symbolic`]. A name neither known nor declared is the usual syntax error,
 /// whose message also lists the declared symbols.
 ///
 /// # Errors
@@ -113,7 +117,7 @@ pub fn parse_number_with(text: &str, symbols: &[String]) -> Result<Number, Numbe
 }
 
 /// Parse `src` (trimmed) and check that every name in it is declared in `symbols`: the syntax
-/// half of [`parse_number_with`], shared with [`crate::expr::symbolic`].
+/// half of [`parse_number_with`], shared with [`crate::scalar::symbolic::symbolic`].
 pub(crate) fn parse_checked(src: &str, symbols: &[String]) -> Result<Node, NumberError> {
     let syntax = |reason: String| NumberError::Syntax {
         text: src.to_string(),
@@ -218,185 +222,6 @@ pub fn parse_decimal(text: &str) -> Option<BigRational> {
     }
     let q = lit.exact?;
     Some(if negative { -q } else { q })
-}
-
-/// "p/q" or "p" (reduced, sign on numerator), e.g. "-3/4", "5".
-pub fn format_rational(q: &BigRational) -> String {
-    // Rebuild through `new` so that a hand-made unreduced ratio still prints canonically.
-    let q = if q.denom().is_zero() {
-        q.clone()
-    } else {
-        BigRational::new(q.numer().clone(), q.denom().clone())
-    };
-    if q.denom().is_one() {
-        q.numer().to_string()
-    } else {
-        format!("{}/{}", q.numer(), q.denom())
-    }
-}
-
-/// The canonical exact form of coeff*sqrt(radicand), e.g. "3/17*sqrt(17)", "-2*sqrt(3)".
-///
-/// Square factors are pulled out so the radicand is a square-free positive integer
-/// (`sqrt(p/q) = sqrt(p*q)/q`); renders "0" when coeff or radicand is 0, "c" when the radicand
-/// is 1, "sqrt(r)" / "-sqrt(r)" for coefficients 1 / -1, else "c*sqrt(r)" with c from
-/// [`format_rational`]. Square-freeness is up to the limits described at [`canonical_surd`].
-pub fn format_surd(coeff: &BigRational, radicand: &BigRational) -> String {
-    let (c, r) = canonical_surd(coeff, radicand);
-    if c.is_zero() {
-        "0".to_string()
-    } else if r.is_one() {
-        format_rational(&c)
-    } else if c.is_one() {
-        format!("sqrt({})", r.numer())
-    } else if (-&c).is_one() {
-        format!("-sqrt({})", r.numer())
-    } else {
-        format!("{}*sqrt({})", format_rational(&c), r.numer())
-    }
-}
-
-/// Canonicalise coeff*sqrt(radicand) into (c, r) with r a square-free integer, same rule as [`format_surd`].
-///
-/// Zero (either part zero) is (0, 1), so r == 1 always means "the value is the rational c".
-/// Square factors are found by trial division by primes up to 10 000 and a perfect-square test of
-/// what remains; a large square-free-looking rest stays under the root (still correct, just less
-/// reduced). A negative radicand (outside the contract) keeps its sign: sqrt(-12) -> (2, -3).
-pub fn canonical_surd(coeff: &BigRational, radicand: &BigRational) -> (BigRational, BigRational) {
-    if coeff.is_zero() || radicand.is_zero() || radicand.denom().is_zero() {
-        return (BigRational::zero(), BigRational::one());
-    }
-    // sqrt(p/q) = sqrt(p*q)/q, so the radicand becomes an integer.
-    let q = radicand.denom().abs();
-    let n = radicand.numer().abs() * &q;
-    let (square_root, free) = split_square(&n);
-    let c = coeff * BigRational::new(square_root, q);
-    let r = if radicand.is_negative() { -free } else { free };
-    (c, BigRational::from_integer(r))
-}
-
-/// f64 value of coeff*sqrt(radicand), accurate to about 1 ulp even when the parts are huge.
-///
-/// Neither part is converted to f64 first (that overflows or loses digits): the root is taken
-/// in integers, scaled to at least 70 significant bits, and the quotient rounded once.
-/// NaN for a negative radicand (outside the contract).
-pub fn surd_to_f64(coeff: &BigRational, radicand: &BigRational) -> f64 {
-    if coeff.is_zero() || radicand.is_zero() {
-        return 0.0;
-    }
-    if radicand.is_negative() || radicand.denom().is_zero() || coeff.denom().is_zero() {
-        return f64::NAN;
-    }
-    let q = radicand.denom().abs();
-    let n = radicand.numer().abs() * &q;
-    // floor(sqrt(n * 4^m)) with at least 70 bits has relative error below 2^-70.
-    let m = 140u64.saturating_sub(n.bits()).div_ceil(2);
-    let root = (n << (2 * m)).sqrt();
-    let num = coeff.numer() * root;
-    let den = (coeff.denom() * q) << m;
-    rational_to_f64(&BigRational::new_raw(num, den))
-}
-
-/// Correctly rounded f64 of a BigRational (ties to even), also for huge numerators/denominators.
-///
-/// Converting numerator and denominator separately would give inf/inf = NaN for huge parts and
-/// round twice; instead one integer division yields 66 significant bits plus a sticky bit.
-/// Overflows to ±inf, underflows to 0 (subnormals are rounded correctly).
-pub fn rational_to_f64(q: &BigRational) -> f64 {
-    let (n, d) = (q.numer(), q.denom());
-    if n.is_zero() {
-        return 0.0;
-    }
-    if d.is_zero() {
-        return f64::NAN;
-    }
-    let negative = n.is_negative() != d.is_negative();
-    let magnitude = positive_ratio_to_f64(n.magnitude(), d.magnitude());
-    if negative { -magnitude } else { magnitude }
-}
-
-/// n/d for n, d > 0, correctly rounded.
-fn positive_ratio_to_f64(n: &BigUint, d: &BigUint) -> f64 {
-    // The value lies in [2^(k-1), 2^(k+1)).
-    let k = n.bits() as i64 - d.bits() as i64;
-    if k >= 1025 {
-        return f64::INFINITY;
-    }
-    if k <= -1077 {
-        return 0.0; // below half the smallest subnormal
-    }
-    // Scale so the integer quotient has 65 or 66 bits.
-    let shift = 65 - k;
-    let (num, den) = if shift >= 0 {
-        (n << shift as u64, d.clone())
-    } else {
-        (n.clone(), d << (-shift) as u64)
-    };
-    let quo_big = &num / &den;
-    let sticky = !(num - &quo_big * &den).is_zero();
-    let Some(quo) = quo_big.to_u128() else {
-        return f64::NAN; // unreachable: the quotient has at most 66 bits
-    };
-    let top = 127 - i64::from(quo.leading_zeros()); // exponent of the leading bit of quo
-    let exponent = top - shift;
-    // The weight of the last kept bit: 52 bits below the leading one, or the subnormal floor.
-    let ulp_exp = (exponent - 52).max(-1074);
-    let drop = (ulp_exp + shift) as u32; // in 12..=67 given the bounds on k
-    let mut kept = quo >> drop;
-    let rest = quo & ((1u128 << drop) - 1);
-    let half = 1u128 << (drop - 1);
-    if rest > half || (rest == half && (sticky || kept & 1 == 1)) {
-        kept += 1;
-    }
-    // Biased exponent and mantissa add up directly, also for subnormals and a carry into 2^53.
-    let bits = (((ulp_exp + 1074) as u64) << 52) + kept as u64;
-    if bits >= f64::INFINITY.to_bits() {
-        f64::INFINITY
-    } else {
-        f64::from_bits(bits)
-    }
-}
-
-/// Split n > 0 into (s, f) with n = s^2 * f and f square-free up to the trial-division bound.
-fn split_square(n: &BigInt) -> (BigInt, BigInt) {
-    let mut rest = n.clone();
-    let mut s = BigInt::one();
-    let mut f = BigInt::one();
-    // Odd composites never divide: their prime factors were removed before them.
-    let mut d: u32 = 2;
-    while d <= TRIAL_DIVISION_BOUND && BigInt::from(u64::from(d) * u64::from(d)) <= rest {
-        let mut e = 0u32;
-        while (&rest % d).is_zero() {
-            rest /= d;
-            e += 1;
-        }
-        s *= BigInt::from(d).pow(e / 2);
-        if e % 2 == 1 {
-            f *= d;
-        }
-        d = if d == 2 { 3 } else { d + 2 };
-    }
-    if rest > BigInt::one() {
-        let root = rest.sqrt();
-        if &root * &root == rest {
-            s *= root;
-        } else {
-            f *= rest;
-        }
-    }
-    (s, f)
-}
-
-/// The exact q-th root of x >= 0 when x is a perfect q-th power.
-pub(crate) fn exact_root(x: &BigInt, q: u32) -> Option<BigInt> {
-    if q < 2 || *x <= BigInt::one() {
-        return Some(x.clone());
-    }
-    if u64::from(q) >= x.bits() {
-        return None; // 1 < root < 2
-    }
-    let root = x.nth_root(q);
-    (root.pow(q) == *x).then_some(root)
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -55,12 +55,12 @@ use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
 use crate::number::{parse_decimal, parse_number};
-use crate::pipeline::{RunError, Solved, run_with};
+use crate::scene::pipeline::{RunError, Solved, run_with};
 use crate::report::{Report, Value};
-use crate::restitution::Model;
+use crate::impact::restitution::Model;
 use crate::scalar::Exact;
 use crate::scene::{Scene, parse_document, set_value};
-use crate::symbolic::RatFun;
+use crate::scalar::symbolic::RatFun;
 use num_bigint::BigInt;
 use num_rational::BigRational;
 use num_traits::Zero;
@@ -182,7 +182,7 @@ impl Derivation {
                                 .filter(|s| !s.is_empty())
                                 .collect();
                             if let Some(bad) =
-                                c.symbols.iter().find(|s| !crate::expr::is_symbol_name(s))
+                                c.symbols.iter().find(|s| !crate::number::expr::is_symbol_name(s))
                             {
                                 return Err(err(line_no, format!("`{bad}` is not a symbol name")));
                             }
@@ -445,7 +445,7 @@ pub fn check_derivation(
         // A symbolic case is derived (so a singular family has its compatibility conditions).
         let mut family = None;
         let solved: Result<Solved, RunError> = if symbolic {
-            crate::derive::derive(&scene, &case.symbols, None).map(|d| {
+            crate::tools::derive::derive(&scene, &case.symbols, None).map(|d| {
                 family = d.singular;
                 Solved {
                     energy_identity: d.energy_identity.iter().map(|(_, ok)| *ok).collect(),
@@ -460,7 +460,7 @@ pub fn check_derivation(
             run_with::<f64>(&scene, None, true)
         };
         let solved = solved.map_err(|e| fmt_err(format!("case `{}`: {e}", case.name)))?;
-        crate::symbolic::take_assumptions();
+        crate::scalar::symbolic::take_assumptions();
         result.cases.push((
             case.name.clone(),
             match (symbolic, solved.report.scalar) {
@@ -586,25 +586,25 @@ fn split_printed(p: &str) -> Vec<String> {
 /// both sides are read into the symbolic field and compared by cross-multiplication.
 fn identical(p: &str, v: &Value, symbols: &[String]) -> Result<bool, String> {
     let printed =
-        crate::expr::symbolic(p, symbols).map_err(|e| format!("the closed form `{p}`: {e}"))?;
+        crate::scalar::symbolic::symbolic(p, symbols).map_err(|e| format!("the closed form `{p}`: {e}"))?;
     let Some(derived) = v.exact.as_deref() else {
         return Ok(false);
     };
-    Ok(crate::expr::symbolic(derived, symbols).is_ok_and(|d| d == printed))
+    Ok(crate::scalar::symbolic::symbolic(derived, symbols).is_ok_and(|d| d == printed))
 }
 
 /// Is the printed condition `p` = 0 the derived compatibility condition `v` = 0, up to a
 /// nonzero constant factor (the same equation, however it is scaled or signed)?
 fn same_equation(p: &str, v: &Value, symbols: &[String]) -> Result<bool, String> {
     let printed =
-        crate::expr::symbolic(p, symbols).map_err(|e| format!("the condition `{p}`: {e}"))?;
+        crate::scalar::symbolic::symbolic(p, symbols).map_err(|e| format!("the condition `{p}`: {e}"))?;
     if printed.is_zero() {
         return Ok(v.exact.as_deref() == Some("0"));
     }
     let Some(derived) = v.exact.as_deref() else {
         return Ok(false);
     };
-    Ok(crate::expr::symbolic(derived, symbols).is_ok_and(|d| {
+    Ok(crate::scalar::symbolic::symbolic(derived, symbols).is_ok_and(|d| {
         let ratio = d / printed;
         ratio.is_constant() && !ratio.is_zero()
     }))
@@ -612,7 +612,7 @@ fn same_equation(p: &str, v: &Value, symbols: &[String]) -> Result<bool, String>
 
 /// `newton.compatibility`, `poisson.compatibility`: for a singular family, the derived
 /// compatibility conditions z_kᵀ b = 0 (their left sides, factored), one per null vector.
-fn compatibility(family: Option<&crate::derive::Singular>, q: &str) -> Result<Vec<Value>, String> {
+fn compatibility(family: Option<&crate::tools::derive::Singular>, q: &str) -> Result<Vec<Value>, String> {
     let s = family.ok_or_else(|| {
         format!("`{q}`: the collision is not singular for every value of the symbols")
     })?;
@@ -636,7 +636,7 @@ fn compatibility(family: Option<&crate::derive::Singular>, q: &str) -> Result<Ve
 /// constant with radicals) and a printed decimal `q` with `d` decimals (`d` = 0: x = q).
 /// `None` when the value has no exact form.
 fn agrees_exactly(v: &Value, q: &BigRational, decimals: usize) -> Option<bool> {
-    let x = crate::expr::symbolic(v.exact.as_deref()?, &[]).ok()?;
+    let x = crate::scalar::symbolic::symbolic(v.exact.as_deref()?, &[]).ok()?;
     if !x.is_constant() {
         return None;
     }
@@ -918,7 +918,7 @@ mod tests {
     use super::*;
 
     fn exact(text: &str) -> Value {
-        let x = crate::expr::symbolic(text, &[]).unwrap();
+        let x = crate::scalar::symbolic::symbolic(text, &[]).unwrap();
         Value::of(&x)
     }
 
@@ -957,12 +957,12 @@ mod tests {
     #[test]
     fn closed_forms_are_compared_as_rational_functions() {
         let syms: Vec<String> = ["m", "Jz", "y1"].iter().map(|s| s.to_string()).collect();
-        let derived = Value::of(&crate::expr::symbolic("(m*y1^2 + Jz)/(Jz*m)", &syms).unwrap());
+        let derived = Value::of(&crate::scalar::symbolic::symbolic("(m*y1^2 + Jz)/(Jz*m)", &syms).unwrap());
         assert_eq!(identical("1/m + y1^2/Jz", &derived, &syms), Ok(true));
         assert_eq!(identical("1/m + y1/Jz", &derived, &syms), Ok(false));
         assert!(identical("1/m +", &derived, &syms).is_err());
         // Conditions: the same equation up to a nonzero constant factor.
-        let c = Value::of(&crate::expr::symbolic("2*m*(y1 - Jz)", &syms).unwrap());
+        let c = Value::of(&crate::scalar::symbolic::symbolic("2*m*(y1 - Jz)", &syms).unwrap());
         assert_eq!(same_equation("Jz*m - m*y1", &c, &syms), Ok(true));
         assert_eq!(same_equation("y1 - Jz", &c, &syms), Ok(false));
     }

@@ -9,10 +9,10 @@ use num_bigint::BigInt;
 use num_rational::BigRational;
 use num_traits::{One, Signed, ToPrimitive, Zero};
 
-use super::{Func, Kind, MAX_DECIMAL_EXPONENT, Node, Op};
+use crate::number::expr::{Func, Kind, MAX_DECIMAL_EXPONENT, Node, Op};
 use crate::number::{self, MAX_EXACT_BITS, NumberError, exact_root};
 use crate::scalar::Scalar;
-use crate::symbolic::{Poly, RatFun};
+use super::{Poly, RatFun};
 
 /// Values with more terms than this (numerator and denominator factors together) are refused.
 const MAX_TERMS: usize = 10_000;
@@ -40,7 +40,7 @@ const MAX_RATIONALISED_TERMS: u64 = 4096;
 ///
 /// Every [`RatFun::to_text`] output reads back to the same value with the declared names
 /// [`symbol_names`] gives. Divisions by expressions with symbols record their ≠ 0 assumption
-/// ([`crate::symbolic::take_assumptions`]), as every [`RatFun`] division does.
+/// ([`crate::scalar::symbolic::take_assumptions`]), as every [`RatFun`] division does.
 ///
 /// # Errors
 /// [`NumberError::Syntax`] as [`crate::number::parse_number_with`] (first);
@@ -820,7 +820,7 @@ mod tests {
             let declared = names(&["m", "theta"]);
             let _ = symbolic(&text, &declared);
             let _ = number::parse_number_with(&text, &declared);
-            let _ = crate::surface::Surface::parse(&text);
+            let _ = crate::mechanics::surface::Surface::parse(&text);
         }
     }
 

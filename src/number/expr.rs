@@ -19,24 +19,22 @@
 //! * [`crate::number::parse_number`]: exact rationals (tracking rational multiples of pi) and
 //!   f64; no names, or with [`crate::number::parse_number_with`] declared symbols, which leave
 //!   the number without a value.
-//! * [`symbolic`]: exact values in [`crate::symbolic::RatFun`]: declared names are symbols,
+//! * [`crate::scalar::symbolic::symbolic`]: exact values in [`crate::scalar::symbolic::RatFun`]: declared names are symbols,
 //!   `sqrt` of rational constants is an exact radical, sin/cos/tan take multiples of 15° or a
 //!   bare declared angle.
-//! * [`crate::surface::Surface::parse`]: f(x, y, z); the names x, y, z are its variables.
+//! * [`crate::mechanics::surface::Surface::parse`]: f(x, y, z); the names x, y, z are its variables.
 //!
 //! Nesting deeper than [`MAX_DEPTH`] is a syntax error, so no input overflows the stack; every
 //! node carries its byte range, to quote sub-expressions in messages; syntax errors give
 //! 1-based character positions.
 
-mod symbolic_eval;
 
 use num_bigint::BigInt;
 use num_rational::BigRational;
 use num_traits::Zero;
 
-pub use symbolic_eval::{symbol_names, symbolic};
 
-use crate::number::rational_to_f64;
+use super::rational::rational_to_f64;
 
 /// Deeper nesting (signs, parentheses, powers, calls) is refused so that no input can overflow
 /// the stack.

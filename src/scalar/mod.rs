@@ -4,7 +4,7 @@
 //! capabilities gathered in [`Scalar`]: converting an exact input into the type, converting a
 //! result out to `f64`, and deciding whether a pivot is zero. No square root is ever taken, so
 //! exact rationals run the very same code as floats: contact axes are kept unnormalised and the
-//! norms are applied when results are reported (see [`crate::contact`]).
+//! norms are applied when results are reported (see [`crate::mechanics::contact`]).
 //!
 //! Supported scalars (a closed set, as in Drake's `default_scalars`):
 //!
@@ -12,7 +12,7 @@
 //! |---|---|---|
 //! | `f32` | `"f32"` | `|x| ≤ n·ε·|reference|` |
 //! | `f64` | `"f64"` | `|x| ≤ n·ε·|reference|` |
-//! | [`DoubleDouble`](crate::dd::DoubleDouble) | `"double-double"` | `|x| ≤ n·2⁻¹⁰⁴·|reference|` |
+//! | [`DoubleDouble`](crate::scalar::dd::DoubleDouble) | `"double-double"` | `|x| ≤ n·2⁻¹⁰⁴·|reference|` |
 //! | [`Exact`] = `BigRational` | `"exact"` | `x = 0` |
 
 use std::fmt::Debug;
@@ -21,6 +21,9 @@ use std::ops::{Add, AddAssign, Div, DivAssign, Mul, MulAssign, Neg, Sub, SubAssi
 use num_bigint::BigInt;
 use num_rational::BigRational;
 use num_traits::{One, Signed, Zero};
+
+pub mod dd;
+pub mod symbolic;
 
 use crate::number::Number;
 

@@ -4,14 +4,14 @@
 use serde_json::{Map, Value as Json, json};
 
 use crate::analysis::{Analysis, Classification, analyze, condition_number, largest_eigenvalue};
-use crate::constraint::Constrained;
-use crate::contact::Surd;
-use crate::pipeline::{RunError, prepare};
+use crate::mechanics::constraint::Constrained;
+use crate::mechanics::contact::Surd;
+use crate::scene::pipeline::{RunError, prepare};
 use crate::report::Value;
-use crate::restitution::Model;
+use crate::impact::restitution::Model;
 use crate::scalar::Scalar;
 use crate::scene::Scene;
-use crate::solve::Impact;
+use crate::impact::solve::Impact;
 
 /// The readout of an analysis, scalar-free.
 #[derive(Clone, Debug)]

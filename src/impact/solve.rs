@@ -1,7 +1,7 @@
 //! The simultaneous collision at N points: assemble, factor, solve (§2–4, §6).
 //!
-//! For a body of mobility W (W = [M]⁻¹ for a free body) hit along the contact normals
-//! {E_1x} … {E_Nx}, with hatted (unnormalised) axes as explained in [`crate::contact`]:
+//! For a body of mobility W (W = \[M\]⁻¹ for a free body) hit along the contact normals
+//! {E_1x} … {E_Nx}, with hatted (unnormalised) axes as explained in [`crate::mechanics::contact`]:
 //!
 //! ```text
 //! ĝ_ij = {Ê_ix}ᵀ η W {Ê_jx}                               inertances      (eq. 12, 126)
@@ -20,12 +20,12 @@
 //! Δ); [`Impact::solve`] then runs one restitution model. Both reuse the buffers they own, so
 //! repeated f64 solves allocate nothing.
 
-use crate::body::{Mobility, RigidBody};
-use crate::contact::{Contact, ContactFrame, TangentNotPerpendicular};
+use crate::mechanics::body::{Mobility, RigidBody};
+use crate::mechanics::contact::{Contact, ContactFrame, TangentNotPerpendicular};
 use crate::linalg::{self, NotSemidefinite};
-use crate::restitution::Model;
+use crate::impact::restitution::Model;
 use crate::scalar::Scalar;
-use crate::screw::Screw;
+use crate::mechanics::screw::Screw;
 
 /// A collision problem: the body, its twist before impact, and the contacts.
 #[derive(Clone, Debug, PartialEq)]
@@ -72,11 +72,11 @@ pub struct Impact<T: Scalar> {
     pub before: Vec<[T; 3]>,
     /// W{Ê_jx}: the twist per unit hatted impulse at contact j.
     pub responses: Vec<Screw<T>>,
-    /// Ĝ = [ĝ_ij,xx].
+    /// Ĝ = \[ĝ_ij,xx\].
     pub g: Vec<T>,
-    /// [ĝ_ij,yx] (eq. 127).
+    /// \[ĝ_ij,yx\] (eq. 127).
     pub g_yx: Vec<T>,
-    /// [ĝ_ij,zx] (eq. 128).
+    /// \[ĝ_ij,zx\] (eq. 128).
     pub g_zx: Vec<T>,
     /// Δ̂ = det Ĝ = Δ · Π|x̂_i|².
     pub det: T,
@@ -89,7 +89,7 @@ pub struct Impact<T: Scalar> {
     work: Vec<T>,
 }
 
-/// The result of one restitution model, in hatted form (see [`crate::contact`]).
+/// The result of one restitution model, in hatted form (see [`crate::mechanics::contact`]).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Outcome<T: Scalar> {
     /// P̂_i = P_i / |x̂_i|.
@@ -105,7 +105,7 @@ pub struct Outcome<T: Scalar> {
     /// ΔE_c (eq. 32).
     pub kinetic_energy_loss: T,
     /// The constraint impulses {q} (eq. 90–93; empty for a free body), filled by the
-    /// pipeline from [`crate::constraint::Constrained::impulses_into`].
+    /// pipeline from [`crate::mechanics::constraint::Constrained::impulses_into`].
     pub constraint_impulses: Vec<T>,
 }
 

@@ -92,12 +92,12 @@ use rayon::prelude::*;
 use toml_edit::DocumentMut;
 
 use crate::number::{Number, format_rational, parse_number, rational_to_f64};
-use crate::pipeline::{RunError, run};
+use crate::scene::pipeline::{RunError, run};
 use crate::report::{ModelReport, Report};
-use crate::restitution::Model;
+use crate::impact::restitution::Model;
 use crate::scalar::Exact;
 use crate::scene::{Scene, SceneError, parse_document, set_value};
-use crate::solve::SolveError;
+use crate::impact::solve::SolveError;
 
 /// Points solved in parallel before their rows are written (bounds memory).
 pub const CHUNK: usize = 1024;

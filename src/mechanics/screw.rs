@@ -5,10 +5,10 @@
 //! * a **velocity screw** (twist) is {v} = [ω; v_C]: angular velocity, then the velocity of
 //!   the centre of mass C;
 //! * the screw of an **axis** through the point A (position **r** from C) with direction **u**
-//!   is {E} = [u; r × u] (eq. 3–4, with [S] the matrix of r×);
+//!   is {E} = [u; r × u] (eq. 3–4, with \[S\] the matrix of r×);
 //! * a **wrench** (an impulse and its moment about C) has the same layout, [P; r × P].
 //!
-//! The mixed product of eq. (6), {a} * {b} = {a}ᵀ [η] {b} with [η] = [[0, I], [I, 0]]
+//! The mixed product of eq. (6), {a} * {b} = {a}ᵀ \[η\] {b} with \[η\] = [[0, I], [I, 0]]
 //! (eq. 5), pairs a twist with an axis: {E}ᵀ η {v} = u · (v_C + ω × r) is the velocity of
 //! the point A along **u** (eq. 8).
 
@@ -55,7 +55,7 @@ impl<T: Scalar> Screw<T> {
         self.0.fixed_rows::<3>(3).into_owned()
     }
 
-    /// The mixed product {self}ᵀ [η] {other} of eq. (6): top·bottom' + bottom·top'.
+    /// The mixed product {self}ᵀ \[η\] {other} of eq. (6): top·bottom' + bottom·top'.
     #[inline]
     pub fn reciprocal(&self, other: &Screw<T>) -> T {
         let mut s = T::zero();

@@ -1,0 +1,9 @@
+//! Linear algebra over a field, with no square root: what the solver needs from matrices that
+//! nalgebra's `ComplexField` decompositions cannot give an exact rational type.
+//!
+//! [`ldlt`]: the pivoted LDLᵀ factorization of a symmetric positive semidefinite matrix, its
+//! rank, determinant, solves and null space — exact in rationals, stable in floats.
+
+pub mod ldlt;
+
+pub use ldlt::*;

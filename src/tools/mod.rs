@@ -1,0 +1,10 @@
+//! The toolkit's commands, each a library function the CLI calls: [`analyze`] (degenerate
+//! cases of a scene, §8), [`check`] (the paper's worked examples and closed forms, checked),
+//! [`derive`](mod@derive) (closed forms over symbols), [`bench`](mod@bench) (accuracy against time per scalar) and
+//! [`sweep`] (parameter sweeps).
+
+pub mod analyze;
+pub mod bench;
+pub mod check;
+pub mod derive;
+pub mod sweep;
