@@ -4,25 +4,74 @@
 //! and Stănescu, *Simultaneous Collision of the Rigid Body at Two Points*, Symmetry 13 (2021)
 //! 1924 — "the paper"; equation numbers in the docs are the paper's.
 //!
+//! ## Quick start
+//!
+//! The paper's Example 3 — a planar bar striking two supports — built in code, validated, and
+//! solved in floating point and in exact rationals:
+//!
+//! ```
+//! use inertance::{Contact, Exact, Model, Problem, RigidBody, Scalar, Screw, Vec3, solve};
+//!
+//! fn example_3<T: Scalar>() -> Result<Problem<T>, inertance::InvalidProblem> {
+//!     let q = inertance::scalar::ratio::<T>;
+//!     let v = |x, y, z| Vec3::new(q(x, 1), q(y, 1), q(z, 1));
+//!     let body = RigidBody { mass: q(1, 1), inertia: Vec3::new(q(12, 1), q(8, 5), q(12, 1)) };
+//!     // {v⁰} = [ω⁰; v_C⁰]: ω⁰ = 0.4 rad/s about z, v_C⁰ = (3, 2, 0) m/s.
+//!     let twist = Screw::new(Vec3::new(q(0, 1), q(0, 1), q(2, 5)), v(3, 2, 0));
+//!     let contacts = vec![
+//!         Contact::new(v(0, -2, 0), v(1, 0, 0), q(3, 10)),
+//!         // A normal need not be a unit vector: impulses still come out in N s.
+//!         Contact::new(v(0, 4, 0), v(2, 0, 0), q(1, 5)),
+//!     ];
+//!     Problem::new(body, twist, contacts)
+//! }
+//!
+//! let newton = solve(&example_3::<f64>()?, Model::Newton)?;
+//! assert!((newton.impulses[0].to_f64() - 3.655556).abs() < 1e-6); // P_1, N s
+//!
+//! let exact = solve(&example_3::<Exact>()?, Model::Newton)?;
+//! assert_eq!(exact.det, inertance::scalar::ratio::<Exact>(3, 1)); // Δ = det G, exactly
+//! assert_eq!(exact.impulses[1].exact_text().unwrap(), "89/450"); // P_2 = 89/450 N s
+//! assert_eq!(exact.lost_velocity_energy.to_f64(), 413791.0 / 45000.0); // E_p, J
+//!
+//! // Bad input is refused with the field named, as in scene files.
+//! let body = RigidBody { mass: -1.0, inertia: Vec3::new(1.0, 1.0, 1.0) };
+//! let err = Problem::new(body, Screw::zero(), vec![]).unwrap_err();
+//! assert_eq!(err.to_string(), "body.mass must be positive");
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+//!
+//! [`Problem::new`] validates (m > 0, J_k > 0, finite numbers, nonzero normals, tangents
+//! perpendicular to their normals, k ∈ [0, 1], at least one contact) and names the offending
+//! field; [`solve`] returns a [`Solution`] in the paper's units. Scenes written as TOML files
+//! go through [`scene::Scene`] and [`scene::pipeline`]; the lower-level
+//! [`impact::solve::Impact`] reuses its buffers across solves (no allocation in f64).
+//!
 //! ## Notation (used everywhere)
 //!
 //! * Cxyz: central principal axes of the body; m, J = diag(J_x, J_y, J_z).
 //! * Twist {v} = [ω; v_C]; axis screw {E} = [u; r × u] (eq. 3–4); η = [[0, I], [I, 0]] (eq. 5)
 //!   and the mixed product {a}ᵀ η {b} (eq. 6).
-//! * [M] = [[0, m I], [J, 0]] and [M]⁻¹ = [[0, J⁻¹], [m⁻¹ I, 0]] (eq. 9).
-//! * Inertances g_ij,ab = {E_ia}ᵀ η [M]⁻¹ {E_jb} (eq. 12); G = [g_ij,xx]; Δ = det G.
+//! * \[M\] = [[0, m I], [J, 0]] and \[M\]⁻¹ = [[0, J⁻¹], [m⁻¹ I, 0]] (eq. 9).
+//! * Inertances g_ij,ab = {E_ia}ᵀ η \[M\]⁻¹ {E_jb} (eq. 12); G = \[g_ij,xx\]; Δ = det G.
 //! * P_i: the impulse at A_i, acting along −x_i (x_i is the outward normal, eq. 10).
 //!
-//! ## Modules, one idea each
+//! ## Layers, bottom up
 //!
-//! [`scalar`] (the field a solve runs in) · [`expr`] (the one expression grammar) ·
-//! [`number`] (exact numbers as written) ·
-//! [`linalg`] (field-only LDLᵀ) · [`screw`] (Plücker coordinates) · [`body`] (mass matrix,
-//! mobility) · [`contact`] (contact frames, §12) · [`restitution`] (Newton, Poisson) ·
-//! [`solve`] (the collision) · [`constraint`] (ideal constraints, §9–11) · [`surface`]
-//! (implicit surfaces, §12) · [`analysis`] and [`analysis_report`] (degenerate cases, §8) · [`scene`] (TOML scenes) · [`report`] (tables and JSON) ·
-//! [`check`] (the paper's worked examples, checked) · [`symbolic`] and [`derive`] (closed forms
-//! derived by the same solver over rational functions).
+//! | module | what lives there |
+//! |---|---|
+//! | [`number`] | numbers as written: the one expression grammar, exact reading, rational text |
+//! | [`scalar`] | the fields a solve runs in: f32, f64, double-double, exact rationals, symbolic |
+//! | [`linalg`] | field-only linear algebra: pivoted LDLᵀ, rank, null space |
+//! | [`mechanics`] | screws, the body and its mobility, contact frames, constraints, surfaces |
+//! | [`impact`] | the validated problem, the restitution laws, the solve, the solution in physical units |
+//! | [`analysis`] | degenerate cases (§8): ranks, compatibility, families, admissibility |
+//! | [`report`] | what a solve reports, as a table or JSON |
+//! | [`scene`] | TOML scenes and the pipeline from a scene to a report |
+//! | [`tools`] | the commands: `analyze`, `check`, `derive`, `bench`, `sweep` |
+//!
+//! Each layer uses only those above it in this table; the `inertance` binary is a thin CLI
+//! over [`tools`] and [`scene`].
 
 #![deny(missing_docs)]
 // Index loops over i, j read like the paper's sums (g_ij, Σ_j P_j g_ij); keep them.
@@ -37,3 +86,13 @@ pub mod analysis;
 pub mod report;
 pub mod scene;
 pub mod tools;
+
+pub use impact::problem::{Field, InvalidProblem, Problem, Reason};
+pub use impact::restitution::Model;
+pub use impact::solution::{Solution, solve};
+pub use impact::solve::SolveError;
+pub use mechanics::body::RigidBody;
+pub use mechanics::constraint::Joint;
+pub use mechanics::contact::{Contact, Surd};
+pub use mechanics::screw::{Screw, Vec3};
+pub use scalar::{Exact, Scalar};

@@ -22,11 +22,11 @@
 //! In exact types every rank and sign decision is exact. In floats a pivot counts as zero when
 //! it is ≤ N·ε·max g_ii — the tolerance is reported.
 
-use crate::mechanics::body::Mobility;
+use crate::impact::problem::Problem;
 use crate::impact::restitution::Model;
-use crate::scalar::Scalar;
+use crate::impact::solve::{Impact, Outcome};
 use crate::mechanics::screw::Screw;
-use crate::impact::solve::{Impact, Outcome, Problem};
+use crate::scalar::Scalar;
 
 /// The Rouché–Capelli classification of a model's system.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -110,30 +110,25 @@ pub struct Analysis<T: Scalar> {
     pub coincident: Vec<Coincidence<T>>,
 }
 
-/// Analyse the assembled `impact` of `problem` for `models`.
-pub fn analyze<T: Scalar>(
-    problem: &Problem<T>,
-    mobility: &impl Mobility<T>,
-    impact: &mut Impact<T>,
-    models: &[Model],
-) -> Analysis<T> {
+/// Analyse the assembled `impact` for `models`.
+pub fn analyze<T: Scalar>(impact: &mut Impact<T>, models: &[Model]) -> Analysis<T> {
     let n = impact.contacts();
     let tolerance = if T::IS_EXACT {
         None
     } else {
         let gmax = (0..n)
-            .map(|i| impact.g[i * n + i].to_f64())
+            .map(|i| impact.g_hat()[i * n + i].to_f64())
             .fold(0.0, f64::max);
         Some(n as f64 * T::epsilon_f64() * gmax)
     };
     let mut out_models = Vec::with_capacity(models.len());
     for &model in models {
-        out_models.push(analyze_model(problem, mobility, impact, model));
+        out_models.push(analyze_model(impact, model));
     }
-    let newton_equals_poisson = newton_equals_poisson(problem, impact, &out_models);
-    let coincident = coincident(problem, impact);
+    let newton_equals_poisson = newton_equals_poisson(impact, &out_models);
+    let coincident = coincident(impact);
     Analysis {
-        rank: impact.rank,
+        rank: impact.rank(),
         tolerance,
         models: out_models,
         newton_equals_poisson,
@@ -141,29 +136,25 @@ pub fn analyze<T: Scalar>(
     }
 }
 
-fn analyze_model<T: Scalar>(
-    problem: &Problem<T>,
-    mobility: &impl Mobility<T>,
-    impact: &mut Impact<T>,
-    model: Model,
-) -> ModelAnalysis<T> {
+fn analyze_model<T: Scalar>(impact: &mut Impact<T>, model: Model) -> ModelAnalysis<T> {
     let n = impact.contacts();
-    let approaching: Vec<bool> = impact.before.iter().map(|v| v[0].signum_i8() > 0).collect();
+    let problem = impact.problem().clone();
+    let approaching: Vec<bool> = impact.before_hat().iter().map(|v| v[0].signum_i8() > 0).collect();
     let scale = |i: usize, model: Model| -> T {
         match model {
             Model::Newton => T::one(),
-            Model::Poisson => T::one() + &problem.contacts[i].k_poisson,
+            Model::Poisson => T::one() + &problem.contacts()[i].k_poisson,
         }
     };
-    if impact.rank == n {
+    if impact.rank() == n {
         let mut out = Outcome::default();
-        let solved = impact.solve(problem, model, &mut out);
+        let solved = impact.solve(model, &mut out);
         // rank = N, so the solve cannot fail.
         let ok = solved.is_ok();
         let admissible = (0..n)
             .map(|i| Admissibility {
                 approaching: approaching[i],
-                compressive: ok.then(|| out.impulses[i].signum_i8() > 0),
+                compressive: ok.then(|| out.impulses_hat[i].signum_i8() > 0),
                 varies: false,
             })
             .collect();
@@ -180,12 +171,12 @@ fn analyze_model<T: Scalar>(
         };
     }
     let mut b = Vec::new();
-    impact.rhs(problem, model, &mut b);
+    impact.rhs(model, &mut b);
     let mut x = Vec::new();
     if impact.solve_singular(&b, &mut x).is_none() {
         return ModelAnalysis {
             model,
-            augmented_rank: impact.rank + 1,
+            augmented_rank: impact.rank() + 1,
             classification: Classification::SingularIncompatible,
             outcome: None,
             family: Vec::new(),
@@ -216,36 +207,35 @@ fn analyze_model<T: Scalar>(
             .collect(),
     };
     let mut out = Outcome {
-        impulses,
-        compression,
+        impulses_hat: impulses,
+        compression_hat: compression,
         ..Outcome::default()
     };
-    impact.complete(problem, &mut out);
+    impact.complete(&mut out);
     // The twist change along each direction of the family: −Σ z_j W{E_jx}.
     let twist_fixed = family.iter().all(|z| {
         let mut dv = Screw::zero();
-        for (zj, f) in z.iter().zip(&impact.frames) {
-            dv.add_scaled(zj, &mobility.response(&f.axes[0]));
+        for (zj, r) in z.iter().zip(impact.responses()) {
+            dv.add_scaled(zj, r);
         }
-        let reference = problem
-            .velocity
-            .reciprocal(&problem.body.momentum(&problem.velocity));
+        let v0 = problem.velocity();
+        let reference = v0.reciprocal(&problem.body().momentum(v0));
         problem
-            .body
+            .body()
             .kinetic_energy(&dv)
             .is_negligible(&reference, 16 * n)
     });
     let admissible = (0..n)
         .map(|i| Admissibility {
             approaching: approaching[i],
-            compressive: Some(out.impulses[i].signum_i8() > 0),
+            compressive: Some(out.impulses_hat[i].signum_i8() > 0),
             varies: family.iter().any(|z| !z[i].is_negligible(&T::one(), n)),
         })
         .collect();
     let gain = Some(out.kinetic_energy_loss.signum_i8() < 0);
     ModelAnalysis {
         model,
-        augmented_rank: impact.rank,
+        augmented_rank: impact.rank(),
         classification: Classification::SingularCompatible,
         outcome: Some(out),
         family,
@@ -262,7 +252,7 @@ fn least_norm<T: Scalar>(p: &mut [T], basis: &[Vec<T>], impact: &Impact<T>) {
     if k == 0 {
         return;
     }
-    let w: Vec<T> = impact.frames.iter().map(|f| f.norm2[0].clone()).collect();
+    let w: Vec<T> = impact.frames().iter().map(|f| f.norm2[0].clone()).collect();
     let dot = |a: &[T], b: &[T]| -> T {
         let mut s = T::zero();
         for i in 0..a.len() {
@@ -292,7 +282,6 @@ fn least_norm<T: Scalar>(p: &mut [T], basis: &[Vec<T>], impact: &Impact<T>) {
 
 /// eq. 50–55: equal impulses, and why.
 fn newton_equals_poisson<T: Scalar>(
-    problem: &Problem<T>,
     impact: &Impact<T>,
     models: &[ModelAnalysis<T>],
 ) -> Option<(bool, String)> {
@@ -302,11 +291,11 @@ fn newton_equals_poisson<T: Scalar>(
     let equal = match (&newton.outcome, &poisson.outcome) {
         (Some(a), Some(b)) => {
             (0..n).all(|i| {
-                let d = a.impulses[i].clone() - &b.impulses[i];
-                let reference = if a.impulses[i].abs_gt(&b.impulses[i]) {
-                    a.impulses[i].clone()
+                let d = a.impulses_hat[i].clone() - &b.impulses_hat[i];
+                let reference = if a.impulses_hat[i].abs_gt(&b.impulses_hat[i]) {
+                    a.impulses_hat[i].clone()
                 } else {
-                    b.impulses[i].clone()
+                    b.impulses_hat[i].clone()
                 };
                 d.is_negligible(&reference, 16 * n)
             }) && newton.family.len() == poisson.family.len()
@@ -314,12 +303,12 @@ fn newton_equals_poisson<T: Scalar>(
         (None, None) => newton.classification == poisson.classification,
         _ => false,
     };
-    let cs = &problem.contacts;
+    let cs = impact.problem().contacts();
     let same_k = cs
         .iter()
         .all(|c| c.k_newton == c.k_poisson && c.k_newton == cs[0].k_newton);
     let diagonal = (0..n).all(|i| {
-        (0..n).all(|j| i == j || impact.g[i * n + j].is_negligible(&impact.g[i * n + i], 16 * n))
+        (0..n).all(|j| i == j || impact.g_hat()[i * n + j].is_negligible(&impact.g_hat()[i * n + i], 16 * n))
     });
     let reason = match (equal, same_k, diagonal) {
         (true, true, _) => "equal coefficients at every contact (k_i^N = k_i^P = k): eq. 55, first possibility".to_string(),
@@ -331,25 +320,26 @@ fn newton_equals_poisson<T: Scalar>(
 }
 
 /// Pairs of contacts at the same point (A_i ≡ A_j, §8), with the single-impulse reduction.
-fn coincident<T: Scalar>(problem: &Problem<T>, impact: &Impact<T>) -> Vec<Coincidence<T>> {
+fn coincident<T: Scalar>(impact: &Impact<T>) -> Vec<Coincidence<T>> {
     let n = impact.contacts();
+    let problem: &Problem<T> = impact.problem();
     let mut out = Vec::new();
     for i in 0..n {
         for j in i + 1..n {
-            let (pi, pj) = (&problem.contacts[i].point, &problem.contacts[j].point);
+            let (pi, pj) = (&problem.contacts()[i].point, &problem.contacts()[j].point);
             let d = pi - pj;
             let reference = crate::mechanics::screw::norm2(pi) + crate::mechanics::screw::norm2(pj);
             if !crate::mechanics::screw::norm2(&d).is_negligible(&reference, 3) {
                 continue;
             }
-            let (ni, nj) = (&problem.contacts[i].normal, &problem.contacts[j].normal);
+            let (ni, nj) = (&problem.contacts()[i].normal, &problem.contacts()[j].normal);
             let cross = ni.cross(nj);
             let same_axis = crate::mechanics::screw::norm2(&cross)
                 .is_negligible(&(crate::mechanics::screw::norm2(ni) * crate::mechanics::screw::norm2(nj)), 3)
                 && crate::mechanics::screw::dot(ni, nj).signum_i8() > 0;
-            let c = &problem.contacts[i];
-            let gii = impact.g[i * n + i].clone();
-            let v0 = impact.before[i][0].clone();
+            let c = &problem.contacts()[i];
+            let gii = impact.g_hat()[i * n + i].clone();
+            let v0 = impact.before_hat()[i][0].clone();
             let single = [
                 (T::one() + &c.k_newton) * &v0 / gii.clone(), // eq. 70
                 (T::one() + &c.k_poisson) * &v0 / gii,        // eq. 72

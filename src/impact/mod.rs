@@ -1,9 +1,13 @@
-//! The impact itself: the restitution laws and the solve of the simultaneous collision
-//! (§2–4, §6, §9–11).
+//! The impact itself: the problem, the restitution laws and the solve of the simultaneous
+//! collision (§2–4, §6, §9–11).
 //!
-//! [`restitution`]: Newton's and Poisson's laws (eq. 14–15, 20–23) · [`solve`]: the
+//! [`problem`]: the validated input — body, twist before impact, contacts, constraints ·
+//! [`restitution`]: Newton's and Poisson's laws (eq. 14–15, 20–23) · [`solve`](mod@solve): the
 //! assembled collision — frames, inertances G, its factorization and Δ — and one law solved on
-//! it, in the hatted form the solver works in.
+//! it, in the hatted form the solver works in · [`solution`]: the outcome in the paper's units,
+//! and the one-call [`solution::solve`].
 
+pub mod problem;
 pub mod restitution;
+pub mod solution;
 pub mod solve;

@@ -20,23 +20,13 @@
 //! Δ); [`Impact::solve`] then runs one restitution model. Both reuse the buffers they own, so
 //! repeated f64 solves allocate nothing.
 
-use crate::mechanics::body::{Mobility, RigidBody};
-use crate::mechanics::contact::{Contact, ContactFrame, TangentNotPerpendicular};
-use crate::linalg::{self, NotSemidefinite};
+use crate::impact::problem::Problem;
 use crate::impact::restitution::Model;
-use crate::scalar::Scalar;
+use crate::linalg::{self, NotSemidefinite};
+use crate::mechanics::body::Mobility;
+use crate::mechanics::contact::{ContactFrame, TangentNotPerpendicular};
 use crate::mechanics::screw::Screw;
-
-/// A collision problem: the body, its twist before impact, and the contacts.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Problem<T: Scalar> {
-    /// Mass and central principal moments.
-    pub body: RigidBody<T>,
-    /// {v⁰} = [ω⁰; v_C⁰].
-    pub velocity: Screw<T>,
-    /// The contacts A_1 … A_N.
-    pub contacts: Vec<Contact<T>>,
-}
+use crate::scalar::Scalar;
 
 /// Why a collision could not be solved.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
@@ -52,7 +42,8 @@ pub enum SolveError {
         /// N.
         contacts: usize,
     },
-    /// A contact frame could not be built.
+    /// A contact frame could not be built (not reached for a validated [`Problem`], whose
+    /// tangents were checked by the same test).
     #[error(transparent)]
     Tangent(#[from] TangentNotPerpendicular),
     /// G was not positive semidefinite: cannot happen for a body with positive mass and
@@ -61,61 +52,68 @@ pub enum SolveError {
     NotSemidefinite(#[from] NotSemidefinite),
 }
 
-/// The model-independent part of a collision: frames, velocities before impact, inertances,
-/// the factorization of G and Δ. All matrices are N×N, row-major, in hatted form.
+/// The model-independent part of a collision, assembled for one [`Problem`] (of which it
+/// keeps a copy, so every later call refers to that problem): frames, velocities before
+/// impact, inertances, the factorization of G and Δ.
+///
+/// Everything here is in **hatted** form — the internal device of [`crate::mechanics::contact`]:
+/// axes are the normals and tangents as given, unnormalised, so no square root is taken and
+/// exact types run the same code. v_ix = v̂_ix / |n_i|, P_i = P̂_i |n_i|,
+/// g_ij = ĝ_ij / (|n_i| |n_j|), Δ = Δ̂ / Π|n_i|². The values in the paper's units are
+/// [`crate::impact::solution::Solution`]'s. Matrices are N×N, row-major.
 #[derive(Clone, Debug)]
 pub struct Impact<T: Scalar> {
-    n: usize,
+    problem: Problem<T>,
     /// The contact frames.
-    pub frames: Vec<ContactFrame<T>>,
+    frames: Vec<ContactFrame<T>>,
     /// (v̂_ix⁰, v̂_iy⁰, v̂_iz⁰) per contact (eq. 8).
-    pub before: Vec<[T; 3]>,
+    before_hat: Vec<[T; 3]>,
     /// W{Ê_jx}: the twist per unit hatted impulse at contact j.
-    pub responses: Vec<Screw<T>>,
-    /// Ĝ = \[ĝ_ij,xx\].
-    pub g: Vec<T>,
-    /// \[ĝ_ij,yx\] (eq. 127).
-    pub g_yx: Vec<T>,
-    /// \[ĝ_ij,zx\] (eq. 128).
-    pub g_zx: Vec<T>,
+    responses: Vec<Screw<T>>,
+    /// Ĝ = [ĝ_ij,xx].
+    g_hat: Vec<T>,
+    /// [ĝ_ij,yx] (eq. 127).
+    g_yx_hat: Vec<T>,
+    /// [ĝ_ij,zx] (eq. 128).
+    g_zx_hat: Vec<T>,
     /// Δ̂ = det Ĝ = Δ · Π|x̂_i|².
-    pub det: T,
+    det_hat: T,
     /// rank G.
-    pub rank: usize,
+    rank: usize,
     /// ½ {v⁰}ᵀ η M {v⁰}.
-    pub kinetic_before: T,
+    kinetic_before: T,
     factor: Vec<T>,
     perm: Vec<usize>,
     work: Vec<T>,
 }
 
-/// The result of one restitution model, in hatted form (see [`crate::mechanics::contact`]).
+/// The result of one restitution model, in hatted form (see [`Impact`]); the paper's units
+/// are [`crate::impact::solution::Solution`]'s.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Outcome<T: Scalar> {
     /// P̂_i = P_i / |x̂_i|.
-    pub impulses: Vec<T>,
+    pub impulses_hat: Vec<T>,
     /// P̂_i^c (Poisson only; empty for Newton).
-    pub compression: Vec<T>,
+    pub compression_hat: Vec<T>,
     /// {v} = [ω; v_C] after impact.
     pub velocity: Screw<T>,
     /// (v̂_ix, v̂_iy, v̂_iz) after impact, per contact (eq. 13, 25, 26).
-    pub after: Vec<[T; 3]>,
+    pub after_hat: Vec<[T; 3]>,
     /// E_p (eq. 28).
     pub lost_velocity_energy: T,
     /// ΔE_c (eq. 32).
     pub kinetic_energy_loss: T,
-    /// The constraint impulses {q} (eq. 90–93; empty for a free body), filled by the
-    /// pipeline from [`crate::mechanics::constraint::Constrained::impulses_into`].
+    /// The constraint impulses {q} (eq. 90–93; empty for a free body).
     pub constraint_impulses: Vec<T>,
 }
 
 impl<T: Scalar> Default for Outcome<T> {
     fn default() -> Self {
         Outcome {
-            impulses: Vec::new(),
-            compression: Vec::new(),
+            impulses_hat: Vec::new(),
+            compression_hat: Vec::new(),
             velocity: Screw::zero(),
-            after: Vec::new(),
+            after_hat: Vec::new(),
             lost_velocity_energy: T::zero(),
             kinetic_energy_loss: T::zero(),
             constraint_impulses: Vec::new(),
@@ -123,85 +121,143 @@ impl<T: Scalar> Default for Outcome<T> {
     }
 }
 
-impl<T: Scalar> Default for Impact<T> {
-    fn default() -> Self {
-        Self::new()
-    }
-}
-
 impl<T: Scalar> Impact<T> {
-    /// An empty impact, to be filled by [`Impact::assemble`].
-    pub fn new() -> Self {
-        Impact {
-            n: 0,
+    /// Build frames, inertances and the factorization of G for `problem`, the body answering
+    /// impulses through its mobility (free, or constrained). A singular G is not an error
+    /// here: `rank` and `det_hat` say so, and [`Impact::solve`] refuses.
+    ///
+    /// # Errors
+    /// [`SolveError::NotSemidefinite`] if rounding made G indefinite (floats only).
+    pub fn assemble(problem: &Problem<T>) -> Result<Self, SolveError> {
+        let mut impact = Impact {
+            problem: problem.clone(),
             frames: Vec::new(),
-            before: Vec::new(),
+            before_hat: Vec::new(),
             responses: Vec::new(),
-            g: Vec::new(),
-            g_yx: Vec::new(),
-            g_zx: Vec::new(),
-            det: T::one(),
+            g_hat: Vec::new(),
+            g_yx_hat: Vec::new(),
+            g_zx_hat: Vec::new(),
+            det_hat: T::one(),
             rank: 0,
             kinetic_before: T::zero(),
             factor: Vec::new(),
             perm: Vec::new(),
             work: Vec::new(),
-        }
+        };
+        impact.build()?;
+        Ok(impact)
+    }
+
+    /// [`Impact::assemble`] for another problem, reusing this impact's buffers (repeated f64
+    /// solves of free bodies allocate nothing).
+    ///
+    /// # Errors
+    /// As [`Impact::assemble`].
+    pub fn reassemble(&mut self, problem: &Problem<T>) -> Result<(), SolveError> {
+        self.problem.clone_from(problem);
+        self.build()
+    }
+
+    /// The problem assembled.
+    pub fn problem(&self) -> &Problem<T> {
+        &self.problem
     }
 
     /// Number of contacts.
     pub fn contacts(&self) -> usize {
-        self.n
+        self.problem.contacts().len()
     }
 
-    /// Build frames, inertances and the factorization of G for `problem`, with the body
-    /// answering impulses through `mobility`. A singular G is not an error here: `rank` and
-    /// `det` say so, and [`Impact::solve`] refuses.
-    pub fn assemble(
-        &mut self,
-        problem: &Problem<T>,
-        mobility: &impl Mobility<T>,
-    ) -> Result<(), SolveError> {
-        let n = problem.contacts.len();
-        self.n = n;
-        self.before.clear();
+    /// Whether G is singular (rank G < N).
+    pub fn singular(&self) -> bool {
+        self.rank < self.contacts()
+    }
+
+    /// The contact frames.
+    pub fn frames(&self) -> &[ContactFrame<T>] {
+        &self.frames
+    }
+
+    /// (v̂_ix⁰, v̂_iy⁰, v̂_iz⁰) per contact, hatted (eq. 8).
+    pub fn before_hat(&self) -> &[[T; 3]] {
+        &self.before_hat
+    }
+
+    /// W{Ê_jx}: the twist per unit hatted impulse at contact j.
+    pub fn responses(&self) -> &[Screw<T>] {
+        &self.responses
+    }
+
+    /// Ĝ = [ĝ_ij,xx], N×N row-major, hatted.
+    pub fn g_hat(&self) -> &[T] {
+        &self.g_hat
+    }
+
+    /// [ĝ_ij,yx] (eq. 127), hatted.
+    pub fn g_yx_hat(&self) -> &[T] {
+        &self.g_yx_hat
+    }
+
+    /// [ĝ_ij,zx] (eq. 128), hatted.
+    pub fn g_zx_hat(&self) -> &[T] {
+        &self.g_zx_hat
+    }
+
+    /// Δ̂ = det Ĝ = Δ · Π|x̂_i|².
+    pub fn det_hat(&self) -> &T {
+        &self.det_hat
+    }
+
+    /// rank G.
+    pub fn rank(&self) -> usize {
+        self.rank
+    }
+
+    /// T⁰ = ½ {v⁰}ᵀ η M {v⁰}, the kinetic energy before impact.
+    pub fn kinetic_before(&self) -> &T {
+        &self.kinetic_before
+    }
+
+    /// Frames, velocities before impact, the inertances (eq. 12, 126–128), the
+    /// factorization of G and Δ̂, for `self.problem`.
+    fn build(&mut self) -> Result<(), SolveError> {
+        let problem = &self.problem;
+        let n = problem.contacts().len();
+        self.before_hat.clear();
         self.responses.clear();
         self.frames.clear();
-        for (i, c) in problem.contacts.iter().enumerate() {
-            self.frames
-                .push(ContactFrame::new(i, c, &problem.velocity)?);
+        for (i, c) in problem.contacts().iter().enumerate() {
+            self.frames.push(ContactFrame::new(i, c, problem.velocity())?);
             let f = &self.frames[i];
-            self.before.push(f.velocity(&problem.velocity));
-            self.responses.push(mobility.response(&f.axes[0]));
+            self.before_hat.push(f.velocity(problem.velocity()));
+            self.responses.push(problem.response(&f.axes[0]));
         }
-        self.g.clear();
-        self.g_yx.clear();
-        self.g_zx.clear();
+        self.g_hat.clear();
+        self.g_yx_hat.clear();
+        self.g_zx_hat.clear();
         for f in &self.frames {
             for r in &self.responses {
-                self.g.push(f.axes[0].reciprocal(r));
-                self.g_yx.push(f.axes[1].reciprocal(r));
-                self.g_zx.push(f.axes[2].reciprocal(r));
+                self.g_hat.push(f.axes[0].reciprocal(r));
+                self.g_yx_hat.push(f.axes[1].reciprocal(r));
+                self.g_zx_hat.push(f.axes[2].reciprocal(r));
             }
         }
-        self.factor.clone_from(&self.g);
+        self.factor.clone_from(&self.g_hat);
         self.perm.resize(n, 0);
         let fac = linalg::factor_psd(&mut self.factor, n, &mut self.perm)?;
         self.rank = fac.rank;
-        self.det = linalg::determinant(&self.factor, n);
-        self.kinetic_before = problem.body.kinetic_energy(&problem.velocity);
+        self.det_hat = linalg::determinant(&self.factor, n);
+        self.kinetic_before = problem.body().kinetic_energy(problem.velocity());
         Ok(())
     }
 
     /// Solve the restitution `model` for the assembled problem into `out` (its buffers are
-    /// reused). `problem` and `mobility` must be those given to [`Impact::assemble`].
-    pub fn solve(
-        &mut self,
-        problem: &Problem<T>,
-        model: Model,
-        out: &mut Outcome<T>,
-    ) -> Result<(), SolveError> {
-        let n = self.n;
+    /// reused), with the constraint impulses q for a constrained body.
+    ///
+    /// # Errors
+    /// [`SolveError::Singular`] when G is singular (Δ = 0): see [`crate::analysis`].
+    pub fn solve(&mut self, model: Model, out: &mut Outcome<T>) -> Result<(), SolveError> {
+        let n = self.contacts();
         if self.rank < n {
             return Err(SolveError::Singular {
                 rank: self.rank,
@@ -210,34 +266,34 @@ impl<T: Scalar> Impact<T> {
         }
         // Scratch for the general solve; it writes every entry before reading it.
         self.work.resize(n, T::zero());
-        self.rhs(problem, model, &mut out.impulses);
+        self.rhs(model, &mut out.impulses_hat);
         linalg::solve_factored(
             &self.factor,
             n,
             &self.perm,
-            &mut out.impulses,
+            &mut out.impulses_hat,
             &mut self.work,
         );
         match model {
-            Model::Newton => out.compression.clear(),
+            Model::Newton => out.compression_hat.clear(),
             Model::Poisson => {
-                out.compression.clear();
-                out.compression.extend(out.impulses.iter().cloned());
-                for (p, c) in out.impulses.iter_mut().zip(&problem.contacts) {
+                out.compression_hat.clear();
+                out.compression_hat.extend(out.impulses_hat.iter().cloned());
+                for (p, c) in out.impulses_hat.iter_mut().zip(self.problem.contacts()) {
                     *p *= T::one() + &c.k_poisson; // eq. 23
                 }
             }
         }
-        self.complete(problem, out);
+        self.complete(out);
         Ok(())
     }
 
     /// The right-hand side of the model's system G x = b: b_i = (1 + k_i^N) v̂_ix⁰ (Newton,
     /// eq. 15) or v̂_ix⁰ (Poisson, eq. 21, for the compression impulses).
-    pub fn rhs(&self, problem: &Problem<T>, model: Model, b: &mut Vec<T>) {
+    pub(crate) fn rhs(&self, model: Model, b: &mut Vec<T>) {
         b.clear();
-        for (i, c) in problem.contacts.iter().enumerate() {
-            let v0 = self.before[i][0].clone();
+        for (i, c) in self.problem.contacts().iter().enumerate() {
+            let v0 = self.before_hat[i][0].clone();
             b.push(match model {
                 Model::Newton => (T::one() + &c.k_newton) * &v0,
                 Model::Poisson => v0,
@@ -245,40 +301,52 @@ impl<T: Scalar> Impact<T> {
         }
     }
 
-    /// Everything that follows from the impulses `out.impulses`: the twist after impact,
-    /// the contact velocities and both energies (eq. 24–26, 28, 32).
-    pub fn complete(&self, problem: &Problem<T>, out: &mut Outcome<T>) {
-        let n = self.n;
+    /// Everything that follows from the impulses `out.impulses_hat` (one per contact): the
+    /// twist after impact, the contact velocities, both energies (eq. 24–26, 28, 32) and, for
+    /// a constrained body, the constraint impulses (eq. 90–93).
+    pub(crate) fn complete(&self, out: &mut Outcome<T>) {
+        let n = self.contacts();
+        debug_assert_eq!(out.impulses_hat.len(), n, "one impulse per contact");
+        let problem = &self.problem;
         // eq. 24: {v} = {v⁰} − Σ P̂_j W{Ê_jx}.
-        out.velocity = problem.velocity.clone();
-        for (p, r) in out.impulses.iter().zip(&self.responses) {
+        out.velocity = problem.velocity().clone();
+        for (p, r) in out.impulses_hat.iter().zip(&self.responses) {
             out.velocity.add_scaled(&-p.clone(), r);
         }
         // eq. 13, 25, 26 through the inertances.
-        out.after.clear();
+        out.after_hat.clear();
         for i in 0..n {
-            let mut v = self.before[i].clone();
-            for (j, p) in out.impulses.iter().enumerate() {
-                v[0] -= self.g[i * n + j].clone() * p;
-                v[1] -= self.g_yx[i * n + j].clone() * p;
-                v[2] -= self.g_zx[i * n + j].clone() * p;
+            let mut v = self.before_hat[i].clone();
+            for (j, p) in out.impulses_hat.iter().enumerate() {
+                v[0] -= self.g_hat[i * n + j].clone() * p;
+                v[1] -= self.g_yx_hat[i * n + j].clone() * p;
+                v[2] -= self.g_zx_hat[i * n + j].clone() * p;
             }
-            out.after.push(v);
+            out.after_hat.push(v);
         }
         // eq. 28 from the velocity change, eq. 32 from the kinetic energies.
-        let dv = Screw(out.velocity.0.clone() - problem.velocity.0.clone());
-        out.lost_velocity_energy = problem.body.kinetic_energy(&dv);
+        let dv = Screw(out.velocity.0.clone() - problem.velocity().0.clone());
+        out.lost_velocity_energy = problem.body().kinetic_energy(&dv);
         out.kinetic_energy_loss =
-            self.kinetic_before.clone() - problem.body.kinetic_energy(&out.velocity);
+            self.kinetic_before.clone() - problem.body().kinetic_energy(&out.velocity);
+        match problem.constraints() {
+            Some(c) => {
+                let axes = self.frames.iter().map(|f| &f.axes[0]);
+                c.impulses_into(&dv, out.impulses_hat.iter().zip(axes), &mut out.constraint_impulses);
+            }
+            None => out.constraint_impulses.clear(),
+        }
     }
 
     /// Solve G x = b in place for a nonsingular G (b becomes x); `false` when G is singular.
-    pub fn solve_system(&mut self, b: &mut [T]) -> bool {
-        if self.rank < self.n {
+    pub(crate) fn solve_system(&mut self, b: &mut [T]) -> bool {
+        let n = self.contacts();
+        debug_assert_eq!(b.len(), n, "one entry per contact");
+        if self.rank < n {
             return false;
         }
-        resize(&mut self.work, self.n);
-        linalg::solve_factored(&self.factor, self.n, &self.perm, b, &mut self.work);
+        resize(&mut self.work, n);
+        linalg::solve_factored(&self.factor, n, &self.perm, b, &mut self.work);
         true
     }
 
@@ -286,8 +354,9 @@ impl<T: Scalar> Impact<T> {
     /// entries zero, written into `x` — `None` when b is not in the range of G (the system is
     /// incompatible). Compatibility is decided on the residual G x − b: exactly zero in exact
     /// types, negligible against ‖G‖·|x| + |b| in floats.
-    pub fn solve_singular(&mut self, b: &[T], x: &mut Vec<T>) -> Option<()> {
-        let (n, r) = (self.n, self.rank);
+    pub(crate) fn solve_singular(&mut self, b: &[T], x: &mut Vec<T>) -> Option<()> {
+        let (n, r) = (self.contacts(), self.rank);
+        debug_assert_eq!(b.len(), n, "one entry per contact");
         // Π G Πᵀ = [L11 0; L21 I] diag(D1, 0) [L11ᵀ L21ᵀ; 0 I]: with x2 = 0 the first block
         // row is L11 D1 L11ᵀ x1 = (Π b)_1.
         let mut sub = vec![T::zero(); r * r];
@@ -314,7 +383,7 @@ impl<T: Scalar> Impact<T> {
             let mut ri = -b[i].clone();
             let mut row_scale = scale.clone();
             for j in 0..n {
-                let t = self.g[i * n + j].clone() * &x[j];
+                let t = self.g_hat[i * n + j].clone() * &x[j];
                 if t.abs_gt(&row_scale) {
                     row_scale = t.clone();
                 }
@@ -329,8 +398,8 @@ impl<T: Scalar> Impact<T> {
 
     /// A basis of the null space of G from its factorization: for each pivot k ≥ rank,
     /// x = Πᵀ [−L11⁻ᵀ L21ᵀ e_k; e_k].
-    pub fn null_space(&self) -> Vec<Vec<T>> {
-        let (n, r) = (self.n, self.rank);
+    pub(crate) fn null_space(&self) -> Vec<Vec<T>> {
+        let (n, r) = (self.contacts(), self.rank);
         let mut basis = Vec::with_capacity(n - r);
         for k in r..n {
             let mut y = vec![T::zero(); n];
@@ -352,10 +421,10 @@ impl<T: Scalar> Impact<T> {
         basis
     }
 
-    /// Σ_i P̂_i v̂_ix⁰: the right-hand side of the energy identity (eq. 34).
+    /// Σ_i P̂_i v̂_ix⁰ = Σ_i P_i v_ix⁰: the right-hand side of the energy identity (eq. 34).
     pub fn impulse_work(&self, out: &Outcome<T>) -> T {
         let mut s = T::zero();
-        for (p, v) in out.impulses.iter().zip(&self.before) {
+        for (p, v) in out.impulses_hat.iter().zip(&self.before_hat) {
             s += p.clone() * &v[0];
         }
         s
@@ -366,24 +435,4 @@ impl<T: Scalar> Impact<T> {
 fn resize<T: Scalar>(v: &mut Vec<T>, n: usize) {
     v.clear();
     v.resize(n, T::zero());
-}
-
-/// The outcome of each model solved, in the order asked.
-pub type Outcomes<T> = Vec<(Model, Outcome<T>)>;
-
-/// Assemble and solve the free-body problem for each of `models`: the convenient one-shot
-/// entry point (allocates; use [`Impact`] directly to reuse buffers).
-pub fn solve_free<T: Scalar>(
-    problem: &Problem<T>,
-    models: &[Model],
-) -> Result<(Impact<T>, Outcomes<T>), SolveError> {
-    let mut impact = Impact::new();
-    impact.assemble(problem, &problem.body)?;
-    let mut outcomes = Vec::with_capacity(models.len());
-    for &m in models {
-        let mut out = Outcome::default();
-        impact.solve(problem, m, &mut out)?;
-        outcomes.push((m, out));
-    }
-    Ok((impact, outcomes))
 }

@@ -39,6 +39,33 @@ pub struct Contact<T: Scalar> {
     pub k_poisson: T,
 }
 
+impl<T: Scalar> Contact<T> {
+    /// A contact at `point` (from C) with the body's outward `normal` there and one
+    /// coefficient of restitution `k` for both models; the tangent follows §12.
+    pub fn new(point: Vec3<T>, normal: Vec3<T>, k: T) -> Self {
+        Contact {
+            point,
+            normal,
+            tangent: None,
+            k_newton: k.clone(),
+            k_poisson: k,
+        }
+    }
+
+    /// The same contact with the axis y_i imposed (perpendicular to the normal).
+    pub fn with_tangent(mut self, tangent: Vec3<T>) -> Self {
+        self.tangent = Some(tangent);
+        self
+    }
+
+    /// The same contact with Newton's k_i^N and Poisson's k_i^P given separately.
+    pub fn with_coefficients(mut self, k_newton: T, k_poisson: T) -> Self {
+        self.k_newton = k_newton;
+        self.k_poisson = k_poisson;
+        self
+    }
+}
+
 /// How the tangent axis y_i of a frame was chosen.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum TangentRule {
@@ -166,6 +193,13 @@ impl<T: Scalar> Surd<T> {
             coeff: raw.clone() / norm2,
             radicand: norm2.clone(),
         }
+    }
+
+    /// q·√r as one value of the type: rounded in floats, exact in exact types when √r is
+    /// (a perfect square in rationals, any r in the symbolic type); `None` otherwise — then
+    /// [`Surd::to_f64`] and [`Surd::exact_text`] still give it.
+    pub fn value(&self) -> Option<T> {
+        Some(self.coeff.clone() * &self.radicand.sqrt_value()?)
     }
 
     /// The value in f64.

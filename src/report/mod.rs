@@ -192,7 +192,7 @@ impl Report {
         constraints: Option<&Constrained<T>>,
     ) -> Report {
         let n = impact.contacts();
-        let frames = &impact.frames;
+        let frames = impact.frames();
         // g_ij,ax = ĝ_ij,ax / (|â_i| |x̂_j|) = (ĝ / (â_i² x̂_j²)) · √(â_i² x̂_j²).
         let inert = |m: &[T], a: usize| -> Vec<Vec<Value>> {
             (0..n)
@@ -211,7 +211,7 @@ impl Report {
         for f in frames {
             norms *= &f.norm2[0];
         }
-        let det = Value::of(&(impact.det.clone() / &norms));
+        let det = Value::of(&(impact.det_hat().clone() / &norms));
         let frames_out = frames
             .iter()
             .map(|f| {
@@ -223,7 +223,7 @@ impl Report {
             })
             .collect();
         let contacts_before = impact
-            .before
+            .before_hat()
             .iter()
             .zip(frames)
             .map(|(v, f)| point_velocity(v, f))
@@ -233,16 +233,16 @@ impl Report {
             .map(|(m, o)| ModelReport {
                 model: *m,
                 impulses: o
-                    .impulses
+                    .impulses_hat
                     .iter()
                     .zip(frames)
                     .map(|(p, f)| Value::surd(&Surd::times_norm(p, &f.norm2[0])))
                     .collect(),
-                impulse_multiples: o.impulses.iter().map(Value::of).collect(),
+                impulse_multiples: o.impulses_hat.iter().map(Value::of).collect(),
                 compression_impulses: match m {
                     Model::Newton => None,
                     Model::Poisson => Some(
-                        o.compression
+                        o.compression_hat
                             .iter()
                             .zip(frames)
                             .map(|(p, f)| Value::surd(&Surd::times_norm(p, &f.norm2[0])))
@@ -258,7 +258,7 @@ impl Report {
                     [0, 1, 2].map(|k| Value::of(&v[k]))
                 },
                 contacts: o
-                    .after
+                    .after_hat
                     .iter()
                     .zip(frames)
                     .map(|(v, f)| point_velocity(v, f))
@@ -287,9 +287,9 @@ impl Report {
             scene: scene.to_string(),
             scalar: T::NAME,
             effects,
-            inertance: inert(&impact.g, 0),
-            inertance_yx: inert(&impact.g_yx, 1),
-            inertance_zx: inert(&impact.g_zx, 2),
+            inertance: inert(impact.g_hat(), 0),
+            inertance_yx: inert(impact.g_yx_hat(), 1),
+            inertance_zx: inert(impact.g_zx_hat(), 2),
             det,
             frames: frames_out,
             contacts_before,

@@ -162,6 +162,25 @@ pub trait Scalar: Field {
     fn sqrt_exact(&self) -> Option<Self> {
         None
     }
+
+    /// √self as a value of this type, for self ≥ 0: correctly rounded for floats, exact
+    /// when representable for exact types ([`Scalar::sqrt_exact`]), `None` otherwise. How a
+    /// quantity that carries an axis norm (an impulse P_i = P̂_i |n_i|) becomes one number.
+    fn sqrt_value(&self) -> Option<Self> {
+        self.sqrt_exact()
+    }
+
+    /// Whether the value is a finite number (false for NaN and ±∞; always true for exact types).
+    fn is_finite(&self) -> bool {
+        true
+    }
+
+    /// The sign when it is decided without assuming anything: −1, 0 or 1 for numbers; `None`
+    /// for a symbolic expression whose sign depends on its symbols (the symbolic type records
+    /// no assumption here, unlike [`Scalar::signum_i8`]).
+    fn known_sign(&self) -> Option<i8> {
+        Some(self.signum_i8())
+    }
 }
 
 macro_rules! float_scalar {
@@ -202,6 +221,12 @@ macro_rules! float_scalar {
             }
             fn epsilon_f64() -> f64 {
                 <$t>::EPSILON as f64
+            }
+            fn sqrt_value(&self) -> Option<Self> {
+                (*self >= 0.0).then(|| self.sqrt())
+            }
+            fn is_finite(&self) -> bool {
+                <$t>::is_finite(*self)
             }
         }
     };
@@ -252,6 +277,14 @@ impl Scalar for BigRational {
         let root = BigRational::new(n, d);
         (&root * &root == *self).then_some(root)
     }
+}
+
+/// The fraction p/q in any scalar type: exact in exact types, correctly rounded in floats.
+///
+/// # Panics
+/// If q = 0, like [`BigRational::new`].
+pub fn ratio<T: Scalar>(p: i64, q: i64) -> T {
+    T::from_rational(&BigRational::new(BigInt::from(p), BigInt::from(q)))
 }
 
 /// A small integer in any scalar type (exact for every supported type).

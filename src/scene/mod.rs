@@ -48,7 +48,7 @@ use crate::number::{Number, parse_number_with};
 use crate::impact::restitution::Model;
 use crate::scalar::Scalar;
 use crate::mechanics::screw::{Screw, Vec3, norm2};
-use crate::impact::solve::Problem;
+use crate::impact::problem::{InvalidProblem, Problem, Reason};
 use crate::mechanics::surface::{Surface, SurfaceError};
 
 /// A scene that failed to read: which file, which key, which value, what is wrong.
@@ -435,11 +435,20 @@ impl Scene {
                 k_poisson: num(&c.k_poisson, &key("k_poisson"))?,
             });
         }
-        Ok(Problem {
-            body,
-            velocity,
-            contacts,
-        })
+        Problem::new(body, velocity, contacts).map_err(|e| self.invalid(e))
+    }
+
+    /// A problem the validated constructor refused (what the reader's own checks let
+    /// through: a tangent not perpendicular to its normal), as an error naming the key.
+    fn invalid(&self, e: InvalidProblem) -> SceneError {
+        let message = match &e.reason {
+            Reason::NotPerpendicular { dot } => format!(
+                "not perpendicular to the normal (n·y = {dot}); give a tangent in the contact \
+                 plane or omit it to follow §12"
+            ),
+            reason => reason.to_string(),
+        };
+        self.error(&e.field.to_string(), None, &message)
     }
 }
 

@@ -10,7 +10,8 @@ use crate::report::Report;
 use crate::impact::restitution::Model;
 use crate::scalar::Scalar;
 use crate::scene::{Scene, SceneError};
-use crate::impact::solve::{Impact, Outcome, Problem, SolveError};
+use crate::impact::problem::{Problem, Reason};
+use crate::impact::solve::{Impact, Outcome, SolveError};
 
 /// Why a scene could not be solved.
 #[derive(Debug, thiserror::Error)]
@@ -66,73 +67,44 @@ pub fn run_with<T: Scalar>(
     })
 }
 
-/// A scene assembled in `T`: its problem, its constraints, and the model-independent part of
-/// the collision (frames, G, its factorization, Δ).
+/// A scene assembled in `T`: the model-independent part of its collision (frames, G, its
+/// factorization, Δ), which holds the validated problem and its constraints.
 #[derive(Clone, Debug)]
 pub struct Assembled<T: Scalar> {
-    /// The problem.
-    pub problem: Problem<T>,
-    /// The validated constraints, for a constrained scene.
-    pub constrained: Option<Constrained<T>>,
     /// The assembled collision.
     pub impact: Impact<T>,
 }
 
 /// Prepare `scene` in `T` and assemble its collision (a singular G is not an error here).
 pub fn assemble<T: Scalar>(scene: &Scene) -> Result<Assembled<T>, RunError> {
-    let (problem, constrained) = prepare::<T>(scene)?;
-    let mut impact = Impact::new();
-    let assembled = match &constrained {
-        Some(c) => impact.assemble(&problem, c),
-        None => impact.assemble(&problem, &problem.body),
-    };
-    assembled.map_err(|e| match e {
-        SolveError::Tangent(t) => RunError::Scene(SceneError {
-            file: scene.file.clone(),
-            key: format!("contact[{}].tangent", t.index),
-            value: None,
-            message: format!(
-                "not perpendicular to the normal (n·y = {}); give a tangent in the contact plane \
-                 or omit it to follow §12",
-                t.dot
-            ),
-        }),
-        other => RunError::Solve(other),
-    })?;
+    let problem = prepare::<T>(scene)?;
     Ok(Assembled {
-        problem,
-        constrained,
-        impact,
+        impact: Impact::assemble(&problem)?,
     })
 }
 
 impl<T: Scalar> Assembled<T> {
     /// Whether G is singular (rank G < N).
     pub fn singular(&self) -> bool {
-        self.impact.rank < self.impact.contacts()
+        self.impact.singular()
+    }
+
+    /// The validated problem.
+    pub fn problem(&self) -> &Problem<T> {
+        self.impact.problem()
     }
 
     /// Solve one restitution model: the outcome (with the constraint impulses q for a
     /// constrained body) and whether the energy identity ΔE_c = −E_p + Σ P̂_i v̂_ix⁰ (eq. 34)
     /// holds — exactly in exact types, to `16·N·ε·scale` in floats.
     pub fn solve(&mut self, model: Model) -> Result<(Outcome<T>, bool), SolveError> {
-        let (problem, impact) = (&self.problem, &mut self.impact);
+        let impact = &mut self.impact;
         let mut out = Outcome::default();
-        impact.solve(problem, model, &mut out)?;
-        if let Some(c) = &self.constrained {
-            let mut dv = out.velocity.clone();
-            dv.add_scaled(&-T::one(), &problem.velocity);
-            let axes = impact.frames.iter().map(|f| &f.axes[0]);
-            c.impulses_into(
-                &dv,
-                out.impulses.iter().zip(axes),
-                &mut out.constraint_impulses,
-            );
-        }
+        impact.solve(model, &mut out)?;
         let work = impact.impulse_work(&out);
         let residual = out.kinetic_energy_loss.clone() + &out.lost_velocity_energy - &work;
-        let scale = impact.kinetic_before.clone() + &out.lost_velocity_energy;
-        let holds = residual.is_negligible(&scale, 16 * problem.contacts.len().max(1));
+        let scale = impact.kinetic_before().clone() + &out.lost_velocity_energy;
+        let holds = residual.is_negligible(&scale, 16 * impact.contacts().max(1));
         Ok((out, holds))
     }
 
@@ -144,7 +116,7 @@ impl<T: Scalar> Assembled<T> {
             scene.effects(&models),
             &self.impact,
             outcomes,
-            self.constrained.as_ref(),
+            self.problem().constraints(),
         );
         report.surface = scene
             .surface
@@ -154,21 +126,26 @@ impl<T: Scalar> Assembled<T> {
     }
 }
 
-/// The problem in `T` and, for a constrained scene, its validated constraints (with the
-/// initial twist checked against them).
-pub fn prepare<T: Scalar>(scene: &Scene) -> Result<(Problem<T>, Option<Constrained<T>>), RunError> {
+/// The validated problem in `T`: for a constrained scene, with its constraints (the initial
+/// twist checked against them).
+pub fn prepare<T: Scalar>(scene: &Scene) -> Result<Problem<T>, RunError> {
     let problem = scene.problem::<T>()?;
-    let constrained = match scene.constraint_screws::<T>()? {
-        None => None,
+    match scene.constraint_screws::<T>()? {
+        None => Ok(problem),
         Some((free, blocked, keys)) => {
-            let c = Constrained::new(&problem.body, free, blocked)
+            let c = Constrained::new(problem.body(), free, blocked)
                 .map_err(|e| constraint_error(scene, &keys, e))?;
-            c.check_allowed(&problem.velocity)
-                .map_err(|e| constraint_error(scene, &keys, e))?;
-            Some(c)
+            problem.with_constrained(c).map_err(|e| match e.reason {
+                Reason::Constraint(c) => constraint_error(scene, &keys, c),
+                _ => RunError::Scene(SceneError {
+                    file: scene.file.clone(),
+                    key: e.field.to_string(),
+                    value: None,
+                    message: e.reason.to_string(),
+                }),
+            })
         }
-    };
-    Ok((problem, constrained))
+    }
 }
 
 /// A constraint problem as a scene error naming the offending screws.

@@ -4,7 +4,6 @@
 use serde_json::{Map, Value as Json, json};
 
 use crate::analysis::{Analysis, Classification, analyze, condition_number, largest_eigenvalue};
-use crate::mechanics::constraint::Constrained;
 use crate::mechanics::contact::Surd;
 use crate::scene::pipeline::{RunError, prepare};
 use crate::report::Value;
@@ -74,34 +73,24 @@ pub fn analyze_scene<T: Scalar>(
     models: Option<&[Model]>,
 ) -> Result<AnalysisReport, RunError> {
     let models = models.unwrap_or(&scene.models);
-    let (problem, constrained) = prepare::<T>(scene)?;
-    let mut impact = Impact::new();
-    let analysis: Analysis<T> = match &constrained {
-        Some(c) => {
-            impact.assemble(&problem, c)?;
-            analyze(&problem, c, &mut impact, models)
-        }
-        None => {
-            impact.assemble(&problem, &problem.body)?;
-            analyze(&problem, &problem.body, &mut impact, models)
-        }
-    };
-    let _: Option<&Constrained<T>> = constrained.as_ref();
+    let problem = prepare::<T>(scene)?;
+    let mut impact = Impact::assemble(&problem)?;
+    let analysis: Analysis<T> = analyze(&mut impact, models);
     let n = impact.contacts();
-    let norm2: Vec<T> = impact.frames.iter().map(|f| f.norm2[0].clone()).collect();
+    let norm2: Vec<T> = impact.frames().iter().map(|f| f.norm2[0].clone()).collect();
     let mut norms = T::one();
     for w in &norm2 {
         norms *= w;
     }
-    let det = Value::of(&(impact.det.clone() / &norms));
+    let det = Value::of(&(impact.det_hat().clone() / &norms));
     // The physical G: g_ij / (|x̂_i||x̂_j|), in f64 for its eigenvalues.
     let g: Vec<f64> = (0..n * n)
-        .map(|k| Surd::over_norm(&impact.g[k], &(norm2[k / n].clone() * &norm2[k % n])).to_f64())
+        .map(|k| Surd::over_norm(&impact.g_hat()[k], &(norm2[k / n].clone() * &norm2[k % n])).to_f64())
         .collect();
     // cond₂ = λ_max(G)·λ_max(G⁻¹) for a symmetric positive definite G. In exact types G⁻¹ is
     // computed exactly and then rounded, so its eigenvalues are accurate even when G is far
     // too ill-conditioned for f64 eigenvalues of G itself to resolve λ_min.
-    let cond = if T::IS_EXACT && impact.rank == n && n > 0 {
+    let cond = if T::IS_EXACT && impact.rank() == n && n > 0 {
         let mut inv = vec![0.0; n * n];
         for j in 0..n {
             let mut col: Vec<T> = (0..n)
@@ -122,7 +111,7 @@ pub fn analyze_scene<T: Scalar>(
         .models
         .iter()
         .map(|m| {
-            let impulses = m.outcome.as_ref().map(|o| o.impulses.iter().enumerate().map(|(i, p)| impulse(p, i)).collect::<Vec<_>>());
+            let impulses = m.outcome.as_ref().map(|o| o.impulses_hat.iter().enumerate().map(|(i, p)| impulse(p, i)).collect::<Vec<_>>());
             let admissible: Vec<(bool, Option<bool>, bool)> =
                 m.admissible.iter().map(|a| (a.approaching, a.compressive, a.varies)).collect();
             let mut verdicts = Vec::new();
@@ -142,7 +131,7 @@ pub fn analyze_scene<T: Scalar>(
                 ),
             }
             for (i, (approaching, compressive, varies)) in admissible.iter().enumerate() {
-                let v0 = Value::surd(&Surd::over_norm(&impact.before[i][0], &norm2[i]));
+                let v0 = Value::surd(&Surd::over_norm(&impact.before_hat()[i][0], &norm2[i]));
                 if !approaching {
                     verdicts.push(format!(
                         "contact A{} is not approaching (v_{}x⁰ = {} ≤ 0, eq. 74): on its own it would not collide, yet the simultaneous-collision hypothesis stops it",
@@ -153,7 +142,7 @@ pub fn analyze_scene<T: Scalar>(
                 }
                 if *compressive == Some(false) {
                     let shown = impulses.as_ref().map(|v| v[i].text()).unwrap_or_default();
-                    let zero = m.outcome.as_ref().is_some_and(|o| o.impulses[i].signum_i8() == 0);
+                    let zero = m.outcome.as_ref().is_some_and(|o| o.impulses_hat[i].signum_i8() == 0);
                     let family = if *varies { " (for the least-norm member of the family)" } else { "" };
                     verdicts.push(if zero {
                         format!(
@@ -210,7 +199,7 @@ pub fn analyze_scene<T: Scalar>(
         rank: analysis.rank,
         condition_number: cond,
         tolerance: analysis.tolerance,
-        kinetic_energy_before: Value::of(&impact.kinetic_before),
+        kinetic_energy_before: Value::of(impact.kinetic_before()),
         models: model_reports,
         newton_equals_poisson: analysis.newton_equals_poisson,
         coincident,

@@ -25,7 +25,8 @@ use crate::scalar::dd::DoubleDouble;
 use crate::impact::restitution::Model;
 use crate::scalar::{Exact, Scalar};
 use crate::scene::Scene;
-use crate::impact::solve::{Impact, Outcome, Problem};
+use crate::impact::problem::Problem;
+use crate::impact::solve::{Impact, Outcome};
 
 /// Options of a bench run.
 #[derive(Clone, Debug)]
@@ -127,7 +128,7 @@ fn outputs<T: Scalar>(impact: &Impact<T>, outs: &[Outcome<T>]) -> Option<Outputs
     let x = |v: &T| v.exact_value();
     let mut groups: [Vec<BigRational>; 3] = [Vec::new(), Vec::new(), Vec::new()];
     for o in outs {
-        for p in &o.impulses {
+        for p in &o.impulses_hat {
             groups[0].push(x(p)?);
         }
         for v in o.velocity.as_slice() {
@@ -138,7 +139,7 @@ fn outputs<T: Scalar>(impact: &Impact<T>, outs: &[Outcome<T>]) -> Option<Outputs
     }
     Some(Outputs {
         groups,
-        kinetic_before: x(&impact.kinetic_before)?,
+        kinetic_before: x(impact.kinetic_before())?,
     })
 }
 
@@ -163,23 +164,31 @@ fn relative_error(a: &Outputs, e: &Outputs) -> f64 {
     worst
 }
 
-/// Solve both models; `None` if G is singular in this type.
+/// Assemble `p` into `impact` (reusing its buffers) and solve both models; `None` if G is
+/// singular in this type.
 fn solve_all<T: Scalar>(
     p: &Problem<T>,
     impact: &mut Impact<T>,
     outs: &mut [Outcome<T>; 2],
 ) -> Option<()> {
-    impact.assemble(p, &p.body).ok()?;
-    impact.solve(p, Model::Newton, &mut outs[0]).ok()?;
-    impact.solve(p, Model::Poisson, &mut outs[1]).ok()
+    impact.reassemble(p).ok()?;
+    impact.solve(Model::Newton, &mut outs[0]).ok()?;
+    impact.solve(Model::Poisson, &mut outs[1]).ok()
+}
+
+/// [`solve_all`] with a new impact.
+fn solve_new<T: Scalar>(p: &Problem<T>, outs: &mut [Outcome<T>; 2]) -> Option<Impact<T>> {
+    let mut impact = Impact::assemble(p).ok()?;
+    impact.solve(Model::Newton, &mut outs[0]).ok()?;
+    impact.solve(Model::Poisson, &mut outs[1]).ok()?;
+    Some(impact)
 }
 
 /// Median wall time of one solve of `p` (ns), repeating until each of three samples takes
 /// at least `budget`.
 fn time_solve<T: Scalar>(p: &Problem<T>, budget: Duration) -> Option<f64> {
-    let mut impact = Impact::new();
     let mut outs = [Outcome::default(), Outcome::default()];
-    solve_all(p, &mut impact, &mut outs)?;
+    let mut impact = solve_new(p, &mut outs)?;
     let mut samples = Vec::with_capacity(3);
     for _ in 0..3 {
         let (mut reps, start) = (0u64, Instant::now());
@@ -213,9 +222,8 @@ fn measure<T: Scalar>(
             let Ok(p) = scene.problem::<T>() else {
                 continue;
             };
-            let mut impact = Impact::new();
             let mut outs = [Outcome::default(), Outcome::default()];
-            match solve_all(&p, &mut impact, &mut outs).and_then(|_| outputs(&impact, &outs)) {
+            match solve_new(&p, &mut outs).and_then(|impact| outputs(&impact, &outs)) {
                 Some(o) => errors.push(relative_error(&o, exact)),
                 // Singular in this type (or a non-finite result): no usable answer at all.
                 None => errors.push(f64::INFINITY),
@@ -252,9 +260,8 @@ fn time_analyze<T: Scalar>(scene: &Scene, budget: Duration) -> Option<f64> {
     let p = scene.problem::<T>().ok()?;
     let (mut reps, start) = (0u64, Instant::now());
     while start.elapsed() < budget || reps == 0 {
-        let mut impact = Impact::new();
-        impact.assemble(&p, &p.body).ok()?;
-        std::hint::black_box(analyze(&p, &p.body, &mut impact, &Model::ALL));
+        let mut impact = Impact::assemble(&p).ok()?;
+        std::hint::black_box(analyze(&mut impact, &Model::ALL));
         reps += 1;
     }
     Some(start.elapsed().as_nanos() as f64 / reps as f64)
@@ -267,9 +274,8 @@ pub fn run(opts: &BenchOptions) -> BenchReport {
     let budget = Duration::from_millis(if opts.quick { 4 } else { 40 });
     let exact_of = |scene: &Scene| -> Option<Outputs> {
         let p = scene.problem::<Exact>().ok()?;
-        let mut impact = Impact::new();
         let mut outs = [Outcome::default(), Outcome::default()];
-        solve_all(&p, &mut impact, &mut outs)?;
+        let impact = solve_new(&p, &mut outs)?;
         outputs(&impact, &outs)
     };
     // Well-conditioned: cond₂(G) ≤ 10⁴ by the f64 eigenvalues of G.
@@ -282,11 +288,10 @@ pub fn run(opts: &BenchOptions) -> BenchReport {
         let Ok(p) = scene.problem::<f64>() else {
             continue;
         };
-        let mut impact = Impact::new();
-        if impact.assemble(&p, &p.body).is_err() || impact.rank < n {
+        let Ok(impact) = Impact::assemble(&p) else {
             continue;
-        }
-        if crate::analysis::condition_number(&impact.g, n) > 1e4 {
+        };
+        if impact.singular() || crate::analysis::condition_number(impact.g_hat(), n) > 1e4 {
             continue;
         }
         if let Some(e) = exact_of(&scene) {

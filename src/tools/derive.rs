@@ -100,7 +100,7 @@ pub fn derive(
     let mut a = assemble::<RatFun>(scene)?;
     // The printed quantities carry the normals' norms (P_i = P̂_i |n_i|, v_ix = v̂_ix / |n_i|,
     // g_ij = ĝ_ij / (|n_i| |n_j|)): their conditions (|n_i|² ≠ 0, a base of √ positive).
-    for f in &a.impact.frames {
+    for f in a.impact.frames() {
         let _ = f.norm2[0].sqrt_exact();
         let _ = RatFun::from_integer(1) / &f.norm2[0];
     }
@@ -119,10 +119,10 @@ pub fn derive(
         None
     };
     let mut norms = RatFun::from_integer(1);
-    for f in &a.impact.frames {
+    for f in a.impact.frames() {
         norms *= &f.norm2[0];
     }
-    let det = a.impact.det.clone() / &norms;
+    let det = a.impact.det_hat().clone() / &norms;
     let conditions = take_assumptions();
     // The report also computes what the formulas do not need (tangential angles divide by
     // tangential speeds): its conditions are not the formulas' and are dropped.
@@ -169,7 +169,7 @@ fn singular_family(a: &mut Assembled<RatFun>, models: &[Model]) -> Result<Singul
     let mut families = Vec::new();
     for &m in models {
         let mut b = Vec::new();
-        a.impact.rhs(&a.problem, m, &mut b);
+        a.impact.rhs(m, &mut b);
         let conditions: Vec<RatFun> = basis
             .iter()
             .map(|z| {
@@ -186,14 +186,14 @@ fn singular_family(a: &mut Assembled<RatFun>, models: &[Model]) -> Result<Singul
             a.impact
                 .solve_singular(&b, &mut x)
                 .ok_or(RunError::Solve(SolveError::Singular {
-                    rank: a.impact.rank,
+                    rank: a.impact.rank(),
                     contacts: n,
                 }))?;
             // Impulses are c_i x_i, c_i = 1 (Newton) or 1 + k_i^P (Poisson, eq. 23): so are
             // the family's directions in impulse space.
             let c: Vec<RatFun> = a
-                .problem
-                .contacts
+                .problem()
+                .contacts()
                 .iter()
                 .map(|k| match m {
                     Model::Newton => one.clone(),
@@ -202,10 +202,10 @@ fn singular_family(a: &mut Assembled<RatFun>, models: &[Model]) -> Result<Singul
                 .collect();
             let mut out = Outcome::<RatFun>::default();
             if m == Model::Poisson {
-                out.compression.clone_from(&x);
+                out.compression_hat.clone_from(&x);
             }
-            out.impulses = x.iter().zip(&c).map(|(xi, ci)| xi.clone() * ci).collect();
-            a.impact.complete(&a.problem, &mut out);
+            out.impulses_hat = x.iter().zip(&c).map(|(xi, ci)| xi.clone() * ci).collect();
+            a.impact.complete(&mut out);
             let dirs: Vec<Vec<RatFun>> = basis
                 .iter()
                 .map(|z| z.iter().zip(&c).map(|(zj, cj)| zj.clone() * cj).collect())
@@ -214,13 +214,13 @@ fn singular_family(a: &mut Assembled<RatFun>, models: &[Model]) -> Result<Singul
                 .iter()
                 .map(|d| {
                     let mut dv = Screw::<RatFun>::zero();
-                    for (dj, r) in d.iter().zip(&a.impact.responses) {
+                    for (dj, r) in d.iter().zip(a.impact.responses()) {
                         dv.add_scaled(&-dj.clone(), r);
                     }
                     dv.0.iter().cloned().collect()
                 })
                 .collect();
-            solution = Some((out.impulses.clone(), dirs));
+            solution = Some((out.impulses_hat.clone(), dirs));
             outcome = Some(out);
         }
         families.push(Family {
@@ -233,7 +233,7 @@ fn singular_family(a: &mut Assembled<RatFun>, models: &[Model]) -> Result<Singul
         });
     }
     Ok(Singular {
-        rank: a.impact.rank,
+        rank: a.impact.rank(),
         contacts: n,
         models: families,
     })

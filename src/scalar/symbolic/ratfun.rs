@@ -746,6 +746,11 @@ impl Scalar for RatFun {
         1
     }
 
+    /// The sign of a constant; `None` when it depends on the symbols (no assumption recorded).
+    fn known_sign(&self) -> Option<i8> {
+        self.constant_sign()
+    }
+
     fn epsilon_f64() -> f64 {
         0.0
     }

@@ -1,0 +1,336 @@
+//! A collision problem, validated on construction: the body, its twist before impact, the
+//! contacts and, optionally, ideal constraints (§9–11).
+//!
+//! [`Problem::new`] refuses what has no physical meaning — a mass or principal moment that is
+//! not positive, a number that is not finite, a zero normal or tangent, a tangent not
+//! perpendicular to its normal, a coefficient of restitution outside [0, 1], no contact at
+//! all — with an [`InvalidProblem`] naming the field (`body.mass`, `contact[1].normal`, keys
+//! as in scene files, contacts counted from 0). Everything downstream may then rely on
+//! m > 0, J_k > 0 and n_i ≠ 0, so [`crate::impact::solve::Impact`] cannot be handed a problem
+//! it would divide by zero on.
+//!
+//! A value whose sign is not decided without assumptions (a symbol `m` in the symbolic type)
+//! passes the range checks: they are left to the reader of the derived formulas, as `derive`
+//! documents.
+
+use std::fmt;
+
+use crate::mechanics::body::{Mobility, RigidBody};
+use crate::mechanics::constraint::{Constrained, ConstraintError, Joint};
+use crate::mechanics::contact::Contact;
+use crate::mechanics::screw::{Screw, Vec3, dot, norm2};
+use crate::scalar::Scalar;
+
+/// A validated collision problem. Build it with [`Problem::new`] (and
+/// [`Problem::with_constraints`] or [`Problem::with_joints`] for a constrained body).
+#[derive(Clone, Debug)]
+pub struct Problem<T: Scalar> {
+    body: RigidBody<T>,
+    velocity: Screw<T>,
+    contacts: Vec<Contact<T>>,
+    constraints: Option<Constrained<T>>,
+}
+
+/// Which input an [`InvalidProblem`] is about. Its `Display` is the key of a scene file
+/// (`body.inertia[2]`, `contact[0].k_newton`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Field {
+    /// `body.mass`.
+    Mass,
+    /// `body.inertia[k]`: the central principal moment J_k.
+    Inertia(usize),
+    /// `body.angular_velocity[k]`: ω⁰_k.
+    AngularVelocity(usize),
+    /// `body.velocity[k]`: v_C⁰_k.
+    Velocity(usize),
+    /// `contact`: the list of contacts.
+    Contacts,
+    /// `contact[i].point`.
+    Point(usize),
+    /// `contact[i].normal`.
+    Normal(usize),
+    /// `contact[i].tangent`.
+    Tangent(usize),
+    /// `contact[i].k_newton`: Newton's coefficient k_i^N.
+    KNewton(usize),
+    /// `contact[i].k_poisson`: Poisson's coefficient k_i^P.
+    KPoisson(usize),
+    /// `constraints`: the free and blocked screws, or the joints.
+    Constraints,
+}
+
+impl fmt::Display for Field {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Field::Mass => write!(f, "body.mass"),
+            Field::Inertia(k) => write!(f, "body.inertia[{k}]"),
+            Field::AngularVelocity(k) => write!(f, "body.angular_velocity[{k}]"),
+            Field::Velocity(k) => write!(f, "body.velocity[{k}]"),
+            Field::Contacts => write!(f, "contact"),
+            Field::Point(i) => write!(f, "contact[{i}].point"),
+            Field::Normal(i) => write!(f, "contact[{i}].normal"),
+            Field::Tangent(i) => write!(f, "contact[{i}].tangent"),
+            Field::KNewton(i) => write!(f, "contact[{i}].k_newton"),
+            Field::KPoisson(i) => write!(f, "contact[{i}].k_poisson"),
+            Field::Constraints => write!(f, "constraints"),
+        }
+    }
+}
+
+/// What is wrong with the field.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum Reason {
+    /// NaN or an infinity.
+    #[error("is not a finite number")]
+    NotFinite,
+    /// A mass or moment of inertia ≤ 0.
+    #[error("must be positive")]
+    NotPositive,
+    /// A normal or tangent that is the zero vector.
+    #[error("is the zero vector: an axis needs a direction")]
+    ZeroVector,
+    /// A coefficient of restitution outside [0, 1].
+    #[error("must lie in [0, 1] (0: plastic, 1: elastic)")]
+    OutsideUnitInterval,
+    /// An imposed tangent not perpendicular to its normal.
+    #[error("is not perpendicular to the normal (n·y = {dot})")]
+    NotPerpendicular {
+        /// n·y, in f64.
+        dot: f64,
+    },
+    /// No contact: there is no collision to solve.
+    #[error("is empty: a collision needs at least one contact")]
+    NoContacts,
+    /// The constraints are inconsistent, or the twist before impact violates them.
+    #[error("{0}")]
+    Constraint(ConstraintError),
+}
+
+/// Why a problem was refused: the field and the reason.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[error("{field} {reason}")]
+pub struct InvalidProblem {
+    /// The offending input.
+    pub field: Field,
+    /// What is wrong with it.
+    pub reason: Reason,
+}
+
+fn invalid(field: Field, reason: Reason) -> InvalidProblem {
+    InvalidProblem { field, reason }
+}
+
+/// Refuse a non-finite value.
+fn finite<T: Scalar>(x: &T, field: Field) -> Result<(), InvalidProblem> {
+    if x.is_finite() { Ok(()) } else { Err(invalid(field, Reason::NotFinite)) }
+}
+
+/// Refuse a value that is not finite and positive (an undecided symbolic sign passes).
+fn positive<T: Scalar>(x: &T, field: Field) -> Result<(), InvalidProblem> {
+    finite(x, field)?;
+    match x.known_sign() {
+        Some(s) if s <= 0 => Err(invalid(field, Reason::NotPositive)),
+        _ => Ok(()),
+    }
+}
+
+/// Refuse a coefficient of restitution outside [0, 1].
+fn coefficient<T: Scalar>(k: &T, field: Field) -> Result<(), InvalidProblem> {
+    finite(k, field)?;
+    let below = k.known_sign() == Some(-1);
+    let above = (T::one() - k).known_sign() == Some(-1);
+    if below || above {
+        return Err(invalid(field, Reason::OutsideUnitInterval));
+    }
+    Ok(())
+}
+
+/// Refuse a vector with a non-finite component; `field(k)` names component k.
+fn finite_vector<T: Scalar>(v: &Vec3<T>, field: impl Fn(usize) -> Field) -> Result<(), InvalidProblem> {
+    for k in 0..3 {
+        finite(&v[k], field(k))?;
+    }
+    Ok(())
+}
+
+/// Refuse an axis that is not finite or is the zero vector.
+fn axis<T: Scalar>(v: &Vec3<T>, field: Field) -> Result<(), InvalidProblem> {
+    finite_vector(v, |_| field)?;
+    if norm2(v).known_sign() == Some(0) {
+        return Err(invalid(field, Reason::ZeroVector));
+    }
+    Ok(())
+}
+
+/// Is the tangent `t` perpendicular to the normal `n`? (n·t)² negligible against |n|²|t|²:
+/// exactly zero in exact types, to 3ε in floats. The test [`crate::mechanics::contact`]
+/// applies when it builds the frame.
+pub fn perpendicular<T: Scalar>(n: &Vec3<T>, t: &Vec3<T>) -> Result<(), T> {
+    let d = dot(n, t);
+    let reference = norm2(n) * norm2(t);
+    if (d.clone() * &d).is_negligible(&reference, 3) { Ok(()) } else { Err(d) }
+}
+
+impl<T: Scalar> Problem<T> {
+    /// A free body of mass and central principal moments `body`, moving with the twist
+    /// `velocity` = {v⁰} = [ω⁰; v_C⁰] (body axes) before impact, hit at `contacts`.
+    ///
+    /// # Errors
+    /// [`InvalidProblem`] for m ≤ 0, J_k ≤ 0, a non-finite number, a zero normal or tangent, a
+    /// tangent not perpendicular to its normal, k outside [0, 1], or no contact.
+    pub fn new(
+        body: RigidBody<T>,
+        velocity: Screw<T>,
+        contacts: Vec<Contact<T>>,
+    ) -> Result<Self, InvalidProblem> {
+        positive(&body.mass, Field::Mass)?;
+        for k in 0..3 {
+            positive(&body.inertia[k], Field::Inertia(k))?;
+        }
+        finite_vector(&velocity.top(), Field::AngularVelocity)?;
+        finite_vector(&velocity.bottom(), Field::Velocity)?;
+        if contacts.is_empty() {
+            return Err(invalid(Field::Contacts, Reason::NoContacts));
+        }
+        for (i, c) in contacts.iter().enumerate() {
+            finite_vector(&c.point, |_| Field::Point(i))?;
+            axis(&c.normal, Field::Normal(i))?;
+            if let Some(t) = &c.tangent {
+                axis(t, Field::Tangent(i))?;
+                perpendicular(&c.normal, t).map_err(|d| {
+                    invalid(Field::Tangent(i), Reason::NotPerpendicular { dot: d.to_f64() })
+                })?;
+            }
+            coefficient(&c.k_newton, Field::KNewton(i))?;
+            coefficient(&c.k_poisson, Field::KPoisson(i))?;
+        }
+        Ok(Problem {
+            body,
+            velocity,
+            contacts,
+            constraints: None,
+        })
+    }
+
+    /// The same body held by ideal constraints (§9–11): its twists restricted to the span of
+    /// the `free` screws D (eq. 78), held by the constraint screws `blocked` U (eq. 75) or,
+    /// when `None`, by the η-orthogonal complement of D. The twist before impact must be
+    /// allowed by them.
+    ///
+    /// # Errors
+    /// [`Field::Constraints`] with the [`ConstraintError`]: dependent or non-reciprocal
+    /// screws, a body that cannot move, or a twist before impact the constraints forbid.
+    pub fn with_constraints(
+        self,
+        free: Vec<Screw<T>>,
+        blocked: Option<Vec<Screw<T>>>,
+    ) -> Result<Self, InvalidProblem> {
+        let c = Constrained::new(&self.body, free, blocked)
+            .map_err(|e| invalid(Field::Constraints, Reason::Constraint(e)))?;
+        self.with_constrained(c)
+    }
+
+    /// The same body held by `joints` (their free screws together; U derived).
+    ///
+    /// # Errors
+    /// As [`Problem::with_constraints`].
+    pub fn with_joints(self, joints: &[Joint<T>]) -> Result<Self, InvalidProblem> {
+        let free = joints.iter().flat_map(Joint::free_screws).collect();
+        self.with_constraints(free, None)
+    }
+
+    /// The same body held by constraints already validated for it.
+    ///
+    /// # Errors
+    /// [`Field::Constraints`] when the twist before impact is not allowed by them.
+    pub fn with_constrained(mut self, constraints: Constrained<T>) -> Result<Self, InvalidProblem> {
+        constraints
+            .check_allowed(&self.velocity)
+            .map_err(|e| invalid(Field::Constraints, Reason::Constraint(e)))?;
+        self.constraints = Some(constraints);
+        Ok(self)
+    }
+
+    /// Mass and central principal moments.
+    pub fn body(&self) -> &RigidBody<T> {
+        &self.body
+    }
+
+    /// {v⁰} = [ω⁰; v_C⁰], the twist before impact.
+    pub fn velocity(&self) -> &Screw<T> {
+        &self.velocity
+    }
+
+    /// The contacts A_1 … A_N.
+    pub fn contacts(&self) -> &[Contact<T>] {
+        &self.contacts
+    }
+
+    /// The ideal constraints, for a constrained body.
+    pub fn constraints(&self) -> Option<&Constrained<T>> {
+        self.constraints.as_ref()
+    }
+}
+
+impl<T: Scalar> Mobility<T> for Problem<T> {
+    /// [M]⁻¹{E} for a free body (eq. 11), D M_red⁻¹ Dᵀ η {E} for a constrained one (eq. 85).
+    fn response(&self, e: &Screw<T>) -> Screw<T> {
+        match &self.constraints {
+            Some(c) => c.response(e),
+            None => self.body.response(e),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scalar::{Exact, int};
+
+    fn v(x: i64, y: i64, z: i64) -> Vec3<Exact> {
+        Vec3::new(int(x), int(y), int(z))
+    }
+
+    fn contact() -> Contact<Exact> {
+        Contact {
+            point: v(0, -2, 0),
+            normal: v(1, 0, 0),
+            tangent: None,
+            k_newton: int(0),
+            k_poisson: int(1),
+        }
+    }
+
+    fn body(mass: i64) -> RigidBody<Exact> {
+        RigidBody {
+            mass: int(mass),
+            inertia: v(12, 2, 12),
+        }
+    }
+
+    fn refused(p: Result<Problem<Exact>, InvalidProblem>) -> (String, Reason) {
+        let e = p.expect_err("refused");
+        (e.field.to_string(), e.reason)
+    }
+
+    #[test]
+    fn field_names_are_scene_keys() {
+        let twist = Screw::new(v(0, 0, 0), v(3, 0, 0));
+        assert_eq!(
+            refused(Problem::new(body(0), twist.clone(), vec![contact()])),
+            ("body.mass".into(), Reason::NotPositive)
+        );
+        let mut c = contact();
+        c.tangent = Some(v(1, 1, 0));
+        assert_eq!(
+            refused(Problem::new(body(1), twist.clone(), vec![contact(), c])),
+            ("contact[1].tangent".into(), Reason::NotPerpendicular { dot: 1.0 })
+        );
+        let mut c = contact();
+        c.k_poisson = int(2);
+        assert_eq!(
+            refused(Problem::new(body(1), twist, vec![c])),
+            ("contact[0].k_poisson".into(), Reason::OutsideUnitInterval)
+        );
+    }
+}
