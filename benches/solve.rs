@@ -15,7 +15,8 @@ use inertance::scalar::dd::DoubleDouble;
 use inertance::impact::restitution::Model;
 use inertance::scalar::{Exact, Scalar};
 use inertance::scene::Scene;
-use inertance::impact::solve::{Impact, Outcome, Problem};
+use inertance::impact::problem::Problem;
+use inertance::impact::solve::{Impact, Outcome};
 
 const EXAMPLE_3: &str = r#"
 [body]
@@ -41,14 +42,14 @@ fn solve_both<T: Scalar>(
     n: &mut Outcome<T>,
     q: &mut Outcome<T>,
 ) {
-    impact.assemble(p, &p.body).unwrap();
-    impact.solve(p, Model::Newton, n).unwrap();
-    impact.solve(p, Model::Poisson, q).unwrap();
+    impact.reassemble(p).unwrap();
+    impact.solve(Model::Newton, n).unwrap();
+    impact.solve(Model::Poisson, q).unwrap();
 }
 
 fn bench_scalar<T: Scalar>(c: &mut Criterion, scene: &Scene) {
     let p = scene.problem::<T>().unwrap();
-    let (mut impact, mut n, mut q) = (Impact::new(), Outcome::default(), Outcome::default());
+    let (mut impact, mut n, mut q) = (Impact::assemble(&p).unwrap(), Outcome::default(), Outcome::default());
     c.bench_function(&format!("example3/{}", T::NAME), |b| {
         b.iter(|| {
             solve_both(black_box(&p), &mut impact, &mut n, &mut q);
@@ -219,16 +220,15 @@ fn bench_contacts<T: Scalar>(c: &mut Criterion, n: usize) {
     let scene = Scene::parse(&many_contacts(n), "many").unwrap();
     let p = scene.problem::<T>().unwrap();
     if n <= 6 {
-        let (mut impact, mut a, mut b) = (Impact::new(), Outcome::default(), Outcome::default());
+        let (mut impact, mut a, mut b) = (Impact::assemble(&p).unwrap(), Outcome::default(), Outcome::default());
         c.bench_function(&format!("contacts-{n}/solve/{}", T::NAME), |bch| {
             bch.iter(|| solve_both(black_box(&p), &mut impact, &mut a, &mut b))
         });
     } else {
         c.bench_function(&format!("contacts-{n}/analyze/{}", T::NAME), |bch| {
             bch.iter(|| {
-                let mut impact = Impact::new();
-                impact.assemble(black_box(&p), &p.body).unwrap();
-                black_box(analyze(&p, &p.body, &mut impact, &Model::ALL))
+                let mut impact = Impact::assemble(black_box(&p)).unwrap();
+                black_box(analyze(&mut impact, &Model::ALL))
             })
         });
     }
@@ -236,14 +236,13 @@ fn bench_contacts<T: Scalar>(c: &mut Criterion, n: usize) {
 
 fn bench_constrained<T: Scalar>(c: &mut Criterion) {
     let scene = Scene::parse(EXAMPLE_6, "example 6").unwrap();
-    let (p, held) = inertance::scene::pipeline::prepare::<T>(&scene).unwrap();
-    let held = held.unwrap();
-    let (mut impact, mut out) = (Impact::new(), Outcome::default());
+    let p = inertance::scene::pipeline::prepare::<T>(&scene).unwrap();
+    let (mut impact, mut out) = (Impact::assemble(&p).unwrap(), Outcome::default());
     c.bench_function(&format!("example6-constrained/{}", T::NAME), |b| {
         b.iter(|| {
-            impact.assemble(black_box(&p), &held).unwrap();
-            impact.solve(&p, Model::Newton, &mut out).unwrap();
-            impact.solve(&p, Model::Poisson, &mut out).unwrap();
+            impact.reassemble(black_box(&p)).unwrap();
+            impact.solve(Model::Newton, &mut out).unwrap();
+            impact.solve(Model::Poisson, &mut out).unwrap();
         })
     });
 }
@@ -290,7 +289,7 @@ fn benches(c: &mut Criterion) {
             .unwrap()
         })
         .collect();
-    let (mut impact, mut n, mut q) = (Impact::new(), Outcome::default(), Outcome::default());
+    let (mut impact, mut n, mut q) = (Impact::assemble(&batch[0]).unwrap(), Outcome::default(), Outcome::default());
     c.bench_function("batch-256/f64", |b| {
         b.iter(|| {
             for p in &batch {
@@ -321,7 +320,7 @@ fn baseline(x: [f64; 3], yy: [f64; 3]) -> [f64; 48] {
 fn ratio() -> f64 {
     let scene = Scene::parse(EXAMPLE_3, "example 3").unwrap();
     let p = scene.problem::<f64>().unwrap();
-    let (mut impact, mut a, mut b) = (Impact::new(), Outcome::default(), Outcome::default());
+    let (mut impact, mut a, mut b) = (Impact::assemble(&p).unwrap(), Outcome::default(), Outcome::default());
     let (x, yy) = ([1.0, 0.0, 0.0], [0.0, 1.0, 0.0]);
     let reps = 100_000;
     let mut ratios = Vec::with_capacity(15);

@@ -12,7 +12,18 @@ use inertance::mechanics::body::RigidBody;
 use inertance::mechanics::contact::Contact;
 use inertance::impact::restitution::Model;
 use inertance::mechanics::screw::{Screw, Vec3};
-use inertance::impact::solve::{Impact, Outcome, Problem};
+use inertance::impact::problem::Problem;
+use inertance::impact::solve::{Impact, Outcome};
+
+/// A validated problem (fixtures are valid by construction).
+fn valid<T: inertance::Scalar>(
+    body: inertance::mechanics::body::RigidBody<T>,
+    velocity: inertance::mechanics::screw::Screw<T>,
+    contacts: Vec<inertance::mechanics::contact::Contact<T>>,
+) -> inertance::Problem<T> {
+    inertance::Problem::new(body, velocity, contacts).expect("a valid problem")
+}
+
 
 struct Counting;
 
@@ -58,14 +69,10 @@ fn scene(n: usize, shift: f64) -> Problem<f64> {
             }
         })
         .collect();
-    Problem {
-        body: RigidBody {
+    valid(RigidBody {
             mass: 2.0,
             inertia: Vec3::new(1.0, 2.0, 3.0),
-        },
-        velocity: Screw::new(Vec3::new(0.1, -0.2, 0.3), Vec3::new(1.0, 2.0, -0.5)),
-        contacts,
-    }
+        }, Screw::new(Vec3::new(0.1, -0.2, 0.3), Vec3::new(1.0, 2.0, -0.5)), contacts)
 }
 
 #[test]
@@ -74,15 +81,14 @@ fn repeated_f64_solves_do_not_allocate() {
         .map(|s| scene(6, s as f64 * 0.37))
         .chain([scene(2, 0.1)])
         .collect();
-    let mut impact = Impact::new();
     let (mut newton, mut poisson) = (Outcome::default(), Outcome::default());
     // Size the buffers once.
-    impact.assemble(&scenes[0], &scenes[0].body).unwrap();
+    let mut impact = Impact::assemble(&scenes[0]).unwrap();
     impact
-        .solve(&scenes[0], Model::Newton, &mut newton)
+        .solve(Model::Newton, &mut newton)
         .unwrap();
     impact
-        .solve(&scenes[0], Model::Poisson, &mut poisson)
+        .solve(Model::Poisson, &mut poisson)
         .unwrap();
 
     // The counter works: one allocation on this thread is seen.
@@ -95,9 +101,9 @@ fn repeated_f64_solves_do_not_allocate() {
     let mut checksum = 0.0;
     for _ in 0..50 {
         for p in &scenes {
-            impact.assemble(p, &p.body).unwrap();
-            impact.solve(p, Model::Newton, &mut newton).unwrap();
-            impact.solve(p, Model::Poisson, &mut poisson).unwrap();
+            impact.reassemble(p).unwrap();
+            impact.solve(Model::Newton, &mut newton).unwrap();
+            impact.solve(Model::Poisson, &mut poisson).unwrap();
             checksum += newton.kinetic_energy_loss + poisson.lost_velocity_energy;
         }
     }

@@ -23,12 +23,32 @@ use crate::scalar::Scalar;
 
 /// A validated collision problem. Build it with [`Problem::new`] (and
 /// [`Problem::with_constraints`] or [`Problem::with_joints`] for a constrained body).
-#[derive(Clone, Debug)]
+#[derive(Debug)]
 pub struct Problem<T: Scalar> {
     body: RigidBody<T>,
     velocity: Screw<T>,
     contacts: Vec<Contact<T>>,
     constraints: Option<Constrained<T>>,
+}
+
+impl<T: Scalar> Clone for Problem<T> {
+    fn clone(&self) -> Self {
+        Problem {
+            body: self.body.clone(),
+            velocity: self.velocity.clone(),
+            contacts: self.contacts.clone(),
+            constraints: self.constraints.clone(),
+        }
+    }
+
+    /// Field by field, so that [`crate::impact::solve::Impact::reassemble`] reuses the
+    /// contact buffer (the derived `clone_from` would allocate a new one).
+    fn clone_from(&mut self, source: &Self) {
+        self.body.clone_from(&source.body);
+        self.velocity.clone_from(&source.velocity);
+        self.contacts.clone_from(&source.contacts);
+        self.constraints.clone_from(&source.constraints);
+    }
 }
 
 /// Which input an [`InvalidProblem`] is about. Its `Display` is the key of a scene file
@@ -264,6 +284,12 @@ impl<T: Scalar> Problem<T> {
     /// The contacts A_1 … A_N.
     pub fn contacts(&self) -> &[Contact<T>] {
         &self.contacts
+    }
+
+    /// Body, twist and contacts, to change one and validate again with [`Problem::new`]
+    /// (constraints are dropped: add them again).
+    pub fn into_parts(self) -> (RigidBody<T>, Screw<T>, Vec<Contact<T>>) {
+        (self.body, self.velocity, self.contacts)
     }
 
     /// The ideal constraints, for a constrained body.

@@ -9,7 +9,9 @@ use inertance::mechanics::body::RigidBody;
 use inertance::mechanics::contact::Contact;
 use inertance::scalar::{Exact, Scalar, int};
 use inertance::mechanics::screw::{Screw, Vec3};
-use inertance::impact::solve::Problem;
+use inertance::impact::problem::Problem;
+use inertance::impact::restitution::Model;
+use inertance::impact::solve::{Impact, Outcome, SolveError};
 use num_bigint::BigInt;
 use proptest::prelude::*;
 
@@ -71,10 +73,8 @@ pub fn problem(max: usize) -> impl Strategy<Value = Problem<Exact>> {
         vec3(5, 2),
         prop::collection::vec(contact(), 1..=max),
     )
-        .prop_map(|(body, w, v, contacts)| Problem {
-            body,
-            velocity: Screw::new(w, v),
-            contacts,
+        .prop_map(|(body, w, v, contacts)| {
+            Problem::new(body, Screw::new(w, v), contacts).expect("valid by construction")
         })
 }
 
@@ -82,15 +82,14 @@ pub fn problem(max: usize) -> impl Strategy<Value = Problem<Exact>> {
 pub fn convert<T: Scalar>(p: &Problem<Exact>) -> Problem<T> {
     let c = |x: &Exact| T::from_rational(x);
     let v = |x: &Vec3<Exact>| Vec3::new(c(&x[0]), c(&x[1]), c(&x[2]));
-    Problem {
-        body: RigidBody {
-            mass: c(&p.body.mass),
-            inertia: v(&p.body.inertia),
-        },
-        velocity: Screw::new(v(&p.velocity.top()), v(&p.velocity.bottom())),
-        contacts: p
-            .contacts
-            .iter()
+    let body = RigidBody {
+        mass: c(&p.body().mass),
+        inertia: v(&p.body().inertia),
+    };
+    let velocity = Screw::new(v(&p.velocity().top()), v(&p.velocity().bottom()));
+    let contacts = p
+        .contacts()
+        .iter()
             .map(|k| Contact {
                 point: v(&k.point),
                 normal: v(&k.normal),
@@ -98,8 +97,28 @@ pub fn convert<T: Scalar>(p: &Problem<Exact>) -> Problem<T> {
                 k_newton: c(&k.k_newton),
                 k_poisson: c(&k.k_poisson),
             })
-            .collect(),
+            .collect();
+    Problem::new(body, velocity, contacts).expect("rounding keeps a valid problem valid")
+}
+
+/// A problem in the paper's form, validated: `Problem::new(...).unwrap()` for fixtures.
+pub fn valid<T: Scalar>(body: RigidBody<T>, velocity: Screw<T>, contacts: Vec<Contact<T>>) -> Problem<T> {
+    Problem::new(body, velocity, contacts).expect("a valid problem")
+}
+
+/// Assemble `p` and solve each of `models` (hatted outcomes, as the solver computes them).
+pub fn solve_models<T: Scalar>(
+    p: &Problem<T>,
+    models: &[Model],
+) -> Result<(Impact<T>, Vec<(Model, Outcome<T>)>), SolveError> {
+    let mut impact = Impact::assemble(p)?;
+    let mut outcomes = Vec::with_capacity(models.len());
+    for &m in models {
+        let mut out = Outcome::default();
+        impact.solve(m, &mut out)?;
+        outcomes.push((m, out));
     }
+    Ok((impact, outcomes))
 }
 
 /// ½(m|v_C|² + Σ J_k ω_k²), written out independently of the library.
@@ -111,4 +130,11 @@ pub fn kinetic_energy(body: &RigidBody<Exact>, twist: &Screw<Exact>) -> Exact {
         t += body.inertia[k].clone() * &w[k] * &w[k];
     }
     t / Exact::from_integer(2.into())
+}
+
+/// `p` with each contact changed by `f`, validated again.
+pub fn map_contacts<T: Scalar>(p: Problem<T>, f: impl FnMut(&mut Contact<T>)) -> Problem<T> {
+    let (body, velocity, mut contacts) = p.into_parts();
+    contacts.iter_mut().for_each(f);
+    valid(body, velocity, contacts)
 }
