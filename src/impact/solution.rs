@@ -69,15 +69,25 @@ pub struct Solution<T: Scalar> {
 /// [`SolveError::Singular`] when G is singular (Δ = 0, §8): the impulses are not unique; see
 /// [`crate::analysis`].
 pub fn solve<T: Scalar>(problem: &Problem<T>, model: Model) -> Result<Solution<T>, SolveError> {
-    let mut impact = Impact::assemble(problem)?;
-    let mut out = Outcome::default();
-    impact.solve(model, &mut out)?;
-    Ok(Solution::from_hatted(&impact, model, out))
+    Impact::assemble(problem)?.solution(model)
+}
+
+impl<T: Scalar> Impact<T> {
+    /// Solve `model` on the assembled problem, in the paper's units (allocates the
+    /// [`Solution`]; [`Impact::solve`] fills a reused hatted [`Outcome`] instead).
+    ///
+    /// # Errors
+    /// [`SolveError::Singular`] when G is singular (Δ = 0, §8).
+    pub fn solution(&mut self, model: Model) -> Result<Solution<T>, SolveError> {
+        let mut out = Outcome::default();
+        self.solve(model, &mut out)?;
+        Ok(Solution::from_hatted(self, model, out))
+    }
 }
 
 impl<T: Scalar> Solution<T> {
-    /// The paper's units from the hatted `out` of `impact`.
-    pub fn from_hatted(impact: &Impact<T>, model: Model, out: Outcome<T>) -> Self {
+    /// The paper's units from the hatted `out` that `impact` solved.
+    fn from_hatted(impact: &Impact<T>, model: Model, out: Outcome<T>) -> Self {
         let n = impact.contacts();
         let frames = impact.frames();
         let normal2 = |i: usize| &frames[i].norm2[0];
