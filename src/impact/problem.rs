@@ -299,7 +299,7 @@ impl<T: Scalar> Problem<T> {
 }
 
 impl<T: Scalar> Mobility<T> for Problem<T> {
-    /// [M]⁻¹{E} for a free body (eq. 11), D M_red⁻¹ Dᵀ η {E} for a constrained one (eq. 85).
+    /// \[M\]⁻¹{E} for a free body (eq. 11), D M_red⁻¹ Dᵀ η {E} for a constrained one (eq. 85).
     fn response(&self, e: &Screw<T>) -> Screw<T> {
         match &self.constraints {
             Some(c) => c.response(e),

@@ -25,9 +25,9 @@ use crate::scalar::Scalar;
 pub struct Solution<T: Scalar> {
     /// The restitution model.
     pub model: Model,
-    /// Δ = det G, with G = [g_ij,xx] in 1/kg (eq. 15–20).
+    /// Δ = det G, with G = \[g_ij,xx\] in 1/kg (eq. 15–20).
     pub det: T,
-    /// G = [g_ij,xx] (eq. 12), N×N row-major, 1/kg.
+    /// G = \[g_ij,xx\] (eq. 12), N×N row-major, 1/kg.
     pub inertances: Vec<Surd<T>>,
     /// P_i, the impulse at A_i along −n_i, N s (eq. 20, 23).
     pub impulses: Vec<Surd<T>>,

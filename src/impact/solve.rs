@@ -188,17 +188,17 @@ impl<T: Scalar> Impact<T> {
         &self.responses
     }
 
-    /// Ĝ = [ĝ_ij,xx], N×N row-major, hatted.
+    /// Ĝ = \[ĝ_ij,xx\], N×N row-major, hatted.
     pub fn g_hat(&self) -> &[T] {
         &self.g_hat
     }
 
-    /// [ĝ_ij,yx] (eq. 127), hatted.
+    /// \[ĝ_ij,yx\] (eq. 127), hatted.
     pub fn g_yx_hat(&self) -> &[T] {
         &self.g_yx_hat
     }
 
-    /// [ĝ_ij,zx] (eq. 128), hatted.
+    /// \[ĝ_ij,zx\] (eq. 128), hatted.
     pub fn g_zx_hat(&self) -> &[T] {
         &self.g_zx_hat
     }

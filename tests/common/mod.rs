@@ -106,11 +106,11 @@ pub fn valid<T: Scalar>(body: RigidBody<T>, velocity: Screw<T>, contacts: Vec<Co
     Problem::new(body, velocity, contacts).expect("a valid problem")
 }
 
+/// An assembled impact and the hatted outcome of each model solved on it.
+pub type Solved<T> = (Impact<T>, Vec<(Model, Outcome<T>)>);
+
 /// Assemble `p` and solve each of `models` (hatted outcomes, as the solver computes them).
-pub fn solve_models<T: Scalar>(
-    p: &Problem<T>,
-    models: &[Model],
-) -> Result<(Impact<T>, Vec<(Model, Outcome<T>)>), SolveError> {
+pub fn solve_models<T: Scalar>(p: &Problem<T>, models: &[Model]) -> Result<Solved<T>, SolveError> {
     let mut impact = Impact::assemble(p)?;
     let mut outcomes = Vec::with_capacity(models.len());
     for &m in models {
