@@ -3,7 +3,9 @@
 //!
 //! [`ldlt`]: the pivoted LDLᵀ factorization of a symmetric positive semidefinite matrix, its
 //! rank, determinant, solves and null space — exact in rationals, stable in floats.
+//! [`lcp`]: linear complementarity problems and Lemke's method, for the unilateral laws.
 
+pub mod lcp;
 pub mod ldlt;
 
 pub use ldlt::*;
