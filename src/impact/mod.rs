@@ -5,9 +5,11 @@
 //! [`restitution`]: Newton's and Poisson's laws (eq. 14–15, 20–23) · [`solve`](mod@solve): the
 //! assembled collision — frames, inertances G, its factorization and Δ — and one law solved on
 //! it, in the hatted form the solver works in · [`solution`]: the outcome in the paper's units,
-//! and the one-call [`solution::solve`].
+//! and the one-call [`solution::solve`] · [`unilateral`]: the laws in inequality form, as
+//! complementarity problems, for when the simultaneous hypothesis fails.
 
 pub mod problem;
 pub mod restitution;
 pub mod solution;
 pub mod solve;
+pub mod unilateral;

@@ -13,6 +13,7 @@ use inertance::impact::problem::Problem;
 use inertance::impact::restitution::Model;
 use inertance::impact::solve::{Impact, Outcome, SolveError};
 use num_bigint::BigInt;
+use num_traits::{Signed, Zero};
 use proptest::prelude::*;
 
 /// n/d with n in [-lo, lo], d in [1, den].
@@ -137,4 +138,60 @@ pub fn map_contacts<T: Scalar>(p: Problem<T>, f: impl FnMut(&mut Contact<T>)) ->
     let (body, velocity, mut contacts) = p.into_parts();
     contacts.iter_mut().for_each(f);
     valid(body, velocity, contacts)
+}
+
+/// x with A x = b for the k×k row-major A, or `None` when A is singular.
+pub fn gauss(mut a: Vec<Exact>, mut b: Vec<Exact>, k: usize) -> Option<Vec<Exact>> {
+    for col in 0..k {
+        let p = (col..k).find(|&r| !a[r * k + col].is_zero())?;
+        for j in 0..k {
+            a.swap(col * k + j, p * k + j);
+        }
+        b.swap(col, p);
+        for r in 0..k {
+            if r != col && !a[r * k + col].is_zero() {
+                let f = a[r * k + col].clone() / &a[col * k + col];
+                for j in 0..k {
+                    let d = f.clone() * &a[col * k + j];
+                    a[r * k + j] -= d;
+                }
+                let d = f * &b[col];
+                b[r] -= d;
+            }
+        }
+    }
+    Some((0..k).map(|i| b[i].clone() / &a[i * k + i]).collect())
+}
+
+/// w = M z + q.
+pub fn residual(m: &[Exact], q: &[Exact], z: &[Exact]) -> Vec<Exact> {
+    let n = q.len();
+    (0..n)
+        .map(|i| (0..n).fold(q[i].clone(), |s, j| s + m[i * n + j].clone() * &z[j]))
+        .collect()
+}
+
+/// A solution (z, w) of LCP(M, q) found by enumerating supports S with M_SS nonsingular (complete
+/// for a symmetric semidefinite M: see `tests/lcp.rs`), or `None` when the LCP has none.
+pub fn enumerate(m: &[Exact], q: &[Exact]) -> Option<(Vec<Exact>, Vec<Exact>)> {
+    let n = q.len();
+    for mask in 0u32..(1 << n) {
+        let s: Vec<usize> = (0..n).filter(|i| mask >> i & 1 == 1).collect();
+        let k = s.len();
+        let a = s.iter().flat_map(|&i| s.iter().map(move |&j| m[i * n + j].clone())).collect();
+        let b = s.iter().map(|&i| -q[i].clone()).collect();
+        let Some(zs) = gauss(a, b, k) else { continue };
+        if zs.iter().any(|x| x.is_negative()) {
+            continue;
+        }
+        let mut z = vec![Exact::zero(); n];
+        for (&i, x) in s.iter().zip(zs) {
+            z[i] = x;
+        }
+        let w = residual(m, q, &z);
+        if w.iter().all(|x| !x.is_negative()) {
+            return Some((z, w));
+        }
+    }
+    None
 }

@@ -1,0 +1,186 @@
+//! The impact laws in inequality form: what happens when the simultaneous hypothesis (every
+//! contact takes an impulse, every normal velocity reaches its law at once) does not hold.
+//!
+//! With v_ix⁰ > 0 approaching and v_x = v_x⁰ − G P the normal velocities after impact (eq. 13):
+//!
+//! ```text
+//! Newton (Moreau):  P ≥ 0,  ξ = G P − q ≥ 0,  P_i ξ_i = 0,   q_i = v_ix⁰ + k_i^N max(v_ix⁰, 0)
+//! Poisson (Pfeiffer–Glocker), two phases:
+//!   compression     P^c ≥ 0,  G P^c − v_x⁰ ≥ 0,  complementary
+//!   expansion       P = (1 + k^P)∘P^c + X,  X ≥ 0,  −v_x = G P − v_x⁰ ≥ 0,  complementary
+//! ```
+//!
+//! A contact with P_i > 0 leaves at exactly what its law demands (−k_i v_ix⁰ under Newton); one
+//! with P_i = 0 leaves at least that fast, or was separating already and takes no impulse. Each
+//! is an LCP in G ([`crate::linalg::lcp`]), solved by Lemke's method in the solver's hatted
+//! form: with S = diag|n_i|, Ĝ = S G S and q̂ = S q, so LCP(Ĝ, −q̂) in P̂ = S⁻¹P is the
+//! physical LCP with its rows scaled by |n_i| > 0 — the same solutions.
+//!
+//! **What is unique.** G = Bᵀ W_η B is symmetric positive semidefinite, so w = G P − q — hence
+//! every normal velocity after impact, the twist after impact {v} = {v⁰} − W B P (a P₁ − P₂ in
+//! ker G has W_η^{1/2} B(P₁ − P₂) = 0), E_p and ΔE_c — is the same for every solution (see
+//! [`crate::linalg::lcp`]). With G regular the impulses are unique too; with G singular they may
+//! form a set, and this module says so rather than calling its vertex *the* answer. Under
+//! Poisson the expansion starts from P^c, which for a singular G may itself be one of a set:
+//! then the outcome itself may depend on which compression impulses are taken.
+//!
+//! **When the simultaneous answer is admissible** — every P_i ≥ 0, every contact approaching
+//! before and none still approaching after — it solves these LCPs (ξ = 0, X = 0), and for a
+//! regular G it is their only solution: the two laws agree exactly. Otherwise the simultaneous
+//! answer is not physical and this is the one to report.
+
+use crate::impact::restitution::Model;
+use crate::impact::solve::{Impact, Outcome, SolveError};
+use crate::linalg::lcp::{Lcp, LcpError, lemke};
+use crate::scalar::Scalar;
+
+/// Which impact law closes the impulse–velocity relation.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
+pub enum Law {
+    /// The paper's hypothesis: every contact takes an impulse and meets its restitution law
+    /// with equality (eq. 15, 21–23) — a linear system in G.
+    #[default]
+    Simultaneous,
+    /// The laws in inequality form (this module): an LCP in G.
+    Unilateral,
+}
+
+impl Law {
+    /// The lower-case name used in scenes and reports.
+    pub fn name(self) -> &'static str {
+        match self {
+            Law::Simultaneous => "simultaneous",
+            Law::Unilateral => "unilateral",
+        }
+    }
+
+    /// The law called `name` (`"simultaneous"` or `"unilateral"`).
+    pub fn from_name(name: &str) -> Option<Law> {
+        match name {
+            "simultaneous" => Some(Law::Simultaneous),
+            "unilateral" => Some(Law::Unilateral),
+            _ => None,
+        }
+    }
+}
+
+impl std::fmt::Display for Law {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+/// What the unilateral solve found besides the outcome.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Activity {
+    /// Per contact: whether it takes an impulse (P_i > 0); the others separate.
+    pub active: Vec<bool>,
+    /// G is singular: the velocities after impact are unique, the impulses may form a set
+    /// (and under Poisson the outcome may depend on the compression impulses taken).
+    pub singular: bool,
+    /// Complementary pivots made by Lemke's method (both phases for Poisson).
+    pub pivots: usize,
+}
+
+/// Why the unilateral law gave no outcome.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum UnilateralError {
+    /// No impulses P ≥ 0 satisfy the law: the body is jammed between its contacts (the LCP
+    /// is infeasible, proved by Lemke's ray).
+    #[error(
+        "no admissible impulses: the contacts jam the body (the {phase} complementarity problem \
+         has no solution)"
+    )]
+    Jammed {
+        /// `"newton"`, `"compression"` or `"expansion"`.
+        phase: &'static str,
+    },
+    /// The pivot budget ran out (floating point only).
+    #[error("the {phase} complementarity problem was not solved within {pivots} pivots")]
+    IterationLimit {
+        /// The phase.
+        phase: &'static str,
+        /// Pivots made.
+        pivots: usize,
+    },
+    /// The assembled impact could not be solved.
+    #[error(transparent)]
+    Solve(#[from] SolveError),
+}
+
+impl<T: Scalar> Impact<T> {
+    /// Solve `model` in inequality form (see the module docs) into `out`, in hatted form like
+    /// [`Impact::solve`]: the impulses, the twist and contact velocities after impact, both
+    /// energies and the constraint impulses.
+    ///
+    /// # Errors
+    /// [`UnilateralError::Jammed`] when no admissible impulses exist.
+    pub fn solve_unilateral(
+        &mut self,
+        model: Model,
+        out: &mut Outcome<T>,
+    ) -> Result<Activity, UnilateralError> {
+        let n = self.contacts();
+        let v0: Vec<T> = self.before_hat().iter().map(|v| v[0].clone()).collect();
+        let pivots = match model {
+            Model::Newton => {
+                // −q_i = −(v_ix⁰ + k_i max(v_ix⁰, 0)).
+                let q: Vec<T> = v0
+                    .iter()
+                    .zip(self.problem().contacts())
+                    .map(|(v, c)| {
+                        let approach = if v.signum_i8() > 0 { v.clone() } else { T::zero() };
+                        -(v.clone() + c.k_newton.clone() * &approach)
+                    })
+                    .collect();
+                let s = run(self.g_hat(), &q, "newton")?;
+                out.impulses_hat = s.z;
+                out.compression_hat.clear();
+                s.pivots
+            }
+            Model::Poisson => {
+                let q: Vec<T> = v0.iter().map(|v| -v.clone()).collect();
+                let c = run(self.g_hat(), &q, "compression")?;
+                // The expansion LCP in X: w = Ĝ X + (Ĝ (1 + k)∘P̂ᶜ − v̂⁰).
+                let base: Vec<T> = c
+                    .z
+                    .iter()
+                    .zip(self.problem().contacts())
+                    .map(|(p, k)| (T::one() + &k.k_poisson) * p)
+                    .collect();
+                let g = self.g_hat();
+                let q2: Vec<T> = (0..n)
+                    .map(|i| {
+                        let mut s = -v0[i].clone();
+                        for j in 0..n {
+                            s += g[i * n + j].clone() * &base[j];
+                        }
+                        s
+                    })
+                    .collect();
+                let x = run(g, &q2, "expansion")?;
+                out.impulses_hat = base.into_iter().zip(x.z).map(|(b, x)| b + x).collect();
+                out.compression_hat = c.z;
+                c.pivots + x.pivots
+            }
+        };
+        self.complete(out);
+        Ok(Activity {
+            active: out.impulses_hat.iter().map(|p| p.signum_i8() > 0).collect(),
+            singular: self.singular(),
+            pivots,
+        })
+    }
+}
+
+/// Lemke on LCP(Ĝ, q), the errors named by phase.
+fn run<T: Scalar>(
+    g: &[T],
+    q: &[T],
+    phase: &'static str,
+) -> Result<crate::linalg::lcp::LcpSolution<T>, UnilateralError> {
+    lemke(Lcp { m: g, q }).map_err(|e| match e {
+        LcpError::Ray { .. } => UnilateralError::Jammed { phase },
+        LcpError::IterationLimit { pivots } => UnilateralError::IterationLimit { phase, pivots },
+    })
+}
