@@ -74,7 +74,7 @@ proptest! {
         let Ok(e) = lemke(Lcp { m: exact.g_hat(), q: &q }) else { return Ok(()) };
         let pf = convert::<f64>(&p);
         let float = Impact::assemble(&pf).unwrap();
-        let qf: Vec<f64> = q.iter().map(|x| inertance::Scalar::to_f64(x)).collect();
+        let qf: Vec<f64> = q.iter().map(inertance::Scalar::to_f64).collect();
         let f = lemke(Lcp { m: float.g_hat(), q: &qf }).expect("solved in f64 too");
         let scale = qf.iter().map(|x| x.abs()).fold(1.0, f64::max);
         for (a, b) in f.w.iter().zip(&e.w) {

@@ -62,7 +62,6 @@ fn twist(impact: &Impact<Exact>, p: &[Exact]) -> Screw<Exact> {
 /// simultaneous answer where that is admissible.
 fn check(p: &Problem<Exact>) -> Result<(), TestCaseError> {
     let mut impact = Impact::assemble(p).unwrap();
-    let n = impact.contacts();
     // Newton.
     let mut newton = Outcome::default();
     let q: Vec<Exact> = impact
@@ -104,7 +103,6 @@ fn check(p: &Problem<Exact>) -> Result<(), TestCaseError> {
             prop_assert_eq!(&simultaneous.impulses_hat, &unilateral.impulses_hat, "{}", model);
             prop_assert_eq!(&simultaneous.velocity, &unilateral.velocity, "{}", model);
         }
-        let _ = n;
     }
     Ok(())
 }
