@@ -10,8 +10,8 @@
 //! The JSON keys are a public contract (README, "JSON report").
 //!
 //! Here: the readout itself ([`Report`], [`Value`]) and how it is read out of a solve, undoing
-//! the normalisation of the solver's axes; [`table`] renders it for people, [`json`] for
-//! programs.
+//! the normalisation of the solver's axes; `table` renders it for people ([`Report::to_table`]),
+//! `json` for programs ([`Report::to_json`]).
 
 mod json;
 mod table;
