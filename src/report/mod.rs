@@ -8,8 +8,15 @@
 //! cosine and sine are exact surds).
 //!
 //! The JSON keys are a public contract (README, "JSON report").
+//!
+//! Here: the readout itself ([`Report`], [`Value`]) and how it is read out of a solve, undoing
+//! the normalisation of the solver's axes; `table` renders it for people ([`Report::to_table`]),
+//! `json` for programs ([`Report::to_json`]).
 
-use serde_json::{Map, Value as Json, json};
+mod json;
+mod table;
+
+use serde_json::Value as Json;
 
 use crate::mechanics::constraint::Constrained;
 use crate::mechanics::contact::{ContactFrame, Surd, TangentRule};
@@ -77,12 +84,15 @@ impl Value {
     }
 }
 
+/// An f64 as JSON: a number, or `null` when it is not finite.
 fn json_f64(x: f64) -> Json {
     serde_json::Number::from_f64(x)
         .map(Json::Number)
         .unwrap_or(Json::Null)
 }
 
+/// An f64 for people: six decimals without trailing zeros, or scientific notation when very
+/// small or large.
 fn fmt_f64(x: f64) -> String {
     if x == 0.0 {
         "0".into()
@@ -193,108 +203,21 @@ impl Report {
     ) -> Report {
         let n = impact.contacts();
         let frames = impact.frames();
-        // g_ij,ax = ĝ_ij,ax / (|â_i| |x̂_j|) = (ĝ / (â_i² x̂_j²)) · √(â_i² x̂_j²).
-        let inert = |m: &[T], a: usize| -> Vec<Vec<Value>> {
-            (0..n)
-                .map(|i| {
-                    (0..n)
-                        .map(|j| {
-                            let r2 = frames[i].norm2[a].clone() * &frames[j].norm2[0];
-                            Value::surd(&Surd::over_norm(&m[i * n + j], &r2))
-                        })
-                        .collect()
-                })
-                .collect()
-        };
-        // Δ = Δ̂ / Π |x̂_i|², rational.
-        let mut norms = T::one();
-        for f in frames {
-            norms *= &f.norm2[0];
-        }
-        let det = Value::of(&(impact.det_hat().clone() / &norms));
-        let frames_out = frames
-            .iter()
-            .map(|f| {
-                let unit = |a: usize| -> [Value; 3] {
-                    let d = f.axes[a].top();
-                    [0, 1, 2].map(|k| Value::surd(&Surd::over_norm(&d[k], &f.norm2[a])))
-                };
-                ([unit(0), unit(1), unit(2)], f.rule)
-            })
-            .collect();
-        let contacts_before = impact
-            .before_hat()
-            .iter()
-            .zip(frames)
-            .map(|(v, f)| point_velocity(v, f))
-            .collect();
-        let models = outcomes
-            .iter()
-            .map(|(m, o)| ModelReport {
-                model: *m,
-                impulses: o
-                    .impulses_hat
-                    .iter()
-                    .zip(frames)
-                    .map(|(p, f)| Value::surd(&Surd::times_norm(p, &f.norm2[0])))
-                    .collect(),
-                impulse_multiples: o.impulses_hat.iter().map(Value::of).collect(),
-                compression_impulses: match m {
-                    Model::Newton => None,
-                    Model::Poisson => Some(
-                        o.compression_hat
-                            .iter()
-                            .zip(frames)
-                            .map(|(p, f)| Value::surd(&Surd::times_norm(p, &f.norm2[0])))
-                            .collect(),
-                    ),
-                },
-                angular_velocity: {
-                    let w = o.velocity.top();
-                    [0, 1, 2].map(|k| Value::of(&w[k]))
-                },
-                velocity: {
-                    let v = o.velocity.bottom();
-                    [0, 1, 2].map(|k| Value::of(&v[k]))
-                },
-                contacts: o
-                    .after_hat
-                    .iter()
-                    .zip(frames)
-                    .map(|(v, f)| point_velocity(v, f))
-                    .collect(),
-                lost_velocity_energy: Value::of(&o.lost_velocity_energy),
-                kinetic_energy_loss: Value::of(&o.kinetic_energy_loss),
-                constraint_impulses: o.constraint_impulses.iter().map(Value::of).collect(),
-            })
-            .collect();
-        let screw = |s: &crate::mechanics::screw::Screw<T>| -> [Value; 6] {
-            std::array::from_fn(|k| Value::of(&s.0[k]))
-        };
-        let constraints = constraints.map(|c| {
-            let d = c.dof();
-            let m = c.reduced_mass();
-            ConstraintsReport {
-                free: c.free.iter().map(screw).collect(),
-                blocked: c.blocked.iter().map(screw).collect(),
-                blocked_derived: c.derived_blocked,
-                reduced_mass: (0..d)
-                    .map(|a| (0..d).map(|b| Value::of(&m[a * d + b])).collect())
-                    .collect(),
-            }
-        });
         Report {
             scene: scene.to_string(),
             scalar: T::NAME,
             effects,
-            inertance: inert(impact.g_hat(), 0),
-            inertance_yx: inert(impact.g_yx_hat(), 1),
-            inertance_zx: inert(impact.g_zx_hat(), 2),
-            det,
-            frames: frames_out,
-            contacts_before,
-            models,
-            constraints,
+            inertance: inertances(impact.g_hat(), frames, n, 0),
+            inertance_yx: inertances(impact.g_yx_hat(), frames, n, 1),
+            inertance_zx: inertances(impact.g_zx_hat(), frames, n, 2),
+            det: determinant(impact.det_hat(), frames),
+            frames: frames.iter().map(unit_axes).collect(),
+            contacts_before: point_velocities(impact.before_hat(), frames),
+            models: outcomes
+                .iter()
+                .map(|(m, o)| ModelReport::new(*m, o, frames))
+                .collect(),
+            constraints: constraints.map(ConstraintsReport::new),
             surface: None,
         }
     }
@@ -303,246 +226,105 @@ impl Report {
     pub fn model(&self, m: Model) -> Option<&ModelReport> {
         self.models.iter().find(|r| r.model == m)
     }
+}
 
-    /// The JSON report (keys documented in the README).
-    pub fn to_json(&self) -> Json {
-        let mat = |m: &Vec<Vec<Value>>| -> Json {
-            Json::Array(
-                m.iter()
-                    .map(|r| Json::Array(r.iter().map(Value::json).collect()))
-                    .collect(),
-            )
-        };
-        let vec = |v: &[Value]| -> Json { Json::Array(v.iter().map(Value::json).collect()) };
-        let mut models = Map::new();
-        for r in &self.models {
-            let mut o = Map::new();
-            o.insert("impulses".into(), vec(&r.impulses));
-            o.insert("impulses_per_normal".into(), vec(&r.impulse_multiples));
-            if let Some(c) = &r.compression_impulses {
-                o.insert("compression_impulses".into(), vec(c));
-            }
-            o.insert("velocity".into(), vec(&r.velocity));
-            o.insert("angular_velocity".into(), vec(&r.angular_velocity));
-            o.insert(
-                "contacts".into(),
-                Json::Array(
-                    self.contacts_before
-                        .iter()
-                        .zip(&r.contacts)
-                        .map(|(b, a)| {
-                            json!({
-                                "velocity_before": vec(&b.components),
-                                "velocity_after": vec(&a.components),
-                                "angle_before_deg": b.angle.as_ref().map(|x| json_f64(x.degrees)),
-                                "angle_after_deg": a.angle.as_ref().map(|x| json_f64(x.degrees)),
-                            })
-                        })
-                        .collect(),
-                ),
-            );
-            o.insert("lost_velocity_energy".into(), r.lost_velocity_energy.json());
-            o.insert("kinetic_energy_loss".into(), r.kinetic_energy_loss.json());
-            if self.constraints.is_some() {
-                o.insert("constraint_impulses".into(), vec(&r.constraint_impulses));
-            }
-            models.insert(r.model.name().into(), Json::Object(o));
-        }
-        let mut top = json!({
-            "scene": self.scene,
-            "scalar": self.scalar,
-            "effects": self.effects,
-            "inertance": mat(&self.inertance),
-            "inertance_yx": mat(&self.inertance_yx),
-            "inertance_zx": mat(&self.inertance_zx),
-            "det": self.det.json(),
-            "frames": self.frames.iter().map(|(axes, rule)| json!({
-                "x": vec(&axes[0]), "y": vec(&axes[1]), "z": vec(&axes[2]),
-                "tangent": match rule {
-                    TangentRule::Given => "given".to_string(),
-                    TangentRule::Velocity => "velocity".to_string(),
-                    TangentRule::Fallback(k) => format!("fallback-{}", ["x", "y", "z"][*k]),
-                },
-            })).collect::<Vec<_>>(),
-            "models": Json::Object(models),
-        });
-        if let (Some((f, grad)), Some(obj)) = (&self.surface, top.as_object_mut()) {
-            obj.insert("surface".into(), json!({ "f": f, "gradient": grad }));
-        }
-        if let (Some(c), Some(obj)) = (&self.constraints, top.as_object_mut()) {
-            obj.insert(
-                "constraints".into(),
-                json!({
-                    "free": c.free.iter().map(|s| vec(s)).collect::<Vec<_>>(),
-                    "blocked": c.blocked.iter().map(|s| vec(s)).collect::<Vec<_>>(),
-                    "blocked_derived": c.blocked_derived,
-                    "reduced_mass": mat(&c.reduced_mass),
-                }),
-            );
-        }
-        top
-    }
-
-    /// A readable table: models side by side, SI units.
-    pub fn to_table(&self) -> String {
-        let mut rows: Vec<(String, Vec<String>)> = Vec::new();
-        let n = self.inertance.len();
-        let header: Vec<String> = self
-            .models
-            .iter()
-            .map(|m| m.model.name().to_string())
-            .collect();
-        let each = |f: &dyn Fn(&ModelReport) -> String| -> Vec<String> {
-            self.models.iter().map(f).collect()
-        };
-        for i in 0..n {
-            rows.push((format!("P{} [N s]", i + 1), each(&|m| m.impulses[i].text())));
-        }
-        for i in 0..n {
-            if self.models.iter().any(|m| m.compression_impulses.is_some()) {
-                rows.push((
-                    format!("P{}c [N s]", i + 1),
-                    each(&|m| {
-                        m.compression_impulses
-                            .as_ref()
-                            .map_or("—".into(), |c| c[i].text())
-                    }),
-                ));
-            }
-        }
-        let axes = ["x", "y", "z"];
-        for (k, a) in axes.iter().enumerate() {
-            rows.push((
-                format!("ω{a} [rad/s]"),
-                each(&|m| m.angular_velocity[k].text()),
-            ));
-        }
-        for (k, a) in axes.iter().enumerate() {
-            rows.push((format!("vC{a} [m/s]"), each(&|m| m.velocity[k].text())));
-        }
-        for i in 0..n {
-            for (k, a) in axes.iter().enumerate() {
-                rows.push((
-                    format!("v{}{a} [m/s]", i + 1),
-                    each(&|m| m.contacts[i].components[k].text()),
-                ));
-            }
-            rows.push((
-                format!("α{} [deg]", i + 1),
-                each(&|m| {
-                    m.contacts[i]
-                        .angle
-                        .as_ref()
-                        .map_or("—".into(), |x| fmt_f64(x.degrees))
-                }),
-            ));
-        }
-        if let Some(c) = &self.constraints {
-            for a in 0..c.blocked.len() {
-                rows.push((
-                    format!("q{} [N s]", a + 1),
-                    each(&|m| m.constraint_impulses[a].text()),
-                ));
-            }
-        }
-        rows.push(("E_p [J]".into(), each(&|m| m.lost_velocity_energy.text())));
-        rows.push(("ΔE_c [J]".into(), each(&|m| m.kinetic_energy_loss.text())));
-
-        let mut out = format!(
-            "{} — {} ({})\n\n",
-            self.scene,
-            self.scalar,
-            self.effects.join(", ")
-        );
-        out += "Inertances G = [g_ij,xx] [1/kg]:\n";
-        for r in &self.inertance {
-            out += &format!(
-                "  {}\n",
-                r.iter().map(Value::text).collect::<Vec<_>>().join("  ")
-            );
-        }
-        out += &format!("Δ = det G = {}\n", self.det.text());
-        if let Some((f, g)) = &self.surface {
-            out += &format!(
-                "Surface: f = {f} = 0, ∇f = ({}, {}, {})\n",
-                g[0], g[1], g[2]
-            );
-        }
-        if let Some(c) = &self.constraints {
-            let screws = |l: &[[Value; 6]]| -> String {
-                l.iter()
-                    .map(|s| {
-                        format!(
-                            "[{}]",
-                            s.iter().map(Value::text).collect::<Vec<_>>().join(", ")
-                        )
-                    })
-                    .collect::<Vec<_>>()
-                    .join(" ")
-            };
-            out += &format!(
-                "Constraints: {} degree(s) of freedom\n  D = {}\n  U = {}{}\n",
-                c.free.len(),
-                screws(&c.free),
-                screws(&c.blocked),
-                if c.blocked_derived {
-                    " (derived: η-orthogonal complement of D)"
-                } else {
-                    ""
-                }
-            );
-            let m = c
-                .reduced_mass
-                .iter()
-                .map(|r| {
-                    format!(
-                        "[{}]",
-                        r.iter().map(Value::text).collect::<Vec<_>>().join(", ")
-                    )
+/// One block of inertances in physical units, row by row: g_ij,ax = ĝ_ij,ax / (|â_i| |x̂_j|)
+/// = (ĝ / (â_i² x̂_j²)) · √(â_i² x̂_j²), â the axis `a` of contact i's frame.
+fn inertances<T: Scalar>(
+    m: &[T],
+    frames: &[ContactFrame<T>],
+    n: usize,
+    a: usize,
+) -> Vec<Vec<Value>> {
+    (0..n)
+        .map(|i| {
+            (0..n)
+                .map(|j| {
+                    let r2 = frames[i].norm2[a].clone() * &frames[j].norm2[0];
+                    Value::surd(&Surd::over_norm(&m[i * n + j], &r2))
                 })
-                .collect::<Vec<_>>()
-                .join(" ");
-            out += &format!("  M_red = Dᵀ η M D = {m}\n");
+                .collect()
+        })
+        .collect()
+}
+
+/// Δ = Δ̂ / Π |x̂_i|², rational.
+fn determinant<T: Scalar>(det: &T, frames: &[ContactFrame<T>]) -> Value {
+    let mut norms = T::one();
+    for f in frames {
+        norms *= &f.norm2[0];
+    }
+    Value::of(&(det.clone() / &norms))
+}
+
+/// A contact frame's unit axes (x_i, y_i, z_i), and how y_i was chosen.
+fn unit_axes<T: Scalar>(f: &ContactFrame<T>) -> ([[Value; 3]; 3], TangentRule) {
+    let unit = |a: usize| -> [Value; 3] {
+        let d = f.axes[a].top();
+        [0, 1, 2].map(|k| Value::surd(&Surd::over_norm(&d[k], &f.norm2[a])))
+    };
+    ([unit(0), unit(1), unit(2)], f.rule)
+}
+
+/// Each contact point's velocity in its own frame.
+fn point_velocities<T: Scalar>(hats: &[[T; 3]], frames: &[ContactFrame<T>]) -> Vec<PointVelocity> {
+    hats.iter()
+        .zip(frames)
+        .map(|(v, f)| point_velocity(v, f))
+        .collect()
+}
+
+/// Impulses along the normals as written: P_i = P̂_i |x̂_i|.
+fn impulses<T: Scalar>(hats: &[T], frames: &[ContactFrame<T>]) -> Vec<Value> {
+    hats.iter()
+        .zip(frames)
+        .map(|(p, f)| Value::surd(&Surd::times_norm(p, &f.norm2[0])))
+        .collect()
+}
+
+impl ModelReport {
+    /// Read out one model's outcome.
+    fn new<T: Scalar>(model: Model, o: &Outcome<T>, frames: &[ContactFrame<T>]) -> ModelReport {
+        ModelReport {
+            model,
+            impulses: impulses(&o.impulses_hat, frames),
+            impulse_multiples: o.impulses_hat.iter().map(Value::of).collect(),
+            compression_impulses: match model {
+                Model::Newton => None,
+                Model::Poisson => Some(impulses(&o.compression_hat, frames)),
+            },
+            angular_velocity: {
+                let w = o.velocity.top();
+                [0, 1, 2].map(|k| Value::of(&w[k]))
+            },
+            velocity: {
+                let v = o.velocity.bottom();
+                [0, 1, 2].map(|k| Value::of(&v[k]))
+            },
+            contacts: point_velocities(&o.after_hat, frames),
+            lost_velocity_energy: Value::of(&o.lost_velocity_energy),
+            kinetic_energy_loss: Value::of(&o.kinetic_energy_loss),
+            constraint_impulses: o.constraint_impulses.iter().map(Value::of).collect(),
         }
-        out += "\nBefore impact:\n";
-        for (i, b) in self.contacts_before.iter().enumerate() {
-            out += &format!(
-                "  A{}: v = ({}, {}, {}) m/s, α⁰ = {}\n",
-                i + 1,
-                b.components[0].text(),
-                b.components[1].text(),
-                b.components[2].text(),
-                b.angle
-                    .as_ref()
-                    .map_or("— (no tangential velocity)".into(), |x| format!(
-                        "{}°",
-                        fmt_f64(x.degrees)
-                    ))
-            );
-        }
-        out += "\nAfter impact:\n";
-        let w0 = rows.iter().map(|r| r.0.chars().count()).max().unwrap_or(0);
-        let cols: Vec<usize> = (0..header.len())
-            .map(|c| {
-                rows.iter()
-                    .map(|r| r.1[c].chars().count())
-                    .chain([header[c].len()])
-                    .max()
-                    .unwrap_or(0)
-            })
-            .collect();
-        let line = |name: &str, cells: &[String]| -> String {
-            let mut s = format!("  {name}{}", " ".repeat(w0 - name.chars().count()));
-            for (c, cell) in cells.iter().enumerate() {
-                s += &format!("  {}{}", " ".repeat(cols[c] - cell.chars().count()), cell);
-            }
-            s + "\n"
+    }
+}
+
+impl ConstraintsReport {
+    /// Read out the constraints as used: D, U and M_red.
+    fn new<T: Scalar>(c: &Constrained<T>) -> ConstraintsReport {
+        let screw = |s: &crate::mechanics::screw::Screw<T>| -> [Value; 6] {
+            std::array::from_fn(|k| Value::of(&s.0[k]))
         };
-        out += &line("", &header);
-        for (name, cells) in &rows {
-            out += &line(name, cells);
+        let d = c.dof();
+        let m = c.reduced_mass();
+        ConstraintsReport {
+            free: c.free.iter().map(screw).collect(),
+            blocked: c.blocked.iter().map(screw).collect(),
+            blocked_derived: c.derived_blocked,
+            reduced_mass: (0..d)
+                .map(|a| (0..d).map(|b| Value::of(&m[a * d + b])).collect())
+                .collect(),
         }
-        out
     }
 }
 

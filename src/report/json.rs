@@ -1,0 +1,107 @@
+//! The JSON report: its keys are a public contract (README, "JSON report"), so they change
+//! only with the README.
+
+use serde_json::{Map, Value as Json, json};
+
+use super::{ModelReport, PointVelocity, Report, Value, json_f64};
+use crate::mechanics::contact::TangentRule;
+
+/// A matrix, row by row.
+fn mat(m: &[Vec<Value>]) -> Json {
+    Json::Array(
+        m.iter()
+            .map(|r| Json::Array(r.iter().map(Value::json).collect()))
+            .collect(),
+    )
+}
+
+/// A list of values.
+fn vec(v: &[Value]) -> Json {
+    Json::Array(v.iter().map(Value::json).collect())
+}
+
+/// How a frame's y axis was chosen, as named in the report.
+fn tangent_rule(rule: &TangentRule) -> String {
+    match rule {
+        TangentRule::Given => "given".to_string(),
+        TangentRule::Velocity => "velocity".to_string(),
+        TangentRule::Fallback(k) => format!("fallback-{}", ["x", "y", "z"][*k]),
+    }
+}
+
+impl Report {
+    /// The JSON report (keys documented in the README).
+    pub fn to_json(&self) -> Json {
+        let mut models = Map::new();
+        for r in &self.models {
+            models.insert(r.model.name().into(), self.model_json(r));
+        }
+        let mut top = json!({
+            "scene": self.scene,
+            "scalar": self.scalar,
+            "effects": self.effects,
+            "inertance": mat(&self.inertance),
+            "inertance_yx": mat(&self.inertance_yx),
+            "inertance_zx": mat(&self.inertance_zx),
+            "det": self.det.json(),
+            "frames": self.frames.iter().map(|(axes, rule)| json!({
+                "x": vec(&axes[0]), "y": vec(&axes[1]), "z": vec(&axes[2]),
+                "tangent": tangent_rule(rule),
+            })).collect::<Vec<_>>(),
+            "models": Json::Object(models),
+        });
+        if let (Some((f, grad)), Some(obj)) = (&self.surface, top.as_object_mut()) {
+            obj.insert("surface".into(), json!({ "f": f, "gradient": grad }));
+        }
+        if let (Some(c), Some(obj)) = (&self.constraints, top.as_object_mut()) {
+            obj.insert(
+                "constraints".into(),
+                json!({
+                    "free": c.free.iter().map(|s| vec(s)).collect::<Vec<_>>(),
+                    "blocked": c.blocked.iter().map(|s| vec(s)).collect::<Vec<_>>(),
+                    "blocked_derived": c.blocked_derived,
+                    "reduced_mass": mat(&c.reduced_mass),
+                }),
+            );
+        }
+        top
+    }
+
+    /// One model's object under `models`.
+    fn model_json(&self, r: &ModelReport) -> Json {
+        let mut o = Map::new();
+        o.insert("impulses".into(), vec(&r.impulses));
+        o.insert("impulses_per_normal".into(), vec(&r.impulse_multiples));
+        if let Some(c) = &r.compression_impulses {
+            o.insert("compression_impulses".into(), vec(c));
+        }
+        o.insert("velocity".into(), vec(&r.velocity));
+        o.insert("angular_velocity".into(), vec(&r.angular_velocity));
+        o.insert(
+            "contacts".into(),
+            Json::Array(
+                self.contacts_before
+                    .iter()
+                    .zip(&r.contacts)
+                    .map(|(b, a)| contact_json(b, a))
+                    .collect(),
+            ),
+        );
+        o.insert("lost_velocity_energy".into(), r.lost_velocity_energy.json());
+        o.insert("kinetic_energy_loss".into(), r.kinetic_energy_loss.json());
+        if self.constraints.is_some() {
+            o.insert("constraint_impulses".into(), vec(&r.constraint_impulses));
+        }
+        Json::Object(o)
+    }
+}
+
+/// One contact point's velocities before and after impact.
+fn contact_json(b: &PointVelocity, a: &PointVelocity) -> Json {
+    json!({
+        "velocity_before": vec(&b.components),
+        "velocity_after": vec(&a.components),
+        "angle_before_deg": b.angle.as_ref().map(|x| json_f64(x.degrees)),
+        "angle_after_deg": a.angle.as_ref().map(|x| json_f64(x.degrees)),
+    })
+}

@@ -1,0 +1,194 @@
+//! The text table: what was assembled (G, Δ, the surface, the constraints), the contact
+//! velocities before impact, then the models side by side after impact, in SI units.
+
+use super::{ModelReport, Report, Value, fmt_f64};
+
+/// A row of the after-impact table: its label, and one cell per model.
+type Row = (String, Vec<String>);
+
+/// Values as `[a, b, c]`.
+fn bracketed(values: &[Value]) -> String {
+    format!(
+        "[{}]",
+        values
+            .iter()
+            .map(Value::text)
+            .collect::<Vec<_>>()
+            .join(", ")
+    )
+}
+
+impl Report {
+    /// A readable table: models side by side, SI units.
+    pub fn to_table(&self) -> String {
+        let mut out = format!(
+            "{} — {} ({})\n\n",
+            self.scene,
+            self.scalar,
+            self.effects.join(", ")
+        );
+        out += &self.assembled();
+        out += &self.before();
+        out += "\nAfter impact:\n";
+        let header: Vec<String> = self
+            .models
+            .iter()
+            .map(|m| m.model.name().to_string())
+            .collect();
+        out += &aligned(&header, &self.after_rows());
+        out
+    }
+
+    /// G, Δ, and the surface and constraints when there are any.
+    fn assembled(&self) -> String {
+        let mut out = "Inertances G = [g_ij,xx] [1/kg]:\n".to_string();
+        for r in &self.inertance {
+            out += &format!(
+                "  {}\n",
+                r.iter().map(Value::text).collect::<Vec<_>>().join("  ")
+            );
+        }
+        out += &format!("Δ = det G = {}\n", self.det.text());
+        if let Some((f, g)) = &self.surface {
+            out += &format!(
+                "Surface: f = {f} = 0, ∇f = ({}, {}, {})\n",
+                g[0], g[1], g[2]
+            );
+        }
+        if let Some(c) = &self.constraints {
+            let screws = |l: &[[Value; 6]]| -> String {
+                l.iter().map(|s| bracketed(s)).collect::<Vec<_>>().join(" ")
+            };
+            out += &format!(
+                "Constraints: {} degree(s) of freedom\n  D = {}\n  U = {}{}\n",
+                c.free.len(),
+                screws(&c.free),
+                screws(&c.blocked),
+                if c.blocked_derived {
+                    " (derived: η-orthogonal complement of D)"
+                } else {
+                    ""
+                }
+            );
+            let m = c
+                .reduced_mass
+                .iter()
+                .map(|r| bracketed(r))
+                .collect::<Vec<_>>()
+                .join(" ");
+            out += &format!("  M_red = Dᵀ η M D = {m}\n");
+        }
+        out
+    }
+
+    /// The contact-point velocities before impact, one line per contact.
+    fn before(&self) -> String {
+        let mut out = "\nBefore impact:\n".to_string();
+        for (i, b) in self.contacts_before.iter().enumerate() {
+            out += &format!(
+                "  A{}: v = ({}, {}, {}) m/s, α⁰ = {}\n",
+                i + 1,
+                b.components[0].text(),
+                b.components[1].text(),
+                b.components[2].text(),
+                b.angle
+                    .as_ref()
+                    .map_or("— (no tangential velocity)".into(), |x| format!(
+                        "{}°",
+                        fmt_f64(x.degrees)
+                    ))
+            );
+        }
+        out
+    }
+
+    /// The after-impact rows: impulses, velocities, contact velocities and angles, constraint
+    /// impulses, energies.
+    fn after_rows(&self) -> Vec<Row> {
+        let mut rows: Vec<Row> = Vec::new();
+        let n = self.inertance.len();
+        let each = |f: &dyn Fn(&ModelReport) -> String| -> Vec<String> {
+            self.models.iter().map(f).collect()
+        };
+        for i in 0..n {
+            rows.push((format!("P{} [N s]", i + 1), each(&|m| m.impulses[i].text())));
+        }
+        for i in 0..n {
+            if self.models.iter().any(|m| m.compression_impulses.is_some()) {
+                rows.push((
+                    format!("P{}c [N s]", i + 1),
+                    each(&|m| {
+                        m.compression_impulses
+                            .as_ref()
+                            .map_or("—".into(), |c| c[i].text())
+                    }),
+                ));
+            }
+        }
+        let axes = ["x", "y", "z"];
+        for (k, a) in axes.iter().enumerate() {
+            rows.push((
+                format!("ω{a} [rad/s]"),
+                each(&|m| m.angular_velocity[k].text()),
+            ));
+        }
+        for (k, a) in axes.iter().enumerate() {
+            rows.push((format!("vC{a} [m/s]"), each(&|m| m.velocity[k].text())));
+        }
+        for i in 0..n {
+            for (k, a) in axes.iter().enumerate() {
+                rows.push((
+                    format!("v{}{a} [m/s]", i + 1),
+                    each(&|m| m.contacts[i].components[k].text()),
+                ));
+            }
+            rows.push((
+                format!("α{} [deg]", i + 1),
+                each(&|m| {
+                    m.contacts[i]
+                        .angle
+                        .as_ref()
+                        .map_or("—".into(), |x| fmt_f64(x.degrees))
+                }),
+            ));
+        }
+        if let Some(c) = &self.constraints {
+            for a in 0..c.blocked.len() {
+                rows.push((
+                    format!("q{} [N s]", a + 1),
+                    each(&|m| m.constraint_impulses[a].text()),
+                ));
+            }
+        }
+        rows.push(("E_p [J]".into(), each(&|m| m.lost_velocity_energy.text())));
+        rows.push(("ΔE_c [J]".into(), each(&|m| m.kinetic_energy_loss.text())));
+        rows
+    }
+}
+
+/// The header and rows as columns: labels left-aligned, cells right-aligned, each column as
+/// wide as its widest cell (counted in characters, not bytes).
+fn aligned(header: &[String], rows: &[Row]) -> String {
+    let w0 = rows.iter().map(|r| r.0.chars().count()).max().unwrap_or(0);
+    let cols: Vec<usize> = (0..header.len())
+        .map(|c| {
+            rows.iter()
+                .map(|r| r.1[c].chars().count())
+                .chain([header[c].len()])
+                .max()
+                .unwrap_or(0)
+        })
+        .collect();
+    let line = |name: &str, cells: &[String]| -> String {
+        let mut s = format!("  {name}{}", " ".repeat(w0 - name.chars().count()));
+        for (c, cell) in cells.iter().enumerate() {
+            s += &format!("  {}{}", " ".repeat(cols[c] - cell.chars().count()), cell);
+        }
+        s + "\n"
+    };
+    let mut out = line("", header);
+    for (name, cells) in rows {
+        out += &line(name, cells);
+    }
+    out
+}

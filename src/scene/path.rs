@@ -1,0 +1,77 @@
+//! Key paths (`body.mass`, `contact[1].k`, `body.velocity[0]`) and overriding the value one
+//! names in a scene document, as derivations' `set` lines and sweeps do.
+
+use toml_edit::{DocumentMut, Item, TableLike, Value};
+
+/// Override one value of a scene document: `path` like `body.mass`, `contact[1].k`,
+/// `body.velocity[0]`; `value` is TOML text (`0.5`, `"1/3"`, `[1, 0, 0]`). Used by
+/// derivations (`set` lines) and parameter sweeps.
+pub fn set_value(doc: &mut DocumentMut, path: &str, value: &str) -> Result<(), String> {
+    let new: Value = value
+        .trim()
+        .parse::<Value>()
+        .map_err(|e| format!("`{value}` is not a TOML value: {}", e.to_string().trim()))?;
+    let segments: Vec<&str> = path.split('.').collect();
+    let mut table: &mut dyn TableLike = doc.as_table_mut();
+    for (depth, seg) in segments.iter().enumerate() {
+        let (name, index) =
+            split_index(seg).ok_or_else(|| format!("bad key `{seg}` in `{path}`"))?;
+        if depth + 1 == segments.len() {
+            match index {
+                None => {
+                    table.insert(name, Item::Value(new));
+                    if name == "k" {
+                        table.remove("k_newton");
+                        table.remove("k_poisson");
+                    } else if name == "k_newton" || name == "k_poisson" {
+                        split_k(table);
+                    }
+                }
+                Some(i) => {
+                    let slot = table
+                        .get_mut(name)
+                        .and_then(Item::as_array_mut)
+                        .and_then(|a| a.get_mut(i))
+                        .ok_or_else(|| format!("`{path}`: there is no {name}[{i}]"))?;
+                    *slot = new;
+                }
+            }
+            return Ok(());
+        }
+        let child = table
+            .get_mut(name)
+            .ok_or_else(|| format!("`{path}`: no key `{name}`"))?;
+        table = match (child, index) {
+            (Item::Table(t), None) => t,
+            (Item::Value(Value::InlineTable(t)), None) => t,
+            (Item::ArrayOfTables(arr), Some(i)) => arr
+                .get_mut(i)
+                .ok_or_else(|| format!("`{path}`: there is no {name}[{i}]"))?,
+            _ => return Err(format!("`{path}`: `{seg}` is not a table")),
+        };
+    }
+    Err(format!("`{path}`: nothing to set"))
+}
+
+/// When `k` is replaced by one of `k_newton`/`k_poisson`, keep the other at the old `k`.
+fn split_k(table: &mut dyn TableLike) {
+    if let Some(k) = table.remove("k") {
+        for key in ["k_newton", "k_poisson"] {
+            if table.get(key).is_none() {
+                table.insert(key, k.clone());
+            }
+        }
+    }
+}
+
+/// `contact[1]` → ("contact", Some(1)); `mass` → ("mass", None).
+fn split_index(seg: &str) -> Option<(&str, Option<usize>)> {
+    match seg.find('[') {
+        None => Some((seg, None)),
+        Some(open) => {
+            let close = seg.strip_suffix(']')?;
+            let idx = close[open + 1..].parse().ok()?;
+            Some((&seg[..open], Some(idx)))
+        }
+    }
+}

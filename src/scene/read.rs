@@ -1,0 +1,315 @@
+//! Reading a scene document: the walk from the top-level keys down to each table, and the
+//! reader's primitives (required keys, numbers as written, range checks), each turning a
+//! problem into a [`SceneError`] that names the key path and the value.
+
+use num_traits::Signed;
+use toml_edit::{DocumentMut, Item, Table, TableLike, Value};
+
+use super::schema::ContactSpec;
+use super::{Scene, SceneError};
+use crate::number::{Number, parse_number_with};
+
+/// Parse TOML text into a document (syntax errors name the file and the position).
+pub fn parse_document(text: &str, file: &str) -> Result<DocumentMut, SceneError> {
+    text.parse::<DocumentMut>().map_err(|e| SceneError {
+        file: file.to_string(),
+        key: String::new(),
+        value: None,
+        message: format!("not valid TOML: {}", e.to_string().trim()),
+    })
+}
+
+/// Read and validate a scene document; `file` names it in messages, `symbols` are the names
+/// values may use.
+pub(super) fn scene(
+    doc: &DocumentMut,
+    file: &str,
+    symbols: &[String],
+) -> Result<Scene, SceneError> {
+    let r = Reader { file, symbols };
+    let root = doc.as_table();
+    r.only_keys(root, "", TOP_KEYS)?;
+    let name = r.name(root)?;
+    let body = r.body(root)?;
+    let contacts = r.contacts(root)?;
+    let models = r.solve(root)?;
+    let constraints = match root.get("constraints") {
+        None => None,
+        Some(item) => Some(r.constraints(item)?),
+    };
+    let surface = match root.get("surface") {
+        None => None,
+        Some(item) => Some(r.surface(item)?),
+    };
+    Ok(Scene {
+        file: file.to_string(),
+        name,
+        mass: body.mass,
+        inertia: body.inertia,
+        velocity: body.velocity,
+        angular_velocity: body.angular_velocity,
+        contacts,
+        models,
+        constraints,
+        surface,
+    })
+}
+
+impl Reader<'_> {
+    /// The scene's `name` (the file name when absent); `description` must be a string.
+    fn name(&self, root: &Table) -> Result<String, SceneError> {
+        let file = self.file;
+        let name = match root.get("name") {
+            None => file.rsplit('/').next().unwrap_or(file).to_string(),
+            Some(item) => self.string(item, "name")?,
+        };
+        if let Some(item) = root.get("description") {
+            self.string(item, "description")?;
+        }
+        Ok(name)
+    }
+
+    /// The `[[contact]]` tables, at least one.
+    fn contacts(&self, root: &Table) -> Result<Vec<ContactSpec>, SceneError> {
+        let contacts = match root.get("contact") {
+            Some(Item::ArrayOfTables(arr)) => arr
+                .iter()
+                .enumerate()
+                .map(|(i, t)| self.contact(t, i))
+                .collect::<Result<Vec<_>, _>>()?,
+            Some(other) => {
+                return Err(self.err("contact", Some(short(other)), "must be [[contact]] tables"));
+            }
+            None => Vec::new(),
+        };
+        if contacts.is_empty() {
+            return Err(self.err("contact", None, "a scene needs at least one [[contact]]"));
+        }
+        Ok(contacts)
+    }
+}
+
+/// An item as written, cut to 60 characters, for messages.
+pub(super) fn short(item: &Item) -> String {
+    let s = item.to_string();
+    let s = s.trim();
+    if s.len() > 60 {
+        format!("{}…", &s[..s.floor_char_boundary(60)])
+    } else {
+        s.to_string()
+    }
+}
+
+/// The keys a scene may have at its top level.
+const TOP_KEYS: &[&str] = &[
+    "name",
+    "description",
+    "body",
+    "contact",
+    "solve",
+    "constraints",
+    "surface",
+];
+
+/// Whether a value in symbols is identically zero (`"m - m"`).
+fn symbolic_zero(n: &Number) -> bool {
+    crate::scalar::symbolic::symbolic(&n.text, &n.symbols)
+        .is_ok_and(|x| num_traits::Zero::is_zero(&x))
+}
+
+/// Reads values out of a document, turning every problem into a [`SceneError`].
+pub(super) struct Reader<'a> {
+    /// The file, for messages.
+    file: &'a str,
+    /// Names values may use as symbols.
+    pub(super) symbols: &'a [String],
+}
+
+impl Reader<'_> {
+    /// A [`SceneError`] at `key`.
+    pub(super) fn err(
+        &self,
+        key: &str,
+        value: Option<String>,
+        message: impl Into<String>,
+    ) -> SceneError {
+        SceneError {
+            file: self.file.to_string(),
+            key: key.to_string(),
+            value,
+            message: message.into(),
+        }
+    }
+
+    /// Refuse a key of `t` (at path `at`) that is not `known`.
+    pub(super) fn only_keys(
+        &self,
+        t: &dyn TableLike,
+        at: &str,
+        known: &[&str],
+    ) -> Result<(), SceneError> {
+        for (k, v) in t.iter() {
+            if !known.contains(&k) {
+                let key = if at.is_empty() {
+                    k.to_string()
+                } else {
+                    format!("{at}.{k}")
+                };
+                return Err(self.err(
+                    &key,
+                    Some(short(v)),
+                    format!("unknown key; expected one of: {}", known.join(", ")),
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    /// A required key of a table.
+    pub(super) fn get<'t>(
+        &self,
+        t: &'t dyn toml_edit::TableLike,
+        key: &str,
+        at: &str,
+    ) -> Result<&'t Item, SceneError> {
+        t.get(key)
+            .ok_or_else(|| self.err(&format!("{at}.{key}"), None, "missing (required)"))
+    }
+
+    /// A required sub-table.
+    pub(super) fn table<'t>(
+        &self,
+        t: &'t Table,
+        key: &str,
+        at: &str,
+    ) -> Result<&'t Table, SceneError> {
+        let path = if at.is_empty() {
+            key.to_string()
+        } else {
+            format!("{at}.{key}")
+        };
+        match t.get(key) {
+            None => Err(self.err(
+                &path,
+                None,
+                format!("missing (required): add a [{path}] table"),
+            )),
+            Some(item) => item.as_table().ok_or_else(|| {
+                self.err(
+                    &path,
+                    Some(short(item)),
+                    format!("must be a table: [{path}]"),
+                )
+            }),
+        }
+    }
+
+    /// A string value.
+    pub(super) fn string(&self, item: &Item, key: &str) -> Result<String, SceneError> {
+        item.as_str()
+            .map(str::to_string)
+            .ok_or_else(|| self.err(key, Some(short(item)), "must be a string"))
+    }
+
+    /// A number: a TOML integer or float, or a string with a fraction or an expression.
+    pub(super) fn number_value(&self, v: &Value, key: &str) -> Result<Number, SceneError> {
+        let text: String = match v {
+            Value::Integer(f) => f.display_repr().into_owned(),
+            Value::Float(f) => f.display_repr().into_owned(),
+            Value::String(s) => s.value().clone(),
+            other => {
+                return Err(self.err(
+                    key,
+                    Some(other.to_string().trim().to_string()),
+                    "must be a number (or a string such as \"1/3\")",
+                ));
+            }
+        };
+        let shown = v.to_string().trim().to_string();
+        parse_number_with(&text, self.symbols).map_err(|e| {
+            let mut message = e.to_string();
+            if self.symbols.is_empty() && message.contains("unknown name") {
+                message += "; a symbolic scene is for `inertance derive SCENE --symbols NAME,…`";
+            }
+            self.err(key, Some(shown), message)
+        })
+    }
+
+    /// A number item.
+    pub(super) fn number(&self, item: &Item, key: &str) -> Result<Number, SceneError> {
+        match item.as_value() {
+            Some(v) => self.number_value(v, key),
+            None => Err(self.err(key, Some(short(item)), "must be a number")),
+        }
+    }
+
+    /// An array of three numbers.
+    pub(super) fn triple(&self, item: &Item, key: &str) -> Result<[Number; 3], SceneError> {
+        let arr = item.as_array().filter(|a| a.len() == 3).ok_or_else(|| {
+            self.err(
+                key,
+                Some(short(item)),
+                "must be an array of three numbers [x, y, z]",
+            )
+        })?;
+        let mut out = Vec::with_capacity(3);
+        for (i, v) in arr.iter().enumerate() {
+            out.push(self.number_value(v, &format!("{key}[{i}]"))?);
+        }
+        let [a, b, c]: [Number; 3] = out
+            .try_into()
+            .map_err(|_| self.err(key, None, "must have three numbers"))?;
+        Ok([a, b, c])
+    }
+
+    /// Refuse a value that is not > 0 (`why` says what it is).
+    pub(super) fn positive(&self, n: &Number, key: &str, why: &str) -> Result<(), SceneError> {
+        let ok = match &n.exact {
+            Ok(q) => q.is_positive(),
+            // A symbolic value's sign is the reader's assumption, but not when it is 0.
+            Err(_) if !n.symbols.is_empty() => !symbolic_zero(n),
+            Err(_) => n.approx > 0.0,
+        };
+        if ok {
+            Ok(())
+        } else {
+            Err(self.err(key, Some(n.text.clone()), format!("{why} (> 0)")))
+        }
+    }
+
+    /// Refuse a coefficient of restitution outside [0, 1].
+    pub(super) fn coefficient(&self, n: Number, key: &str) -> Result<Number, SceneError> {
+        let ok = match &n.exact {
+            Ok(q) => !q.is_negative() && *q <= num_traits::One::one(),
+            Err(_) => !n.symbols.is_empty() || (0.0..=1.0).contains(&n.approx),
+        };
+        if ok {
+            Ok(n)
+        } else {
+            Err(self.err(
+                key,
+                Some(n.text.clone()),
+                "a coefficient of restitution must lie in [0, 1]",
+            ))
+        }
+    }
+
+    /// Refuse the zero vector (`what` names it).
+    pub(super) fn nonzero(&self, t: &[Number; 3], key: &str, what: &str) -> Result<(), SceneError> {
+        let zero = t.iter().all(|n| match &n.exact {
+            Ok(q) => num_traits::Zero::is_zero(q),
+            Err(_) if !n.symbols.is_empty() => symbolic_zero(n),
+            Err(_) => n.approx == 0.0,
+        });
+        if zero {
+            let shown = format!("[{}, {}, {}]", t[0].text, t[1].text, t[2].text);
+            Err(self.err(
+                key,
+                Some(shown),
+                format!("{what} must not be the zero vector"),
+            ))
+        } else {
+            Ok(())
+        }
+    }
+}

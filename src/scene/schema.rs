@@ -1,0 +1,403 @@
+//! The tables of a scene, with every number as written: what `[body]`, `[[contact]]`,
+//! `[solve]`, `[constraints]` and `[surface]` hold, and how each is read and checked (ranges,
+//! zero vectors, which keys go together).
+
+use toml_edit::{Item, Table};
+
+use super::SceneError;
+use super::read::{Reader, short};
+use crate::impact::restitution::Model;
+use crate::mechanics::surface::Surface;
+use crate::number::Number;
+
+/// The `[body]` table, before it is spread over the [`super::Scene`]'s fields.
+pub(super) struct BodyTable {
+    /// m.
+    pub(super) mass: Number,
+    /// (J_x, J_y, J_z).
+    pub(super) inertia: [Number; 3],
+    /// v_C⁰.
+    pub(super) velocity: [Number; 3],
+    /// ω⁰.
+    pub(super) angular_velocity: [Number; 3],
+}
+
+/// One contact of a scene, numbers as written.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ContactSpec {
+    /// A_i.
+    pub point: [Number; 3],
+    /// The outward normal; `None` when it comes from the `[surface]` (∇f at the point).
+    pub normal: Option<[Number; 3]>,
+    /// The imposed axis y_i.
+    pub tangent: Option<[Number; 3]>,
+    /// k_i^N.
+    pub k_newton: Number,
+    /// k_i^P.
+    pub k_poisson: Number,
+}
+
+/// The kinds of joint a scene may declare (see [`crate::mechanics::constraint::Joint`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum JointKind {
+    /// `kind = "revolute"`: `point`, `axis`.
+    Revolute,
+    /// `kind = "prismatic"`: `axis`.
+    Prismatic,
+    /// `kind = "cylindrical"`: `point`, `axis`.
+    Cylindrical,
+    /// `kind = "spherical"`: `point`.
+    Spherical,
+    /// `kind = "planar"`: `normal`.
+    Planar,
+}
+
+impl JointKind {
+    const NAMES: [(&'static str, JointKind); 5] = [
+        ("revolute", JointKind::Revolute),
+        ("prismatic", JointKind::Prismatic),
+        ("cylindrical", JointKind::Cylindrical),
+        ("spherical", JointKind::Spherical),
+        ("planar", JointKind::Planar),
+    ];
+
+    /// The vector keys this kind needs, besides `kind`.
+    pub(super) fn keys(self) -> &'static [&'static str] {
+        match self {
+            JointKind::Revolute | JointKind::Cylindrical => &["point", "axis"],
+            JointKind::Prismatic => &["axis"],
+            JointKind::Spherical => &["point"],
+            JointKind::Planar => &["normal"],
+        }
+    }
+}
+
+/// One `[[constraints.joint]]` table.
+#[derive(Clone, Debug, PartialEq)]
+pub struct JointSpec {
+    /// Its kind.
+    pub kind: JointKind,
+    /// Its vectors, in the order of the kind's keys (`point`, `axis` / `normal`).
+    pub vectors: Vec<[Number; 3]>,
+}
+
+/// A `[surface]` effect: the body's surface f(x, y, z) = 0 in body axes (f < 0 inside, so
+/// ∇f points outward).
+#[derive(Clone, Debug)]
+pub struct SurfaceSpec {
+    /// f as written.
+    pub text: String,
+    /// f parsed, with its symbolic gradient.
+    pub surface: Surface,
+}
+
+impl PartialEq for SurfaceSpec {
+    fn eq(&self, other: &Self) -> bool {
+        self.text == other.text
+    }
+}
+
+/// A `[constraints]` effect, as written.
+#[derive(Clone, Debug, PartialEq)]
+pub enum ConstraintsSpec {
+    /// The paper's form: the free screws (columns of D, eq. 78) and optionally the blocked
+    /// ones (columns of U, eq. 75), each [ω; v] or [direction; moment].
+    Screws {
+        /// D.
+        free: Vec<[Number; 6]>,
+        /// U, if given.
+        blocked: Option<Vec<[Number; 6]>>,
+    },
+    /// Joints; D is the union of their free screws, U derived.
+    Joints(Vec<JointSpec>),
+}
+
+impl Reader<'_> {
+    /// The `[body]` table: m and J (positive), v_C⁰ and ω⁰.
+    pub(super) fn body(&self, root: &Table) -> Result<BodyTable, SceneError> {
+        let body = self.table(root, "body", "")?;
+        self.only_keys(
+            body,
+            "body",
+            &["mass", "inertia", "velocity", "angular_velocity"],
+        )?;
+        let mass = self.number(self.get(body, "mass", "body")?, "body.mass")?;
+        self.positive(&mass, "body.mass", "a mass must be positive")?;
+        let inertia = self.triple(self.get(body, "inertia", "body")?, "body.inertia")?;
+        for (i, j) in inertia.iter().enumerate() {
+            self.positive(
+                j,
+                &format!("body.inertia[{i}]"),
+                "central principal moments must be positive",
+            )?;
+        }
+        let velocity = self.triple(self.get(body, "velocity", "body")?, "body.velocity")?;
+        let angular_velocity = self.triple(
+            self.get(body, "angular_velocity", "body")?,
+            "body.angular_velocity",
+        )?;
+        Ok(BodyTable {
+            mass,
+            inertia,
+            velocity,
+            angular_velocity,
+        })
+    }
+
+    /// The `[solve]` table: the models asked for, all of them when it is absent.
+    pub(super) fn solve(&self, root: &Table) -> Result<Vec<Model>, SceneError> {
+        Ok(match root.get("solve") {
+            None => Model::ALL.to_vec(),
+            Some(item) => {
+                let t = item.as_table().ok_or_else(|| {
+                    self.err("solve", Some(short(item)), "must be a table: [solve]")
+                })?;
+                self.only_keys(t, "solve", &["models"])?;
+                match t.get("models") {
+                    None => Model::ALL.to_vec(),
+                    Some(m) => self.models(m, "solve.models")?,
+                }
+            }
+        })
+    }
+
+    /// A `[[contact]]` table: its point, normal, tangent and coefficients.
+    pub(super) fn contact(&self, t: &Table, i: usize) -> Result<ContactSpec, SceneError> {
+        let at = format!("contact[{i}]");
+        self.only_keys(
+            t,
+            &at,
+            &[
+                "point",
+                "normal",
+                "tangent",
+                "k",
+                "k_newton",
+                "k_poisson",
+                "name",
+            ],
+        )?;
+        let point = self.triple(self.get(t, "point", &at)?, &format!("{at}.point"))?;
+        let normal = match t.get("normal") {
+            None => None,
+            Some(item) => {
+                let n = self.triple(item, &format!("{at}.normal"))?;
+                self.nonzero(&n, &format!("{at}.normal"), "a normal")?;
+                Some(n)
+            }
+        };
+        let tangent = match t.get("tangent") {
+            None => None,
+            Some(item) => {
+                let tan = self.triple(item, &format!("{at}.tangent"))?;
+                self.nonzero(&tan, &format!("{at}.tangent"), "a tangent")?;
+                Some(tan)
+            }
+        };
+        let k_of = |key: &str| -> Result<Option<Number>, SceneError> {
+            match t.get(key) {
+                None => Ok(None),
+                Some(item) => {
+                    let path = format!("{at}.{key}");
+                    Ok(Some(self.coefficient(self.number(item, &path)?, &path)?))
+                }
+            }
+        };
+        let (k, kn, kp) = (k_of("k")?, k_of("k_newton")?, k_of("k_poisson")?);
+        let (k_newton, k_poisson) = match (k, kn, kp) {
+            (Some(k), None, None) => (k.clone(), k),
+            (None, Some(n), Some(p)) => (n, p),
+            (Some(_), _, _) => {
+                return Err(self.err(
+                    &format!("{at}.k"),
+                    None,
+                    "give either `k` or both `k_newton` and `k_poisson`, not both forms",
+                ));
+            }
+            (None, n, p) => {
+                let missing = if n.is_none() { "k_newton" } else { "k_poisson" };
+                let _ = p;
+                return Err(self.err(
+                    &format!("{at}.{missing}"),
+                    None,
+                    "missing: give `k` (both models), or both `k_newton` and `k_poisson`",
+                ));
+            }
+        };
+        Ok(ContactSpec {
+            point,
+            normal,
+            tangent,
+            k_newton,
+            k_poisson,
+        })
+    }
+
+    /// The `[surface]` table: f, parsed with its gradient.
+    pub(super) fn surface(&self, item: &Item) -> Result<SurfaceSpec, SceneError> {
+        let t = item
+            .as_table_like()
+            .ok_or_else(|| self.err("surface", Some(short(item)), "must be a table: [surface]"))?;
+        self.only_keys(t, "surface", &["f"])?;
+        let f = self.get(t, "f", "surface")?;
+        let text = f.as_str().ok_or_else(|| {
+            self.err(
+                "surface.f",
+                Some(short(f)),
+                "must be a string, e.g. \"x^2 + y^2/4 + z^2/9 - 1\"",
+            )
+        })?;
+        let surface = Surface::parse_with(text, self.symbols)
+            .map_err(|e| self.err("surface.f", Some(short(f)), e.message))?;
+        Ok(SurfaceSpec {
+            text: text.to_string(),
+            surface,
+        })
+    }
+
+    /// The `[constraints]` table: the paper's screws, or joints.
+    pub(super) fn constraints(&self, item: &Item) -> Result<ConstraintsSpec, SceneError> {
+        let t = item.as_table_like().ok_or_else(|| {
+            self.err(
+                "constraints",
+                Some(short(item)),
+                "must be a table: [constraints]",
+            )
+        })?;
+        self.only_keys(t, "constraints", &["free", "blocked", "joint"])?;
+        let has_screws = t.get("free").is_some() || t.get("blocked").is_some();
+        match (t.get("joint"), has_screws) {
+            (Some(_), true) => Err(self.err(
+                "constraints",
+                None,
+                "give either the paper's form (`free`, optionally `blocked`) or `[[constraints.joint]]` tables, not both",
+            )),
+            (Some(Item::ArrayOfTables(arr)), false) => {
+                let joints = arr.iter().enumerate().map(|(j, t)| self.joint(t, j)).collect::<Result<Vec<_>, _>>()?;
+                Ok(ConstraintsSpec::Joints(joints))
+            }
+            (Some(other), false) => Err(self.err("constraints.joint", Some(short(other)), "must be [[constraints.joint]] tables")),
+            (None, _) => {
+                let free_item = t.get("free").ok_or_else(|| {
+                    self.err("constraints.free", None, "missing: give the free screws [ω; v] (columns of D), or [[constraints.joint]] tables")
+                })?;
+                let free = self.screws(free_item, "constraints.free")?;
+                let blocked = match t.get("blocked") {
+                    None => None,
+                    Some(b) => Some(self.screws(b, "constraints.blocked")?),
+                };
+                Ok(ConstraintsSpec::Screws { free, blocked })
+            }
+        }
+    }
+
+    /// A list of six-number screws, none zero.
+    fn screws(&self, item: &Item, key: &str) -> Result<Vec<[Number; 6]>, SceneError> {
+        let arr = item.as_array().ok_or_else(|| {
+            self.err(
+                key,
+                Some(short(item)),
+                "must be an array of six-number screws [[ωx, ωy, ωz, vx, vy, vz], …]",
+            )
+        })?;
+        let mut out = Vec::with_capacity(arr.len());
+        for (i, v) in arr.iter().enumerate() {
+            let path = format!("{key}[{i}]");
+            let inner = v.as_array().filter(|a| a.len() == 6).ok_or_else(|| {
+                self.err(
+                    &path,
+                    Some(v.to_string().trim().to_string()),
+                    "must be a screw of six numbers [ωx, ωy, ωz, vx, vy, vz]",
+                )
+            })?;
+            let mut nums = Vec::with_capacity(6);
+            for (k, x) in inner.iter().enumerate() {
+                nums.push(self.number_value(x, &format!("{path}[{k}]"))?);
+            }
+            let zero = nums.iter().all(|n| match &n.exact {
+                Ok(q) => num_traits::Zero::is_zero(q),
+                Err(_) => n.approx == 0.0,
+            });
+            if zero {
+                return Err(self.err(
+                    &path,
+                    Some(v.to_string().trim().to_string()),
+                    "a screw must not be zero",
+                ));
+            }
+            let arr6: [Number; 6] = nums
+                .try_into()
+                .map_err(|_| self.err(&path, None, "must have six numbers"))?;
+            out.push(arr6);
+        }
+        if out.is_empty() {
+            return Err(self.err(key, Some("[]".into()), "list at least one screw"));
+        }
+        Ok(out)
+    }
+
+    /// A `[[constraints.joint]]` table: its kind and the vectors the kind needs.
+    fn joint(&self, t: &Table, j: usize) -> Result<JointSpec, SceneError> {
+        let at = format!("constraints.joint[{j}]");
+        let kind_item = self.get(t, "kind", &at)?;
+        let names: Vec<&str> = JointKind::NAMES.iter().map(|(n, _)| *n).collect();
+        let kind = kind_item
+            .as_str()
+            .and_then(|k| {
+                JointKind::NAMES
+                    .iter()
+                    .find(|(n, _)| *n == k)
+                    .map(|(_, kind)| *kind)
+            })
+            .ok_or_else(|| {
+                self.err(
+                    &format!("{at}.kind"),
+                    Some(short(kind_item)),
+                    format!("unknown joint; expected one of: {}", names.join(", ")),
+                )
+            })?;
+        let mut known = vec!["kind"];
+        known.extend_from_slice(kind.keys());
+        self.only_keys(t, &at, &known)?;
+        let mut vectors = Vec::new();
+        for key in kind.keys() {
+            let path = format!("{at}.{key}");
+            let v = self.triple(self.get(t, key, &at)?, &path)?;
+            if *key != "point" {
+                self.nonzero(&v, &path, "a joint direction")?;
+            }
+            vectors.push(v);
+        }
+        Ok(JointSpec { kind, vectors })
+    }
+
+    /// The models listed in `[solve] models`, each once.
+    fn models(&self, item: &Item, key: &str) -> Result<Vec<Model>, SceneError> {
+        let arr = item.as_array().ok_or_else(|| {
+            self.err(
+                key,
+                Some(short(item)),
+                "must be an array such as [\"newton\", \"poisson\"]",
+            )
+        })?;
+        let mut models = Vec::new();
+        for v in arr.iter() {
+            let shown = v.to_string().trim().to_string();
+            let m = v.as_str().and_then(Model::from_name).ok_or_else(|| {
+                self.err(
+                    key,
+                    Some(shown.clone()),
+                    "unknown model; expected \"newton\" or \"poisson\"",
+                )
+            })?;
+            if models.contains(&m) {
+                return Err(self.err(key, Some(shown), "model listed twice"));
+            }
+            models.push(m);
+        }
+        if models.is_empty() {
+            return Err(self.err(key, Some("[]".into()), "list at least one model"));
+        }
+        Ok(models)
+    }
+}

@@ -1,0 +1,343 @@
+//! The plan of a sweep: the options checked, the scene read, every varied path checked at both
+//! ends of its range and the grid's corners solved once, so that a sweep fails before it
+//! starts rather than at point 10 000; then, per point, the varied values, the scene there and
+//! its solve.
+
+use num_rational::BigRational;
+use toml_edit::DocumentMut;
+
+use super::outputs::{Series, resolve_outputs};
+use super::slot::Slot;
+use super::text::{text, toml_text};
+use super::{SweepError, SweepOptions, Vary};
+use crate::impact::restitution::Model;
+use crate::impact::solve::SolveError;
+use crate::report::Report;
+use crate::scalar::Exact;
+use crate::scene::pipeline::{RunError, run};
+use crate::scene::{Scene, SceneError, parse_document, set_value};
+
+/// A validated sweep.
+pub(super) struct Plan {
+    /// The scene file, for messages.
+    pub(super) file: String,
+    /// The scene's name, for the plot's caption.
+    pub(super) name: String,
+    /// The scene document as read, re-read at each point when a varied path has no [`Slot`].
+    doc: DocumentMut,
+    /// The scene as read, and where each varied number lives in it when every varied path
+    /// can be set directly (see [`Slot`]); otherwise each point re-reads the document.
+    base: Scene,
+    slots: Option<Vec<Slot>>,
+    /// The varied inputs, outer first.
+    pub(super) vary: Vec<Vary>,
+    /// Whether points are solved in exact rationals.
+    pub(super) exact: bool,
+    /// The restitution models solved, in the scene's order.
+    pub(super) models: Vec<Model>,
+    /// N, the number of contacts.
+    pub(super) contacts: usize,
+    /// The points of the whole grid (every shard).
+    pub(super) points: usize,
+    /// The plotted series (none without `--plot`).
+    pub(super) series: Vec<Series>,
+}
+
+impl Plan {
+    /// Check the options, read the scene and check every varied path against it.
+    pub(super) fn new(opts: &SweepOptions) -> Result<Plan, SweepError> {
+        check_varied(&opts.vary)?;
+        check_shard_and_files(opts)?;
+        let points = grid_points(&opts.vary)?;
+        let (file, doc, base) = read_scene(opts)?;
+        check_paths(&opts.vary, &doc, &base, &file)?;
+        let models = base.models.clone();
+        let contacts = base.contacts.len();
+        let series = if opts.plot.is_some() {
+            resolve_outputs(&opts.plot_outputs, &models, contacts)?
+        } else {
+            Vec::new()
+        };
+        let slots = opts
+            .vary
+            .iter()
+            .map(|v| Slot::find(&v.path, &base))
+            .collect::<Option<Vec<_>>>();
+        let plan = Plan {
+            file,
+            name: base.name.clone(),
+            doc,
+            base,
+            slots,
+            vary: opts.vary.clone(),
+            exact: opts.exact,
+            models,
+            contacts,
+            points,
+            series,
+        };
+        plan.solve_corners()?;
+        Ok(plan)
+    }
+
+    /// Solve the grid's corners once: irrational numbers in exact mode, constraints and
+    /// tangents are caught before the sweep starts.
+    fn solve_corners(&self) -> Result<(), SweepError> {
+        let last: Vec<usize> = self.vary.iter().map(|v| v.count - 1).collect();
+        let inner = self.vary.get(1).map_or(1, |v| v.count);
+        let corners: Vec<usize> = match last[..] {
+            [a] => vec![0, a],
+            [a, b] => vec![0, b, a * inner, a * inner + b],
+            _ => vec![],
+        };
+        for p in corners {
+            self.solve(p)?;
+        }
+        Ok(())
+    }
+
+    /// The grid indices of point p: (i, j), j = 0 for a 1-D sweep.
+    pub(super) fn indices(&self, p: usize) -> (usize, usize) {
+        match self.vary.get(1) {
+            Some(v) => (p / v.count, p % v.count),
+            None => (p, 0),
+        }
+    }
+
+    /// The varied values at point p.
+    fn values(&self, p: usize) -> Vec<BigRational> {
+        let (i, j) = self.indices(p);
+        let mut out = vec![self.vary[0].value(i)];
+        if let Some(v) = self.vary.get(1) {
+            out.push(v.value(j));
+        }
+        out
+    }
+
+    /// The error at point p, naming the varied values there.
+    fn point_error(&self, p: usize, values: &[BigRational], message: String) -> SweepError {
+        let at = self
+            .vary
+            .iter()
+            .zip(values)
+            .map(|(v, q)| format!("{} = {}", v.path, text(q)))
+            .collect::<Vec<_>>()
+            .join(", ");
+        SweepError::Point {
+            point: p,
+            at,
+            message,
+        }
+    }
+
+    /// The scene at the varied values.
+    fn scene_at(&self, values: &[BigRational]) -> Result<Scene, String> {
+        if let Some(slots) = &self.slots {
+            let mut scene = self.base.clone();
+            for (slot, q) in slots.iter().zip(values) {
+                slot.set(&mut scene, q);
+            }
+            return Ok(scene);
+        }
+        let mut doc = self.doc.clone();
+        for (v, q) in self.vary.iter().zip(values) {
+            set_value(&mut doc, &v.path, &toml_text(q))?;
+        }
+        Scene::from_document(&doc, &self.file).map_err(|e| e.to_string())
+    }
+
+    /// Solve point p: its report, or `None` when G is singular.
+    pub(super) fn solve(&self, p: usize) -> Result<(Vec<BigRational>, Option<Report>), SweepError> {
+        let values = self.values(p);
+        let scene = self
+            .scene_at(&values)
+            .map_err(|e| self.point_error(p, &values, e))?;
+        let solved = if self.exact {
+            run::<Exact>(&scene, None)
+        } else {
+            run::<f64>(&scene, None)
+        };
+        match solved {
+            Ok(s) => Ok((values, Some(s.report))),
+            Err(RunError::Solve(SolveError::Singular { .. })) => Ok((values, None)),
+            Err(e) => Err(self.point_error(p, &values, e.to_string())),
+        }
+    }
+}
+
+/// The varied inputs as written back, for messages: `PATH=START:STOP:COUNT`.
+fn specs(vary: &[Vary]) -> Vec<String> {
+    vary.iter()
+        .map(|v| {
+            format!(
+                "{}={}:{}:{}",
+                v.path,
+                text(&v.start),
+                text(&v.stop),
+                v.count
+            )
+        })
+        .collect()
+}
+
+/// One or two varied inputs, of at least 2 points each, naming different numbers.
+fn check_varied(vary: &[Vary]) -> Result<(), SweepError> {
+    match vary.len() {
+        0 => {
+            return Err(SweepError::Options(
+                "nothing to sweep: give one or two --vary PATH=START:STOP:COUNT, e.g. --vary 'contact[1].k=0:1:101'".into(),
+            ));
+        }
+        1 | 2 => {}
+        n => {
+            return Err(SweepError::Vary {
+                spec: specs(vary).join(" "),
+                reason: format!(
+                    "{n} inputs varied; a sweep varies one or two (a line or a grid): run one sweep per pair"
+                ),
+            });
+        }
+    }
+    for (k, v) in vary.iter().enumerate() {
+        if v.count < 2 {
+            return Err(SweepError::Vary {
+                spec: specs(vary)[k].clone(),
+                reason: format!("COUNT is {}: a sweep needs at least 2 points", v.count),
+            });
+        }
+    }
+    if let [a, b] = vary
+        && overlap(&a.path, &b.path)
+    {
+        return Err(SweepError::Vary {
+            spec: specs(vary)[1].clone(),
+            reason: format!(
+                "`{}` is already varied by the first --vary; the two --vary must name different numbers",
+                a.path
+            ),
+        });
+    }
+    Ok(())
+}
+
+/// A valid shard, and a plot that does not overwrite the CSV.
+fn check_shard_and_files(opts: &SweepOptions) -> Result<(), SweepError> {
+    if let Some(s) = &opts.shard {
+        s.check().map_err(|reason| SweepError::Shard {
+            spec: format!("{}/{}", s.index, s.count),
+            reason,
+        })?;
+    }
+    if let Some(plot) = &opts.plot
+        && plot == &opts.out
+    {
+        return Err(SweepError::Options(format!(
+            "--out and --plot are the same file ({}); give the plot its own name, e.g. results.svg",
+            plot.display()
+        )));
+    }
+    Ok(())
+}
+
+/// The points of the whole grid, Π COUNT, if it can be counted.
+fn grid_points(vary: &[Vary]) -> Result<usize, SweepError> {
+    vary.iter()
+        .try_fold(1usize, |acc, v| acc.checked_mul(v.count))
+        .ok_or_else(|| SweepError::Vary {
+            spec: specs(vary).join(" "),
+            reason: "the grid has more points than this machine can count; use fewer".into(),
+        })
+}
+
+/// The scene file's name, its document, and the scene it validates to.
+fn read_scene(opts: &SweepOptions) -> Result<(String, DocumentMut, Scene), SweepError> {
+    let file = opts.scene.display().to_string();
+    let source = std::fs::read_to_string(&opts.scene).map_err(|e| SceneError {
+        file: file.clone(),
+        key: String::new(),
+        value: None,
+        message: format!("cannot read the file: {e}"),
+    })?;
+    let doc = parse_document(&source, &file)?;
+    let base = Scene::from_document(&doc, &file)?;
+    Ok((file, doc, base))
+}
+
+/// Each path must name a number, and the scene must be valid at both ends.
+fn check_paths(
+    vary: &[Vary],
+    doc: &DocumentMut,
+    base: &Scene,
+    file: &str,
+) -> Result<(), SweepError> {
+    let keys: Vec<String> = base.numbers().map(|(k, _)| k).collect();
+    for (v, spec) in vary.iter().zip(specs(vary)) {
+        let known = keys.iter().any(|k| {
+            *k == v.path
+                || v.path
+                    .strip_suffix(".k")
+                    .is_some_and(|c| *k == format!("{c}.k_newton"))
+        });
+        if !known {
+            return Err(SweepError::Vary {
+                spec,
+                reason: format!(
+                    "`{}` is not a number of the scene; vary one of its numbers: {}",
+                    v.path,
+                    listing(&keys)
+                ),
+            });
+        }
+        for (which, q) in [("START", &v.start), ("STOP", &v.stop)] {
+            let mut d = doc.clone();
+            set_value(&mut d, &v.path, &toml_text(q)).map_err(|e| SweepError::Vary {
+                spec: spec.clone(),
+                reason: e,
+            })?;
+            Scene::from_document(&d, file).map_err(|e| SweepError::Vary {
+                spec: spec.clone(),
+                reason: format!("the scene is invalid at {which} = {}: {e}", text(q)),
+            })?;
+        }
+    }
+    Ok(())
+}
+
+/// Whether two varied paths address the same number (`k` covers `k_newton`, `k_poisson`).
+fn overlap(a: &str, b: &str) -> bool {
+    let covers = |x: &str, y: &str| {
+        x.strip_suffix(".k")
+            .is_some_and(|c| y == format!("{c}.k_newton") || y == format!("{c}.k_poisson"))
+    };
+    a == b || covers(a, b) || covers(b, a)
+}
+
+/// A short list of the scene's numbers, for messages.
+fn listing(keys: &[String]) -> String {
+    const SHOWN: usize = 14;
+    let mut s = keys
+        .iter()
+        .take(SHOWN)
+        .cloned()
+        .collect::<Vec<_>>()
+        .join(", ");
+    if keys.len() > SHOWN {
+        s.push_str(&format!(", … ({} in all)", keys.len()));
+    }
+    s.push_str(" (`contact[i].k` sets both models' coefficients)");
+    s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn overlapping_paths() {
+        assert!(overlap("contact[1].k", "contact[1].k"));
+        assert!(overlap("contact[1].k", "contact[1].k_poisson"));
+        assert!(overlap("contact[0].k_newton", "contact[0].k"));
+        assert!(!overlap("contact[0].k", "contact[1].k"));
+        assert!(!overlap("contact[0].k_newton", "contact[0].k_poisson"));
+    }
+}

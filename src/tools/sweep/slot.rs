@@ -1,0 +1,149 @@
+//! Varied numbers set straight into a validated scene: most sweeps vary a mass, a moment, a
+//! velocity, a point or a coefficient, and re-reading the document at every point would cost
+//! more than the solve.
+
+use num_rational::BigRational;
+
+use super::text::text;
+use crate::number::{Number, rational_to_f64};
+use crate::scene::Scene;
+
+/// A varied number that can be set in a validated [`Scene`] directly, without re-reading the
+/// document: the numbers whose validity is convex (a value between two valid ones is valid:
+/// m, J > 0, k ∈ [0, 1], no condition on velocities or points), so checking START and STOP
+/// covers the whole range. Normals, tangents and constraints (which must not be zero vectors)
+/// go through [`set_value`] and [`Scene::from_document`] at every point.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(super) enum Slot {
+    Mass,
+    Inertia(usize),
+    Velocity(usize),
+    AngularVelocity(usize),
+    Point(usize, usize),
+    K(usize),
+    KNewton(usize),
+    KPoisson(usize),
+}
+
+impl Slot {
+    /// The slot of `path` in `scene`, if it is one of the directly settable numbers.
+    pub(super) fn find(path: &str, scene: &Scene) -> Option<Slot> {
+        let index = |s: &str, limit: usize| -> Option<usize> {
+            let i: usize = s.strip_prefix('[')?.strip_suffix(']')?.parse().ok()?;
+            (i < limit).then_some(i)
+        };
+        if let Some(rest) = path.strip_prefix("body.") {
+            if rest == "mass" {
+                return Some(Slot::Mass);
+            }
+            let (key, idx) = rest.split_at(rest.find('[')?);
+            let i = index(idx, 3)?;
+            return match key {
+                "inertia" => Some(Slot::Inertia(i)),
+                "velocity" => Some(Slot::Velocity(i)),
+                "angular_velocity" => Some(Slot::AngularVelocity(i)),
+                _ => None,
+            };
+        }
+        let rest = path.strip_prefix("contact")?;
+        let (idx, key) = rest.split_once('.')?;
+        let c = index(idx, scene.contacts.len())?;
+        match key {
+            "k" => Some(Slot::K(c)),
+            "k_newton" => Some(Slot::KNewton(c)),
+            "k_poisson" => Some(Slot::KPoisson(c)),
+            _ => {
+                let i = index(key.strip_prefix("point")?, 3)?;
+                Some(Slot::Point(c, i))
+            }
+        }
+    }
+
+    /// Set the number to q, as [`set_value`] and [`Scene::from_document`] would.
+    pub(super) fn set(self, scene: &mut Scene, q: &BigRational) {
+        let n = Number {
+            text: text(q),
+            exact: Ok(q.clone()),
+            approx: rational_to_f64(q),
+            symbols: Vec::new(),
+        };
+        match self {
+            Slot::Mass => scene.mass = n,
+            Slot::Inertia(i) => scene.inertia[i] = n,
+            Slot::Velocity(i) => scene.velocity[i] = n,
+            Slot::AngularVelocity(i) => scene.angular_velocity[i] = n,
+            Slot::Point(c, i) => scene.contacts[c].point[i] = n,
+            Slot::K(c) => {
+                scene.contacts[c].k_newton = n.clone();
+                scene.contacts[c].k_poisson = n;
+            }
+            Slot::KNewton(c) => scene.contacts[c].k_newton = n,
+            Slot::KPoisson(c) => scene.contacts[c].k_poisson = n,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::text::toml_text;
+    use super::*;
+    use crate::scene::{parse_document, set_value};
+    use crate::tools::sweep::q;
+
+    const SCENE: &str = r#"
+        [body]
+        mass = 1
+        inertia = [12, 1.6, 12]
+        velocity = [3, 2, 0]
+        angular_velocity = [0, 0, 0.4]
+        [[contact]]
+        point = [0, -2, 0]
+        normal = [1, 0, 0]
+        k = 0.3
+        [[contact]]
+        point = [0, 4, 0]
+        normal = [1, 0, 0]
+        k_newton = 0.2
+        k_poisson = "1/7"
+    "#;
+
+    #[test]
+    fn direct_slots_agree_with_rereading_the_document() {
+        let doc = parse_document(SCENE, "s.toml").unwrap();
+        let base = Scene::from_document(&doc, "s.toml").unwrap();
+        let paths = [
+            "body.mass",
+            "body.inertia[2]",
+            "body.velocity[0]",
+            "body.angular_velocity[1]",
+            "contact[0].point[1]",
+            "contact[1].point[2]",
+            "contact[0].k",
+            "contact[1].k",
+            "contact[0].k_newton",
+            "contact[1].k_poisson",
+        ];
+        for path in paths {
+            let slot = Slot::find(path, &base).unwrap_or_else(|| panic!("{path}"));
+            for x in [q(1, 3), q(1, 100), q(1, 1), q(5, 8), q(3, 7)] {
+                let mut d = doc.clone();
+                set_value(&mut d, path, &toml_text(&x)).unwrap();
+                let reread = Scene::from_document(&d, "s.toml").unwrap();
+                let mut direct = base.clone();
+                slot.set(&mut direct, &x);
+                assert_eq!(direct, reread, "{path} = {x}");
+            }
+        }
+        for path in [
+            "contact[0].normal[0]",
+            "contact[2].k",
+            "contact[0].tangent[0]",
+            "body.inertia[3]",
+            "body.inertia",
+            "contact[0].point",
+            "name",
+        ] {
+            assert_eq!(Slot::find(path, &base), None, "{path}");
+        }
+    }
+}
