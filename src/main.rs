@@ -13,6 +13,7 @@ use inertance::tools::analyze::analyze_scene;
 use inertance::tools::check;
 use inertance::scene::pipeline::{RunError, run};
 use inertance::impact::restitution::Model;
+use inertance::impact::unilateral::Law;
 use inertance::scalar::Exact;
 use inertance::scene::Scene;
 use inertance::impact::solve::SolveError;
@@ -42,6 +43,10 @@ enum Command {
         /// Which restitution model(s); default: the scene's `[solve] models`.
         #[arg(long, value_enum)]
         model: Option<ModelArg>,
+        /// The impact law: the paper's `simultaneous` one, or `unilateral` (complementarity:
+        /// contacts that would pull separate instead); default: the scene's `[solve] law`.
+        #[arg(long, value_enum)]
+        law: Option<LawArg>,
         /// Print the JSON report instead of the table.
         #[arg(long)]
         json: bool,
@@ -105,6 +110,9 @@ enum Command {
         /// Worker threads (default: all cores).
         #[arg(long)]
         threads: Option<usize>,
+        /// The impact law; default: the scene's `[solve] law`.
+        #[arg(long, value_enum)]
+        law: Option<LawArg>,
     },
     /// Show what accuracy costs in time: every scalar type on a corpus, against exact.
     Bench {
@@ -142,6 +150,22 @@ enum ModelArg {
     Both,
 }
 
+/// `--law`.
+#[derive(Clone, Copy, ValueEnum)]
+enum LawArg {
+    Simultaneous,
+    Unilateral,
+}
+
+impl LawArg {
+    fn law(self) -> Law {
+        match self {
+            LawArg::Simultaneous => Law::Simultaneous,
+            LawArg::Unilateral => Law::Unilateral,
+        }
+    }
+}
+
 impl ModelArg {
     fn models(self) -> Vec<Model> {
         match self {
@@ -170,13 +194,15 @@ fn main() -> ExitCode {
             outputs,
             shard,
             threads,
-        } => run_sweep(scene, vary, exact, out, plot, outputs, shard, threads),
+            law,
+        } => run_sweep(scene, vary, exact, out, plot, outputs, shard, threads, law),
         Command::Solve {
             scene,
             exact,
             model,
+            law,
             json,
-        } => solve(scene, exact, model, json),
+        } => solve(scene, exact, model, law, json),
         Command::Analyze {
             scene,
             exact,
@@ -209,11 +235,20 @@ fn load(path: &std::path::Path) -> Result<Scene, ExitCode> {
     })
 }
 
-fn solve(path: PathBuf, exact: bool, model: Option<ModelArg>, json: bool) -> ExitCode {
-    let scene = match load(&path) {
+fn solve(
+    path: PathBuf,
+    exact: bool,
+    model: Option<ModelArg>,
+    law: Option<LawArg>,
+    json: bool,
+) -> ExitCode {
+    let mut scene = match load(&path) {
         Ok(s) => s,
         Err(code) => return code,
     };
+    if let Some(law) = law {
+        scene.law = law.law();
+    }
     let models = model.map(ModelArg::models);
     let solved = if exact && !scene.is_rational() {
         // Radicals ("2/sqrt(5)", "cos(30 deg)") run exactly in the symbolic field.
@@ -224,8 +259,37 @@ fn solve(path: PathBuf, exact: bool, model: Option<ModelArg>, json: bool) -> Exi
         run::<f64>(&scene, models.as_deref())
     };
     match solved {
-        Ok(s) => emit(json, || s.report.to_json(), || s.report.to_table()),
+        Ok(s) => {
+            warn(&path, &s.report);
+            emit(json, || s.report.to_json(), || s.report.to_table())
+        }
         Err(e) => fail(&path, e),
+    }
+}
+
+/// Never a silent inadmissible number: say on stderr why a simultaneous answer is not
+/// physical, and when every contact separates, that the normals may point the wrong way.
+fn warn(path: &std::path::Path, report: &inertance::report::Report) {
+    for m in &report.models {
+        for v in &m.inadmissible {
+            eprintln!("warning: {}: {}: {v}", path.display(), m.model);
+        }
+        if !m.inadmissible.is_empty() {
+            eprintln!(
+                "  the simultaneous-collision hypothesis fails for this scene: `--law unilateral` \
+                 (or `[solve] law = \"unilateral\"`) gives the physical answer, in which such \
+                 contacts separate"
+            );
+        }
+    }
+    let before = &report.contacts_before;
+    if !before.is_empty() && before.iter().all(|v| v.components[0].f64 < 0.0) {
+        eprintln!(
+            "note: {}: every contact is separating before impact (v_ix⁰ < 0): nothing collides. \
+             `normal` is the body's outward normal at the contact (the impulse acts along \
+             −normal); if the obstacle's normal was given, reverse it.",
+            path.display()
+        );
     }
 }
 
@@ -321,6 +385,14 @@ fn fail(path: &std::path::Path, error: RunError) -> ExitCode {
             eprintln!("error: {}: {e}", path.display());
             ExitCode::from(3)
         }
+        RunError::Unilateral(e) => {
+            eprintln!(
+                "error: {}: {e}.\n  No impulses P ≥ 0 satisfy the law: the contacts hold the body \
+                 so that it cannot leave them as the law demands (a verdict, not a number).",
+                path.display()
+            );
+            ExitCode::from(3)
+        }
     }
 }
 
@@ -334,6 +406,7 @@ fn run_sweep(
     outputs: Vec<String>,
     shard: Option<String>,
     threads: Option<usize>,
+    law: Option<LawArg>,
 ) -> ExitCode {
     use inertance::tools::sweep::{Shard, SweepOptions, Vary, sweep};
     let parsed = vary
@@ -358,6 +431,7 @@ fn run_sweep(
         shard,
         threads,
         progress: true,
+        law: law.map(LawArg::law),
     };
     match sweep(&opts) {
         Ok(s) => {

@@ -6,8 +6,11 @@
 //! assembled collision — frames, inertances G, its factorization and Δ — and one law solved on
 //! it, in the hatted form the solver works in · [`solution`]: the outcome in the paper's units,
 //! and the one-call [`solution::solve`] · [`unilateral`]: the laws in inequality form, as
-//! complementarity problems, for when the simultaneous hypothesis fails.
+//! complementarity problems, for when the simultaneous hypothesis fails · [`admissibility`]:
+//! whether a simultaneous answer is physical (tensile, separating, still approaching, energy
+//! gain).
 
+pub mod admissibility;
 pub mod problem;
 pub mod restitution;
 pub mod solution;

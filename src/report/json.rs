@@ -92,6 +92,19 @@ impl Report {
         if self.constraints.is_some() {
             o.insert("constraint_impulses".into(), vec(&r.constraint_impulses));
         }
+        o.insert("law".into(), r.law.name().into());
+        o.insert("admissible".into(), r.inadmissible.is_empty().into());
+        o.insert(
+            "inadmissible".into(),
+            r.inadmissible
+                .iter()
+                .map(|v| json!({ "reason": v.name(), "contact": v.contact(), "message": v.to_string() }))
+                .collect(),
+        );
+        if let Some(a) = &r.activity {
+            o.insert("active".into(), a.active.clone().into());
+            o.insert("impulses_unique".into(), (!a.singular).into());
+        }
         Json::Object(o)
     }
 }

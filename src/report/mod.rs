@@ -20,7 +20,9 @@ use serde_json::Value as Json;
 
 use crate::mechanics::constraint::Constrained;
 use crate::mechanics::contact::{ContactFrame, Surd, TangentRule};
+use crate::impact::admissibility::Inadmissible;
 use crate::impact::restitution::Model;
+use crate::impact::unilateral::{Activity, Law};
 use crate::scalar::Scalar;
 use crate::impact::solve::{Impact, Outcome};
 
@@ -148,6 +150,13 @@ pub struct ModelReport {
     pub kinetic_energy_loss: Value,
     /// {q}, the constraint impulses (empty for a free body).
     pub constraint_impulses: Vec<Value>,
+    /// The impact law the outcome obeys.
+    pub law: Law,
+    /// Why a simultaneous outcome is not physical; empty when it is admissible.
+    pub inadmissible: Vec<Inadmissible>,
+    /// The unilateral law's activity: which contacts take an impulse, and whether G is
+    /// singular (velocities unique, impulses possibly a set).
+    pub activity: Option<Activity>,
 }
 
 /// The constraints of a constrained body, as used.
@@ -305,6 +314,9 @@ impl ModelReport {
             lost_velocity_energy: Value::of(&o.lost_velocity_energy),
             kinetic_energy_loss: Value::of(&o.kinetic_energy_loss),
             constraint_impulses: o.constraint_impulses.iter().map(Value::of).collect(),
+            law: Law::Simultaneous,
+            inadmissible: Vec::new(),
+            activity: None,
         }
     }
 }

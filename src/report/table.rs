@@ -1,6 +1,7 @@
 //! The text table: what was assembled (G, Δ, the surface, the constraints), the contact
 //! velocities before impact, then the models side by side after impact, in SI units.
 
+use crate::impact::restitution::Model;
 use super::{ModelReport, Report, Value, fmt_f64};
 
 /// A row of the after-impact table: its label, and one cell per model.
@@ -36,6 +37,20 @@ impl Report {
             .map(|m| m.model.name().to_string())
             .collect();
         out += &aligned(&header, &self.after_rows());
+        for m in &self.models {
+            if m.activity.as_ref().is_some_and(|a| a.singular) {
+                out += &format!(
+                    "{}: G is singular — the velocities after impact are unique, the impulses shown \
+                     are one of a set{}\n",
+                    m.model,
+                    if m.model == Model::Poisson {
+                        " (and the outcome may depend on the compression impulses taken)"
+                    } else {
+                        ""
+                    }
+                );
+            }
+        }
         out
     }
 
@@ -112,6 +127,19 @@ impl Report {
         };
         for i in 0..n {
             rows.push((format!("P{} [N s]", i + 1), each(&|m| m.impulses[i].text())));
+        }
+        if self.models.iter().any(|m| m.activity.is_some()) {
+            // The unilateral law: which contacts take an impulse and which separate.
+            for i in 0..n {
+                rows.push((
+                    format!("contact {}", i + 1),
+                    each(&|m| match &m.activity {
+                        Some(a) if a.active[i] => "active".into(),
+                        Some(_) => "separates".into(),
+                        None => "—".into(),
+                    }),
+                ));
+            }
         }
         for i in 0..n {
             if self.models.iter().any(|m| m.compression_impulses.is_some()) {

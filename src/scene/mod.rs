@@ -57,6 +57,7 @@ use crate::mechanics::constraint::Joint;
 use crate::mechanics::contact::Contact;
 use crate::number::Number;
 use crate::impact::restitution::Model;
+use crate::impact::unilateral::Law;
 use crate::scalar::Scalar;
 use crate::mechanics::screw::{Screw, Vec3, norm2};
 use crate::impact::problem::{InvalidProblem, Problem, Reason};
@@ -109,6 +110,8 @@ pub struct Scene {
     pub contacts: Vec<ContactSpec>,
     /// The restitution models asked for, in the order given.
     pub models: Vec<Model>,
+    /// The impact law (`[solve] law`): the paper's simultaneous one unless `"unilateral"`.
+    pub law: Law,
     /// The `[constraints]` effect, if declared.
     pub constraints: Option<ConstraintsSpec>,
     /// The `[surface]` effect, if declared.
@@ -167,6 +170,9 @@ impl Scene {
         }
         if self.surface.is_some() {
             e.push("surface".into());
+        }
+        if self.law == Law::Unilateral {
+            e.push(self.law.name().into());
         }
         e.extend(models.iter().map(|m| m.name().to_string()));
         e

@@ -10,7 +10,9 @@ use crate::report::Report;
 use crate::impact::restitution::Model;
 use crate::scalar::Scalar;
 use crate::scene::{Scene, SceneError};
+use crate::impact::admissibility::{Inadmissible, verdicts};
 use crate::impact::problem::{Problem, Reason};
+use crate::impact::unilateral::{Activity, Law, UnilateralError};
 use crate::impact::solve::{Impact, Outcome, SolveError};
 
 /// Why a scene could not be solved.
@@ -22,6 +24,9 @@ pub enum RunError {
     /// The collision has no unique solution, or a frame could not be built.
     #[error("{0}")]
     Solve(#[from] SolveError),
+    /// The unilateral law found no admissible impulses (a jammed body).
+    #[error("{0}")]
+    Unilateral(#[from] UnilateralError),
 }
 
 /// A solved scene: its report, and whether the energy identity ΔE_c = −E_p + Σ P_i v_ix⁰
@@ -55,16 +60,36 @@ pub fn run_with<T: Scalar>(
         models
     };
     let mut outcomes = Vec::with_capacity(models.len());
-    let mut identity = Vec::with_capacity(models.len());
+    let mut solves = Vec::with_capacity(models.len());
     for &m in models {
-        let (out, holds) = a.solve(m)?;
-        identity.push(holds);
-        outcomes.push((m, out));
+        let s = a.solve_law(m, scene.law)?;
+        outcomes.push((m, s.outcome.clone()));
+        solves.push(s);
+    }
+    let mut report = a.report(scene, &outcomes);
+    for (r, s) in report.models.iter_mut().zip(&solves) {
+        r.law = scene.law;
+        r.inadmissible.clone_from(&s.inadmissible);
+        r.activity.clone_from(&s.activity);
     }
     Ok(Solved {
-        report: a.report(scene, &outcomes),
-        energy_identity: identity,
+        report,
+        energy_identity: solves.iter().map(|s| s.energy_identity).collect(),
     })
+}
+
+/// One model solved under a law, with what the report says about it.
+#[derive(Clone, Debug)]
+pub struct ModelSolve<T: Scalar> {
+    /// The outcome (hatted).
+    pub outcome: Outcome<T>,
+    /// Whether ΔE_c = −E_p + Σ P_i v_ix⁰ (eq. 34) held.
+    pub energy_identity: bool,
+    /// Why a simultaneous outcome is not physical (empty: admissible; always empty for the
+    /// unilateral law, whose outcomes are admissible by construction).
+    pub inadmissible: Vec<Inadmissible>,
+    /// The unilateral law's activity.
+    pub activity: Option<Activity>,
 }
 
 /// A scene assembled in `T`: the model-independent part of its collision (frames, G, its
@@ -98,14 +123,42 @@ impl<T: Scalar> Assembled<T> {
     /// constrained body) and whether the energy identity ΔE_c = −E_p + Σ P̂_i v̂_ix⁰ (eq. 34)
     /// holds — exactly in exact types, to `16·N·ε·scale` in floats.
     pub fn solve(&mut self, model: Model) -> Result<(Outcome<T>, bool), SolveError> {
-        let impact = &mut self.impact;
         let mut out = Outcome::default();
-        impact.solve(model, &mut out)?;
-        let work = impact.impulse_work(&out);
+        self.impact.solve(model, &mut out)?;
+        let holds = self.energy_identity(&out);
+        Ok((out, holds))
+    }
+
+    /// Solve one restitution model under `law`: with the admissibility verdicts of a
+    /// simultaneous outcome, or the activity of a unilateral one.
+    pub fn solve_law(&mut self, model: Model, law: Law) -> Result<ModelSolve<T>, RunError> {
+        let mut outcome = Outcome::default();
+        let (inadmissible, activity) = match law {
+            Law::Simultaneous => {
+                self.impact.solve(model, &mut outcome)?;
+                (verdicts(&self.impact, model, &outcome), None)
+            }
+            Law::Unilateral => {
+                let a = self.impact.solve_unilateral(model, &mut outcome)?;
+                (Vec::new(), Some(a))
+            }
+        };
+        Ok(ModelSolve {
+            energy_identity: self.energy_identity(&outcome),
+            outcome,
+            inadmissible,
+            activity,
+        })
+    }
+
+    /// ΔE_c + E_p − Σ P̂_i v̂_ix⁰ = 0 (eq. 34): exactly in exact types, to 16·N·ε·(T⁰ + E_p)
+    /// in floats.
+    fn energy_identity(&self, out: &Outcome<T>) -> bool {
+        let impact = &self.impact;
+        let work = impact.impulse_work(out);
         let residual = out.kinetic_energy_loss.clone() + &out.lost_velocity_energy - &work;
         let scale = impact.kinetic_before().clone() + &out.lost_velocity_energy;
-        let holds = residual.is_negligible(&scale, 16 * impact.contacts().max(1));
-        Ok((out, holds))
+        residual.is_negligible(&scale, 16 * impact.contacts().max(1))
     }
 
     /// The report of the outcomes solved.

@@ -32,7 +32,7 @@ pub(super) fn scene(
     let name = r.name(root)?;
     let body = r.body(root)?;
     let contacts = r.contacts(root)?;
-    let models = r.solve(root)?;
+    let (models, law) = r.solve(root)?;
     let constraints = match root.get("constraints") {
         None => None,
         Some(item) => Some(r.constraints(item)?),
@@ -50,6 +50,7 @@ pub(super) fn scene(
         angular_velocity: body.angular_velocity,
         contacts,
         models,
+        law,
         constraints,
         surface,
     })

@@ -7,6 +7,7 @@ use toml_edit::{Item, Table};
 use super::SceneError;
 use super::read::{Reader, short};
 use crate::impact::restitution::Model;
+use crate::impact::unilateral::Law;
 use crate::mechanics::surface::Surface;
 use crate::number::Number;
 
@@ -144,19 +145,31 @@ impl Reader<'_> {
         })
     }
 
-    /// The `[solve]` table: the models asked for, all of them when it is absent.
-    pub(super) fn solve(&self, root: &Table) -> Result<Vec<Model>, SceneError> {
+    /// The `[solve]` table: the models asked for (all of them when absent) and the impact law
+    /// (the paper's simultaneous one when absent).
+    pub(super) fn solve(&self, root: &Table) -> Result<(Vec<Model>, Law), SceneError> {
         Ok(match root.get("solve") {
-            None => Model::ALL.to_vec(),
+            None => (Model::ALL.to_vec(), Law::default()),
             Some(item) => {
                 let t = item.as_table().ok_or_else(|| {
                     self.err("solve", Some(short(item)), "must be a table: [solve]")
                 })?;
-                self.only_keys(t, "solve", &["models"])?;
-                match t.get("models") {
+                self.only_keys(t, "solve", &["models", "law"])?;
+                let models = match t.get("models") {
                     None => Model::ALL.to_vec(),
                     Some(m) => self.models(m, "solve.models")?,
-                }
+                };
+                let law = match t.get("law") {
+                    None => Law::default(),
+                    Some(l) => l.as_str().and_then(Law::from_name).ok_or_else(|| {
+                        self.err(
+                            "solve.law",
+                            Some(short(l)),
+                            "unknown law; expected \"simultaneous\" (the paper's) or \"unilateral\"",
+                        )
+                    })?,
+                };
+                (models, law)
             }
         })
     }

@@ -128,6 +128,8 @@ pub struct SweepOptions {
     pub threads: Option<usize>,
     /// Draw a progress bar on stderr for long sweeps (only on a terminal).
     pub progress: bool,
+    /// The impact law; `None`: the scene's `[solve] law`.
+    pub law: Option<crate::impact::unilateral::Law>,
 }
 
 /// What a sweep did.

@@ -180,7 +180,12 @@ impl Plan {
 
     /// Solve point p into its CSV row and plotted values.
     pub(super) fn row(&self, p: usize) -> Result<Row, SweepError> {
-        let (values, report) = self.solve(p)?;
+        let (values, solved) = self.solve(p)?;
+        let status = match &solved {
+            Ok(r) => status(r),
+            Err(s) => (*s).to_string(),
+        };
+        let report = solved.ok();
         let mut fields =
             Vec::with_capacity(2 + 2 * values.len() + self.models.len() * self.model_width());
         fields.push(p.to_string());
@@ -212,7 +217,7 @@ impl Plan {
             }
         }
         let singular = report.is_none();
-        fields.push(if singular { "singular" } else { "ok" }.into());
+        fields.push(status);
         let ys = self
             .series
             .iter()
@@ -231,6 +236,18 @@ impl Plan {
             singular,
         })
     }
+}
+
+/// A solved point's status: `ok`, or the reasons its simultaneous answer is not physical
+/// (`tensile`, `separating`, `still-approaching`, `energy-gain`), across the models, joined
+/// by `+` in that order.
+fn status(report: &crate::report::Report) -> String {
+    let names = ["tensile", "separating", "still-approaching", "energy-gain"];
+    let found: Vec<&str> = names
+        .into_iter()
+        .filter(|n| report.models.iter().any(|m| m.inadmissible.iter().any(|v| v.name() == *n)))
+        .collect();
+    if found.is_empty() { "ok".to_string() } else { found.join("+") }
 }
 
 #[cfg(test)]

@@ -12,6 +12,7 @@ use super::text::{text, toml_text};
 use super::{SweepError, SweepOptions, Vary};
 use crate::impact::restitution::Model;
 use crate::impact::solve::SolveError;
+use crate::impact::unilateral::{Law, UnilateralError};
 use crate::report::Report;
 use crate::scalar::Exact;
 use crate::scene::pipeline::{RunError, run};
@@ -41,6 +42,8 @@ pub(super) struct Plan {
     pub(super) points: usize,
     /// The plotted series (none without `--plot`).
     pub(super) series: Vec<Series>,
+    /// The impact law, when `--law` overrides the scene's.
+    law: Option<Law>,
 }
 
 impl Plan {
@@ -75,6 +78,7 @@ impl Plan {
             contacts,
             points,
             series,
+            law: opts.law,
         };
         plan.solve_corners()?;
         Ok(plan)
@@ -91,7 +95,7 @@ impl Plan {
             _ => vec![],
         };
         for p in corners {
-            self.solve(p)?;
+            let _ = self.solve(p)?;
         }
         Ok(())
     }
@@ -130,24 +134,37 @@ impl Plan {
         }
     }
 
-    /// The scene at the varied values.
+    /// The scene at the varied values (under `--law`, when given).
     fn scene_at(&self, values: &[BigRational]) -> Result<Scene, String> {
-        if let Some(slots) = &self.slots {
-            let mut scene = self.base.clone();
-            for (slot, q) in slots.iter().zip(values) {
-                slot.set(&mut scene, q);
+        let mut scene = match &self.slots {
+            Some(slots) => {
+                let mut scene = self.base.clone();
+                for (slot, q) in slots.iter().zip(values) {
+                    slot.set(&mut scene, q);
+                }
+                scene
             }
-            return Ok(scene);
+            None => {
+                let mut doc = self.doc.clone();
+                for (v, q) in self.vary.iter().zip(values) {
+                    set_value(&mut doc, &v.path, &toml_text(q))?;
+                }
+                Scene::from_document(&doc, &self.file).map_err(|e| e.to_string())?
+            }
+        };
+        if let Some(law) = self.law {
+            scene.law = law;
         }
-        let mut doc = self.doc.clone();
-        for (v, q) in self.vary.iter().zip(values) {
-            set_value(&mut doc, &v.path, &toml_text(q))?;
-        }
-        Scene::from_document(&doc, &self.file).map_err(|e| e.to_string())
+        Ok(scene)
     }
 
-    /// Solve point p: its report, or `None` when G is singular.
-    pub(super) fn solve(&self, p: usize) -> Result<(Vec<BigRational>, Option<Report>), SweepError> {
+    /// Solve point p: its report, or the status of a point without one — `singular` (G
+    /// singular under the simultaneous law) or `jammed` (no admissible impulses under the
+    /// unilateral law).
+    pub(super) fn solve(
+        &self,
+        p: usize,
+    ) -> Result<(Vec<BigRational>, Result<Report, &'static str>), SweepError> {
         let values = self.values(p);
         let scene = self
             .scene_at(&values)
@@ -158,8 +175,11 @@ impl Plan {
             run::<f64>(&scene, None)
         };
         match solved {
-            Ok(s) => Ok((values, Some(s.report))),
-            Err(RunError::Solve(SolveError::Singular { .. })) => Ok((values, None)),
+            Ok(s) => Ok((values, Ok(s.report))),
+            Err(RunError::Solve(SolveError::Singular { .. })) => Ok((values, Err("singular"))),
+            Err(RunError::Unilateral(UnilateralError::Jammed { .. })) => {
+                Ok((values, Err("jammed")))
+            }
             Err(e) => Err(self.point_error(p, &values, e.to_string())),
         }
     }
