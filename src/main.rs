@@ -375,7 +375,9 @@ fn fail(path: &std::path::Path, error: RunError) -> ExitCode {
                 "error: {}: {e}.\n  The simultaneous-collision hypothesis does not fix the impulses here \
                  (§8 of the paper: Δ = 0, e.g. coincident contact points or a body that cannot move along \
                  the normals independently).\n  Run `inertance analyze {}` to see whether the system is compatible, \
-                 the family of solutions and what stays fixed along it.",
+                 the family of solutions and what stays fixed along it, or `inertance solve {} --law \
+                 unilateral` for the velocities after impact, which the complementarity law fixes.",
+                path.display(),
                 path.display(),
                 path.display()
             );

@@ -179,8 +179,9 @@ fn surface_errors_name_the_key_and_value() {
             "{e}"
         );
     }
+    // The apex of a cone (f(C) = −1 < 0: C is inside), where ∇f = 0.
     let singular = format!(
-        "[surface]\nf = \"x^2 + y^2 + z^2\"\n{BASE}[[contact]]\npoint = [0, 0, 0]\nk = 0\n"
+        "[surface]\nf = \"x^2 + y^2 - (z - 1)^2\"\n{BASE}[[contact]]\npoint = [0, 0, 1]\nk = 0\n"
     );
     let e = error_of(&singular, true);
     assert!(
@@ -197,6 +198,14 @@ fn surface_errors_name_the_key_and_value() {
         format!("[surface]\nf = \"sqrt(x) + 1\"\n{BASE}[[contact]]\npoint = [0, 1, 0]\nk = 0\n");
     let e = error_of(&bad, false);
     assert!(e.contains("surface.f") && e.contains("sqrt"), "{e}");
+    // f written with f > 0 inside: the centre of mass would be outside, every normal inward.
+    let inside_out = format!(
+        "[surface]\nf = \"1 - x^2 - y^2 - z^2\"\n{BASE}[[contact]]\npoint = [1, 0, 0]\nk = 0\n"
+    );
+    for exact in [true, false] {
+        let e = error_of(&inside_out, exact);
+        assert!(e.contains("surface.f") && e.contains("f(C) = f(0, 0, 0) = 1") && e.contains("f < 0"), "{e}");
+    }
     let no_normal = format!("{BASE}[[contact]]\npoint = [0, 1, 0]\nk = 0\n");
     let e = error_of(&no_normal, false);
     assert!(

@@ -75,9 +75,17 @@ impl std::fmt::Display for Law {
 pub struct Activity {
     /// Per contact: whether it takes an impulse (P_i > 0); the others separate.
     pub active: Vec<bool>,
-    /// G is singular: the velocities after impact are unique, the impulses may form a set
-    /// (and under Poisson the outcome may depend on the compression impulses taken).
+    /// G is singular (Δ = 0).
     pub singular: bool,
+    /// The impulses are unique. Every solution vanishes where w_i > 0 and has the same G z,
+    /// so with A = {i : w_i = 0} the solutions differ by vectors of ker G_AA: a regular G_AA
+    /// makes them unique. When G_AA is singular they may form a set (they do when every
+    /// contact of A takes a positive impulse), and this is `false`: the report says "may".
+    pub impulses_unique: bool,
+    /// The velocities after impact are decided by the law. Always under Newton (w is
+    /// unique); under Poisson the expansion starts from (1 + k)∘P^c, so when the compression
+    /// impulses are not unique and the k_i^P differ, the outcome may depend on which are taken.
+    pub outcome_decided: bool,
     /// Complementary pivots made by Lemke's method (both phases for Poisson).
     pub pivots: usize,
 }
@@ -122,7 +130,7 @@ impl<T: Scalar> Impact<T> {
     ) -> Result<Activity, UnilateralError> {
         let n = self.contacts();
         let v0: Vec<T> = self.before_hat().iter().map(|v| v[0].clone()).collect();
-        let pivots = match model {
+        let (pivots, unique, decided) = match model {
             Model::Newton => {
                 // −q_i = −(v_ix⁰ + k_i max(v_ix⁰, 0)).
                 let q: Vec<T> = v0
@@ -134,9 +142,10 @@ impl<T: Scalar> Impact<T> {
                     })
                     .collect();
                 let s = run(self.g_hat(), &q, "newton")?;
+                let unique = regular_on_equalities(self.g_hat(), &s.w);
                 out.impulses_hat = s.z;
                 out.compression_hat.clear();
-                s.pivots
+                (s.pivots, unique, true)
             }
             Model::Poisson => {
                 let q: Vec<T> = v0.iter().map(|v| -v.clone()).collect();
@@ -159,18 +168,35 @@ impl<T: Scalar> Impact<T> {
                     })
                     .collect();
                 let x = run(g, &q2, "expansion")?;
+                let compression_unique = regular_on_equalities(g, &c.w);
+                let unique = compression_unique && regular_on_equalities(g, &x.w);
+                let contacts = self.problem().contacts();
+                let equal_k = contacts.iter().all(|k| k.k_poisson == contacts[0].k_poisson);
                 out.impulses_hat = base.into_iter().zip(x.z).map(|(b, x)| b + x).collect();
                 out.compression_hat = c.z;
-                c.pivots + x.pivots
+                (c.pivots + x.pivots, unique, compression_unique || equal_k)
             }
         };
         self.complete(out);
         Ok(Activity {
             active: out.impulses_hat.iter().map(|p| p.signum_i8() > 0).collect(),
             singular: self.singular(),
+            impulses_unique: unique,
+            outcome_decided: decided,
             pivots,
         })
     }
+}
+
+/// Is G_AA regular, A = {i : w_i = 0} the contacts that meet their law with equality?
+fn regular_on_equalities<T: Scalar>(g: &[T], w: &[T]) -> bool {
+    let n = w.len();
+    let scale = w.iter().fold(T::zero(), |m, x| if x.abs_gt(&m) { x.clone() } else { m });
+    let a: Vec<usize> = (0..n).filter(|&i| w[i].is_negligible(&scale, 16 * n)).collect();
+    let k = a.len();
+    let mut sub: Vec<T> = a.iter().flat_map(|&i| a.iter().map(move |&j| g[i * n + j].clone())).collect();
+    let mut perm = vec![0; k];
+    crate::linalg::factor_psd(&mut sub, k, &mut perm).is_ok_and(|f| f.rank == k)
 }
 
 /// Lemke on LCP(Ĝ, q), the errors named by phase.

@@ -103,7 +103,8 @@ impl Report {
         );
         if let Some(a) = &r.activity {
             o.insert("active".into(), a.active.clone().into());
-            o.insert("impulses_unique".into(), (!a.singular).into());
+            o.insert("impulses_unique".into(), a.impulses_unique.into());
+            o.insert("outcome_decided".into(), a.outcome_decided.into());
         }
         Json::Object(o)
     }

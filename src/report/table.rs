@@ -1,7 +1,6 @@
 //! The text table: what was assembled (G, Δ, the surface, the constraints), the contact
 //! velocities before impact, then the models side by side after impact, in SI units.
 
-use crate::impact::restitution::Model;
 use super::{ModelReport, Report, Value, fmt_f64};
 
 /// A row of the after-impact table: its label, and one cell per model.
@@ -38,17 +37,23 @@ impl Report {
             .collect();
         out += &aligned(&header, &self.after_rows());
         for m in &self.models {
-            if m.activity.as_ref().is_some_and(|a| a.singular) {
-                out += &format!(
-                    "{}: G is singular — the velocities after impact are unique, the impulses shown \
-                     are one of a set{}\n",
-                    m.model,
-                    if m.model == Model::Poisson {
-                        " (and the outcome may depend on the compression impulses taken)"
-                    } else {
-                        ""
-                    }
-                );
+            match &m.activity {
+                Some(a) if !a.outcome_decided => {
+                    out += &format!(
+                        "{}: the law does not decide the outcome — the compression impulses form a \
+                         set and the k_i differ, so the velocities after impact depend on which are \
+                         taken; shown: one possibility\n",
+                        m.model
+                    )
+                }
+                Some(a) if !a.impulses_unique => {
+                    out += &format!(
+                        "{}: the velocities after impact are unique; the impulses shown may be one of \
+                         a set (G is singular on the contacts that meet their law)\n",
+                        m.model
+                    )
+                }
+                _ => {}
             }
         }
         out

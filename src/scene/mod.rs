@@ -257,6 +257,9 @@ impl Scene {
             vec3(&self.angular_velocity, "body.angular_velocity")?,
             vec3(&self.velocity, "body.velocity")?,
         );
+        if let Some(surface) = &self.surface {
+            self.centre_inside::<T>(surface)?;
+        }
         let mut contacts = Vec::with_capacity(self.contacts.len());
         for (i, c) in self.contacts.iter().enumerate() {
             let key = |k: &str| format!("contact[{i}].{k}");
@@ -284,6 +287,31 @@ impl Scene {
             });
         }
         Problem::new(body, velocity, contacts).map_err(|e| self.invalid(e))
+    }
+
+    /// §12: the outward normal is ∇f, which points outward only if f < 0 inside the body — so
+    /// f at the centre of mass C (the origin of the body axes) must be negative. A surface
+    /// written the other way round would give every contact the inward normal and negative
+    /// impulses; refuse it with the fix. (An undecided symbolic sign passes.)
+    fn centre_inside<T: Scalar>(&self, surface: &SurfaceSpec) -> Result<(), SceneError> {
+        let origin = [T::zero(), T::zero(), T::zero()];
+        let Ok(f) = surface.surface.value::<T>(&origin) else {
+            return Ok(());
+        };
+        match f.known_sign() {
+            Some(s) if s >= 0 => Err(self.error(
+                "surface.f",
+                Some(format!("\"{}\"", surface.text)),
+                format!(
+                    "f(C) = f(0, 0, 0) = {} ≥ 0, but the centre of mass lies inside the body, where \
+                     f must be negative (the outward normal is ∇f, §12); write the surface with f < 0 \
+                     inside, e.g. \"-({})\"",
+                    f.exact_text().unwrap_or_else(|| f.to_f64().to_string()),
+                    surface.text
+                ),
+            )),
+            _ => Ok(()),
+        }
     }
 
     /// A problem the validated constructor refused (what the reader's own checks let

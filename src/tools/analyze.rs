@@ -65,6 +65,29 @@ pub struct ModelReport {
     pub energies: Option<[Value; 2]>,
     /// Plain-language verdicts.
     pub verdicts: Vec<String>,
+    /// The unilateral law's answer beside the simultaneous one: `Err` says why there is none
+    /// (a jammed body).
+    pub unilateral: Result<UnilateralReport, String>,
+}
+
+/// The unilateral law's resolution of a model (see [`crate::impact::unilateral`]).
+#[derive(Clone, Debug)]
+pub struct UnilateralReport {
+    /// Per contact: takes an impulse (true) or separates.
+    pub active: Vec<bool>,
+    /// P_i: a solution's impulses (one of a set when G is singular).
+    pub impulses: Vec<Value>,
+    /// v_ix after impact, per contact: unique.
+    pub normal_velocities: Vec<Value>,
+    /// [ω; v_C] after impact: unique.
+    pub twist: Vec<Value>,
+    /// (E_p, ΔE_c): unique.
+    pub energies: [Value; 2],
+    /// Whether the impulses are unique (see [`crate::impact::unilateral::Activity`]).
+    pub impulses_unique: bool,
+    /// Whether the law decides the velocities after impact (Poisson with a set of
+    /// compression impulses and unequal k_i may not).
+    pub outcome_decided: bool,
 }
 
 /// Analyse `scene` in the scalar type `T`.
@@ -107,6 +130,11 @@ pub fn analyze_scene<T: Scalar>(
         condition_number(&g, n)
     };
     let impulse = |p: &T, i: usize| -> Value { Value::surd(&Surd::times_norm(p, &norm2[i])) };
+    let mut unilateral: Vec<Result<UnilateralReport, String>> = analysis
+        .models
+        .iter()
+        .map(|m| unilateral_report(&mut impact, m.model, &norm2))
+        .collect();
     let model_reports = analysis
         .models
         .iter()
@@ -173,6 +201,7 @@ pub fn analyze_scene<T: Scalar>(
                 twist: m.outcome.as_ref().map(|o| o.velocity.as_slice().iter().map(Value::of).collect()),
                 energies: m.outcome.as_ref().map(|o| [Value::of(&o.lost_velocity_energy), Value::of(&o.kinetic_energy_loss)]),
                 verdicts,
+                unilateral: unilateral.remove(0),
             }
         })
         .collect();
@@ -204,6 +233,41 @@ pub fn analyze_scene<T: Scalar>(
         newton_equals_poisson: analysis.newton_equals_poisson,
         coincident,
     })
+}
+
+/// The unilateral law on the assembled `impact` for `model`, read out in the paper's units.
+fn unilateral_report<T: Scalar>(
+    impact: &mut Impact<T>,
+    model: Model,
+    norm2: &[T],
+) -> Result<UnilateralReport, String> {
+    let mut out = crate::impact::solve::Outcome::default();
+    let activity = impact.solve_unilateral(model, &mut out).map_err(|e| e.to_string())?;
+    Ok(UnilateralReport {
+        active: activity.active,
+        impulses: out
+            .impulses_hat
+            .iter()
+            .zip(norm2)
+            .map(|(p, w)| Value::surd(&Surd::times_norm(p, w)))
+            .collect(),
+        normal_velocities: out
+            .after_hat
+            .iter()
+            .zip(norm2)
+            .map(|(v, w)| Value::surd(&Surd::over_norm(&v[0], w)))
+            .collect(),
+        twist: out.velocity.as_slice().iter().map(Value::of).collect(),
+        energies: [Value::of(&out.lost_velocity_energy), Value::of(&out.kinetic_energy_loss)],
+        impulses_unique: activity.impulses_unique,
+        outcome_decided: activity.outcome_decided,
+    })
+}
+
+/// `[ω; v_C]` as text: `ω = (…), v_C = (…)`.
+fn twist_text(t: &[Value]) -> String {
+    let part = |r: std::ops::Range<usize>| t[r].iter().map(Value::text).collect::<Vec<_>>().join(", ");
+    format!("ω = ({}), v_C = ({})", part(0..3), part(3..6))
 }
 
 fn json_f64(x: f64) -> Json {
@@ -254,6 +318,23 @@ impl AnalysisReport {
                 o.insert("kinetic_energy_loss".into(), Value::json(de));
             }
             o.insert("verdicts".into(), json!(m.verdicts));
+            o.insert(
+                "unilateral".into(),
+                match &m.unilateral {
+                    Err(why) => json!({ "solved": false, "reason": why }),
+                    Ok(u) => json!({
+                        "solved": true,
+                        "active": u.active,
+                        "impulses": vec(&u.impulses),
+                        "impulses_unique": u.impulses_unique,
+                        "outcome_decided": u.outcome_decided,
+                        "normal_velocities_after": vec(&u.normal_velocities),
+                        "twist_after": vec(&u.twist),
+                        "lost_velocity_energy": u.energies[0].json(),
+                        "kinetic_energy_loss": u.energies[1].json(),
+                    }),
+                },
+            );
             models.insert(m.model.name().into(), Json::Object(o));
         }
         let mut top = json!({
@@ -358,6 +439,13 @@ impl AnalysisReport {
                     z.iter().map(Value::text).collect::<Vec<_>>().join(", ")
                 );
             }
+            if let (Some(t), false) = (&m.twist, m.family.is_empty()) {
+                if m.twist_fixed {
+                    s += &format!("  velocities after impact (the same for the whole family): {}\n", twist_text(t));
+                } else {
+                    s += &format!("  velocities after impact (least-norm member; they vary): {}\n", twist_text(t));
+                }
+            }
             if let Some([ep, de]) = &m.energies {
                 s += &format!(
                     "  E_p = {}, ΔE_c = {}{}\n",
@@ -385,6 +473,30 @@ impl AnalysisReport {
             }
             for v in &m.verdicts {
                 s += &format!("  ! {v}\n");
+            }
+            s += &format!("  unilateral {} (complementarity, `--law unilateral`):\n", m.model);
+            match &m.unilateral {
+                Err(why) => s += &format!("    {why}\n"),
+                Ok(u) => {
+                    for (i, a) in u.active.iter().enumerate() {
+                        s += &format!(
+                            "    A{}: {}, P{} = {}, v{}x = {}\n",
+                            i + 1,
+                            if *a { "active" } else { "separates" },
+                            i + 1,
+                            u.impulses[i].text(),
+                            i + 1,
+                            u.normal_velocities[i].text()
+                        );
+                    }
+                    s += &format!("    velocities after impact: {}\n", twist_text(&u.twist));
+                    s += &format!("    E_p = {}, ΔE_c = {}\n", u.energies[0].text(), u.energies[1].text());
+                    if !u.outcome_decided {
+                        s += "    the law does not decide the outcome: the compression impulses form a set and the k_i differ, so the velocities after impact depend on which are taken; these are one possibility\n";
+                    } else if !u.impulses_unique {
+                        s += "    these velocities after impact are unique; the impulses may be one of a set\n";
+                    }
+                }
             }
         }
         if let Some((equal, reason)) = &self.newton_equals_poisson {
