@@ -77,6 +77,20 @@ fn check(p: &Problem<Exact>) -> Result<(), TestCaseError> {
     match (impact.solve_unilateral(Model::Newton, &mut newton), enumerate(impact.g_hat(), &q)) {
         (Ok(activity), Some((z, _))) => {
             newton_holds(p, &impact, &newton)?;
+            // ΔE_c = ½ Σ P_i (v_ix⁰ − k_i max(v_ix⁰, 0)) (module docs), from the kinetic energies.
+            let mut expected = Exact::zero();
+            let mut pushed_while_receding = false;
+            for ((b, pi), c) in impact.before_hat().iter().zip(&newton.impulses_hat).zip(p.contacts()) {
+                let v0 = b[0].clone();
+                let approach = if v0.is_positive() { v0.clone() } else { Exact::zero() };
+                pushed_while_receding |= pi.is_positive() && v0.is_negative();
+                expected += pi.clone() * (v0 - c.k_newton.clone() * approach);
+            }
+            prop_assert_eq!(newton.kinetic_energy_loss.clone() * Exact::from_integer(2.into()), expected);
+            // The theorem: dissipative when every contact that takes an impulse approached.
+            if !pushed_while_receding {
+                prop_assert!(!newton.kinetic_energy_loss.is_negative());
+            }
             prop_assert_eq!(&newton.velocity, &twist(&impact, &z), "the twist is unique");
             prop_assert_eq!(activity.singular, impact.singular());
         }
@@ -96,6 +110,16 @@ fn check(p: &Problem<Exact>) -> Result<(), TestCaseError> {
     for (model, unilateral) in [(Model::Newton, &newton), (Model::Poisson, &poisson)] {
         let mut simultaneous = Outcome::default();
         impact.solve(model, &mut simultaneous).unwrap();
+        // The theorem for the simultaneous Newton law with one k: G P = (1 + k) v⁰ gives
+        // E_p = ½ Pᵀ G P = ½ (1 + k) Pᵀ v⁰, so ΔE_c = Pᵀ v⁰ − E_p = ½ (1 − k) Pᵀ v⁰
+        // = ½ (1 − k)(1 + k) v⁰ᵀ G⁻¹ v⁰ ≥ 0, whatever the signs of v⁰.
+        let k = &p.contacts()[0].k_newton;
+        if model == Model::Newton && p.contacts().iter().all(|c| &c.k_newton == k) {
+            let work: Exact = simultaneous.impulses_hat.iter().zip(impact.before_hat()).map(|(pi, b)| pi.clone() * &b[0]).sum();
+            let half = Exact::new(1.into(), 2.into());
+            prop_assert_eq!(&simultaneous.kinetic_energy_loss, &(half * (Exact::one() - k) * work));
+            prop_assert!(!simultaneous.kinetic_energy_loss.is_negative());
+        }
         let admissible = approaching
             && simultaneous.impulses_hat.iter().all(|x| !x.is_negative())
             && simultaneous.after_hat.iter().all(|a| !a[0].is_positive());
@@ -122,6 +146,13 @@ proptest! {
     #[test]
     fn free_bodies(p in problem(8)) {
         check(&p)?;
+    }
+
+    /// One coefficient for every contact: the simultaneous Newton theorem is exercised on
+    /// every regular problem (see `check`).
+    #[test]
+    fn free_bodies_with_one_coefficient(p in problem(6), k in coefficient()) {
+        check(&map_contacts(p, |c| c.k_newton = k.clone()))?;
     }
 
     /// A constrained body: the twist before impact is made allowed (v⁰ = D ξ⁰).

@@ -24,6 +24,19 @@
 //! Poisson the expansion starts from P^c, which for a singular G may itself be one of a set:
 //! then the outcome itself may depend on which compression impulses are taken.
 //!
+//! **Energy.** With M(u⁺ − u⁻) = −Σ P_i {E_ix}, the loss of kinetic energy is
+//! ΔE_c = ½ Σ P_i (v_ix⁰ + v_ix) (eq. 32 with eq. 13). Under Moreau's Newton law an active
+//! contact leaves at v_ix = −k_i max(v_ix⁰, 0), so
+//!
+//! ```text
+//! ΔE_c = ½ Σ_i P_i (v_ix⁰ − k_i max(v_ix⁰, 0))
+//! ```
+//!
+//! — every term ≥ 0 when every contact that takes an impulse was approaching, for any
+//! k_i ∈ [0, 1], equal or not: the law is then dissipative. A contact that was not approaching
+//! yet is pushed into its obstacle (P_i > 0, v_ix⁰ < 0) contributes ½ P_i v_ix⁰ < 0, and the
+//! impact can create energy; that is reported as a verdict, not asserted away.
+//!
 //! **When the simultaneous answer is admissible** — every P_i ≥ 0, every contact approaching
 //! before and none still approaching after — it solves these LCPs (ξ = 0, X = 0), and for a
 //! regular G it is their only solution: the two laws agree exactly. Otherwise the simultaneous

@@ -10,7 +10,7 @@ use crate::report::Report;
 use crate::impact::restitution::Model;
 use crate::scalar::Scalar;
 use crate::scene::{Scene, SceneError};
-use crate::impact::admissibility::{Inadmissible, verdicts};
+use crate::impact::admissibility::{Inadmissible, energy_gain, verdicts};
 use crate::impact::problem::{Problem, Reason};
 use crate::impact::unilateral::{Activity, Law, UnilateralError};
 use crate::impact::solve::{Impact, Outcome, SolveError};
@@ -85,8 +85,8 @@ pub struct ModelSolve<T: Scalar> {
     pub outcome: Outcome<T>,
     /// Whether ΔE_c = −E_p + Σ P_i v_ix⁰ (eq. 34) held.
     pub energy_identity: bool,
-    /// Why a simultaneous outcome is not physical (empty: admissible; always empty for the
-    /// unilateral law, whose outcomes are admissible by construction).
+    /// Why a simultaneous outcome is not physical (empty: admissible); for the unilateral law,
+    /// whose complementarity holds by construction, only an energy gain.
     pub inadmissible: Vec<Inadmissible>,
     /// The unilateral law's activity.
     pub activity: Option<Activity>,
@@ -140,7 +140,7 @@ impl<T: Scalar> Assembled<T> {
             }
             Law::Unilateral => {
                 let a = self.impact.solve_unilateral(model, &mut outcome)?;
-                (Vec::new(), Some(a))
+                (energy_gain(&self.impact, &outcome).into_iter().collect(), Some(a))
             }
         };
         Ok(ModelSolve {
