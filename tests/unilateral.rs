@@ -93,6 +93,16 @@ fn check(p: &Problem<Exact>) -> Result<(), TestCaseError> {
             }
             prop_assert_eq!(&newton.velocity, &twist(&impact, &z), "the twist is unique");
             prop_assert_eq!(activity.singular, impact.singular());
+            // Impulses that are not unique are reported as the least-norm member: no larger (in
+            // Σ P_i² = Σ P̂_i² |n_i|²) than the enumerated vertex.
+            let norm = |x: &[Exact]| -> Exact {
+                x.iter().zip(impact.frames()).map(|(p, f)| p.clone() * p * &f.norm2[0]).sum()
+            };
+            if !activity.impulses_unique {
+                prop_assert!(norm(&newton.impulses_hat) <= norm(&z));
+            } else {
+                prop_assert_eq!(&newton.impulses_hat, &z, "unique impulses");
+            }
         }
         (Err(UnilateralError::Jammed { .. }), None) => {}
         (l, e) => prop_assert!(false, "Lemke {:?}, enumeration {:?}", l.is_ok(), e.is_some()),

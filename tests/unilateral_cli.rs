@@ -200,3 +200,36 @@ fn sweep_status_names_the_inadmissible_points() {
     let text = std::fs::read_to_string(&csv).unwrap();
     assert!(text.lines().skip(1).all(|l| l.ends_with(",ok")), "{text}");
 }
+
+/// A 2 × 1 × 3 box (m = 12) landing flat on its four bottom corners at 2 m/s: G is singular
+/// (rank 3 of 4).
+fn box_scene(k: [&str; 4]) -> String {
+    let mut s = String::from(
+        "name = \"box\"\n[body]\nmass = 12\ninertia = [10, 13, 5]\nvelocity = [0, 0, -2]\nangular_velocity = [0, 0, 0]\n",
+    );
+    for (i, (x, y)) in [(1, "0.5"), (-1, "0.5"), (-1, "-0.5"), (1, "-0.5")].iter().enumerate() {
+        s += &format!("[[contact]]\npoint = [{x}, {y}, -1.5]\nnormal = [0, 0, -1]\nk = {}\n", k[i]);
+    }
+    s
+}
+
+#[test]
+fn a_box_landing_flat_has_unique_velocities_and_least_norm_impulses() {
+    let s = Scene::new("box", &box_scene(["0.5"; 4]));
+    let j = stdout_json(&s.run(&["solve", "--exact", "--json", "--law", "unilateral", "--model", "newton"]));
+    let m = &j["models"]["newton"];
+    // By hand: a pure translation stays one (no moment about C from a symmetric set), so
+    // v_Cz = −k·(−2) = 1; the total impulse is m(1 + k)·2 = 36, and the least-norm split of a
+    // symmetric set is the equal one: 9 N s per corner.
+    assert_eq!(m["velocity"], serde_json::json!(["0", "0", "1"]));
+    assert_eq!(m["impulses"], serde_json::json!(["9", "9", "9", "9"]));
+    assert_eq!(m["impulses_unique"], false);
+    assert_eq!(m["outcome_decided"], true);
+    // Unequal k under Poisson: the law does not decide; never one number as the answer.
+    let s = Scene::new("box-poisson", &box_scene(["0.7", "0.3", "0.7", "0.3"]));
+    let out = s.run(&["solve", "--exact", "--law", "unilateral", "--model", "poisson"]);
+    let table = String::from_utf8_lossy(&out.stdout);
+    assert!(table.contains("the law does not decide the outcome"), "{table}");
+    let j = stdout_json(&s.run(&["solve", "--exact", "--json", "--law", "unilateral", "--model", "poisson"]));
+    assert_eq!(j["models"]["poisson"]["outcome_decided"], false);
+}

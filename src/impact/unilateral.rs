@@ -86,7 +86,9 @@ impl std::fmt::Display for Law {
 /// What the unilateral solve found besides the outcome.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Activity {
-    /// Per contact: whether it takes an impulse (P_i > 0); the others separate.
+    /// Per contact: whether it takes an impulse (P_i > 0); the others separate. Under Newton
+    /// with impulses that are not unique, the impulses reported are the least-norm member of
+    /// the set (Σ P_i² least).
     pub active: Vec<bool>,
     /// G is singular (Δ = 0).
     pub singular: bool,
@@ -154,8 +156,12 @@ impl<T: Scalar> Impact<T> {
                         -(v.clone() + c.k_newton.clone() * &approach)
                     })
                     .collect();
-                let s = run(self.g_hat(), &q, "newton")?;
+                let mut s = run(self.g_hat(), &q, "newton")?;
                 let unique = regular_on_equalities(self.g_hat(), &s.w);
+                if !unique {
+                    let norm2: Vec<T> = self.frames().iter().map(|f| f.norm2[0].clone()).collect();
+                    s.pivots += least_norm(self.g_hat(), &s.w, &norm2, &mut s.z);
+                }
                 out.impulses_hat = s.z;
                 out.compression_hat.clear();
                 (s.pivots, unique, true)
@@ -210,6 +216,69 @@ fn regular_on_equalities<T: Scalar>(g: &[T], w: &[T]) -> bool {
     let mut sub: Vec<T> = a.iter().flat_map(|&i| a.iter().map(move |&j| g[i * n + j].clone())).collect();
     let mut perm = vec![0; k];
     crate::linalg::factor_psd(&mut sub, k, &mut perm).is_ok_and(|f| f.rank == k)
+}
+
+/// Replace the solution `z` of a Newton LCP with a singular G_AA by the member of its solution
+/// set of least physical norm Σ (P̂_i |n_i|)²; the pivots it took.
+///
+/// Every solution vanishes off A = {i : w_i = 0} and has z_A ∈ z*_A + range N, N a basis of
+/// ker G_AA (module docs). So the least-norm solution minimises ½ yᵀ S y (S = diag|n_i|²) over
+/// y = z*_A + N t ≥ 0. Its KKT conditions — Nᵀ(S y − μ) = 0, y ≥ 0 ⊥ μ ≥ 0 — eliminate
+/// t = (NᵀSN)⁻¹Nᵀ(μ − S z*_A) and leave the LCP
+///
+/// ```text
+/// y = (I − Π S) z*_A + Π μ ≥ 0,  μ ≥ 0,  yᵀμ = 0,     Π = N (NᵀSN)⁻¹ Nᵀ  (symmetric, ⪰ 0)
+/// ```
+///
+/// solved by Lemke; it is feasible (μ = 0 … z* itself is a feasible y) and the convex QP's KKT
+/// point is its minimiser.
+fn least_norm<T: Scalar>(g: &[T], w: &[T], norm2: &[T], z: &mut [T]) -> usize {
+    let n = w.len();
+    let scale = w.iter().fold(T::zero(), |m, x| if x.abs_gt(&m) { x.clone() } else { m });
+    let a: Vec<usize> = (0..n).filter(|&i| w[i].is_negligible(&scale, 16 * n)).collect();
+    let k = a.len();
+    let sub: Vec<T> = a.iter().flat_map(|&i| a.iter().map(move |&j| g[i * n + j].clone())).collect();
+    let (_, basis) = crate::linalg::null_space(&sub, k, k);
+    let d = basis.len();
+    if d == 0 {
+        return 0;
+    }
+    // NᵀSN (d×d, positive definite) and X = (NᵀSN)⁻¹ Nᵀ (d×k), column by column.
+    let s = |r: usize| norm2[a[r]].clone();
+    let mut nsn: Vec<T> = (0..d * d)
+        .map(|e| (0..k).fold(T::zero(), |acc, r| acc + basis[e / d][r].clone() * s(r) * &basis[e % d][r]))
+        .collect();
+    let mut perm = vec![0; d];
+    if crate::linalg::factor_psd(&mut nsn, d, &mut perm).map_or(true, |f| f.rank < d) {
+        return 0;
+    }
+    let mut x = vec![T::zero(); d * k];
+    let mut work = vec![T::zero(); d];
+    for r in 0..k {
+        let mut col: Vec<T> = (0..d).map(|e| basis[e][r].clone()).collect();
+        crate::linalg::solve_factored(&nsn, d, &perm, &mut col, &mut work);
+        for e in 0..d {
+            x[e * k + r] = col[e].clone();
+        }
+    }
+    // Π = N X (k×k); q = z*_A − Π S z*_A.
+    let pi: Vec<T> = (0..k * k)
+        .map(|e| (0..d).fold(T::zero(), |acc, f| acc + basis[f][e / k].clone() * &x[f * k + e % k]))
+        .collect();
+    let za: Vec<T> = a.iter().map(|&i| z[i].clone()).collect();
+    let q: Vec<T> = (0..k)
+        .map(|r| (0..k).fold(za[r].clone(), |acc, c| acc - pi[r * k + c].clone() * s(c) * &za[c]))
+        .collect();
+    match lemke(Lcp { m: &pi, q: &q }) {
+        Ok(sol) => {
+            for (r, &i) in a.iter().enumerate() {
+                z[i] = sol.w[r].clone();
+            }
+            sol.pivots
+        }
+        // Not reached for a feasible QP; keep the vertex found.
+        Err(_) => 0,
+    }
 }
 
 /// Lemke on LCP(Ĝ, q), the errors named by phase.
