@@ -44,9 +44,11 @@ pub fn run<T: Scalar>(scene: &Scene, models: Option<&[Model]>) -> Result<Solved,
     run_with::<T>(scene, models, false)
 }
 
-/// As [`run`]; with `allow_singular`, a singular G (Δ = 0) is not an error: the report holds
-/// the model-independent part (frames, inertances, Δ, velocities before impact) and no model
-/// (used by `check` for the paper's singular examples).
+/// As [`run`]; with `allow_singular`, a singular G (Δ = 0) is not an error under the
+/// simultaneous law: the report holds the model-independent part (frames, inertances, Δ,
+/// velocities before impact) and no model (used by `check` for the paper's singular
+/// examples). The unilateral law solves a singular G as any other (its velocities after impact
+/// are unique), so its models are solved either way.
 pub fn run_with<T: Scalar>(
     scene: &Scene,
     models: Option<&[Model]>,
@@ -54,7 +56,7 @@ pub fn run_with<T: Scalar>(
 ) -> Result<Solved, RunError> {
     let models = models.unwrap_or(&scene.models);
     let mut a = assemble::<T>(scene)?;
-    let models: &[Model] = if a.singular() && allow_singular {
+    let models: &[Model] = if a.singular() && allow_singular && scene.law == Law::Simultaneous {
         &[]
     } else {
         models

@@ -14,15 +14,19 @@
 //! set contact[0].k = 1         ← optional overrides of scene values (TOML values)
 //! mode = exact                 ← optional: exact | f64 (default: exact, with radicals if needed)
 //! symbols = m, k               ← optional: a symbolic case (closed forms, see below)
+//! law = unilateral             ← optional: the impact law (default: the scene's)
 //! newton.P1 = 58.07            ← a value as printed in the paper
+//! newton.P2 = 89/450           ← an exact value (a fraction or an expression with radicals)
 //! newton.twist = [0, 0, 3, -0.375, 0, 0]
 //! ```
 //! ````
 //!
 //! **Comparison at the printed precision.** A printed value with d decimals agrees when
 //! |computed − printed| ≤ ½·10⁻ᵈ. A printed integer is a claim of an exact value: in exact
-//! mode it must be equal; in f64 mode it must agree to 10⁻⁹ relative. Angles in degrees are
-//! compared modulo 360°, by their f64 value (atan2 of exact cosines and sines).
+//! mode it must be equal; in f64 mode it must agree to 10⁻⁹ relative. A value written as an
+//! exact expression that is not a decimal (`89/450`, `-25*sqrt(2)`) is a claim of that exact
+//! value: equal as exact numbers when the computation is exact, 10⁻⁹ relative in f64. Angles
+//! in degrees are compared modulo 360°, by their f64 value (atan2 of exact cosines and sines).
 //!
 //! **Exact by default.** A case runs in exact rationals when every input is rational, and
 //! with exact radicals (the symbolic field with √p and cos/sin of multiples of 15°) when its
@@ -45,10 +49,22 @@
 //! that in fact agrees, or that names no checked value, fails the check. Any other
 //! disagreement fails.
 //!
+//! **The impact law.** A case runs under its scene's `[solve] law`, or under the law its
+//! `law = …` line names. The unilateral law (`crate::impact::unilateral`) is solved on a
+//! singular G too (its velocities after impact are unique); the simultaneous law on a singular
+//! G solves no model and only the model-independent values can be checked. A symbolic case is
+//! derived under the simultaneous law only (`inertance derive`), so it may not name the
+//! unilateral one.
+//!
 //! Quantity names (i, j count contacts from 1 as the paper does; vector entries from 0):
 //! `det`, `g{i}{j}xx|yx|zx`, `v{i}x0|y0|z0`, `cos_a{i}_0`, `sin_a{i}_0`, `a{i}_0` (before
 //! impact), `Mred` (M_red row by row, constrained scenes) and, after a `newton.` or `poisson.` prefix, `P{i}`, `P{i}c`, `twist` ([ω; v_C]),
-//! `omega`, `vC` (one entry: `newton.omega[0]`), `v{i}x|y|z`, `cos_a{i}`, `sin_a{i}`, `a{i}`, `Ep`, `dEc`, `q` (constraint impulses).
+//! `omega`, `vC` (one entry: `newton.omega[0]`), `v{i}x|y|z`, `cos_a{i}`, `sin_a{i}`, `a{i}`, `Ep`, `dEc`, `q` (constraint impulses),
+//! and the verdicts as 1 (yes) or 0 (no): `admissible` (the outcome is physical: no
+//! tensile impulse, separating contact under a law, contact still approaching or energy gain —
+//! always 1 under the unilateral law), `active{i}` (unilateral law: contact i takes an impulse,
+//! P_i > 0; 0: it separates), `unique` (the report's `impulses_unique`: 1 when G is regular, so
+//! the impulses are unique; 0 when G is singular and they may form a set).
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::fmt::Write as _;
@@ -58,7 +74,8 @@ use crate::number::{parse_decimal, parse_number};
 use crate::scene::pipeline::{RunError, Solved, run_with};
 use crate::report::{Report, Value};
 use crate::impact::restitution::Model;
-use crate::scalar::Exact;
+use crate::impact::unilateral::Law;
+use crate::scalar::{Exact, Scalar as _};
 use crate::scene::{Scene, parse_document, set_value};
 use crate::scalar::symbolic::RatFun;
 use num_bigint::BigInt;
@@ -79,6 +96,8 @@ pub struct Case {
     /// `symbols = m, Jz, …`: the case is symbolic — the scene's values may name these
     /// symbols, and every expectation is a closed form, proved or refuted as an identity.
     pub symbols: Vec<String>,
+    /// `law = simultaneous | unilateral`: the impact law, in place of the scene's.
+    pub law: Option<Law>,
     /// (quantity, printed text, line number).
     pub expects: Vec<(String, String, usize)>,
 }
@@ -161,6 +180,7 @@ impl Derivation {
                         sets: Vec::new(),
                         exact: None,
                         symbols: Vec::new(),
+                        law: None,
                         expects: Vec::new(),
                     };
                     for (k, raw) in body.iter().enumerate() {
@@ -186,6 +206,13 @@ impl Derivation {
                             {
                                 return Err(err(line_no, format!("`{bad}` is not a symbol name")));
                             }
+                        } else if lhs == "law" {
+                            c.law = Some(Law::from_name(rhs).ok_or_else(|| {
+                                err(
+                                    line_no,
+                                    format!("law must be simultaneous or unilateral, not `{rhs}`"),
+                                )
+                            })?);
                         } else if lhs == "mode" {
                             c.exact = match rhs {
                                 "exact" => Some(true),
@@ -436,9 +463,18 @@ pub fn check_derivation(
             set_value(&mut doc, path, value)
                 .map_err(|e| fmt_err(format!("case `{}`: set {e}", case.name)))?;
         }
-        let scene = Scene::from_document_with(&doc, &label, &case.symbols)
+        let mut scene = Scene::from_document_with(&doc, &label, &case.symbols)
             .map_err(|e| fmt_err(e.to_string()))?;
+        if let Some(law) = case.law {
+            scene.law = law;
+        }
         let symbolic = !case.symbols.is_empty();
+        if symbolic && scene.law == Law::Unilateral {
+            return Err(fmt_err(format!(
+                "case `{}`: a symbolic case is derived under the simultaneous law only",
+                case.name
+            )));
+        }
         // Exact: in rationals when every input is rational, else with exact radicals.
         let radical = !symbolic && !scene.is_rational() && scene.problem::<RatFun>().is_ok();
         let exact = symbolic || case.exact.unwrap_or(scene.is_rational() || radical);
@@ -659,7 +695,7 @@ fn agrees_exactly(v: &Value, q: &BigRational, decimals: usize) -> Option<bool> {
 fn agrees(p: &str, v: &Value, angle: bool) -> Result<bool, String> {
     let text = p.trim();
     let Some(decimals) = printed_decimals(text) else {
-        return Err(format!("`{text}` is not a printed decimal number"));
+        return agrees_with_expression(text, v, angle);
     };
     let printed = parse_number(text).map_err(|e| e.to_string())?;
     if !angle
@@ -685,6 +721,36 @@ fn agrees(p: &str, v: &Value, angle: bool) -> Result<bool, String> {
     }
     let half_unit = 0.5 * 10f64.powi(-(decimals as i32));
     Ok(diff.abs() <= half_unit * (1.0 + 1e-9))
+}
+
+/// Does the computed `v` equal the exact value written as the expression `text` (a fraction
+/// such as `89/450`, or with radicals: `-25*sqrt(2)`)? Exactly when the computation was exact;
+/// to 10⁻⁹ relative in f64.
+fn agrees_with_expression(text: &str, v: &Value, angle: bool) -> Result<bool, String> {
+    let not_a_value = || format!("`{text}` is neither a printed decimal nor an exact number");
+    if angle {
+        return Err(format!("`{text}`: an angle is written as a decimal number of degrees"));
+    }
+    let claimed = crate::scalar::symbolic::symbolic(text, &[]).map_err(|_| not_a_value())?;
+    if !claimed.is_constant() {
+        return Err(not_a_value());
+    }
+    if let Some(computed) = v
+        .exact
+        .as_deref()
+        .and_then(|t| crate::scalar::symbolic::symbolic(t, &[]).ok())
+        .filter(RatFun::is_constant)
+    {
+        return Ok(computed == claimed);
+    }
+    let c = claimed.to_f64();
+    Ok((v.f64 - c).abs() <= 1e-9 * c.abs().max(1.0))
+}
+
+/// A verdict as a value: 1 (yes) or 0 (no), exact.
+fn flag(b: bool) -> Value {
+    let x = Exact::from_integer(BigInt::from(u8::from(b)));
+    Value::of(&x)
 }
 
 /// Number of decimals printed, `None` if not a plain decimal.
@@ -777,6 +843,10 @@ pub fn lookup(r: &Report, q: &str) -> Result<Vec<Value>, String> {
                 "omega" => return Ok(mr.angular_velocity.to_vec()),
                 "vC" => return Ok(mr.velocity.to_vec()),
                 "q" if r.constraints.is_some() => return Ok(mr.constraint_impulses.clone()),
+                "admissible" => return Ok(vec![flag(mr.inadmissible.is_empty())]),
+                "unique" => {
+                    return Ok(vec![flag(mr.activity.as_ref().is_none_or(|a| !a.singular))]);
+                }
                 "twist" => {
                     return Ok(mr
                         .angular_velocity
@@ -797,6 +867,12 @@ pub fn lookup(r: &Report, q: &str) -> Result<Vec<Value>, String> {
                 if let Some(i) = idx(rest) {
                     return Ok(vec![mr.impulses[i].clone()]);
                 }
+            }
+            if let Some(i) = name.strip_prefix("active").and_then(idx) {
+                let a = mr.activity.as_ref().ok_or_else(|| {
+                    format!("`{q}`: which contacts are active is said by the unilateral law only")
+                })?;
+                return Ok(vec![flag(a.active[i])]);
             }
             if let Some(v) = angle_value(&mr.contacts, name, &idx) {
                 return Ok(v);
@@ -952,6 +1028,22 @@ mod tests {
         assert_eq!(below.f64, 0.125);
         assert_eq!(agrees("0.13", &below, false), Ok(false));
         assert_eq!(agrees("0.12", &below, false), Ok(true));
+    }
+
+    /// A value written as an exact number claims that number: equality, never a rounding.
+    #[test]
+    fn exact_numbers_claim_equality() {
+        assert_eq!(agrees("89/450", &exact("89/450"), false), Ok(true));
+        assert_eq!(agrees("89/450", &exact("89/450 + 10^(-30)"), false), Ok(false));
+        assert_eq!(agrees("-25*sqrt(2)", &exact("-50/sqrt(2)"), false), Ok(true));
+        assert_eq!(agrees("-25*sqrt(2)", &exact("-35.36"), false), Ok(false));
+        // In f64 (no exact text), 10⁻⁹ relative.
+        assert_eq!(agrees("1/3", &Value::float(1.0 / 3.0), false), Ok(true));
+        assert_eq!(agrees("1/3", &Value::float(0.3333), false), Ok(false));
+        assert!(agrees("1/x", &exact("1"), false).is_err());
+        assert!(agrees("1/3", &exact("1"), true).is_err());
+        assert_eq!(flag(true).exact.as_deref(), Some("1"));
+        assert_eq!(flag(false).exact.as_deref(), Some("0"));
     }
 
     #[test]
