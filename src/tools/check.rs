@@ -62,9 +62,10 @@
 //! `omega`, `vC` (one entry: `newton.omega[0]`), `v{i}x|y|z`, `cos_a{i}`, `sin_a{i}`, `a{i}`, `Ep`, `dEc`, `q` (constraint impulses),
 //! and the verdicts as 1 (yes) or 0 (no): `admissible` (the outcome is physical: no
 //! tensile impulse, separating contact under a law, contact still approaching or energy gain —
-//! always 1 under the unilateral law), `active{i}` (unilateral law: contact i takes an impulse,
-//! P_i > 0; 0: it separates), `unique` (the report's `impulses_unique`: 1 when G is regular, so
-//! the impulses are unique; 0 when G is singular and they may form a set).
+//! under the unilateral law only an energy gain can make it 0), `active{i}` (unilateral law: contact i takes an impulse,
+//! P_i > 0; 0: it separates), `unique` (the report's `impulses_unique`: 1 when G is regular on the
+//! contacts that meet their law with equality, so the impulses are unique; 0 when they may form a
+//! set).
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::fmt::Write as _;
@@ -845,7 +846,7 @@ pub fn lookup(r: &Report, q: &str) -> Result<Vec<Value>, String> {
                 "q" if r.constraints.is_some() => return Ok(mr.constraint_impulses.clone()),
                 "admissible" => return Ok(vec![flag(mr.inadmissible.is_empty())]),
                 "unique" => {
-                    return Ok(vec![flag(mr.activity.as_ref().is_none_or(|a| !a.singular))]);
+                    return Ok(vec![flag(mr.activity.as_ref().is_none_or(|a| a.impulses_unique))]);
                 }
                 "twist" => {
                     return Ok(mr
