@@ -25,26 +25,32 @@ fn example_3<T: Scalar>() -> Result<Problem<T>, InvalidProblem> {
 }
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
+    run(&mut std::io::stdout())
+}
+
+/// Solve and print to `out` (the tests read it).
+pub fn run(out: &mut impl std::io::Write) -> Result<(), Box<dyn std::error::Error>> {
     let float = example_3::<f64>()?;
     let exact = example_3::<Exact>()?;
-    println!("Example 3, planar bar on two supports");
+    writeln!(out, "Example 3, planar bar on two supports")?;
     for model in Model::ALL {
         let f = solve(&float, model)?;
         let e = solve(&exact, model)?;
-        println!("\n{model}: Δ = det G = {}", e.det);
+        writeln!(out, "\n{model}: Δ = det G = {}", e.det)?;
         for (i, (pf, pe)) in f.impulses.iter().zip(&e.impulses).enumerate() {
             let text = pe.exact_text().unwrap_or_default();
-            println!("  P{} = {:.9} N s   (exact {text})", i + 1, pf.to_f64());
+            writeln!(out, "  P{} = {:.9} N s   (exact {text})", i + 1, pf.to_f64())?;
         }
         let w = e.twist.top();
         let v = e.twist.bottom();
-        println!("  ω_z = {} rad/s, v_C = ({}, {}, {}) m/s", w[2], v[0], v[1], v[2]);
-        println!(
+        writeln!(out, "  ω_z = {} rad/s, v_C = ({}, {}, {}) m/s", w[2], v[0], v[1], v[2])?;
+        writeln!(
+            out,
             "  E_p = {} J, ΔE_c = {} J   (f64: {:.9}, {:.9})",
             e.lost_velocity_energy, e.kinetic_energy_loss, f.lost_velocity_energy, f.kinetic_energy_loss
-        );
+        )?;
         for (i, v) in e.contact_velocities.iter().enumerate() {
-            println!("  v_{}x after impact = {} m/s", i + 1, v[0].exact_text().unwrap_or_default());
+            writeln!(out, "  v_{}x after impact = {} m/s", i + 1, v[0].exact_text().unwrap_or_default())?;
         }
     }
     Ok(())

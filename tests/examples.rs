@@ -1,28 +1,29 @@
-//! The programs in `examples/` run and print what they promise. `cargo test` builds the
-//! examples before it runs any test; this runs the built binaries.
+//! The programs in `examples/` run and print what they promise. Each example's `run` is
+//! compiled into this test from its source file and called with a buffer for stdout, so the
+//! test needs no example binary built beforehand.
 
-use std::path::PathBuf;
 use std::process::Command;
 
-/// Run the built example `name` with `args`; its stdout.
-fn run(name: &str, args: &[&str]) -> String {
-    // target/<profile>/deps/examples-<hash> → target/<profile>/examples/<name>
-    let exe = std::env::current_exe().expect("the test binary's path");
-    let dir = exe.parent().and_then(|d| d.parent()).expect("target/<profile>");
-    let bin: PathBuf = dir.join("examples").join(format!("{name}{}", std::env::consts::EXE_SUFFIX));
-    assert!(
-        bin.exists(),
-        "{} is not built: run `cargo test --all-targets` (which builds the examples) or `cargo build --examples`",
-        bin.display()
-    );
-    let out = Command::new(&bin).args(args).output().expect("the example runs");
-    assert!(out.status.success(), "{name} failed: {}", String::from_utf8_lossy(&out.stderr));
-    String::from_utf8(out.stdout).expect("UTF-8 output")
+#[allow(dead_code)] // its `main` is the program's, not the test's
+#[path = "../examples/planar_bar.rs"]
+mod planar_bar;
+#[allow(dead_code)]
+#[path = "../examples/coefficient_sweep.rs"]
+mod coefficient_sweep;
+#[allow(dead_code)]
+#[path = "../examples/scene_report.rs"]
+mod scene_report;
+
+/// The text an example's `run` prints.
+fn printed(run: impl FnOnce(&mut Vec<u8>) -> Result<(), Box<dyn std::error::Error>>) -> String {
+    let mut out = Vec::new();
+    run(&mut out).expect("the example runs");
+    String::from_utf8(out).expect("UTF-8 output")
 }
 
 #[test]
 fn planar_bar_prints_the_papers_example_3_exactly() {
-    let out = run("planar_bar", &[]);
+    let out = printed(|o| planar_bar::run(o));
     // §7, Example 3: P₁ = 3.6556, P₂ = 0.1978 (Newton); P₁ = 3.64, P₂ = 0.24 (Poisson).
     for want in ["P1 = 3.655555556 N s   (exact 329/90)", "P2 = 0.197777778 N s   (exact 89/450)",
                  "P1 = 3.640000000 N s   (exact 91/25)", "E_p = 413791/45000 J", "Δ = det G = 3"] {
@@ -32,7 +33,7 @@ fn planar_bar_prints_the_papers_example_3_exactly() {
 
 #[test]
 fn coefficient_sweep_has_newton_equal_poisson_where_the_coefficients_are_equal() {
-    let out = run("coefficient_sweep", &[]);
+    let out = printed(|o| coefficient_sweep::run(o));
     let rows: Vec<Vec<f64>> = out
         .lines()
         .skip(1)
@@ -48,7 +49,7 @@ fn coefficient_sweep_has_newton_equal_poisson_where_the_coefficients_are_equal()
 
 #[test]
 fn scene_report_prints_the_json_report_of_the_cli() {
-    let out = run("scene_report", &["--exact"]);
+    let out = printed(|o| scene_report::run(&["--exact".to_string()], o));
     let json: serde_json::Value = serde_json::from_str(&out).expect("JSON");
     let cli = Command::new(env!("CARGO_BIN_EXE_inertance"))
         .args(["solve", "examples/planar-bar.toml", "--exact", "--json"])
