@@ -23,7 +23,7 @@ fn printed(run: impl FnOnce(&mut Vec<u8>) -> Result<(), Box<dyn std::error::Erro
 
 #[test]
 fn planar_bar_prints_the_papers_example_3_exactly() {
-    let out = printed(|o| planar_bar::run(o));
+    let out = printed(planar_bar::run);
     // §7, Example 3: P₁ = 3.6556, P₂ = 0.1978 (Newton); P₁ = 3.64, P₂ = 0.24 (Poisson).
     for want in ["P1 = 3.655555556 N s   (exact 329/90)", "P2 = 0.197777778 N s   (exact 89/450)",
                  "P1 = 3.640000000 N s   (exact 91/25)", "E_p = 413791/45000 J", "Δ = det G = 3"] {
@@ -33,7 +33,7 @@ fn planar_bar_prints_the_papers_example_3_exactly() {
 
 #[test]
 fn coefficient_sweep_has_newton_equal_poisson_where_the_coefficients_are_equal() {
-    let out = printed(|o| coefficient_sweep::run(o));
+    let out = printed(coefficient_sweep::run);
     let rows: Vec<Vec<f64>> = out
         .lines()
         .skip(1)
