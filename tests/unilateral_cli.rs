@@ -233,3 +233,64 @@ fn a_box_landing_flat_has_unique_velocities_and_least_norm_impulses() {
     let j = stdout_json(&s.run(&["solve", "--exact", "--json", "--law", "unilateral", "--model", "poisson"]));
     assert_eq!(j["models"]["poisson"]["outcome_decided"], false);
 }
+
+/// Every scene of the unilateral derivations (`derivations/unilateral-*.md`) has a physical
+/// answer in f64 and exactly, and they agree: impulses and twist to 10⁻¹² of their scale (small
+/// integer data, O(N) pivots; the exact values are the hand-checked ones of `check`).
+#[test]
+fn the_unilateral_scenes_agree_in_f64_and_exactly() {
+    use inertance::scene::{Scene as S, pipeline::run};
+    use inertance::scalar::symbolic::RatFun;
+    let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/derivations");
+    let mut scenes = 0;
+    for entry in std::fs::read_dir(dir).unwrap() {
+        let path = entry.unwrap().path();
+        if !path.file_name().unwrap().to_str().unwrap().starts_with("unilateral-") {
+            continue;
+        }
+        let d = inertance::tools::check::Derivation::load(&path).unwrap();
+        for (name, (_, text)) in &d.scenes {
+            let Ok(mut scene) = S::parse(text, name) else { continue };
+            if scene.numbers().any(|(_, n)| !n.symbols.is_empty()) {
+                continue;
+            }
+            scene.law = inertance::impact::unilateral::Law::Unilateral;
+            let exact = if scene.is_rational() {
+                run::<inertance::Exact>(&scene, None)
+            } else {
+                run::<RatFun>(&scene, None)
+            };
+            let float = run::<f64>(&scene, None);
+            let (Ok(e), Ok(f)) = (exact, float) else {
+                panic!("{}#{name}: no answer in one of the modes", path.display());
+            };
+            scenes += 1;
+            for (me, mf) in e.report.models.iter().zip(&f.report.models) {
+                let values = |m: &inertance::report::ModelReport| -> Vec<f64> {
+                    m.impulses.iter().chain(&m.angular_velocity).chain(&m.velocity).map(|v| v.f64).collect()
+                };
+                let (a, b) = (values(me), values(mf));
+                let scale = a.iter().fold(1.0f64, |s, x| s.max(x.abs()));
+                for (x, y) in a.iter().zip(&b) {
+                    assert!((x - y).abs() <= 1e-12 * scale, "{}#{name} {}: {x} vs {y}", path.display(), me.model);
+                }
+                assert_eq!(me.activity.as_ref().map(|a| &a.active), mf.activity.as_ref().map(|a| &a.active));
+            }
+        }
+    }
+    assert!(scenes >= 5, "found {scenes} scenes");
+}
+
+#[test]
+fn jamming_needs_restitution_at_an_approaching_contact() {
+    // The characterisation (docs of impact::unilateral): infeasible iff some y ≥ 0 in ker G has
+    // y_i > 0 at an approaching contact with k_i > 0. Here ker G = span(1, 1) and contact 1
+    // approaches: with k = 0 the body just stops (no jam), with k = 1/2 it jams.
+    let plastic = Scene::new("plastic", &JAMMED.replace("k = 0.5", "k = 0"));
+    let j = stdout_json(&plastic.run(&["solve", "--exact", "--json", "--law", "unilateral", "--model", "newton"]));
+    assert_eq!(j["models"]["newton"]["velocity"], serde_json::json!(["0", "0", "0"]));
+    // Poisson is never jammed (its right-hand sides are orthogonal to ker G).
+    let s = Scene::new("poisson-jam", JAMMED);
+    let out = s.run(&["solve", "--exact", "--law", "unilateral", "--model", "poisson"]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+}

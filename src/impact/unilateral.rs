@@ -24,6 +24,16 @@
 //! Poisson the expansion starts from P^c, which for a singular G may itself be one of a set:
 //! then the outcome itself may depend on which compression impulses are taken.
 //!
+//! **When there is no answer.** For a symmetric semidefinite M, LCP(M, q′) is solvable iff it is
+//! feasible (Lemke on a copositive-plus matrix), and by Farkas' lemma infeasible iff some y ≥ 0
+//! has Mᵀy ≤ 0 and q′ᵀy < 0 — then yᵀMy ≤ 0 forces My = 0. So Newton's LCP(G, −q) has no
+//! solution iff some **y ≥ 0 in ker G** has qᵀy > 0. For such y the impulses Σ y_i {E_ix} change
+//! no allowed twist, so Σ y_i v_ix⁰ = 0 (the normal velocities are projections of the twist),
+//! and qᵀy = Σ y_i k_i max(v_ix⁰, 0): **the body is jammed iff some y ≥ 0 in ker G has y_i > 0 at
+//! an approaching contact with k_i > 0** — impulses that cancel each other, asked to make that
+//! contact rebound. Poisson's two LCPs have right-hand sides −v⁰ and G(…) − v⁰, both orthogonal
+//! to ker G: **Poisson is never jammed**.
+//!
 //! **Energy.** With M(u⁺ − u⁻) = −Σ P_i {E_ix}, the loss of kinetic energy is
 //! ΔE_c = ½ Σ P_i (v_ix⁰ + v_ix) (eq. 32 with eq. 13). Under Moreau's Newton law an active
 //! contact leaves at v_ix = −k_i max(v_ix⁰, 0), so
