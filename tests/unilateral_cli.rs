@@ -274,7 +274,7 @@ fn the_unilateral_scenes_agree_in_f64_and_exactly() {
                 for (x, y) in a.iter().zip(&b) {
                     assert!((x - y).abs() <= 1e-12 * scale, "{}#{name} {}: {x} vs {y}", path.display(), me.model);
                 }
-                assert_eq!(me.activity.as_ref().map(|a| &a.active), mf.activity.as_ref().map(|a| &a.active));
+                assert_eq!(me.active, mf.active);
             }
         }
     }

@@ -22,6 +22,7 @@
 
 use crate::impact::problem::Problem;
 use crate::impact::restitution::Model;
+use crate::impact::unilateral::UnilateralWork;
 use crate::linalg::{self, NotSemidefinite};
 use crate::mechanics::body::Mobility;
 use crate::mechanics::contact::{ContactFrame, TangentNotPerpendicular};
@@ -85,6 +86,8 @@ pub struct Impact<T: Scalar> {
     factor: Vec<T>,
     perm: Vec<usize>,
     work: Vec<T>,
+    /// The buffers of [`Impact::solve_unilateral`].
+    pub(crate) unilateral: UnilateralWork<T>,
 }
 
 /// The result of one restitution model, in hatted form (see [`Impact`]); the paper's units
@@ -143,6 +146,7 @@ impl<T: Scalar> Impact<T> {
             factor: Vec::new(),
             perm: Vec::new(),
             work: Vec::new(),
+            unilateral: UnilateralWork::default(),
         };
         impact.build()?;
         Ok(impact)

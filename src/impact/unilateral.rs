@@ -54,7 +54,7 @@
 
 use crate::impact::restitution::Model;
 use crate::impact::solve::{Impact, Outcome, SolveError};
-use crate::linalg::lcp::{Lcp, LcpError, lemke};
+use crate::linalg::lcp::{Lcp, LcpError, LcpWork, lemke, lemke_in};
 use crate::scalar::Scalar;
 
 /// Which impact law closes the impulse–velocity relation.
@@ -93,13 +93,11 @@ impl std::fmt::Display for Law {
     }
 }
 
-/// What the unilateral solve found besides the outcome.
-#[derive(Clone, Debug, PartialEq, Eq)]
+/// What the unilateral solve found besides the outcome (which contacts are active is read off
+/// the outcome: [`active`]). Under Newton with impulses that are not unique, the outcome holds
+/// the least-norm member of the set (Σ P_i² least).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Activity {
-    /// Per contact: whether it takes an impulse (P_i > 0); the others separate. Under Newton
-    /// with impulses that are not unique, the impulses reported are the least-norm member of
-    /// the set (Σ P_i² least).
-    pub active: Vec<bool>,
     /// G is singular (Δ = 0).
     pub singular: bool,
     /// The impulses are unique. Every solution vanishes where w_i > 0 and has the same G z,
@@ -113,6 +111,37 @@ pub struct Activity {
     pub outcome_decided: bool,
     /// Complementary pivots made by Lemke's method (both phases for Poisson).
     pub pivots: usize,
+}
+
+/// Per contact: whether it takes an impulse (P_i > 0); the others separate.
+pub fn active<T: Scalar>(out: &Outcome<T>) -> Vec<bool> {
+    out.impulses_hat.iter().map(|p| p.signum_i8() > 0).collect()
+}
+
+/// The buffers of the unilateral solve, kept in the [`Impact`] so that repeated f64 solves
+/// allocate nothing: the LCP tableau and solution, the right-hand side, and the regularity
+/// test's sub-matrix.
+#[derive(Clone, Debug)]
+pub struct UnilateralWork<T> {
+    lcp: LcpWork<T>,
+    q: Vec<T>,
+    w: Vec<T>,
+    sub: Vec<T>,
+    perm: Vec<usize>,
+    set: Vec<usize>,
+}
+
+impl<T> Default for UnilateralWork<T> {
+    fn default() -> Self {
+        UnilateralWork {
+            lcp: LcpWork::default(),
+            q: Vec::new(),
+            w: Vec::new(),
+            sub: Vec::new(),
+            perm: Vec::new(),
+            set: Vec::new(),
+        }
+    }
 }
 
 /// Why the unilateral law gave no outcome.
@@ -153,79 +182,105 @@ impl<T: Scalar> Impact<T> {
         model: Model,
         out: &mut Outcome<T>,
     ) -> Result<Activity, UnilateralError> {
-        let n = self.contacts();
-        let v0: Vec<T> = self.before_hat().iter().map(|v| v[0].clone()).collect();
-        let (pivots, unique, decided) = match model {
-            Model::Newton => {
-                // −q_i = −(v_ix⁰ + k_i max(v_ix⁰, 0)).
-                let q: Vec<T> = v0
-                    .iter()
-                    .zip(self.problem().contacts())
-                    .map(|(v, c)| {
-                        let approach = if v.signum_i8() > 0 { v.clone() } else { T::zero() };
-                        -(v.clone() + c.k_newton.clone() * &approach)
-                    })
-                    .collect();
-                let mut s = run(self.g_hat(), &q, "newton")?;
-                let unique = regular_on_equalities(self.g_hat(), &s.w);
-                if !unique {
-                    let norm2: Vec<T> = self.frames().iter().map(|f| f.norm2[0].clone()).collect();
-                    s.pivots += least_norm(self.g_hat(), &s.w, &norm2, &mut s.z);
-                }
-                out.impulses_hat = s.z;
-                out.compression_hat.clear();
-                (s.pivots, unique, true)
-            }
-            Model::Poisson => {
-                let q: Vec<T> = v0.iter().map(|v| -v.clone()).collect();
-                let c = run(self.g_hat(), &q, "compression")?;
-                // The expansion LCP in X: w = Ĝ X + (Ĝ (1 + k)∘P̂ᶜ − v̂⁰).
-                let base: Vec<T> = c
-                    .z
-                    .iter()
-                    .zip(self.problem().contacts())
-                    .map(|(p, k)| (T::one() + &k.k_poisson) * p)
-                    .collect();
-                let g = self.g_hat();
-                let q2: Vec<T> = (0..n)
-                    .map(|i| {
-                        let mut s = -v0[i].clone();
-                        for j in 0..n {
-                            s += g[i * n + j].clone() * &base[j];
-                        }
-                        s
-                    })
-                    .collect();
-                let x = run(g, &q2, "expansion")?;
-                let compression_unique = regular_on_equalities(g, &c.w);
-                let unique = compression_unique && regular_on_equalities(g, &x.w);
-                let contacts = self.problem().contacts();
-                let equal_k = contacts.iter().all(|k| k.k_poisson == contacts[0].k_poisson);
-                out.impulses_hat = base.into_iter().zip(x.z).map(|(b, x)| b + x).collect();
-                out.compression_hat = c.z;
-                (c.pivots + x.pivots, unique, compression_unique || equal_k)
-            }
-        };
+        let mut work = std::mem::take(&mut self.unilateral);
+        let result = self.solve_unilateral_in(&mut work, model, out);
+        self.unilateral = work;
+        let (pivots, unique, decided) = result?;
         self.complete(out);
         Ok(Activity {
-            active: out.impulses_hat.iter().map(|p| p.signum_i8() > 0).collect(),
             singular: self.singular(),
             impulses_unique: unique,
             outcome_decided: decided,
             pivots,
         })
     }
+
+    /// The LCPs of `model` in `work`'s buffers, the impulses into `out`: (pivots, impulses
+    /// unique, outcome decided).
+    fn solve_unilateral_in(
+        &self,
+        work: &mut UnilateralWork<T>,
+        model: Model,
+        out: &mut Outcome<T>,
+    ) -> Result<(usize, bool, bool), UnilateralError> {
+        let n = self.contacts();
+        let g = self.g_hat();
+        let v0 = |i: usize| &self.before_hat()[i][0];
+        let contacts = self.problem().contacts();
+        let UnilateralWork { lcp, q, w, sub, perm, set } = work;
+        match model {
+            Model::Newton => {
+                // −q_i = −(v_ix⁰ + k_i max(v_ix⁰, 0)).
+                q.clear();
+                q.extend((0..n).map(|i| {
+                    let v = v0(i);
+                    let approach = if v.signum_i8() > 0 { v.clone() } else { T::zero() };
+                    -(v.clone() + contacts[i].k_newton.clone() * &approach)
+                }));
+                let mut pivots = run(lcp, g, q, "newton")?;
+                let unique = regular_on_equalities(g, &lcp.w, set, sub, perm);
+                if !unique {
+                    let norm2: Vec<T> = self.frames().iter().map(|f| f.norm2[0].clone()).collect();
+                    pivots += least_norm(g, &lcp.w, &norm2, &mut lcp.z);
+                }
+                out.impulses_hat.clone_from(&lcp.z);
+                out.compression_hat.clear();
+                Ok((pivots, unique, true))
+            }
+            Model::Poisson => {
+                q.clear();
+                q.extend((0..n).map(|i| -v0(i).clone()));
+                let compression = run(lcp, g, q, "compression")?;
+                out.compression_hat.clone_from(&lcp.z);
+                w.clone_from(&lcp.w);
+                // The expansion LCP in X: w = Ĝ X + (Ĝ (1 + k)∘P̂ᶜ − v̂⁰); (1 + k)∘P̂ᶜ is kept in
+                // out.impulses_hat until X is added.
+                out.impulses_hat.clear();
+                out.impulses_hat.extend(
+                    (0..n).map(|j| (T::one() + &contacts[j].k_poisson) * &out.compression_hat[j]),
+                );
+                q.clear();
+                q.extend((0..n).map(|i| {
+                    let mut s = -v0(i).clone();
+                    for j in 0..n {
+                        s += g[i * n + j].clone() * &out.impulses_hat[j];
+                    }
+                    s
+                }));
+                let expansion = run(lcp, g, q, "expansion")?;
+                for (p, x) in out.impulses_hat.iter_mut().zip(&lcp.z) {
+                    *p += x;
+                }
+                let compression_unique = regular_on_equalities(g, w, set, sub, perm);
+                let unique = compression_unique && regular_on_equalities(g, &lcp.w, set, sub, perm);
+                let equal_k = contacts.iter().all(|k| k.k_poisson == contacts[0].k_poisson);
+                Ok((compression + expansion, unique, compression_unique || equal_k))
+            }
+        }
+    }
 }
 
-/// Is G_AA regular, A = {i : w_i = 0} the contacts that meet their law with equality?
-fn regular_on_equalities<T: Scalar>(g: &[T], w: &[T]) -> bool {
+/// Is G_AA regular, A = {i : w_i = 0} the contacts that meet their law with equality? (In the
+/// caller's buffers.)
+fn regular_on_equalities<T: Scalar>(
+    g: &[T],
+    w: &[T],
+    set: &mut Vec<usize>,
+    sub: &mut Vec<T>,
+    perm: &mut Vec<usize>,
+) -> bool {
     let n = w.len();
     let scale = w.iter().fold(T::zero(), |m, x| if x.abs_gt(&m) { x.clone() } else { m });
-    let a: Vec<usize> = (0..n).filter(|&i| w[i].is_negligible(&scale, 16 * n)).collect();
-    let k = a.len();
-    let mut sub: Vec<T> = a.iter().flat_map(|&i| a.iter().map(move |&j| g[i * n + j].clone())).collect();
-    let mut perm = vec![0; k];
-    crate::linalg::factor_psd(&mut sub, k, &mut perm).is_ok_and(|f| f.rank == k)
+    set.clear();
+    set.extend((0..n).filter(|&i| w[i].is_negligible(&scale, 16 * n)));
+    let k = set.len();
+    sub.clear();
+    for &i in set.iter() {
+        sub.extend(set.iter().map(|&j| g[i * n + j].clone()));
+    }
+    perm.clear();
+    perm.resize(k, 0);
+    crate::linalg::factor_psd(sub, k, perm).is_ok_and(|f| f.rank == k)
 }
 
 /// Replace the solution `z` of a Newton LCP with a singular G_AA by the member of its solution
@@ -291,13 +346,14 @@ fn least_norm<T: Scalar>(g: &[T], w: &[T], norm2: &[T], z: &mut [T]) -> usize {
     }
 }
 
-/// Lemke on LCP(Ĝ, q), the errors named by phase.
+/// Lemke on LCP(Ĝ, q) in `work`, the errors named by phase; the pivots made.
 fn run<T: Scalar>(
+    work: &mut LcpWork<T>,
     g: &[T],
     q: &[T],
     phase: &'static str,
-) -> Result<crate::linalg::lcp::LcpSolution<T>, UnilateralError> {
-    lemke(Lcp { m: g, q }).map_err(|e| match e {
+) -> Result<usize, UnilateralError> {
+    lemke_in(work, Lcp { m: g, q }).map_err(|e| match e {
         LcpError::Ray { .. } => UnilateralError::Jammed { phase },
         LcpError::IterationLimit { pivots } => UnilateralError::IterationLimit { phase, pivots },
     })

@@ -102,7 +102,7 @@ impl Report {
                 .collect(),
         );
         if let Some(a) = &r.activity {
-            o.insert("active".into(), a.active.clone().into());
+            o.insert("active".into(), r.active.clone().into());
             o.insert("impulses_unique".into(), a.impulses_unique.into());
             o.insert("outcome_decided".into(), a.outcome_decided.into());
         }

@@ -157,6 +157,8 @@ pub struct ModelReport {
     /// The unilateral law's activity: which contacts take an impulse, and whether G is
     /// singular (velocities unique, impulses possibly a set).
     pub activity: Option<Activity>,
+    /// The unilateral law: per contact, whether it takes an impulse (empty otherwise).
+    pub active: Vec<bool>,
 }
 
 /// The constraints of a constrained body, as used.
@@ -317,6 +319,7 @@ impl ModelReport {
             law: Law::Simultaneous,
             inadmissible: Vec::new(),
             activity: None,
+            active: Vec::new(),
         }
     }
 }

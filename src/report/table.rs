@@ -138,9 +138,9 @@ impl Report {
             for i in 0..n {
                 rows.push((
                     format!("contact {}", i + 1),
-                    each(&|m| match &m.activity {
-                        Some(a) if a.active[i] => "active".into(),
-                        Some(_) => "separates".into(),
+                    each(&|m| match m.active.get(i) {
+                        Some(true) => "active".into(),
+                        Some(false) => "separates".into(),
                         None => "—".into(),
                     }),
                 ));

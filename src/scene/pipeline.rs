@@ -73,6 +73,9 @@ pub fn run_with<T: Scalar>(
         r.law = scene.law;
         r.inadmissible.clone_from(&s.inadmissible);
         r.activity.clone_from(&s.activity);
+        if s.activity.is_some() {
+            r.active = crate::impact::unilateral::active(&s.outcome);
+        }
     }
     Ok(Solved {
         report,

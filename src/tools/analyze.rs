@@ -244,7 +244,7 @@ fn unilateral_report<T: Scalar>(
     let mut out = crate::impact::solve::Outcome::default();
     let activity = impact.solve_unilateral(model, &mut out).map_err(|e| e.to_string())?;
     Ok(UnilateralReport {
-        active: activity.active,
+        active: crate::impact::unilateral::active(&out),
         impulses: out
             .impulses_hat
             .iter()

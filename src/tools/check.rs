@@ -870,10 +870,13 @@ pub fn lookup(r: &Report, q: &str) -> Result<Vec<Value>, String> {
                 }
             }
             if let Some(i) = name.strip_prefix("active").and_then(idx) {
-                let a = mr.activity.as_ref().ok_or_else(|| {
-                    format!("`{q}`: which contacts are active is said by the unilateral law only")
-                })?;
-                return Ok(vec![flag(a.active[i])]);
+                if mr.activity.is_none() {
+                    return Err(format!(
+                        "`{q}`: which contacts are active is said by the unilateral law only"
+                    ));
+                }
+                let a = mr.active.get(i).ok_or_else(|| format!("`{q}`: no contact {}", i + 1))?;
+                return Ok(vec![flag(*a)]);
             }
             if let Some(v) = angle_value(&mr.contacts, name, &idx) {
                 return Ok(v);

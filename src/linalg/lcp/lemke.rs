@@ -22,16 +22,54 @@ use crate::scalar::Scalar;
 /// [`LcpError::Ray`] when the LCP has no solution (for a positive semidefinite M);
 /// [`LcpError::IterationLimit`] when the pivot budget (a safeguard) runs out.
 pub fn lemke<T: Scalar>(lcp: Lcp<'_, T>) -> Result<LcpSolution<T>, LcpError> {
+    let mut work = LcpWork::default();
+    let pivots = lemke_in(&mut work, lcp)?;
+    Ok(LcpSolution {
+        z: work.z,
+        w: work.w,
+        pivots,
+    })
+}
+
+/// The buffers of [`lemke_in`]: the tableau, the basis and the solution. Reused across solves,
+/// so repeated f64 solves of the same size allocate nothing.
+#[derive(Clone, Debug)]
+pub struct LcpWork<T> {
+    t: Vec<T>,
+    basis: Vec<usize>,
+    /// z of the last solution.
+    pub z: Vec<T>,
+    /// w = M z + q of the last solution.
+    pub w: Vec<T>,
+}
+
+impl<T> Default for LcpWork<T> {
+    fn default() -> Self {
+        LcpWork {
+            t: Vec::new(),
+            basis: Vec::new(),
+            z: Vec::new(),
+            w: Vec::new(),
+        }
+    }
+}
+
+/// [`lemke`] in caller-owned buffers: the solution is left in `work.z`, `work.w`; the pivots
+/// made are returned.
+///
+/// # Errors
+/// As [`lemke`].
+pub fn lemke_in<T: Scalar>(work: &mut LcpWork<T>, lcp: Lcp<'_, T>) -> Result<usize, LcpError> {
     let n = lcp.q.len();
     debug_assert_eq!(lcp.m.len(), n * n);
     if lcp.q.iter().all(|x| x.signum_i8() >= 0) {
-        return Ok(LcpSolution {
-            z: vec![T::zero(); n],
-            w: lcp.q.to_vec(),
-            pivots: 0,
-        });
+        work.z.clear();
+        work.z.resize(n, T::zero());
+        work.w.clear();
+        work.w.extend_from_slice(lcp.q);
+        return Ok(0);
     }
-    let mut t = Tableau::new(lcp);
+    let mut t = Tableau::new(work, lcp);
     // z₀ enters at the level that makes the most negative q_i zero (lowest index on ties:
     // the lexicographic rule for the column −e).
     let mut r = 0;
@@ -45,7 +83,8 @@ pub fn lemke<T: Scalar>(lcp: Lcp<'_, T>) -> Result<LcpSolution<T>, LcpError> {
     for pivots in 0..budget {
         let leaving = t.pivot(r, entering);
         if leaving == t.z0 {
-            return Ok(t.solution(pivots + 1));
+            t.solution();
+            return Ok(pivots + 1);
         }
         entering = if leaving < n { leaving + n } else { leaving - n };
         r = match t.ratio_test(entering) {
@@ -56,23 +95,24 @@ pub fn lemke<T: Scalar>(lcp: Lcp<'_, T>) -> Result<LcpSolution<T>, LcpError> {
     Err(LcpError::IterationLimit { pivots: budget })
 }
 
-/// The dense tableau [I | −M | −e | q] as it is pivoted, and which variable is basic in each row.
-struct Tableau<T> {
+/// The dense tableau [I | −M | −e | q] as it is pivoted, and which variable is basic in each
+/// row, in the buffers of an [`LcpWork`].
+struct Tableau<'w, T> {
     n: usize,
     /// Columns: w (0..n), z (n..2n), z₀ (2n), right-hand side b (2n + 1).
     cols: usize,
     z0: usize,
-    t: Vec<T>,
-    basis: Vec<usize>,
+    work: &'w mut LcpWork<T>,
 }
 
-impl<T: Scalar> Tableau<T> {
-    fn new(lcp: Lcp<'_, T>) -> Self {
+impl<'w, T: Scalar> Tableau<'w, T> {
+    fn new(work: &'w mut LcpWork<T>, lcp: Lcp<'_, T>) -> Self {
         let n = lcp.q.len();
         let cols = 2 * n + 2;
-        let mut t = vec![T::zero(); n * cols];
+        work.t.clear();
+        work.t.resize(n * cols, T::zero());
         for i in 0..n {
-            let row = &mut t[i * cols..(i + 1) * cols];
+            let row = &mut work.t[i * cols..(i + 1) * cols];
             row[i] = T::one();
             for j in 0..n {
                 row[n + j] = -lcp.m[i * n + j].clone();
@@ -80,17 +120,18 @@ impl<T: Scalar> Tableau<T> {
             row[2 * n] = -T::one();
             row[2 * n + 1] = lcp.q[i].clone();
         }
+        work.basis.clear();
+        work.basis.extend(0..n);
         Tableau {
             n,
             cols,
             z0: 2 * n,
-            t,
-            basis: (0..n).collect(),
+            work,
         }
     }
 
     fn at(&self, i: usize, j: usize) -> &T {
-        &self.t[i * self.cols + j]
+        &self.work.t[i * self.cols + j]
     }
 
     /// Make column `c` basic in row `r`; the variable that leaves.
@@ -98,7 +139,7 @@ impl<T: Scalar> Tableau<T> {
         let cols = self.cols;
         let p = self.at(r, c).clone();
         for j in 0..cols {
-            self.t[r * cols + j] /= &p;
+            self.work.t[r * cols + j] /= &p;
         }
         for i in 0..self.n {
             if i == r {
@@ -110,10 +151,10 @@ impl<T: Scalar> Tableau<T> {
             }
             for j in 0..cols {
                 let d = f.clone() * self.at(r, j);
-                self.t[i * cols + j] -= d;
+                self.work.t[i * cols + j] -= d;
             }
         }
-        std::mem::replace(&mut self.basis[r], c)
+        std::mem::replace(&mut self.work.basis[r], c)
     }
 
     /// The row that leaves when column `c` enters: among rows with a positive entry, the
@@ -150,20 +191,23 @@ impl<T: Scalar> Tableau<T> {
         best
     }
 
-    /// Read z and w off the final basis.
-    fn solution(&self, pivots: usize) -> LcpSolution<T> {
+    /// Read z and w off the final basis into the work's buffers.
+    fn solution(&mut self) {
         let n = self.n;
-        let mut z = vec![T::zero(); n];
-        let mut w = vec![T::zero(); n];
-        for (i, &v) in self.basis.iter().enumerate() {
-            let b = self.at(i, 2 * n + 1).clone();
+        let work = &mut *self.work;
+        work.z.clear();
+        work.z.resize(n, T::zero());
+        work.w.clear();
+        work.w.resize(n, T::zero());
+        for i in 0..n {
+            let v = work.basis[i];
+            let b = work.t[i * self.cols + 2 * n + 1].clone();
             if v < n {
-                w[v] = b;
+                work.w[v] = b;
             } else if v < 2 * n {
-                z[v - n] = b;
+                work.z[v - n] = b;
             }
         }
-        LcpSolution { z, w, pivots }
     }
 }
 

@@ -24,7 +24,7 @@
 
 mod lemke;
 
-pub use lemke::lemke;
+pub use lemke::{LcpWork, lemke, lemke_in};
 
 /// A linear complementarity problem LCP(M, q), M n×n row-major.
 #[derive(Debug)]
