@@ -232,6 +232,13 @@ fn a_box_landing_flat_has_unique_velocities_and_least_norm_impulses() {
     assert!(table.contains("the law does not decide the outcome"), "{table}");
     let j = stdout_json(&s.run(&["solve", "--exact", "--json", "--law", "unilateral", "--model", "poisson"]));
     assert_eq!(j["models"]["poisson"]["outcome_decided"], false);
+    // By hand: compression stops the box (ΣPᶜ = m·2 = 24) with Pᶜ anywhere on the set; all of it
+    // on the k = 0.3 corners gives ΣP = 1.3·24, v_Cz = −2 + 31.2/12 = 3/5; all on the k = 0.7
+    // corners, 7/5 (no expansion impulse X is needed: every corner then leaves).
+    let range = &j["models"]["poisson"]["outcome_range"];
+    assert_eq!(range["twist_min"][5], "3/5");
+    assert_eq!(range["twist_max"][5], "7/5");
+    assert!(table.contains("vCz ∈ [3/5 ≈ 0.6, 7/5 ≈ 1.4]"), "{table}");
 }
 
 /// Every scene of the unilateral derivations (`derivations/unilateral-*.md`) has a physical

@@ -358,3 +358,88 @@ fn run<T: Scalar>(
         LcpError::IterationLimit { pivots } => UnilateralError::IterationLimit { phase, pivots },
     })
 }
+
+/// At most this many contacts meeting Poisson's compression law with equality are enumerated
+/// for [`Impact::poisson_vertex_outcomes`] (2^12 supports).
+pub const MAX_ENUMERATED: usize = 12;
+
+impl<T: Scalar> Impact<T> {
+    /// When Poisson's law does not decide the outcome (compression impulses that form a set,
+    /// unequal k_i), the outcomes obtained from each **vertex of the set of compression
+    /// impulses**: every Pᶜ ≥ 0 with G Pᶜ = G Pᶜ* that vanishes off A = {i : w_i = 0} and has a
+    /// support S with G_SS regular (the vertices of that polytope), each followed by its
+    /// expansion LCP. Their spread shows how far the law leaves the answer open; `None` when
+    /// A has more than [`MAX_ENUMERATED`] contacts.
+    ///
+    /// # Errors
+    /// As [`Impact::solve_unilateral`].
+    pub fn poisson_vertex_outcomes(&mut self) -> Result<Option<Vec<Outcome<T>>>, UnilateralError> {
+        let n = self.contacts();
+        let mut first = Outcome::default();
+        self.solve_unilateral(Model::Poisson, &mut first)?;
+        let g = self.g_hat().to_vec();
+        // The compression LCP's w, and the fixed G Pᶜ.
+        let v0: Vec<T> = self.before_hat().iter().map(|v| v[0].clone()).collect();
+        let gp: Vec<T> = (0..n)
+            .map(|i| (0..n).fold(T::zero(), |s, j| s + g[i * n + j].clone() * &first.compression_hat[j]))
+            .collect();
+        let w: Vec<T> = (0..n).map(|i| gp[i].clone() - &v0[i]).collect();
+        let scale = w.iter().fold(T::zero(), |m, x| if x.abs_gt(&m) { x.clone() } else { m });
+        let a: Vec<usize> = (0..n).filter(|&i| w[i].is_negligible(&scale, 16 * n)).collect();
+        if a.len() > MAX_ENUMERATED {
+            return Ok(None);
+        }
+        let mut outcomes = Vec::new();
+        for mask in 1u32..(1 << a.len()) {
+            let s: Vec<usize> = (0..a.len()).filter(|b| mask >> b & 1 == 1).map(|b| a[b]).collect();
+            let k = s.len();
+            let g = &g;
+            let mut sub: Vec<T> = s.iter().flat_map(|&i| s.iter().map(move |&j| g[i * n + j].clone())).collect();
+            let mut perm = vec![0; k];
+            if !crate::linalg::factor_psd(&mut sub, k, &mut perm).is_ok_and(|f| f.rank == k) {
+                continue;
+            }
+            let mut y: Vec<T> = s.iter().map(|&i| gp[i].clone()).collect();
+            let mut work = vec![T::zero(); k];
+            crate::linalg::solve_factored(&sub, k, &perm, &mut y, &mut work);
+            if y.iter().any(|x| x.signum_i8() < 0 && !x.is_negligible(&scale, 16 * n)) {
+                continue;
+            }
+            let mut pc = vec![T::zero(); n];
+            for (&i, x) in s.iter().zip(y) {
+                pc[i] = x;
+            }
+            // A vertex only if G Pᶜ = G Pᶜ* on every row (not only on S).
+            let consistent = (0..n).all(|i| {
+                let r = (0..n).fold(-gp[i].clone(), |acc, j| acc + g[i * n + j].clone() * &pc[j]);
+                r.is_negligible(&scale, 16 * n)
+            });
+            if consistent {
+                outcomes.push(self.expand_from(&pc)?);
+            }
+        }
+        Ok(Some(outcomes))
+    }
+
+    /// Poisson's expansion phase from the compression impulses `pc`, completed.
+    fn expand_from(&mut self, pc: &[T]) -> Result<Outcome<T>, UnilateralError> {
+        let n = self.contacts();
+        let g = self.g_hat();
+        let contacts = self.problem().contacts();
+        let base: Vec<T> = (0..n).map(|j| (T::one() + &contacts[j].k_poisson) * &pc[j]).collect();
+        let q: Vec<T> = (0..n)
+            .map(|i| (0..n).fold(-self.before_hat()[i][0].clone(), |s, j| s + g[i * n + j].clone() * &base[j]))
+            .collect();
+        let x = lemke(Lcp { m: g, q: &q }).map_err(|e| match e {
+            LcpError::Ray { .. } => UnilateralError::Jammed { phase: "expansion" },
+            LcpError::IterationLimit { pivots } => UnilateralError::IterationLimit { phase: "expansion", pivots },
+        })?;
+        let mut out = Outcome {
+            impulses_hat: base.into_iter().zip(x.z).map(|(b, x)| b + x).collect(),
+            compression_hat: pc.to_vec(),
+            ..Outcome::default()
+        };
+        self.complete(&mut out);
+        Ok(out)
+    }
+}

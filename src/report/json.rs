@@ -105,6 +105,15 @@ impl Report {
             o.insert("active".into(), r.active.clone().into());
             o.insert("impulses_unique".into(), a.impulses_unique.into());
             o.insert("outcome_decided".into(), a.outcome_decided.into());
+            if let Some(range) = &r.outcome_range {
+                o.insert(
+                    "outcome_range".into(),
+                    json!({
+                        "twist_min": range.iter().map(|(lo, _)| lo.json()).collect::<Vec<_>>(),
+                        "twist_max": range.iter().map(|(_, hi)| hi.json()).collect::<Vec<_>>(),
+                    }),
+                );
+            }
         }
         Json::Object(o)
     }

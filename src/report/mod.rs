@@ -159,6 +159,9 @@ pub struct ModelReport {
     pub activity: Option<Activity>,
     /// The unilateral law: per contact, whether it takes an impulse (empty otherwise).
     pub active: Vec<bool>,
+    /// When Poisson's law does not decide the outcome: the least and greatest value of each
+    /// twist component [ω; v_C] over the vertices of the set of compression impulses.
+    pub outcome_range: Option<[(Value, Value); 6]>,
 }
 
 /// The constraints of a constrained body, as used.
@@ -320,6 +323,7 @@ impl ModelReport {
             inadmissible: Vec::new(),
             activity: None,
             active: Vec::new(),
+            outcome_range: None,
         }
     }
 }

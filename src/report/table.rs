@@ -44,7 +44,20 @@ impl Report {
                          set and the k_i differ, so the velocities after impact depend on which are \
                          taken; shown: one possibility\n",
                         m.model
-                    )
+                    );
+                    if let Some(r) = &m.outcome_range {
+                        let names = ["ωx", "ωy", "ωz", "vCx", "vCy", "vCz"];
+                        let varying: Vec<String> = names
+                            .iter()
+                            .zip(r)
+                            .filter(|(_, (lo, hi))| lo.f64 != hi.f64 || lo.exact != hi.exact)
+                            .map(|(n, (lo, hi))| format!("{n} ∈ [{}, {}]", lo.text(), hi.text()))
+                            .collect();
+                        out += &format!(
+                            "  over the vertices of the set of compression impulses: {}\n",
+                            if varying.is_empty() { "the same twist".to_string() } else { varying.join(", ") }
+                        );
+                    }
                 }
                 Some(a) if !a.impulses_unique => {
                     out += &format!(

@@ -6,7 +6,7 @@
 //! report names the effects it simulated.
 
 use crate::mechanics::constraint::{Constrained, ConstraintError};
-use crate::report::Report;
+use crate::report::{Report, Value};
 use crate::impact::restitution::Model;
 use crate::scalar::Scalar;
 use crate::scene::{Scene, SceneError};
@@ -68,6 +68,13 @@ pub fn run_with<T: Scalar>(
         outcomes.push((m, s.outcome.clone()));
         solves.push(s);
     }
+    let ranges: Vec<Option<[(Value, Value); 6]>> = solves
+        .iter()
+        .map(|s| match s.activity {
+            Some(act) if !act.outcome_decided => a.poisson_range(),
+            _ => None,
+        })
+        .collect();
     let mut report = a.report(scene, &outcomes);
     for (r, s) in report.models.iter_mut().zip(&solves) {
         r.law = scene.law;
@@ -76,6 +83,9 @@ pub fn run_with<T: Scalar>(
         if s.activity.is_some() {
             r.active = crate::impact::unilateral::active(&s.outcome);
         }
+    }
+    for (r, range) in report.models.iter_mut().zip(ranges) {
+        r.outcome_range = range;
     }
     Ok(Solved {
         report,
@@ -154,6 +164,26 @@ impl<T: Scalar> Assembled<T> {
             inadmissible,
             activity,
         })
+    }
+
+    /// Poisson's undecided outcome: each twist component's least and greatest value over the
+    /// vertices of the compression impulses (`None` when too many contacts to enumerate).
+    fn poisson_range(&mut self) -> Option<[(Value, Value); 6]> {
+        let outcomes = self.impact.poisson_vertex_outcomes().ok()??;
+        let first = outcomes.first()?;
+        Some(std::array::from_fn(|k| {
+            let (mut lo, mut hi) = (first.velocity.0[k].clone(), first.velocity.0[k].clone());
+            for o in &outcomes[1..] {
+                let x = &o.velocity.0[k];
+                if (x.clone() - &lo).signum_i8() < 0 {
+                    lo = x.clone();
+                }
+                if (x.clone() - &hi).signum_i8() > 0 {
+                    hi = x.clone();
+                }
+            }
+            (Value::of(&lo), Value::of(&hi))
+        }))
     }
 
     /// ΔE_c + E_p − Σ P̂_i v̂_ix⁰ = 0 (eq. 34): exactly in exact types, to 16·N·ε·(T⁰ + E_p)
