@@ -2,7 +2,9 @@
 //! and Poisson, every output) with a hand-written f64 closed form as the baseline; N = 3 and 6
 //! contacts (solve) and 12, 24 (assemble + analyze: beyond six contacts a free body is always
 //! singular); a constrained scene (Example 6); building a scene apart from solving it; and a
-//! batch of scenes. At the end it prints the ratio generic f64 / hand-written baseline,
+//! batch of scenes. The unilateral law (assemble + unilateral Newton + Poisson, every output)
+//! on Example 3 and on N = 3, 6, 12, 24 contacts — where, beyond six, the simultaneous solve
+//! is impossible (G singular) and the unilateral one still answers. At the end it prints the ratio generic f64 / hand-written baseline,
 //! measured in the same run.
 //!
 //! `cargo bench --bench solve`
@@ -45,6 +47,29 @@ fn solve_both<T: Scalar>(
     impact.reassemble(p).unwrap();
     impact.solve(Model::Newton, n).unwrap();
     impact.solve(Model::Poisson, q).unwrap();
+}
+
+fn solve_unilateral_both<T: Scalar>(
+    p: &Problem<T>,
+    impact: &mut Impact<T>,
+    n: &mut Outcome<T>,
+    q: &mut Outcome<T>,
+) {
+    impact.reassemble(p).unwrap();
+    impact.solve_unilateral(Model::Newton, n).unwrap();
+    impact.solve_unilateral(Model::Poisson, q).unwrap();
+}
+
+/// The unilateral solve of `scene`, named `{group}/unilateral/{scalar}`.
+fn bench_unilateral<T: Scalar>(c: &mut Criterion, group: &str, scene: &Scene) {
+    let p = scene.problem::<T>().unwrap();
+    let (mut impact, mut n, mut q) = (Impact::assemble(&p).unwrap(), Outcome::default(), Outcome::default());
+    c.bench_function(&format!("{group}/unilateral/{}", T::NAME), |b| {
+        b.iter(|| {
+            solve_unilateral_both(black_box(&p), &mut impact, &mut n, &mut q);
+            black_box(&q.kinetic_energy_loss);
+        })
+    });
 }
 
 fn bench_scalar<T: Scalar>(c: &mut Criterion, scene: &Scene) {
@@ -257,6 +282,8 @@ fn benches(c: &mut Criterion) {
     bench_scalar::<f64>(c, &scene);
     bench_scalar::<DoubleDouble>(c, &scene);
     bench_scalar::<Exact>(c, &scene);
+    bench_unilateral::<f64>(c, "example3", &scene);
+    bench_unilateral::<Exact>(c, "example3", &scene);
     c.bench_function("example3/parse-scene", |b| {
         b.iter(|| Scene::parse(black_box(EXAMPLE_3), "example 3").unwrap())
     });
@@ -269,6 +296,13 @@ fn benches(c: &mut Criterion) {
         bench_contacts::<DoubleDouble>(c, n);
         if n <= 12 {
             bench_contacts::<Exact>(c, n);
+        }
+        // The normals of `many_contacts` all have n_z = 1: no impulses ≥ 0 cancel, so the
+        // unilateral law never jams, whatever N.
+        let many = Scene::parse(&many_contacts(n), "many").unwrap();
+        bench_unilateral::<f64>(c, &format!("contacts-{n}"), &many);
+        if n <= 12 {
+            bench_unilateral::<Exact>(c, &format!("contacts-{n}"), &many);
         }
     }
     bench_constrained::<f32>(c);

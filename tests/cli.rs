@@ -648,6 +648,32 @@ fn bench_quick_json_and_plot() {
             .iter()
             .any(|s| s["contacts"] == 24)
     );
+    // The unilateral law on the same scenes, measured like the simultaneous solve.
+    let uerr = |i: usize| rows[i]["unilateral"]["max_relative_error"].as_f64().unwrap();
+    assert!(
+        uerr(0) < 1e-4 && uerr(1) < 1e-12 && uerr(2) < 1e-28 && uerr(3) == 0.0,
+        "{rows:?}"
+    );
+    for r in rows {
+        assert!(r["unilateral"]["median_ns_per_solve"].as_f64().unwrap() > 0.0);
+    }
+    // Against N: a free body's G is singular beyond six contacts, so the simultaneous solve
+    // is impossible there. The landing scenes never jam: their normals all have n_z = 1, so no
+    // impulses y ≥ 0 but 0 have B y = 0 (Σ y_i n_iz = Σ y_i), which infeasibility of an LCP
+    // in a semidefinite G = Bᵀ W B would need (Farkas: y ≥ 0, G y ≤ 0 ⇒ yᵀ G y = 0 ⇒ B y = 0);
+    // so the unilateral one answers for every N.
+    for s in v["scaling"].as_array().unwrap() {
+        let n = s["contacts"].as_u64().unwrap();
+        let (sim, uni) = (&s["ns_per_solve_simultaneous"], &s["ns_per_solve_unilateral"]);
+        for t in ["f32", "f64", "double-double"] {
+            if n > 6 {
+                assert_eq!(sim[t], "singular", "N = {n}, {t}");
+            }
+            assert!(uni[t].as_f64().unwrap() > 0.0, "N = {n}, {t}: {uni}");
+        }
+        let active = s["unilateral_active"]["newton"].as_u64().unwrap();
+        assert!(active <= n, "N = {n}: {active} active");
+    }
     assert!(std::fs::read_to_string(&plot).unwrap().starts_with("<svg"));
     let _ = std::fs::remove_dir_all(dir);
 }

@@ -225,6 +225,8 @@ fn one_dimensional_plot_of_chosen_outputs() {
     assert!(svg.starts_with("<svg"));
     assert!(svg.contains("newton P2") && svg.contains("poisson P2") && svg.contains("newton dEc"));
     assert!(!svg.contains("poisson dEc"));
+    // Every point is admissible here (ω = 0.4: P2 > 0 for every k2), so nothing is shaded.
+    assert!(!svg.contains("status "), "no regime band on an all-ok sweep");
     assert!(
         svg.contains("contact[1].k"),
         "x axis named by the varied path"
@@ -251,6 +253,8 @@ fn a_singular_point_is_reported_not_an_error() {
         let status = column(&header, "status");
         let p1 = column(&header, "newton_P1");
         assert_eq!(rows[0][status], "singular");
+        let svg = std::fs::read_to_string(s.path("y.svg")).unwrap();
+        assert!(svg.contains("status singular: -2"), "the singular point is marked");
         assert_eq!(rows[0][p1], "");
         assert!(rows[0][2..status].iter().filter(|f| !f.is_empty()).count() <= 1);
         // The other points are solved; a simultaneous answer with a negative impulse says
@@ -347,4 +351,59 @@ fn bad_plot_output_and_unwritable_out() {
     );
     assert!(e.to_string().contains("o.csv"), "{e}");
     assert_eq!(s.files(), vec!["scene.toml"]);
+}
+
+/// Example 3 (`examples/planar-bar.toml`) swept over ω_z from 0.4 to 1.2. By hand, with the
+/// supports at y = −2 and y = 4 and n = x:
+///
+/// - v₁ₓ⁰ = v_x − ω_z·(−2) = 3 + 2ω, v₂ₓ⁰ = 3 − 4ω;
+/// - g_ij = 1/m + y_i y_j / J_z: g₁₁ = 4/3, g₂₂ = 7/3, g₁₂ = 1/3, Δ = 3;
+/// - Newton (eq. 20): P₂ = [g₁₁(1 + k₂)v₂ₓ⁰ − g₁₂(1 + k₁)v₁ₓ⁰]/Δ
+///   = [1.6(3 − 4ω) − (1.3/3)(3 + 2ω)]/3, zero where 4.8(3 − 4ω) = 1.3(3 + 2ω), i.e.
+///   ω* = 10.5/21.8 = **105/218** ≈ 0.4817, negative beyond (P₁ = [(7/3)1.3(3 + 2ω) −
+///   (1/3)1.2(3 − 4ω)]/3 stays positive);
+/// - Poisson: P₂ᶜ ∝ g₁₁v₂ₓ⁰ − g₁₂v₁ₓ⁰ ∝ 4(3 − 4ω) − (3 + 2ω), zero at ω = 1/2 > ω*: Newton
+///   decides the switch;
+/// - contact 2 separates before impact (v₂ₓ⁰ < 0) for ω > 3/4.
+///
+/// The grid 0.4:1.2:873 has ω_i = 2/5 + i/1090, and ω* − 2/5 = 89/1090: point 89 is exactly ω*
+/// (P₂ = 0, still `ok`), point 90 the first `tensile`; ω_i > 3/4 ⇔ i > 381.5.
+#[test]
+fn sweeping_omega_crosses_into_tensile_at_the_threshold_of_eq_20_and_the_plot_marks_it() {
+    let s = Scratch::new("omega");
+    let scene = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/planar-bar.toml");
+    for exact in [true, false] {
+        let opts = SweepOptions {
+            scene: scene.clone(),
+            exact,
+            plot: Some(s.path("w.svg")),
+            ..s.options(&["body.angular_velocity[2]=0.4:1.2:873"], "w.csv")
+        };
+        sweep(&opts).unwrap();
+        let (header, rows) = read_csv(&s.path("w.csv"));
+        let status = column(&header, "status");
+        assert_eq!(rows.len(), 873);
+        for (i, row) in rows.iter().enumerate() {
+            let st = &row[status];
+            if i <= 89 {
+                assert_eq!(st, "ok", "point {i}, exact = {exact}");
+            } else {
+                assert!(st.starts_with("tensile"), "point {i}: {st}, exact = {exact}");
+                assert_eq!(st.contains("separating"), i >= 382, "point {i}: {st}");
+            }
+        }
+        if exact {
+            let w = column(&header, "body.angular_velocity[2]_exact");
+            assert_eq!(rows[89][w], "105/218");
+            assert_eq!(rows[89][column(&header, "newton_P2_exact")], "0");
+        }
+        let svg = std::fs::read_to_string(s.path("w.svg")).unwrap();
+        // The band from the first tensile point (ω₉₀ = 2/5 + 90/1090 = 263/545 ≈ 0.4826) to the
+        // last before contact 2 separates (ω₃₈₁ = 817/1090 ≈ 0.7495), in the legend and shaded.
+        assert!(svg.contains("status tensile: 0.4826…0.7495"), "exact = {exact}");
+        assert!(svg.contains("status tensile+separating: 0.7505…"), "exact = {exact}");
+        assert!(svg.contains(r##"opacity="0.15" fill="#D62728""##), "the tensile band");
+        // The rest of the plot is as before.
+        assert!(svg.contains("newton P2") && svg.contains("poisson dEc"));
+    }
 }

@@ -12,6 +12,13 @@
 //! The cost growth with the number of contacts is measured on `assemble` + `analyze` (both
 //! models): a free body has six independent directions, so beyond six contacts G is always
 //! singular and `analyze` (the family of solutions) is the operation that works for every N.
+//!
+//! The unilateral law ([`crate::impact::unilateral`]) is measured beside the simultaneous
+//! solve: on the corpus, its time per solve (assemble + unilateral Newton + Poisson, every
+//! output) and its error against the exact unilateral outcome, measured like the simultaneous
+//! one; against N, the same solve next to the simultaneous one on the same scene — which is
+//! impossible beyond six contacts (G singular) while the unilateral one still answers (its
+//! velocities are unique; its impulses one of a set).
 
 use std::path::Path;
 use std::time::{Duration, Instant};
@@ -27,6 +34,7 @@ use crate::scalar::{Exact, Scalar};
 use crate::scene::Scene;
 use crate::impact::problem::Problem;
 use crate::impact::solve::{Impact, Outcome};
+use crate::impact::unilateral::Activity;
 
 /// Options of a bench run.
 #[derive(Clone, Debug)]
@@ -51,6 +59,59 @@ pub struct ScalarRow {
     /// Over the hard cases (`None` without them): the largest relative error among those this
     /// type solves, and how many it declares singular (cond·ε too large for the type).
     pub max_error_hard: Option<(f64, usize)>,
+    /// The unilateral law on the same well-conditioned scenes, against the exact unilateral
+    /// outcome.
+    pub unilateral: UnilateralRow,
+}
+
+/// One scalar type's unilateral solve over the well-conditioned scenes.
+#[derive(Clone, Debug)]
+pub struct UnilateralRow {
+    /// Median time per assemble + unilateral Newton + Poisson, ns.
+    pub median_ns: f64,
+    /// Median relative error against the exact unilateral outcome.
+    pub median_error: f64,
+    /// Largest relative error (infinite when a scene gave no answer in this type).
+    pub max_error: f64,
+}
+
+/// A solve's time against N, or why there is none.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Timing {
+    /// Nanoseconds per solve.
+    Ns(f64),
+    /// G is singular in this type: the simultaneous solve is impossible.
+    Singular,
+    /// The unilateral law found no admissible impulses.
+    Jammed,
+    /// Not measured (exact arithmetic beyond the size limit).
+    Skipped,
+}
+
+impl Timing {
+    /// The time, when measured.
+    pub fn ns(self) -> Option<f64> {
+        match self {
+            Timing::Ns(t) => Some(t),
+            _ => None,
+        }
+    }
+}
+
+/// The cost of one scene with N contacts, per scalar type (in [`BenchReport::rows`] order).
+#[derive(Clone, Debug)]
+pub struct Growth {
+    /// Contacts.
+    pub contacts: usize,
+    /// ns per assemble + analyze (both models); `None` when skipped.
+    pub analyze: Vec<Option<f64>>,
+    /// assemble + Newton + Poisson, simultaneous.
+    pub simultaneous: Vec<Timing>,
+    /// assemble + Newton + Poisson, unilateral.
+    pub unilateral: Vec<Timing>,
+    /// In exact arithmetic (or f64 where exact is skipped), the contacts taking an impulse
+    /// under the unilateral Newton and Poisson laws.
+    pub active: Option<(usize, usize)>,
 }
 
 /// A bench run's results.
@@ -60,8 +121,11 @@ pub struct BenchReport {
     pub scenes: (usize, usize),
     /// One row per scalar type, f32 → exact.
     pub rows: Vec<ScalarRow>,
-    /// (N, [ns per assemble + analyze, per scalar in `rows` order; `None` when skipped]).
-    pub scaling: Vec<(usize, Vec<Option<f64>>)>,
+    /// The cost against N.
+    pub scaling: Vec<Growth>,
+    /// Well-conditioned scenes whose exact unilateral answer leaves some contact without an
+    /// impulse (there the simultaneous answer is not physical and the laws differ).
+    pub unilateral_differs: usize,
 }
 
 /// A small deterministic generator (SplitMix64), so the corpus is the same on every machine.
@@ -80,6 +144,12 @@ impl Seeded {
     fn decimal(&mut self, lo: i64, hi: i64) -> String {
         let span = (hi - lo) as u64 * 10 + 1;
         let x = lo * 10 + (self.next() % span) as i64;
+        format!("{}", x as f64 / 10.0)
+    }
+
+    /// A decimal with one fractional digit in [lo/10, hi/10].
+    fn tenths(&mut self, lo: i64, hi: i64) -> String {
+        let x = lo + (self.next() % (hi - lo + 1) as u64) as i64;
         format!("{}", x as f64 / 10.0)
     }
 }
@@ -111,6 +181,40 @@ fn random_scene(rng: &mut Seeded, n: usize) -> Option<Scene> {
         text += &format!(
             "[[contact]]\npoint = {}\nnormal = {normal}\nk_newton = {}\nk_poisson = {}\n",
             v(rng, -2, 2),
+            rng.decimal(0, 1),
+            rng.decimal(0, 1)
+        );
+    }
+    Scene::parse(&text, "generated").ok()
+}
+
+/// A body landing on uneven ground at `n` contacts: points spread over the body, normals
+/// [a, b, 1] tilted at most about 27° from z (so no nonnegative impulses cancel out and the
+/// unilateral law always has an answer — random normals all round cage the body and jam it),
+/// the body moving into the ground (v_z ≥ 1) and turning slowly. Beyond six contacts G is
+/// singular, as for any free body.
+fn landing_scene(rng: &mut Seeded, n: usize) -> Option<Scene> {
+    let mut text = format!(
+        "[body]\nmass = {}\ninertia = [{}, {}, {}]\nvelocity = [{}, {}, {}]\nangular_velocity = [{}, {}, {}]\n",
+        rng.decimal(1, 9),
+        rng.decimal(1, 5),
+        rng.decimal(1, 5),
+        rng.decimal(1, 5),
+        rng.decimal(-1, 1),
+        rng.decimal(-1, 1),
+        rng.decimal(1, 3),
+        rng.tenths(-3, 3),
+        rng.tenths(-3, 3),
+        rng.tenths(-3, 3),
+    );
+    for _ in 0..n {
+        text += &format!(
+            "[[contact]]\npoint = [{}, {}, {}]\nnormal = [{}, {}, 1]\nk_newton = {}\nk_poisson = {}\n",
+            rng.decimal(-2, 2),
+            rng.decimal(-2, 2),
+            rng.decimal(-1, 1),
+            rng.tenths(-5, 5),
+            rng.tenths(-5, 5),
             rng.decimal(0, 1),
             rng.decimal(0, 1)
         );
@@ -176,6 +280,64 @@ fn solve_all<T: Scalar>(
     impact.solve(Model::Poisson, &mut outs[1]).ok()
 }
 
+/// Assemble `p` into `impact` and solve both models under the unilateral law; `None` when it
+/// fails (jammed, or G unassemblable in this type).
+fn solve_unilateral_all<T: Scalar>(
+    p: &Problem<T>,
+    impact: &mut Impact<T>,
+    outs: &mut [Outcome<T>; 2],
+) -> Result<[Activity; 2], Timing> {
+    impact.reassemble(p).map_err(|_| Timing::Singular)?;
+    let jam = |_| Timing::Jammed;
+    let n = impact.solve_unilateral(Model::Newton, &mut outs[0]).map_err(jam)?;
+    let q = impact.solve_unilateral(Model::Poisson, &mut outs[1]).map_err(jam)?;
+    Ok([n, q])
+}
+
+/// The unilateral outputs of `p` with a new impact.
+fn unilateral_outputs<T: Scalar>(p: &Problem<T>) -> Option<(Outputs, [Activity; 2])> {
+    let mut outs = [Outcome::default(), Outcome::default()];
+    let mut impact = Impact::assemble(p).ok()?;
+    let act = solve_unilateral_all(p, &mut impact, &mut outs).ok()?;
+    Some((outputs(&impact, &outs)?, act))
+}
+
+/// Median wall time (ns) of `f`, repeating until each of three samples takes at least
+/// `budget`; `Err` when `f` fails.
+fn time_three<E>(budget: Duration, mut f: impl FnMut() -> Result<(), E>) -> Result<f64, E> {
+    f()?;
+    let mut samples = Vec::with_capacity(3);
+    for _ in 0..3 {
+        let (mut reps, start) = (0u64, Instant::now());
+        while start.elapsed() < budget || reps == 0 {
+            f()?;
+            reps += 1;
+        }
+        samples.push(start.elapsed().as_nanos() as f64 / reps as f64);
+    }
+    samples.sort_by(f64::total_cmp);
+    Ok(samples[1])
+}
+
+/// Median ns per assemble + unilateral Newton + Poisson of `p`.
+fn time_unilateral<T: Scalar>(p: &Problem<T>, budget: Duration) -> Timing {
+    let mut outs = [Outcome::default(), Outcome::default()];
+    let Ok(mut impact) = Impact::assemble(p) else {
+        return Timing::Singular;
+    };
+    match time_three(budget, || {
+        solve_unilateral_all(std::hint::black_box(p), &mut impact, &mut outs).map(|_| ())
+    }) {
+        Ok(t) => Timing::Ns(t),
+        Err(e) => e,
+    }
+}
+
+/// Median ns per assemble + simultaneous Newton + Poisson of `p`.
+fn time_simultaneous<T: Scalar>(p: &Problem<T>, budget: Duration) -> Timing {
+    time_solve(p, budget).map_or(Timing::Singular, Timing::Ns)
+}
+
 /// [`solve_all`] with a new impact.
 fn solve_new<T: Scalar>(p: &Problem<T>, outs: &mut [Outcome<T>; 2]) -> Option<Impact<T>> {
     let mut impact = Impact::assemble(p).ok()?;
@@ -210,15 +372,15 @@ fn median(mut v: Vec<f64>) -> f64 {
     v[v.len() / 2]
 }
 
+/// A corpus scene with its exact simultaneous outputs and, for the well-conditioned ones, its
+/// exact unilateral outputs.
+type Case = (Scene, Outputs, Option<Outputs>);
+
 /// Times and errors of one scalar type over the corpus.
-fn measure<T: Scalar>(
-    well: &[(Scene, Outputs)],
-    hard: &[(Scene, Outputs)],
-    budget: Duration,
-) -> ScalarRow {
-    let run = |set: &[(Scene, Outputs)], timed: bool| -> (Vec<f64>, Vec<f64>) {
+fn measure<T: Scalar>(well: &[Case], hard: &[Case], budget: Duration) -> ScalarRow {
+    let run = |set: &[Case], timed: bool| -> (Vec<f64>, Vec<f64>) {
         let (mut times, mut errors) = (Vec::new(), Vec::new());
-        for (scene, exact) in set {
+        for (scene, exact, _) in set {
             let Ok(p) = scene.problem::<T>() else {
                 continue;
             };
@@ -236,6 +398,18 @@ fn measure<T: Scalar>(
     };
     let (times, errors) = run(well, true);
     let (_, hard_errors) = run(hard, false);
+    let (mut u_times, mut u_errors) = (Vec::new(), Vec::new());
+    for (scene, _, exact) in well {
+        let (Ok(p), Some(exact)) = (scene.problem::<T>(), exact) else {
+            continue;
+        };
+        u_errors.push(
+            unilateral_outputs(&p).map_or(f64::INFINITY, |(o, _)| relative_error(&o, exact)),
+        );
+        if let Timing::Ns(t) = time_unilateral(&p, budget) {
+            u_times.push(t);
+        }
+    }
     ScalarRow {
         name: T::NAME,
         median_ns: median(times),
@@ -252,6 +426,11 @@ fn measure<T: Scalar>(
                 hard_errors.iter().filter(|e| e.is_infinite()).count(),
             )
         }),
+        unilateral: UnilateralRow {
+            median_ns: median(u_times),
+            median_error: median(u_errors.clone()),
+            max_error: u_errors.iter().cloned().fold(0.0, f64::max),
+        },
     }
 }
 
@@ -280,6 +459,7 @@ pub fn run(opts: &BenchOptions) -> BenchReport {
     };
     // Well-conditioned: cond₂(G) ≤ 10⁴ by the f64 eigenvalues of G.
     let mut well = Vec::new();
+    let mut unilateral_differs = 0;
     while well.len() < count {
         let n = [2, 2, 3, 4, 6][well.len() % 5];
         let Some(scene) = random_scene(&mut rng, n) else {
@@ -295,7 +475,16 @@ pub fn run(opts: &BenchOptions) -> BenchReport {
             continue;
         }
         if let Some(e) = exact_of(&scene) {
-            well.push((scene, e));
+            let u = scene
+                .problem::<Exact>()
+                .ok()
+                .and_then(|p| unilateral_outputs(&p));
+            if u.as_ref().is_some_and(|(_, act)| {
+                act.iter().any(|a| a.active.iter().any(|x| !x))
+            }) {
+                unilateral_differs += 1;
+            }
+            well.push((scene, e, u.map(|(o, _)| o)));
         }
     }
     let mut hard = Vec::new();
@@ -317,7 +506,7 @@ pub fn run(opts: &BenchOptions) -> BenchReport {
                 continue;
             }
             if let Some(e) = exact_of(&scene) {
-                hard.push((scene, e));
+                hard.push((scene, e, None));
             }
         }
     }
@@ -335,27 +524,63 @@ pub fn run(opts: &BenchOptions) -> BenchReport {
     let scaling = sizes
         .iter()
         .filter_map(|&n| {
-            let scene = random_scene(&mut rng, n)?;
+            let scene = landing_scene(&mut rng, n)?;
             let b = budget;
-            let exact_limit = if opts.quick { 12 } else { 24 };
-            Some((
-                n,
-                vec![
+            let exact = n <= if opts.quick { 12 } else { 24 };
+            let skipped = || Timing::Skipped;
+            let active = |act: Option<(Outputs, [Activity; 2])>| {
+                act.map(|(_, [a, b])| {
+                    let count = |x: &Activity| x.active.iter().filter(|y| **y).count();
+                    (count(&a), count(&b))
+                })
+            };
+            Some(Growth {
+                contacts: n,
+                analyze: vec![
                     time_analyze::<f32>(&scene, b),
                     time_analyze::<f64>(&scene, b),
                     time_analyze::<DoubleDouble>(&scene, b),
-                    (n <= exact_limit)
-                        .then(|| time_analyze::<Exact>(&scene, b))
-                        .flatten(),
+                    exact.then(|| time_analyze::<Exact>(&scene, b)).flatten(),
                 ],
-            ))
+                simultaneous: vec![
+                    with_problem::<f32>(&scene, |p| time_simultaneous(p, b)),
+                    with_problem::<f64>(&scene, |p| time_simultaneous(p, b)),
+                    with_problem::<DoubleDouble>(&scene, |p| time_simultaneous(p, b)),
+                    if exact {
+                        with_problem::<Exact>(&scene, |p| time_simultaneous(p, b))
+                    } else {
+                        skipped()
+                    },
+                ],
+                unilateral: vec![
+                    with_problem::<f32>(&scene, |p| time_unilateral(p, b)),
+                    with_problem::<f64>(&scene, |p| time_unilateral(p, b)),
+                    with_problem::<DoubleDouble>(&scene, |p| time_unilateral(p, b)),
+                    if exact {
+                        with_problem::<Exact>(&scene, |p| time_unilateral(p, b))
+                    } else {
+                        skipped()
+                    },
+                ],
+                active: if exact {
+                    active(scene.problem::<Exact>().ok().and_then(|p| unilateral_outputs(&p)))
+                } else {
+                    active(scene.problem::<f64>().ok().and_then(|p| unilateral_outputs(&p)))
+                },
+            })
         })
         .collect();
     BenchReport {
         scenes: (well.len(), hard.len()),
         rows,
         scaling,
+        unilateral_differs,
     }
+}
+
+/// `f` on `scene`'s problem in `T` (`Singular` when it cannot be built).
+fn with_problem<T: Scalar>(scene: &Scene, f: impl FnOnce(&Problem<T>) -> Timing) -> Timing {
+    scene.problem::<T>().map_or(Timing::Singular, |p| f(&p))
 }
 
 /// Time one scene in every scalar type (ns per solve; `None` when singular in that type).
@@ -405,6 +630,15 @@ fn fmt_ns(ns: f64) -> String {
     }
 }
 
+fn fmt_timing(t: Timing) -> String {
+    match t {
+        Timing::Ns(ns) => fmt_ns(ns),
+        Timing::Singular => "singular".into(),
+        Timing::Jammed => "jammed".into(),
+        Timing::Skipped => "—".into(),
+    }
+}
+
 fn fmt_err(e: f64) -> String {
     if e == 0.0 {
         "0".into()
@@ -450,12 +684,45 @@ impl BenchReport {
         s += "\n|---|";
         s += &"---|".repeat(self.rows.len());
         s += "\n";
-        for (n, times) in &self.scaling {
-            s += &format!("| {n} |");
-            for t in times {
+        for g in &self.scaling {
+            s += &format!("| {} |", g.contacts);
+            for t in &g.analyze {
                 s += &format!(" {} |", t.map_or("—".into(), fmt_ns));
             }
             s += "\n";
+        }
+        s += &format!(
+            "\nUnilateral law on the same scenes (assemble + unilateral Newton + Poisson, every output; error against the exact unilateral outcome; in {} of {} scenes some contact takes no impulse, where the laws differ):\n\n",
+            self.unilateral_differs, self.scenes.0
+        );
+        s += "| scalar | median time per solve | ÷ simultaneous | median rel. error | max rel. error |\n|---|---|---|---|---|\n";
+        for r in &self.rows {
+            let u = &r.unilateral;
+            s += &format!(
+                "| {} | {} | {:.1}× | {} | {} |\n",
+                r.name,
+                fmt_ns(u.median_ns),
+                u.median_ns / r.median_ns,
+                fmt_err(u.median_error),
+                fmt_err(u.max_error)
+            );
+        }
+        s += "\nSimultaneous vs unilateral against N (assemble + Newton + Poisson, same scene per N; active: contacts taking an impulse under the unilateral Newton / Poisson laws):\n\n| N |";
+        for r in &self.rows {
+            s += &format!(" {0} simultaneous | {0} unilateral |", r.name);
+        }
+        s += " active |\n|---|";
+        s += &"---|---|".repeat(self.rows.len());
+        s += "---|\n";
+        for g in &self.scaling {
+            s += &format!("| {} |", g.contacts);
+            for (a, b) in g.simultaneous.iter().zip(&g.unilateral) {
+                s += &format!(" {} | {} |", fmt_timing(*a), fmt_timing(*b));
+            }
+            s += &format!(
+                " {} |\n",
+                g.active.map_or("—".into(), |(n, p)| format!("{n} / {p}"))
+            );
         }
         s
     }
@@ -467,6 +734,22 @@ impl BenchReport {
                 .map(Json::Number)
                 .unwrap_or(Json::Null)
         };
+        // Per scalar: ns, or "singular" / "jammed", or null when not measured.
+        let by_scalar = |t: &[Timing]| {
+            self.rows
+                .iter()
+                .zip(t)
+                .map(|(r, x)| {
+                    let v = match x {
+                        Timing::Ns(ns) => num(*ns),
+                        Timing::Singular => "singular".into(),
+                        Timing::Jammed => "jammed".into(),
+                        Timing::Skipped => Json::Null,
+                    };
+                    (r.name.to_string(), v)
+                })
+                .collect::<serde_json::Map<_, _>>()
+        };
         json!({
             "scenes": {"well_conditioned": self.scenes.0, "hard_cases": self.scenes.1},
             "scalars": self.rows.iter().map(|r| json!({
@@ -476,16 +759,26 @@ impl BenchReport {
                 "max_relative_error": num(r.max_error),
                 "max_relative_error_hard_cases": r.max_error_hard.map(|h| num(h.0)),
                 "hard_cases_declared_singular": r.max_error_hard.map(|h| h.1),
+                "unilateral": {
+                    "median_ns_per_solve": num(r.unilateral.median_ns),
+                    "median_relative_error": num(r.unilateral.median_error),
+                    "max_relative_error": num(r.unilateral.max_error),
+                },
             })).collect::<Vec<_>>(),
-            "scaling": self.scaling.iter().map(|(n, t)| json!({
-                "contacts": n,
-                "ns_per_assemble_and_analyze": self.rows.iter().zip(t).map(|(r, x)| (r.name.to_string(), x.map(num).unwrap_or(Json::Null))).collect::<serde_json::Map<_, _>>(),
+            "unilateral_differs": self.unilateral_differs,
+            "scaling": self.scaling.iter().map(|g| json!({
+                "contacts": g.contacts,
+                "ns_per_assemble_and_analyze": self.rows.iter().zip(&g.analyze).map(|(r, x)| (r.name.to_string(), x.map(num).unwrap_or(Json::Null))).collect::<serde_json::Map<_, _>>(),
+                "ns_per_solve_simultaneous": by_scalar(&g.simultaneous),
+                "ns_per_solve_unilateral": by_scalar(&g.unilateral),
+                "unilateral_active": g.active.map(|(n, p)| json!({"newton": n, "poisson": p})),
             })).collect::<Vec<_>>(),
         })
     }
 
     /// Write the plot: error versus time per scalar type (log–log; exact results, error 0,
-    /// are drawn on the floor 10⁻³⁵), and the cost growth with N.
+    /// are drawn on the floor 10⁻³⁵), and the cost growth with N (solid: assemble + analyze;
+    /// dashed with triangles: the unilateral solve).
     pub fn plot(&self, path: &Path) -> Result<(), String> {
         use plotters::prelude::*;
         let tmp = path.with_extension("svg.tmp");
@@ -557,16 +850,22 @@ impl BenchReport {
                 .position(SeriesLabelPosition::UpperRight)
                 .draw()?;
 
-            let nmax = self.scaling.iter().map(|(n, _)| *n).max().unwrap_or(2) as f64;
+            let nmax = self.scaling.iter().map(|g| g.contacts).max().unwrap_or(2) as f64;
             let tops = self
                 .scaling
                 .iter()
-                .flat_map(|(_, t)| t.iter().flatten().cloned())
+                .flat_map(|g| {
+                    g.analyze
+                        .iter()
+                        .flatten()
+                        .cloned()
+                        .chain(g.unilateral.iter().filter_map(|t| t.ns()))
+                })
                 .fold(10.0, f64::max)
                 * 3.0;
             let mut growth = ChartBuilder::on(&right)
                 .caption(
-                    "cost growth with N (assemble + analyze)",
+                    "cost vs N (solid: assemble + analyze; dashed: unilateral solve)",
                     ("sans-serif", 18),
                 )
                 .margin(12)
@@ -584,8 +883,24 @@ impl BenchReport {
                 let pts: Vec<(f64, f64)> = self
                     .scaling
                     .iter()
-                    .filter_map(|(n, t)| t[k].map(|x| (*n as f64, x)))
+                    .filter_map(|g| g.analyze[k].map(|x| (g.contacts as f64, x)))
                     .collect();
+                let unilateral: Vec<(f64, f64)> = self
+                    .scaling
+                    .iter()
+                    .filter_map(|g| g.unilateral[k].ns().map(|x| (g.contacts as f64, x)))
+                    .collect();
+                growth.draw_series(DashedLineSeries::new(
+                    unilateral.clone(),
+                    6,
+                    4,
+                    c.stroke_width(2),
+                ))?;
+                growth.draw_series(
+                    unilateral
+                        .into_iter()
+                        .map(|p| TriangleMarker::new(p, 4, c.filled())),
+                )?;
                 growth
                     .draw_series(LineSeries::new(pts.clone(), c.stroke_width(2)))?
                     .label(r.name)

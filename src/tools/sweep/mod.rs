@@ -73,6 +73,14 @@
 //! default is `P1 … PN` and `dEc` for every model. A 2-D sweep draws one line per value of
 //! the second varied input, all in the output's colour. Singular points leave a gap.
 //!
+//! Where the regime switches, the plot says so: each x-range whose `status` is not `ok` is
+//! shaded over the whole height, behind the lines, from the midpoint with the previous grid
+//! point to the midpoint with the next, and labelled in the legend with its status and the x
+//! of its first and last grid points (`status tensile: 0.4826…0.7495`): the simultaneous
+//! answer is not physical there (the unilateral law's is), or G is singular (grey), or the
+//! body jammed. In a 2-D sweep an x is shaded when some line there is not `ok`, with the
+//! reasons of all its lines.
+//!
 //! ## Progress
 //!
 //! With `progress`, a bar is drawn to stderr once a sweep has run for more than a second; never

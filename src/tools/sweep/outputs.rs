@@ -40,6 +40,8 @@ pub(super) struct Row {
     pub(super) ys: Vec<f64>,
     /// Whether G was singular here.
     pub(super) singular: bool,
+    /// The `status` column: `ok`, `singular`, `jammed` or the verdicts joined by `+`.
+    pub(super) status: String,
 }
 
 /// A model's numeric outputs, in [`output_names`] order.
@@ -217,7 +219,7 @@ impl Plan {
             }
         }
         let singular = report.is_none();
-        fields.push(status);
+        fields.push(status.clone());
         let ys = self
             .series
             .iter()
@@ -234,6 +236,7 @@ impl Plan {
             j: self.indices(p).1,
             ys,
             singular,
+            status,
         })
     }
 }

@@ -1,5 +1,8 @@
 //! The SVG plot: x = the first varied input, y = the chosen outputs; colour by output, dash by
-//! model, one line per value of a second varied input, a gap at each singular point.
+//! model, one line per value of a second varied input, a gap at each singular point; behind the
+//! lines, a shaded band over each x-range whose `status` is not `ok` (the simultaneous answer
+//! is not physical there, or G is singular, or the body jammed), labelled in the legend, so a
+//! sweep that leaves the simultaneous regime shows where.
 
 use std::collections::BTreeMap;
 
@@ -34,7 +37,7 @@ impl Plan {
         let v0 = &self.vary[0];
         let (a, b) = (rational_to_f64(&v0.start), rational_to_f64(&v0.stop));
         let (x0, x1) = (a.min(b), a.max(b));
-        let (y0, y1) = y_range(plotted);
+        let (y0, y1) = y_range(&plotted.series);
         // Colour by output, dash by model.
         let colours = self.colours();
         let names = output_names(self.contacts);
@@ -61,7 +64,8 @@ impl Plan {
                 .y_desc("impulse P / velocity / energy (scene units)")
                 .draw()
                 .map_err(|e| err(&e))?;
-            for (s, points) in self.series.iter().zip(plotted) {
+            draw_regimes(&mut chart, &regimes(&plotted.status, x0, x1), (y0, y1))?;
+            for (s, points) in self.series.iter().zip(&plotted.series) {
                 let k = colours.iter().position(|c| *c == s.output).unwrap_or(0);
                 let (r, g, b) = PALETTE[k % PALETTE.len()];
                 let colour = RGBColor(r, g, b).to_rgba();
@@ -140,9 +144,145 @@ fn draw_series(
     Ok(())
 }
 
+/// The order statuses' parts are named in: the two without an answer, then the verdicts on a
+/// simultaneous answer in the order of the `status` column.
+const REASONS: [&str; 6] = [
+    "singular",
+    "jammed",
+    "tensile",
+    "separating",
+    "still-approaching",
+    "energy-gain",
+];
+
+/// Band fills (light, drawn under the lines): grey for `singular`, brown for `jammed`, then one
+/// per distinct inadmissible status in order of appearance.
+const BAND_SINGULAR: (u8, u8, u8) = (127, 127, 127);
+const BAND_JAMMED: (u8, u8, u8) = (140, 86, 75);
+const BAND_PALETTE: [(u8, u8, u8); 4] = [
+    (214, 39, 40),
+    (255, 127, 14),
+    (148, 103, 189),
+    (188, 189, 34),
+];
+
+/// A shaded x-range: its status, the band's edges and the x of its first and last grid point.
+#[derive(Clone, Debug, PartialEq)]
+pub(super) struct Regime {
+    pub(super) status: String,
+    pub(super) band: (f64, f64),
+    pub(super) points: (f64, f64),
+}
+
+/// The x-ranges whose status is not `ok`. Points sharing an x (a 2-D sweep's line values) are
+/// one x whose status joins their reasons (so a band there means "at some value of the second
+/// input"). Each x owns the interval up to the midpoints with its neighbours (the plot's ends at
+/// the ends); neighbours with the same status merge into one band.
+pub(super) fn regimes(status: &[(f64, String)], x0: f64, x1: f64) -> Vec<Regime> {
+    let mut per_x: Vec<(f64, Vec<&str>)> = Vec::new();
+    for (x, s) in status {
+        if per_x.last().is_none_or(|(lx, _)| lx != x) {
+            per_x.push((*x, Vec::new()));
+        }
+        let reasons = &mut per_x.last_mut().expect("pushed above").1;
+        for r in s.split('+').filter(|r| *r != "ok") {
+            if !reasons.contains(&r) {
+                reasons.push(r);
+            }
+        }
+    }
+    per_x.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let joined: Vec<(f64, String)> = per_x
+        .into_iter()
+        .map(|(x, mut reasons)| {
+            reasons.sort_by_key(|r| REASONS.iter().position(|n| n == r).unwrap_or(REASONS.len()));
+            (x, reasons.join("+"))
+        })
+        .collect();
+    let mut out: Vec<Regime> = Vec::new();
+    for (k, (x, s)) in joined.iter().enumerate() {
+        if s.is_empty() {
+            continue;
+        }
+        let lo = if k == 0 {
+            x0
+        } else {
+            0.5 * (joined[k - 1].0 + x)
+        };
+        let hi = joined.get(k + 1).map_or(x1, |(next, _)| 0.5 * (x + next));
+        match out.last_mut() {
+            Some(r) if r.status == *s && k > 0 && joined[k - 1].1 == *s => {
+                r.band.1 = hi;
+                r.points.1 = *x;
+            }
+            _ => out.push(Regime {
+                status: s.clone(),
+                band: (lo, hi),
+                points: (*x, *x),
+            }),
+        }
+    }
+    out
+}
+
+/// A number for a legend: four significant digits, no trailing zeros.
+fn short(x: f64) -> String {
+    let s = format!("{x:.3e}");
+    let v: f64 = s.parse().unwrap_or(x);
+    format!("{v}")
+}
+
+/// Shade the regimes over the whole height, one legend entry per distinct status naming its
+/// x-ranges (by their first and last grid points).
+fn draw_regimes(
+    chart: &mut Chart,
+    regimes: &[Regime],
+    (y0, y1): (f64, f64),
+) -> Result<(), SweepError> {
+    let err = |e: &dyn std::fmt::Display| SweepError::Plot(e.to_string());
+    let mut statuses: Vec<&str> = Vec::new();
+    for r in regimes {
+        if !statuses.contains(&r.status.as_str()) {
+            statuses.push(&r.status);
+        }
+    }
+    let mut inadmissible = 0;
+    for status in statuses {
+        let (r, g, b) = match status {
+            "singular" => BAND_SINGULAR,
+            "jammed" => BAND_JAMMED,
+            _ => {
+                inadmissible += 1;
+                BAND_PALETTE[(inadmissible - 1) % BAND_PALETTE.len()]
+            }
+        };
+        let fill = RGBColor(r, g, b).mix(0.15);
+        let mine: Vec<&Regime> = regimes.iter().filter(|x| x.status == status).collect();
+        let ranges: Vec<String> = mine
+            .iter()
+            .map(|x| {
+                if x.points.0 == x.points.1 {
+                    short(x.points.0)
+                } else {
+                    format!("{}…{}", short(x.points.0), short(x.points.1))
+                }
+            })
+            .collect();
+        chart
+            .draw_series(
+                mine.iter()
+                    .map(|x| Rectangle::new([(x.band.0, y0), (x.band.1, y1)], fill.filled())),
+            )
+            .map_err(|e| err(&e))?
+            .label(format!("status {status}: {}", ranges.join(", ")))
+            .legend(move |(x, y)| Rectangle::new([(x, y - 5), (x + 24, y + 5)], fill.filled()));
+    }
+    Ok(())
+}
+
 /// The y axis: every finite y with 5 % to spare (a flat line or no value at all still gets a
 /// range).
-fn y_range(plotted: &Plotted) -> (f64, f64) {
+fn y_range(plotted: &[Vec<(usize, f64, f64)>]) -> (f64, f64) {
     let ys = plotted
         .iter()
         .flatten()
@@ -180,4 +320,82 @@ fn segments(points: &[(usize, f64, f64)]) -> Vec<Vec<(f64, f64)>> {
         .flatten()
         .filter(|s| !s.is_empty())
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn st(v: &[(f64, &str)]) -> Vec<(f64, String)> {
+        v.iter().map(|(x, s)| (*x, s.to_string())).collect()
+    }
+
+    #[test]
+    fn regimes_cover_the_non_ok_points_to_the_midpoints() {
+        // x = 0, 1, 2, 3, 4: ok ok tensile tensile singular.
+        let s = st(&[
+            (0.0, "ok"),
+            (1.0, "ok"),
+            (2.0, "tensile"),
+            (3.0, "tensile"),
+            (4.0, "singular"),
+        ]);
+        let r = regimes(&s, 0.0, 4.0);
+        assert_eq!(
+            r,
+            vec![
+                Regime {
+                    status: "tensile".into(),
+                    band: (1.5, 3.5),
+                    points: (2.0, 3.0)
+                },
+                Regime {
+                    status: "singular".into(),
+                    band: (3.5, 4.0),
+                    points: (4.0, 4.0)
+                },
+            ]
+        );
+        // A decreasing sweep gives the same bands; an all-ok sweep none.
+        let mut rev = s.clone();
+        rev.reverse();
+        assert_eq!(regimes(&rev, 0.0, 4.0), r);
+        assert!(regimes(&st(&[(0.0, "ok"), (1.0, "ok")]), 0.0, 1.0).is_empty());
+        // The same status twice, apart: two bands.
+        let r = regimes(
+            &st(&[(0.0, "jammed"), (1.0, "ok"), (2.0, "jammed")]),
+            0.0,
+            2.0,
+        );
+        assert_eq!(
+            r.iter().map(|r| r.band).collect::<Vec<_>>(),
+            vec![(0.0, 0.5), (1.5, 2.0)]
+        );
+    }
+
+    #[test]
+    fn a_two_dimensional_x_joins_its_lines_reasons_in_column_order() {
+        // Two lines (j = 0, 1) per x.
+        let s = st(&[
+            (0.0, "ok"),
+            (0.0, "ok"),
+            (1.0, "separating"),
+            (1.0, "tensile"),
+            (2.0, "tensile+separating"),
+            (2.0, "ok"),
+        ]);
+        let r = regimes(&s, 0.0, 2.0);
+        assert_eq!(r.len(), 1);
+        assert_eq!(
+            (r[0].status.as_str(), r[0].band),
+            ("tensile+separating", (0.5, 2.0))
+        );
+    }
+
+    #[test]
+    fn legend_numbers_are_short() {
+        assert_eq!(short(0.48256880733944955), "0.4826");
+        assert_eq!(short(1.2), "1.2");
+        assert_eq!(short(-3.0), "-3");
+    }
 }

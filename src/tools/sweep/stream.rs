@@ -17,8 +17,13 @@ use super::{CHUNK, SweepError, SweepOptions};
 /// A sweep this long (and still running) gets a progress bar, when asked for and on a terminal.
 const PROGRESS_AFTER: Duration = Duration::from_secs(1);
 
-/// Per plotted series, (j, x, y) in point order.
-pub(super) type Plotted = Vec<Vec<(usize, f64, f64)>>;
+/// What the plot keeps of the solved points.
+pub(super) struct Plotted {
+    /// Per plotted series, (j, x, y) in point order.
+    pub(super) series: Vec<Vec<(usize, f64, f64)>>,
+    /// Per point, in point order: x and its `status` (kept only when a plot is drawn).
+    pub(super) status: Vec<(f64, String)>,
+}
 
 impl Plan {
     /// Solve `range`, write the CSV (and the plot); the number of singular points.
@@ -56,7 +61,11 @@ impl Plan {
         let mut bar_shown = false;
         let may_show = opts.progress && std::io::stderr().is_terminal();
 
-        let mut plotted: Plotted = vec![Vec::new(); self.series.len()];
+        let mut plotted = Plotted {
+            series: vec![Vec::new(); self.series.len()],
+            status: Vec::new(),
+        };
+        let keep_status = opts.plot.is_some();
         let mut singular = 0;
         let mut lo = range.start;
         while lo < range.end {
@@ -73,7 +82,10 @@ impl Plan {
                 writer.write_record(&row.fields).map_err(|e| io_err(&e))?;
                 singular += usize::from(row.singular);
                 for (s, y) in row.ys.iter().enumerate() {
-                    plotted[s].push((row.j, row.x, *y));
+                    plotted.series[s].push((row.j, row.x, *y));
+                }
+                if keep_status {
+                    plotted.status.push((row.x, row.status));
                 }
             }
             if may_show && !bar_shown && started.elapsed() > PROGRESS_AFTER && hi < range.end {
