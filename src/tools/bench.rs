@@ -34,7 +34,7 @@ use crate::scalar::{Exact, Scalar};
 use crate::scene::Scene;
 use crate::impact::problem::Problem;
 use crate::impact::solve::{Impact, Outcome};
-use crate::impact::unilateral::Activity;
+use crate::impact::unilateral::{Activity, active};
 
 /// Options of a bench run.
 #[derive(Clone, Debug)]
@@ -294,12 +294,13 @@ fn solve_unilateral_all<T: Scalar>(
     Ok([n, q])
 }
 
-/// The unilateral outputs of `p` with a new impact.
-fn unilateral_outputs<T: Scalar>(p: &Problem<T>) -> Option<(Outputs, [Activity; 2])> {
+/// The unilateral outputs of `p` with a new impact, and which contacts are active per model.
+fn unilateral_outputs<T: Scalar>(p: &Problem<T>) -> Option<(Outputs, [Vec<bool>; 2])> {
     let mut outs = [Outcome::default(), Outcome::default()];
     let mut impact = Impact::assemble(p).ok()?;
-    let act = solve_unilateral_all(p, &mut impact, &mut outs).ok()?;
-    Some((outputs(&impact, &outs)?, act))
+    solve_unilateral_all(p, &mut impact, &mut outs).ok()?;
+    let active = [active(&outs[0]), active(&outs[1])];
+    Some((outputs(&impact, &outs)?, active))
 }
 
 /// Median wall time (ns) of `f`, repeating until each of three samples takes at least
@@ -480,7 +481,7 @@ pub fn run(opts: &BenchOptions) -> BenchReport {
                 .ok()
                 .and_then(|p| unilateral_outputs(&p));
             if u.as_ref().is_some_and(|(_, act)| {
-                act.iter().any(|a| a.active.iter().any(|x| !x))
+                act.iter().any(|a| a.iter().any(|x| !x))
             }) {
                 unilateral_differs += 1;
             }
@@ -528,9 +529,9 @@ pub fn run(opts: &BenchOptions) -> BenchReport {
             let b = budget;
             let exact = n <= if opts.quick { 12 } else { 24 };
             let skipped = || Timing::Skipped;
-            let active = |act: Option<(Outputs, [Activity; 2])>| {
+            let active = |act: Option<(Outputs, [Vec<bool>; 2])>| {
                 act.map(|(_, [a, b])| {
-                    let count = |x: &Activity| x.active.iter().filter(|y| **y).count();
+                    let count = |x: &Vec<bool>| x.iter().filter(|y| **y).count();
                     (count(&a), count(&b))
                 })
             };
