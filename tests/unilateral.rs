@@ -167,7 +167,7 @@ proptest! {
 
     /// A constrained body: the twist before impact is made allowed (v⁰ = D ξ⁰).
     #[test]
-    fn constrained_bodies(p in problem(4), joints in prop::collection::vec(joint(), 1..=2), xi in prop::collection::vec(rational(4, 3), 6)) {
+    fn constrained_bodies(p in problem(8), joints in prop::collection::vec(joint(), 1..=2), xi in prop::collection::vec(rational(4, 3), 6)) {
         let free: Vec<Screw<Exact>> = joints.iter().flat_map(Joint::free_screws).collect();
         let mut v0 = Screw::zero();
         for (s, x) in free.iter().zip(&xi) {
