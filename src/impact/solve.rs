@@ -10,11 +10,17 @@
 //! {v} = {v⁰} − Σ_j P̂_j W {Ê_jx}                            after impact    (eq. 24)
 //! v̂_ia = v̂_ia⁰ − Σ_j ĝ_ij,ax P̂_j,  a = x, y, z                             (eq. 13, 25, 26)
 //! E_p  = ½ ({v} − {v⁰})ᵀ η M ({v} − {v⁰})                                  (eq. 28)
-//! ΔE_c = ½ {v⁰}ᵀ η M {v⁰} − ½ {v}ᵀ η M {v}                                 (eq. 32)
+//! ΔE_c = ½ {v⁰}ᵀ η M {v⁰} − ½ {v}ᵀ η M {v} = ½ Σ_i P_i (v_ix⁰ + v_ix)             (eq. 32)
 //! ```
 //!
-//! E_p is computed from the velocity change and ΔE_c from the two kinetic energies, so the
-//! identity ΔE_c = −E_p + Σ P_i v_ix⁰ (eq. 34) is a check on the solve, not a definition.
+//! The last form follows from the momentum balance M({v} − {v⁰}) = −Σ P_i {E_ix} (+ U q for a
+//! constrained body, whose term vanishes against {v⁰} + {v} ∈ span D since Dᵀ η U = 0):
+//! T⁰ − T = ½ ({v⁰} + {v})ᵀ η M ({v⁰} − {v}) = ½ Σ P_i (v_ix⁰ + v_ix). It is how ΔE_c is
+//! computed: T⁰ − T cancels catastrophically when the loss is small beside T⁰ (a heavy body
+//! hit softly), this sum does not. E_p is computed from the velocity change (eq. 28, a
+//! positive quadratic form). Eq. 32 as a difference of kinetic energies and the identity
+//! ΔE_c = −E_p + Σ P_i v_ix⁰ (eq. 34) are then checks on the solve, not definitions — exact
+//! equalities in exact types.
 //!
 //! [`Impact::assemble`] does the model-independent work once (frames, G, its factorization,
 //! Δ); [`Impact::solve`] then runs one restitution model. Both reuse the buffers they own, so
@@ -328,11 +334,15 @@ impl<T: Scalar> Impact<T> {
             }
             out.after_hat.push(v);
         }
-        // eq. 28 from the velocity change, eq. 32 from the kinetic energies.
+        // eq. 28 from the velocity change; ΔE_c from the momentum balance, ½ Σ P̂_i (v̂_ix⁰ + v̂_ix)
+        // (module docs), free of the cancellation in T⁰ − T.
         let dv = Screw(out.velocity.0.clone() - problem.velocity().0.clone());
         out.lost_velocity_energy = problem.body().kinetic_energy(&dv);
-        out.kinetic_energy_loss =
-            self.kinetic_before.clone() - problem.body().kinetic_energy(&out.velocity);
+        let mut loss = T::zero();
+        for ((p, b), a) in out.impulses_hat.iter().zip(&self.before_hat).zip(&out.after_hat) {
+            loss += p.clone() * &(b[0].clone() + &a[0]);
+        }
+        out.kinetic_energy_loss = loss / (T::one() + T::one());
         match problem.constraints() {
             Some(c) => {
                 let axes = self.frames.iter().map(|f| &f.axes[0]);

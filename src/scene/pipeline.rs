@@ -186,14 +186,20 @@ impl<T: Scalar> Assembled<T> {
         }))
     }
 
-    /// ΔE_c + E_p − Σ P̂_i v̂_ix⁰ = 0 (eq. 34): exactly in exact types, to 16·N·ε·(T⁰ + E_p)
-    /// in floats.
+    /// ΔE_c + E_p − Σ P̂_i v̂_ix⁰ = 0 (eq. 34) and ΔE_c = T⁰ − T (eq. 32): exactly in exact
+    /// types, to 16·N·ε·(T⁰ + E_p) in floats.
     fn energy_identity(&self, out: &Outcome<T>) -> bool {
         let impact = &self.impact;
+        let n = 16 * impact.contacts().max(1);
         let work = impact.impulse_work(out);
         let residual = out.kinetic_energy_loss.clone() + &out.lost_velocity_energy - &work;
         let scale = impact.kinetic_before().clone() + &out.lost_velocity_energy;
-        residual.is_negligible(&scale, 16 * impact.contacts().max(1))
+        // eq. 32: ΔE_c (from the momentum balance) = T⁰ − T (the kinetic energies), to the
+        // rounding of T⁰ in floats.
+        let problem = impact.problem();
+        let difference = impact.kinetic_before().clone() - problem.body().kinetic_energy(&out.velocity);
+        let eq32 = (out.kinetic_energy_loss.clone() - difference).is_negligible(&scale, n);
+        residual.is_negligible(&scale, n) && eq32
     }
 
     /// The report of the outcomes solved.
