@@ -40,6 +40,7 @@
 //! [`set_value`]; [`pipeline`] runs a scene from assembly to report.
 
 pub mod pipeline;
+pub mod scale;
 mod path;
 mod read;
 mod schema;
@@ -62,6 +63,9 @@ use crate::scalar::Scalar;
 use crate::mechanics::screw::{Screw, Vec3, norm2};
 use crate::impact::problem::{InvalidProblem, Problem, Reason};
 use crate::mechanics::surface::SurfaceError;
+
+/// The end of the message for a number a float type cannot hold (the pipeline recognises it).
+pub const OUT_OF_RANGE: &str = "`--exact` solves the scene exactly";
 
 /// A scene that failed to read: which file, which key, which value, what is wrong.
 #[derive(Clone, Debug, PartialEq)]
@@ -477,11 +481,26 @@ impl Scene {
 
     /// One number in `T`: exact types refuse irrational values, naming the key and value.
     fn value<T: Scalar>(&self, n: &Number, key: &str) -> Result<T, SceneError> {
-        T::from_number(n).map_err(|message| SceneError {
+        let error = |message: String| SceneError {
             file: self.file.clone(),
             key: key.to_string(),
             value: Some(n.text.clone()),
             message,
-        })
+        };
+        let x = T::from_number(n).map_err(error)?;
+        // A nonzero number that rounds to zero or to ±∞ in a float type is out of its range,
+        // not zero or infinite: say so (the pipeline scales scenes first; see `scale`).
+        if let Ok(q) = &n.exact
+            && !num_traits::Zero::is_zero(q)
+            && (!x.is_finite() || x.is_zero())
+        {
+            return Err(error(format!(
+                "{}{} is outside the range of {}; {OUT_OF_RANGE}",
+                if num_traits::Signed::is_negative(q) { "−" } else { "" },
+                scale::magnitude(q),
+                T::NAME
+            )));
+        }
+        Ok(x)
     }
 }

@@ -7,9 +7,10 @@
 
 use crate::mechanics::constraint::{Constrained, ConstraintError};
 use crate::report::{Report, Value};
+use crate::scene::scale::{finite, most_extreme, scale, unscale};
 use crate::impact::restitution::Model;
 use crate::scalar::Scalar;
-use crate::scene::{Scene, SceneError};
+use crate::scene::{OUT_OF_RANGE, Scene, SceneError};
 use crate::impact::admissibility::{Inadmissible, energy_gain, verdicts};
 use crate::impact::problem::{Problem, Reason};
 use crate::impact::unilateral::{Activity, Law, UnilateralError};
@@ -44,12 +45,61 @@ pub fn run<T: Scalar>(scene: &Scene, models: Option<&[Model]>) -> Result<Solved,
     run_with::<T>(scene, models, false)
 }
 
+/// As [`run`]; with `allow_singular`, a singular G (Δ = 0) is not an error: the report holds
+/// the model-independent part (frames, inertances, Δ, velocities before impact) and no model
+/// (used by `check` for the paper's singular examples).
+///
+/// In floats the scene is first put in units of mass, length and time that are powers of two
+/// chosen from its own numbers ([`super::scale`]), so that scenes whose numbers span the range
+/// of f64 are solved, and the report is scaled back. A float result that is still not finite is
+/// refused, naming the input farthest from 1 — never reported as NaN or ∞.
+pub fn run_with<T: Scalar>(
+    scene: &Scene,
+    models: Option<&[Model]>,
+    allow_singular: bool,
+) -> Result<Solved, RunError> {
+    if T::IS_EXACT {
+        return run_as_written::<T>(scene, models, allow_singular);
+    }
+    let unrepresentable = || {
+        let (key, value) = most_extreme(scene).unwrap_or_default();
+        RunError::Scene(SceneError {
+            file: scene.file.clone(),
+            key,
+            value: Some(value),
+            message: format!(
+                "the scene's numbers span more than {} can hold, even in units of mass, length \
+                 and time scaled to the scene; this number sets the extreme scale — {OUT_OF_RANGE}",
+                T::NAME
+            ),
+        })
+    };
+    let out_of_range =
+        |e: &RunError| matches!(e, RunError::Scene(s) if s.message.ends_with(OUT_OF_RANGE));
+    let mut solved = match scale(scene) {
+        Some((scaled, units)) => match run_as_written::<T>(&scaled, models, allow_singular) {
+            Ok(mut solved) => {
+                unscale(&mut solved.report, &units);
+                solved
+            }
+            Err(e) if out_of_range(&e) => return Err(unrepresentable()),
+            Err(e) => return Err(e),
+        },
+        None => run_as_written::<T>(scene, models, allow_singular)?,
+    };
+    if !finite(&solved.report) {
+        return Err(unrepresentable());
+    }
+    solved.report.scene.clone_from(&scene.name);
+    Ok(solved)
+}
+
 /// As [`run`]; with `allow_singular`, a singular G (Δ = 0) is not an error under the
 /// simultaneous law: the report holds the model-independent part (frames, inertances, Δ,
 /// velocities before impact) and no model (used by `check` for the paper's singular
 /// examples). The unilateral law solves a singular G as any other (its velocities after impact
 /// are unique), so its models are solved either way.
-pub fn run_with<T: Scalar>(
+fn run_as_written<T: Scalar>(
     scene: &Scene,
     models: Option<&[Model]>,
     allow_singular: bool,

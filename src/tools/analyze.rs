@@ -220,7 +220,7 @@ pub fn analyze_scene<T: Scalar>(
             )
         })
         .collect();
-    Ok(AnalysisReport {
+    let report = AnalysisReport {
         scene: scene.name.clone(),
         scalar: T::NAME,
         contacts: n,
@@ -232,7 +232,43 @@ pub fn analyze_scene<T: Scalar>(
         models: model_reports,
         newton_equals_poisson: analysis.newton_equals_poisson,
         coincident,
-    })
+    };
+    if !report.finite() {
+        // Never an ∞ or NaN where a number belongs: the scene spans more than T holds.
+        let (key, value) = crate::scene::scale::most_extreme(scene).unwrap_or_default();
+        return Err(RunError::Scene(crate::scene::SceneError {
+            file: scene.file.clone(),
+            key,
+            value: Some(value),
+            message: format!(
+                "the scene's numbers span more than {} can hold; this number sets the extreme \
+                 scale — {}",
+                T::NAME,
+                crate::scene::OUT_OF_RANGE
+            ),
+        }));
+    }
+    Ok(report)
+}
+
+impl AnalysisReport {
+    /// Whether every reported number is finite (the condition number may be ∞: G singular).
+    fn finite(&self) -> bool {
+        let ok = |v: &Value| v.f64.is_finite();
+        let all = |v: &[Value]| v.iter().all(ok);
+        ok(&self.det)
+            && ok(&self.kinetic_energy_before)
+            && self.tolerance.is_none_or(f64::is_finite)
+            && self.models.iter().all(|m| {
+                m.impulses.as_deref().is_none_or(all)
+                    && m.family.iter().all(|z| all(z))
+                    && m.twist.as_deref().is_none_or(all)
+                    && m.energies.as_ref().is_none_or(|e| all(e))
+                    && m.unilateral.as_ref().map_or(true, |u| {
+                        all(&u.impulses) && all(&u.normal_velocities) && all(&u.twist) && all(&u.energies)
+                    })
+            })
+    }
 }
 
 /// The unilateral law on the assembled `impact` for `model`, read out in the paper's units.

@@ -1,0 +1,245 @@
+//! Exact scaling before rounding: a scene whose numbers span the range of f64 is solved in
+//! units of mass, length and time that are powers of two chosen from its own numbers, and the
+//! report is scaled back.
+//!
+//! Numbers are read exactly, so the scaled scene is exact too; multiplying a float by a power
+//! of two is exact unless it leaves the exponent range. With m = 2^a kg, L = 2^b m and
+//! T = 2^c s the scene's numbers become
+//!
+//! ```text
+//! m′ = m/2^a,  J′ = J/2^(a+2b),  A′ = A/2^b,  v_C′ = v_C·2^(c−b),  ω′ = ω·2^c,
+//! n_i′ = n_i/2^(e_i),  y_i′ = y_i/2^(f_i)    (an axis is a direction: any length serves)
+//! ```
+//!
+//! with a, b from the mass and the largest contact coordinate, c making the largest velocity
+//! (|v_C| or |ω|·L) about 1, and e_i, f_i the axes' own scales. The laws are invariant under
+//! this change of units (k and μ are dimensionless), and every output is scaled back by its
+//! dimension: impulses M·L/T, velocities L/T, ω 1/T, energies M·L²/T², inertances 1/M, Δ 1/M^N.
+//! So any scene whose results are representable is solved in f32, f64 and double-double; what
+//! is not representable is refused by the caller, never reported as NaN or ∞.
+//!
+//! Free bodies without a `[surface]` are scaled; constraint screws and surface equations mix
+//! units in ways this does not follow, so those scenes run as written.
+
+use num_rational::BigRational;
+use num_traits::{Signed, Zero};
+
+use super::Scene;
+use crate::number::{Number, format_rational, rational_to_f64};
+use crate::report::{PointVelocity, Report, Value};
+
+/// The powers of two of a scaled scene: mass 2^a, length 2^b, time 2^c, and each contact's
+/// normal and tangent scale.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Units {
+    /// a: the unit of mass is 2^a kg.
+    pub mass: i64,
+    /// b: the unit of length is 2^b m.
+    pub length: i64,
+    /// c: the unit of time is 2^c s.
+    pub time: i64,
+    /// e_i: the normal of contact i was divided by 2^(e_i).
+    pub normals: Vec<i64>,
+}
+
+/// ⌊log₂|q|⌋ within one: the bit lengths of numerator and denominator; `None` for zero.
+fn exponent(q: &BigRational) -> Option<i64> {
+    if q.is_zero() {
+        return None;
+    }
+    Some(q.numer().bits() as i64 - q.denom().bits() as i64)
+}
+
+/// The largest exponent among `numbers` (rational ones; `None` if all are zero).
+fn largest<'a>(numbers: impl IntoIterator<Item = &'a Number>) -> Option<i64> {
+    numbers
+        .into_iter()
+        .filter_map(|n| n.exact.as_ref().ok().and_then(exponent))
+        .max()
+}
+
+/// q · 2^k, exactly.
+fn shifted(q: &BigRational, k: i64) -> BigRational {
+    let two = BigRational::from_integer(2.into());
+    let factor = num_traits::pow(two, k.unsigned_abs() as usize);
+    if k >= 0 { q * factor } else { q / factor }
+}
+
+/// The number `n` times 2^k, as a number (its text the exact scaled value).
+fn scale_number(n: &mut Number, k: i64) {
+    if k == 0 {
+        return;
+    }
+    if let Ok(q) = &n.exact {
+        let q = shifted(q, k);
+        n.text = format_rational(&q);
+        n.approx = rational_to_f64(&q);
+        n.exact = Ok(q);
+    }
+}
+
+/// `scene` in units chosen from its own numbers, or `None` when it is not scaled (constraints,
+/// a surface, an irrational or symbolic number, or units of 1 already).
+pub fn scale(scene: &Scene) -> Option<(Scene, Units)> {
+    if scene.constraints.is_some() || scene.surface.is_some() || !scene.is_rational() {
+        return None;
+    }
+    if scene.numbers().any(|(_, n)| !n.symbols.is_empty()) {
+        return None;
+    }
+    let a = largest([&scene.mass]).unwrap_or(0);
+    let b = largest(scene.contacts.iter().flat_map(|c| c.point.iter())).unwrap_or(0);
+    let v = largest(scene.velocity.iter());
+    let w = largest(scene.angular_velocity.iter()).map(|e| e + b);
+    let speed = match (v, w) {
+        (Some(x), Some(y)) => Some(x.max(y)),
+        (x, y) => x.or(y),
+    };
+    let c = speed.map_or(0, |s| b - s);
+    let mut s = scene.clone();
+    scale_number(&mut s.mass, -a);
+    for j in &mut s.inertia {
+        scale_number(j, -a - 2 * b);
+    }
+    for x in &mut s.velocity {
+        scale_number(x, c - b);
+    }
+    for x in &mut s.angular_velocity {
+        scale_number(x, c);
+    }
+    let mut normals = Vec::with_capacity(s.contacts.len());
+    for contact in &mut s.contacts {
+        for x in &mut contact.point {
+            scale_number(x, -b);
+        }
+        let e = contact.normal.as_ref().and_then(|n| largest(n.iter())).unwrap_or(0);
+        if let Some(n) = &mut contact.normal {
+            for x in n.iter_mut() {
+                scale_number(x, -e);
+            }
+        }
+        normals.push(e);
+        if let Some(t) = &mut contact.tangent {
+            let f = largest(t.iter()).unwrap_or(0);
+            for x in t.iter_mut() {
+                scale_number(x, -f);
+            }
+        }
+    }
+    let units = Units {
+        mass: a,
+        length: b,
+        time: c,
+        normals,
+    };
+    (units.mass != 0 || units.length != 0 || units.time != 0 || units.normals.iter().any(|&e| e != 0))
+        .then_some((s, units))
+}
+
+/// x · 2^k in f64, exactly unless the result leaves the range (then ±∞ or 0).
+fn ldexp(x: f64, k: i64) -> f64 {
+    let mut y = x;
+    let mut k = k;
+    while k != 0 {
+        let step = k.clamp(-1000, 1000);
+        y *= 2f64.powi(step as i32);
+        k -= step;
+    }
+    y
+}
+
+/// Multiply a reported value by 2^k (a float report: no exact text to change).
+fn times(v: &mut Value, k: i64) {
+    v.f64 = ldexp(v.f64, k);
+}
+
+/// Scale a contact point's velocities (L/T) back.
+fn point(p: &mut PointVelocity, k: i64) {
+    for c in &mut p.components {
+        times(c, k);
+    }
+}
+
+/// Put a report computed in the scaled units back into the scene's own.
+pub fn unscale(report: &mut Report, u: &Units) {
+    let (a, b, c) = (u.mass, u.length, u.time);
+    let n = report.inertance.len() as i64;
+    for m in [&mut report.inertance, &mut report.inertance_yx, &mut report.inertance_zx] {
+        for row in m.iter_mut() {
+            for g in row.iter_mut() {
+                times(g, -a);
+            }
+        }
+    }
+    times(&mut report.det, -a * n);
+    for p in &mut report.contacts_before {
+        point(p, b - c);
+    }
+    for m in &mut report.models {
+        for p in &mut m.impulses {
+            times(p, a + b - c);
+        }
+        for (p, e) in m.impulse_multiples.iter_mut().zip(&u.normals) {
+            times(p, a + b - c - e);
+        }
+        for p in m.compression_impulses.iter_mut().flatten() {
+            times(p, a + b - c);
+        }
+        for w in &mut m.angular_velocity {
+            times(w, -c);
+        }
+        for v in &mut m.velocity {
+            times(v, b - c);
+        }
+        for p in &mut m.contacts {
+            point(p, b - c);
+        }
+        times(&mut m.lost_velocity_energy, a + 2 * b - 2 * c);
+        times(&mut m.kinetic_energy_loss, a + 2 * b - 2 * c);
+        if let Some(range) = &mut m.outcome_range {
+            for (k, (lo, hi)) in range.iter_mut().enumerate() {
+                let e = if k < 3 { -c } else { b - c };
+                times(lo, e);
+                times(hi, e);
+            }
+        }
+    }
+}
+
+/// Whether every number of a report is finite (angles aside: they are bounded by construction).
+pub fn finite(report: &Report) -> bool {
+    let ok = |v: &Value| v.f64.is_finite();
+    let point = |p: &PointVelocity| p.components.iter().all(ok);
+    report.inertance.iter().chain(&report.inertance_yx).chain(&report.inertance_zx).flatten().all(ok)
+        && ok(&report.det)
+        && report.contacts_before.iter().all(point)
+        && report.models.iter().all(|m| {
+            m.impulses.iter().chain(&m.impulse_multiples).all(ok)
+                && m.compression_impulses.iter().flatten().all(ok)
+                && m.angular_velocity.iter().chain(&m.velocity).all(ok)
+                && m.contacts.iter().all(point)
+                && ok(&m.lost_velocity_energy)
+                && ok(&m.kinetic_energy_loss)
+                && m.constraint_impulses.iter().all(ok)
+        })
+}
+
+/// The key of the scene's number farthest from 1 in magnitude (the likeliest culprit when a
+/// result is out of range), with its text.
+pub fn most_extreme(scene: &Scene) -> Option<(String, String)> {
+    scene
+        .numbers()
+        .filter_map(|(k, n)| {
+            let e = n.exact.as_ref().ok().and_then(exponent).or_else(|| {
+                (n.approx != 0.0 && n.approx.is_finite()).then(|| n.approx.abs().log2() as i64)
+            })?;
+            Some((e.abs(), k, n.text.clone()))
+        })
+        .max_by_key(|(e, _, _)| *e)
+        .map(|(_, k, t)| (k, t))
+}
+
+/// |q| as a power of two, for messages.
+pub fn magnitude(q: &BigRational) -> String {
+    exponent(&q.abs()).map_or("0".into(), |e| format!("2^{e}"))
+}
