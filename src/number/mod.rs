@@ -95,7 +95,8 @@ const WORDING: Wording = Wording {
 /// # Errors
 /// [`NumberError::Syntax`] for text outside the grammar, an unknown name or nesting deeper
 /// than 200 levels; [`NumberError::NotFinite`] for nan/inf, division by zero, even roots of
-/// negative numbers, tan at a pole, and values that overflow f64.
+/// negative numbers, tan at a pole, and values without an exact rational value that overflow
+/// f64 (an exact rational beyond f64's range is a number: its `approx` is ±∞).
 pub fn parse_number(text: &str) -> Result<Number, NumberError> {
     parse_number_with(text, &[])
 }
@@ -161,7 +162,9 @@ pub(crate) fn evaluate(src: &str, node: &Node) -> Result<Number, NumberError> {
             symbols,
         });
     }
-    if !value.f.is_finite() {
+    // An exact rational whose f64 overflows is still a number (exact mode reads it; f64 mode
+    // scales the scene or names it out of range); without an exact value it is refused.
+    if !value.f.is_finite() && !matches!(value.ex, Exact::Rat(_)) {
         return Err(NumberError::NotFinite {
             text: text.to_string(),
             reason: if value.f.is_nan() {
@@ -716,13 +719,16 @@ mod tests {
             "-inf",
             "+inf",
             "NaN",
-            "1e400",
-            "-1e400",
-            "10^400",
-            "1/(1e-400)",
         ] {
             is_not_finite(text);
         }
+        // Beyond f64 but exact: a number (exact mode reads it; f64 mode scales or refuses it).
+        for text in ["1e400", "-1e400", "10^400", "1/(1e-400)"] {
+            let n = parse_number(text).unwrap();
+            assert!(n.exact.is_ok() && n.approx.is_infinite(), "{text}");
+        }
+        // Beyond f64 and without an exact value: not finite.
+        assert!(is_not_finite("sqrt(2)*1e400").contains("overflows"));
         // Intermediate overflow is fine when the exact value is finite.
         assert_eq!(exact("10^400/10^399"), q(10, 1));
         assert_eq!(parse_number("1e-400").map(|n| n.approx), Ok(0.0));

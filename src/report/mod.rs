@@ -76,7 +76,8 @@ impl Value {
     /// Readable text: the exact value (with ≈ decimals when not a short decimal), or the f64.
     pub fn text(&self) -> String {
         match &self.exact {
-            Some(t) if self.f64.is_nan() => t.clone(),
+            // No rounded companion for an exact value beyond f64's range (never "≈ inf").
+            Some(t) if !self.f64.is_finite() => t.clone(),
             Some(t) if t.parse::<f64>().is_err() || t.len() > 14 => {
                 format!("{} ≈ {}", t, fmt_f64(self.f64))
             }

@@ -318,6 +318,38 @@ impl Scene {
         }
     }
 
+    /// The value at `key` as written: a number, or a vector `[x, y, z]` of the numbers at
+    /// `key[0]`, `key[1]`, … (for messages that show what was given); for a joint, its vectors.
+    pub fn text_of(&self, key: &str) -> Option<String> {
+        let prefix = format!("{key}[");
+        let joint = format!("{key}.");
+        let mut parts = Vec::new();
+        for (k, n) in self.numbers() {
+            if k == key {
+                return Some(n.text.clone());
+            }
+            if k.starts_with(&prefix) && !k[prefix.len()..].contains('[') || k.starts_with(&joint) {
+                parts.push((k, n.text.clone()));
+            }
+        }
+        if parts.is_empty() {
+            return None;
+        }
+        if parts.iter().all(|(k, _)| k.starts_with(&prefix)) {
+            return Some(format!("[{}]", parts.into_iter().map(|(_, t)| t).collect::<Vec<_>>().join(", ")));
+        }
+        // A joint: `point = [..], axis = [..]`.
+        let mut groups: Vec<(String, Vec<String>)> = Vec::new();
+        for (k, t) in parts {
+            let name = k[joint.len()..].split('[').next().unwrap_or_default().to_string();
+            match groups.last_mut() {
+                Some((g, v)) if *g == name => v.push(t),
+                _ => groups.push((name, vec![t])),
+            }
+        }
+        Some(groups.into_iter().map(|(g, v)| format!("{g} = [{}]", v.join(", "))).collect::<Vec<_>>().join(", "))
+    }
+
     /// A problem the validated constructor refused (what the reader's own checks let
     /// through: a tangent not perpendicular to its normal), as an error naming the key.
     fn invalid(&self, e: InvalidProblem) -> SceneError {
@@ -328,7 +360,8 @@ impl Scene {
             ),
             reason => reason.to_string(),
         };
-        self.error(&e.field.to_string(), None, &message)
+        let key = e.field.to_string();
+        self.error(&key, self.text_of(&key), &message)
     }
 }
 

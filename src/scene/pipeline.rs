@@ -328,8 +328,8 @@ fn constraint_error(scene: &Scene, keys: &[String], e: ConstraintError) -> RunEr
     };
     RunError::Scene(SceneError {
         file: scene.file.clone(),
+        value: scene.text_of(&key),
         key,
-        value: None,
         message,
     })
 }

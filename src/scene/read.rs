@@ -151,8 +151,14 @@ impl Reader<'_> {
     ) -> Result<(), SceneError> {
         for (k, v) in t.iter() {
             if !known.contains(&k) {
-                let key = if at.is_empty() {
+                // An empty or odd key is shown as TOML writes it (`""`), never as nothing.
+                let k = if k.is_empty() || k.contains(|c: char| !(c.is_alphanumeric() || c == '_' || c == '-')) {
+                    format!("{k:?}")
+                } else {
                     k.to_string()
+                };
+                let key = if at.is_empty() {
+                    k
                 } else {
                     format!("{at}.{k}")
                 };
@@ -265,6 +271,18 @@ impl Reader<'_> {
 
     /// Refuse a value that is not > 0 (`why` says what it is).
     pub(super) fn positive(&self, n: &Number, key: &str, why: &str) -> Result<(), SceneError> {
+        if let Err(reason) = &n.exact
+            && n.symbols.is_empty()
+            && n.approx == 0.0
+        {
+            // No exact value (too many bits) and an f64 that underflowed: its sign is unknown,
+            // and "must be positive" would be wrong.
+            return Err(self.err(
+                key,
+                Some(n.text.clone()),
+                format!("{reason}, and its f64 value underflows to 0: the number cannot be read"),
+            ));
+        }
         let ok = match &n.exact {
             Ok(q) => q.is_positive(),
             // A symbolic value's sign is the reader's assumption, but not when it is 0.

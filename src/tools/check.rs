@@ -101,6 +101,8 @@ pub struct Case {
     pub law: Option<Law>,
     /// (quantity, printed text, line number).
     pub expects: Vec<(String, String, usize)>,
+    /// The line of its ```expect header (1-based), for messages about the case itself.
+    pub line: usize,
 }
 
 /// A parsed derivation file.
@@ -183,6 +185,7 @@ impl Derivation {
                         symbols: Vec::new(),
                         law: None,
                         expects: Vec::new(),
+                        line: i + 1,
                     };
                     for (k, raw) in body.iter().enumerate() {
                         let line_no = start + k + 1;
@@ -244,7 +247,7 @@ impl Derivation {
         for c in &cases {
             if !scenes.contains_key(&c.scene) {
                 return Err(err(
-                    0,
+                    c.line,
                     format!(
                         "case `{}` runs scene `{}`, which is not defined",
                         c.name, c.scene
