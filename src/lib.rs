@@ -89,7 +89,8 @@ pub mod tools;
 
 pub use impact::problem::{Field, InvalidProblem, Problem, Reason};
 pub use impact::restitution::Model;
-pub use impact::solution::{Solution, solve};
+pub use impact::solution::{Solution, solve, solve_unilateral};
+pub use impact::unilateral::{Law, UnilateralError};
 pub use impact::solve::SolveError;
 pub use mechanics::body::RigidBody;
 pub use mechanics::constraint::Joint;

@@ -239,3 +239,23 @@ fn a_constrained_problem_reports_its_constraint_impulses() {
     assert_eq!((w[0].clone(), w[1].clone()), (zero(), zero()));
     assert_eq!(vc[0], -w[2].clone());
 }
+
+#[test]
+fn the_unilateral_law_is_one_call_too() {
+    // Example 3 pitching at ω_z = 0.7: the simultaneous P₂ = −119/225 pulls; the unilateral law
+    // lets A₂ separate: P₁ = (1 + k₁) v_1x⁰ / g₁₁ = 1.3·4.4·3/4 = 429/100, P₂ = 0.
+    let q = ratio::<Exact>;
+    let e = |x, y, z| Vec3::new(q(x, 1), q(y, 1), q(z, 1));
+    let body = RigidBody { mass: q(1, 1), inertia: Vec3::new(q(12, 1), q(8, 5), q(12, 1)) };
+    let twist = Screw::new(Vec3::new(q(0, 1), q(0, 1), q(7, 10)), e(3, 2, 0));
+    let contacts = vec![
+        Contact::new(e(0, -2, 0), e(1, 0, 0), q(3, 10)),
+        Contact::new(e(0, 4, 0), e(1, 0, 0), q(1, 5)),
+    ];
+    let p = valid(body, twist, contacts);
+    let simultaneous = solve(&p, Model::Newton).unwrap();
+    assert_eq!(simultaneous.impulses[1].value(), Some(q(-119, 225)));
+    let unilateral = inertance::solve_unilateral(&p, Model::Newton).unwrap();
+    assert_eq!(unilateral.impulses[0].value(), Some(q(429, 100)));
+    assert_eq!(unilateral.impulses[1].value(), Some(q(0, 1)));
+}

@@ -16,6 +16,7 @@
 use crate::impact::problem::Problem;
 use crate::impact::restitution::Model;
 use crate::impact::solve::{Impact, Outcome, SolveError};
+use crate::impact::unilateral::UnilateralError;
 use crate::mechanics::contact::Surd;
 use crate::mechanics::screw::Screw;
 use crate::scalar::Scalar;
@@ -70,6 +71,22 @@ pub struct Solution<T: Scalar> {
 /// [`crate::analysis`].
 pub fn solve<T: Scalar>(problem: &Problem<T>, model: Model) -> Result<Solution<T>, SolveError> {
     Impact::assemble(problem)?.solution(model)
+}
+
+/// Solve `problem` under the restitution `model` in **inequality form** (the unilateral law of
+/// [`crate::impact::unilateral`]): contacts that would pull separate instead. In the paper's
+/// units; `solution.impulses[i]` is zero at a contact that separates.
+///
+/// # Errors
+/// [`UnilateralError::Jammed`] when no admissible impulses exist.
+pub fn solve_unilateral<T: Scalar>(
+    problem: &Problem<T>,
+    model: Model,
+) -> Result<Solution<T>, UnilateralError> {
+    let mut impact = Impact::assemble(problem)?;
+    let mut out = Outcome::default();
+    impact.solve_unilateral(model, &mut out)?;
+    Ok(Solution::from_hatted(&impact, model, out))
 }
 
 impl<T: Scalar> Impact<T> {
