@@ -54,8 +54,31 @@ pub fn run_with<T: Scalar>(
     models: Option<&[Model]>,
     allow_singular: bool,
 ) -> Result<Solved, RunError> {
+    run_prepared_with(scene, &prepare::<T>(scene)?, models, allow_singular)
+}
+
+/// As [`run`], for a `problem` already prepared from `scene` by [`prepare`]: preparing
+/// (reading every number into `T`, validating, building constraints) costs several times
+/// an f64 solve, so a caller solving one scene repeatedly (the Python bindings' `Scene`)
+/// prepares it once.
+pub fn run_prepared<T: Scalar>(
+    scene: &Scene,
+    problem: &Problem<T>,
+    models: Option<&[Model]>,
+) -> Result<Solved, RunError> {
+    run_prepared_with(scene, problem, models, false)
+}
+
+fn run_prepared_with<T: Scalar>(
+    scene: &Scene,
+    problem: &Problem<T>,
+    models: Option<&[Model]>,
+    allow_singular: bool,
+) -> Result<Solved, RunError> {
     let models = models.unwrap_or(&scene.models);
-    let mut a = assemble::<T>(scene)?;
+    let mut a = Assembled {
+        impact: Impact::assemble(problem)?,
+    };
     let models: &[Model] = if a.singular() && allow_singular && scene.law == Law::Simultaneous {
         &[]
     } else {
