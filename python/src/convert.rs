@@ -32,8 +32,23 @@ pub enum Mode {
 
 /// Keys whose string values are names or prose, never numbers or expressions.
 const TEXT_KEYS: &[&str] = &[
-    "scene", "scalar", "effects", "tangent", "law", "reason", "message", "model", "symbols",
-    "conditions", "det_locus", "classification", "verdicts", "f", "gradient", "name", "status",
+    "scene",
+    "scalar",
+    "effects",
+    "tangent",
+    "law",
+    "reason",
+    "message",
+    "model",
+    "symbols",
+    "conditions",
+    "det_locus",
+    "classification",
+    "verdicts",
+    "f",
+    "gradient",
+    "name",
+    "status",
 ];
 
 static FRACTION: GILOnceCell<Py<PyAny>> = GILOnceCell::new();
@@ -47,7 +62,10 @@ fn fraction(py: Python<'_>) -> PyResult<&Bound<'_, PyAny>> {
 fn is_rational_text(s: &str) -> bool {
     let s = s.strip_prefix('-').unwrap_or(s);
     let (p, q) = s.split_once('/').unwrap_or((s, "1"));
-    !p.is_empty() && !q.is_empty() && p.bytes().all(|b| b.is_ascii_digit()) && q.bytes().all(|b| b.is_ascii_digit())
+    !p.is_empty()
+        && !q.is_empty()
+        && p.bytes().all(|b| b.is_ascii_digit())
+        && q.bytes().all(|b| b.is_ascii_digit())
 }
 
 /// An exact text as Python: `Fraction` when rational, else the string itself.
@@ -78,11 +96,22 @@ fn sympy_expr<'py>(py: Python<'py>, s: &str, symbols: &[String]) -> PyResult<Bou
 }
 
 /// A JSON value as Python, by `mode`; `symbols` name the symbols of a derivation.
-pub fn json_to_py<'py>(py: Python<'py>, j: &Json, mode: Mode, symbols: &[String]) -> PyResult<Bound<'py, PyAny>> {
+pub fn json_to_py<'py>(
+    py: Python<'py>,
+    j: &Json,
+    mode: Mode,
+    symbols: &[String],
+) -> PyResult<Bound<'py, PyAny>> {
     convert(py, j, mode, symbols, false)
 }
 
-fn convert<'py>(py: Python<'py>, j: &Json, mode: Mode, symbols: &[String], text: bool) -> PyResult<Bound<'py, PyAny>> {
+fn convert<'py>(
+    py: Python<'py>,
+    j: &Json,
+    mode: Mode,
+    symbols: &[String],
+    text: bool,
+) -> PyResult<Bound<'py, PyAny>> {
     Ok(match j {
         Json::Null => py.None().into_bound(py),
         Json::Bool(b) => PyBool::new(py, *b).to_owned().into_any(),
@@ -114,7 +143,16 @@ fn convert<'py>(py: Python<'py>, j: &Json, mode: Mode, symbols: &[String], text:
         Json::Object(map) => {
             let d = PyDict::new(py);
             for (k, v) in map {
-                d.set_item(k, convert(py, v, mode, symbols, text || TEXT_KEYS.contains(&k.as_str()))?)?;
+                d.set_item(
+                    k,
+                    convert(
+                        py,
+                        v,
+                        mode,
+                        symbols,
+                        text || TEXT_KEYS.contains(&k.as_str()),
+                    )?,
+                )?;
             }
             d.into_any()
         }
@@ -182,7 +220,9 @@ pub fn law(law: Option<&str>) -> PyResult<Option<Law>> {
 pub fn number_text(x: &Bound<'_, PyAny>) -> PyResult<String> {
     let py = x.py();
     if x.is_instance_of::<PyBool>() {
-        return Err(PyValueError::new_err(format!("{x}: a number is expected, not a bool")));
+        return Err(PyValueError::new_err(format!(
+            "{x}: a number is expected, not a bool"
+        )));
     }
     if x.is_instance_of::<PyInt>() || x.is_instance_of::<PyString>() {
         return x.str()?.extract();
@@ -290,12 +330,19 @@ pub fn columns<'py>(
     for p in 0..points {
         out.extend_from_slice(&values[p * width + cols.start..p * width + cols.end]);
     }
-    Ok(PyArray1::from_vec(py, out).reshape([points, cols.len()])?.into_any())
+    Ok(PyArray1::from_vec(py, out)
+        .reshape([points, cols.len()])?
+        .into_any())
 }
 
 /// One column of a row-major points × width block as a 1-D numpy array.
 pub fn column<'py>(py: Python<'py>, values: &[f64], width: usize, col: usize) -> Bound<'py, PyAny> {
-    let v: Vec<f64> = values.iter().skip(col).step_by(width.max(1)).copied().collect();
+    let v: Vec<f64> = values
+        .iter()
+        .skip(col)
+        .step_by(width.max(1))
+        .copied()
+        .collect();
     PyArray1::from_vec(py, v).into_any()
 }
 
@@ -323,7 +370,11 @@ pub fn csv_columns<'py>(py: Python<'py>, text: &str) -> PyResult<Bound<'py, PyDi
         } else if name.ends_with("_exact") {
             let list = PyList::empty(py);
             for x in &col {
-                list.append(if x.is_empty() { py.None().into_bound(py) } else { exact_text(py, x)? })?;
+                list.append(if x.is_empty() {
+                    py.None().into_bound(py)
+                } else {
+                    exact_text(py, x)?
+                })?;
             }
             out.set_item(name, list)?;
         } else if name == "point" {
@@ -338,7 +389,11 @@ pub fn csv_columns<'py>(py: Python<'py>, text: &str) -> PyResult<Bound<'py, PyDi
 }
 
 /// One reported value: a float in f64 mode, else its exact text (`Fraction` or radical string).
-pub fn value<'py>(py: Python<'py>, v: &inertance::report::Value, mode: Mode) -> PyResult<Bound<'py, PyAny>> {
+pub fn value<'py>(
+    py: Python<'py>,
+    v: &inertance::report::Value,
+    mode: Mode,
+) -> PyResult<Bound<'py, PyAny>> {
     match (&v.exact, mode) {
         (Some(t), Mode::Exact | Mode::Symbolic) => exact_text(py, t),
         _ => Ok(PyFloat::new(py, v.f64).into_any()),
@@ -346,7 +401,11 @@ pub fn value<'py>(py: Python<'py>, v: &inertance::report::Value, mode: Mode) -> 
 }
 
 /// Reported values: a numpy array in f64 mode, else a list of exact values.
-pub fn values<'py>(py: Python<'py>, vs: &[inertance::report::Value], mode: Mode) -> PyResult<Bound<'py, PyAny>> {
+pub fn values<'py>(
+    py: Python<'py>,
+    vs: &[inertance::report::Value],
+    mode: Mode,
+) -> PyResult<Bound<'py, PyAny>> {
     if mode == Mode::F64 {
         return Ok(PyArray1::from_vec(py, vs.iter().map(|v| v.f64).collect()).into_any());
     }

@@ -18,7 +18,12 @@ use inertance::scene::pipeline::RunError;
 use inertance::tools::check::FormatError as LibFormatError;
 use inertance::tools::sweep::SweepError as LibSweepError;
 
-create_exception!(inertance, InertanceError, PyException, "Base of inertance's errors.");
+create_exception!(
+    inertance,
+    InertanceError,
+    PyException,
+    "Base of inertance's errors."
+);
 create_exception!(
     inertance,
     SceneError,
@@ -45,7 +50,11 @@ create_exception!(
 );
 
 /// An exception of type `E` with `message` and the attributes `attrs`.
-fn raise<E: pyo3::PyTypeInfo>(py: Python<'_>, message: String, attrs: &[(&str, PyObject)]) -> PyErr {
+fn raise<E: pyo3::PyTypeInfo>(
+    py: Python<'_>,
+    message: String,
+    attrs: &[(&str, PyObject)],
+) -> PyErr {
     let err = PyErr::new::<E, _>(message);
     let value = err.value(py);
     for (k, v) in attrs {
@@ -61,10 +70,29 @@ pub fn scene_error(py: Python<'_>, e: &LibSceneError) -> PyErr {
         py,
         e.to_string(),
         &[
-            ("file", e.file.clone().into_pyobject(py).unwrap().into_any().unbind()),
-            ("key", e.key.clone().into_pyobject(py).unwrap().into_any().unbind()),
+            (
+                "file",
+                e.file
+                    .clone()
+                    .into_pyobject(py)
+                    .unwrap()
+                    .into_any()
+                    .unbind(),
+            ),
+            (
+                "key",
+                e.key.clone().into_pyobject(py).unwrap().into_any().unbind(),
+            ),
             ("value", e.value.clone().into_pyobject(py).unwrap().unbind()),
-            ("message", e.message.clone().into_pyobject(py).unwrap().into_any().unbind()),
+            (
+                "message",
+                e.message
+                    .clone()
+                    .into_pyobject(py)
+                    .unwrap()
+                    .into_any()
+                    .unbind(),
+            ),
         ],
     )
 }
@@ -79,14 +107,22 @@ pub fn run_error(py: Python<'_>, e: &RunError) -> PyErr {
                 LibSolveError::Tangent(_) => "frame",
                 LibSolveError::NotSemidefinite(_) => "not-semidefinite",
             };
-            raise::<SolveError>(py, s.to_string(), &[("kind", kind.into_pyobject(py).unwrap().into_any().unbind())])
+            raise::<SolveError>(
+                py,
+                s.to_string(),
+                &[("kind", kind.into_pyobject(py).unwrap().into_any().unbind())],
+            )
         }
         RunError::Unilateral(u) => {
             let kind = match u {
                 UnilateralError::Jammed { .. } => "jammed",
                 _ => "pivots",
             };
-            raise::<SolveError>(py, u.to_string(), &[("kind", kind.into_pyobject(py).unwrap().into_any().unbind())])
+            raise::<SolveError>(
+                py,
+                u.to_string(),
+                &[("kind", kind.into_pyobject(py).unwrap().into_any().unbind())],
+            )
         }
     }
 }
@@ -96,14 +132,19 @@ pub fn sweep_error(py: Python<'_>, e: &LibSweepError) -> PyErr {
     let s = |x: &str| x.into_pyobject(py).unwrap().into_any().unbind();
     match e {
         LibSweepError::Scene(s) => scene_error(py, s),
-        LibSweepError::Vary { spec, .. } => raise::<SweepError>(py, e.to_string(), &[("key", s(spec))]),
+        LibSweepError::Vary { spec, .. } => {
+            raise::<SweepError>(py, e.to_string(), &[("key", s(spec))])
+        }
         LibSweepError::Point { point, at, message } => {
             let (key, value) = at.split_once(" = ").unwrap_or((at, ""));
             raise::<SweepError>(
                 py,
                 e.to_string(),
                 &[
-                    ("point", point.into_pyobject(py).unwrap().into_any().unbind()),
+                    (
+                        "point",
+                        point.into_pyobject(py).unwrap().into_any().unbind(),
+                    ),
                     ("key", s(key)),
                     ("value", s(value)),
                     ("message", s(message)),
@@ -120,9 +161,28 @@ pub fn format_error(py: Python<'_>, e: &LibFormatError) -> PyErr {
         py,
         e.to_string(),
         &[
-            ("file", e.file.clone().into_pyobject(py).unwrap().into_any().unbind()),
-            ("line", e.line.into_pyobject(py).unwrap().into_any().unbind()),
-            ("message", e.message.clone().into_pyobject(py).unwrap().into_any().unbind()),
+            (
+                "file",
+                e.file
+                    .clone()
+                    .into_pyobject(py)
+                    .unwrap()
+                    .into_any()
+                    .unbind(),
+            ),
+            (
+                "line",
+                e.line.into_pyobject(py).unwrap().into_any().unbind(),
+            ),
+            (
+                "message",
+                e.message
+                    .clone()
+                    .into_pyobject(py)
+                    .unwrap()
+                    .into_any()
+                    .unbind(),
+            ),
         ],
     )
 }

@@ -1,8 +1,8 @@
 //! `inertance._inertance`: the Python bindings, a thin layer over the Rust library.
 //!
-//! Each function converts its arguments ([`convert`]), calls the library
+//! Each function converts its arguments ((`convert.rs`)), calls the library
 //! (`inertance::scene::pipeline::run`, `inertance::tools::{analyze, check, derive, sweep}`),
-//! and converts the result back; errors become exceptions in [`errors`]. Long work (exact and
+//! and converts the result back; errors become exceptions in `errors.rs`. Long work (exact and
 //! symbolic solves, `check`, `derive`, `sweep`, batches) runs with the GIL released.
 
 mod convert;
@@ -16,13 +16,15 @@ use pyo3::types::{PyDict, PyList};
 use serde_json::Value as Json;
 use toml_edit::DocumentMut;
 
+use inertance::Problem;
 use inertance::report::Report;
 use inertance::scalar::Exact;
 use inertance::scalar::symbolic::RatFun;
-use inertance::Problem;
 use inertance::scene::pipeline::{RunError, prepare, run, run_prepared};
 use inertance::scene::{Scene as LibScene, parse_document, set_value};
-use inertance::tools::{analyze as lib_analyze, check as lib_check, derive as lib_derive, sweep as lib_sweep};
+use inertance::tools::{
+    analyze as lib_analyze, check as lib_check, derive as lib_derive, sweep as lib_sweep,
+};
 
 use convert::{Mode, json_to_py};
 
@@ -41,11 +43,25 @@ struct Scene {
 }
 
 impl Scene {
-    fn new(py: Python<'_>, text: String, file: &str, path: Option<PathBuf>, symbols: Vec<String>) -> PyResult<Scene> {
+    fn new(
+        py: Python<'_>,
+        text: String,
+        file: &str,
+        path: Option<PathBuf>,
+        symbols: Vec<String>,
+    ) -> PyResult<Scene> {
         let doc = parse_document(&text, file).map_err(|e| errors::scene_error(py, &e))?;
-        let scene = LibScene::from_document_with(&doc, file, &symbols).map_err(|e| errors::scene_error(py, &e))?;
+        let scene = LibScene::from_document_with(&doc, file, &symbols)
+            .map_err(|e| errors::scene_error(py, &e))?;
         let f64 = prepare::<f64>(&scene).ok();
-        Ok(Scene { scene, doc, text, path, symbols, f64 })
+        Ok(Scene {
+            scene,
+            doc,
+            text,
+            path,
+            symbols,
+            f64,
+        })
     }
 }
 
@@ -54,7 +70,12 @@ impl Scene {
     /// Read a scene from TOML text; `file` names it in messages.
     #[staticmethod]
     #[pyo3(signature = (text, *, symbols = None, file = "<string>"))]
-    fn from_toml(py: Python<'_>, text: String, symbols: Option<Vec<String>>, file: &str) -> PyResult<Scene> {
+    fn from_toml(
+        py: Python<'_>,
+        text: String,
+        symbols: Option<Vec<String>>,
+        file: &str,
+    ) -> PyResult<Scene> {
         Scene::new(py, text, file, None, symbols.unwrap_or_default())
     }
 
@@ -82,7 +103,11 @@ impl Scene {
     /// numpy values or strings such as `"2/sqrt(5)"`, and are kept exact.
     #[staticmethod]
     #[pyo3(signature = (values, *, symbols = None))]
-    fn from_dict(py: Python<'_>, values: &Bound<'_, PyDict>, symbols: Option<Vec<String>>) -> PyResult<Scene> {
+    fn from_dict(
+        py: Python<'_>,
+        values: &Bound<'_, PyDict>,
+        symbols: Option<Vec<String>>,
+    ) -> PyResult<Scene> {
         let text = convert::dict_to_toml(values)?;
         Scene::new(py, text, "<dict>", None, symbols.unwrap_or_default())
     }
@@ -110,7 +135,13 @@ impl Scene {
                 )
             })?;
         }
-        Scene::new(py, doc.to_string(), &self.scene.file, None, self.symbols.clone())
+        Scene::new(
+            py,
+            doc.to_string(),
+            &self.scene.file,
+            None,
+            self.symbols.clone(),
+        )
     }
 
     /// The scene's `name`.
@@ -145,11 +176,18 @@ impl Scene {
 
     /// Every number by key path, as written.
     fn numbers(&self) -> Vec<(String, String)> {
-        self.scene.numbers().map(|(k, n)| (k, n.text.clone())).collect()
+        self.scene
+            .numbers()
+            .map(|(k, n)| (k, n.text.clone()))
+            .collect()
     }
 
     fn __repr__(&self) -> String {
-        format!("Scene({:?}, {} contacts)", self.scene.name, self.scene.contacts.len())
+        format!(
+            "Scene({:?}, {} contacts)",
+            self.scene.name,
+            self.scene.contacts.len()
+        )
     }
 }
 
@@ -174,8 +212,17 @@ impl Solution {
     }
 
     fn model(&self, name: &str) -> Option<ModelSolution> {
-        let index = self.report.models.iter().position(|m| m.model.name() == name)?;
-        Some(ModelSolution { report: Arc::clone(&self.report), index, mode: self.mode, json: OnceLock::new() })
+        let index = self
+            .report
+            .models
+            .iter()
+            .position(|m| m.model.name() == name)?;
+        Some(ModelSolution {
+            report: Arc::clone(&self.report),
+            index,
+            mode: self.mode,
+            json: OnceLock::new(),
+        })
     }
 }
 
@@ -232,7 +279,10 @@ impl Solution {
         self.report
             .models
             .iter()
-            .filter_map(|m| self.model(m.model.name()).map(|s| (m.model.name().to_string(), s)))
+            .filter_map(|m| {
+                self.model(m.model.name())
+                    .map(|s| (m.model.name().to_string(), s))
+            })
             .collect()
     }
     /// Newton's law (eq. 14–20), if solved.
@@ -251,7 +301,10 @@ impl Solution {
     }
     fn __repr__(&self) -> String {
         let names: Vec<&str> = self.report.models.iter().map(|m| m.model.name()).collect();
-        format!("Solution({:?}, {}, models={names:?})", self.report.scene, self.report.scalar)
+        format!(
+            "Solution({:?}, {}, models={names:?})",
+            self.report.scene, self.report.scalar
+        )
     }
 }
 
@@ -366,7 +419,13 @@ model_keys!(
 
 /// Solve in f64, exactly (rationals, or exact radicals when the scene has them) — as
 /// `inertance solve`.
-fn run_scene(py: Python<'_>, scene: &Scene, models: Option<Vec<inertance::Model>>, law: Option<inertance::impact::unilateral::Law>, exact: bool) -> Result<Report, RunError> {
+fn run_scene(
+    py: Python<'_>,
+    scene: &Scene,
+    models: Option<Vec<inertance::Model>>,
+    law: Option<inertance::impact::unilateral::Law>,
+    exact: bool,
+) -> Result<Report, RunError> {
     let relawed;
     let s = match law {
         Some(l) if l != scene.scene.law => {
@@ -397,16 +456,31 @@ fn run_scene(py: Python<'_>, scene: &Scene, models: Option<Vec<inertance::Model>
 
 #[pyfunction]
 #[pyo3(signature = (scene, model = None, law = None, exact = false))]
-fn solve(py: Python<'_>, scene: &Scene, model: Option<&Bound<'_, PyAny>>, law: Option<&str>, exact: bool) -> PyResult<Solution> {
+fn solve(
+    py: Python<'_>,
+    scene: &Scene,
+    model: Option<&Bound<'_, PyAny>>,
+    law: Option<&str>,
+    exact: bool,
+) -> PyResult<Solution> {
     let models = convert::models(model)?;
     let law = convert::law(law)?;
     let report = run_scene(py, scene, models, law, exact).map_err(|e| errors::run_error(py, &e))?;
-    Ok(Solution { report: Arc::new(report), mode: if exact { Mode::Exact } else { Mode::F64 }, json: OnceLock::new() })
+    Ok(Solution {
+        report: Arc::new(report),
+        mode: if exact { Mode::Exact } else { Mode::F64 },
+        json: OnceLock::new(),
+    })
 }
 
 #[pyfunction]
 #[pyo3(signature = (scene, model = None, exact = false))]
-fn analyze<'py>(py: Python<'py>, scene: &Scene, model: Option<&Bound<'_, PyAny>>, exact: bool) -> PyResult<Bound<'py, PyAny>> {
+fn analyze<'py>(
+    py: Python<'py>,
+    scene: &Scene,
+    model: Option<&Bound<'_, PyAny>>,
+    exact: bool,
+) -> PyResult<Bound<'py, PyAny>> {
     let models = convert::models(model)?;
     let s = &scene.scene;
     let report = py
@@ -421,7 +495,12 @@ fn analyze<'py>(py: Python<'py>, scene: &Scene, model: Option<&Bound<'_, PyAny>>
             }
         })
         .map_err(|e| errors::run_error(py, &e))?;
-    json_to_py(py, &report.to_json(), if exact { Mode::Exact } else { Mode::F64 }, &[])
+    json_to_py(
+        py,
+        &report.to_json(),
+        if exact { Mode::Exact } else { Mode::F64 },
+        &[],
+    )
 }
 
 #[pyfunction]
@@ -456,14 +535,23 @@ fn check<'py>(py: Python<'py>, directory: PathBuf) -> PyResult<(bool, Bound<'py,
 
 #[pyfunction]
 #[pyo3(signature = (scene, model = None))]
-fn derive<'py>(py: Python<'py>, scene: &Scene, model: Option<&Bound<'_, PyAny>>) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyAny>, String, String)> {
+fn derive<'py>(
+    py: Python<'py>,
+    scene: &Scene,
+    model: Option<&Bound<'_, PyAny>>,
+) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyAny>, String, String)> {
     let models = convert::models(model)?;
     let (s, symbols) = (&scene.scene, &scene.symbols);
     let d = py
         .allow_threads(|| lib_derive::derive(s, symbols, models.as_deref()))
         .map_err(|e| errors::run_error(py, &e))?;
     let json = d.to_json();
-    Ok((json_to_py(py, &json, Mode::Symbolic, symbols)?, plain(py, &json)?, d.to_text(false), d.to_text(true)))
+    Ok((
+        json_to_py(py, &json, Mode::Symbolic, symbols)?,
+        plain(py, &json)?,
+        d.to_text(false),
+        d.to_text(true),
+    ))
 }
 
 #[pyfunction]
@@ -480,11 +568,19 @@ fn sweep<'py>(
     let vary = vary
         .iter()
         .map(|(path, a, b, n)| {
-            let spec = format!("{path}={}:{}:{n}", convert::number_text(a)?, convert::number_text(b)?);
+            let spec = format!(
+                "{path}={}:{}:{n}",
+                convert::number_text(a)?,
+                convert::number_text(b)?
+            );
             lib_sweep::Vary::parse(&spec).map_err(|e| errors::sweep_error(py, &e))
         })
         .collect::<PyResult<Vec<_>>>()?;
-    let dir = std::env::temp_dir().join(format!("inertance-sweep-{}-{:p}", std::process::id(), scene));
+    let dir = std::env::temp_dir().join(format!(
+        "inertance-sweep-{}-{:p}",
+        std::process::id(),
+        scene
+    ));
     std::fs::create_dir_all(&dir)?;
     let scene_file = match &scene.path {
         Some(p) => p.clone(),
@@ -503,7 +599,8 @@ fn sweep<'py>(
         law,
         ..Default::default()
     };
-    let done = py.allow_threads(|| lib_sweep::sweep(&opts).map(|_| std::fs::read_to_string(&opts.out)));
+    let done =
+        py.allow_threads(|| lib_sweep::sweep(&opts).map(|_| std::fs::read_to_string(&opts.out)));
     let _ = std::fs::remove_dir_all(&dir);
     let csv = done.map_err(|e| errors::sweep_error(py, &e))??;
     convert::csv_columns(py, &csv)
@@ -511,9 +608,17 @@ fn sweep<'py>(
 
 #[pyfunction]
 #[pyo3(signature = (scene, vary, law = None))]
-fn solve_batch<'py>(py: Python<'py>, scene: &Scene, vary: Vec<(String, Vec<f64>)>, law: Option<&str>) -> PyResult<Bound<'py, PyDict>> {
+fn solve_batch<'py>(
+    py: Python<'py>,
+    scene: &Scene,
+    vary: Vec<(String, Vec<f64>)>,
+    law: Option<&str>,
+) -> PyResult<Bound<'py, PyDict>> {
     let law = convert::law(law)?;
-    let vary: Vec<lib_sweep::Varied> = vary.into_iter().map(|(path, values)| lib_sweep::Varied { path, values }).collect();
+    let vary: Vec<lib_sweep::Varied> = vary
+        .into_iter()
+        .map(|(path, values)| lib_sweep::Varied { path, values })
+        .collect();
     let (doc, file) = (&scene.doc, &scene.scene.file);
     let b = py
         .allow_threads(|| lib_sweep::solve_batch(doc, file, &vary, law))
@@ -524,8 +629,14 @@ fn solve_batch<'py>(py: Python<'py>, scene: &Scene, vary: Vec<(String, Vec<f64>)
         let d = PyDict::new(py);
         d.set_item("impulses", convert::columns(py, values, w, 0..n)?)?;
         d.set_item("velocity", convert::columns(py, values, w, n..n + 3)?)?;
-        d.set_item("angular_velocity", convert::columns(py, values, w, n + 3..n + 6)?)?;
-        d.set_item("lost_velocity_energy", convert::column(py, values, w, n + 6))?;
+        d.set_item(
+            "angular_velocity",
+            convert::columns(py, values, w, n + 3..n + 6)?,
+        )?;
+        d.set_item(
+            "lost_velocity_energy",
+            convert::column(py, values, w, n + 6),
+        )?;
         d.set_item("kinetic_energy_loss", convert::column(py, values, w, n + 7))?;
         out.set_item(m.name(), d)?;
     }

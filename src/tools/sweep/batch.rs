@@ -13,10 +13,10 @@ use num_rational::BigRational;
 use rayon::prelude::*;
 use toml_edit::DocumentMut;
 
+use super::SweepError;
 use super::outputs::{model_values, output_names, status};
 use super::slot::Slot;
 use super::text::toml_text;
-use super::SweepError;
 use crate::impact::restitution::Model;
 use crate::impact::solve::SolveError;
 use crate::impact::unilateral::{Law, UnilateralError};
@@ -79,7 +79,10 @@ pub fn solve_batch(
         if !known {
             return Err(SweepError::Vary {
                 spec: v.path.clone(),
-                reason: format!("no such number in the scene; its numbers are {}", keys.join(", ")),
+                reason: format!(
+                    "no such number in the scene; its numbers are {}",
+                    keys.join(", ")
+                ),
             });
         }
         if v.values.len() != points {
@@ -128,7 +131,8 @@ pub fn solve_batch(
                     for (v, q) in vary.iter().zip(&values) {
                         set_value(&mut d, &v.path, &toml_text(q)).map_err(&at)?;
                     }
-                    let mut scene = Scene::from_document(&d, file).map_err(|e| at(e.to_string()))?;
+                    let mut scene =
+                        Scene::from_document(&d, file).map_err(|e| at(e.to_string()))?;
                     scene.law = base.law;
                     scene
                 }
@@ -177,7 +181,10 @@ mod tests {
         let b = solve_batch(
             &doc,
             "bar.toml",
-            &[Varied { path: "contact[1].k".into(), values: ks.clone() }],
+            &[Varied {
+                path: "contact[1].k".into(),
+                values: ks.clone(),
+            }],
             None,
         )
         .unwrap();
@@ -203,7 +210,10 @@ mod tests {
         let b = solve_batch(
             &doc,
             "bar.toml",
-            &[Varied { path: "contact[0].normal[0]".into(), values: vec![1.0, 2.0] }],
+            &[Varied {
+                path: "contact[0].normal[0]".into(),
+                values: vec![1.0, 2.0],
+            }],
             None,
         )
         .unwrap();
@@ -219,20 +229,37 @@ mod tests {
     #[test]
     fn bad_batches_name_the_key_and_the_value() {
         let doc = parse_document(BAR, "bar.toml").unwrap();
-        let vary = |path: &str, values: Vec<f64>| vec![Varied { path: path.into(), values }];
-        let e = solve_batch(&doc, "bar.toml", &vary("contact[1].k", vec![0.5, 1.5]), None)
-            .unwrap_err();
+        let vary = |path: &str, values: Vec<f64>| {
+            vec![Varied {
+                path: path.into(),
+                values,
+            }]
+        };
+        let e = solve_batch(
+            &doc,
+            "bar.toml",
+            &vary("contact[1].k", vec![0.5, 1.5]),
+            None,
+        )
+        .unwrap_err();
         assert!(
             matches!(&e, SweepError::Point { point: 1, at, .. } if at == "contact[1].k = 1.5"),
             "{e}"
         );
         let e = solve_batch(&doc, "bar.toml", &vary("contact[7].k", vec![0.5]), None).unwrap_err();
         assert!(matches!(e, SweepError::Vary { .. }), "{e}");
-        let e = solve_batch(&doc, "bar.toml", &vary("body.mass", vec![f64::NAN]), None).unwrap_err();
+        let e =
+            solve_batch(&doc, "bar.toml", &vary("body.mass", vec![f64::NAN]), None).unwrap_err();
         assert!(e.to_string().contains("body.mass = NaN"), "{e}");
         let two = [
-            Varied { path: "body.mass".into(), values: vec![1.0, 2.0] },
-            Varied { path: "contact[0].k".into(), values: vec![0.5] },
+            Varied {
+                path: "body.mass".into(),
+                values: vec![1.0, 2.0],
+            },
+            Varied {
+                path: "contact[0].k".into(),
+                values: vec![0.5],
+            },
         ];
         let e = solve_batch(&doc, "bar.toml", &two, None).unwrap_err();
         assert!(e.to_string().contains("one value per point"), "{e}");
@@ -249,7 +276,10 @@ mod tests {
         let b = solve_batch(
             &doc,
             "bar.toml",
-            &[Varied { path: "contact[1].k".into(), values: vec![0.5] }],
+            &[Varied {
+                path: "contact[1].k".into(),
+                values: vec![0.5],
+            }],
             None,
         )
         .unwrap();
@@ -258,7 +288,10 @@ mod tests {
         let b = solve_batch(
             &doc,
             "bar.toml",
-            &[Varied { path: "contact[1].k".into(), values: vec![0.3] }],
+            &[Varied {
+                path: "contact[1].k".into(),
+                values: vec![0.3],
+            }],
             Some(Law::Unilateral),
         )
         .unwrap();
