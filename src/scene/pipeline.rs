@@ -104,8 +104,46 @@ fn run_as_written<T: Scalar>(
     models: Option<&[Model]>,
     allow_singular: bool,
 ) -> Result<Solved, RunError> {
+    run_prepared_with(scene, &prepare::<T>(scene)?, models, allow_singular)
+}
+
+/// As [`run`], for a `problem` already prepared from `scene` by [`prepare`]: preparing
+/// (reading every number into `T`, validating, building constraints) costs several times
+/// an f64 solve, so a caller solving one scene repeatedly (the Python bindings' `Scene`)
+/// prepares it once. The problem is solved in the scene's own units (no [`super::scale`]), and a
+/// float result that is not finite is refused as in [`run_with`].
+pub fn run_prepared<T: Scalar>(
+    scene: &Scene,
+    problem: &Problem<T>,
+    models: Option<&[Model]>,
+) -> Result<Solved, RunError> {
+    let solved = run_prepared_with(scene, problem, models, false)?;
+    if !T::IS_EXACT && !finite(&solved.report) {
+        let (key, value) = most_extreme(scene).unwrap_or_default();
+        return Err(RunError::Scene(SceneError {
+            file: scene.file.clone(),
+            key,
+            value: Some(value),
+            message: format!(
+                "a result is not representable in {} in the scene's units; this number sets the \
+                 extreme scale — solve it through the scene's own path (which scales it) or {OUT_OF_RANGE}",
+                T::NAME
+            ),
+        }));
+    }
+    Ok(solved)
+}
+
+fn run_prepared_with<T: Scalar>(
+    scene: &Scene,
+    problem: &Problem<T>,
+    models: Option<&[Model]>,
+    allow_singular: bool,
+) -> Result<Solved, RunError> {
     let models = models.unwrap_or(&scene.models);
-    let mut a = assemble::<T>(scene)?;
+    let mut a = Assembled {
+        impact: Impact::assemble(problem)?,
+    };
     let models: &[Model] = if a.singular() && allow_singular && scene.law == Law::Simultaneous {
         &[]
     } else {

@@ -95,6 +95,7 @@
 //! leaves a file half-written; `plot` draws the SVG; `text` writes exact values.
 
 mod axis;
+mod batch;
 mod file;
 mod outputs;
 mod plan;
@@ -110,6 +111,7 @@ use crate::scene::SceneError;
 use plan::Plan;
 
 pub use axis::{Shard, Vary};
+pub use batch::{Batch, Varied, solve_batch};
 
 /// Points solved in parallel before their rows are written (bounds memory).
 pub const CHUNK: usize = 1024;

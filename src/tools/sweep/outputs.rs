@@ -45,7 +45,7 @@ pub(super) struct Row {
 }
 
 /// A model's numeric outputs, in [`output_names`] order.
-fn model_values(r: &ModelReport) -> Vec<f64> {
+pub(super) fn model_values(r: &ModelReport) -> Vec<f64> {
     let mut v: Vec<f64> = r.impulses.iter().map(|x| x.f64).collect();
     v.extend(r.velocity.iter().map(|x| x.f64));
     v.extend(r.angular_velocity.iter().map(|x| x.f64));
@@ -244,7 +244,7 @@ impl Plan {
 /// A solved point's status: `ok`, or the reasons its simultaneous answer is not physical
 /// (`tensile`, `separating`, `still-approaching`, `energy-gain`), across the models, joined
 /// by `+` in that order.
-fn status(report: &crate::report::Report) -> String {
+pub(super) fn status(report: &crate::report::Report) -> String {
     let names = ["tensile", "separating", "still-approaching", "energy-gain"];
     let found: Vec<&str> = names
         .into_iter()

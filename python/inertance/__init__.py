@@ -1,0 +1,193 @@
+"""inertance: what happens when a rigid body strikes obstacles at several points at once.
+
+Python bindings of the Rust library ``inertance``, after Dragna, Pandrea and Stănescu,
+*Simultaneous Collision of the Rigid Body at Two Points* (Symmetry 13 (2021) 1924).
+Every call converts its arguments, runs the validated Rust library and converts the result:
+
+* :class:`Scene` — a scene (README "Scene files") from a TOML file or string or from Python
+  values, read once and reused across calls;
+* :func:`solve` — impulses (eq. 20, 23), velocities after impact (eq. 24), E_p (eq. 28) and
+  ΔE_c (eq. 32), per restitution model; numpy arrays in f64, ``Fraction`` exactly;
+* :func:`solve_batch` — many points of one scene from arrays of numbers, in parallel;
+* :func:`sweep` — a grid of one or two varied numbers (as ``inertance sweep``);
+* :func:`analyze` — degenerate cases (§8): Δ, ranks, families, admissibility;
+* :func:`derive` — closed forms over symbols, as SymPy expressions;
+* :func:`check` — the paper's worked examples, value by value.
+"""
+
+from __future__ import annotations
+
+import os
+from dataclasses import dataclass, field
+from typing import Any, Mapping, Optional, Sequence, Union
+
+from . import _inertance as _native
+from ._inertance import (
+    FormatError,
+    InertanceError,
+    ModelSolution,
+    Scene,
+    SceneError,
+    Solution,
+    SolveError,
+    SweepError,
+)
+
+__all__ = [
+    "Scene", "Solution", "ModelSolution", "Derivation", "CheckResult",
+    "solve", "solve_batch", "sweep", "analyze", "derive", "check",
+    "InertanceError", "SceneError", "SolveError", "SweepError", "FormatError",
+]
+
+SceneLike = Union[Scene, Mapping[str, Any], str, "os.PathLike[str]"]
+
+
+def _scene(scene: SceneLike, symbols: Optional[Sequence[str]] = None) -> Scene:
+    """A :class:`Scene` from a Scene, a dict, TOML text or a path."""
+    if isinstance(scene, Scene):
+        if symbols is not None and list(symbols) != scene.symbols:
+            return Scene.from_toml(scene.toml, symbols=list(symbols), file=scene.file)
+        return scene
+    syms = None if symbols is None else list(symbols)
+    if isinstance(scene, Mapping):
+        return Scene.from_dict(dict(scene), symbols=syms)
+    if isinstance(scene, os.PathLike):
+        return Scene.load(os.fspath(scene), symbols=syms)
+    if isinstance(scene, str):
+        if "\n" in scene or "=" in scene:
+            return Scene.from_toml(scene, symbols=syms)
+        return Scene.load(scene, symbols=syms)
+    raise TypeError(f"a scene is a Scene, a dict, TOML text or a path, not {type(scene).__name__}")
+
+
+def solve(scene: SceneLike, model: Union[str, Sequence[str], None] = None,
+          law: Optional[str] = None, exact: bool = False) -> Solution:
+    """Solve the collision of ``scene`` (as ``inertance solve --json``).
+
+    ``model``: ``"newton"`` (eq. 14–20), ``"poisson"`` (eq. 21–23), ``"both"`` or ``None``
+    (the scene's ``[solve] models``); ``law``: ``"simultaneous"`` (the paper's, eq. 15,
+    21–23) or ``"unilateral"`` (complementarity); ``None``: the scene's. ``exact``: in
+    rationals, or exact radicals when the scene has ``"2/sqrt(5)"``-like numbers.
+
+    The result's attributes are the JSON report's keys: ``inertance`` (G, eq. 12), ``det``
+    (Δ), ``frames``, and per model (``.newton``, ``.poisson``, ``.models``) ``impulses``
+    (P_i), ``velocity`` and ``angular_velocity`` (eq. 24), ``lost_velocity_energy`` (E_p,
+    eq. 28), ``kinetic_energy_loss`` (ΔE_c, eq. 32), … In f64 numbers are floats and vectors
+    numpy arrays; exactly, rationals are ``fractions.Fraction`` and radicals strings such as
+    ``"12/17*sqrt(17)"`` (``sympy.sympify`` reads them).
+
+    Raises :class:`SceneError` for bad input and :class:`SolveError` when there is no answer
+    (``kind == "singular"``: Δ = 0, §8; ``"jammed"`` under the unilateral law).
+    """
+    if type(scene) is not Scene:
+        scene = _scene(scene)
+    return _native.solve(scene, model, law, exact)
+
+
+def solve_batch(scene: SceneLike, vary: Mapping[str, Any], law: Optional[str] = None) -> dict:
+    """Solve ``scene`` in f64 at many points, without a Python loop (in parallel, GIL released).
+
+    ``vary`` maps key paths (``"contact[1].k"``, ``"body.mass"``, ``"body.velocity[0]"``, …)
+    to arrays of equal length: point p sets every path to its p-th value. Returns, per model
+    solved, ``{"impulses": (P, N), "velocity": (P, 3), "angular_velocity": (P, 3),
+    "lost_velocity_energy": (P,), "kinetic_energy_loss": (P,)}`` numpy arrays (NaN where the
+    point has no answer), and ``"status"``: per point ``"ok"``, ``"singular"``, ``"jammed"``
+    or the reasons the simultaneous answer is not physical joined by ``+``.
+    """
+    import numpy as np
+
+    pairs = [(path, np.asarray(v, dtype=float).ravel().tolist()) for path, v in vary.items()]
+    return _native.solve_batch(_scene(scene), pairs, law)
+
+
+def sweep(scene: SceneLike, vary: Mapping[str, Any], exact: bool = False,
+          law: Optional[str] = None, threads: Optional[int] = None, frame: Optional[bool] = None):
+    """Sweep one or two numbers of ``scene`` over a grid, as ``inertance sweep`` (in parallel,
+    GIL released, no subprocess).
+
+    ``vary`` maps a key path to ``(start, stop, count)`` or ``"start:stop:count"``; start and
+    stop are read exactly (``Fraction``, ``"1/3"``). Returns the sweep's CSV columns by name
+    (``point``, the varied paths, ``newton_P1`` …, ``newton_dEc``, ``status``; with
+    ``exact``, ``…_exact`` columns as ``Fraction``) as numpy arrays — or a pandas DataFrame
+    when pandas is installed (``frame=False`` forces the dict).
+    """
+    items = []
+    for path, spec in vary.items():
+        if isinstance(spec, str):
+            start, stop, count = spec.split(":")
+        else:
+            start, stop, count = spec
+        items.append((path, start, stop, int(count)))
+    columns = _native.sweep(_scene(scene), items, exact, law, threads)
+    if frame is False:
+        return columns
+    try:
+        import pandas
+    except ImportError:
+        if frame:
+            raise
+        return columns
+    return pandas.DataFrame(columns)
+
+
+def analyze(scene: SceneLike, model: Union[str, Sequence[str], None] = None,
+            exact: bool = False) -> dict:
+    """Degenerate cases (§5, §8, §11; ``inertance analyze --json``): per model ``det``,
+    ``rank``, ``augmented_rank``, ``classification`` (Rouché–Capelli, eq. 61–68, 98–102),
+    ``family`` for a singular compatible system, ``admissible`` (eq. 73–74), ``verdicts``; and
+    ``newton_equals_poisson`` (eq. 50–55), ``condition_number``, ``coincident`` (eq. 69–72).
+    """
+    return _native.analyze(_scene(scene), model, exact)
+
+
+@dataclass
+class Derivation:
+    """Closed forms derived by the same solver over symbols (``inertance derive``).
+
+    ``expressions``: the JSON report's keys with SymPy expressions (strings without SymPy),
+    e.g. ``expressions["models"]["poisson"]["impulses"][0]``; ``det`` (Δ), ``conditions``
+    (where the formulas hold), ``json`` (plain strings), ``text`` and ``latex``.
+    """
+
+    expressions: dict
+    json: dict
+    text: str
+    latex: str
+
+    @property
+    def det(self) -> Any:
+        """Δ = det G."""
+        return self.expressions["det"]
+
+    @property
+    def conditions(self) -> list:
+        """The conditions the formulas assume (nonzero pivots, positive signs)."""
+        return self.expressions["conditions"]
+
+    def model(self, name: str) -> dict:
+        """One model's expressions: ``impulses`` (eq. 20, 23), ``velocity``, … ."""
+        return self.expressions["models"][name]
+
+
+def derive(scene: SceneLike, symbols: Optional[Sequence[str]] = None,
+           model: Union[str, Sequence[str], None] = None) -> Derivation:
+    """Derive closed forms over ``symbols`` (``inertance derive --symbols …``): the same
+    solver over rational functions; values may name the symbols (``mass = "m"``)."""
+    return Derivation(*_native.derive(_scene(scene, symbols), model))
+
+
+@dataclass
+class CheckResult:
+    """The verdicts of ``check``: ``passed``, and per checked value a dict with ``file``,
+    ``case``, ``quantity``, ``printed``, ``computed``, ``identity`` and ``verdict``
+    (``"reproduced"``, ``"erratum"`` with its ``reason``, or ``"fail"``)."""
+
+    passed: bool
+    lines: list = field(default_factory=list)
+    text: str = ""
+
+
+def check(directory: Union[str, "os.PathLike[str]"] = "derivations") -> CheckResult:
+    """Check the paper's worked examples in ``directory`` (``inertance check``): every printed
+    value exactly, every closed form as an identity, errata from ``ERRATA.md``."""
+    return CheckResult(*_native.check(os.fspath(directory)))

@@ -1,0 +1,45 @@
+import os
+from dataclasses import dataclass
+from typing import Any, Mapping, Optional, Sequence, Union
+
+from ._inertance import (
+    FormatError as FormatError,
+    InertanceError as InertanceError,
+    ModelSolution as ModelSolution,
+    Scene as Scene,
+    SceneError as SceneError,
+    Solution as Solution,
+    SolveError as SolveError,
+    SweepError as SweepError,
+)
+
+SceneLike = Union[Scene, Mapping[str, Any], str, os.PathLike[str]]
+ModelArg = Union[str, Sequence[str], None]
+
+def solve(scene: SceneLike, model: ModelArg = None, law: Optional[str] = None, exact: bool = False) -> Solution: ...
+def solve_batch(scene: SceneLike, vary: Mapping[str, Any], law: Optional[str] = None) -> dict[str, Any]: ...
+def sweep(scene: SceneLike, vary: Mapping[str, Any], exact: bool = False, law: Optional[str] = None,
+          threads: Optional[int] = None, frame: Optional[bool] = None) -> Any: ...
+def analyze(scene: SceneLike, model: ModelArg = None, exact: bool = False) -> dict[str, Any]: ...
+
+@dataclass
+class Derivation:
+    expressions: dict[str, Any]
+    json: dict[str, Any]
+    text: str
+    latex: str
+    @property
+    def det(self) -> Any: ...
+    @property
+    def conditions(self) -> list[Any]: ...
+    def model(self, name: str) -> dict[str, Any]: ...
+
+def derive(scene: SceneLike, symbols: Optional[Sequence[str]] = None, model: ModelArg = None) -> Derivation: ...
+
+@dataclass
+class CheckResult:
+    passed: bool
+    lines: list[dict[str, Any]]
+    text: str
+
+def check(directory: Union[str, os.PathLike[str]] = "derivations") -> CheckResult: ...

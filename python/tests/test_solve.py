@@ -1,0 +1,87 @@
+"""solve: the attributes of the JSON contract, f64 as numpy, exact as Fraction, equal to the CLI."""
+
+from fractions import Fraction
+
+import numpy as np
+import pytest
+
+import inertance
+from conftest import BAR, HARD, ROOT, cli_json
+
+
+def test_example3_f64_matches_the_paper(bar):
+    r = inertance.solve(bar)
+    assert r.scalar == "f64"
+    assert r.effects == ["newton", "poisson"]
+    assert isinstance(r.newton.impulses, np.ndarray)
+    np.testing.assert_allclose(r.newton.impulses, [3.655556, 0.197778], atol=1e-6)
+    np.testing.assert_allclose(r.poisson.impulses, [3.64, 0.24], atol=1e-12)
+    np.testing.assert_allclose(r.poisson.compression_impulses, [2.8, 0.2], atol=1e-12)
+    assert r.newton.compression_impulses is None
+    assert r.inertance.shape == (2, 2)
+    assert r.det == pytest.approx(3)
+    assert r.newton.lost_velocity_energy == pytest.approx(9.195356, abs=1e-6)
+    assert r.poisson.kinetic_energy_loss == pytest.approx(4.976533, abs=1e-6)
+    assert r.newton.velocity.shape == (3,) and r.newton.angular_velocity.shape == (3,)
+    assert r.newton.angular_velocity[2] == pytest.approx(-0.143333, abs=1e-6)
+    assert r.newton.admissible is True and r.newton.law == "simultaneous"
+    assert set(dict(r.models)) == {"newton", "poisson"}
+
+
+def test_example3_exact_is_fractions(bar):
+    r = inertance.solve(bar, exact=True)
+    assert r.scalar == "exact"
+    assert r.newton.impulses == [Fraction(329, 90), Fraction(89, 450)]
+    assert r.newton.lost_velocity_energy == Fraction(413791, 45000)
+    assert r.det == 3 and isinstance(r.det, Fraction)
+    assert r.inertance[0][1] == Fraction(1, 3)
+
+
+@pytest.mark.parametrize("scene", [BAR, *sorted(HARD.glob("*.toml"))], ids=lambda p: p.stem)
+def test_exact_results_equal_the_cli_json(scene):
+    try:
+        r = inertance.solve(inertance.Scene.load(scene), exact=True)
+    except inertance.SolveError as e:
+        assert e.kind == "singular"
+        return
+    assert r.to_json() == cli_json("solve", scene, "--exact")
+
+
+def test_f64_results_equal_the_cli_json(bar):
+    assert inertance.solve(bar).to_json() == cli_json("solve", BAR)
+
+
+def test_model_and_law_select_what_is_solved(bar):
+    r = inertance.solve(bar, model="newton")
+    assert r.poisson is None and r.effects == ["newton"]
+    u = inertance.solve(bar, law="unilateral", exact=True)
+    assert u.newton.law == "unilateral" and u.newton.active == [True, True]
+    assert u.to_json() == cli_json("solve", BAR, "--exact", "--law", "unilateral")
+    assert inertance.solve(bar, model=["newton", "poisson"]).effects == ["newton", "poisson"]
+
+
+def test_a_tensile_answer_is_reported_not_hidden(bar):
+    r = inertance.solve(bar.with_values({"body.angular_velocity[2]": 1}), model="newton")
+    assert r.newton.admissible is False
+    assert "tensile" in {v["reason"] for v in r.newton.inadmissible}
+
+
+def test_radicals_stay_exact_strings_sympy_reads():
+    sympy = pytest.importorskip("sympy")
+    scene = inertance.Scene.from_dict({
+        "body": {"mass": 1, "inertia": [1, 1, 1], "velocity": [-1, 0, 0],
+                 "angular_velocity": [0, 0, 0]},
+        "contact": [{"point": [-1, 0, 0], "normal": [-2, 1, 0], "k": "1/2"}],
+    })
+    r = inertance.solve(scene, exact=True)
+    p = r.newton.impulses[0]
+    assert isinstance(p, str) and "sqrt(5)" in p
+    assert sympy.simplify(sympy.sympify(p) - sympy.sympify(p)) == 0
+    assert float(sympy.sympify(p)) == pytest.approx(inertance.solve(scene).newton.impulses[0])
+
+
+def test_constrained_scene_has_constraint_impulses():
+    s = inertance.Scene.load(HARD / "constrained-near-singular-1e-4.toml")
+    r = inertance.solve(s, exact=True)
+    assert r.constraints is not None
+    assert all(isinstance(q, Fraction) for q in r.newton.constraint_impulses)
