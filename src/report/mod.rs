@@ -74,10 +74,18 @@ impl Value {
     }
 
     /// Readable text: the exact value (with ≈ decimals when not a short decimal), or the f64.
+    ///
+    /// An exact value beyond the range of f64 (or too small for it) gets its decimals from the
+    /// exact text, never `≈ inf` or `≈ 0`.
     pub fn text(&self) -> String {
         match &self.exact {
-            // No rounded companion for an exact value beyond f64's range (never "≈ inf").
-            Some(t) if !self.f64.is_finite() => t.clone(),
+            Some(t) if self.f64.is_nan() => t.clone(),
+            Some(t) if !self.f64.is_finite() || (self.f64 == 0.0 && t != "0") => {
+                match approx_exact(t) {
+                    Some(a) => format!("{t} ≈ {a}"),
+                    None => t.clone(),
+                }
+            }
             Some(t) if t.parse::<f64>().is_err() || t.len() > 14 => {
                 format!("{} ≈ {}", t, fmt_f64(self.f64))
             }
@@ -85,6 +93,57 @@ impl Value {
             None => fmt_f64(self.f64),
         }
     }
+}
+
+/// Seven significant digits of an exact text `p`, `p/q`, `c*sqrt(r)` or `sqrt(r)` (signed) in
+/// scientific notation, computed in integers so that it holds far beyond the range of f64;
+/// `None` for any other text.
+fn approx_exact(text: &str) -> Option<String> {
+    use num_bigint::BigInt;
+    use num_traits::{Signed, Zero};
+    let (neg, t) = match text.strip_prefix('-') {
+        Some(rest) => (true, rest),
+        None => (false, text),
+    };
+    let (coef, radicand) = match t.split_once("sqrt(") {
+        Some((c, r)) => {
+            let r: f64 = r.strip_suffix(')')?.parse().ok()?;
+            let c = match c.strip_suffix('*') {
+                Some(c) => c,
+                None if c.is_empty() => "1",
+                None => return None,
+            };
+            (c, r)
+        }
+        None => (t, 1.0),
+    };
+    let (p, q) = match coef.split_once('/') {
+        Some((p, q)) => (p.parse::<BigInt>().ok()?, q.parse::<BigInt>().ok()?),
+        None => (coef.parse::<BigInt>().ok()?, BigInt::from(1)),
+    };
+    if q.is_zero() || p.is_negative() || q.is_negative() || !radicand.is_finite() {
+        return None;
+    }
+    if p.is_zero() {
+        return Some("0".into());
+    }
+    // p·10^s / q has about 9 digits; the value is that times 10^-s.
+    let digits = |x: &BigInt| x.to_string().len() as i64;
+    let s = 9 - (digits(&p) - digits(&q));
+    let ten = |k: i64| num_traits::pow(BigInt::from(10), k as usize);
+    let scaled = if s >= 0 { p * ten(s) / q } else { p / (q * ten(-s)) };
+    let mut m: f64 = scaled.to_string().parse().ok()?;
+    m *= radicand.sqrt();
+    let mut e = -s;
+    while m >= 10.0 {
+        m /= 10.0;
+        e += 1;
+    }
+    while m > 0.0 && m < 1.0 {
+        m *= 10.0;
+        e -= 1;
+    }
+    Some(format!("{}{m:.6}e{e}", if neg { "-" } else { "" }))
 }
 
 /// An f64 as JSON: a number, or `null` when it is not finite.
