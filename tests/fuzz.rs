@@ -468,11 +468,6 @@ fn pending(c: &scenes::Case) -> Option<&'static str> {
     let has = |m: &str| c.mutations.iter().any(|x| x.starts_with(m));
     if c.symbols.is_empty() {
         None
-    } else if has("symbolic axis") {
-        // `derive` with a normal or tangent of symbolic length, e.g. ["a", 1, 2], or a frame
-        // taken from a symbolic velocity: the norm has no exact form in the symbols, so g_ij,
-        // v_ix⁰, the frames are `null` in the JSON ("(no exact form)" in the text).
-        Some("derive-symbolic-axis-length")
     } else if has("extreme") {
         // `derive` on numbers near the ends of f64 (5e-324, 2^-99999, 1e300): symbolic
         // arithmetic on 1000-bit coefficients runs past the time limit.

@@ -214,16 +214,28 @@ impl<T: Scalar> Surd<T> {
     ///
     /// Beyond rationals (the symbolic type), the value q·√r is formed exactly when √r is
     /// (a rational r becomes a radical); otherwise `None`.
+    ///
+    /// When √r is not a value of the type (a symbolic norm such as √(a² + 1)), the product is
+    /// written as it stands, `(q)*sqrt(r)` — still exact, never "no exact form".
     pub fn exact_text(&self) -> Option<String> {
         if let (Some(q), Some(r)) = (self.coeff.to_rational(), self.radicand.to_rational()) {
             return Some(crate::number::format_surd(&q, &r));
         }
-        self.exact_value()?.exact_text()
+        if let Some(v) = self.exact_value() {
+            return v.exact_text();
+        }
+        let (q, r) = (self.coeff.exact_text()?, self.radicand.exact_text()?);
+        Some(if self.coeff.is_zero() { "0".into() } else { format!("({q})*sqrt({r})") })
     }
 
-    /// The exact value in LaTeX, for types with a LaTeX form of their own.
+    /// The exact value in LaTeX, for types with a LaTeX form of their own (`q\sqrt{r}` when
+    /// √r is not a value of the type).
     pub fn latex_text(&self) -> Option<String> {
-        self.exact_value()?.latex_text()
+        if let Some(v) = self.exact_value() {
+            return v.latex_text();
+        }
+        let (q, r) = (self.coeff.latex_text()?, self.radicand.latex_text()?);
+        Some(if self.coeff.is_zero() { "0".into() } else { format!("\\left({q}\\right)\\sqrt{{{r}}}") })
     }
 
     /// q·√r as one value of the type, when √r is exactly representable.
