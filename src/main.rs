@@ -128,6 +128,11 @@ enum Command {
         /// Time only this scene, in every scalar type (ns per solve, JSON with --json).
         #[arg(long, value_name = "SCENE")]
         scene: Option<PathBuf>,
+        /// With --scene: time the batch API (`tools::sweep::solve_batch`, what Python's
+        /// `solve_batch` calls) instead, on the points START..STOP (COUNT of them, as f64; a
+        /// second --batch varies another number at the same points): ns per point.
+        #[arg(long, value_name = "PATH=START:STOP:COUNT", requires = "scene")]
+        batch: Vec<String>,
         /// The hard-case corpus to include, when present.
         #[arg(long, default_value = "tests/hard_cases")]
         hard_cases: PathBuf,
@@ -222,8 +227,15 @@ fn main() -> ExitCode {
             json,
             plot,
             scene,
+            batch,
             hard_cases,
-        } => run_bench(quick, json, plot, scene, hard_cases),
+        } => {
+            if let (Some(scene), false) = (&scene, batch.is_empty()) {
+                run_bench_batch(scene, &batch, quick, json)
+            } else {
+                run_bench(quick, json, plot, scene, hard_cases)
+            }
+        }
     }
 }
 
@@ -451,6 +463,73 @@ fn run_sweep(
             ExitCode::from(e.exit_code())
         }
     }
+}
+
+/// `inertance bench --scene SCENE --batch PATH=START:STOP:COUNT …`: the batch API's time per
+/// point on that grid (the points zipped, not crossed: every --batch needs the same COUNT).
+fn run_bench_batch(path: &std::path::Path, specs: &[String], quick: bool, json: bool) -> ExitCode {
+    use inertance::tools::sweep::{Varied, Vary};
+    let file = path.display().to_string();
+    let doc = match std::fs::read_to_string(path)
+        .map_err(|e| format!("{file}: cannot read the file: {e}"))
+        .and_then(|text| {
+            inertance::scene::parse_document(&text, &file).map_err(|e| e.to_string())
+        }) {
+        Ok(d) => d,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return ExitCode::from(2);
+        }
+    };
+    let vary = match specs.iter().map(|s| Vary::parse(s)).collect::<Result<Vec<_>, _>>() {
+        Ok(v) => v,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return ExitCode::from(e.exit_code());
+        }
+    };
+    let varied: Vec<Varied> = vary
+        .iter()
+        .map(|v| Varied {
+            path: v.path.clone(),
+            values: (0..v.count)
+                .map(|i| inertance::number::rational_to_f64(&v.value(i)))
+                .collect(),
+        })
+        .collect();
+    let runs = if quick { 3 } else { 7 };
+    let t = match inertance::tools::bench::time_batch(&doc, &file, &varied, runs) {
+        Ok(t) => t,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return ExitCode::from(e.exit_code());
+        }
+    };
+    if json {
+        println!(
+            "{}",
+            serde_json::json!({
+                "scene": file,
+                "batch": {
+                    "vary": specs,
+                    "points": t.points,
+                    "runs": t.runs,
+                    "threads": t.threads,
+                    "ns_per_point": t.ns_per_point,
+                }
+            })
+        );
+    } else {
+        println!(
+            "solve_batch: {:.0} ns per point ({} points of {}; median of {} runs, {} threads)",
+            t.ns_per_point,
+            t.points,
+            specs.join(", "),
+            t.runs,
+            t.threads
+        );
+    }
+    ExitCode::SUCCESS
 }
 
 fn run_bench(

@@ -692,3 +692,33 @@ fn bench_one_scene_reports_every_scalar() {
         assert!(v["ns_per_solve"][s].as_f64().unwrap() > 0.0, "{s}");
     }
 }
+
+#[test]
+fn bench_batch_times_the_batch_api_per_point() {
+    let scene = Scene::new("bench-batch", GOOD);
+    let file = scene.path.to_str().unwrap();
+    let v = json(&inertance(&[
+        "bench",
+        "--quick",
+        "--json",
+        "--scene",
+        file,
+        "--batch",
+        "contact[1].k=0:1:50",
+    ]));
+    assert_eq!(v["batch"]["points"], 50, "{v}");
+    assert_eq!(v["batch"]["runs"], 3, "{v}");
+    assert!(v["batch"]["threads"].as_u64().unwrap() >= 1, "{v}");
+    assert!(v["batch"]["ns_per_point"].as_f64().unwrap() > 0.0, "{v}");
+    assert!(v.get("ns_per_solve").is_none(), "{v}");
+    // a path the scene lacks, or a value that makes it invalid: status 2, naming it
+    for spec in ["contact[9].k=0:1:5", "contact[1].k=0:1.5:5"] {
+        let out = inertance(&["bench", "--quick", "--scene", file, "--batch", spec]);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{spec}: {err}");
+        assert!(err.contains("contact["), "{spec}: {err}");
+    }
+    // --batch needs --scene
+    let out = inertance(&["bench", "--batch", "contact[1].k=0:1:5"]);
+    assert_eq!(out.status.code(), Some(2));
+}

@@ -7,7 +7,14 @@
   * SymPy in exact rationals,
 
 checked against ``inertance solve SCENE --json`` (f64) and ``--json --exact``, and timed per solve as
-a ratio to inertance's own in-process time per solve (``inertance bench --scene SCENE --json``).
+a ratio to inertance's own in-process time per solve (``inertance bench --scene SCENE --json``) and to
+inertance's time per solve **from Python** (the ``inertance`` package: ``inertance.solve`` on a
+prebuilt ``Scene``, f64 and exact), all in one run.  It ends with the batch API seen from Rust
+(``inertance bench --scene --batch``) and from Python (``inertance.solve_batch``) on the same points.
+
+The Python package is the one ``pip install ./python`` put in this interpreter's environment or,
+failing that, the one ``python/test.sh`` built into ``$CARGO_TARGET_DIR/python-test-venv``
+(``--python-package DIR`` names another site-packages directory).
 
 Run from anywhere:  python3 benches/peers/compare.py        (see benches/peers/README.md)
 
@@ -18,6 +25,7 @@ from __future__ import annotations
 
 import argparse
 import datetime
+import gc
 import json
 import math
 import os
@@ -400,6 +408,76 @@ class PinScene:
 
 
 # ----------------------------------------------------------------------------------------------
+# inertance from Python: the package built from python/ (PyO3), imported in this process
+# ----------------------------------------------------------------------------------------------
+
+
+def import_inertance_py(site: str | None):
+    """The `inertance` Python package, or (None, reason).
+
+    Looked up, in order: `site` (a site-packages directory, --python-package); this interpreter's
+    environment (`pip install ./python`); the virtual environment python/test.sh builds,
+    `$CARGO_TARGET_DIR/python-test-venv` (default target/).  A directory found that way is
+    appended to sys.path, after this environment's own, so numpy & co. stay this environment's
+    and only `inertance` (an abi3 extension: any CPython >= 3.9) comes from there."""
+    import glob
+    import importlib
+
+    def try_import():
+        try:
+            mod = importlib.import_module("inertance")
+            importlib.import_module("inertance._inertance")
+            return mod
+        except ImportError:
+            sys.modules.pop("inertance", None)
+            return None
+
+    if site:
+        sys.path.insert(0, site)
+        mod = try_import()
+        return (mod, None) if mod else (None, f"no importable `inertance` package in {site}")
+    mod = try_import()
+    if mod:
+        return mod, None
+    targets = [os.environ.get("CARGO_TARGET_DIR"), str(REPO / "target")]
+    for t in [t for t in targets if t]:
+        for d in sorted(glob.glob(os.path.join(t, "python-test-venv", "lib", "python3*", "site-packages"))):
+            if os.path.isdir(os.path.join(d, "inertance")):
+                sys.path.append(d)
+                mod = try_import()
+                if mod:
+                    return mod, None
+                sys.path.remove(d)
+    return None, ("the `inertance` Python package is not installed: `pip install ./python`, or run "
+                  "python/test.sh (its venv is found through CARGO_TARGET_DIR or target/)")
+
+
+def from_python(sol, conv) -> dict:
+    """A Solution of the Python package in the comparison's shape (`conv` per number)."""
+    G = sol.inertance
+    out = {"G": [[conv(x) for x in row] for row in G], "det": conv(sol.det)}
+    for model in ("newton", "poisson"):
+        ms = getattr(sol, model)
+        r = {q: (conv(getattr(ms, q)) if not hasattr(getattr(ms, q), "__len__")
+                 else [conv(x) for x in getattr(ms, q)]) for q in QUANTITIES}
+        if model == "poisson":
+            r["compression_impulses"] = [conv(x) for x in ms.compression_impulses]
+        out[model] = r
+    return out
+
+
+def read_outputs(sol):
+    """Read every output the peers return (G, Δ, per model P, v_C, ω, E_p, ΔE_c; Poisson's
+    compression impulses), as a Python user of the result would."""
+    out = [sol.inertance, sol.det]
+    for ms in (sol.newton, sol.poisson):
+        out += [ms.impulses, ms.velocity, ms.angular_velocity, ms.lost_velocity_energy,
+                ms.kinetic_energy_loss]
+    out.append(sol.poisson.compression_impulses)
+    return out
+
+
+# ----------------------------------------------------------------------------------------------
 # Agreement
 # ----------------------------------------------------------------------------------------------
 
@@ -453,7 +531,8 @@ def compare_exact(peer: dict, ref: dict) -> list:
 
 
 def inertance_bin(path: str | None, rebuild: bool) -> Path:
-    b = Path(path) if path else REPO / "target" / "release" / "inertance"
+    target = Path(os.environ.get("CARGO_TARGET_DIR") or REPO / "target")
+    b = Path(path) if path else target / "release" / "inertance"
     if rebuild or not b.exists():
         if path:
             sys.exit(f"error: {b} does not exist")
@@ -525,7 +604,7 @@ def fmt_ratio(r: float | None) -> str:
 # ----------------------------------------------------------------------------------------------
 
 
-def machine_info(binary: Path) -> list:
+def machine_info(binary: Path, py, py_why) -> list:
     cpu = platform.processor() or "unknown"
     try:
         for line in Path("/proc/cpuinfo").read_text().splitlines():
@@ -538,26 +617,93 @@ def machine_info(binary: Path) -> list:
         ver = subprocess.run([str(binary), "--version"], capture_output=True, text=True).stdout.strip()
     except OSError:
         ver = "?"
+    pyline = (f"inertance (Python package) from {Path(py.__file__).parent}" if py
+              else f"inertance (Python package) unavailable: {py_why}")
     return [
         f"date      {datetime.datetime.now(datetime.timezone.utc).strftime('%Y-%m-%d %H:%M UTC')}",
         f"machine   {platform.platform()}; {cpu}; {os.cpu_count()} logical CPUs",
         f"python    {platform.python_version()} ({platform.python_implementation()})",
         f"versions  pin {pin.__version__}, numpy {np.__version__}, sympy {sp.__version__}; {ver}",
         f"binary    {binary}",
+        f"package   {pyline}",
         "load      1-min load average {:.2f} at start (other work on the machine disturbs timings)".format(
             os.getloadavg()[0]) if hasattr(os, "getloadavg") else "load      unknown",
     ]
 
 
 METHODS = [
-    # key, label, reference ("f64" or "exact")
-    ("numpy", "numpy closed form (eq. 57, 20, 24)", "f64"),
-    ("pin_id", "pinocchio impulseDynamics, normal J", "f64"),
-    ("pin_id_call", "  … the impulseDynamics call alone", "f64"),
-    ("pin_alg", "pinocchio crba+Jacobians, numpy solve", "f64"),
-    ("pin_3d", "pinocchio impulseDynamics, CONTACT_3D", "f64"),
-    ("sympy", "sympy exact (Rational, LUsolve)", "exact"),
+    # key, label
+    ("numpy", "numpy closed form (eq. 57, 20, 24)"),
+    ("pin_id", "pinocchio impulseDynamics, normal J"),
+    ("pin_id_call", "  … the impulseDynamics call alone"),
+    ("pin_alg", "pinocchio crba+Jacobians, numpy solve"),
+    ("pin_3d", "pinocchio impulseDynamics, CONTACT_3D"),
+    ("sympy", "sympy exact (Rational, LUsolve)"),
 ]
+# inertance called from Python (the package), timed like the peers
+PY_METHODS = [
+    ("py_f64", "inertance.solve(Scene), f64 (Python)"),
+    ("py_f64_read", "  … and reading every output"),
+    ("py_exact", "inertance.solve(Scene, exact=True) (Py)"),
+    ("py_exact_read", "  … and reading every output"),
+]
+# the four references a time is divided by: inertance f64 / exact in Rust (`inertance bench`,
+# in-process) and from Python (`inertance.solve` on a prebuilt Scene)
+REFS = [("f64", "÷ Rust f64"), ("exact", "÷ Rust exact"), ("py_f64", "÷ Py f64"), ("py_exact", "÷ Py exact")]
+REF_W = 13
+
+
+def ratio_cols(t: float | None, ref: dict) -> str:
+    return " ".join(f"{fmt_ratio(t / ref[k] if t and ref.get(k) else None):>{REF_W}}" for k, _ in REFS)
+
+
+def batch_compare(py, binary: Path, points: int, rounds: int) -> None:
+    """Issue 17, item 4: the batch API per point from Rust (`inertance bench --scene --batch`,
+    tools::sweep::solve_batch in-process) and from Python (`inertance.solve_batch`), same scene
+    and same points, rounds alternating between the two; medians over the rounds."""
+    scene_path = REPO / "examples" / "planar-bar.toml"
+    path = "contact[1].k"
+    spec = f"{path}=0:1:{points}"
+    # the grid inertance's Vary gives: i/(points-1) exactly, correctly rounded to f64
+    values = np.array([float(F(i, points - 1)) for i in range(points)])
+    scene = py.Scene.load(str(scene_path))
+    runs = 3
+
+    def python_run() -> float:
+        py.solve_batch(scene, {path: values})  # warm-up
+        ts = []
+        for _ in range(runs):
+            t = timeit.default_timer()
+            py.solve_batch(scene, {path: values})
+            ts.append((timeit.default_timer() - t) / points)
+        return statistics.median(ts)
+
+    print(f"── batch: solve_batch per point, examples/planar-bar.toml, {path} = 0 … 1 ({points:,} points), "
+          f"{rounds} rounds Rust / Python alternating")
+    rs, ps, threads = [], [], "?"
+    for r in range(rounds):
+        try:
+            j = run_json([binary, "bench", "--quick", "--json", "--scene", scene_path, "--batch", spec])
+            rs.append(j["batch"]["ns_per_point"] * 1e-9)
+            threads = j["batch"]["threads"]
+        except (RuntimeError, KeyError, ValueError) as e:
+            print(f"   Rust batch timing unavailable ({e})")
+            return
+        gc_was = gc.isenabled()
+        gc.disable()  # as timeit does for the per-solve timings
+        try:
+            ps.append(python_run())
+        finally:
+            if gc_was:
+                gc.enable()
+        print(f"   round {r + 1}: Rust {fmt_time(rs[-1])}, Python {fmt_time(ps[-1])} per point "
+              f"(Python ÷ Rust {ps[-1] / rs[-1]:.2f}×)")
+    rm, pm = statistics.median(rs), statistics.median(ps)
+    print(f"   {'Rust tools::sweep::solve_batch (inertance bench --batch)':<58} {fmt_time(rm):>11} per point")
+    print(f"   {'Python inertance.solve_batch (arrays in, numpy arrays out)':<58} {fmt_time(pm):>11} per point")
+    print(f"   Python ÷ Rust: {pm / rm:.2f}× (medians over {rounds} rounds of the median of {runs} runs "
+          f"each; {threads} rayon threads both)")
+    print()
 
 
 def main() -> int:
@@ -566,17 +712,27 @@ def main() -> int:
     ap.add_argument("--random", type=int, default=4, help="number of random scenes (default 4)")
     ap.add_argument("--repeat", type=int, default=7, help="timing runs per method (median; default 7)")
     ap.add_argument("--min-time", type=float, default=0.2, help="seconds per timing run (default 0.2)")
-    ap.add_argument("--inertance", help="path to the inertance binary (default target/release/inertance)")
+    ap.add_argument("--inertance", help="path to the inertance binary (default release/inertance in $CARGO_TARGET_DIR or target/)")
     ap.add_argument("--rebuild", action="store_true", help="run `cargo build --release` first")
+    ap.add_argument("--python-package", metavar="DIR",
+                    help="site-packages directory holding the inertance Python package (default: this "
+                         "environment's, else python/test.sh's venv under CARGO_TARGET_DIR or target/)")
+    ap.add_argument("--batch-points", type=int, default=100_000,
+                    help="points of the batch comparison (default 100000; 0 skips it)")
+    ap.add_argument("--batch-rounds", type=int, default=3,
+                    help="alternating Rust / Python rounds of the batch comparison (default 3)")
     ap.add_argument("--keep", help="write the scene TOML files to this directory and keep them")
     args = ap.parse_args()
 
     binary = inertance_bin(args.inertance, args.rebuild)
+    py, py_why = import_inertance_py(args.python_package)
     print("inertance peer comparison (benches/peers/compare.py)")
-    for line in machine_info(binary):
+    for line in machine_info(binary, py, py_why):
         print("  " + line)
     print(f"  timing    median of {args.repeat} runs of >= {args.min_time} s each (timeit, gc off); "
           f"agreement: f64 peers within {RTOL:g} relative of inertance f64, sympy == inertance --exact")
+    print("  columns   time per solve ÷ inertance's: Rust = `inertance bench` in-process; "
+          "Py = `inertance.solve` on a prebuilt Scene, from this Python")
     print()
 
     scenes = build_scenes(args.seed, args.random)
@@ -586,8 +742,9 @@ def main() -> int:
 
     all_ok = True
     bench_reason = None
-    ratios = {key: {"f64": [], "exact": []} for key, _, _ in METHODS}
-    times = {key: [] for key, _, _ in METHODS}
+    all_methods = PY_METHODS + METHODS
+    ratios = {key: {k: [] for k, _ in REFS} for key, _ in all_methods}
+    times = {key: [] for key, _ in all_methods}
     inert_times = {"f64": [], "exact": []}
 
     for s in scenes:
@@ -607,6 +764,21 @@ def main() -> int:
 
         # -- agreement --------------------------------------------------------------------------
         agree, runners = {}, {}
+        bad_py = []
+        if py:
+            sc = py.Scene.load(str(path))  # prebuilt, as every peer's inputs are
+            d = compare_f64(from_python(py.solve(sc), float), ref64, T0)
+            agree["py_f64"] = f"{d:.1e}"
+            agree["py_f64_read"] = "(same)"
+            pex = from_python(py.solve(sc, exact=True), lambda x: sp.sympify(str(x)))  # Fraction → Rational
+            pex["G"] = sp.Matrix(pex["G"])
+            bad_py = compare_exact(pex, refex)
+            agree["py_exact"] = "exact ==" if not bad_py else "DIFFERS: " + ", ".join(bad_py)
+            agree["py_exact_read"] = "(same)"
+            runners["py_f64"] = lambda sc=sc: py.solve(sc)
+            runners["py_f64_read"] = lambda sc=sc: read_outputs(py.solve(sc))
+            runners["py_exact"] = lambda sc=sc: py.solve(sc, exact=True)
+            runners["py_exact_read"] = lambda sc=sc: read_outputs(py.solve(sc, exact=True))
         agree["numpy"] = f"{compare_f64(numpy_solve(xn), ref64, T0):.1e}"
         runners["numpy"] = lambda xn=xn: numpy_solve(xn)
         agree["pin_alg"] = f"{compare_f64(ps.algebra(), ref64, T0):.1e}"
@@ -627,58 +799,66 @@ def main() -> int:
         agree["sympy"] = "exact ==" if not bad else "DIFFERS: " + ", ".join(bad)
         runners["sympy"] = lambda xs=xs: sympy_solve(xs)
 
+        exact_keys = ("sympy", "py_exact")
         failed = [k for k, v in agree.items()
-                  if (k == "sympy" and bad) or (k != "sympy" and v != "(same)" and float(v) > RTOL)]
+                  if (k == "sympy" and bad) or (k == "py_exact" and bad_py)
+                  or (k not in exact_keys and v != "(same)" and float(v) > RTOL)]
         all_ok &= not failed
 
         # -- timing -----------------------------------------------------------------------------
-        t_f64 = ns["f64"] * 1e-9 if ns and ns.get("f64") is not None else None
-        t_ex = ns["exact"] * 1e-9 if ns and ns.get("exact") is not None else None
-        if t_f64:
-            inert_times["f64"].append(t_f64)
-        if t_ex:
-            inert_times["exact"].append(t_ex)
+        ref = {}
+        if ns and ns.get("f64") is not None:
+            ref["f64"] = ns["f64"] * 1e-9
+            inert_times["f64"].append(ref["f64"])
+        if ns and ns.get("exact") is not None:
+            ref["exact"] = ns["exact"] * 1e-9
+            inert_times["exact"].append(ref["exact"])
+        measured = {}
+        for key in ("py_f64", "py_exact"):  # the Python references first
+            if key in runners:
+                measured[key] = time_per_call(runners[key], args.repeat, args.min_time)
+                ref[key] = measured[key]
 
         ks = ", ".join(str(c.k_newton) if c.k_newton == c.k_poisson else f"{c.k_newton}/{c.k_poisson}"
                        for c in s.contacts)
         print(f"── {s.name}: {s.description}")
         print(f"   m = {s.mass}, J = ({', '.join(map(str, s.inertia))}), k = ({ks}), "
               f"cond₂(G) = {np.linalg.cond(G):.3g}, Δ = {ex['det']}")
-        hdr = f"   {'method':<40} {'time/solve':>11} {'÷ inert. f64':>15} {'÷ inert. exact':>15}  agreement"
+        hdr = (f"   {'method':<40} {'time/solve':>11} " + " ".join(f"{h:>{REF_W}}" for _, h in REFS)
+               + "  agreement")
         print(hdr)
         print("   " + "─" * (len(hdr) - 3))
-        unavailable = "inertance timing unavailable"
         if ns:
             for key in ("f32", "f64", "double-double", "exact"):
                 if key in ns and ns[key] is not None:
                     t = ns[key] * 1e-9
-                    print(f"   {'inertance ' + key + ' (bench)':<40} {fmt_time(t):>11} "
-                          f"{fmt_ratio(t / t_f64 if t_f64 else None):>15} "
-                          f"{fmt_ratio(t / t_ex if t_ex else None):>15}  (reference)")
+                    print(f"   {'inertance ' + key + ' (Rust, bench)':<40} {fmt_time(t):>11} "
+                          f"{ratio_cols(t, ref)}  (reference)")
         else:
-            print(f"   {'inertance f64 / exact':<40} {unavailable}")
-        for key, label, _ in METHODS:
+            print(f"   {'inertance (Rust, bench)':<40} inertance timing unavailable: {bench_reason}")
+        if not py:
+            print(f"   {'inertance (Python package)':<40} unavailable: {py_why}")
+        for key, label in all_methods:
             if key not in runners:
+                if key.startswith("py_"):
+                    continue
                 why_na = {"pin_id": "n/a: one r_coeff only, k differ",
                           "pin_id_call": "n/a",
                           "pin_3d": "n/a: 3-D contacts would also stop sliding"}[key]
-                print(f"   {label:<40} {'—':>11} {'—':>15} {'—':>15}  {why_na}")
+                print(f"   {label:<40} {'—':>11} " + " ".join(f"{'—':>{REF_W}}" for _ in REFS)
+                      + f"  {why_na}")
                 continue
-            t = time_per_call(runners[key], args.repeat if key != "sympy" else max(3, args.repeat // 2),
-                              args.min_time)
-            times[key].append(t)
-            if ns:
-                r64 = t / t_f64 if t_f64 else None
-                rex = t / t_ex if t_ex else None
-                if r64:
-                    ratios[key]["f64"].append(r64)
-                if rex:
-                    ratios[key]["exact"].append(rex)
-                cols = f"{fmt_ratio(r64):>15} {fmt_ratio(rex):>15}"
+            if key in measured:
+                t = measured[key]
             else:
-                cols = f"{unavailable:>31}"
+                reps = args.repeat if key not in ("sympy", "py_exact_read") else max(3, args.repeat // 2)
+                t = time_per_call(runners[key], reps, args.min_time)
+            times[key].append(t)
+            for k, _ in REFS:
+                if ref.get(k):
+                    ratios[key][k].append(t / ref[k])
             flag = "  ✗ FAIL" if key in failed else ""
-            print(f"   {label:<40} {fmt_time(t):>11} {cols}  {agree[key]}{flag}")
+            print(f"   {label:<40} {fmt_time(t):>11} {ratio_cols(t, ref)}  {agree[key]}{flag}")
         print()
 
     # -- summary ----------------------------------------------------------------------------------
@@ -686,27 +866,28 @@ def main() -> int:
         return math.exp(sum(math.log(x) for x in v) / len(v)) if v else None
 
     print(f"── summary over {len(scenes)} scenes (geometric means; a peer's mean is over the scenes it solves)")
-    hdr = f"   {'method':<40} {'scenes':>6} {'time/solve':>11} {'÷ inert. f64':>15} {'÷ inert. exact':>15}"
+    hdr = (f"   {'method':<40} {'scenes':>6} {'time/solve':>11} "
+           + " ".join(f"{h:>{REF_W}}" for _, h in REFS))
     print(hdr)
     print("   " + "─" * (len(hdr) - 3))
-    if inert_times["f64"]:
-        print(f"   {'inertance f64 (bench)':<40} {len(inert_times['f64']):>6} "
-              f"{fmt_time(gmean(inert_times['f64'])):>11}")
-    if inert_times["exact"]:
-        print(f"   {'inertance exact (bench)':<40} {len(inert_times['exact']):>6} "
-              f"{fmt_time(gmean(inert_times['exact'])):>11}")
-    for key, label, _ in METHODS:
+    for key in ("f64", "exact"):
+        if inert_times[key]:
+            print(f"   {'inertance ' + key + ' (Rust, bench)':<40} {len(inert_times[key]):>6} "
+                  f"{fmt_time(gmean(inert_times[key])):>11}")
+    for key, label in all_methods:
         if not times[key]:
             continue
-        if bench_reason is None:
-            cols = f"{fmt_ratio(gmean(ratios[key]['f64'])):>15} {fmt_ratio(gmean(ratios[key]['exact'])):>15}"
-        else:
-            cols = "  inertance timing unavailable"
+        cols = " ".join(f"{fmt_ratio(gmean(ratios[key][k])):>{REF_W}}" for k, _ in REFS)
         print(f"   {label:<40} {len(times[key]):>6} {fmt_time(gmean(times[key])):>11} {cols}")
     print()
     if bench_reason:
-        print(f"inertance timing unavailable: {bench_reason}; peers were timed, ratios were not.")
+        print(f"inertance timing unavailable: {bench_reason}; the Rust ratios were not computed.")
+    if not py:
+        print(f"inertance Python package unavailable ({py_why}); the Python ratios were not computed.")
     print("agreement: " + ("every peer agrees with inertance" if all_ok else "SOME PEER DISAGREES (see ✗)"))
+    print()
+    if py and args.batch_points > 1:
+        batch_compare(py, binary, args.batch_points, max(1, args.batch_rounds))
     if args.keep:
         print(f"scenes kept in {outdir}")
     tmp.cleanup()

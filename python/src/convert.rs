@@ -415,3 +415,63 @@ pub fn values<'py>(
     }
     Ok(list.into_any())
 }
+
+/// Reported values read straight from the report (no JSON built), exactly as the JSON path
+/// (`json_to_py` of the report's JSON) would give them; `None` where that path behaves
+/// differently (symbolic mode, an empty list or a non-finite f64 in f64 mode): the caller then
+/// converts through the JSON.
+pub fn direct_values<'py>(
+    py: Python<'py>,
+    vs: &[inertance::report::Value],
+    mode: Mode,
+) -> PyResult<Option<Bound<'py, PyAny>>> {
+    if mode == Mode::Symbolic
+        || (mode == Mode::F64 && (vs.is_empty() || vs.iter().any(|v| !v.f64.is_finite())))
+    {
+        return Ok(None);
+    }
+    values(py, vs, mode).map(Some)
+}
+
+/// One reported value straight from the report, as [`direct_values`].
+pub fn direct_value<'py>(
+    py: Python<'py>,
+    v: &inertance::report::Value,
+    mode: Mode,
+) -> PyResult<Option<Bound<'py, PyAny>>> {
+    if mode == Mode::Symbolic || (mode == Mode::F64 && !v.f64.is_finite()) {
+        return Ok(None);
+    }
+    value(py, v, mode).map(Some)
+}
+
+/// A reported matrix (G, eq. 12) straight from the report, as [`direct_values`]: a 2-D numpy
+/// array in f64 mode, lists of rows of exact values otherwise.
+pub fn direct_matrix<'py>(
+    py: Python<'py>,
+    rows: &[Vec<inertance::report::Value>],
+    mode: Mode,
+) -> PyResult<Option<Bound<'py, PyAny>>> {
+    if mode == Mode::Symbolic {
+        return Ok(None);
+    }
+    if mode == Mode::F64 {
+        let ok = !rows.is_empty()
+            && rows.iter().all(|r| {
+                r.len() == rows[0].len() && !r.is_empty() && r.iter().all(|v| v.f64.is_finite())
+            });
+        if !ok {
+            return Ok(None);
+        }
+        let m: Vec<Vec<f64>> = rows
+            .iter()
+            .map(|r| r.iter().map(|v| v.f64).collect())
+            .collect();
+        return Ok(Some(PyArray2::from_vec2(py, &m)?.into_any()));
+    }
+    let list = PyList::empty(py);
+    for r in rows {
+        list.append(values(py, r, mode)?)?;
+    }
+    Ok(Some(list.into_any()))
+}

@@ -241,22 +241,34 @@ impl Solution {
     /// G = [g_ij,xx] (eq. 12).
     #[getter]
     fn inertance<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        self.key(py, "inertance")
+        match convert::direct_matrix(py, &self.report.inertance, self.mode)? {
+            Some(m) => Ok(m),
+            None => self.key(py, "inertance"),
+        }
     }
     /// [g_ij,yx] (eq. 127).
     #[getter]
     fn inertance_yx<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        self.key(py, "inertance_yx")
+        match convert::direct_matrix(py, &self.report.inertance_yx, self.mode)? {
+            Some(m) => Ok(m),
+            None => self.key(py, "inertance_yx"),
+        }
     }
     /// [g_ij,zx] (eq. 128).
     #[getter]
     fn inertance_zx<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        self.key(py, "inertance_zx")
+        match convert::direct_matrix(py, &self.report.inertance_zx, self.mode)? {
+            Some(m) => Ok(m),
+            None => self.key(py, "inertance_zx"),
+        }
     }
     /// Δ = det G.
     #[getter]
     fn det<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        self.key(py, "det")
+        match convert::direct_value(py, &self.report.det, self.mode)? {
+            Some(v) => Ok(v),
+            None => self.key(py, "det"),
+        }
     }
     /// Per contact: unit axes `x`, `y`, `z` and how the tangent was chosen (eq. 2–4, §12).
     #[getter]
@@ -328,6 +340,14 @@ impl ModelSolution {
         &self.report.models[self.index]
     }
 
+    /// A key of this model's JSON, converted (`None` when absent).
+    fn key<'py>(&self, py: Python<'py>, key: &str) -> PyResult<Bound<'py, PyAny>> {
+        match self.json().get(key) {
+            Some(v) => json_to_py(py, v, self.mode, &[]),
+            None => Ok(py.None().into_bound(py)),
+        }
+    }
+
     /// This model's part of the report's JSON.
     fn json(&self) -> &Json {
         self.json.get_or_init(|| {
@@ -345,10 +365,7 @@ macro_rules! model_keys {
                 $(#[$doc])*
                 #[getter]
                 fn $name<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-                    match self.json().get(stringify!($name)) {
-                        Some(v) => json_to_py(py, v, self.mode, &[]),
-                        None => Ok(py.None().into_bound(py)),
-                    }
+                    self.key(py, stringify!($name))
                 }
             )*
             /// This model's part of the CLI's JSON.
@@ -390,13 +407,29 @@ impl ModelSolution {
     fn kinetic_energy_loss<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         convert::value(py, &self.report().kinetic_energy_loss, self.mode)
     }
+    /// P̂_i = P_i / |n_i|: the impulse as a multiple of the normal as written.
+    #[getter]
+    fn impulses_per_normal<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        match convert::direct_values(py, &self.report().impulse_multiples, self.mode)? {
+            Some(v) => Ok(v),
+            None => self.key(py, "impulses_per_normal"),
+        }
+    }
+    /// P_i^c, Poisson only (eq. 22); `None` for Newton.
+    #[getter]
+    fn compression_impulses<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        let direct = match &self.report().compression_impulses {
+            Some(c) => convert::direct_values(py, c, self.mode)?,
+            None => None,
+        };
+        match direct {
+            Some(v) => Ok(v),
+            None => self.key(py, "compression_impulses"),
+        }
+    }
 }
 
 model_keys!(
-    /// P̂_i = P_i / |n_i|: the impulse as a multiple of the normal as written.
-    impulses_per_normal,
-    /// P_i^c, Poisson only (eq. 22).
-    compression_impulses,
     /// Per contact: velocity before and after in its frame, angles (eq. 8, 25–27).
     contacts,
     /// {q}, constrained bodies (eq. 90–93).

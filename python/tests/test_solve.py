@@ -51,6 +51,48 @@ def test_f64_results_equal_the_cli_json(bar):
     assert inertance.solve(bar).to_json() == cli_json("solve", BAR)
 
 
+RADICAL = {
+    "body": {"mass": 1, "inertia": [1, 1, 1], "velocity": [-1, 0, 0], "angular_velocity": [0, 0, 0]},
+    "contact": [{"point": [-1, 0, 0], "normal": [-2, 1, 0], "k": "1/2"},
+                {"point": [1, 1, 0], "normal": [0, 1, 0], "k": "1/5"}],
+}
+
+
+def _expected(x):
+    """A value of `to_json()` as the attributes give it in exact mode (radicals stay strings)."""
+    if isinstance(x, list):
+        return [_expected(v) for v in x]
+    if isinstance(x, str) and "sqrt" not in x:
+        return Fraction(x)
+    return x
+
+
+@pytest.mark.parametrize("scene", [BAR, "radical", *sorted(HARD.glob("*.toml"))],
+                         ids=lambda p: getattr(p, "stem", p))
+@pytest.mark.parametrize("exact", [False, True], ids=["f64", "exact"])
+def test_attributes_read_from_the_report_equal_its_json(scene, exact):
+    """G, Δ, P̂ and P^c are read straight from the report (not through its JSON): same values."""
+    sc = inertance.Scene.from_dict(RADICAL) if scene == "radical" else inertance.Scene.load(scene)
+    try:
+        r = inertance.solve(sc, exact=exact)
+    except inertance.SolveError:
+        return
+    j = r.to_json()
+    pairs = [(r.inertance, j["inertance"]), (r.inertance_yx, j["inertance_yx"]),
+             (r.inertance_zx, j["inertance_zx"]), (r.det, j["det"])]
+    for name, m in r.models:
+        mj = j["models"][name]
+        pairs += [(m.impulses_per_normal, mj["impulses_per_normal"]),
+                  (m.compression_impulses, mj.get("compression_impulses"))]
+    for got, want in pairs:
+        if want is None:
+            assert got is None
+        elif exact:
+            assert got == _expected(want)
+        else:
+            assert isinstance(got, (np.ndarray, float)) and np.array_equal(got, np.array(want, float))
+
+
 def test_model_and_law_select_what_is_solved(bar):
     r = inertance.solve(bar, model="newton")
     assert r.poisson is None and r.effects == ["newton"]

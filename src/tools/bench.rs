@@ -619,6 +619,50 @@ pub fn time_scene(scene: &Scene, quick: bool) -> Vec<(&'static str, Option<f64>)
     ]
 }
 
+/// What [`time_batch`] measured.
+#[derive(Clone, Debug, PartialEq)]
+pub struct BatchTiming {
+    /// Points per batch.
+    pub points: usize,
+    /// Timed runs of the whole batch (after one warm-up run).
+    pub runs: usize,
+    /// rayon's worker threads (the batch runs on the global pool).
+    pub threads: usize,
+    /// The median over the runs of the batch's wall time divided by its points, ns.
+    pub ns_per_point: f64,
+}
+
+/// Time [`crate::tools::sweep::solve_batch`] — the batch API the Python bindings' `solve_batch`
+/// calls — on the scene `doc` (read from `file`) at the points of `vary`: one warm-up run, then
+/// `runs` runs of the whole batch, each on all of rayon's threads; the median wall time per point.
+/// Everything the call needs (the document, the value arrays) is built beforehand, as a Python
+/// caller holds its scene and arrays before calling.
+///
+/// # Errors
+/// Whatever `solve_batch` refuses (an unknown path, arrays of different lengths, a value that
+/// makes the scene invalid).
+pub fn time_batch(
+    doc: &toml_edit::DocumentMut,
+    file: &str,
+    vary: &[crate::tools::sweep::Varied],
+    runs: usize,
+) -> Result<BatchTiming, crate::tools::sweep::SweepError> {
+    let points = vary.first().map_or(0, |v| v.values.len());
+    std::hint::black_box(crate::tools::sweep::solve_batch(doc, file, vary, None)?);
+    let mut times = Vec::with_capacity(runs.max(1));
+    for _ in 0..runs.max(1) {
+        let t = Instant::now();
+        std::hint::black_box(crate::tools::sweep::solve_batch(doc, file, vary, None)?);
+        times.push(t.elapsed().as_secs_f64() * 1e9 / points.max(1) as f64);
+    }
+    Ok(BatchTiming {
+        points,
+        runs: runs.max(1),
+        threads: rayon::current_num_threads(),
+        ns_per_point: median(times),
+    })
+}
+
 fn fmt_ns(ns: f64) -> String {
     if !ns.is_finite() {
         "—".into()
