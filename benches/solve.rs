@@ -13,12 +13,12 @@ use std::hint::black_box;
 
 use criterion::Criterion;
 use inertance::analysis::analyze;
-use inertance::scalar::dd::DoubleDouble;
+use inertance::impact::problem::Problem;
 use inertance::impact::restitution::Model;
+use inertance::impact::solve::{Impact, Outcome};
+use inertance::scalar::dd::DoubleDouble;
 use inertance::scalar::{Exact, Scalar};
 use inertance::scene::Scene;
-use inertance::impact::problem::Problem;
-use inertance::impact::solve::{Impact, Outcome};
 
 const EXAMPLE_3: &str = r#"
 [body]
@@ -63,7 +63,11 @@ fn solve_unilateral_both<T: Scalar>(
 /// The unilateral solve of `scene`, named `{group}/unilateral/{scalar}`.
 fn bench_unilateral<T: Scalar>(c: &mut Criterion, group: &str, scene: &Scene) {
     let p = scene.problem::<T>().unwrap();
-    let (mut impact, mut n, mut q) = (Impact::assemble(&p).unwrap(), Outcome::default(), Outcome::default());
+    let (mut impact, mut n, mut q) = (
+        Impact::assemble(&p).unwrap(),
+        Outcome::default(),
+        Outcome::default(),
+    );
     c.bench_function(&format!("{group}/unilateral/{}", T::NAME), |b| {
         b.iter(|| {
             solve_unilateral_both(black_box(&p), &mut impact, &mut n, &mut q);
@@ -74,7 +78,11 @@ fn bench_unilateral<T: Scalar>(c: &mut Criterion, group: &str, scene: &Scene) {
 
 fn bench_scalar<T: Scalar>(c: &mut Criterion, scene: &Scene) {
     let p = scene.problem::<T>().unwrap();
-    let (mut impact, mut n, mut q) = (Impact::assemble(&p).unwrap(), Outcome::default(), Outcome::default());
+    let (mut impact, mut n, mut q) = (
+        Impact::assemble(&p).unwrap(),
+        Outcome::default(),
+        Outcome::default(),
+    );
     c.bench_function(&format!("example3/{}", T::NAME), |b| {
         b.iter(|| {
             solve_both(black_box(&p), &mut impact, &mut n, &mut q);
@@ -245,7 +253,11 @@ fn bench_contacts<T: Scalar>(c: &mut Criterion, n: usize) {
     let scene = Scene::parse(&many_contacts(n), "many").unwrap();
     let p = scene.problem::<T>().unwrap();
     if n <= 6 {
-        let (mut impact, mut a, mut b) = (Impact::assemble(&p).unwrap(), Outcome::default(), Outcome::default());
+        let (mut impact, mut a, mut b) = (
+            Impact::assemble(&p).unwrap(),
+            Outcome::default(),
+            Outcome::default(),
+        );
         c.bench_function(&format!("contacts-{n}/solve/{}", T::NAME), |bch| {
             bch.iter(|| solve_both(black_box(&p), &mut impact, &mut a, &mut b))
         });
@@ -323,7 +335,11 @@ fn benches(c: &mut Criterion) {
             .unwrap()
         })
         .collect();
-    let (mut impact, mut n, mut q) = (Impact::assemble(&batch[0]).unwrap(), Outcome::default(), Outcome::default());
+    let (mut impact, mut n, mut q) = (
+        Impact::assemble(&batch[0]).unwrap(),
+        Outcome::default(),
+        Outcome::default(),
+    );
     c.bench_function("batch-256/f64", |b| {
         b.iter(|| {
             for p in &batch {
@@ -354,7 +370,11 @@ fn baseline(x: [f64; 3], yy: [f64; 3]) -> [f64; 48] {
 fn ratio() -> f64 {
     let scene = Scene::parse(EXAMPLE_3, "example 3").unwrap();
     let p = scene.problem::<f64>().unwrap();
-    let (mut impact, mut a, mut b) = (Impact::assemble(&p).unwrap(), Outcome::default(), Outcome::default());
+    let (mut impact, mut a, mut b) = (
+        Impact::assemble(&p).unwrap(),
+        Outcome::default(),
+        Outcome::default(),
+    );
     let (x, yy) = ([1.0, 0.0, 0.0], [0.0, 1.0, 0.0]);
     let reps = 100_000;
     let mut ratios = Vec::with_capacity(15);

@@ -12,10 +12,17 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
 
 /// Sweep and print to `out` (the tests read it).
 pub fn run(out: &mut impl std::io::Write) -> Result<(), Box<dyn std::error::Error>> {
-    let body = RigidBody { mass: 1.0, inertia: Vec3::new(12.0, 1.6, 12.0) };
+    let body = RigidBody {
+        mass: 1.0,
+        inertia: Vec3::new(12.0, 1.6, 12.0),
+    };
     let twist = Screw::new(Vec3::new(0.0, 0.0, 0.4), Vec3::new(3.0, 2.0, 0.0));
     let normal = Vec3::new(1.0, 0.0, 0.0);
-    writeln!(out, "{:>5} {:>12} {:>12} {:>12} {:>12}", "k2", "P2 newton", "P2 poisson", "ΔE_c newton", "ΔE_c poisson")?;
+    writeln!(
+        out,
+        "{:>5} {:>12} {:>12} {:>12} {:>12}",
+        "k2", "P2 newton", "P2 poisson", "ΔE_c newton", "ΔE_c poisson"
+    )?;
     for step in 0..=10 {
         let k2 = f64::from(step) / 10.0;
         let contacts = vec![

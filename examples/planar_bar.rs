@@ -4,7 +4,9 @@
 //! `cargo run --example planar_bar`
 
 use inertance::scalar::ratio;
-use inertance::{Contact, Exact, InvalidProblem, Model, Problem, RigidBody, Scalar, Screw, Vec3, solve};
+use inertance::{
+    Contact, Exact, InvalidProblem, Model, Problem, RigidBody, Scalar, Screw, Vec3, solve,
+};
 
 /// Example 3 in any scalar type: J = (12, 1.6, 12) kg m², v_C⁰ = (3, 2, 0) m/s,
 /// ω⁰ = 0.4 rad/s about z; supports at A₁ = (0, −2, 0) (k = 0.3) and A₂ = (0, 4, 0)
@@ -39,18 +41,35 @@ pub fn run(out: &mut impl std::io::Write) -> Result<(), Box<dyn std::error::Erro
         writeln!(out, "\n{model}: Δ = det G = {}", e.det)?;
         for (i, (pf, pe)) in f.impulses.iter().zip(&e.impulses).enumerate() {
             let text = pe.exact_text().unwrap_or_default();
-            writeln!(out, "  P{} = {:.9} N s   (exact {text})", i + 1, pf.to_f64())?;
+            writeln!(
+                out,
+                "  P{} = {:.9} N s   (exact {text})",
+                i + 1,
+                pf.to_f64()
+            )?;
         }
         let w = e.twist.top();
         let v = e.twist.bottom();
-        writeln!(out, "  ω_z = {} rad/s, v_C = ({}, {}, {}) m/s", w[2], v[0], v[1], v[2])?;
+        writeln!(
+            out,
+            "  ω_z = {} rad/s, v_C = ({}, {}, {}) m/s",
+            w[2], v[0], v[1], v[2]
+        )?;
         writeln!(
             out,
             "  E_p = {} J, ΔE_c = {} J   (f64: {:.9}, {:.9})",
-            e.lost_velocity_energy, e.kinetic_energy_loss, f.lost_velocity_energy, f.kinetic_energy_loss
+            e.lost_velocity_energy,
+            e.kinetic_energy_loss,
+            f.lost_velocity_energy,
+            f.kinetic_energy_loss
         )?;
         for (i, v) in e.contact_velocities.iter().enumerate() {
-            writeln!(out, "  v_{}x after impact = {} m/s", i + 1, v[0].exact_text().unwrap_or_default())?;
+            writeln!(
+                out,
+                "  v_{}x after impact = {} m/s",
+                i + 1,
+                v[0].exact_text().unwrap_or_default()
+            )?;
         }
     }
     Ok(())

@@ -17,15 +17,28 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
 }
 
 /// Read the scene named in `args` (or Example 3) and print its report to `out`.
-pub fn run(args: &[String], out: &mut impl std::io::Write) -> Result<(), Box<dyn std::error::Error>> {
+pub fn run(
+    args: &[String],
+    out: &mut impl std::io::Write,
+) -> Result<(), Box<dyn std::error::Error>> {
     let exact = args.iter().any(|a| a == "--exact");
     let path = args
         .iter()
         .find(|a| !a.starts_with("--"))
         .map(PathBuf::from)
-        .unwrap_or_else(|| PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("examples/planar-bar.toml"));
+        .unwrap_or_else(|| {
+            PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("examples/planar-bar.toml")
+        });
     let scene = Scene::load(&path)?;
-    let solved = if exact { pipeline::run::<Exact>(&scene, None)? } else { pipeline::run::<f64>(&scene, None)? };
-    writeln!(out, "{}", serde_json::to_string_pretty(&solved.report.to_json())?)?;
+    let solved = if exact {
+        pipeline::run::<Exact>(&scene, None)?
+    } else {
+        pipeline::run::<f64>(&scene, None)?
+    };
+    writeln!(
+        out,
+        "{}",
+        serde_json::to_string_pretty(&solved.report.to_json())?
+    )?;
     Ok(())
 }

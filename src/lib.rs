@@ -77,21 +77,21 @@
 // Index loops over i, j read like the paper's sums (g_ij, Σ_j P_j g_ij); keep them.
 #![allow(clippy::needless_range_loop)]
 
-pub mod number;
-pub mod scalar;
+pub mod analysis;
+pub mod impact;
 pub mod linalg;
 pub mod mechanics;
-pub mod impact;
-pub mod analysis;
+pub mod number;
 pub mod report;
+pub mod scalar;
 pub mod scene;
 pub mod tools;
 
 pub use impact::problem::{Field, InvalidProblem, Problem, Reason};
 pub use impact::restitution::Model;
 pub use impact::solution::{Solution, solve, solve_unilateral};
-pub use impact::unilateral::{Law, UnilateralError};
 pub use impact::solve::SolveError;
+pub use impact::unilateral::{Law, UnilateralError};
 pub use mechanics::body::RigidBody;
 pub use mechanics::constraint::Joint;
 pub use mechanics::contact::{Contact, Surd};

@@ -9,15 +9,15 @@ use std::process::ExitCode;
 
 use clap::{Parser, Subcommand, ValueEnum};
 
-use inertance::tools::analyze::analyze_scene;
-use inertance::tools::check;
-use inertance::scene::pipeline::{RunError, run};
 use inertance::impact::restitution::Model;
+use inertance::impact::solve::SolveError;
 use inertance::impact::unilateral::Law;
 use inertance::scalar::Exact;
-use inertance::scene::Scene;
-use inertance::impact::solve::SolveError;
 use inertance::scalar::symbolic::RatFun;
+use inertance::scene::Scene;
+use inertance::scene::pipeline::{RunError, run};
+use inertance::tools::analyze::analyze_scene;
+use inertance::tools::check;
 
 #[derive(Parser)]
 #[command(
@@ -332,7 +332,10 @@ fn run_derive(
     json: bool,
 ) -> ExitCode {
     let symbols: Vec<String> = symbols.iter().map(|s| s.trim().to_string()).collect();
-    if let Some(bad) = symbols.iter().find(|s| !inertance::number::expr::is_symbol_name(s)) {
+    if let Some(bad) = symbols
+        .iter()
+        .find(|s| !inertance::number::expr::is_symbol_name(s))
+    {
         eprintln!(
             "error: --symbols: '{bad}' is not a symbol name (a letter or '_', then letters, digits, '_'; \
              not one of the grammar's names pi, deg, sqrt, sin, cos, tan, nan, inf)"
@@ -472,16 +475,19 @@ fn run_bench_batch(path: &std::path::Path, specs: &[String], quick: bool, json: 
     let file = path.display().to_string();
     let doc = match std::fs::read_to_string(path)
         .map_err(|e| format!("{file}: cannot read the file: {e}"))
-        .and_then(|text| {
-            inertance::scene::parse_document(&text, &file).map_err(|e| e.to_string())
-        }) {
+        .and_then(|text| inertance::scene::parse_document(&text, &file).map_err(|e| e.to_string()))
+    {
         Ok(d) => d,
         Err(e) => {
             eprintln!("error: {e}");
             return ExitCode::from(2);
         }
     };
-    let vary = match specs.iter().map(|s| Vary::parse(s)).collect::<Result<Vec<_>, _>>() {
+    let vary = match specs
+        .iter()
+        .map(|s| Vary::parse(s))
+        .collect::<Result<Vec<_>, _>>()
+    {
         Ok(v) => v,
         Err(e) => {
             eprintln!("error: {e}");

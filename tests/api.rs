@@ -19,7 +19,10 @@ fn v(x: f64, y: f64, z: f64) -> Vec3<f64> {
 
 /// Example 3 in f64, the starting point every refusal below changes one value of.
 fn parts() -> (RigidBody<f64>, Screw<f64>, Vec<Contact<f64>>) {
-    let body = RigidBody { mass: 1.0, inertia: v(12.0, 1.6, 12.0) };
+    let body = RigidBody {
+        mass: 1.0,
+        inertia: v(12.0, 1.6, 12.0),
+    };
     let twist = Screw::new(v(0.0, 0.0, 0.4), v(3.0, 2.0, 0.0));
     let contacts = vec![
         Contact::new(v(0.0, -2.0, 0.0), v(1.0, 0.0, 0.0), 0.3),
@@ -29,7 +32,9 @@ fn parts() -> (RigidBody<f64>, Screw<f64>, Vec<Contact<f64>>) {
 }
 
 /// The error for Example 3 with one change.
-fn refusal(change: impl FnOnce(&mut RigidBody<f64>, &mut Screw<f64>, &mut Vec<Contact<f64>>)) -> InvalidProblem {
+fn refusal(
+    change: impl FnOnce(&mut RigidBody<f64>, &mut Screw<f64>, &mut Vec<Contact<f64>>),
+) -> InvalidProblem {
     let (mut body, mut twist, mut contacts) = parts();
     change(&mut body, &mut twist, &mut contacts);
     Problem::new(body, twist, contacts).expect_err("the change makes the problem invalid")
@@ -47,27 +52,95 @@ fn example_3_as_given_is_valid() {
 
 #[test]
 fn body_values_without_physical_meaning_are_refused() {
-    is(refusal(|b, _, _| b.mass = 0.0), Field::Mass, Reason::NotPositive);
-    is(refusal(|b, _, _| b.mass = -2.0), Field::Mass, Reason::NotPositive);
-    is(refusal(|b, _, _| b.mass = f64::NAN), Field::Mass, Reason::NotFinite);
-    is(refusal(|b, _, _| b.mass = f64::INFINITY), Field::Mass, Reason::NotFinite);
-    is(refusal(|b, _, _| b.inertia[1] = -1.6), Field::Inertia(1), Reason::NotPositive);
-    is(refusal(|b, _, _| b.inertia[2] = 0.0), Field::Inertia(2), Reason::NotPositive);
-    is(refusal(|b, _, _| b.inertia[0] = f64::NAN), Field::Inertia(0), Reason::NotFinite);
-    is(refusal(|_, t, _| t.0[2] = f64::NAN), Field::AngularVelocity(2), Reason::NotFinite);
-    is(refusal(|_, t, _| t.0[4] = f64::NEG_INFINITY), Field::Velocity(1), Reason::NotFinite);
+    is(
+        refusal(|b, _, _| b.mass = 0.0),
+        Field::Mass,
+        Reason::NotPositive,
+    );
+    is(
+        refusal(|b, _, _| b.mass = -2.0),
+        Field::Mass,
+        Reason::NotPositive,
+    );
+    is(
+        refusal(|b, _, _| b.mass = f64::NAN),
+        Field::Mass,
+        Reason::NotFinite,
+    );
+    is(
+        refusal(|b, _, _| b.mass = f64::INFINITY),
+        Field::Mass,
+        Reason::NotFinite,
+    );
+    is(
+        refusal(|b, _, _| b.inertia[1] = -1.6),
+        Field::Inertia(1),
+        Reason::NotPositive,
+    );
+    is(
+        refusal(|b, _, _| b.inertia[2] = 0.0),
+        Field::Inertia(2),
+        Reason::NotPositive,
+    );
+    is(
+        refusal(|b, _, _| b.inertia[0] = f64::NAN),
+        Field::Inertia(0),
+        Reason::NotFinite,
+    );
+    is(
+        refusal(|_, t, _| t.0[2] = f64::NAN),
+        Field::AngularVelocity(2),
+        Reason::NotFinite,
+    );
+    is(
+        refusal(|_, t, _| t.0[4] = f64::NEG_INFINITY),
+        Field::Velocity(1),
+        Reason::NotFinite,
+    );
 }
 
 #[test]
 fn contact_values_without_physical_meaning_are_refused() {
-    is(refusal(|_, _, c| c.clear()), Field::Contacts, Reason::NoContacts);
-    is(refusal(|_, _, c| c[1].normal = v(0.0, 0.0, 0.0)), Field::Normal(1), Reason::ZeroVector);
-    is(refusal(|_, _, c| c[0].normal[1] = f64::NAN), Field::Normal(0), Reason::NotFinite);
-    is(refusal(|_, _, c| c[1].point[2] = f64::INFINITY), Field::Point(1), Reason::NotFinite);
-    is(refusal(|_, _, c| c[0].k_newton = 3.0), Field::KNewton(0), Reason::OutsideUnitInterval);
-    is(refusal(|_, _, c| c[1].k_poisson = -2.0), Field::KPoisson(1), Reason::OutsideUnitInterval);
-    is(refusal(|_, _, c| c[1].k_newton = f64::NAN), Field::KNewton(1), Reason::NotFinite);
-    is(refusal(|_, _, c| c[0].tangent = Some(v(0.0, 0.0, 0.0))), Field::Tangent(0), Reason::ZeroVector);
+    is(
+        refusal(|_, _, c| c.clear()),
+        Field::Contacts,
+        Reason::NoContacts,
+    );
+    is(
+        refusal(|_, _, c| c[1].normal = v(0.0, 0.0, 0.0)),
+        Field::Normal(1),
+        Reason::ZeroVector,
+    );
+    is(
+        refusal(|_, _, c| c[0].normal[1] = f64::NAN),
+        Field::Normal(0),
+        Reason::NotFinite,
+    );
+    is(
+        refusal(|_, _, c| c[1].point[2] = f64::INFINITY),
+        Field::Point(1),
+        Reason::NotFinite,
+    );
+    is(
+        refusal(|_, _, c| c[0].k_newton = 3.0),
+        Field::KNewton(0),
+        Reason::OutsideUnitInterval,
+    );
+    is(
+        refusal(|_, _, c| c[1].k_poisson = -2.0),
+        Field::KPoisson(1),
+        Reason::OutsideUnitInterval,
+    );
+    is(
+        refusal(|_, _, c| c[1].k_newton = f64::NAN),
+        Field::KNewton(1),
+        Reason::NotFinite,
+    );
+    is(
+        refusal(|_, _, c| c[0].tangent = Some(v(0.0, 0.0, 0.0))),
+        Field::Tangent(0),
+        Reason::ZeroVector,
+    );
     is(
         refusal(|_, _, c| c[1].tangent = Some(v(1.0, 1.0, 0.0))),
         Field::Tangent(1),
@@ -82,7 +155,10 @@ fn contact_values_without_physical_meaning_are_refused() {
 #[test]
 fn messages_name_the_key_as_in_scene_files() {
     let e = refusal(|_, _, c| c[1].k_poisson = -2.0);
-    assert_eq!(e.to_string(), "contact[1].k_poisson must lie in [0, 1] (0: plastic, 1: elastic)");
+    assert_eq!(
+        e.to_string(),
+        "contact[1].k_poisson must lie in [0, 1] (0: plastic, 1: elastic)"
+    );
     let e = refusal(|b, _, _| b.inertia[1] = -1.0);
     assert_eq!(e.to_string(), "body.inertia[1] must be positive");
 }
@@ -92,7 +168,10 @@ fn inconsistent_constraints_are_refused() {
     let (body, twist, contacts) = parts();
     let p = Problem::new(body, twist, contacts).unwrap();
     // A hinge about z through C: v_C⁰ = (3, 2, 0) is not a rotation about it.
-    let hinge = Joint::Revolute { point: v(0.0, 0.0, 0.0), axis: v(0.0, 0.0, 1.0) };
+    let hinge = Joint::Revolute {
+        point: v(0.0, 0.0, 0.0),
+        axis: v(0.0, 0.0, 1.0),
+    };
     let e = p.clone().with_joints(&[hinge]).unwrap_err();
     assert_eq!(e.field, Field::Constraints);
     assert!(matches!(e.reason, Reason::Constraint(_)), "{e}");
@@ -105,8 +184,11 @@ fn inconsistent_constraints_are_refused() {
 fn example_3_scaled(s: i64) -> Problem<Exact> {
     let q = ratio::<Exact>;
     let e = |x, y, z| Vec3::new(q(x, 1), q(y, 1), q(z, 1));
-    let body = RigidBody { mass: q(1, 1), inertia: Vec3::new(q(12, 1), q(8, 5), q(12, 1)) };
-    let twist = Screw::new(e(0, 0, 0), e(3, 2, 0)) ;
+    let body = RigidBody {
+        mass: q(1, 1),
+        inertia: Vec3::new(q(12, 1), q(8, 5), q(12, 1)),
+    };
+    let twist = Screw::new(e(0, 0, 0), e(3, 2, 0));
     let twist = Screw::new(Vec3::new(q(0, 1), q(0, 1), q(2, 5)), twist.bottom());
     let contacts = vec![
         Contact::new(e(0, -2, 0), e(s, 0, 0), q(3, 10)),
@@ -120,11 +202,22 @@ fn a_normal_of_length_two_gives_the_impulse_in_newton_seconds() {
     // The paper's values (Example 3, §7): P₁ = 329/90 N s, P₂ = 89/450 N s, Δ = 3 kg⁻².
     for s in [1, 2, 7] {
         let newton = solve(&example_3_scaled(s), Model::Newton).unwrap();
-        assert_eq!(newton.impulses[0].value(), Some(ratio(329, 90)), "|n| = {s}");
-        assert_eq!(newton.impulses[1].value(), Some(ratio(89, 450)), "|n| = {s}");
+        assert_eq!(
+            newton.impulses[0].value(),
+            Some(ratio(329, 90)),
+            "|n| = {s}"
+        );
+        assert_eq!(
+            newton.impulses[1].value(),
+            Some(ratio(89, 450)),
+            "|n| = {s}"
+        );
         assert_eq!(newton.det, ratio(3, 1), "|n| = {s}");
         assert_eq!(newton.inertances[1].value(), Some(ratio(1, 3)));
-        assert_eq!(newton.contact_velocities[0][0].value(), Some(ratio(-57, 50)));
+        assert_eq!(
+            newton.contact_velocities[0][0].value(),
+            Some(ratio(-57, 50))
+        );
     }
     // The f64 path agrees (one rounding per operation on small numbers).
     let float = Problem::new(parts().0, parts().1, {
@@ -145,7 +238,11 @@ fn texts(s: &Solution<Exact>) -> Vec<String> {
     out.extend(s.impulses.iter().map(surd));
     out.extend(s.compression_impulses.iter().map(surd));
     out.extend(s.inertances.iter().map(surd));
-    for v in s.contact_velocities.iter().chain(&s.contact_velocities_before) {
+    for v in s
+        .contact_velocities
+        .iter()
+        .chain(&s.contact_velocities_before)
+    {
         out.push(surd(&v[0]));
     }
     out.extend(s.twist.0.iter().map(|x| x.exact_text().unwrap()));
@@ -213,7 +310,13 @@ fn a_singular_problem_is_an_error_not_a_number() {
     let c = Contact::new(v(0.0, 1.0, 0.0), v(1.0, 0.0, 0.0), 0.5);
     let p = Problem::new(parts().0, parts().1, vec![c.clone(), c]).unwrap();
     let e = solve(&p, Model::Newton).unwrap_err();
-    assert_eq!(e, inertance::SolveError::Singular { rank: 1, contacts: 2 });
+    assert_eq!(
+        e,
+        inertance::SolveError::Singular {
+            rank: 1,
+            contacts: 2
+        }
+    );
 }
 
 #[test]
@@ -221,15 +324,20 @@ fn a_constrained_problem_reports_its_constraint_impulses() {
     // Example 5's shape: a bar hinged about z through (0, −1, 0), struck at two points.
     let q = ratio::<Exact>;
     let zero = || q(0, 1);
-    let body = RigidBody { mass: q(1, 1), inertia: Vec3::new(q(1, 3), q(1, 12), q(1, 3)) };
+    let body = RigidBody {
+        mass: q(1, 1),
+        inertia: Vec3::new(q(1, 3), q(1, 12), q(1, 3)),
+    };
     let hinge = Joint::Revolute {
         point: Vec3::new(zero(), q(-1, 1), zero()),
         axis: Vec3::new(zero(), zero(), q(1, 1)),
     };
     let twist = hinge.free_screws().remove(0);
-    let contacts = vec![
-        Contact::new(Vec3::new(zero(), q(1, 2), zero()), Vec3::new(int(1), zero(), zero()), q(1, 2)),
-    ];
+    let contacts = vec![Contact::new(
+        Vec3::new(zero(), q(1, 2), zero()),
+        Vec3::new(int(1), zero(), zero()),
+        q(1, 2),
+    )];
     let p = valid(body, twist, contacts).with_joints(&[hinge]).unwrap();
     let s = solve(&p, Model::Newton).unwrap();
     // A hinge holds five constraint screws (6 − 1 free), each with its multiplier.
@@ -246,7 +354,10 @@ fn the_unilateral_law_is_one_call_too() {
     // lets A₂ separate: P₁ = (1 + k₁) v_1x⁰ / g₁₁ = 1.3·4.4·3/4 = 429/100, P₂ = 0.
     let q = ratio::<Exact>;
     let e = |x, y, z| Vec3::new(q(x, 1), q(y, 1), q(z, 1));
-    let body = RigidBody { mass: q(1, 1), inertia: Vec3::new(q(12, 1), q(8, 5), q(12, 1)) };
+    let body = RigidBody {
+        mass: q(1, 1),
+        inertia: Vec3::new(q(12, 1), q(8, 5), q(12, 1)),
+    };
     let twist = Screw::new(Vec3::new(q(0, 1), q(0, 1), q(7, 10)), e(3, 2, 0));
     let contacts = vec![
         Contact::new(e(0, -2, 0), e(1, 0, 0), q(3, 10)),

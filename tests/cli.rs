@@ -649,7 +649,11 @@ fn bench_quick_json_and_plot() {
             .any(|s| s["contacts"] == 24)
     );
     // The unilateral law on the same scenes, measured like the simultaneous solve.
-    let uerr = |i: usize| rows[i]["unilateral"]["max_relative_error"].as_f64().unwrap();
+    let uerr = |i: usize| {
+        rows[i]["unilateral"]["max_relative_error"]
+            .as_f64()
+            .unwrap()
+    };
     assert!(
         uerr(0) < 1e-4 && uerr(1) < 1e-12 && uerr(2) < 1e-28 && uerr(3) == 0.0,
         "{rows:?}"
@@ -664,7 +668,10 @@ fn bench_quick_json_and_plot() {
     // so the unilateral one answers for every N.
     for s in v["scaling"].as_array().unwrap() {
         let n = s["contacts"].as_u64().unwrap();
-        let (sim, uni) = (&s["ns_per_solve_simultaneous"], &s["ns_per_solve_unilateral"]);
+        let (sim, uni) = (
+            &s["ns_per_solve_simultaneous"],
+            &s["ns_per_solve_unilateral"],
+        );
         for t in ["f32", "f64", "double-double"] {
             if n > 6 {
                 assert_eq!(sim[t], "singular", "N = {n}, {t}");

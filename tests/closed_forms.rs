@@ -5,11 +5,11 @@
 mod common;
 
 use common::*;
+use inertance::impact::restitution::Model;
 use inertance::mechanics::body::RigidBody;
 use inertance::mechanics::contact::Contact;
-use inertance::impact::restitution::Model;
-use inertance::scalar::{Exact, int};
 use inertance::mechanics::screw::{Screw, Vec3};
+use inertance::scalar::{Exact, int};
 use num_traits::{One, Zero};
 use proptest::prelude::*;
 
@@ -187,13 +187,17 @@ proptest! {
 #[test]
 fn planar_equal_ordinates_are_singular() {
     let n = v3(Exact::one(), zero(), zero());
-    let p = valid(RigidBody {
+    let p = valid(
+        RigidBody {
             mass: int(1),
             inertia: v3(int(2), int(3), int(4)),
-        }, Screw::new(Vec3::zeros(), v3(int(1), zero(), zero())), vec![
+        },
+        Screw::new(Vec3::zeros(), v3(int(1), zero(), zero())),
+        vec![
             contact(v3(int(1), int(2), zero()), n.clone(), None, zero()),
             contact(v3(int(-3), int(2), zero()), n, None, zero()),
-        ]);
+        ],
+    );
     let impact = inertance::impact::solve::Impact::assemble(&p).unwrap();
     assert!(impact.det_hat().is_zero());
     assert_eq!(impact.rank(), 1);

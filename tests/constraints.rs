@@ -5,13 +5,13 @@
 mod common;
 
 use common::*;
+use inertance::impact::problem::Problem;
+use inertance::impact::restitution::Model;
+use inertance::impact::solve::{Impact, Outcome, SolveError};
 use inertance::mechanics::body::Mobility;
 use inertance::mechanics::constraint::{Constrained, Joint};
-use inertance::impact::restitution::Model;
-use inertance::scalar::{Exact, int};
 use inertance::mechanics::screw::{Screw, Vec3};
-use inertance::impact::problem::Problem;
-use inertance::impact::solve::{Impact, Outcome, SolveError};
+use inertance::scalar::{Exact, int};
 use num_traits::{One, Zero};
 use proptest::prelude::*;
 
@@ -51,7 +51,10 @@ type Solved = (Constrained<Exact>, Impact<Exact>, Vec<Outcome<Exact>>);
 /// G is singular (more contacts than the body can answer independently).
 fn solve(p: &Problem<Exact>, free: Vec<Screw<Exact>>) -> Option<Solved> {
     let c = Constrained::new(p.body(), free, None).ok()?;
-    let held = p.clone().with_constrained(c.clone()).expect("v⁰ = D ξ⁰ by construction");
+    let held = p
+        .clone()
+        .with_constrained(c.clone())
+        .expect("v⁰ = D ξ⁰ by construction");
     let mut impact = Impact::assemble(&held).unwrap();
     let mut outs = Vec::new();
     for m in Model::ALL {
@@ -188,9 +191,13 @@ fn example_5(
         k_poisson: zero(),
     };
     // The admissible twist: ω = 1 about OZ at O, {v⁰} = D = [0 0 1 −l 0 0].
-    let p = valid(body, c.free[0].clone(), vec![contact(-a.clone()), contact(b.clone())])
-        .with_constrained(c.clone())
-        .unwrap();
+    let p = valid(
+        body,
+        c.free[0].clone(),
+        vec![contact(-a.clone()), contact(b.clone())],
+    )
+    .with_constrained(c.clone())
+    .unwrap();
     let impact = Impact::assemble(&p).unwrap();
     (c, impact)
 }
@@ -278,8 +285,8 @@ fn example_5_eq_102_at_a_equals_b_equals_half_l() {
 /// free along every direction the impulses act on — and its constraint impulses vanish.
 #[test]
 fn remark_2_example_6_equals_the_free_body() {
-    use inertance::scene::pipeline::run;
     use inertance::scene::Scene;
+    use inertance::scene::pipeline::run;
     let base = "[body]\nmass = 10\ninertia = [\"10/3\", \"10/3\", \"10/3\"]\nvelocity = [0, 0, 0]\nangular_velocity = [0, 0, 1]\n\
         [[contact]]\npoint = [0, \"-1/3\", 0]\nnormal = [1, 0, 0]\ntangent = [0, 1, 0]\nk = K1\n\
         [[contact]]\npoint = [0, \"1/3\", 0]\nnormal = [1, 0, 0]\ntangent = [0, 1, 0]\nk = K2\n";

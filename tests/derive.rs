@@ -7,13 +7,13 @@ use std::collections::HashMap;
 use std::path::PathBuf;
 use std::process::{Command, Output};
 
-use inertance::tools::derive::derive;
-use inertance::scalar::symbolic::symbolic;
-use inertance::scene::pipeline::run;
 use inertance::impact::restitution::Model;
 use inertance::scalar::Exact;
-use inertance::scene::Scene;
 use inertance::scalar::symbolic::RatFun;
+use inertance::scalar::symbolic::symbolic;
+use inertance::scene::Scene;
+use inertance::scene::pipeline::run;
+use inertance::tools::derive::derive;
 use num_rational::BigRational;
 use proptest::prelude::*;
 

@@ -4,12 +4,12 @@
 
 use std::process::Command;
 
-#[allow(dead_code)] // its `main` is the program's, not the test's
-#[path = "../examples/planar_bar.rs"]
-mod planar_bar;
 #[allow(dead_code)]
 #[path = "../examples/coefficient_sweep.rs"]
 mod coefficient_sweep;
+#[allow(dead_code)] // its `main` is the program's, not the test's
+#[path = "../examples/planar_bar.rs"]
+mod planar_bar;
 #[allow(dead_code)]
 #[path = "../examples/scene_report.rs"]
 mod scene_report;
@@ -25,8 +25,13 @@ fn printed(run: impl FnOnce(&mut Vec<u8>) -> Result<(), Box<dyn std::error::Erro
 fn planar_bar_prints_the_papers_example_3_exactly() {
     let out = printed(planar_bar::run);
     // §7, Example 3: P₁ = 3.6556, P₂ = 0.1978 (Newton); P₁ = 3.64, P₂ = 0.24 (Poisson).
-    for want in ["P1 = 3.655555556 N s   (exact 329/90)", "P2 = 0.197777778 N s   (exact 89/450)",
-                 "P1 = 3.640000000 N s   (exact 91/25)", "E_p = 413791/45000 J", "Δ = det G = 3"] {
+    for want in [
+        "P1 = 3.655555556 N s   (exact 329/90)",
+        "P2 = 0.197777778 N s   (exact 89/450)",
+        "P1 = 3.640000000 N s   (exact 91/25)",
+        "E_p = 413791/45000 J",
+        "Δ = det G = 3",
+    ] {
         assert!(out.contains(want), "missing {want:?} in\n{out}");
     }
 }

@@ -25,10 +25,10 @@
 use std::path::PathBuf;
 
 use inertance::analysis::Classification;
-use inertance::tools::analyze::{AnalysisReport, ModelReport, analyze_scene};
 use inertance::report::Value;
 use inertance::scalar::Exact;
 use inertance::scene::Scene;
+use inertance::tools::analyze::{AnalysisReport, ModelReport, analyze_scene};
 
 fn corpus() -> Vec<PathBuf> {
     let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/hard_cases");

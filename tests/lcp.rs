@@ -87,7 +87,9 @@ proptest! {
 /// with pivot_min ≥ det / d_max^(N−1).
 fn well_conditioned(impact: &Impact<Exact>) -> bool {
     let k = impact.contacts();
-    let dmax = (0..k).map(|i| inertance::Scalar::to_f64(&impact.g_hat()[i * k + i])).fold(0.0, f64::max);
+    let dmax = (0..k)
+        .map(|i| inertance::Scalar::to_f64(&impact.g_hat()[i * k + i]))
+        .fold(0.0, f64::max);
     let pivot_min = inertance::Scalar::to_f64(impact.det_hat()) / dmax.powi(k as i32 - 1);
     pivot_min > 0.0 && dmax / pivot_min <= 1e2
 }

@@ -8,12 +8,12 @@ use std::alloc::{GlobalAlloc, Layout, System};
 use std::cell::Cell;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
+use inertance::impact::problem::Problem;
+use inertance::impact::restitution::Model;
+use inertance::impact::solve::{Impact, Outcome};
 use inertance::mechanics::body::RigidBody;
 use inertance::mechanics::contact::Contact;
-use inertance::impact::restitution::Model;
 use inertance::mechanics::screw::{Screw, Vec3};
-use inertance::impact::problem::Problem;
-use inertance::impact::solve::{Impact, Outcome};
 
 /// A validated problem (fixtures are valid by construction).
 fn valid<T: inertance::Scalar>(
@@ -23,7 +23,6 @@ fn valid<T: inertance::Scalar>(
 ) -> inertance::Problem<T> {
     inertance::Problem::new(body, velocity, contacts).expect("a valid problem")
 }
-
 
 struct Counting;
 
@@ -69,10 +68,14 @@ fn scene(n: usize, shift: f64) -> Problem<f64> {
             }
         })
         .collect();
-    valid(RigidBody {
+    valid(
+        RigidBody {
             mass: 2.0,
             inertia: Vec3::new(1.0, 2.0, 3.0),
-        }, Screw::new(Vec3::new(0.1, -0.2, 0.3), Vec3::new(1.0, 2.0, -0.5)), contacts)
+        },
+        Screw::new(Vec3::new(0.1, -0.2, 0.3), Vec3::new(1.0, 2.0, -0.5)),
+        contacts,
+    )
 }
 
 #[test]
@@ -84,12 +87,8 @@ fn repeated_f64_solves_do_not_allocate() {
     let (mut newton, mut poisson) = (Outcome::default(), Outcome::default());
     // Size the buffers once.
     let mut impact = Impact::assemble(&scenes[0]).unwrap();
-    impact
-        .solve(Model::Newton, &mut newton)
-        .unwrap();
-    impact
-        .solve(Model::Poisson, &mut poisson)
-        .unwrap();
+    impact.solve(Model::Newton, &mut newton).unwrap();
+    impact.solve(Model::Poisson, &mut poisson).unwrap();
     // The unilateral law's buffers too (tableau, right-hand sides, the sub-matrix of the
     // contacts that meet their law, whose size varies by scene): one pass sizes them.
     let (mut un, mut up) = (Outcome::default(), Outcome::default());

@@ -4,12 +4,12 @@
 mod common;
 
 use common::*;
-use inertance::mechanics::body::inertance_eq57;
-use inertance::impact::restitution::Model;
-use inertance::scalar::{Exact, Scalar};
-use inertance::mechanics::screw::{Screw, Vec3};
 use inertance::impact::problem::Problem;
+use inertance::impact::restitution::Model;
 use inertance::impact::solve::{Impact, Outcome, SolveError};
+use inertance::mechanics::body::inertance_eq57;
+use inertance::mechanics::screw::{Screw, Vec3};
+use inertance::scalar::{Exact, Scalar};
 use num_traits::{One, Zero};
 use proptest::prelude::*;
 
@@ -272,13 +272,17 @@ fn singular_g_is_detected_exactly() {
         k_newton: Exact::zero(),
         k_poisson: Exact::zero(),
     };
-    let p = valid(inertance::mechanics::body::RigidBody {
+    let p = valid(
+        inertance::mechanics::body::RigidBody {
             mass: Exact::one(),
             inertia: Vec3::new(Exact::one(), Exact::one(), Exact::one()),
-        }, Screw::new(
+        },
+        Screw::new(
             Vec3::zeros(),
             Vec3::new(Exact::one(), Exact::zero(), Exact::zero()),
-        ), vec![c.clone(), c]);
+        ),
+        vec![c.clone(), c],
+    );
     let mut impact = Impact::assemble(&p).unwrap();
     assert!(impact.det_hat().is_zero());
     assert_eq!(impact.rank(), 1);

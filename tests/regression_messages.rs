@@ -12,7 +12,10 @@ fn run(args: &[&str], text: &str, name: &str) -> Output {
     std::fs::write(&path, text).unwrap();
     let mut all = vec![args[0], path.to_str().unwrap()];
     all.extend(&args[1..]);
-    let out = Command::new(env!("CARGO_BIN_EXE_inertance")).args(&all).output().unwrap();
+    let out = Command::new(env!("CARGO_BIN_EXE_inertance"))
+        .args(&all)
+        .output()
+        .unwrap();
     let _ = std::fs::remove_dir_all(&dir);
     out
 }
@@ -25,7 +28,11 @@ fn stderr(o: &Output) -> String {
 fn an_empty_key_is_named() {
     let out = run(&["solve"], &format!("\"\" = -1\n{SCENE}"), "empty-key");
     assert_eq!(out.status.code(), Some(2));
-    assert!(stderr(&out).contains("key `\"\"` = -1: unknown key"), "{}", stderr(&out));
+    assert!(
+        stderr(&out).contains("key `\"\"` = -1: unknown key"),
+        "{}",
+        stderr(&out)
+    );
 }
 
 #[test]
@@ -34,7 +41,11 @@ fn a_skew_tangent_shows_its_value_in_solve_and_analyze() {
     for cmd in ["solve", "analyze"] {
         let out = run(&[cmd], &text, cmd);
         assert_eq!(out.status.code(), Some(2), "{cmd}");
-        assert!(stderr(&out).contains("contact[1].tangent` = [1, 1, 0]"), "{cmd}: {}", stderr(&out));
+        assert!(
+            stderr(&out).contains("contact[1].tangent` = [1, 1, 0]"),
+            "{cmd}: {}",
+            stderr(&out)
+        );
     }
 }
 
@@ -44,10 +55,17 @@ fn a_400_digit_mass_is_exact_in_exact_mode_and_out_of_range_in_f64() {
     let text = SCENE.replace("mass = 1", &format!("mass = \"{big}\""));
     let out = run(&["solve", "--exact"], &text, "big-exact");
     assert!(out.status.success(), "{}", stderr(&out));
-    assert!(!String::from_utf8_lossy(&out.stdout).contains("inf"), "never ≈ inf for an exact value");
+    assert!(
+        !String::from_utf8_lossy(&out.stdout).contains("inf"),
+        "never ≈ inf for an exact value"
+    );
     let out = run(&["solve"], &text, "big-f64");
     assert_eq!(out.status.code(), Some(2));
-    assert!(stderr(&out).contains("body.mass") && stderr(&out).contains("--exact"), "{}", stderr(&out));
+    assert!(
+        stderr(&out).contains("body.mass") && stderr(&out).contains("--exact"),
+        "{}",
+        stderr(&out)
+    );
 }
 
 #[test]
@@ -56,15 +74,29 @@ fn a_number_too_small_to_read_is_not_called_non_positive() {
     let out = run(&["solve", "--exact"], &text, "tiny");
     let err = stderr(&out);
     assert_eq!(out.status.code(), Some(2));
-    assert!(err.contains("cannot be read") && !err.contains("must be positive"), "{err}");
+    assert!(
+        err.contains("cannot be read") && !err.contains("must be positive"),
+        "{err}"
+    );
 }
 
 #[test]
 fn check_names_the_line_of_a_case_whose_scene_is_missing() {
     let dir = std::env::temp_dir().join(format!("inertance-msg-{}-check", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
-    std::fs::write(dir.join("a.md"), "# t\n\n```expect c1 nosuch\nnewton.P1 = 1\n```\n").unwrap();
-    let out = Command::new(env!("CARGO_BIN_EXE_inertance")).args(["check", dir.to_str().unwrap()]).output().unwrap();
+    std::fs::write(
+        dir.join("a.md"),
+        "# t\n\n```expect c1 nosuch\nnewton.P1 = 1\n```\n",
+    )
+    .unwrap();
+    let out = Command::new(env!("CARGO_BIN_EXE_inertance"))
+        .args(["check", dir.to_str().unwrap()])
+        .output()
+        .unwrap();
     let _ = std::fs::remove_dir_all(&dir);
-    assert!(stderr(&out).contains("a.md:3: case `c1` runs scene `nosuch`"), "{}", stderr(&out));
+    assert!(
+        stderr(&out).contains("a.md:3: case `c1` runs scene `nosuch`"),
+        "{}",
+        stderr(&out)
+    );
 }

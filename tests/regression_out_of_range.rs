@@ -51,9 +51,15 @@ fn solve(text: &str, name: &str, exact: bool) -> (Output, Option<serde_json::Val
     if exact {
         args.push("--exact");
     }
-    let out = Command::new(env!("CARGO_BIN_EXE_inertance")).args(&args).output().unwrap();
+    let out = Command::new(env!("CARGO_BIN_EXE_inertance"))
+        .args(&args)
+        .output()
+        .unwrap();
     let _ = std::fs::remove_dir_all(&dir);
-    let json = out.status.success().then(|| serde_json::from_slice(&out.stdout).unwrap());
+    let json = out
+        .status
+        .success()
+        .then(|| serde_json::from_slice(&out.stdout).unwrap());
     (out, json)
 }
 
@@ -72,20 +78,38 @@ fn scenes_at_extreme_scales_are_solved_in_f64_as_exactly() {
     // (mass, length, time, normal) exponents of 10, chosen so that every output (Δ ~ M⁻², energies
     // ~ M·L²/T², …) is representable while inputs or intermediates are not: J = m·l² = 10⁻³⁴⁰ or
     // r² = 10³⁴⁰, |n|² = 10⁶⁰⁰, |y|² = 10⁻⁴⁰⁰ — each failed before.
-    for (m, l, t, n) in [(-100, 170, 0, 0), (0, -170, -170, 0), (150, 0, 0, 0), (-150, 0, 0, 0), (0, 0, 140, 0), (0, 0, 0, 300), (0, 0, 0, -200), (-100, 80, -60, 250)] {
+    for (m, l, t, n) in [
+        (-100, 170, 0, 0),
+        (0, -170, -170, 0),
+        (150, 0, 0, 0),
+        (-150, 0, 0, 0),
+        (0, 0, 140, 0),
+        (0, 0, 0, 300),
+        (0, 0, 0, -200),
+        (-100, 80, -60, 250),
+    ] {
         let text = example_3(m, l, t, n);
         let (out, json) = solve(&text, "scaled", false);
-        let json = json.unwrap_or_else(|| panic!("{m} {l} {t} {n}: {}", String::from_utf8_lossy(&out.stderr)));
+        let json = json
+            .unwrap_or_else(|| panic!("{m} {l} {t} {n}: {}", String::from_utf8_lossy(&out.stderr)));
         let mut all = Vec::new();
         numbers(&json, &mut all);
         assert!(all.iter().all(|x| x.is_finite()), "no NaN or ∞");
         // The impulses are Example 3's (329/90, 89/450 N s) in units M·L/T = 10^(m + l − t).
         let p1 = json["models"]["newton"]["impulses"][0].as_f64().unwrap();
         let want = 329.0 / 90.0 * 10f64.powi(m + l - t);
-        assert!(((p1 - want) / want).abs() < 1e-13, "{m} {l} {t} {n}: P1 = {p1:e}, want {want:e}");
-        let de = json["models"]["newton"]["kinetic_energy_loss"].as_f64().unwrap();
+        assert!(
+            ((p1 - want) / want).abs() < 1e-13,
+            "{m} {l} {t} {n}: P1 = {p1:e}, want {want:e}"
+        );
+        let de = json["models"]["newton"]["kinetic_energy_loss"]
+            .as_f64()
+            .unwrap();
         let want = 223769.0 / 45000.0 * 10f64.powi(m + 2 * l - 2 * t);
-        assert!(((de - want) / want).abs() < 1e-13, "{m} {l} {t} {n}: ΔE_c = {de:e}, want {want:e}");
+        assert!(
+            ((de - want) / want).abs() < 1e-13,
+            "{m} {l} {t} {n}: ΔE_c = {de:e}, want {want:e}"
+        );
     }
 }
 
@@ -97,10 +121,17 @@ fn what_no_float_can_hold_is_refused_naming_the_key() {
     let err = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(2), "{err}");
     assert!(json.is_none() && out.stdout.is_empty());
-    assert!(err.contains("body.mass") && err.contains("1e-400") && err.contains("--exact"), "{err}");
+    assert!(
+        err.contains("body.mass") && err.contains("1e-400") && err.contains("--exact"),
+        "{err}"
+    );
     // Exactly it is solved.
     let (out, json) = solve(&text, "tiny-mass-exact", true);
-    assert!(out.status.success() && json.is_some(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success() && json.is_some(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     // ω = 10³⁰⁸ rad/s: the kinetic energy (10⁶¹⁶ J) is beyond any float.
     let text = example_3(0, 0, 0, 0).replace("\"0.4e0\"", "1e308");
     let (out, _) = solve(&text, "fast-spin", false);

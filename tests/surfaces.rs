@@ -4,10 +4,10 @@
 mod common;
 
 use common::*;
-use inertance::scene::pipeline::run;
+use inertance::mechanics::surface::Surface;
 use inertance::scalar::Exact;
 use inertance::scene::Scene;
-use inertance::mechanics::surface::Surface;
+use inertance::scene::pipeline::run;
 use num_traits::{One, Zero};
 use proptest::prelude::*;
 
@@ -204,7 +204,10 @@ fn surface_errors_name_the_key_and_value() {
     );
     for exact in [true, false] {
         let e = error_of(&inside_out, exact);
-        assert!(e.contains("surface.f") && e.contains("f(C) = f(0, 0, 0) = 1") && e.contains("f < 0"), "{e}");
+        assert!(
+            e.contains("surface.f") && e.contains("f(C) = f(0, 0, 0) = 1") && e.contains("f < 0"),
+            "{e}"
+        );
     }
     let no_normal = format!("{BASE}[[contact]]\npoint = [0, 1, 0]\nk = 0\n");
     let e = error_of(&no_normal, false);

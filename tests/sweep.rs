@@ -226,7 +226,10 @@ fn one_dimensional_plot_of_chosen_outputs() {
     assert!(svg.contains("newton P2") && svg.contains("poisson P2") && svg.contains("newton dEc"));
     assert!(!svg.contains("poisson dEc"));
     // Every point is admissible here (ω = 0.4: P2 > 0 for every k2), so nothing is shaded.
-    assert!(!svg.contains("status "), "no regime band on an all-ok sweep");
+    assert!(
+        !svg.contains("status "),
+        "no regime band on an all-ok sweep"
+    );
     assert!(
         svg.contains("contact[1].k"),
         "x axis named by the varied path"
@@ -254,7 +257,10 @@ fn a_singular_point_is_reported_not_an_error() {
         let p1 = column(&header, "newton_P1");
         assert_eq!(rows[0][status], "singular");
         let svg = std::fs::read_to_string(s.path("y.svg")).unwrap();
-        assert!(svg.contains("status singular: -2"), "the singular point is marked");
+        assert!(
+            svg.contains("status singular: -2"),
+            "the singular point is marked"
+        );
         assert_eq!(rows[0][p1], "");
         assert!(rows[0][2..status].iter().filter(|f| !f.is_empty()).count() <= 1);
         // The other points are solved; a simultaneous answer with a negative impulse says
@@ -265,10 +271,21 @@ fn a_singular_point_is_reported_not_an_error() {
             .collect();
         for row in &rows[1..] {
             assert!(row[p1].parse::<f64>().is_ok());
-            let tensile = impulses.iter().any(|&c| row[c].parse::<f64>().unwrap() < 0.0);
+            let tensile = impulses
+                .iter()
+                .any(|&c| row[c].parse::<f64>().unwrap() < 0.0);
             assert_eq!(row[status].contains("tensile"), tensile, "{row:?}");
             for reason in row[status].split('+') {
-                assert!(["ok", "tensile", "separating", "still-approaching", "energy-gain"].contains(&reason));
+                assert!(
+                    [
+                        "ok",
+                        "tensile",
+                        "separating",
+                        "still-approaching",
+                        "energy-gain"
+                    ]
+                    .contains(&reason)
+                );
             }
         }
     }
@@ -388,7 +405,10 @@ fn sweeping_omega_crosses_into_tensile_at_the_threshold_of_eq_20_and_the_plot_ma
             if i <= 89 {
                 assert_eq!(st, "ok", "point {i}, exact = {exact}");
             } else {
-                assert!(st.starts_with("tensile"), "point {i}: {st}, exact = {exact}");
+                assert!(
+                    st.starts_with("tensile"),
+                    "point {i}: {st}, exact = {exact}"
+                );
                 assert_eq!(st.contains("separating"), i >= 382, "point {i}: {st}");
             }
         }
@@ -400,9 +420,18 @@ fn sweeping_omega_crosses_into_tensile_at_the_threshold_of_eq_20_and_the_plot_ma
         let svg = std::fs::read_to_string(s.path("w.svg")).unwrap();
         // The band from the first tensile point (ω₉₀ = 2/5 + 90/1090 = 263/545 ≈ 0.4826) to the
         // last before contact 2 separates (ω₃₈₁ = 817/1090 ≈ 0.7495), in the legend and shaded.
-        assert!(svg.contains("status tensile: 0.4826…0.7495"), "exact = {exact}");
-        assert!(svg.contains("status tensile+separating: 0.7505…"), "exact = {exact}");
-        assert!(svg.contains(r##"opacity="0.15" fill="#D62728""##), "the tensile band");
+        assert!(
+            svg.contains("status tensile: 0.4826…0.7495"),
+            "exact = {exact}"
+        );
+        assert!(
+            svg.contains("status tensile+separating: 0.7505…"),
+            "exact = {exact}"
+        );
+        assert!(
+            svg.contains(r##"opacity="0.15" fill="#D62728""##),
+            "the tensile band"
+        );
         // The rest of the plot is as before.
         assert!(svg.contains("newton P2") && svg.contains("poisson dEc"));
     }

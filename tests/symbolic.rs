@@ -7,15 +7,15 @@ use std::collections::HashMap;
 use std::sync::OnceLock;
 use std::time::Instant;
 
+use inertance::impact::problem::Problem;
+use inertance::impact::restitution::Model;
+use inertance::impact::solve::{Impact, Outcome};
 use inertance::mechanics::body::RigidBody;
 use inertance::mechanics::constraint::Constrained;
 use inertance::mechanics::contact::Contact;
-use inertance::impact::restitution::Model;
-use inertance::scalar::{Exact, Scalar};
 use inertance::mechanics::screw::{Screw, Vec3};
-use inertance::impact::problem::Problem;
-use inertance::impact::solve::{Impact, Outcome};
 use inertance::scalar::symbolic::{Assumption, AssumptionKind, RatFun, take_assumptions};
+use inertance::scalar::{Exact, Scalar};
 use num_bigint::BigInt;
 use num_traits::Zero;
 use proptest::prelude::*;
@@ -28,7 +28,6 @@ fn valid<T: Scalar>(
 ) -> inertance::Problem<T> {
     inertance::Problem::new(body, velocity, contacts).expect("a valid problem")
 }
-
 
 fn s(name: &str) -> RatFun {
     RatFun::symbol(name)
@@ -66,26 +65,34 @@ fn general<T: Scalar>(value: &impl Fn(&str) -> T) -> Problem<T> {
             value(&format!("z{i}")),
         )
     };
-    valid(RigidBody {
+    valid(
+        RigidBody {
             mass: value("m"),
             inertia: v3(value("Jx"), value("Jy"), value("Jz")),
-        }, Screw::new(
+        },
+        Screw::new(
             v3(value("w1"), value("w2"), value("w3")),
             v3(value("v1"), value("v2"), value("v3")),
-        ), vec![contact(p(1), value("k1")), contact(p(2), value("k2"))])
+        ),
+        vec![contact(p(1), value("k1")), contact(p(2), value("k2"))],
+    )
 }
 
 /// The planar two-contact problem of eq. (16)–(20) with R_i = I: points (0, y_i, 0), twist
 /// [0 0 w; vx vy 0].
 fn planar<T: Scalar>(value: &impl Fn(&str) -> T) -> Problem<T> {
     let z = || T::zero();
-    valid(RigidBody {
+    valid(
+        RigidBody {
             mass: value("m"),
             inertia: v3(value("Jx"), value("Jy"), value("Jz")),
-        }, Screw::new(v3(z(), z(), value("w")), v3(value("vx"), value("vy"), z())), vec![
+        },
+        Screw::new(v3(z(), z(), value("w")), v3(value("vx"), value("vy"), z())),
+        vec![
             contact(v3(z(), value("y1"), z()), value("k1")),
             contact(v3(z(), value("y2"), z()), value("k2")),
-        ])
+        ],
+    )
 }
 
 /// Assemble once, solve both models: the unchanged solver.
@@ -373,10 +380,13 @@ fn sphere_at_two_points_with_a_symbolic_angle() {
         k_newton: k.clone(),
         k_poisson: k.clone(),
     };
-    let problem = valid(RigidBody {
+    let problem = valid(
+        RigidBody {
             mass: m.clone(),
             inertia: v3(j.clone(), j.clone(), j),
-        }, Screw::new(v3(n(0), n(0), w0.clone()), v3(w0.clone() * &r, n(0), n(0))), vec![
+        },
+        Screw::new(v3(n(0), n(0), w0.clone()), v3(w0.clone() * &r, n(0), n(0))),
+        vec![
             contact(
                 v3(r.clone(), n(0), n(0)),
                 v3(n(1), n(0), n(0)),
@@ -387,7 +397,8 @@ fn sphere_at_two_points_with_a_symbolic_angle() {
                 v3(c.clone(), sn.clone(), n(0)),
                 v3(-sn.clone(), c.clone(), n(0)),
             ),
-        ]);
+        ],
+    );
     let (impact, outcomes) = solve(&problem);
     let w0r = w0.clone() * &r;
     for (model, out) in &outcomes {
@@ -431,9 +442,13 @@ fn one_dof_constrained_body_energy_identity() {
     let w = s("w");
     let velocity = Screw(free.0.clone() * w.clone());
     let constrained = Constrained::new(&body, vec![free], None).expect("valid constraint");
-    let problem = valid(body, velocity, vec![contact(v3(s("x1"), s("y1"), s("z1")), s("k1"))])
-        .with_constrained(constrained.clone())
-        .expect("an allowed twist");
+    let problem = valid(
+        body,
+        velocity,
+        vec![contact(v3(s("x1"), s("y1"), s("z1")), s("k1"))],
+    )
+    .with_constrained(constrained.clone())
+    .expect("an allowed twist");
     let mut impact = Impact::assemble(&problem).expect("assembles");
     for model in Model::ALL {
         let mut out = Outcome::default();
@@ -483,9 +498,15 @@ fn general_one_dof_constrained_body() {
         v3(d[3].clone(), d[4].clone(), d[5].clone()),
     );
     let w = s("w");
-    let problem = valid(body.clone(), Screw(free.0.clone() * w.clone()), vec![contact(v3(s("x1"), s("y1"), s("z1")), s("k1"))]);
+    let problem = valid(
+        body.clone(),
+        Screw(free.0.clone() * w.clone()),
+        vec![contact(v3(s("x1"), s("y1"), s("z1")), s("k1"))],
+    );
     let constrained = Constrained::new(&body, vec![free], None).expect("valid constraint");
-    let problem = problem.with_constrained(constrained.clone()).expect("an allowed twist");
+    let problem = problem
+        .with_constrained(constrained.clone())
+        .expect("an allowed twist");
     let built = start.elapsed().as_secs_f64();
     let mut impact = Impact::assemble(&problem).expect("assembles");
     let m_red = s("Jx") * &d[0] * &d[0]

@@ -18,13 +18,29 @@ use proptest::prelude::*;
 
 /// (v̂_ix⁰, v̂_ix) per contact.
 fn normal_velocities(impact: &Impact<Exact>, out: &Outcome<Exact>) -> Vec<(Exact, Exact)> {
-    impact.before_hat().iter().zip(&out.after_hat).map(|(b, a)| (b[0].clone(), a[0].clone())).collect()
+    impact
+        .before_hat()
+        .iter()
+        .zip(&out.after_hat)
+        .map(|(b, a)| (b[0].clone(), a[0].clone()))
+        .collect()
 }
 
 /// Moreau's Newton law, checked exactly: P ≥ 0, ξ = −v − k max(v⁰, 0) ≥ 0, P ξ = 0.
-fn newton_holds(p: &Problem<Exact>, impact: &Impact<Exact>, out: &Outcome<Exact>) -> Result<(), TestCaseError> {
-    for ((v0, v), (pi, c)) in normal_velocities(impact, out).into_iter().zip(out.impulses_hat.iter().zip(p.contacts())) {
-        let approach = if v0.is_positive() { v0.clone() } else { Exact::zero() };
+fn newton_holds(
+    p: &Problem<Exact>,
+    impact: &Impact<Exact>,
+    out: &Outcome<Exact>,
+) -> Result<(), TestCaseError> {
+    for ((v0, v), (pi, c)) in normal_velocities(impact, out)
+        .into_iter()
+        .zip(out.impulses_hat.iter().zip(p.contacts()))
+    {
+        let approach = if v0.is_positive() {
+            v0.clone()
+        } else {
+            Exact::zero()
+        };
         let xi = -v - c.k_newton.clone() * approach;
         prop_assert!(!pi.is_negative(), "P ≥ 0");
         prop_assert!(!xi.is_negative(), "ξ ≥ 0");
@@ -35,16 +51,30 @@ fn newton_holds(p: &Problem<Exact>, impact: &Impact<Exact>, out: &Outcome<Exact>
 
 /// Poisson in two phases, checked exactly: compression P^c ≥ 0 ⊥ Ĝ P^c − v⁰ ≥ 0, then
 /// X = P − (1 + k)∘P^c ≥ 0 ⊥ −v ≥ 0.
-fn poisson_holds(p: &Problem<Exact>, impact: &Impact<Exact>, out: &Outcome<Exact>) -> Result<(), TestCaseError> {
+fn poisson_holds(
+    p: &Problem<Exact>,
+    impact: &Impact<Exact>,
+    out: &Outcome<Exact>,
+) -> Result<(), TestCaseError> {
     let n = impact.contacts();
     let g = impact.g_hat();
     for i in 0..n {
         let pc = &out.compression_hat[i];
-        let wc = (0..n).fold(-impact.before_hat()[i][0].clone(), |s, j| s + g[i * n + j].clone() * &out.compression_hat[j]);
-        prop_assert!(!pc.is_negative() && !wc.is_negative() && (pc.clone() * &wc).is_zero(), "compression at {}", i);
+        let wc = (0..n).fold(-impact.before_hat()[i][0].clone(), |s, j| {
+            s + g[i * n + j].clone() * &out.compression_hat[j]
+        });
+        prop_assert!(
+            !pc.is_negative() && !wc.is_negative() && (pc.clone() * &wc).is_zero(),
+            "compression at {}",
+            i
+        );
         let x = out.impulses_hat[i].clone() - (Exact::one() + &p.contacts()[i].k_poisson) * pc;
         let v = &out.after_hat[i][0];
-        prop_assert!(!x.is_negative() && !v.is_positive() && (x * v).is_zero(), "expansion at {}", i);
+        prop_assert!(
+            !x.is_negative() && !v.is_positive() && (x * v).is_zero(),
+            "expansion at {}",
+            i
+        );
     }
     Ok(())
 }
@@ -70,23 +100,42 @@ fn check(p: &Problem<Exact>) -> Result<(), TestCaseError> {
         .zip(p.contacts())
         .map(|(b, c)| {
             let v0 = b[0].clone();
-            let approach = if v0.is_positive() { v0.clone() } else { Exact::zero() };
+            let approach = if v0.is_positive() {
+                v0.clone()
+            } else {
+                Exact::zero()
+            };
             -(v0 + c.k_newton.clone() * approach)
         })
         .collect();
-    match (impact.solve_unilateral(Model::Newton, &mut newton), enumerate(impact.g_hat(), &q)) {
+    match (
+        impact.solve_unilateral(Model::Newton, &mut newton),
+        enumerate(impact.g_hat(), &q),
+    ) {
         (Ok(activity), Some((z, _))) => {
             newton_holds(p, &impact, &newton)?;
             // ΔE_c = ½ Σ P_i (v_ix⁰ − k_i max(v_ix⁰, 0)) (module docs), from the kinetic energies.
             let mut expected = Exact::zero();
             let mut pushed_while_receding = false;
-            for ((b, pi), c) in impact.before_hat().iter().zip(&newton.impulses_hat).zip(p.contacts()) {
+            for ((b, pi), c) in impact
+                .before_hat()
+                .iter()
+                .zip(&newton.impulses_hat)
+                .zip(p.contacts())
+            {
                 let v0 = b[0].clone();
-                let approach = if v0.is_positive() { v0.clone() } else { Exact::zero() };
+                let approach = if v0.is_positive() {
+                    v0.clone()
+                } else {
+                    Exact::zero()
+                };
                 pushed_while_receding |= pi.is_positive() && v0.is_negative();
                 expected += pi.clone() * (v0 - c.k_newton.clone() * approach);
             }
-            prop_assert_eq!(newton.kinetic_energy_loss.clone() * Exact::from_integer(2.into()), expected);
+            prop_assert_eq!(
+                newton.kinetic_energy_loss.clone() * Exact::from_integer(2.into()),
+                expected
+            );
             // The theorem: dissipative when every contact that takes an impulse approached.
             if !pushed_while_receding {
                 prop_assert!(!newton.kinetic_energy_loss.is_negative());
@@ -96,7 +145,10 @@ fn check(p: &Problem<Exact>) -> Result<(), TestCaseError> {
             // Impulses that are not unique are reported as the least-norm member: no larger (in
             // Σ P_i² = Σ P̂_i² |n_i|²) than the enumerated vertex.
             let norm = |x: &[Exact]| -> Exact {
-                x.iter().zip(impact.frames()).map(|(p, f)| p.clone() * p * &f.norm2[0]).sum()
+                x.iter()
+                    .zip(impact.frames())
+                    .map(|(p, f)| p.clone() * p * &f.norm2[0])
+                    .sum()
             };
             if !activity.impulses_unique {
                 prop_assert!(norm(&newton.impulses_hat) <= norm(&z));
@@ -105,11 +157,19 @@ fn check(p: &Problem<Exact>) -> Result<(), TestCaseError> {
             }
         }
         (Err(UnilateralError::Jammed { .. }), None) => {}
-        (l, e) => prop_assert!(false, "Lemke {:?}, enumeration {:?}", l.is_ok(), e.is_some()),
+        (l, e) => prop_assert!(
+            false,
+            "Lemke {:?}, enumeration {:?}",
+            l.is_ok(),
+            e.is_some()
+        ),
     }
     // Poisson.
     let mut poisson = Outcome::default();
-    if impact.solve_unilateral(Model::Poisson, &mut poisson).is_ok() {
+    if impact
+        .solve_unilateral(Model::Poisson, &mut poisson)
+        .is_ok()
+    {
         poisson_holds(p, &impact, &poisson)?;
     }
     // The simultaneous answer, where admissible, is the unilateral one.
@@ -125,16 +185,29 @@ fn check(p: &Problem<Exact>) -> Result<(), TestCaseError> {
         // = ½ (1 − k)(1 + k) v⁰ᵀ G⁻¹ v⁰ ≥ 0, whatever the signs of v⁰.
         let k = &p.contacts()[0].k_newton;
         if model == Model::Newton && p.contacts().iter().all(|c| &c.k_newton == k) {
-            let work: Exact = simultaneous.impulses_hat.iter().zip(impact.before_hat()).map(|(pi, b)| pi.clone() * &b[0]).sum();
+            let work: Exact = simultaneous
+                .impulses_hat
+                .iter()
+                .zip(impact.before_hat())
+                .map(|(pi, b)| pi.clone() * &b[0])
+                .sum();
             let half = Exact::new(1.into(), 2.into());
-            prop_assert_eq!(&simultaneous.kinetic_energy_loss, &(half * (Exact::one() - k) * work));
+            prop_assert_eq!(
+                &simultaneous.kinetic_energy_loss,
+                &(half * (Exact::one() - k) * work)
+            );
             prop_assert!(!simultaneous.kinetic_energy_loss.is_negative());
         }
         let admissible = approaching
             && simultaneous.impulses_hat.iter().all(|x| !x.is_negative())
             && simultaneous.after_hat.iter().all(|a| !a[0].is_positive());
         if admissible {
-            prop_assert_eq!(&simultaneous.impulses_hat, &unilateral.impulses_hat, "{}", model);
+            prop_assert_eq!(
+                &simultaneous.impulses_hat,
+                &unilateral.impulses_hat,
+                "{}",
+                model
+            );
             prop_assert_eq!(&simultaneous.velocity, &unilateral.velocity, "{}", model);
         }
     }

@@ -51,7 +51,10 @@ struct Scene {
 
 impl Scene {
     fn new(name: &str, text: &str) -> Scene {
-        let dir = std::env::temp_dir().join(format!("inertance-unilateral-{}-{name}", std::process::id()));
+        let dir = std::env::temp_dir().join(format!(
+            "inertance-unilateral-{}-{name}",
+            std::process::id()
+        ));
         std::fs::create_dir_all(&dir).unwrap();
         let path = dir.join("scene.toml");
         std::fs::write(&path, text).unwrap();
@@ -61,7 +64,10 @@ impl Scene {
     fn run(&self, args: &[&str]) -> Output {
         let mut all = vec![args[0], self.path.to_str().unwrap()];
         all.extend(&args[1..]);
-        Command::new(env!("CARGO_BIN_EXE_inertance")).args(&all).output().unwrap()
+        Command::new(env!("CARGO_BIN_EXE_inertance"))
+            .args(&all)
+            .output()
+            .unwrap()
     }
 }
 
@@ -72,7 +78,11 @@ impl Drop for Scene {
 }
 
 fn stdout_json(out: &Output) -> serde_json::Value {
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     serde_json::from_slice(&out.stdout).unwrap()
 }
 
@@ -80,11 +90,18 @@ fn stdout_json(out: &Output) -> serde_json::Value {
 fn a_tensile_simultaneous_answer_is_never_silent() {
     let s = Scene::new("tensile", PITCHING);
     for exact in [false, true] {
-        let args: &[&str] = if exact { &["solve", "--exact", "--json"] } else { &["solve", "--json"] };
+        let args: &[&str] = if exact {
+            &["solve", "--exact", "--json"]
+        } else {
+            &["solve", "--json"]
+        };
         let out = s.run(args);
         let err = String::from_utf8_lossy(&out.stderr);
         assert_eq!(out.status.code(), Some(0), "documented: warnings, status 0");
-        assert!(err.contains("warning") && err.contains("contact 2 takes a tensile impulse"), "{err}");
+        assert!(
+            err.contains("warning") && err.contains("contact 2 takes a tensile impulse"),
+            "{err}"
+        );
         assert!(err.contains("--law unilateral"), "{err}");
         let j = stdout_json(&out);
         let newton = &j["models"]["newton"];
@@ -101,14 +118,23 @@ fn a_tensile_simultaneous_answer_is_never_silent() {
     // The admissible Example 3 (ω_z = 0.4) has no warning.
     let ok = Scene::new("ok", &PITCHING.replace("0.7]", "0.4]"));
     let out = ok.run(&["solve"]);
-    assert!(out.status.success() && out.stderr.is_empty(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success() && out.stderr.is_empty(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
 }
 
 #[test]
 fn the_unilateral_law_gives_the_physical_answer() {
     let s = Scene::new("unilateral", PITCHING);
     let j = stdout_json(&s.run(&["solve", "--exact", "--json", "--law", "unilateral"]));
-    assert!(j["effects"].as_array().unwrap().contains(&"unilateral".into()));
+    assert!(
+        j["effects"]
+            .as_array()
+            .unwrap()
+            .contains(&"unilateral".into())
+    );
     for model in ["newton", "poisson"] {
         let m = &j["models"][model];
         assert_eq!(m["law"], "unilateral");
@@ -116,28 +142,44 @@ fn the_unilateral_law_gives_the_physical_answer() {
         assert_eq!(m["impulses_unique"], true);
         // Only A₁ acts: Newton P₁ = (1 + k₁) v_1x⁰ / g₁₁ = 1.3·4.4·3/4 = 429/100; Poisson
         // P₁ = (1 + k₁) P₁ᶜ with P₁ᶜ = v_1x⁰ / g₁₁ = 33/10 — the same here (one contact).
-        assert_eq!(m["impulses"], serde_json::json!(["429/100", "0"]), "{model}");
+        assert_eq!(
+            m["impulses"],
+            serde_json::json!(["429/100", "0"]),
+            "{model}"
+        );
         // A₂ leaves: v_2x = v_2x⁰ − g₂₁ P₁ = 1/5 − 429/300 = −123/100 < 0.
         assert_eq!(m["contacts"][1]["velocity_after"][0], "-123/100");
         assert_eq!(m["admissible"], true);
     }
     // The scene key does the same as the flag, and the table says who separates.
-    let keyed = Scene::new("keyed", &format!("{PITCHING}[solve]\nlaw = \"unilateral\"\n"));
+    let keyed = Scene::new(
+        "keyed",
+        &format!("{PITCHING}[solve]\nlaw = \"unilateral\"\n"),
+    );
     let out = keyed.run(&["solve"]);
     let table = String::from_utf8_lossy(&out.stdout);
     assert!(out.status.success() && out.stderr.is_empty());
-    assert!(table.contains("separates") && table.contains("active"), "{table}");
+    assert!(
+        table.contains("separates") && table.contains("active"),
+        "{table}"
+    );
 }
 
 #[test]
 fn a_jammed_body_is_a_verdict_not_a_number() {
     let s = Scene::new("jammed", JAMMED);
-    for args in [&["solve", "--law", "unilateral"][..], &["solve", "--law", "unilateral", "--exact"]] {
+    for args in [
+        &["solve", "--law", "unilateral"][..],
+        &["solve", "--law", "unilateral", "--exact"],
+    ] {
         let out = s.run(args);
         let err = String::from_utf8_lossy(&out.stderr);
         assert_eq!(out.status.code(), Some(3), "{err}");
         assert!(out.stdout.is_empty());
-        assert!(err.contains("no admissible impulses") && err.contains("jam"), "{err}");
+        assert!(
+            err.contains("no admissible impulses") && err.contains("jam"),
+            "{err}"
+        );
     }
     // Simultaneously it is singular (coincident points, opposite normals): exit 3 pointing to
     // analyze and to the unilateral law.
@@ -149,11 +191,19 @@ fn a_jammed_body_is_a_verdict_not_a_number() {
 #[test]
 fn the_obstacles_normal_given_by_mistake_gets_a_hint() {
     // Example 3 with both normals reversed: every contact separates before impact.
-    let s = Scene::new("reversed", &PITCHING.replace("0.7]", "0.4]").replace("normal = [1, 0, 0]", "normal = [-1, 0, 0]"));
+    let s = Scene::new(
+        "reversed",
+        &PITCHING
+            .replace("0.7]", "0.4]")
+            .replace("normal = [1, 0, 0]", "normal = [-1, 0, 0]"),
+    );
     let out = s.run(&["solve", "--law", "unilateral"]);
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(out.status.success());
-    assert!(err.contains("every contact is separating") && err.contains("outward normal"), "{err}");
+    assert!(
+        err.contains("every contact is separating") && err.contains("outward normal"),
+        "{err}"
+    );
 }
 
 #[test]
@@ -162,11 +212,20 @@ fn analyze_shows_the_unilateral_resolution_and_exits_2_on_bad_input() {
     let out = s.run(&["analyze", "--exact"]);
     let text = String::from_utf8_lossy(&out.stdout);
     assert!(out.status.success());
-    assert!(text.contains("unilateral newton") && text.contains("A2: separates, P2 = 0"), "{text}");
+    assert!(
+        text.contains("unilateral newton") && text.contains("A2: separates, P2 = 0"),
+        "{text}"
+    );
     let j = stdout_json(&s.run(&["analyze", "--exact", "--json"]));
-    assert_eq!(j["models"]["newton"]["unilateral"]["impulses"], serde_json::json!(["429/100", "0"]));
+    assert_eq!(
+        j["models"]["newton"]["unilateral"]["impulses"],
+        serde_json::json!(["429/100", "0"])
+    );
     // A tangent not perpendicular to its normal is bad input (2), naming the key.
-    let skew = Scene::new("skew", &PITCHING.replacen("k = 0.2", "tangent = [1, 1, 0]\nk = 0.2", 1));
+    let skew = Scene::new(
+        "skew",
+        &PITCHING.replacen("k = 0.2", "tangent = [1, 1, 0]\nk = 0.2", 1),
+    );
     let out = skew.run(&["analyze"]);
     assert_eq!(out.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&out.stderr).contains("contact[1].tangent"));
@@ -175,10 +234,19 @@ fn analyze_shows_the_unilateral_resolution_and_exits_2_on_bad_input() {
 #[test]
 fn analyze_prints_the_fixed_velocities_of_a_singular_family() {
     // Example 5's hinge (tests/hard_cases): Δ = 0, compatible; the twist is fixed.
-    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/hard_cases/constrained-singular-compatible.toml");
-    let out = Command::new(env!("CARGO_BIN_EXE_inertance")).args(["analyze", path, "--exact"]).output().unwrap();
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/hard_cases/constrained-singular-compatible.toml"
+    );
+    let out = Command::new(env!("CARGO_BIN_EXE_inertance"))
+        .args(["analyze", path, "--exact"])
+        .output()
+        .unwrap();
     let text = String::from_utf8_lossy(&out.stdout);
-    assert!(text.contains("velocities after impact (the same for the whole family): ω = (0, 0, -1/5"), "{text}");
+    assert!(
+        text.contains("velocities after impact (the same for the whole family): ω = (0, 0, -1/5"),
+        "{text}"
+    );
 }
 
 #[test]
@@ -188,14 +256,39 @@ fn sweep_status_names_the_inadmissible_points() {
     // ω_z from 0.4 to 0.7: v_2x⁰ = 3 − 4ω > 0 throughout; by eq. 20 the Newton impulse
     // P₂ = (4/3·1.2(3 − 4ω) − 1/3·1.3(3 + 2ω))/3 vanishes where 4.8(3 − 4ω) = 1.3(3 + 2ω),
     // ω = 10.5/21.8 = 105/218 ≈ 0.482.
-    let out = s.run(&["sweep", "--vary", "body.angular_velocity[2]=0.4:0.7:4", "--out", csv.to_str().unwrap()]);
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let out = s.run(&[
+        "sweep",
+        "--vary",
+        "body.angular_velocity[2]=0.4:0.7:4",
+        "--out",
+        csv.to_str().unwrap(),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     let text = std::fs::read_to_string(&csv).unwrap();
-    let status: Vec<&str> = text.lines().skip(1).map(|l| l.rsplit(',').next().unwrap()).collect();
+    let status: Vec<&str> = text
+        .lines()
+        .skip(1)
+        .map(|l| l.rsplit(',').next().unwrap())
+        .collect();
     // ω = 0.4 < 105/218: ok; 0.5, 0.6, 0.7 > 105/218: tensile.
     assert_eq!(status[0], "ok");
-    assert!(status[1..].iter().all(|s| s.starts_with("tensile")), "{status:?}");
-    let out = s.run(&["sweep", "--vary", "body.angular_velocity[2]=0.4:0.7:4", "--out", csv.to_str().unwrap(), "--law", "unilateral"]);
+    assert!(
+        status[1..].iter().all(|s| s.starts_with("tensile")),
+        "{status:?}"
+    );
+    let out = s.run(&[
+        "sweep",
+        "--vary",
+        "body.angular_velocity[2]=0.4:0.7:4",
+        "--out",
+        csv.to_str().unwrap(),
+        "--law",
+        "unilateral",
+    ]);
     assert!(out.status.success());
     let text = std::fs::read_to_string(&csv).unwrap();
     assert!(text.lines().skip(1).all(|l| l.ends_with(",ok")), "{text}");
@@ -207,8 +300,14 @@ fn box_scene(k: [&str; 4]) -> String {
     let mut s = String::from(
         "name = \"box\"\n[body]\nmass = 12\ninertia = [10, 13, 5]\nvelocity = [0, 0, -2]\nangular_velocity = [0, 0, 0]\n",
     );
-    for (i, (x, y)) in [(1, "0.5"), (-1, "0.5"), (-1, "-0.5"), (1, "-0.5")].iter().enumerate() {
-        s += &format!("[[contact]]\npoint = [{x}, {y}, -1.5]\nnormal = [0, 0, -1]\nk = {}\n", k[i]);
+    for (i, (x, y)) in [(1, "0.5"), (-1, "0.5"), (-1, "-0.5"), (1, "-0.5")]
+        .iter()
+        .enumerate()
+    {
+        s += &format!(
+            "[[contact]]\npoint = [{x}, {y}, -1.5]\nnormal = [0, 0, -1]\nk = {}\n",
+            k[i]
+        );
     }
     s
 }
@@ -216,7 +315,15 @@ fn box_scene(k: [&str; 4]) -> String {
 #[test]
 fn a_box_landing_flat_has_unique_velocities_and_least_norm_impulses() {
     let s = Scene::new("box", &box_scene(["0.5"; 4]));
-    let j = stdout_json(&s.run(&["solve", "--exact", "--json", "--law", "unilateral", "--model", "newton"]));
+    let j = stdout_json(&s.run(&[
+        "solve",
+        "--exact",
+        "--json",
+        "--law",
+        "unilateral",
+        "--model",
+        "newton",
+    ]));
     let m = &j["models"]["newton"];
     // By hand: a pure translation stays one (no moment about C from a symmetric set), so
     // v_Cz = −k·(−2) = 1; the total impulse is m(1 + k)·2 = 36, and the least-norm split of a
@@ -227,10 +334,28 @@ fn a_box_landing_flat_has_unique_velocities_and_least_norm_impulses() {
     assert_eq!(m["outcome_decided"], true);
     // Unequal k under Poisson: the law does not decide; never one number as the answer.
     let s = Scene::new("box-poisson", &box_scene(["0.7", "0.3", "0.7", "0.3"]));
-    let out = s.run(&["solve", "--exact", "--law", "unilateral", "--model", "poisson"]);
+    let out = s.run(&[
+        "solve",
+        "--exact",
+        "--law",
+        "unilateral",
+        "--model",
+        "poisson",
+    ]);
     let table = String::from_utf8_lossy(&out.stdout);
-    assert!(table.contains("the law does not decide the outcome"), "{table}");
-    let j = stdout_json(&s.run(&["solve", "--exact", "--json", "--law", "unilateral", "--model", "poisson"]));
+    assert!(
+        table.contains("the law does not decide the outcome"),
+        "{table}"
+    );
+    let j = stdout_json(&s.run(&[
+        "solve",
+        "--exact",
+        "--json",
+        "--law",
+        "unilateral",
+        "--model",
+        "poisson",
+    ]));
     assert_eq!(j["models"]["poisson"]["outcome_decided"], false);
     // By hand: compression stops the box (ΣPᶜ = m·2 = 24) with Pᶜ anywhere on the set; all of it
     // on the k = 0.3 corners gives ΣP = 1.3·24, v_Cz = −2 + 31.2/12 = 3/5; all on the k = 0.7
@@ -246,18 +371,26 @@ fn a_box_landing_flat_has_unique_velocities_and_least_norm_impulses() {
 /// integer data, O(N) pivots; the exact values are the hand-checked ones of `check`).
 #[test]
 fn the_unilateral_scenes_agree_in_f64_and_exactly() {
-    use inertance::scene::{Scene as S, pipeline::run};
     use inertance::scalar::symbolic::RatFun;
+    use inertance::scene::{Scene as S, pipeline::run};
     let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/derivations");
     let mut scenes = 0;
     for entry in std::fs::read_dir(dir).unwrap() {
         let path = entry.unwrap().path();
-        if !path.file_name().unwrap().to_str().unwrap().starts_with("unilateral-") {
+        if !path
+            .file_name()
+            .unwrap()
+            .to_str()
+            .unwrap()
+            .starts_with("unilateral-")
+        {
             continue;
         }
         let d = inertance::tools::check::Derivation::load(&path).unwrap();
         for (name, (_, text)) in &d.scenes {
-            let Ok(mut scene) = S::parse(text, name) else { continue };
+            let Ok(mut scene) = S::parse(text, name) else {
+                continue;
+            };
             if scene.numbers().any(|(_, n)| !n.symbols.is_empty()) {
                 continue;
             }
@@ -274,12 +407,22 @@ fn the_unilateral_scenes_agree_in_f64_and_exactly() {
             scenes += 1;
             for (me, mf) in e.report.models.iter().zip(&f.report.models) {
                 let values = |m: &inertance::report::ModelReport| -> Vec<f64> {
-                    m.impulses.iter().chain(&m.angular_velocity).chain(&m.velocity).map(|v| v.f64).collect()
+                    m.impulses
+                        .iter()
+                        .chain(&m.angular_velocity)
+                        .chain(&m.velocity)
+                        .map(|v| v.f64)
+                        .collect()
                 };
                 let (a, b) = (values(me), values(mf));
                 let scale = a.iter().fold(1.0f64, |s, x| s.max(x.abs()));
                 for (x, y) in a.iter().zip(&b) {
-                    assert!((x - y).abs() <= 1e-12 * scale, "{}#{name} {}: {x} vs {y}", path.display(), me.model);
+                    assert!(
+                        (x - y).abs() <= 1e-12 * scale,
+                        "{}#{name} {}: {x} vs {y}",
+                        path.display(),
+                        me.model
+                    );
                 }
                 assert_eq!(me.active, mf.active);
             }
@@ -294,10 +437,32 @@ fn jamming_needs_restitution_at_an_approaching_contact() {
     // y_i > 0 at an approaching contact with k_i > 0. Here ker G = span(1, 1) and contact 1
     // approaches: with k = 0 the body just stops (no jam), with k = 1/2 it jams.
     let plastic = Scene::new("plastic", &JAMMED.replace("k = 0.5", "k = 0"));
-    let j = stdout_json(&plastic.run(&["solve", "--exact", "--json", "--law", "unilateral", "--model", "newton"]));
-    assert_eq!(j["models"]["newton"]["velocity"], serde_json::json!(["0", "0", "0"]));
+    let j = stdout_json(&plastic.run(&[
+        "solve",
+        "--exact",
+        "--json",
+        "--law",
+        "unilateral",
+        "--model",
+        "newton",
+    ]));
+    assert_eq!(
+        j["models"]["newton"]["velocity"],
+        serde_json::json!(["0", "0", "0"])
+    );
     // Poisson is never jammed (its right-hand sides are orthogonal to ker G).
     let s = Scene::new("poisson-jam", JAMMED);
-    let out = s.run(&["solve", "--exact", "--law", "unilateral", "--model", "poisson"]);
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let out = s.run(&[
+        "solve",
+        "--exact",
+        "--law",
+        "unilateral",
+        "--model",
+        "poisson",
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
 }

@@ -139,7 +139,11 @@ pub fn analyze<T: Scalar>(impact: &mut Impact<T>, models: &[Model]) -> Analysis<
 fn analyze_model<T: Scalar>(impact: &mut Impact<T>, model: Model) -> ModelAnalysis<T> {
     let n = impact.contacts();
     let problem = impact.problem().clone();
-    let approaching: Vec<bool> = impact.before_hat().iter().map(|v| v[0].signum_i8() > 0).collect();
+    let approaching: Vec<bool> = impact
+        .before_hat()
+        .iter()
+        .map(|v| v[0].signum_i8() > 0)
+        .collect();
     let scale = |i: usize, model: Model| -> T {
         match model {
             Model::Newton => T::one(),
@@ -308,7 +312,9 @@ fn newton_equals_poisson<T: Scalar>(
         .iter()
         .all(|c| c.k_newton == c.k_poisson && c.k_newton == cs[0].k_newton);
     let diagonal = (0..n).all(|i| {
-        (0..n).all(|j| i == j || impact.g_hat()[i * n + j].is_negligible(&impact.g_hat()[i * n + i], 16 * n))
+        (0..n).all(|j| {
+            i == j || impact.g_hat()[i * n + j].is_negligible(&impact.g_hat()[i * n + i], 16 * n)
+        })
     });
     let reason = match (equal, same_k, diagonal) {
         (true, true, _) => "equal coefficients at every contact (k_i^N = k_i^P = k): eq. 55, first possibility".to_string(),
@@ -334,9 +340,10 @@ fn coincident<T: Scalar>(impact: &Impact<T>) -> Vec<Coincidence<T>> {
             }
             let (ni, nj) = (&problem.contacts()[i].normal, &problem.contacts()[j].normal);
             let cross = ni.cross(nj);
-            let same_axis = crate::mechanics::screw::norm2(&cross)
-                .is_negligible(&(crate::mechanics::screw::norm2(ni) * crate::mechanics::screw::norm2(nj)), 3)
-                && crate::mechanics::screw::dot(ni, nj).signum_i8() > 0;
+            let same_axis = crate::mechanics::screw::norm2(&cross).is_negligible(
+                &(crate::mechanics::screw::norm2(ni) * crate::mechanics::screw::norm2(nj)),
+                3,
+            ) && crate::mechanics::screw::dot(ni, nj).signum_i8() > 0;
             let c = &problem.contacts()[i];
             let gii = impact.g_hat()[i * n + i].clone();
             let v0 = impact.before_hat()[i][0].clone();

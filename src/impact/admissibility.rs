@@ -104,7 +104,11 @@ pub fn energy_gain<T: Scalar>(impact: &Impact<T>, out: &Outcome<T>) -> Option<In
 
 /// The verdicts on the simultaneous `out` of `model` solved on `impact`; empty when it is
 /// admissible.
-pub fn verdicts<T: Scalar>(impact: &Impact<T>, model: Model, out: &Outcome<T>) -> Vec<Inadmissible> {
+pub fn verdicts<T: Scalar>(
+    impact: &Impact<T>,
+    model: Model,
+    out: &Outcome<T>,
+) -> Vec<Inadmissible> {
     let n = impact.contacts();
     let tol = 16 * n.max(1);
     let largest = |xs: &mut dyn Iterator<Item = &T>| {

@@ -142,7 +142,11 @@ fn invalid(field: Field, reason: Reason) -> InvalidProblem {
 
 /// Refuse a non-finite value.
 fn finite<T: Scalar>(x: &T, field: Field) -> Result<(), InvalidProblem> {
-    if x.is_finite() { Ok(()) } else { Err(invalid(field, Reason::NotFinite)) }
+    if x.is_finite() {
+        Ok(())
+    } else {
+        Err(invalid(field, Reason::NotFinite))
+    }
 }
 
 /// Refuse a value that is not finite and positive (an undecided symbolic sign passes).
@@ -166,7 +170,10 @@ fn coefficient<T: Scalar>(k: &T, field: Field) -> Result<(), InvalidProblem> {
 }
 
 /// Refuse a vector with a non-finite component; `field(k)` names component k.
-fn finite_vector<T: Scalar>(v: &Vec3<T>, field: impl Fn(usize) -> Field) -> Result<(), InvalidProblem> {
+fn finite_vector<T: Scalar>(
+    v: &Vec3<T>,
+    field: impl Fn(usize) -> Field,
+) -> Result<(), InvalidProblem> {
     for k in 0..3 {
         finite(&v[k], field(k))?;
     }
@@ -188,7 +195,11 @@ fn axis<T: Scalar>(v: &Vec3<T>, field: Field) -> Result<(), InvalidProblem> {
 pub fn perpendicular<T: Scalar>(n: &Vec3<T>, t: &Vec3<T>) -> Result<(), T> {
     let d = dot(n, t);
     let reference = norm2(n) * norm2(t);
-    if (d.clone() * &d).is_negligible(&reference, 3) { Ok(()) } else { Err(d) }
+    if (d.clone() * &d).is_negligible(&reference, 3) {
+        Ok(())
+    } else {
+        Err(d)
+    }
 }
 
 impl<T: Scalar> Problem<T> {
@@ -218,7 +229,10 @@ impl<T: Scalar> Problem<T> {
             if let Some(t) = &c.tangent {
                 axis(t, Field::Tangent(i))?;
                 perpendicular(&c.normal, t).map_err(|d| {
-                    invalid(Field::Tangent(i), Reason::NotPerpendicular { dot: d.to_f64() })
+                    invalid(
+                        Field::Tangent(i),
+                        Reason::NotPerpendicular { dot: d.to_f64() },
+                    )
                 })?;
             }
             coefficient(&c.k_newton, Field::KNewton(i))?;
@@ -350,7 +364,10 @@ mod tests {
         c.tangent = Some(v(1, 1, 0));
         assert_eq!(
             refused(Problem::new(body(1), twist.clone(), vec![contact(), c])),
-            ("contact[1].tangent".into(), Reason::NotPerpendicular { dot: 1.0 })
+            (
+                "contact[1].tangent".into(),
+                Reason::NotPerpendicular { dot: 1.0 }
+            )
         );
         let mut c = contact();
         c.k_poisson = int(2);

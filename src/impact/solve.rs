@@ -237,7 +237,8 @@ impl<T: Scalar> Impact<T> {
         self.responses.clear();
         self.frames.clear();
         for (i, c) in problem.contacts().iter().enumerate() {
-            self.frames.push(ContactFrame::new(i, c, problem.velocity())?);
+            self.frames
+                .push(ContactFrame::new(i, c, problem.velocity())?);
             let f = &self.frames[i];
             self.before_hat.push(f.velocity(problem.velocity()));
             self.responses.push(problem.response(&f.axes[0]));
@@ -339,14 +340,23 @@ impl<T: Scalar> Impact<T> {
         let dv = Screw(out.velocity.0.clone() - problem.velocity().0.clone());
         out.lost_velocity_energy = problem.body().kinetic_energy(&dv);
         let mut loss = T::zero();
-        for ((p, b), a) in out.impulses_hat.iter().zip(&self.before_hat).zip(&out.after_hat) {
+        for ((p, b), a) in out
+            .impulses_hat
+            .iter()
+            .zip(&self.before_hat)
+            .zip(&out.after_hat)
+        {
             loss += p.clone() * &(b[0].clone() + &a[0]);
         }
         out.kinetic_energy_loss = loss / (T::one() + T::one());
         match problem.constraints() {
             Some(c) => {
                 let axes = self.frames.iter().map(|f| &f.axes[0]);
-                c.impulses_into(&dv, out.impulses_hat.iter().zip(axes), &mut out.constraint_impulses);
+                c.impulses_into(
+                    &dv,
+                    out.impulses_hat.iter().zip(axes),
+                    &mut out.constraint_impulses,
+                );
             }
             None => out.constraint_impulses.clear(),
         }

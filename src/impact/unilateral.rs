@@ -207,14 +207,25 @@ impl<T: Scalar> Impact<T> {
         let g = self.g_hat();
         let v0 = |i: usize| &self.before_hat()[i][0];
         let contacts = self.problem().contacts();
-        let UnilateralWork { lcp, q, w, sub, perm, set } = work;
+        let UnilateralWork {
+            lcp,
+            q,
+            w,
+            sub,
+            perm,
+            set,
+        } = work;
         match model {
             Model::Newton => {
                 // −q_i = −(v_ix⁰ + k_i max(v_ix⁰, 0)).
                 q.clear();
                 q.extend((0..n).map(|i| {
                     let v = v0(i);
-                    let approach = if v.signum_i8() > 0 { v.clone() } else { T::zero() };
+                    let approach = if v.signum_i8() > 0 {
+                        v.clone()
+                    } else {
+                        T::zero()
+                    };
                     -(v.clone() + contacts[i].k_newton.clone() * &approach)
                 }));
                 let mut pivots = run(lcp, g, q, "newton")?;
@@ -253,8 +264,14 @@ impl<T: Scalar> Impact<T> {
                 }
                 let compression_unique = regular_on_equalities(g, w, set, sub, perm);
                 let unique = compression_unique && regular_on_equalities(g, &lcp.w, set, sub, perm);
-                let equal_k = contacts.iter().all(|k| k.k_poisson == contacts[0].k_poisson);
-                Ok((compression + expansion, unique, compression_unique || equal_k))
+                let equal_k = contacts
+                    .iter()
+                    .all(|k| k.k_poisson == contacts[0].k_poisson);
+                Ok((
+                    compression + expansion,
+                    unique,
+                    compression_unique || equal_k,
+                ))
             }
         }
     }
@@ -270,7 +287,9 @@ fn regular_on_equalities<T: Scalar>(
     perm: &mut Vec<usize>,
 ) -> bool {
     let n = w.len();
-    let scale = w.iter().fold(T::zero(), |m, x| if x.abs_gt(&m) { x.clone() } else { m });
+    let scale = w
+        .iter()
+        .fold(T::zero(), |m, x| if x.abs_gt(&m) { x.clone() } else { m });
     set.clear();
     set.extend((0..n).filter(|&i| w[i].is_negligible(&scale, 16 * n)));
     let k = set.len();
@@ -299,10 +318,17 @@ fn regular_on_equalities<T: Scalar>(
 /// point is its minimiser.
 fn least_norm<T: Scalar>(g: &[T], w: &[T], norm2: &[T], z: &mut [T]) -> usize {
     let n = w.len();
-    let scale = w.iter().fold(T::zero(), |m, x| if x.abs_gt(&m) { x.clone() } else { m });
-    let a: Vec<usize> = (0..n).filter(|&i| w[i].is_negligible(&scale, 16 * n)).collect();
+    let scale = w
+        .iter()
+        .fold(T::zero(), |m, x| if x.abs_gt(&m) { x.clone() } else { m });
+    let a: Vec<usize> = (0..n)
+        .filter(|&i| w[i].is_negligible(&scale, 16 * n))
+        .collect();
     let k = a.len();
-    let sub: Vec<T> = a.iter().flat_map(|&i| a.iter().map(move |&j| g[i * n + j].clone())).collect();
+    let sub: Vec<T> = a
+        .iter()
+        .flat_map(|&i| a.iter().map(move |&j| g[i * n + j].clone()))
+        .collect();
     let (_, basis) = crate::linalg::null_space(&sub, k, k);
     let d = basis.len();
     if d == 0 {
@@ -311,7 +337,11 @@ fn least_norm<T: Scalar>(g: &[T], w: &[T], norm2: &[T], z: &mut [T]) -> usize {
     // NᵀSN (d×d, positive definite) and X = (NᵀSN)⁻¹ Nᵀ (d×k), column by column.
     let s = |r: usize| norm2[a[r]].clone();
     let mut nsn: Vec<T> = (0..d * d)
-        .map(|e| (0..k).fold(T::zero(), |acc, r| acc + basis[e / d][r].clone() * s(r) * &basis[e % d][r]))
+        .map(|e| {
+            (0..k).fold(T::zero(), |acc, r| {
+                acc + basis[e / d][r].clone() * s(r) * &basis[e % d][r]
+            })
+        })
         .collect();
     let mut perm = vec![0; d];
     if crate::linalg::factor_psd(&mut nsn, d, &mut perm).map_or(true, |f| f.rank < d) {
@@ -328,11 +358,19 @@ fn least_norm<T: Scalar>(g: &[T], w: &[T], norm2: &[T], z: &mut [T]) -> usize {
     }
     // Π = N X (k×k); q = z*_A − Π S z*_A.
     let pi: Vec<T> = (0..k * k)
-        .map(|e| (0..d).fold(T::zero(), |acc, f| acc + basis[f][e / k].clone() * &x[f * k + e % k]))
+        .map(|e| {
+            (0..d).fold(T::zero(), |acc, f| {
+                acc + basis[f][e / k].clone() * &x[f * k + e % k]
+            })
+        })
         .collect();
     let za: Vec<T> = a.iter().map(|&i| z[i].clone()).collect();
     let q: Vec<T> = (0..k)
-        .map(|r| (0..k).fold(za[r].clone(), |acc, c| acc - pi[r * k + c].clone() * s(c) * &za[c]))
+        .map(|r| {
+            (0..k).fold(za[r].clone(), |acc, c| {
+                acc - pi[r * k + c].clone() * s(c) * &za[c]
+            })
+        })
         .collect();
     match lemke(Lcp { m: &pi, q: &q }) {
         Ok(sol) => {
@@ -381,20 +419,34 @@ impl<T: Scalar> Impact<T> {
         // The compression LCP's w, and the fixed G Pᶜ.
         let v0: Vec<T> = self.before_hat().iter().map(|v| v[0].clone()).collect();
         let gp: Vec<T> = (0..n)
-            .map(|i| (0..n).fold(T::zero(), |s, j| s + g[i * n + j].clone() * &first.compression_hat[j]))
+            .map(|i| {
+                (0..n).fold(T::zero(), |s, j| {
+                    s + g[i * n + j].clone() * &first.compression_hat[j]
+                })
+            })
             .collect();
         let w: Vec<T> = (0..n).map(|i| gp[i].clone() - &v0[i]).collect();
-        let scale = w.iter().fold(T::zero(), |m, x| if x.abs_gt(&m) { x.clone() } else { m });
-        let a: Vec<usize> = (0..n).filter(|&i| w[i].is_negligible(&scale, 16 * n)).collect();
+        let scale = w
+            .iter()
+            .fold(T::zero(), |m, x| if x.abs_gt(&m) { x.clone() } else { m });
+        let a: Vec<usize> = (0..n)
+            .filter(|&i| w[i].is_negligible(&scale, 16 * n))
+            .collect();
         if a.len() > MAX_ENUMERATED {
             return Ok(None);
         }
         let mut outcomes = Vec::new();
         for mask in 1u32..(1 << a.len()) {
-            let s: Vec<usize> = (0..a.len()).filter(|b| mask >> b & 1 == 1).map(|b| a[b]).collect();
+            let s: Vec<usize> = (0..a.len())
+                .filter(|b| mask >> b & 1 == 1)
+                .map(|b| a[b])
+                .collect();
             let k = s.len();
             let g = &g;
-            let mut sub: Vec<T> = s.iter().flat_map(|&i| s.iter().map(move |&j| g[i * n + j].clone())).collect();
+            let mut sub: Vec<T> = s
+                .iter()
+                .flat_map(|&i| s.iter().map(move |&j| g[i * n + j].clone()))
+                .collect();
             let mut perm = vec![0; k];
             if !crate::linalg::factor_psd(&mut sub, k, &mut perm).is_ok_and(|f| f.rank == k) {
                 continue;
@@ -402,7 +454,9 @@ impl<T: Scalar> Impact<T> {
             let mut y: Vec<T> = s.iter().map(|&i| gp[i].clone()).collect();
             let mut work = vec![T::zero(); k];
             crate::linalg::solve_factored(&sub, k, &perm, &mut y, &mut work);
-            if y.iter().any(|x| x.signum_i8() < 0 && !x.is_negligible(&scale, 16 * n)) {
+            if y.iter()
+                .any(|x| x.signum_i8() < 0 && !x.is_negligible(&scale, 16 * n))
+            {
                 continue;
             }
             let mut pc = vec![T::zero(); n];
@@ -426,13 +480,22 @@ impl<T: Scalar> Impact<T> {
         let n = self.contacts();
         let g = self.g_hat();
         let contacts = self.problem().contacts();
-        let base: Vec<T> = (0..n).map(|j| (T::one() + &contacts[j].k_poisson) * &pc[j]).collect();
+        let base: Vec<T> = (0..n)
+            .map(|j| (T::one() + &contacts[j].k_poisson) * &pc[j])
+            .collect();
         let q: Vec<T> = (0..n)
-            .map(|i| (0..n).fold(-self.before_hat()[i][0].clone(), |s, j| s + g[i * n + j].clone() * &base[j]))
+            .map(|i| {
+                (0..n).fold(-self.before_hat()[i][0].clone(), |s, j| {
+                    s + g[i * n + j].clone() * &base[j]
+                })
+            })
             .collect();
         let x = lemke(Lcp { m: g, q: &q }).map_err(|e| match e {
             LcpError::Ray { .. } => UnilateralError::Jammed { phase: "expansion" },
-            LcpError::IterationLimit { pivots } => UnilateralError::IterationLimit { phase: "expansion", pivots },
+            LcpError::IterationLimit { pivots } => UnilateralError::IterationLimit {
+                phase: "expansion",
+                pivots,
+            },
         })?;
         let mut out = Outcome {
             impulses_hat: base.into_iter().zip(x.z).map(|(b, x)| b + x).collect(),

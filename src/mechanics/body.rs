@@ -10,8 +10,8 @@
 //! \[η\]\[M\]⁻¹ = diag(m⁻¹ I, J⁻¹) (eq. 56) are symmetric positive definite, and the kinetic
 //! energy is T = ½ {v}ᵀ \[η\]\[M\] {v} = ½ (ωᵀ J ω + m v_C²) (eq. 32).
 
-use crate::scalar::Scalar;
 use crate::mechanics::screw::{Screw, Vec3, dot};
+use crate::scalar::Scalar;
 
 /// A rigid body in its central principal frame Cxyz.
 #[derive(Clone, Debug, PartialEq)]

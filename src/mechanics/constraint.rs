@@ -30,10 +30,10 @@
 
 use nalgebra::SVector;
 
-use crate::mechanics::body::{Mobility, RigidBody};
 use crate::linalg::{self, factor_psd, null_space};
-use crate::scalar::Scalar;
+use crate::mechanics::body::{Mobility, RigidBody};
 use crate::mechanics::screw::{Screw, Vec3, norm2};
+use crate::scalar::Scalar;
 
 /// A joint, as users write constraints: each contributes the free screws of its motion.
 #[derive(Clone, Debug, PartialEq)]

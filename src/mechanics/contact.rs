@@ -20,8 +20,8 @@
 //! velocity is zero (n_i × v_A = 0), the fallback is deterministic: ẑ_i = n_i × e_k, where e_k
 //! is the coordinate axis least aligned with n_i (smallest |n_k|, lowest k on ties).
 
-use crate::scalar::Scalar;
 use crate::mechanics::screw::{Screw, Vec3, dot, norm2};
+use crate::scalar::Scalar;
 
 /// One contact as given: the point A_i, the outward normal n_i (axis A_i x_i; need not be a
 /// unit vector), an optional tangent axis y_i, and the restitution coefficients.
@@ -225,7 +225,11 @@ impl<T: Scalar> Surd<T> {
             return v.exact_text();
         }
         let (q, r) = (self.coeff.exact_text()?, self.radicand.exact_text()?);
-        Some(if self.coeff.is_zero() { "0".into() } else { format!("({q})*sqrt({r})") })
+        Some(if self.coeff.is_zero() {
+            "0".into()
+        } else {
+            format!("({q})*sqrt({r})")
+        })
     }
 
     /// The exact value in LaTeX, for types with a LaTeX form of their own (`q\sqrt{r}` when
@@ -235,7 +239,11 @@ impl<T: Scalar> Surd<T> {
             return v.latex_text();
         }
         let (q, r) = (self.coeff.latex_text()?, self.radicand.latex_text()?);
-        Some(if self.coeff.is_zero() { "0".into() } else { format!("\\left({q}\\right)\\sqrt{{{r}}}") })
+        Some(if self.coeff.is_zero() {
+            "0".into()
+        } else {
+            format!("\\left({q}\\right)\\sqrt{{{r}}}")
+        })
     }
 
     /// q·√r as one value of the type, when √r is exactly representable.

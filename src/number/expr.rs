@@ -28,11 +28,9 @@
 //! node carries its byte range, to quote sub-expressions in messages; syntax errors give
 //! 1-based character positions.
 
-
 use num_bigint::BigInt;
 use num_rational::BigRational;
 use num_traits::Zero;
-
 
 use super::rational::rational_to_f64;
 

@@ -713,13 +713,7 @@ mod tests {
     fn not_finite() {
         assert!(is_not_finite("1/0").contains("division by zero in '1/0'"));
         assert!(is_not_finite("2*3/(1-1)").contains("2*3/(1-1)"));
-        for text in [
-            "nan",
-            "inf",
-            "-inf",
-            "+inf",
-            "NaN",
-        ] {
+        for text in ["nan", "inf", "-inf", "+inf", "NaN"] {
             is_not_finite(text);
         }
         // Beyond f64 but exact: a number (exact mode reads it; f64 mode scales or refuses it).

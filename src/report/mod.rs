@@ -18,13 +18,13 @@ mod table;
 
 use serde_json::Value as Json;
 
-use crate::mechanics::constraint::Constrained;
-use crate::mechanics::contact::{ContactFrame, Surd, TangentRule};
 use crate::impact::admissibility::Inadmissible;
 use crate::impact::restitution::Model;
-use crate::impact::unilateral::{Activity, Law};
-use crate::scalar::Scalar;
 use crate::impact::solve::{Impact, Outcome};
+use crate::impact::unilateral::{Activity, Law};
+use crate::mechanics::constraint::Constrained;
+use crate::mechanics::contact::{ContactFrame, Surd, TangentRule};
+use crate::scalar::Scalar;
 
 /// One reported number: f64 always, exact text in exact mode.
 #[derive(Clone, Debug, PartialEq)]
@@ -131,7 +131,11 @@ fn approx_exact(text: &str) -> Option<String> {
     let digits = |x: &BigInt| x.to_string().len() as i64;
     let s = 9 - (digits(&p) - digits(&q));
     let ten = |k: i64| num_traits::pow(BigInt::from(10), k as usize);
-    let scaled = if s >= 0 { p * ten(s) / q } else { p / (q * ten(-s)) };
+    let scaled = if s >= 0 {
+        p * ten(s) / q
+    } else {
+        p / (q * ten(-s))
+    };
     let mut m: f64 = scaled.to_string().parse().ok()?;
     m *= radicand.sqrt();
     let mut e = -s;

@@ -55,7 +55,11 @@ impl Report {
                             .collect();
                         out += &format!(
                             "  over the vertices of the set of compression impulses: {}\n",
-                            if varying.is_empty() { "the same twist".to_string() } else { varying.join(", ") }
+                            if varying.is_empty() {
+                                "the same twist".to_string()
+                            } else {
+                                varying.join(", ")
+                            }
                         );
                     }
                 }

@@ -39,10 +39,10 @@
 //! ([`ContactSpec`], [`ConstraintsSpec`], …) and how each is read, `path` the key paths and
 //! [`set_value`]; [`pipeline`] runs a scene from assembly to report.
 
-pub mod pipeline;
-pub mod scale;
 mod path;
+pub mod pipeline;
 mod read;
+pub mod scale;
 mod schema;
 
 pub use path::set_value;
@@ -53,16 +53,16 @@ use std::fmt;
 
 use toml_edit::DocumentMut;
 
+use crate::impact::problem::{InvalidProblem, Problem, Reason};
+use crate::impact::restitution::Model;
+use crate::impact::unilateral::Law;
 use crate::mechanics::body::RigidBody;
 use crate::mechanics::constraint::Joint;
 use crate::mechanics::contact::Contact;
-use crate::number::Number;
-use crate::impact::restitution::Model;
-use crate::impact::unilateral::Law;
-use crate::scalar::Scalar;
 use crate::mechanics::screw::{Screw, Vec3, norm2};
-use crate::impact::problem::{InvalidProblem, Problem, Reason};
 use crate::mechanics::surface::SurfaceError;
+use crate::number::Number;
+use crate::scalar::Scalar;
 
 /// The end of the message for a number a float type cannot hold (the pipeline recognises it).
 pub const OUT_OF_RANGE: &str = "`--exact` solves the scene exactly";
@@ -336,18 +336,35 @@ impl Scene {
             return None;
         }
         if parts.iter().all(|(k, _)| k.starts_with(&prefix)) {
-            return Some(format!("[{}]", parts.into_iter().map(|(_, t)| t).collect::<Vec<_>>().join(", ")));
+            return Some(format!(
+                "[{}]",
+                parts
+                    .into_iter()
+                    .map(|(_, t)| t)
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            ));
         }
         // A joint: `point = [..], axis = [..]`.
         let mut groups: Vec<(String, Vec<String>)> = Vec::new();
         for (k, t) in parts {
-            let name = k[joint.len()..].split('[').next().unwrap_or_default().to_string();
+            let name = k[joint.len()..]
+                .split('[')
+                .next()
+                .unwrap_or_default()
+                .to_string();
             match groups.last_mut() {
                 Some((g, v)) if *g == name => v.push(t),
                 _ => groups.push((name, vec![t])),
             }
         }
-        Some(groups.into_iter().map(|(g, v)| format!("{g} = [{}]", v.join(", "))).collect::<Vec<_>>().join(", "))
+        Some(
+            groups
+                .into_iter()
+                .map(|(g, v)| format!("{g} = [{}]", v.join(", ")))
+                .collect::<Vec<_>>()
+                .join(", "),
+        )
     }
 
     /// A problem the validated constructor refused (what the reader's own checks let
@@ -529,7 +546,11 @@ impl Scene {
         {
             return Err(error(format!(
                 "{}{} is outside the range of {}; {OUT_OF_RANGE}",
-                if num_traits::Signed::is_negative(q) { "−" } else { "" },
+                if num_traits::Signed::is_negative(q) {
+                    "−"
+                } else {
+                    ""
+                },
                 scale::magnitude(q),
                 T::NAME
             )));

@@ -5,16 +5,16 @@
 //! assembles the collision once (frames, inertances, Δ) and runs only the models listed; the
 //! report names the effects it simulated.
 
-use crate::mechanics::constraint::{Constrained, ConstraintError};
-use crate::report::{Report, Value};
-use crate::scene::scale::{finite, most_extreme, scale, unscale};
-use crate::impact::restitution::Model;
-use crate::scalar::Scalar;
-use crate::scene::{OUT_OF_RANGE, Scene, SceneError};
 use crate::impact::admissibility::{Inadmissible, energy_gain, verdicts};
 use crate::impact::problem::{Problem, Reason};
-use crate::impact::unilateral::{Activity, Law, UnilateralError};
+use crate::impact::restitution::Model;
 use crate::impact::solve::{Impact, Outcome, SolveError};
+use crate::impact::unilateral::{Activity, Law, UnilateralError};
+use crate::mechanics::constraint::{Constrained, ConstraintError};
+use crate::report::{Report, Value};
+use crate::scalar::Scalar;
+use crate::scene::scale::{finite, most_extreme, scale, unscale};
+use crate::scene::{OUT_OF_RANGE, Scene, SceneError};
 
 /// Why a scene could not be solved.
 #[derive(Debug, thiserror::Error)]
@@ -243,7 +243,10 @@ impl<T: Scalar> Assembled<T> {
             }
             Law::Unilateral => {
                 let a = self.impact.solve_unilateral(model, &mut outcome)?;
-                (energy_gain(&self.impact, &outcome).into_iter().collect(), Some(a))
+                (
+                    energy_gain(&self.impact, &outcome).into_iter().collect(),
+                    Some(a),
+                )
             }
         };
         Ok(ModelSolve {
@@ -285,7 +288,8 @@ impl<T: Scalar> Assembled<T> {
         // eq. 32: ΔE_c (from the momentum balance) = T⁰ − T (the kinetic energies), to the
         // rounding of T⁰ in floats.
         let problem = impact.problem();
-        let difference = impact.kinetic_before().clone() - problem.body().kinetic_energy(&out.velocity);
+        let difference =
+            impact.kinetic_before().clone() - problem.body().kinetic_energy(&out.velocity);
         let eq32 = (out.kinetic_energy_loss.clone() - difference).is_negligible(&scale, n);
         residual.is_negligible(&scale, n) && eq32
     }

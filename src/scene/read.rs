@@ -152,7 +152,9 @@ impl Reader<'_> {
         for (k, v) in t.iter() {
             if !known.contains(&k) {
                 // An empty or odd key is shown as TOML writes it (`""`), never as nothing.
-                let k = if k.is_empty() || k.contains(|c: char| !(c.is_alphanumeric() || c == '_' || c == '-')) {
+                let k = if k.is_empty()
+                    || k.contains(|c: char| !(c.is_alphanumeric() || c == '_' || c == '-'))
+                {
                     format!("{k:?}")
                 } else {
                     k.to_string()

@@ -112,7 +112,11 @@ pub fn scale(scene: &Scene) -> Option<(Scene, Units)> {
         for x in &mut contact.point {
             scale_number(x, -b);
         }
-        let e = contact.normal.as_ref().and_then(|n| largest(n.iter())).unwrap_or(0);
+        let e = contact
+            .normal
+            .as_ref()
+            .and_then(|n| largest(n.iter()))
+            .unwrap_or(0);
         if let Some(n) = &mut contact.normal {
             for x in n.iter_mut() {
                 scale_number(x, -e);
@@ -132,8 +136,11 @@ pub fn scale(scene: &Scene) -> Option<(Scene, Units)> {
         time: c,
         normals,
     };
-    (units.mass != 0 || units.length != 0 || units.time != 0 || units.normals.iter().any(|&e| e != 0))
-        .then_some((s, units))
+    (units.mass != 0
+        || units.length != 0
+        || units.time != 0
+        || units.normals.iter().any(|&e| e != 0))
+    .then_some((s, units))
 }
 
 /// x · 2^k in f64, exactly unless the result leaves the range (then ±∞ or 0).
@@ -164,7 +171,11 @@ fn point(p: &mut PointVelocity, k: i64) {
 pub fn unscale(report: &mut Report, u: &Units) {
     let (a, b, c) = (u.mass, u.length, u.time);
     let n = report.inertance.len() as i64;
-    for m in [&mut report.inertance, &mut report.inertance_yx, &mut report.inertance_zx] {
+    for m in [
+        &mut report.inertance,
+        &mut report.inertance_yx,
+        &mut report.inertance_zx,
+    ] {
         for row in m.iter_mut() {
             for g in row.iter_mut() {
                 times(g, -a);
@@ -210,7 +221,13 @@ pub fn unscale(report: &mut Report, u: &Units) {
 pub fn finite(report: &Report) -> bool {
     let ok = |v: &Value| v.f64.is_finite();
     let point = |p: &PointVelocity| p.components.iter().all(ok);
-    report.inertance.iter().chain(&report.inertance_yx).chain(&report.inertance_zx).flatten().all(ok)
+    report
+        .inertance
+        .iter()
+        .chain(&report.inertance_yx)
+        .chain(&report.inertance_zx)
+        .flatten()
+        .all(ok)
         && ok(&report.det)
         && report.contacts_before.iter().all(point)
         && report.models.iter().all(|m| {

@@ -4,13 +4,13 @@
 use serde_json::{Map, Value as Json, json};
 
 use crate::analysis::{Analysis, Classification, analyze, condition_number, largest_eigenvalue};
-use crate::mechanics::contact::Surd;
-use crate::scene::pipeline::{RunError, prepare};
-use crate::report::Value;
 use crate::impact::restitution::Model;
+use crate::impact::solve::Impact;
+use crate::mechanics::contact::Surd;
+use crate::report::Value;
 use crate::scalar::Scalar;
 use crate::scene::Scene;
-use crate::impact::solve::Impact;
+use crate::scene::pipeline::{RunError, prepare};
 
 /// The readout of an analysis, scalar-free.
 #[derive(Clone, Debug)]
@@ -108,7 +108,9 @@ pub fn analyze_scene<T: Scalar>(
     let det = Value::of(&(impact.det_hat().clone() / &norms));
     // The physical G: g_ij / (|x̂_i||x̂_j|), in f64 for its eigenvalues.
     let g: Vec<f64> = (0..n * n)
-        .map(|k| Surd::over_norm(&impact.g_hat()[k], &(norm2[k / n].clone() * &norm2[k % n])).to_f64())
+        .map(|k| {
+            Surd::over_norm(&impact.g_hat()[k], &(norm2[k / n].clone() * &norm2[k % n])).to_f64()
+        })
         .collect();
     // cond₂ = λ_max(G)·λ_max(G⁻¹) for a symmetric positive definite G. In exact types G⁻¹ is
     // computed exactly and then rounded, so its eigenvalues are accurate even when G is far
@@ -265,7 +267,10 @@ impl AnalysisReport {
                     && m.twist.as_deref().is_none_or(all)
                     && m.energies.as_ref().is_none_or(|e| all(e))
                     && m.unilateral.as_ref().map_or(true, |u| {
-                        all(&u.impulses) && all(&u.normal_velocities) && all(&u.twist) && all(&u.energies)
+                        all(&u.impulses)
+                            && all(&u.normal_velocities)
+                            && all(&u.twist)
+                            && all(&u.energies)
                     })
             })
     }
@@ -278,7 +283,9 @@ fn unilateral_report<T: Scalar>(
     norm2: &[T],
 ) -> Result<UnilateralReport, String> {
     let mut out = crate::impact::solve::Outcome::default();
-    let activity = impact.solve_unilateral(model, &mut out).map_err(|e| e.to_string())?;
+    let activity = impact
+        .solve_unilateral(model, &mut out)
+        .map_err(|e| e.to_string())?;
     Ok(UnilateralReport {
         active: crate::impact::unilateral::active(&out),
         impulses: out
@@ -294,7 +301,10 @@ fn unilateral_report<T: Scalar>(
             .map(|(v, w)| Value::surd(&Surd::over_norm(&v[0], w)))
             .collect(),
         twist: out.velocity.as_slice().iter().map(Value::of).collect(),
-        energies: [Value::of(&out.lost_velocity_energy), Value::of(&out.kinetic_energy_loss)],
+        energies: [
+            Value::of(&out.lost_velocity_energy),
+            Value::of(&out.kinetic_energy_loss),
+        ],
         impulses_unique: activity.impulses_unique,
         outcome_decided: activity.outcome_decided,
     })
@@ -302,7 +312,8 @@ fn unilateral_report<T: Scalar>(
 
 /// `[ω; v_C]` as text: `ω = (…), v_C = (…)`.
 fn twist_text(t: &[Value]) -> String {
-    let part = |r: std::ops::Range<usize>| t[r].iter().map(Value::text).collect::<Vec<_>>().join(", ");
+    let part =
+        |r: std::ops::Range<usize>| t[r].iter().map(Value::text).collect::<Vec<_>>().join(", ");
     format!("ω = ({}), v_C = ({})", part(0..3), part(3..6))
 }
 
@@ -477,9 +488,15 @@ impl AnalysisReport {
             }
             if let (Some(t), false) = (&m.twist, m.family.is_empty()) {
                 if m.twist_fixed {
-                    s += &format!("  velocities after impact (the same for the whole family): {}\n", twist_text(t));
+                    s += &format!(
+                        "  velocities after impact (the same for the whole family): {}\n",
+                        twist_text(t)
+                    );
                 } else {
-                    s += &format!("  velocities after impact (least-norm member; they vary): {}\n", twist_text(t));
+                    s += &format!(
+                        "  velocities after impact (least-norm member; they vary): {}\n",
+                        twist_text(t)
+                    );
                 }
             }
             if let Some([ep, de]) = &m.energies {
@@ -510,7 +527,10 @@ impl AnalysisReport {
             for v in &m.verdicts {
                 s += &format!("  ! {v}\n");
             }
-            s += &format!("  unilateral {} (complementarity, `--law unilateral`):\n", m.model);
+            s += &format!(
+                "  unilateral {} (complementarity, `--law unilateral`):\n",
+                m.model
+            );
             match &m.unilateral {
                 Err(why) => s += &format!("    {why}\n"),
                 Ok(u) => {
@@ -526,7 +546,11 @@ impl AnalysisReport {
                         );
                     }
                     s += &format!("    velocities after impact: {}\n", twist_text(&u.twist));
-                    s += &format!("    E_p = {}, ΔE_c = {}\n", u.energies[0].text(), u.energies[1].text());
+                    s += &format!(
+                        "    E_p = {}, ΔE_c = {}\n",
+                        u.energies[0].text(),
+                        u.energies[1].text()
+                    );
                     if !u.outcome_decided {
                         s += "    the law does not decide the outcome: the compression impulses form a set and the k_i differ, so the velocities after impact depend on which are taken; these are one possibility\n";
                     } else if !u.impulses_unique {

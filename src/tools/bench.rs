@@ -28,13 +28,13 @@ use num_traits::Signed;
 use serde_json::{Value as Json, json};
 
 use crate::analysis::analyze;
-use crate::scalar::dd::DoubleDouble;
-use crate::impact::restitution::Model;
-use crate::scalar::{Exact, Scalar};
-use crate::scene::Scene;
 use crate::impact::problem::Problem;
+use crate::impact::restitution::Model;
 use crate::impact::solve::{Impact, Outcome};
 use crate::impact::unilateral::{Activity, active};
+use crate::scalar::dd::DoubleDouble;
+use crate::scalar::{Exact, Scalar};
+use crate::scene::Scene;
 
 /// Options of a bench run.
 #[derive(Clone, Debug)]
@@ -289,8 +289,12 @@ fn solve_unilateral_all<T: Scalar>(
 ) -> Result<[Activity; 2], Timing> {
     impact.reassemble(p).map_err(|_| Timing::Singular)?;
     let jam = |_| Timing::Jammed;
-    let n = impact.solve_unilateral(Model::Newton, &mut outs[0]).map_err(jam)?;
-    let q = impact.solve_unilateral(Model::Poisson, &mut outs[1]).map_err(jam)?;
+    let n = impact
+        .solve_unilateral(Model::Newton, &mut outs[0])
+        .map_err(jam)?;
+    let q = impact
+        .solve_unilateral(Model::Poisson, &mut outs[1])
+        .map_err(jam)?;
     Ok([n, q])
 }
 
@@ -404,9 +408,8 @@ fn measure<T: Scalar>(well: &[Case], hard: &[Case], budget: Duration) -> ScalarR
         let (Ok(p), Some(exact)) = (scene.problem::<T>(), exact) else {
             continue;
         };
-        u_errors.push(
-            unilateral_outputs(&p).map_or(f64::INFINITY, |(o, _)| relative_error(&o, exact)),
-        );
+        u_errors
+            .push(unilateral_outputs(&p).map_or(f64::INFINITY, |(o, _)| relative_error(&o, exact)));
         if let Timing::Ns(t) = time_unilateral(&p, budget) {
             u_times.push(t);
         }
@@ -480,9 +483,9 @@ pub fn run(opts: &BenchOptions) -> BenchReport {
                 .problem::<Exact>()
                 .ok()
                 .and_then(|p| unilateral_outputs(&p));
-            if u.as_ref().is_some_and(|(_, act)| {
-                act.iter().any(|a| a.iter().any(|x| !x))
-            }) {
+            if u.as_ref()
+                .is_some_and(|(_, act)| act.iter().any(|a| a.iter().any(|x| !x)))
+            {
                 unilateral_differs += 1;
             }
             well.push((scene, e, u.map(|(o, _)| o)));
@@ -564,9 +567,19 @@ pub fn run(opts: &BenchOptions) -> BenchReport {
                     },
                 ],
                 active: if exact {
-                    active(scene.problem::<Exact>().ok().and_then(|p| unilateral_outputs(&p)))
+                    active(
+                        scene
+                            .problem::<Exact>()
+                            .ok()
+                            .and_then(|p| unilateral_outputs(&p)),
+                    )
                 } else {
-                    active(scene.problem::<f64>().ok().and_then(|p| unilateral_outputs(&p)))
+                    active(
+                        scene
+                            .problem::<f64>()
+                            .ok()
+                            .and_then(|p| unilateral_outputs(&p)),
+                    )
                 },
             })
         })

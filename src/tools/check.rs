@@ -71,14 +71,14 @@ use std::collections::{BTreeMap, BTreeSet};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
-use crate::number::{parse_decimal, parse_number};
-use crate::scene::pipeline::{RunError, Solved, run_with};
-use crate::report::{Report, Value};
 use crate::impact::restitution::Model;
 use crate::impact::unilateral::Law;
-use crate::scalar::{Exact, Scalar as _};
-use crate::scene::{Scene, parse_document, set_value};
+use crate::number::{parse_decimal, parse_number};
+use crate::report::{Report, Value};
 use crate::scalar::symbolic::RatFun;
+use crate::scalar::{Exact, Scalar as _};
+use crate::scene::pipeline::{RunError, Solved, run_with};
+use crate::scene::{Scene, parse_document, set_value};
 use num_bigint::BigInt;
 use num_rational::BigRational;
 use num_traits::Zero;
@@ -205,8 +205,10 @@ impl Derivation {
                                 .map(|s| s.trim().to_string())
                                 .filter(|s| !s.is_empty())
                                 .collect();
-                            if let Some(bad) =
-                                c.symbols.iter().find(|s| !crate::number::expr::is_symbol_name(s))
+                            if let Some(bad) = c
+                                .symbols
+                                .iter()
+                                .find(|s| !crate::number::expr::is_symbol_name(s))
                             {
                                 return Err(err(line_no, format!("`{bad}` is not a symbol name")));
                             }
@@ -625,8 +627,8 @@ fn split_printed(p: &str) -> Vec<String> {
 /// Is the closed form `p` (an expression in `symbols`) identical to the derived `v`? Exact:
 /// both sides are read into the symbolic field and compared by cross-multiplication.
 fn identical(p: &str, v: &Value, symbols: &[String]) -> Result<bool, String> {
-    let printed =
-        crate::scalar::symbolic::symbolic(p, symbols).map_err(|e| format!("the closed form `{p}`: {e}"))?;
+    let printed = crate::scalar::symbolic::symbolic(p, symbols)
+        .map_err(|e| format!("the closed form `{p}`: {e}"))?;
     let Some(derived) = v.exact.as_deref() else {
         return Ok(false);
     };
@@ -636,23 +638,28 @@ fn identical(p: &str, v: &Value, symbols: &[String]) -> Result<bool, String> {
 /// Is the printed condition `p` = 0 the derived compatibility condition `v` = 0, up to a
 /// nonzero constant factor (the same equation, however it is scaled or signed)?
 fn same_equation(p: &str, v: &Value, symbols: &[String]) -> Result<bool, String> {
-    let printed =
-        crate::scalar::symbolic::symbolic(p, symbols).map_err(|e| format!("the condition `{p}`: {e}"))?;
+    let printed = crate::scalar::symbolic::symbolic(p, symbols)
+        .map_err(|e| format!("the condition `{p}`: {e}"))?;
     if printed.is_zero() {
         return Ok(v.exact.as_deref() == Some("0"));
     }
     let Some(derived) = v.exact.as_deref() else {
         return Ok(false);
     };
-    Ok(crate::scalar::symbolic::symbolic(derived, symbols).is_ok_and(|d| {
-        let ratio = d / printed;
-        ratio.is_constant() && !ratio.is_zero()
-    }))
+    Ok(
+        crate::scalar::symbolic::symbolic(derived, symbols).is_ok_and(|d| {
+            let ratio = d / printed;
+            ratio.is_constant() && !ratio.is_zero()
+        }),
+    )
 }
 
 /// `newton.compatibility`, `poisson.compatibility`: for a singular family, the derived
 /// compatibility conditions z_kᵀ b = 0 (their left sides, factored), one per null vector.
-fn compatibility(family: Option<&crate::tools::derive::Singular>, q: &str) -> Result<Vec<Value>, String> {
+fn compatibility(
+    family: Option<&crate::tools::derive::Singular>,
+    q: &str,
+) -> Result<Vec<Value>, String> {
     let s = family.ok_or_else(|| {
         format!("`{q}`: the collision is not singular for every value of the symbols")
     })?;
@@ -733,7 +740,9 @@ fn agrees(p: &str, v: &Value, angle: bool) -> Result<bool, String> {
 fn agrees_with_expression(text: &str, v: &Value, angle: bool) -> Result<bool, String> {
     let not_a_value = || format!("`{text}` is neither a printed decimal nor an exact number");
     if angle {
-        return Err(format!("`{text}`: an angle is written as a decimal number of degrees"));
+        return Err(format!(
+            "`{text}`: an angle is written as a decimal number of degrees"
+        ));
     }
     let claimed = crate::scalar::symbolic::symbolic(text, &[]).map_err(|_| not_a_value())?;
     if !claimed.is_constant() {
@@ -849,7 +858,9 @@ pub fn lookup(r: &Report, q: &str) -> Result<Vec<Value>, String> {
                 "q" if r.constraints.is_some() => return Ok(mr.constraint_impulses.clone()),
                 "admissible" => return Ok(vec![flag(mr.inadmissible.is_empty())]),
                 "unique" => {
-                    return Ok(vec![flag(mr.activity.as_ref().is_none_or(|a| a.impulses_unique))]);
+                    return Ok(vec![flag(
+                        mr.activity.as_ref().is_none_or(|a| a.impulses_unique),
+                    )]);
                 }
                 "twist" => {
                     return Ok(mr
@@ -878,7 +889,10 @@ pub fn lookup(r: &Report, q: &str) -> Result<Vec<Value>, String> {
                         "`{q}`: which contacts are active is said by the unilateral law only"
                     ));
                 }
-                let a = mr.active.get(i).ok_or_else(|| format!("`{q}`: no contact {}", i + 1))?;
+                let a = mr
+                    .active
+                    .get(i)
+                    .ok_or_else(|| format!("`{q}`: no contact {}", i + 1))?;
                 return Ok(vec![flag(*a)]);
             }
             if let Some(v) = angle_value(&mr.contacts, name, &idx) {
@@ -1041,8 +1055,14 @@ mod tests {
     #[test]
     fn exact_numbers_claim_equality() {
         assert_eq!(agrees("89/450", &exact("89/450"), false), Ok(true));
-        assert_eq!(agrees("89/450", &exact("89/450 + 10^(-30)"), false), Ok(false));
-        assert_eq!(agrees("-25*sqrt(2)", &exact("-50/sqrt(2)"), false), Ok(true));
+        assert_eq!(
+            agrees("89/450", &exact("89/450 + 10^(-30)"), false),
+            Ok(false)
+        );
+        assert_eq!(
+            agrees("-25*sqrt(2)", &exact("-50/sqrt(2)"), false),
+            Ok(true)
+        );
         assert_eq!(agrees("-25*sqrt(2)", &exact("-35.36"), false), Ok(false));
         // In f64 (no exact text), 10⁻⁹ relative.
         assert_eq!(agrees("1/3", &Value::float(1.0 / 3.0), false), Ok(true));
@@ -1056,7 +1076,8 @@ mod tests {
     #[test]
     fn closed_forms_are_compared_as_rational_functions() {
         let syms: Vec<String> = ["m", "Jz", "y1"].iter().map(|s| s.to_string()).collect();
-        let derived = Value::of(&crate::scalar::symbolic::symbolic("(m*y1^2 + Jz)/(Jz*m)", &syms).unwrap());
+        let derived =
+            Value::of(&crate::scalar::symbolic::symbolic("(m*y1^2 + Jz)/(Jz*m)", &syms).unwrap());
         assert_eq!(identical("1/m + y1^2/Jz", &derived, &syms), Ok(true));
         assert_eq!(identical("1/m + y1/Jz", &derived, &syms), Ok(false));
         assert!(identical("1/m +", &derived, &syms).is_err());

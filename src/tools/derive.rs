@@ -24,14 +24,16 @@
 
 use serde_json::{Value as Json, json};
 
-use crate::scene::pipeline::{Assembled, RunError, assemble};
-use crate::report::{Report, Value};
 use crate::impact::restitution::Model;
-use crate::scalar::Scalar;
-use crate::scene::Scene;
-use crate::mechanics::screw::Screw;
 use crate::impact::solve::{Outcome, SolveError};
-use crate::scalar::symbolic::{Assumption, AssumptionKind, Factored, RatFun, factor, take_assumptions};
+use crate::mechanics::screw::Screw;
+use crate::report::{Report, Value};
+use crate::scalar::Scalar;
+use crate::scalar::symbolic::{
+    Assumption, AssumptionKind, Factored, RatFun, factor, take_assumptions,
+};
+use crate::scene::Scene;
+use crate::scene::pipeline::{Assembled, RunError, assemble};
 
 /// A symbolic derivation of a scene.
 #[derive(Clone, Debug)]

@@ -5,13 +5,13 @@
 
 #![allow(dead_code)]
 
-use inertance::mechanics::body::RigidBody;
-use inertance::mechanics::contact::Contact;
-use inertance::scalar::{Exact, Scalar, int};
-use inertance::mechanics::screw::{Screw, Vec3};
 use inertance::impact::problem::Problem;
 use inertance::impact::restitution::Model;
 use inertance::impact::solve::{Impact, Outcome, SolveError};
+use inertance::mechanics::body::RigidBody;
+use inertance::mechanics::contact::Contact;
+use inertance::mechanics::screw::{Screw, Vec3};
+use inertance::scalar::{Exact, Scalar, int};
 use num_bigint::BigInt;
 use num_traits::{Signed, Zero};
 use proptest::prelude::*;
@@ -91,19 +91,23 @@ pub fn convert<T: Scalar>(p: &Problem<Exact>) -> Problem<T> {
     let contacts = p
         .contacts()
         .iter()
-            .map(|k| Contact {
-                point: v(&k.point),
-                normal: v(&k.normal),
-                tangent: k.tangent.as_ref().map(v),
-                k_newton: c(&k.k_newton),
-                k_poisson: c(&k.k_poisson),
-            })
-            .collect();
+        .map(|k| Contact {
+            point: v(&k.point),
+            normal: v(&k.normal),
+            tangent: k.tangent.as_ref().map(v),
+            k_newton: c(&k.k_newton),
+            k_poisson: c(&k.k_poisson),
+        })
+        .collect();
     Problem::new(body, velocity, contacts).expect("rounding keeps a valid problem valid")
 }
 
 /// A problem in the paper's form, validated: `Problem::new(...).unwrap()` for fixtures.
-pub fn valid<T: Scalar>(body: RigidBody<T>, velocity: Screw<T>, contacts: Vec<Contact<T>>) -> Problem<T> {
+pub fn valid<T: Scalar>(
+    body: RigidBody<T>,
+    velocity: Screw<T>,
+    contacts: Vec<Contact<T>>,
+) -> Problem<T> {
     Problem::new(body, velocity, contacts).expect("a valid problem")
 }
 
@@ -178,7 +182,10 @@ pub fn enumerate(m: &[Exact], q: &[Exact]) -> Option<(Vec<Exact>, Vec<Exact>)> {
     for mask in 0u32..(1 << n) {
         let s: Vec<usize> = (0..n).filter(|i| mask >> i & 1 == 1).collect();
         let k = s.len();
-        let a = s.iter().flat_map(|&i| s.iter().map(move |&j| m[i * n + j].clone())).collect();
+        let a = s
+            .iter()
+            .flat_map(|&i| s.iter().map(move |&j| m[i * n + j].clone()))
+            .collect();
         let b = s.iter().map(|&i| -q[i].clone()).collect();
         let Some(zs) = gauss(a, b, k) else { continue };
         if zs.iter().any(|x| x.is_negative()) {

@@ -86,7 +86,11 @@ pub fn lemke_in<T: Scalar>(work: &mut LcpWork<T>, lcp: Lcp<'_, T>) -> Result<usi
             t.solution();
             return Ok(pivots + 1);
         }
-        entering = if leaving < n { leaving + n } else { leaving - n };
+        entering = if leaving < n {
+            leaving + n
+        } else {
+            leaving - n
+        };
         r = match t.ratio_test(entering) {
             Some(r) => r,
             None => return Err(LcpError::Ray { pivots: pivots + 1 }),
@@ -179,7 +183,10 @@ impl<'w, T: Scalar> Tableau<'w, T> {
                 Some(b) => {
                     // Compare (b_i, B⁻¹_i)/a_i against (b_b, B⁻¹_b)/a_b component by component.
                     let order = std::iter::once(rhs).chain(0..n).find_map(|j| {
-                        let (x, y) = (self.at(i, j).clone() / a, self.at(b, j).clone() / self.at(b, c));
+                        let (x, y) = (
+                            self.at(i, j).clone() / a,
+                            self.at(b, j).clone() / self.at(b, c),
+                        );
                         let d = x.clone() - &y;
                         let reference = if x.abs_gt(&y) { x } else { y };
                         (!d.is_negligible(&reference, 4 * n)).then(|| d.signum_i8())
@@ -244,9 +251,15 @@ mod tests {
     #[test]
     fn an_infeasible_problem_ends_on_a_ray() {
         // M = 0 with q < 0: w = q < 0 for every z.
-        assert!(matches!(solve(&[0, 0, 0, 0], &[-1, 2]), Err(LcpError::Ray { .. })));
+        assert!(matches!(
+            solve(&[0, 0, 0, 0], &[-1, 2]),
+            Err(LcpError::Ray { .. })
+        ));
         // Singular M: z₁ and z₂ push against each other, w₁ + w₂ = q₁ + q₂ < 0 always.
-        assert!(matches!(solve(&[1, -1, -1, 1], &[-1, -1]), Err(LcpError::Ray { .. })));
+        assert!(matches!(
+            solve(&[1, -1, -1, 1], &[-1, -1]),
+            Err(LcpError::Ray { .. })
+        ));
     }
 
     #[test]

@@ -9,10 +9,10 @@ use num_bigint::BigInt;
 use num_rational::BigRational;
 use num_traits::{One, Signed, ToPrimitive, Zero};
 
+use super::{Poly, RatFun};
 use crate::number::expr::{Func, Kind, MAX_DECIMAL_EXPONENT, Node, Op};
 use crate::number::{self, MAX_EXACT_BITS, NumberError, exact_root};
 use crate::scalar::Scalar;
-use super::{Poly, RatFun};
 
 /// Values with more terms than this (numerator and denominator factors together) are refused.
 const MAX_TERMS: usize = 10_000;

@@ -685,7 +685,9 @@ impl Scalar for RatFun {
     fn from_number(n: &crate::number::Number) -> Result<Self, String> {
         match &n.exact {
             Ok(q) => Ok(RatFun::constant(q.clone())),
-            Err(_) => crate::scalar::symbolic::symbolic(&n.text, &n.symbols).map_err(|e| e.to_string()),
+            Err(_) => {
+                crate::scalar::symbolic::symbolic(&n.text, &n.symbols).map_err(|e| e.to_string())
+            }
         }
     }
 

@@ -248,9 +248,18 @@ pub(super) fn status(report: &crate::report::Report) -> String {
     let names = ["tensile", "separating", "still-approaching", "energy-gain"];
     let found: Vec<&str> = names
         .into_iter()
-        .filter(|n| report.models.iter().any(|m| m.inadmissible.iter().any(|v| v.name() == *n)))
+        .filter(|n| {
+            report
+                .models
+                .iter()
+                .any(|m| m.inadmissible.iter().any(|v| v.name() == *n))
+        })
         .collect();
-    if found.is_empty() { "ok".to_string() } else { found.join("+") }
+    if found.is_empty() {
+        "ok".to_string()
+    } else {
+        found.join("+")
+    }
 }
 
 #[cfg(test)]
