@@ -490,13 +490,8 @@ impl<T: Scalar> Impact<T> {
                 })
             })
             .collect();
-        let x = lemke(Lcp { m: g, q: &q }).map_err(|e| match e {
-            LcpError::Ray { .. } => UnilateralError::Jammed { phase: "expansion" },
-            LcpError::IterationLimit { pivots } => UnilateralError::IterationLimit {
-                phase: "expansion",
-                pivots,
-            },
-        })?;
+        let mut x = LcpWork::default();
+        run(&mut x, g, &q, "expansion")?;
         let mut out = Outcome {
             impulses_hat: base.into_iter().zip(x.z).map(|(b, x)| b + x).collect(),
             compression_hat: pc.to_vec(),

@@ -13,7 +13,7 @@ use crate::impact::unilateral::{Activity, Law, UnilateralError};
 use crate::mechanics::constraint::{Constrained, ConstraintError};
 use crate::report::{Report, Value};
 use crate::scalar::Scalar;
-use crate::scene::scale::{finite, most_extreme, scale, unscale};
+use crate::scene::scale::{finite, scale, unrepresentable, unscale};
 use crate::scene::{OUT_OF_RANGE, Scene, SceneError};
 
 /// Why a scene could not be solved.
@@ -62,17 +62,11 @@ pub fn run_with<T: Scalar>(
         return run_as_written::<T>(scene, models, allow_singular);
     }
     let unrepresentable = || {
-        let (key, value) = most_extreme(scene).unwrap_or_default();
-        RunError::Scene(SceneError {
-            file: scene.file.clone(),
-            key,
-            value: Some(value),
-            message: format!(
-                "the scene's numbers span more than {} can hold, even in units of mass, length \
-                 and time scaled to the scene; this number sets the extreme scale — {OUT_OF_RANGE}",
-                T::NAME
-            ),
-        })
+        RunError::Scene(unrepresentable(
+            scene,
+            T::NAME,
+            ", even in units of mass, length and time scaled to the scene",
+        ))
     };
     let out_of_range =
         |e: &RunError| matches!(e, RunError::Scene(s) if s.message.ends_with(OUT_OF_RANGE));
@@ -119,17 +113,11 @@ pub fn run_prepared<T: Scalar>(
 ) -> Result<Solved, RunError> {
     let solved = run_prepared_with(scene, problem, models, false)?;
     if !T::IS_EXACT && !finite(&solved.report) {
-        let (key, value) = most_extreme(scene).unwrap_or_default();
-        return Err(RunError::Scene(SceneError {
-            file: scene.file.clone(),
-            key,
-            value: Some(value),
-            message: format!(
-                "a result is not representable in {} in the scene's units; this number sets the \
-                 extreme scale — solve it through the scene's own path (which scales it) or {OUT_OF_RANGE}",
-                T::NAME
-            ),
-        }));
+        return Err(RunError::Scene(unrepresentable(
+            scene,
+            T::NAME,
+            " in the scene's units (`run_with` scales them)",
+        )));
     }
     Ok(solved)
 }

@@ -256,6 +256,22 @@ pub fn most_extreme(scene: &Scene) -> Option<(String, String)> {
         .map(|(_, k, t)| (k, t))
 }
 
+/// The refusal of a float result that is not representable: the scene's numbers span more than
+/// the type `name` can hold (`how`: in which units it was tried); names the input farthest from 1.
+pub fn unrepresentable(scene: &Scene, name: &str, how: &str) -> super::SceneError {
+    let (key, value) = most_extreme(scene).unwrap_or_default();
+    super::SceneError {
+        file: scene.file.clone(),
+        key,
+        value: Some(value),
+        message: format!(
+            "the scene's numbers span more than {name} can hold{how}; this number sets the \
+             extreme scale — {}",
+            super::OUT_OF_RANGE
+        ),
+    }
+}
+
 /// |q| as a power of two, for messages.
 pub fn magnitude(q: &BigRational) -> String {
     exponent(&q.abs()).map_or("0".into(), |e| format!("2^{e}"))

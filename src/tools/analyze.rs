@@ -237,18 +237,11 @@ pub fn analyze_scene<T: Scalar>(
     };
     if !report.finite() {
         // Never an ∞ or NaN where a number belongs: the scene spans more than T holds.
-        let (key, value) = crate::scene::scale::most_extreme(scene).unwrap_or_default();
-        return Err(RunError::Scene(crate::scene::SceneError {
-            file: scene.file.clone(),
-            key,
-            value: Some(value),
-            message: format!(
-                "the scene's numbers span more than {} can hold; this number sets the extreme \
-                 scale — {}",
-                T::NAME,
-                crate::scene::OUT_OF_RANGE
-            ),
-        }));
+        return Err(RunError::Scene(crate::scene::scale::unrepresentable(
+            scene,
+            T::NAME,
+            "",
+        )));
     }
     Ok(report)
 }
