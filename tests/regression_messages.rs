@@ -1,23 +1,16 @@
 //! Regressions from a fuzz of the CLI (issue 16): messages that named no key, no value, a wrong
 //! reason, or a wrong line.
 
+mod common;
+
+use common::SceneFile;
 use std::process::{Command, Output};
 
 const SCENE: &str = include_str!("../examples/planar-bar.toml");
 
+/// Run `inertance args[0] FILE args[1..]` on `text` written to a scratch file.
 fn run(args: &[&str], text: &str, name: &str) -> Output {
-    let dir = std::env::temp_dir().join(format!("inertance-msg-{}-{name}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let path = dir.join("scene.toml");
-    std::fs::write(&path, text).unwrap();
-    let mut all = vec![args[0], path.to_str().unwrap()];
-    all.extend(&args[1..]);
-    let out = Command::new(env!("CARGO_BIN_EXE_inertance"))
-        .args(&all)
-        .output()
-        .unwrap();
-    let _ = std::fs::remove_dir_all(&dir);
-    out
+    SceneFile::new(&format!("msg-{name}"), text).run(args)
 }
 
 fn stderr(o: &Output) -> String {

@@ -5,7 +5,10 @@
 //! chosen from its own numbers (exact), scale the report back, and refuse — naming the input
 //! farthest from 1 — whatever is still not representable. Never a NaN or ∞ with status 0.
 
-use std::process::{Command, Output};
+mod common;
+
+use common::SceneFile;
+use std::process::Output;
 
 const SCENE: &str = r#"
 [body]
@@ -43,19 +46,12 @@ fn example_3(m: i32, l: i32, t: i32, n: i32) -> String {
 }
 
 fn solve(text: &str, name: &str, exact: bool) -> (Output, Option<serde_json::Value>) {
-    let dir = std::env::temp_dir().join(format!("inertance-range-{}-{name}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let path = dir.join("scene.toml");
-    std::fs::write(&path, text).unwrap();
-    let mut args = vec!["solve", path.to_str().unwrap(), "--json"];
-    if exact {
-        args.push("--exact");
-    }
-    let out = Command::new(env!("CARGO_BIN_EXE_inertance"))
-        .args(&args)
-        .output()
-        .unwrap();
-    let _ = std::fs::remove_dir_all(&dir);
+    let args: &[&str] = if exact {
+        &["solve", "--json", "--exact"]
+    } else {
+        &["solve", "--json"]
+    };
+    let out = SceneFile::new(&format!("range-{name}"), text).run(args);
     let json = out
         .status
         .success()

@@ -2,7 +2,9 @@
 //! binary: no inadmissible number is printed without a warning; `--law unilateral` gives the
 //! physical answer, checked against values derived by hand; a jammed body is a verdict.
 
-use std::path::PathBuf;
+mod common;
+
+use common::SceneFile as Scene;
 use std::process::{Command, Output};
 
 /// The paper's Example 3 with the bar pitching at ω_z = 0.7 rad/s: v_1x⁰ = 3 + 2·0.7 = 4.4,
@@ -44,39 +46,6 @@ normal = [-1, 0, 0]
 k = 0.5
 "#;
 
-struct Scene {
-    dir: PathBuf,
-    path: PathBuf,
-}
-
-impl Scene {
-    fn new(name: &str, text: &str) -> Scene {
-        let dir = std::env::temp_dir().join(format!(
-            "inertance-unilateral-{}-{name}",
-            std::process::id()
-        ));
-        std::fs::create_dir_all(&dir).unwrap();
-        let path = dir.join("scene.toml");
-        std::fs::write(&path, text).unwrap();
-        Scene { dir, path }
-    }
-
-    fn run(&self, args: &[&str]) -> Output {
-        let mut all = vec![args[0], self.path.to_str().unwrap()];
-        all.extend(&args[1..]);
-        Command::new(env!("CARGO_BIN_EXE_inertance"))
-            .args(&all)
-            .output()
-            .unwrap()
-    }
-}
-
-impl Drop for Scene {
-    fn drop(&mut self) {
-        let _ = std::fs::remove_dir_all(&self.dir);
-    }
-}
-
 fn stdout_json(out: &Output) -> serde_json::Value {
     assert!(
         out.status.success(),
@@ -88,7 +57,7 @@ fn stdout_json(out: &Output) -> serde_json::Value {
 
 #[test]
 fn a_tensile_simultaneous_answer_is_never_silent() {
-    let s = Scene::new("tensile", PITCHING);
+    let s = Scene::new("unilateral-tensile", PITCHING);
     for exact in [false, true] {
         let args: &[&str] = if exact {
             &["solve", "--exact", "--json"]
@@ -116,7 +85,7 @@ fn a_tensile_simultaneous_answer_is_never_silent() {
         }
     }
     // The admissible Example 3 (ω_z = 0.4) has no warning.
-    let ok = Scene::new("ok", &PITCHING.replace("0.7]", "0.4]"));
+    let ok = Scene::new("unilateral-ok", &PITCHING.replace("0.7]", "0.4]"));
     let out = ok.run(&["solve"]);
     assert!(
         out.status.success() && out.stderr.is_empty(),
@@ -127,7 +96,7 @@ fn a_tensile_simultaneous_answer_is_never_silent() {
 
 #[test]
 fn the_unilateral_law_gives_the_physical_answer() {
-    let s = Scene::new("unilateral", PITCHING);
+    let s = Scene::new("unilateral-unilateral", PITCHING);
     let j = stdout_json(&s.run(&["solve", "--exact", "--json", "--law", "unilateral"]));
     assert!(
         j["effects"]
@@ -167,7 +136,7 @@ fn the_unilateral_law_gives_the_physical_answer() {
 
 #[test]
 fn a_jammed_body_is_a_verdict_not_a_number() {
-    let s = Scene::new("jammed", JAMMED);
+    let s = Scene::new("unilateral-jammed", JAMMED);
     for args in [
         &["solve", "--law", "unilateral"][..],
         &["solve", "--law", "unilateral", "--exact"],
@@ -208,7 +177,7 @@ fn the_obstacles_normal_given_by_mistake_gets_a_hint() {
 
 #[test]
 fn analyze_shows_the_unilateral_resolution_and_exits_2_on_bad_input() {
-    let s = Scene::new("analyze", PITCHING);
+    let s = Scene::new("unilateral-analyze", PITCHING);
     let out = s.run(&["analyze", "--exact"]);
     let text = String::from_utf8_lossy(&out.stdout);
     assert!(out.status.success());
@@ -251,8 +220,8 @@ fn analyze_prints_the_fixed_velocities_of_a_singular_family() {
 
 #[test]
 fn sweep_status_names_the_inadmissible_points() {
-    let s = Scene::new("sweep", PITCHING);
-    let csv = s.dir.join("s.csv");
+    let s = Scene::new("unilateral-sweep", PITCHING);
+    let csv = s.dir().join("s.csv");
     // ω_z from 0.4 to 0.7: v_2x⁰ = 3 − 4ω > 0 throughout; by eq. 20 the Newton impulse
     // P₂ = (4/3·1.2(3 − 4ω) − 1/3·1.3(3 + 2ω))/3 vanishes where 4.8(3 − 4ω) = 1.3(3 + 2ω),
     // ω = 10.5/21.8 = 105/218 ≈ 0.482.
@@ -314,7 +283,7 @@ fn box_scene(k: [&str; 4]) -> String {
 
 #[test]
 fn a_box_landing_flat_has_unique_velocities_and_least_norm_impulses() {
-    let s = Scene::new("box", &box_scene(["0.5"; 4]));
+    let s = Scene::new("unilateral-box", &box_scene(["0.5"; 4]));
     let j = stdout_json(&s.run(&[
         "solve",
         "--exact",
@@ -333,7 +302,10 @@ fn a_box_landing_flat_has_unique_velocities_and_least_norm_impulses() {
     assert_eq!(m["impulses_unique"], false);
     assert_eq!(m["outcome_decided"], true);
     // Unequal k under Poisson: the law does not decide; never one number as the answer.
-    let s = Scene::new("box-poisson", &box_scene(["0.7", "0.3", "0.7", "0.3"]));
+    let s = Scene::new(
+        "unilateral-box-poisson",
+        &box_scene(["0.7", "0.3", "0.7", "0.3"]),
+    );
     let out = s.run(&[
         "solve",
         "--exact",
@@ -436,7 +408,7 @@ fn jamming_needs_restitution_at_an_approaching_contact() {
     // The characterisation (docs of impact::unilateral): infeasible iff some y ≥ 0 in ker G has
     // y_i > 0 at an approaching contact with k_i > 0. Here ker G = span(1, 1) and contact 1
     // approaches: with k = 0 the body just stops (no jam), with k = 1/2 it jams.
-    let plastic = Scene::new("plastic", &JAMMED.replace("k = 0.5", "k = 0"));
+    let plastic = Scene::new("unilateral-plastic", &JAMMED.replace("k = 0.5", "k = 0"));
     let j = stdout_json(&plastic.run(&[
         "solve",
         "--exact",
@@ -451,7 +423,7 @@ fn jamming_needs_restitution_at_an_approaching_contact() {
         serde_json::json!(["0", "0", "0"])
     );
     // Poisson is never jammed (its right-hand sides are orthogonal to ker G).
-    let s = Scene::new("poisson-jam", JAMMED);
+    let s = Scene::new("unilateral-poisson-jam", JAMMED);
     let out = s.run(&[
         "solve",
         "--exact",

@@ -202,3 +202,43 @@ pub fn enumerate(m: &[Exact], q: &[Exact]) -> Option<(Vec<Exact>, Vec<Exact>)> {
     }
     None
 }
+
+/// A scene file in a fresh temporary directory, removed when dropped; `run` calls the binary
+/// with the file as the subcommand's first argument.
+pub struct SceneFile {
+    dir: std::path::PathBuf,
+    /// The file.
+    pub path: std::path::PathBuf,
+}
+
+impl SceneFile {
+    /// Write `text` to a new directory named after the test (`name`) and this process.
+    pub fn new(name: &str, text: &str) -> SceneFile {
+        let dir = std::env::temp_dir().join(format!("inertance-{name}-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("scene.toml");
+        std::fs::write(&path, text).unwrap();
+        SceneFile { dir, path }
+    }
+
+    /// The directory, for a command's other output files.
+    pub fn dir(&self) -> &std::path::Path {
+        &self.dir
+    }
+
+    /// `inertance args[0] FILE args[1..]`.
+    pub fn run(&self, args: &[&str]) -> std::process::Output {
+        let mut all = vec![args[0], self.path.to_str().unwrap()];
+        all.extend(&args[1..]);
+        std::process::Command::new(env!("CARGO_BIN_EXE_inertance"))
+            .args(&all)
+            .output()
+            .unwrap()
+    }
+}
+
+impl Drop for SceneFile {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_dir_all(&self.dir);
+    }
+}
