@@ -36,7 +36,9 @@ fn contact(
         normal,
         tangent,
         k_newton: k.clone(),
-        k_poisson: k,
+        k_poisson: k.clone(),
+        k_energetic: k,
+        mu: Exact::zero(),
     }
 }
 
@@ -126,8 +128,8 @@ proptest! {
     ) {
         let ((a1, b1), (a2, b2)) = (circle(&t1), circle(&t2));
         let p = valid(RigidBody { mass: m.clone(), inertia: v3(jx, jy, jz.clone()) }, Screw::new(v3(zero(), zero(), w.clone()), v3(vx.clone(), vy.clone(), zero())), vec![
-                Contact { point: v3(x1.clone(), y1.clone(), zero()), normal: v3(a1.clone(), b1.clone(), zero()), tangent: None, k_newton: k1.clone(), k_poisson: k1.clone() },
-                Contact { point: v3(x2.clone(), y2.clone(), zero()), normal: v3(a2.clone(), b2.clone(), zero()), tangent: None, k_newton: k2.clone(), k_poisson: k2.clone() },
+                Contact { point: v3(x1.clone(), y1.clone(), zero()), normal: v3(a1.clone(), b1.clone(), zero()), tangent: None, k_newton: k1.clone(), k_poisson: k1.clone(), k_energetic: k1.clone(), mu: zero() },
+                Contact { point: v3(x2.clone(), y2.clone(), zero()), normal: v3(a2.clone(), b2.clone(), zero()), tangent: None, k_newton: k2.clone(), k_poisson: k2.clone(), k_energetic: k2.clone(), mu: zero() },
             ]);
         let f11 = x1 * &b1 - y1 * &a1;
         let f21 = x2 * &b2 - y2 * &a2;

@@ -189,6 +189,8 @@ fn example_5(
         tangent: None,
         k_newton: zero(),
         k_poisson: zero(),
+        k_energetic: zero(),
+        mu: zero(),
     };
     // The admissible twist: ω = 1 about OZ at O, {v⁰} = D = [0 0 1 −l 0 0].
     let p = valid(

@@ -65,6 +65,8 @@ fn scene(n: usize, shift: f64) -> Problem<f64> {
                 tangent: None,
                 k_newton: 0.3,
                 k_poisson: 0.6,
+                k_energetic: 0.6,
+                mu: 0.0,
             }
         })
         .collect();

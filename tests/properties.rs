@@ -271,6 +271,8 @@ fn singular_g_is_detected_exactly() {
         tangent: None,
         k_newton: Exact::zero(),
         k_poisson: Exact::zero(),
+        k_energetic: Exact::zero(),
+        mu: Exact::zero(),
     };
     let p = valid(
         inertance::mechanics::body::RigidBody {

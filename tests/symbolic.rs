@@ -49,7 +49,9 @@ fn contact<T: Scalar>(point: Vec3<T>, k: T) -> Contact<T> {
         normal: v3(T::one(), T::zero(), T::zero()),
         tangent: Some(v3(T::zero(), T::one(), T::zero())),
         k_newton: k.clone(),
-        k_poisson: k,
+        k_poisson: k.clone(),
+        k_energetic: k,
+        mu: T::zero(),
     }
 }
 
@@ -379,6 +381,8 @@ fn sphere_at_two_points_with_a_symbolic_angle() {
         tangent: Some(tangent),
         k_newton: k.clone(),
         k_poisson: k.clone(),
+        k_energetic: k.clone(),
+        mu: RatFun::zero(),
     };
     let problem = valid(
         RigidBody {

@@ -8,9 +8,11 @@
 //! and the one-call [`solution::solve`] · [`unilateral`]: the laws in inequality form, as
 //! complementarity problems, for when the simultaneous hypothesis fails · [`admissibility`]:
 //! whether a simultaneous answer is physical (tensile, separating, still approaching, energy
-//! gain).
+//! gain) · [`friction`]: Coulomb friction (§14), the impact integrated in impulse space —
+//! exactly, event by event, for planar scenes; adaptively in floats for spatial ones.
 
 pub mod admissibility;
+pub mod friction;
 pub mod problem;
 pub mod restitution;
 pub mod solution;

@@ -75,6 +75,10 @@ pub enum Field {
     KNewton(usize),
     /// `contact[i].k_poisson`: Poisson's coefficient k_i^P.
     KPoisson(usize),
+    /// `contact[i].k_energetic`: Stronge's energetic coefficient k_i^E.
+    KEnergetic(usize),
+    /// `contact[i].mu`: Coulomb's coefficient of friction μ_i.
+    Mu(usize),
     /// `constraints`: the free and blocked screws, or the joints.
     Constraints,
 }
@@ -92,6 +96,8 @@ impl fmt::Display for Field {
             Field::Tangent(i) => write!(f, "contact[{i}].tangent"),
             Field::KNewton(i) => write!(f, "contact[{i}].k_newton"),
             Field::KPoisson(i) => write!(f, "contact[{i}].k_poisson"),
+            Field::KEnergetic(i) => write!(f, "contact[{i}].k_energetic"),
+            Field::Mu(i) => write!(f, "contact[{i}].mu"),
             Field::Constraints => write!(f, "constraints"),
         }
     }
@@ -109,6 +115,9 @@ pub enum Reason {
     /// A normal or tangent that is the zero vector.
     #[error("is the zero vector: an axis needs a direction")]
     ZeroVector,
+    /// A coefficient of friction < 0.
+    #[error("must not be negative (0: frictionless)")]
+    Negative,
     /// A coefficient of restitution outside [0, 1].
     #[error("must lie in [0, 1] (0: plastic, 1: elastic)")]
     OutsideUnitInterval,
@@ -237,6 +246,11 @@ impl<T: Scalar> Problem<T> {
             }
             coefficient(&c.k_newton, Field::KNewton(i))?;
             coefficient(&c.k_poisson, Field::KPoisson(i))?;
+            coefficient(&c.k_energetic, Field::KEnergetic(i))?;
+            finite(&c.mu, Field::Mu(i))?;
+            if c.mu.known_sign() == Some(-1) {
+                return Err(invalid(Field::Mu(i), Reason::Negative));
+            }
         }
         Ok(Problem {
             body,
@@ -338,6 +352,8 @@ mod tests {
             tangent: None,
             k_newton: int(0),
             k_poisson: int(1),
+            k_energetic: int(1),
+            mu: int(0),
         }
     }
 

@@ -213,65 +213,6 @@ pub fn determinant<T: Scalar>(a: &[T], n: usize) -> T {
     det
 }
 
-/// A basis of the null space {x : A x = 0} of the `rows × cols` matrix `a` (row-major), by
-/// reduced row echelon form with partial pivoting. Exact types decide every pivot exactly;
-/// floats treat |pivot| ≤ cols·ε·max|a_ij| as zero. Returns the rank and the basis (one
-/// vector per free column, with a 1 in that column): field-only, so rational input gives a
-/// rational basis.
-pub fn null_space<T: Scalar>(a: &[T], rows: usize, cols: usize) -> (usize, Vec<Vec<T>>) {
-    let mut m: Vec<T> = a.to_vec();
-    let mut scale = T::zero();
-    for x in &m {
-        if x.abs_gt(&scale) {
-            scale = x.clone();
-        }
-    }
-    let mut pivots: Vec<usize> = Vec::new();
-    let mut r = 0;
-    for c in 0..cols {
-        if r == rows {
-            break;
-        }
-        let mut p = r;
-        for i in r + 1..rows {
-            if m[i * cols + c].abs_gt(&m[p * cols + c]) {
-                p = i;
-            }
-        }
-        if m[p * cols + c].is_negligible(&scale, cols) {
-            continue;
-        }
-        for j in 0..cols {
-            m.swap(r * cols + j, p * cols + j);
-        }
-        let piv = m[r * cols + c].clone();
-        for j in 0..cols {
-            m[r * cols + j] /= &piv;
-        }
-        for i in 0..rows {
-            if i != r && !m[i * cols + c].is_zero() {
-                let f = m[i * cols + c].clone();
-                for j in 0..cols {
-                    let t = f.clone() * &m[r * cols + j];
-                    m[i * cols + j] -= t;
-                }
-            }
-        }
-        pivots.push(c);
-        r += 1;
-    }
-    let mut basis = Vec::new();
-    for free in (0..cols).filter(|c| !pivots.contains(c)) {
-        let mut x = vec![T::zero(); cols];
-        x[free] = T::one();
-        for (k, &pc) in pivots.iter().enumerate() {
-            x[pc] = -m[k * cols + free].clone();
-        }
-        basis.push(x);
-    }
-    (r, basis)
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;

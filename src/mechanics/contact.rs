@@ -37,6 +37,11 @@ pub struct Contact<T: Scalar> {
     pub k_newton: T,
     /// Poisson's coefficient k_i^P (eq. 23).
     pub k_poisson: T,
+    /// Stronge's energetic coefficient k_i^E: the restitution work at the contact is k_i^E²
+    /// times its compression work ([`crate::impact::friction`]).
+    pub k_energetic: T,
+    /// Coulomb's coefficient of friction μ_i ≥ 0 (§14; 0: frictionless, the paper's §2–13).
+    pub mu: T,
 }
 
 impl<T: Scalar> Contact<T> {
@@ -48,13 +53,27 @@ impl<T: Scalar> Contact<T> {
             normal,
             tangent: None,
             k_newton: k.clone(),
-            k_poisson: k,
+            k_poisson: k.clone(),
+            k_energetic: k,
+            mu: T::zero(),
         }
     }
 
     /// The same contact with the axis y_i imposed (perpendicular to the normal).
     pub fn with_tangent(mut self, tangent: Vec3<T>) -> Self {
         self.tangent = Some(tangent);
+        self
+    }
+
+    /// The same contact with Coulomb friction of coefficient μ_i (§14).
+    pub fn with_friction(mut self, mu: T) -> Self {
+        self.mu = mu;
+        self
+    }
+
+    /// The same contact with Stronge's energetic coefficient k_i^E given separately.
+    pub fn with_energetic(mut self, k_energetic: T) -> Self {
+        self.k_energetic = k_energetic;
         self
     }
 
@@ -268,6 +287,8 @@ mod tests {
             tangent: t,
             k_newton: int(0),
             k_poisson: int(0),
+            k_energetic: int(0),
+            mu: int(0),
         }
     }
 

@@ -216,6 +216,8 @@ impl Scene {
             }
             v.push((format!("contact[{c}].k_newton"), &spec.k_newton));
             v.push((format!("contact[{c}].k_poisson"), &spec.k_poisson));
+            v.push((format!("contact[{c}].k_energetic"), &spec.k_energetic));
+            v.push((format!("contact[{c}].mu"), &spec.mu));
         }
         match &self.constraints {
             None => {}
@@ -288,6 +290,8 @@ impl Scene {
                 },
                 k_newton: num(&c.k_newton, &key("k_newton"))?,
                 k_poisson: num(&c.k_poisson, &key("k_poisson"))?,
+                k_energetic: num(&c.k_energetic, &key("k_energetic"))?,
+                mu: num(&c.mu, &key("mu"))?,
             });
         }
         Problem::new(body, velocity, contacts).map_err(|e| self.invalid(e))

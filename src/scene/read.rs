@@ -315,6 +315,23 @@ impl Reader<'_> {
         }
     }
 
+    /// Refuse a negative coefficient of friction.
+    pub(super) fn friction(&self, n: Number, key: &str) -> Result<Number, SceneError> {
+        let ok = match &n.exact {
+            Ok(q) => !q.is_negative(),
+            Err(_) => !n.symbols.is_empty() || n.approx >= 0.0,
+        };
+        if ok {
+            Ok(n)
+        } else {
+            Err(self.err(
+                key,
+                Some(n.text.clone()),
+                "a coefficient of friction must not be negative (0: frictionless)",
+            ))
+        }
+    }
+
     /// Refuse the zero vector (`what` names it).
     pub(super) fn nonzero(&self, t: &[Number; 3], key: &str, what: &str) -> Result<(), SceneError> {
         let zero = t.iter().all(|n| match &n.exact {

@@ -36,6 +36,10 @@ pub struct ContactSpec {
     pub k_newton: Number,
     /// k_i^P.
     pub k_poisson: Number,
+    /// k_i^E (Stronge's energetic coefficient): `k_energetic`, else `k`, else `k_poisson`.
+    pub k_energetic: Number,
+    /// μ_i, Coulomb's coefficient of friction (`mu`, default 0).
+    pub mu: Number,
 }
 
 /// The kinds of joint a scene may declare (see [`crate::mechanics::constraint::Joint`]).
@@ -187,6 +191,8 @@ impl Reader<'_> {
                 "k",
                 "k_newton",
                 "k_poisson",
+                "k_energetic",
+                "mu",
                 "name",
             ],
         )?;
@@ -217,6 +223,7 @@ impl Reader<'_> {
             }
         };
         let (k, kn, kp) = (k_of("k")?, k_of("k_newton")?, k_of("k_poisson")?);
+        let ke = k_of("k_energetic")?;
         let (k_newton, k_poisson) = match (k, kn, kp) {
             (Some(k), None, None) => (k.clone(), k),
             (None, Some(n), Some(p)) => (n, p),
@@ -237,12 +244,22 @@ impl Reader<'_> {
                 ));
             }
         };
+        let k_energetic = ke.unwrap_or_else(|| k_poisson.clone());
+        let mu = match t.get("mu") {
+            None => crate::number::parse_number("0").expect("0 is a number"),
+            Some(item) => {
+                let path = format!("{at}.mu");
+                self.friction(self.number(item, &path)?, &path)?
+            }
+        };
         Ok(ContactSpec {
             point,
             normal,
             tangent,
             k_newton,
             k_poisson,
+            k_energetic,
+            mu,
         })
     }
 

@@ -62,7 +62,9 @@ pub fn contact() -> impl Strategy<Value = Contact<Exact>> {
         normal: n,
         tangent: None,
         k_newton: kn,
-        k_poisson: kp,
+        k_poisson: kp.clone(),
+        k_energetic: kp,
+        mu: Exact::zero(),
     })
 }
 
@@ -97,6 +99,8 @@ pub fn convert<T: Scalar>(p: &Problem<Exact>) -> Problem<T> {
             tangent: k.tangent.as_ref().map(v),
             k_newton: c(&k.k_newton),
             k_poisson: c(&k.k_poisson),
+            k_energetic: c(&k.k_energetic),
+            mu: c(&k.mu),
         })
         .collect();
     Problem::new(body, velocity, contacts).expect("rounding keeps a valid problem valid")

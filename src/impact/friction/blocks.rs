@@ -1,0 +1,238 @@
+//! The inertance blocks g_ij,ab of the frictional impact (eq. 12, 126–128, 143) and the
+//! test that decides whether a scene stays in one plane.
+//!
+//! Every contact i contributes its normal axis and, when μ_i > 0, its tangent axes; their
+//! screws {E_q} are stacked in one list, and the impulses Λ = (p_1, τ_1, p_2, τ_2, …) act
+//! along them. With the body's mobility W,
+//!
+//! ```text
+//! K_qr = {E_q}ᵀ η W {E_r}          (a Gram matrix: symmetric, positive semidefinite)
+//! v_q  = v_q⁰ − Σ_r K_qr Λ_r        (eq. 144, for every axis at once)
+//! ```
+//!
+//! **Planar scenes, exactly.** In a plane with unit normal e (a coordinate axis of the body
+//! frame), a contact's in-plane tangent is t_i = e × n_i: it has the length of n_i, so with
+//! the hatted (unnormalised) axes of [`crate::mechanics::contact`] the Coulomb cone
+//! |τ_i| ≤ μ_i P_i reads |τ̂_i| ≤ μ_i p̂_i with no square root, and every quantity stays in
+//! the scalar's field. The scene is planar when no impulse along any stacked axis can move a
+//! frictional contact out of the plane and none moves out of it before impact:
+//! {Z_i}ᵀ η W {E_r} = 0 for every r and {Z_i}ᵀ η {v⁰} = 0, with Z_i the axis through A_i
+//! along e — then v_iz ≡ 0 (eq. 144), slip stays along t_i and sticking needs no impulse
+//! along e. The test is exact in exact types; it makes no assumption on the body (a
+//! constrained body qualifies as well).
+//!
+//! **Spatial scenes** use the contact frame's y and z axes, normalised (a square root: floats
+//! only), so the cone is the Euclidean |τ_i| ≤ μ_i P_i.
+
+use crate::impact::problem::Problem;
+use crate::mechanics::body::Mobility;
+use crate::mechanics::contact::ContactFrame;
+use crate::mechanics::screw::{Screw, Vec3, norm2};
+use crate::scalar::Scalar;
+
+/// The stacked axes of a frictional impact and their inertance matrix K.
+#[derive(Clone, Debug)]
+pub struct Blocks<T: Scalar> {
+    /// Tangential dimensions per contact: 0 when μ_i = 0, 1 in a planar scene, 2 in space.
+    pub dims: Vec<usize>,
+    /// Index in Λ of contact i's normal impulse; its tangential ones follow.
+    pub offset: Vec<usize>,
+    /// The axis screws {E_q}, in Λ order.
+    pub axes: Vec<Screw<T>>,
+    /// W{E_q}: the twist change per unit impulse along axis q.
+    pub responses: Vec<Screw<T>>,
+    /// K, `len × len`, row-major.
+    pub k: Vec<T>,
+    /// v_q⁰: the velocity along each axis before impact.
+    pub v0: Vec<T>,
+    /// μ_i per contact.
+    pub mu: Vec<T>,
+    /// The plane's unit normal (coordinate axis 0, 1 or 2) when the scene is planar.
+    pub plane: Option<usize>,
+}
+
+impl<T: Scalar> Blocks<T> {
+    /// The number of stacked axes (the length of Λ).
+    pub fn len(&self) -> usize {
+        self.axes.len()
+    }
+
+    /// Whether there is no axis (never, for a validated problem).
+    pub fn is_empty(&self) -> bool {
+        self.axes.is_empty()
+    }
+
+    /// The number of contacts.
+    pub fn contacts(&self) -> usize {
+        self.dims.len()
+    }
+
+    /// K_qr.
+    pub fn at(&self, q: usize, r: usize) -> &T {
+        &self.k[q * self.len() + r]
+    }
+
+    /// The planar blocks of `problem`, exact: tangents e × n_i in the first coordinate plane
+    /// that passes the planarity test; `None` when no coordinate plane does.
+    pub fn planar(problem: &Problem<T>) -> Option<Self> {
+        (0..3).rev().find_map(|e| Self::in_plane(problem, e))
+    }
+
+    fn in_plane(problem: &Problem<T>, e: usize) -> Option<Self> {
+        let mut unit = Vec3::zeros();
+        unit[e] = T::one();
+        let mut axes = Vec::new();
+        let mut dims = Vec::new();
+        let mut out_of_plane = Vec::new();
+        for c in problem.contacts() {
+            axes.push(Screw::axis(&c.point, &c.normal));
+            if c.mu.is_zero() {
+                dims.push(0);
+                continue;
+            }
+            if !c.normal[e].is_zero() {
+                return None;
+            }
+            axes.push(Screw::axis(&c.point, &unit.cross(&c.normal)));
+            out_of_plane.push(Screw::axis(&c.point, &unit));
+            dims.push(1);
+        }
+        let blocks = Self::from_axes(problem, axes, dims, Some(e));
+        let velocity = problem.velocity();
+        let stays = out_of_plane.iter().all(|z| {
+            z.reciprocal(velocity).is_zero()
+                && blocks.responses.iter().all(|r| z.reciprocal(r).is_zero())
+        });
+        stays.then_some(blocks)
+    }
+
+    /// The spatial blocks of `problem`: unit normals and the unit y, z axes of each contact's
+    /// frame (§12). Floats: the normalisation takes square roots.
+    ///
+    /// # Panics
+    /// Never for a validated problem in a float type; an exact type has no square root and is
+    /// refused by the caller before this is reached.
+    pub fn spatial(problem: &Problem<T>, frames: &[ContactFrame<T>]) -> Self {
+        let mut axes = Vec::new();
+        let mut dims = Vec::new();
+        for (c, f) in problem.contacts().iter().zip(frames) {
+            let unit = |v: &Vec3<T>| -> Vec3<T> {
+                let n = norm2(v).sqrt_value().expect("a float has a square root");
+                v / n
+            };
+            axes.push(Screw::axis(&c.point, &unit(&c.normal)));
+            if c.mu.is_zero() {
+                dims.push(0);
+            } else {
+                axes.push(Screw::axis(&c.point, &unit(&f.axes[1].top())));
+                axes.push(Screw::axis(&c.point, &unit(&f.axes[2].top())));
+                dims.push(2);
+            }
+        }
+        Self::from_axes(problem, axes, dims, None)
+    }
+
+    fn from_axes(
+        problem: &Problem<T>,
+        axes: Vec<Screw<T>>,
+        dims: Vec<usize>,
+        plane: Option<usize>,
+    ) -> Self {
+        let responses: Vec<Screw<T>> = axes.iter().map(|a| problem.response(a)).collect();
+        let len = axes.len();
+        let mut k = Vec::with_capacity(len * len);
+        for a in &axes {
+            for r in &responses {
+                k.push(a.reciprocal(r));
+            }
+        }
+        let v0 = axes.iter().map(|a| a.reciprocal(problem.velocity())).collect();
+        let mut offset = Vec::with_capacity(dims.len());
+        let mut at = 0;
+        for d in &dims {
+            offset.push(at);
+            at += 1 + d;
+        }
+        Blocks {
+            dims,
+            offset,
+            axes,
+            responses,
+            k,
+            v0,
+            mu: problem.contacts().iter().map(|c| c.mu.clone()).collect(),
+            plane,
+        }
+    }
+
+    /// −K x: the velocity change along every axis for the impulse increments `x`.
+    pub fn velocity_change(&self, x: &[T], out: &mut Vec<T>) {
+        let n = self.len();
+        out.clear();
+        for q in 0..n {
+            let mut s = T::zero();
+            for (r, xr) in x.iter().enumerate() {
+                if !xr.is_zero() {
+                    s += self.k[q * n + r].clone() * xr;
+                }
+            }
+            out.push(-s);
+        }
+    }
+
+    /// The twist {v⁰} − Σ_q Λ_q W{E_q} after the impulses Λ (eq. 142).
+    pub fn twist_after(&self, velocity: &Screw<T>, lambda: &[T]) -> Screw<T> {
+        let mut v = velocity.clone();
+        for (l, r) in lambda.iter().zip(&self.responses) {
+            if !l.is_zero() {
+                v.add_scaled(&-l.clone(), r);
+            }
+        }
+        v
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mechanics::body::RigidBody;
+    use crate::mechanics::contact::Contact;
+    use crate::scalar::{Exact, int, ratio};
+
+    fn v(x: i64, y: i64, z: i64) -> Vec3<Exact> {
+        Vec3::new(int(x), int(y), int(z))
+    }
+
+    fn bar(mu: Exact, omega_x: i64) -> Problem<Exact> {
+        // Example 3's bar: points on Cy, normals along x, motion in the xy-plane.
+        let c = |y: i64, k: Exact| Contact::new(v(0, y, 0), v(1, 0, 0), k).with_friction(mu.clone());
+        Problem::new(
+            RigidBody {
+                mass: int(1),
+                inertia: Vec3::new(int(12), ratio(8, 5), int(12)),
+            },
+            Screw::new(Vec3::new(int(omega_x), int(0), ratio(2, 5)), v(3, 2, 0)),
+            vec![c(-2, ratio(3, 10)), c(4, ratio(1, 5))],
+        )
+        .unwrap()
+    }
+
+    #[test]
+    fn example_3_is_planar_in_the_xy_plane() {
+        let b = Blocks::planar(&bar(ratio(1, 2), 0)).unwrap();
+        assert_eq!(b.plane, Some(2));
+        assert_eq!(b.dims, vec![1, 1]);
+        // The normal-normal blocks are the paper's g_ij (eq. 17, 19): 4/3, 1/3, 7/3.
+        assert_eq!(b.at(0, 0), &ratio(4, 3));
+        assert_eq!(b.at(0, 2), &ratio(1, 3));
+        assert_eq!(b.at(2, 2), &ratio(7, 3));
+        // t_i = e_z × e_x = e_y: the bar's own line; the slip velocity is v_Cy = 2.
+        assert_eq!(b.v0[1], int(2));
+        assert_eq!(b.v0[3], int(2));
+    }
+
+    #[test]
+    fn a_spin_out_of_the_plane_is_not_planar() {
+        assert!(Blocks::planar(&bar(ratio(1, 2), 1)).is_none());
+    }
+}

@@ -1,0 +1,466 @@
+//! Coulomb friction at the contacts (§14, eq. 137–145), integrated in impulse space.
+//!
+//! The paper ends with friction: tangential impulses μ_i P_i opposing the slip, the inertance
+//! rows [H_ix], [H_iy], [H_iz] (eq. 143), and the remark that the system must be worked "with
+//! differentials" (eq. 145). This module is that integration.
+//!
+//! **The model.** Contact i has a coefficient of friction μ_i ≥ 0. Let p_i be its accumulated
+//! normal impulse and τ_i its tangential impulse (a 2-vector in y_i, z_i; one entry in a plane).
+//! The impulse on the body at contact i is −(p_i E_ix + τ_iy E_iy + τ_iz E_iz), so the contact
+//! velocities follow the 3×3 inertance blocks (eq. 12, 126–128, 143):
+//!
+//! ```text
+//! v_i = v_i⁰ − Σ_j G_ij [p_j; τ_j]                                        (eq. 144)
+//! Coulomb:  |τ_i| ≤ μ_i p_i;
+//!   sliding (v_it ≠ 0):  dτ_i = μ_i (v_it / |v_it|) dp_i                   (eq. 137–139)
+//!   sticking (v_it = 0): dτ_i keeps v_it = 0, if |dτ_i| ≤ μ_i dp_i allows it
+//! ```
+//!
+//! The impact is followed in a parameter s:
+//!
+//! * **Compression**, s ∈ [0, 1], under the paper's hypothesis that the normal velocities
+//!   vanish simultaneously: dv_ix/ds = −v_ix⁰ for every contact. A negative dp_i/ds means the
+//!   hypothesis fails there: a verdict ([`Verdict::TensileRate`]). p_i^c = p_i(1).
+//! * **Restitution**, s from 1, by one [`Restitution`] law per scene — Newton:
+//!   dv_ix/ds = −k_i^N v_ix⁰ on [1, 2]; Poisson: dp_i/ds = k_i^P p_i^c on [1, 2]; energetic
+//!   (Stronge): dp_i/ds = p_i^c until the contact's restitution work −∫ v_ix dp_i reaches
+//!   k_i^E² times its compression work ∫ v_ix dp_i, after which it stops.
+//!
+//! With every μ_i = 0 Newton's and Poisson's laws reduce to the paper's eq. 15, 20–23: the
+//! normal rates solve G p' = v⁰ on [0, 1] and G p' = k v⁰ (or p' = k p^c) on [1, 2]. The
+//! rates under one assignment of modes are a linear system ([`rates`]); at an event the modes
+//! of every contact at zero slip are chosen jointly ([`modes`]).
+//!
+//! **Where it differs from physics engines.** Engines solve Coulomb's law as one algebraic
+//! complementarity problem per impact (the maximal-dissipation or LCP friction laws, Stewart
+//! and Trinkle; Anitescu and Potra): the tangential impulse is the *total* one, chosen once,
+//! which cannot follow a slip that stops and reverses during the impact. Here the law holds
+//! at every instant of the impact (Routh's and Keller's integration, Stronge's energetic
+//! coefficient), so stick, slip reversal and the dependence on where in the impact they occur
+//! are resolved — at the cost of integrating.
+//!
+//! **Planar scenes** ([`planar`]) are solved event by event, exactly: every rate is constant
+//! between events. **Spatial scenes** ([`spatial`]) are integrated numerically in floats with
+//! an adaptive embedded Runge–Kutta pair and event location, with an error estimate.
+
+pub mod blocks;
+pub mod modes;
+pub mod planar;
+pub mod rates;
+pub mod spatial;
+
+use std::fmt;
+
+use crate::impact::problem::Problem;
+use crate::impact::restitution::Model;
+use crate::mechanics::contact::ContactFrame;
+use crate::mechanics::screw::{Screw, Vec3};
+use crate::scalar::Scalar;
+
+pub use blocks::Blocks;
+pub use rates::{Mode, Normal};
+
+/// The restitution law of a frictional impact.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum Restitution {
+    /// Newton's kinematic law: dv_ix/ds = −k_i^N v_ix⁰ on [1, 2].
+    Newton,
+    /// Poisson's kinetic law: dp_i/ds = k_i^P p_i^c on [1, 2].
+    Poisson,
+    /// Stronge's energetic law: restitution work = k_i^E² × compression work, per contact.
+    Energetic,
+}
+
+impl Restitution {
+    /// Every law, in report order.
+    pub const ALL: [Restitution; 3] = [
+        Restitution::Newton,
+        Restitution::Poisson,
+        Restitution::Energetic,
+    ];
+
+    /// The lower-case name used in scenes and reports.
+    pub fn name(self) -> &'static str {
+        match self {
+            Restitution::Newton => "newton",
+            Restitution::Poisson => "poisson",
+            Restitution::Energetic => "energetic",
+        }
+    }
+
+    /// The law called `name`.
+    pub fn from_name(name: &str) -> Option<Restitution> {
+        Restitution::ALL.into_iter().find(|r| r.name() == name)
+    }
+}
+
+impl From<Model> for Restitution {
+    fn from(m: Model) -> Self {
+        match m {
+            Model::Newton => Restitution::Newton,
+            Model::Poisson => Restitution::Poisson,
+        }
+    }
+}
+
+impl fmt::Display for Restitution {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+/// The phase of the impact a segment belongs to.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Phase {
+    /// s ∈ [0, 1]: the normal velocities are brought to zero.
+    Compression,
+    /// s ≥ 1: the restitution law.
+    Restitution,
+}
+
+impl fmt::Display for Phase {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            Phase::Compression => "compression",
+            Phase::Restitution => "restitution",
+        })
+    }
+}
+
+/// A contact's mode over a segment, for reports.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ModeLabel {
+    /// No tangential impulse (μ = 0, or no normal impulse rate).
+    Free,
+    /// No slip.
+    Stick,
+    /// Slip along +t_i (planar).
+    SlidePlus,
+    /// Slip along −t_i (planar).
+    SlideMinus,
+    /// Slip in a direction of the tangent plane (spatial).
+    Slide,
+}
+
+impl ModeLabel {
+    /// The name in reports: `free`, `stick`, `slide+`, `slide-`, `slide`.
+    pub fn name(self) -> &'static str {
+        match self {
+            ModeLabel::Free => "free",
+            ModeLabel::Stick => "stick",
+            ModeLabel::SlidePlus => "slide+",
+            ModeLabel::SlideMinus => "slide-",
+            ModeLabel::Slide => "slide",
+        }
+    }
+}
+
+/// The label of a mode.
+pub fn label<T: Scalar>(m: &Mode<T>) -> ModeLabel {
+    match m {
+        Mode::Free => ModeLabel::Free,
+        Mode::Stick => ModeLabel::Stick,
+        Mode::Slide(u) if u.len() == 1 && u[0].signum_i8() > 0 => ModeLabel::SlidePlus,
+        Mode::Slide(u) if u.len() == 1 => ModeLabel::SlideMinus,
+        Mode::Slide(_) => ModeLabel::Slide,
+    }
+}
+
+/// One segment of the impact between two events.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Segment<T: Scalar> {
+    /// Where it starts.
+    pub from: T,
+    /// Where it ends.
+    pub to: T,
+    /// Its phase.
+    pub phase: Phase,
+    /// The mode of every contact.
+    pub modes: Vec<ModeLabel>,
+    /// dΛ/ds over the segment (constant in a planar scene; at its start in a spatial one).
+    pub rates: Vec<T>,
+}
+
+/// What a frictional result says about its own physics. None of these stops the solve: the
+/// law is followed as stated and the answer is flagged.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Verdict {
+    /// A normal impulse rate is negative: the simultaneous hypothesis (compression) or
+    /// Newton's law (restitution) asks the contact to pull.
+    TensileRate {
+        /// The contact (0-based).
+        contact: usize,
+        /// Where the segment starts.
+        s: f64,
+        /// Its phase.
+        phase: Phase,
+    },
+    /// Several assignments of modes were consistent at an event; the first (stick preferred)
+    /// was taken.
+    Ambiguous {
+        /// Where.
+        s: f64,
+        /// How many were consistent.
+        consistent: usize,
+    },
+    /// Sticking contacts share a tangential impulse only their sum determines (contacts on one
+    /// line): the split reported is one member of a family (the middle of the cones).
+    SplitNotUnique {
+        /// Where.
+        s: f64,
+    },
+    /// A contact still approaches after the impact (v_ix > 0).
+    StillApproaching {
+        /// The contact.
+        contact: usize,
+    },
+    /// The kinetic energy grew: ΔE_c < 0 (Kane's paradox under Newton's law with friction).
+    EnergyGain,
+}
+
+impl fmt::Display for Verdict {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Verdict::TensileRate { contact, s, phase } => write!(
+                f,
+                "contact {}: negative normal impulse rate from s = {s} ({phase})",
+                contact + 1
+            ),
+            Verdict::Ambiguous { s, consistent } => write!(
+                f,
+                "s = {s}: {consistent} assignments of stick/slip are consistent; the first \
+                 (stick preferred) was taken"
+            ),
+            Verdict::SplitNotUnique { s } => write!(
+                f,
+                "s = {s}: sticking contacts share a tangential impulse only their sum \
+                 determines; the split shown is one member of a family"
+            ),
+            Verdict::StillApproaching { contact } => {
+                write!(f, "contact {}: still approaching after impact", contact + 1)
+            }
+            Verdict::EnergyGain => write!(f, "the kinetic energy grew (ΔE_c < 0)"),
+        }
+    }
+}
+
+/// Why a frictional impact could not be followed.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum FrictionError {
+    /// No assignment of stick and slip is consistent at an event.
+    #[error(
+        "at s = {s} ({phase}) no assignment of stick and slip is consistent: Coulomb's law \
+         with this restitution law has no continuation here"
+    )]
+    NoConsistentModes {
+        /// Where.
+        s: f64,
+        /// The phase.
+        phase: Phase,
+    },
+    /// The rates are not determined (G singular on the contacts that take impulses).
+    #[error(
+        "at s = {s} the impulse rates are not determined: the inertance matrix is singular on \
+         the contacts that take impulses (see `inertance analyze`)"
+    )]
+    Undetermined {
+        /// Where.
+        s: f64,
+    },
+    /// Too many contacts at zero slip at once to try every assignment.
+    #[error("at s = {s}, {contacts} contacts are at zero slip at once: more than 8 are not resolved")]
+    TooManyAtRest {
+        /// Where.
+        s: f64,
+        /// How many.
+        contacts: usize,
+    },
+    /// An energetic contact never reaches its restitution work.
+    #[error(
+        "contact {}: its energetic restitution never ends (its restitution work cannot reach \
+         k² times its compression work)",
+        contact + 1
+    )]
+    NeverEnds {
+        /// The contact (0-based).
+        contact: usize,
+    },
+    /// An energetic stop lies at a square root the scalar does not hold.
+    #[error("contact {}: its energetic stop needs a square root this scalar does not hold", contact + 1)]
+    NeedsRadical {
+        /// The contact (0-based).
+        contact: usize,
+    },
+    /// A spatial scene in an exact type (spatial scenes are integrated in floats).
+    #[error(
+        "the scene is not planar (no coordinate plane holds every frictional contact and the \
+         motion), so it is integrated numerically: run it in f64 or double-double"
+    )]
+    NotPlanar,
+    /// More events or steps than any physical impact needs.
+    #[error("the integration did not end within its event or step budget")]
+    Runaway,
+}
+
+/// The outcome of a frictional impact. Impulses are along the stacked axes of
+/// [`Blocks`]: hatted in a planar scene (exact), unit in a spatial one.
+#[derive(Clone, Debug)]
+pub struct Frictional<T: Scalar> {
+    /// The restitution law.
+    pub law: Restitution,
+    /// The axes and inertances.
+    pub blocks: Blocks<T>,
+    /// Λ: the impulses along every axis at the end.
+    pub impulses: Vec<T>,
+    /// p_i^c: the normal impulses at the end of compression.
+    pub compression: Vec<T>,
+    /// The velocities along every axis after impact.
+    pub after: Vec<T>,
+    /// {v} = [ω; v_C] after impact (eq. 142).
+    pub velocity: Screw<T>,
+    /// ∫ v_ix dp_i over compression, per contact.
+    pub work_compression: Vec<T>,
+    /// −∫ v_ix dp_i over restitution, per contact.
+    pub work_restitution: Vec<T>,
+    /// Σ_i ∫ v_it · dτ_i: the energy dissipated by friction.
+    pub friction_dissipation: T,
+    /// ΔE_c = Σ_i ∫ v_i · dΛ_i = T⁰ − T.
+    pub kinetic_energy_loss: T,
+    /// E_p = ½ (Δv)ᵀ η M (Δv) (eq. 28).
+    pub lost_velocity_energy: T,
+    /// (T⁰ − T) − ΔE_c: zero in exact types — a check of the integration.
+    pub energy_residual: T,
+    /// The segments between events.
+    pub segments: Vec<Segment<T>>,
+    /// The verdicts.
+    pub verdicts: Vec<Verdict>,
+    /// The parameter s at the end.
+    pub end: T,
+    /// The estimated error of the impulses and velocities (spatial integration), in their
+    /// units; `None` for planar scenes (exact up to the scalar's rounding).
+    pub error_estimate: Option<f64>,
+}
+
+impl<T: Scalar> Frictional<T> {
+    #[allow(clippy::too_many_arguments)]
+    pub(crate) fn finish(
+        problem: &Problem<T>,
+        blocks: Blocks<T>,
+        law: Restitution,
+        impulses: Vec<T>,
+        compression: Vec<T>,
+        after: Vec<T>,
+        work_compression: Vec<T>,
+        work_restitution: Vec<T>,
+        friction_dissipation: T,
+        segments: Vec<Segment<T>>,
+        mut verdicts: Vec<Verdict>,
+        end: T,
+    ) -> Self {
+        let before = problem.velocity();
+        let velocity = blocks.twist_after(before, &impulses);
+        let body = problem.body();
+        let mut change = velocity.clone();
+        change.add_scaled(&-T::one(), before);
+        let lost_velocity_energy = body.kinetic_energy(&change);
+        let mut kinetic_energy_loss = friction_dissipation.clone();
+        for (c, r) in work_compression.iter().zip(&work_restitution) {
+            kinetic_energy_loss += c.clone() - r;
+        }
+        let energy_residual = body.kinetic_energy(before) - body.kinetic_energy(&velocity)
+            - &kinetic_energy_loss;
+        verdicts.dedup_by(|a, b| match (a, b) {
+            (
+                Verdict::TensileRate { contact: i, phase: p, .. },
+                Verdict::TensileRate { contact: j, phase: q, .. },
+            ) => i == j && p == q,
+            _ => false,
+        });
+        let scale = rates::max_abs(&blocks.v0);
+        for (i, &o) in blocks.offset.iter().enumerate() {
+            if modes::positive(&after[o], &scale, blocks.len()) {
+                verdicts.push(Verdict::StillApproaching { contact: i });
+            }
+        }
+        if !modes::nonnegative(&kinetic_energy_loss, &body.kinetic_energy(before), blocks.len()) {
+            verdicts.push(Verdict::EnergyGain);
+        }
+        Frictional {
+            law,
+            blocks,
+            impulses,
+            compression,
+            after,
+            velocity,
+            work_compression,
+            work_restitution,
+            friction_dissipation,
+            kinetic_energy_loss,
+            lost_velocity_energy,
+            energy_residual,
+            segments,
+            verdicts,
+            end,
+            error_estimate: None,
+        }
+    }
+
+    /// p̂_i: contact i's normal impulse along its stacked normal axis (hatted in a planar
+    /// scene: P_i = p̂_i |n_i|; unit in a spatial one).
+    pub fn normal_hat(&self, i: usize) -> &T {
+        &self.impulses[self.blocks.offset[i]]
+    }
+
+    /// The impulse vector the obstacle applies at contact i, split into its normal and
+    /// tangential parts, in body axes: −(p_i n̂_i) and −(τ_i t̂_i) with the axes as stacked.
+    /// Exact in a planar scene (no norm is taken).
+    pub fn impulse_vectors(&self, i: usize) -> (Vec3<T>, Vec3<T>) {
+        let off = self.blocks.offset[i];
+        let dir = |q: usize| self.blocks.axes[q].top() * self.impulses[q].clone();
+        let normal = -dir(off);
+        let mut tangential = Vec3::zeros();
+        for a in 0..self.blocks.dims[i] {
+            tangential -= dir(off + 1 + a);
+        }
+        (normal, tangential)
+    }
+
+    /// The mode history of contact i: the label of each segment, repeats merged.
+    pub fn history(&self, i: usize) -> Vec<ModeLabel> {
+        let mut h: Vec<ModeLabel> = Vec::new();
+        for s in &self.segments {
+            if h.last() != Some(&s.modes[i]) {
+                h.push(s.modes[i]);
+            }
+        }
+        h
+    }
+}
+
+/// Solve the frictional impact of `problem` under `law`: event by event, exactly, when the
+/// scene is planar; by the adaptive integrator in floats otherwise, to the relative
+/// `tolerance`.
+///
+/// # Errors
+/// [`FrictionError`]; [`FrictionError::NotPlanar`] for a spatial scene in an exact type.
+pub fn solve_frictional<T: Scalar>(
+    problem: &Problem<T>,
+    law: Restitution,
+    tolerance: f64,
+) -> Result<Frictional<T>, FrictionError> {
+    if let Some(b) = Blocks::planar(problem) {
+        return planar::solve_planar(problem, b, law);
+    }
+    if T::IS_EXACT {
+        return Err(FrictionError::NotPlanar);
+    }
+    let frames: Vec<ContactFrame<T>> = problem
+        .contacts()
+        .iter()
+        .enumerate()
+        .map(|(i, c)| {
+            ContactFrame::new(i, c, problem.velocity()).expect("a validated problem's tangents")
+        })
+        .collect();
+    spatial::solve_spatial(problem, Blocks::spatial(problem, &frames), law, tolerance)
+}

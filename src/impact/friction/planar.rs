@@ -1,0 +1,320 @@
+//! Planar scenes, event by event, exactly.
+//!
+//! In a planar scene ([`super::blocks`]) every slip direction is ±t_i, so between two events
+//! every rate is constant: Λ(s) and v(s) are piecewise linear, and an event falls where a
+//! linear slip velocity reaches zero (a rational s, or in the field of the inputs), at the end
+//! of a phase (s = 1, s = 2), or where an energetic contact's restitution work — a quadratic
+//! in s — reaches k_i² times its compression work (a root of a quadratic: the radical field).
+//! The works and the friction dissipation are integrated exactly segment by segment
+//! (∫ v dΛ of a linear v against a constant rate is the trapezoid rule, exact).
+
+use crate::impact::friction::blocks::Blocks;
+use crate::impact::friction::modes::{MAX_CANDIDATES, resolve_planar};
+use crate::impact::friction::rates::{Mode, Normal};
+use crate::impact::friction::{
+    FrictionError, Frictional, Phase, Restitution, Segment, Verdict, label,
+};
+use crate::impact::problem::Problem;
+use crate::scalar::Scalar;
+
+/// The most events one impact may have before the integration is declared runaway.
+const MAX_EVENTS: usize = 10_000;
+
+/// The state carried from event to event.
+struct State<T: Scalar> {
+    s: T,
+    phase: Phase,
+    lambda: Vec<T>,
+    v: Vec<T>,
+    modes: Vec<Mode<T>>,
+    stopped: Vec<bool>,
+    compression: Vec<T>,
+    work_compression: Vec<T>,
+    work_restitution: Vec<T>,
+    friction_work: T,
+}
+
+/// Solve a planar scene under `law`, event by event.
+///
+/// # Errors
+/// [`FrictionError`] when the modes cannot be chosen, the rates are undetermined, an
+/// energetic contact never stops, or a stop needs a square root the scalar does not hold.
+pub fn solve_planar<T: Scalar>(
+    problem: &Problem<T>,
+    b: Blocks<T>,
+    law: Restitution,
+) -> Result<Frictional<T>, FrictionError> {
+    let n = b.contacts();
+    let two = T::one() + T::one();
+    let mut st = State {
+        s: T::zero(),
+        phase: Phase::Compression,
+        lambda: vec![T::zero(); b.len()],
+        v: b.v0.clone(),
+        modes: vec![Mode::Free; n],
+        stopped: vec![false; n],
+        compression: Vec::new(),
+        work_compression: vec![T::zero(); n],
+        work_restitution: vec![T::zero(); n],
+        friction_work: T::zero(),
+    };
+    let mut segments = Vec::new();
+    let mut verdicts = Vec::new();
+    for events in 1..=MAX_EVENTS {
+        let normals = normals(problem, &b, &st, law);
+        // Modes: slip keeps its sense; zero slip is resolved jointly.
+        let mut candidates = Vec::new();
+        for i in 0..n {
+            let off = b.offset[i];
+            let carries = match &normals[i] {
+                Normal::Driven(_) => true,
+                Normal::Given(r) => !r.is_zero(),
+            };
+            if b.dims[i] == 0 || !carries {
+                st.modes[i] = Mode::Free;
+            } else if st.v[off + 1].is_zero() {
+                candidates.push(i);
+            } else {
+                st.modes[i] = Mode::Slide(vec![sign(&st.v[off + 1])]);
+            }
+        }
+        if candidates.len() > MAX_CANDIDATES {
+            return Err(FrictionError::TooManyAtRest {
+                s: st.s.to_f64(),
+                contacts: candidates.len(),
+            });
+        }
+        let res = resolve_planar(&b, &normals, &st.modes, &candidates).map_err(|e| {
+            if e.undetermined {
+                FrictionError::Undetermined { s: st.s.to_f64() }
+            } else {
+                FrictionError::NoConsistentModes {
+                    s: st.s.to_f64(),
+                    phase: st.phase,
+                }
+            }
+        })?;
+        if res.consistent > 1 {
+            verdicts.push(Verdict::Ambiguous {
+                s: st.s.to_f64(),
+                consistent: res.consistent,
+            });
+        }
+        if !res.rates.split_unique {
+            verdicts.push(Verdict::SplitNotUnique { s: st.s.to_f64() });
+        }
+        st.modes = res.modes;
+        let r = res.rates;
+        for (i, normal) in normals.iter().enumerate() {
+            if matches!(normal, Normal::Driven(_)) && r.lambda[b.offset[i]].signum_i8() < 0 {
+                verdicts.push(Verdict::TensileRate {
+                    contact: i,
+                    s: st.s.to_f64(),
+                    phase: st.phase,
+                });
+            }
+        }
+        // The next event.
+        let end = match (st.phase, law) {
+            (Phase::Compression, _) => Some(T::one() - &st.s),
+            (Phase::Restitution, Restitution::Energetic) => None,
+            (Phase::Restitution, _) => Some(two.clone() - &st.s),
+        };
+        let mut h = end.clone();
+        let take = |cand: T, h: &mut Option<T>| {
+            if h.as_ref().is_none_or(|x| (cand.clone() - x).signum_i8() < 0) {
+                *h = Some(cand);
+            }
+        };
+        let mut reversals = Vec::new();
+        for i in 0..n {
+            if let Mode::Slide(u) = &st.modes[i] {
+                let off = b.offset[i] + 1;
+                let dv = &r.velocity[off];
+                if (u[0].clone() * dv).signum_i8() < 0 {
+                    let hi = -st.v[off].clone() / dv.clone();
+                    reversals.push((i, hi.clone()));
+                    take(hi, &mut h);
+                }
+            }
+        }
+        let mut stops = Vec::new();
+        if st.phase == Phase::Restitution && law == Restitution::Energetic {
+            for i in 0..n {
+                if st.stopped[i] {
+                    continue;
+                }
+                if let Some(hi) = energetic_stop(problem, &b, &st, &r.lambda, &r.velocity, i)? {
+                    stops.push((i, hi.clone()));
+                    take(hi, &mut h);
+                }
+            }
+        }
+        let Some(h) = h else {
+            let contact = (0..n).find(|&i| !st.stopped[i]).unwrap_or(0);
+            return Err(FrictionError::NeverEnds { contact });
+        };
+        let from = st.s.clone();
+        advance(&b, &mut st, &r.lambda, &r.velocity, &h);
+        let fired = |hi: &T| (hi.clone() - &h).is_negligible(&h, n);
+        for (i, hi) in &reversals {
+            if fired(hi) {
+                st.v[b.offset[*i] + 1] = T::zero();
+            }
+        }
+        for (i, hi) in &stops {
+            if fired(hi) {
+                st.stopped[*i] = true;
+            }
+        }
+        for i in 0..n {
+            if st.modes[i] == Mode::Stick {
+                st.v[b.offset[i] + 1] = T::zero();
+            }
+        }
+        if !h.is_zero() {
+            segments.push(Segment {
+                from,
+                to: st.s.clone(),
+                phase: st.phase,
+                modes: st.modes.iter().map(label).collect(),
+                rates: r.lambda,
+            });
+        }
+        let at_end = end.as_ref().is_some_and(|e| fired(e));
+        match (st.phase, at_end) {
+            (Phase::Compression, true) => {
+                st.s = T::one();
+                st.phase = Phase::Restitution;
+                st.compression = b.offset.iter().map(|&o| st.lambda[o].clone()).collect();
+                if law == Restitution::Energetic {
+                    for i in 0..n {
+                        let left = problem.contacts()[i].k_energetic.clone()
+                            * &problem.contacts()[i].k_energetic
+                            * &st.work_compression[i];
+                        st.stopped[i] = st.compression[i].is_zero() || left.signum_i8() <= 0;
+                    }
+                }
+            }
+            (Phase::Restitution, true) => {
+                st.s = two.clone();
+                break;
+            }
+            _ => {}
+        }
+        if law == Restitution::Energetic
+            && st.phase == Phase::Restitution
+            && st.stopped.iter().all(|&x| x)
+        {
+            break;
+        }
+        if events == MAX_EVENTS {
+            return Err(FrictionError::Runaway);
+        }
+    }
+    Ok(Frictional::finish(
+        problem,
+        b,
+        law,
+        st.lambda,
+        st.compression,
+        st.v,
+        st.work_compression,
+        st.work_restitution,
+        st.friction_work,
+        segments,
+        verdicts,
+        st.s,
+    ))
+}
+
+/// ±1 by the sign of `x` (x ≠ 0).
+fn sign<T: Scalar>(x: &T) -> T {
+    if x.signum_i8() < 0 { -T::one() } else { T::one() }
+}
+
+/// The normal rule of every contact in the current phase.
+fn normals<T: Scalar>(
+    problem: &Problem<T>,
+    b: &Blocks<T>,
+    st: &State<T>,
+    law: Restitution,
+) -> Vec<Normal<T>> {
+    problem
+        .contacts()
+        .iter()
+        .enumerate()
+        .map(|(i, c)| {
+            let v0 = b.v0[b.offset[i]].clone();
+            match (st.phase, law) {
+                (Phase::Compression, _) => Normal::Driven(v0),
+                (Phase::Restitution, Restitution::Newton) => Normal::Driven(c.k_newton.clone() * v0),
+                (Phase::Restitution, Restitution::Poisson) => {
+                    Normal::Given(c.k_poisson.clone() * &st.compression[i])
+                }
+                (Phase::Restitution, Restitution::Energetic) if st.stopped[i] => {
+                    Normal::Given(T::zero())
+                }
+                (Phase::Restitution, Restitution::Energetic) => {
+                    Normal::Given(st.compression[i].clone())
+                }
+            }
+        })
+        .collect()
+}
+
+/// Move the state by `h` at the rates `dl` (impulses) and `dv` (velocities), integrating the
+/// works exactly (trapezoid rule on a linear velocity).
+fn advance<T: Scalar>(b: &Blocks<T>, st: &mut State<T>, dl: &[T], dv: &[T], h: &T) {
+    let two = T::one() + T::one();
+    for q in 0..b.len() {
+        let before = st.v[q].clone();
+        st.lambda[q] += dl[q].clone() * h;
+        st.v[q] += dv[q].clone() * h;
+        if dl[q].is_zero() {
+            continue;
+        }
+        let work = dl[q].clone() * h * (before + &st.v[q]) / two.clone();
+        match b.offset.iter().position(|&o| o == q) {
+            Some(i) if st.phase == Phase::Compression => st.work_compression[i] += work,
+            Some(i) => st.work_restitution[i] -= work,
+            None => st.friction_work += work,
+        }
+    }
+    st.s += h;
+}
+
+/// The step after which energetic contact `i` has done its restitution work, k_i² W_c,i: the
+/// smallest h > 0 with W_r(h) = k² W_c, where over the segment
+/// W_r(h) = W_r − r (v_a h + ½ v' h²) (rate r, normal velocity v_a, its rate v'). Written in
+/// the cancellation-free form h = −2C / (B + √(B² − 4AC)) of the root of A h² + B h + C.
+fn energetic_stop<T: Scalar>(
+    problem: &Problem<T>,
+    b: &Blocks<T>,
+    st: &State<T>,
+    dl: &[T],
+    dv: &[T],
+    i: usize,
+) -> Result<Option<T>, FrictionError> {
+    let off = b.offset[i];
+    let k = &problem.contacts()[i].k_energetic;
+    let two = T::one() + T::one();
+    let c = st.work_restitution[i].clone() - k.clone() * k * &st.work_compression[i];
+    if c.signum_i8() >= 0 {
+        return Ok(Some(T::zero()));
+    }
+    let a = -(dl[off].clone() * &dv[off]) / two.clone();
+    let bb = -(dl[off].clone() * &st.v[off]);
+    let d = bb.clone() * &bb - (two.clone() + &two) * &a * &c;
+    if d.signum_i8() < 0 {
+        return Ok(None);
+    }
+    let root = d
+        .sqrt_value()
+        .ok_or(FrictionError::NeedsRadical { contact: i })?;
+    let den = bb + root;
+    if den.signum_i8() <= 0 {
+        return Ok(None);
+    }
+    Ok(Some(-(two * c) / den))
+}

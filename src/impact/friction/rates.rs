@@ -1,0 +1,234 @@
+//! The impulse rates dΛ/ds under one assignment of modes: a linear system (eq. 145 in the
+//! parameter s of the issue's model).
+//!
+//! Unknowns: the normal rate dp_i/ds of every *driven* contact (its normal velocity follows a
+//! prescribed rate, dv_ix/ds = −c_i) and the tangential rate dτ_i/ds of every *sticking*
+//! contact. Knowns: the normal rate of every contact whose impulse rate is prescribed
+//! (Poisson's and the energetic restitution). A sliding contact ties its tangential rate to its
+//! normal one, dτ_i = μ_i u_i dp_i. The equations, rows of K (see [`super::blocks`]):
+//!
+//! ```text
+//! driven i:    Σ_r K_(ix) r dΛ_r/ds = c_i
+//! sticking i:  Σ_r K_(it) r dΛ_r/ds = 0          (one row per tangential dimension)
+//! ```
+//!
+//! A singular system has a family of solutions. When every member moves the body alike
+//! (K w = 0 for every null vector w — sticking contacts on one line, whose tangential impulses
+//! only their sum determines) the split is reported as not unique and, in the plane, the member
+//! in the middle of the interval the cones allow is taken; a family that touches a normal rate
+//! or changes the motion leaves the rates undetermined.
+
+use crate::impact::friction::blocks::Blocks;
+use crate::linalg::solve_general;
+use crate::scalar::Scalar;
+
+/// How contact i's normal impulse evolves over a segment.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Normal<T: Scalar> {
+    /// dv_ix/ds = −c: the rate of the normal impulse is an unknown (compression, Newton).
+    Driven(T),
+    /// dp_i/ds = r, prescribed (Poisson, energetic; 0 once a contact has stopped).
+    Given(T),
+}
+
+/// The tangential mode of a contact over a segment.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Mode<T: Scalar> {
+    /// No tangential impulse: μ_i = 0, or no normal impulse rate to carry friction.
+    Free,
+    /// No slip: the tangential rate is whatever keeps v_it = 0, if the cone allows it.
+    Stick,
+    /// Slip along the unit direction u (one entry ±1 in the plane, two in space):
+    /// dτ_i = μ_i u dp_i (eq. 137–139).
+    Slide(Vec<T>),
+}
+
+/// The rates of one segment.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Rates<T: Scalar> {
+    /// dΛ/ds, in the order of the stacked axes.
+    pub lambda: Vec<T>,
+    /// dv/ds = −K dΛ/ds along every axis.
+    pub velocity: Vec<T>,
+    /// `false` when sticking contacts share a tangential impulse whose split is not determined.
+    pub split_unique: bool,
+}
+
+/// Why an assignment of modes has no rates.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum RateFailure {
+    /// The equations contradict each other.
+    Inconsistent,
+    /// A family of solutions that moves the body differently, or splits a normal impulse.
+    Undetermined,
+}
+
+/// What an unknown of the system is.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Unknown {
+    Normal(usize),
+    Stick(usize),
+}
+
+/// Solve for the rates of one segment.
+///
+/// # Errors
+/// [`RateFailure`] when the assignment admits no rates, or no determined ones.
+pub fn rates<T: Scalar>(
+    b: &Blocks<T>,
+    normals: &[Normal<T>],
+    modes: &[Mode<T>],
+) -> Result<Rates<T>, RateFailure> {
+    let len = b.len();
+    let mut known = vec![T::zero(); len];
+    // Each unknown's column in Λ-space, sparse: (axis, coefficient).
+    let mut columns: Vec<(Unknown, Vec<(usize, T)>)> = Vec::new();
+    let mut rows: Vec<(usize, T)> = Vec::new();
+    for (i, (normal, mode)) in normals.iter().zip(modes).enumerate() {
+        let off = b.offset[i];
+        let slide = match mode {
+            Mode::Slide(u) => Some(u),
+            _ => None,
+        };
+        match normal {
+            Normal::Driven(c) => {
+                let mut col = vec![(off, T::one())];
+                if let Some(u) = slide {
+                    for (a, ua) in u.iter().enumerate() {
+                        col.push((off + 1 + a, b.mu[i].clone() * ua));
+                    }
+                }
+                columns.push((Unknown::Normal(i), col));
+                rows.push((off, c.clone()));
+            }
+            Normal::Given(r) => {
+                known[off] = r.clone();
+                if let Some(u) = slide {
+                    for (a, ua) in u.iter().enumerate() {
+                        known[off + 1 + a] = b.mu[i].clone() * r * ua;
+                    }
+                }
+            }
+        }
+        if *mode == Mode::Stick {
+            for a in 0..b.dims[i] {
+                columns.push((Unknown::Stick(i), vec![(off + 1 + a, T::one())]));
+                rows.push((off + 1 + a, T::zero()));
+            }
+        }
+    }
+    let m = rows.len();
+    let mut a = Vec::with_capacity(m * m);
+    let mut rhs = Vec::with_capacity(m);
+    for (q, target) in &rows {
+        for (_, col) in &columns {
+            let mut s = T::zero();
+            for (r, c) in col {
+                s += b.at(*q, *r).clone() * c;
+            }
+            a.push(s);
+        }
+        let mut t = target.clone();
+        for (r, kr) in known.iter().enumerate() {
+            if !kr.is_zero() {
+                t -= b.at(*q, r).clone() * kr;
+            }
+        }
+        rhs.push(t);
+    }
+    let solutions = solve_general(&a, m, m, &rhs).ok_or(RateFailure::Inconsistent)?;
+    let expand = |z: &[T], into: &mut Vec<T>| {
+        for ((_, col), zj) in columns.iter().zip(z) {
+            for (r, c) in col {
+                into[*r] += c.clone() * zj;
+            }
+        }
+    };
+    let mut lambda = known;
+    expand(&solutions.particular, &mut lambda);
+    let split_unique = solutions.null.is_empty();
+    if !split_unique {
+        for w in &solutions.null {
+            let touches_normal = columns
+                .iter()
+                .zip(w)
+                .any(|((u, _), wj)| matches!(u, Unknown::Normal(_)) && !wj.is_zero());
+            let mut dir = vec![T::zero(); len];
+            expand(w, &mut dir);
+            let mut moved = Vec::new();
+            b.velocity_change(&dir, &mut moved);
+            let scale = max_abs(&b.k) * max_abs(&dir);
+            if touches_normal || moved.iter().any(|x| !x.is_negligible(&scale, len)) {
+                return Err(RateFailure::Undetermined);
+            }
+        }
+        if let [w] = solutions.null.as_slice() {
+            let c = middle_of_cones(b, &columns, &solutions.particular, w, &lambda);
+            let mut shift = vec![T::zero(); len];
+            let scaled: Vec<T> = w.iter().map(|x| x.clone() * &c).collect();
+            expand(&scaled, &mut shift);
+            for (l, s) in lambda.iter_mut().zip(shift) {
+                *l += s;
+            }
+        }
+    }
+    let mut velocity = Vec::new();
+    b.velocity_change(&lambda, &mut velocity);
+    Ok(Rates {
+        lambda,
+        velocity,
+        split_unique,
+    })
+}
+
+/// The largest |x|.
+pub(super) fn max_abs<T: Scalar>(xs: &[T]) -> T {
+    let mut m = T::zero();
+    for x in xs {
+        if x.abs_gt(&m) {
+            m = x.clone();
+        }
+    }
+    if m.signum_i8() < 0 { -m } else { m }
+}
+
+/// The parameter c of the member z + c·w (one null direction) in the middle of the interval
+/// where every sticking contact it moves stays in its cone, |τ'_i| ≤ μ_i p'_i (planar: one
+/// tangential entry per contact); 0 when the interval is empty (the stick then fails its test).
+fn middle_of_cones<T: Scalar>(
+    b: &Blocks<T>,
+    columns: &[(Unknown, Vec<(usize, T)>)],
+    z: &[T],
+    w: &[T],
+    lambda: &[T],
+) -> T {
+    let mut lo: Option<T> = None;
+    let mut hi: Option<T> = None;
+    for (((u, _), zj), wj) in columns.iter().zip(z).zip(w) {
+        let Unknown::Stick(i) = u else { continue };
+        if wj.is_zero() || b.dims[*i] != 1 {
+            continue;
+        }
+        let bound = b.mu[*i].clone() * &lambda[b.offset[*i]];
+        let mut ends = [
+            (-bound.clone() - zj) / wj.clone(),
+            (bound - zj) / wj.clone(),
+        ];
+        if wj.signum_i8() < 0 {
+            ends.swap(0, 1);
+        }
+        let [l, h] = ends;
+        if lo.as_ref().is_none_or(|x| (l.clone() - x).signum_i8() > 0) {
+            lo = Some(l);
+        }
+        if hi.as_ref().is_none_or(|x| (h.clone() - x).signum_i8() < 0) {
+            hi = Some(h);
+        }
+    }
+    match (lo, hi) {
+        (Some(l), Some(h)) if (h.clone() - &l).signum_i8() >= 0 => {
+            (l + h) / (T::one() + T::one())
+        }
+        _ => T::zero(),
+    }
+}

@@ -1,0 +1,181 @@
+//! Gauss–Jordan elimination of a general (non-symmetric, possibly singular) system, over the
+//! field: the reduced row echelon form with partial pivoting, the solution set of A x = b as a
+//! particular solution plus a null-space basis, and the null space alone.
+//!
+//! Exact types decide every pivot exactly; floats treat |pivot| ≤ cols·ε·max|a_ij| as zero.
+//! Field-only, so rational input gives rational output.
+
+use crate::scalar::Scalar;
+
+/// The reduced row echelon form of a `rows × cols` matrix (row-major), computed in place, with
+/// the same row operations applied to the `extra` columns of `rhs` (`rows × extra`, row-major).
+/// Returns the pivot columns, in order.
+pub fn rref<T: Scalar>(
+    m: &mut [T],
+    rows: usize,
+    cols: usize,
+    rhs: &mut [T],
+    extra: usize,
+) -> Vec<usize> {
+    let mut scale = T::zero();
+    for x in m.iter() {
+        if x.abs_gt(&scale) {
+            scale = x.clone();
+        }
+    }
+    let mut pivots: Vec<usize> = Vec::new();
+    let mut r = 0;
+    for c in 0..cols {
+        if r == rows {
+            break;
+        }
+        let mut p = r;
+        for i in r + 1..rows {
+            if m[i * cols + c].abs_gt(&m[p * cols + c]) {
+                p = i;
+            }
+        }
+        if m[p * cols + c].is_negligible(&scale, cols) {
+            continue;
+        }
+        for j in 0..cols {
+            m.swap(r * cols + j, p * cols + j);
+        }
+        for j in 0..extra {
+            rhs.swap(r * extra + j, p * extra + j);
+        }
+        let piv = m[r * cols + c].clone();
+        for j in 0..cols {
+            m[r * cols + j] /= &piv;
+        }
+        for j in 0..extra {
+            rhs[r * extra + j] /= &piv;
+        }
+        for i in 0..rows {
+            if i != r && !m[i * cols + c].is_zero() {
+                let f = m[i * cols + c].clone();
+                for j in 0..cols {
+                    let t = f.clone() * &m[r * cols + j];
+                    m[i * cols + j] -= t;
+                }
+                for j in 0..extra {
+                    let t = f.clone() * &rhs[r * extra + j];
+                    rhs[i * extra + j] -= t;
+                }
+            }
+        }
+        pivots.push(c);
+        r += 1;
+    }
+    pivots
+}
+
+/// The null-space basis of a matrix in reduced row echelon form with these pivot columns: one
+/// vector per free column, with a 1 in that column.
+fn basis<T: Scalar>(m: &[T], cols: usize, pivots: &[usize]) -> Vec<Vec<T>> {
+    let mut basis = Vec::new();
+    for free in (0..cols).filter(|c| !pivots.contains(c)) {
+        let mut x = vec![T::zero(); cols];
+        x[free] = T::one();
+        for (k, &pc) in pivots.iter().enumerate() {
+            x[pc] = -m[k * cols + free].clone();
+        }
+        basis.push(x);
+    }
+    basis
+}
+
+/// A basis of the null space {x : A x = 0} of the `rows × cols` matrix `a` (row-major), by
+/// reduced row echelon form with partial pivoting. Returns the rank and the basis (one
+/// vector per free column, with a 1 in that column).
+pub fn null_space<T: Scalar>(a: &[T], rows: usize, cols: usize) -> (usize, Vec<Vec<T>>) {
+    let mut m: Vec<T> = a.to_vec();
+    let pivots = rref(&mut m, rows, cols, &mut [], 0);
+    (pivots.len(), basis(&m, cols, &pivots))
+}
+
+/// The solution set of A x = b.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Solutions<T: Scalar> {
+    /// A particular solution: the free variables set to zero.
+    pub particular: Vec<T>,
+    /// A basis of the null space of A (empty when A has full column rank: x is unique).
+    pub null: Vec<Vec<T>>,
+}
+
+/// Solve the `rows × cols` system A x = b (row-major). `None` when it is inconsistent (some
+/// zero row of the echelon form meets a nonzero right-hand side, relative to max|b| in
+/// floats).
+pub fn solve_general<T: Scalar>(
+    a: &[T],
+    rows: usize,
+    cols: usize,
+    b: &[T],
+) -> Option<Solutions<T>> {
+    let mut m: Vec<T> = a.to_vec();
+    let mut rhs: Vec<T> = b.to_vec();
+    let pivots = rref(&mut m, rows, cols, &mut rhs, 1);
+    let mut scale = T::zero();
+    for x in b {
+        if x.abs_gt(&scale) {
+            scale = x.clone();
+        }
+    }
+    if rhs[pivots.len()..]
+        .iter()
+        .any(|r| !r.is_negligible(&scale, cols.max(1)))
+    {
+        return None;
+    }
+    let mut particular = vec![T::zero(); cols];
+    for (k, &pc) in pivots.iter().enumerate() {
+        particular[pc] = rhs[k].clone();
+    }
+    Some(Solutions {
+        particular,
+        null: basis(&m, cols, &pivots),
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scalar::{Exact, int, ratio};
+
+    fn m(v: &[i64]) -> Vec<Exact> {
+        v.iter().map(|&x| int(x)).collect()
+    }
+
+    #[test]
+    fn unique_solution_is_exact() {
+        // [2 1; 1 3] x = [3; 5] → x = (4/5, 7/5).
+        let s = solve_general(&m(&[2, 1, 1, 3]), 2, 2, &m(&[3, 5])).unwrap();
+        assert_eq!(s.particular, vec![ratio(4, 5), ratio(7, 5)]);
+        assert!(s.null.is_empty());
+    }
+
+    #[test]
+    fn singular_consistent_system_has_a_family() {
+        // x + y = 2 twice: particular (2, 0), null (−1, 1).
+        let s = solve_general(&m(&[1, 1, 1, 1]), 2, 2, &m(&[2, 2])).unwrap();
+        assert_eq!(s.particular, m(&[2, 0]));
+        assert_eq!(s.null, vec![m(&[-1, 1])]);
+    }
+
+    #[test]
+    fn inconsistent_system_is_refused() {
+        assert!(solve_general(&m(&[1, 1, 1, 1]), 2, 2, &m(&[2, 3])).is_none());
+    }
+
+    #[test]
+    fn floats_agree_with_exact_on_a_regular_system() {
+        let a = [4.0, -2.0, 1.0, -2.0, 4.0, -2.0, 1.0, -2.0, 4.0];
+        let b = [11.0, -16.0, 17.0];
+        let s = solve_general(&a, 3, 3, &b).unwrap();
+        let e = solve_general(&m(&[4, -2, 1, -2, 4, -2, 1, -2, 4]), 3, 3, &m(&[11, -16, 17]))
+            .unwrap();
+        for (x, q) in s.particular.iter().zip(&e.particular) {
+            assert!((x - q.to_f64()).abs() <= 1e-14 * q.to_f64().abs().max(1.0));
+        }
+    }
+}
