@@ -216,6 +216,7 @@ pub fn determinant<T: Scalar>(a: &[T], n: usize) -> T {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::linalg::null_space;
     use crate::scalar::Exact;
     use num_traits::Zero;
 

@@ -216,7 +216,9 @@ impl Scene {
             }
             v.push((format!("contact[{c}].k_newton"), &spec.k_newton));
             v.push((format!("contact[{c}].k_poisson"), &spec.k_poisson));
-            v.push((format!("contact[{c}].k_energetic"), &spec.k_energetic));
+            if let Some(k) = &spec.k_energetic {
+                v.push((format!("contact[{c}].k_energetic"), k));
+            }
             v.push((format!("contact[{c}].mu"), &spec.mu));
         }
         match &self.constraints {
@@ -290,7 +292,10 @@ impl Scene {
                 },
                 k_newton: num(&c.k_newton, &key("k_newton"))?,
                 k_poisson: num(&c.k_poisson, &key("k_poisson"))?,
-                k_energetic: num(&c.k_energetic, &key("k_energetic"))?,
+                k_energetic: match &c.k_energetic {
+                    Some(k) => num(k, &key("k_energetic"))?,
+                    None => num(&c.k_poisson, &key("k_poisson"))?,
+                },
                 mu: num(&c.mu, &key("mu"))?,
             });
         }

@@ -36,8 +36,9 @@ pub struct ContactSpec {
     pub k_newton: Number,
     /// k_i^P.
     pub k_poisson: Number,
-    /// k_i^E (Stronge's energetic coefficient): `k_energetic`, else `k`, else `k_poisson`.
-    pub k_energetic: Number,
+    /// k_i^E (Stronge's energetic coefficient), when given; otherwise k_i^P (which is `k` when
+    /// one `k` is given) stands for it.
+    pub k_energetic: Option<Number>,
     /// μ_i, Coulomb's coefficient of friction (`mu`, default 0).
     pub mu: Number,
 }
@@ -244,7 +245,7 @@ impl Reader<'_> {
                 ));
             }
         };
-        let k_energetic = ke.unwrap_or_else(|| k_poisson.clone());
+        let k_energetic = ke;
         let mu = match t.get("mu") {
             None => crate::number::parse_number("0").expect("0 is a number"),
             Some(item) => {
