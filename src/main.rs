@@ -9,6 +9,7 @@ use std::process::ExitCode;
 
 use clap::{Parser, Subcommand, ValueEnum};
 
+use inertance::impact::friction::FrictionError;
 use inertance::impact::restitution::Model;
 use inertance::impact::solve::SolveError;
 use inertance::impact::unilateral::Law;
@@ -408,6 +409,14 @@ fn fail(path: &std::path::Path, error: RunError) -> ExitCode {
                  so that it cannot leave them as the law demands (a verdict, not a number).",
                 path.display()
             );
+            ExitCode::from(3)
+        }
+        RunError::Friction(e @ FrictionError::NotPlanar) => {
+            eprintln!("error: {}: {e} (drop --exact)", path.display());
+            ExitCode::from(2)
+        }
+        RunError::Friction(e) => {
+            eprintln!("error: {}: {e}", path.display());
             ExitCode::from(3)
         }
     }

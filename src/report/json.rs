@@ -3,7 +3,7 @@
 
 use serde_json::{Map, Value as Json, json};
 
-use super::{ModelReport, PointVelocity, Report, Value, json_f64};
+use super::{FrictionReport, ModelReport, PointVelocity, Report, Value, json_f64};
 use crate::mechanics::contact::TangentRule;
 
 /// A matrix, row by row.
@@ -50,6 +50,13 @@ impl Report {
             })).collect::<Vec<_>>(),
             "models": Json::Object(models),
         });
+        if let (false, Some(obj)) = (self.friction.is_empty(), top.as_object_mut()) {
+            let mut laws = Map::new();
+            for f in &self.friction {
+                laws.insert(f.law.name().into(), friction_json(f));
+            }
+            obj.insert("friction".into(), Json::Object(laws));
+        }
         if let (Some((f, grad)), Some(obj)) = (&self.surface, top.as_object_mut()) {
             obj.insert("surface".into(), json!({ "f": f, "gradient": grad }));
         }
@@ -126,5 +133,30 @@ fn contact_json(b: &PointVelocity, a: &PointVelocity) -> Json {
         "velocity_after": vec(&a.components),
         "angle_before_deg": b.angle.as_ref().map(|x| json_f64(x.degrees)),
         "angle_after_deg": a.angle.as_ref().map(|x| json_f64(x.degrees)),
+    })
+}
+
+/// One frictional law's object under `friction`.
+fn friction_json(f: &FrictionReport) -> Json {
+    json!({
+        "method": f.method,
+        "contacts": f.contacts.iter().map(|c| json!({
+            "normal_impulse": c.normal_impulse.json(),
+            "compression_impulse": c.compression_impulse.json(),
+            "tangential_impulse": vec(&c.tangential_impulse),
+            "normal_velocity_after": c.normal_velocity.json(),
+            "velocity_after": vec(&c.velocity),
+            "modes": c.history.iter().map(|m| m.name()).collect::<Vec<_>>(),
+            "sticks": c.sticks,
+        })).collect::<Vec<_>>(),
+        "angular_velocity": vec(&f.angular_velocity),
+        "velocity": vec(&f.velocity),
+        "lost_velocity_energy": f.lost_velocity_energy.json(),
+        "kinetic_energy_loss": f.kinetic_energy_loss.json(),
+        "friction_dissipation": f.friction_dissipation.json(),
+        "events": vec(&f.events),
+        "end": f.end.json(),
+        "verdicts": f.verdicts,
+        "error_estimate": f.error_estimate.map(json_f64),
     })
 }

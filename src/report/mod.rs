@@ -13,8 +13,11 @@
 //! the normalisation of the solver's axes; `table` renders it for people ([`Report::to_table`]),
 //! `json` for programs ([`Report::to_json`]).
 
+mod friction;
 mod json;
 mod table;
+
+pub use friction::{FrictionContact, FrictionReport};
 
 use serde_json::Value as Json;
 
@@ -268,6 +271,9 @@ pub struct Report {
     pub constraints: Option<ConstraintsReport>,
     /// The surface f = 0 and its gradient as text, when contact normals come from it.
     pub surface: Option<(String, [String; 3])>,
+    /// One readout per frictional law solved (a scene with friction or an energetic law:
+    /// then `models` is empty).
+    pub friction: Vec<FrictionReport>,
 }
 
 impl Report {
@@ -297,6 +303,7 @@ impl Report {
                 .collect(),
             constraints: constraints.map(ConstraintsReport::new),
             surface: None,
+            friction: Vec::new(),
         }
     }
 

@@ -1,7 +1,7 @@
 //! The text table: what was assembled (G, Δ, the surface, the constraints), the contact
 //! velocities before impact, then the models side by side after impact, in SI units.
 
-use super::{ModelReport, Report, Value, fmt_f64};
+use super::{FrictionReport, ModelReport, Report, Value, fmt_f64};
 
 /// A row of the after-impact table: its label, and one cell per model.
 type Row = (String, Vec<String>);
@@ -29,6 +29,12 @@ impl Report {
         );
         out += &self.assembled();
         out += &self.before();
+        if !self.friction.is_empty() {
+            for f in &self.friction {
+                out += &friction_table(f);
+            }
+            return out;
+        }
         out += "\nAfter impact:\n";
         let header: Vec<String> = self
             .models
@@ -239,6 +245,55 @@ fn aligned(header: &[String], rows: &[Row]) -> String {
     let mut out = line("", header);
     for (name, cells) in rows {
         out += &line(name, cells);
+    }
+    out
+}
+
+/// One frictional law's readout: per contact, the impulses, the velocity after and the modes;
+/// the twist, the energies, the events and the verdicts.
+fn friction_table(f: &FrictionReport) -> String {
+    let mut out = format!(
+        "\nAfter impact, with friction — {} restitution ({}):\n",
+        f.law, f.method
+    );
+    for (i, c) in f.contacts.iter().enumerate() {
+        out += &format!(
+            "  A{}: P = {} N s (compression {}), tangential impulse {} N s\n      v = {} m/s \
+             (normal {}); modes {}{}\n",
+            i + 1,
+            c.normal_impulse.text(),
+            c.compression_impulse.text(),
+            bracketed(&c.tangential_impulse),
+            bracketed(&c.velocity),
+            c.normal_velocity.text(),
+            c.history
+                .iter()
+                .map(|m| m.name())
+                .collect::<Vec<_>>()
+                .join(" → "),
+            if c.sticks { " (sticks at the end)" } else { "" }
+        );
+    }
+    out += &format!(
+        "  ω = {} rad/s, v_C = {} m/s\n  E_p = {} J, ΔE_c = {} J, dissipated by friction {} J\n",
+        bracketed(&f.angular_velocity),
+        bracketed(&f.velocity),
+        f.lost_velocity_energy.text(),
+        f.kinetic_energy_loss.text(),
+        f.friction_dissipation.text()
+    );
+    if !f.events.is_empty() {
+        out += &format!(
+            "  events at s = {} (end s = {})\n",
+            f.events.iter().map(Value::text).collect::<Vec<_>>().join(", "),
+            f.end.text()
+        );
+    }
+    if let Some(e) = f.error_estimate {
+        out += &format!("  estimated error of the impulses: {} N s\n", fmt_f64(e));
+    }
+    for v in &f.verdicts {
+        out += &format!("  verdict: {v}\n");
     }
     out
 }

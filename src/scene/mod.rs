@@ -20,6 +20,11 @@
 //! models = ["newton", "poisson"]   # either or both
 //! ```
 //!
+//! **Friction.** `mu = 0.5` on a contact (default 0) and, optionally, `[solve] restitution =
+//! "newton" | "poisson" | "energetic"` (with `k_energetic` per contact, default `k_poisson`)
+//! integrate the impact in impulse space ([`crate::impact::friction`]) instead of solving the
+//! paper's algebraic system.
+//!
 //! Every number may be a TOML integer or float, or a string holding a fraction or an
 //! expression (`"1/3"`, `"2/sqrt(5)"`, `"cos(30 deg)"`, see [`crate::number`]). The raw text
 //! is kept, so in exact mode `0.1` is exactly 1/10; an irrational expression is refused in
@@ -53,6 +58,7 @@ use std::fmt;
 
 use toml_edit::DocumentMut;
 
+use crate::impact::friction::Restitution;
 use crate::impact::problem::{InvalidProblem, Problem, Reason};
 use crate::impact::restitution::Model;
 use crate::impact::unilateral::Law;
@@ -116,6 +122,9 @@ pub struct Scene {
     pub models: Vec<Model>,
     /// The impact law (`[solve] law`): the paper's simultaneous one unless `"unilateral"`.
     pub law: Law,
+    /// `[solve] restitution`: one restitution law for the frictional integration
+    /// ([`crate::impact::friction`]), `"newton"`, `"poisson"` or `"energetic"`.
+    pub restitution: Option<Restitution>,
     /// The `[constraints]` effect, if declared.
     pub constraints: Option<ConstraintsSpec>,
     /// The `[surface]` effect, if declared.
@@ -164,6 +173,29 @@ impl Scene {
         symbols: &[String],
     ) -> Result<Scene, SceneError> {
         read::scene(doc, file, symbols)
+    }
+
+    /// Whether the impact is integrated in impulse space ([`crate::impact::friction`]): some
+    /// μ_i ≠ 0, or `[solve] restitution` given.
+    pub fn frictional(&self) -> bool {
+        self.restitution.is_some()
+            || self.contacts.iter().any(|c| match &c.mu.exact {
+                Ok(q) => !num_traits::Zero::is_zero(q),
+                Err(_) => true,
+            })
+    }
+
+    /// The restitution laws of the frictional integration: `[solve] restitution`, else the
+    /// models asked for (`models`, or the scene's).
+    pub fn restitutions(&self, models: Option<&[Model]>) -> Vec<Restitution> {
+        match self.restitution {
+            Some(r) => vec![r],
+            None => models
+                .unwrap_or(&self.models)
+                .iter()
+                .map(|&m| Restitution::from(m))
+                .collect(),
+        }
     }
 
     /// The effects the scene declares, in report order.

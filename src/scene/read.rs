@@ -2,6 +2,7 @@
 //! reader's primitives (required keys, numbers as written, range checks), each turning a
 //! problem into a [`SceneError`] that names the key path and the value.
 
+use crate::impact::unilateral::Law;
 use num_traits::Signed;
 use toml_edit::{DocumentMut, Item, Table, TableLike, Value};
 
@@ -32,7 +33,18 @@ pub(super) fn scene(
     let name = r.name(root)?;
     let body = r.body(root)?;
     let contacts = r.contacts(root)?;
-    let (models, law) = r.solve(root)?;
+    let (models, law, restitution) = r.solve(root)?;
+    let rough = contacts
+        .iter()
+        .position(|c| !matches!(&c.mu.exact, Ok(q) if num_traits::Zero::is_zero(q)));
+    if let (Law::Unilateral, Some(i)) = (law, rough) {
+        return Err(r.err(
+            &format!("contact[{i}].mu"),
+            Some(contacts[i].mu.text.clone()),
+            "friction is integrated under the simultaneous hypothesis (§14); it cannot be combined \
+             with `[solve] law = \"unilateral\"`",
+        ));
+    }
     let constraints = match root.get("constraints") {
         None => None,
         Some(item) => Some(r.constraints(item)?),
@@ -51,6 +63,7 @@ pub(super) fn scene(
         contacts,
         models,
         law,
+        restitution,
         constraints,
         surface,
     })

@@ -215,6 +215,35 @@ pub fn unscale(report: &mut Report, u: &Units) {
             }
         }
     }
+    for f in &mut report.friction {
+        for p in &mut f.contacts {
+            times(&mut p.normal_impulse, a + b - c);
+            times(&mut p.compression_impulse, a + b - c);
+            for t in p.tangential_impulse.iter_mut() {
+                times(t, a + b - c);
+            }
+            times(&mut p.normal_velocity, b - c);
+            for v in p.velocity.iter_mut() {
+                times(v, b - c);
+            }
+        }
+        for w in &mut f.angular_velocity {
+            times(w, -c);
+        }
+        for v in &mut f.velocity {
+            times(v, b - c);
+        }
+        for e in [
+            &mut f.lost_velocity_energy,
+            &mut f.kinetic_energy_loss,
+            &mut f.friction_dissipation,
+        ] {
+            times(e, a + 2 * b - 2 * c);
+        }
+        if let Some(e) = &mut f.error_estimate {
+            *e *= 2f64.powi((a + b - c) as i32);
+        }
+    }
 }
 
 /// Whether every number of a report is finite (angles aside: they are bounded by construction).
@@ -238,6 +267,24 @@ pub fn finite(report: &Report) -> bool {
                 && ok(&m.lost_velocity_energy)
                 && ok(&m.kinetic_energy_loss)
                 && m.constraint_impulses.iter().all(ok)
+        })
+        && report.friction.iter().all(|f| {
+            f.contacts.iter().all(|p| {
+                [&p.normal_impulse, &p.compression_impulse, &p.normal_velocity]
+                    .into_iter()
+                    .chain(&p.tangential_impulse)
+                    .chain(&p.velocity)
+                    .all(ok)
+            }) && f
+                .angular_velocity
+                .iter()
+                .chain(&f.velocity)
+                .chain([
+                    &f.lost_velocity_energy,
+                    &f.kinetic_energy_loss,
+                    &f.friction_dissipation,
+                ])
+                .all(ok)
         })
 }
 

@@ -2,6 +2,7 @@
 //! `[solve]`, `[constraints]` and `[surface]` hold, and how each is read and checked (ranges,
 //! zero vectors, which keys go together).
 
+use crate::impact::friction::Restitution;
 use toml_edit::{Item, Table};
 
 use super::SceneError;
@@ -152,14 +153,29 @@ impl Reader<'_> {
 
     /// The `[solve]` table: the models asked for (all of them when absent) and the impact law
     /// (the paper's simultaneous one when absent).
-    pub(super) fn solve(&self, root: &Table) -> Result<(Vec<Model>, Law), SceneError> {
+    pub(super) fn solve(
+        &self,
+        root: &Table,
+    ) -> Result<(Vec<Model>, Law, Option<Restitution>), SceneError> {
         Ok(match root.get("solve") {
-            None => (Model::ALL.to_vec(), Law::default()),
+            None => (Model::ALL.to_vec(), Law::default(), None),
             Some(item) => {
                 let t = item.as_table().ok_or_else(|| {
                     self.err("solve", Some(short(item)), "must be a table: [solve]")
                 })?;
-                self.only_keys(t, "solve", &["models", "law"])?;
+                self.only_keys(t, "solve", &["models", "law", "restitution"])?;
+                let restitution = match t.get("restitution") {
+                    None => None,
+                    Some(r) => Some(r.as_str().and_then(Restitution::from_name).ok_or_else(
+                        || {
+                            self.err(
+                                "solve.restitution",
+                                Some(short(r)),
+                                "unknown restitution law; expected \"newton\", \"poisson\" or \"energetic\"",
+                            )
+                        },
+                    )?),
+                };
                 let models = match t.get("models") {
                     None => Model::ALL.to_vec(),
                     Some(m) => self.models(m, "solve.models")?,
@@ -174,7 +190,7 @@ impl Reader<'_> {
                         )
                     })?,
                 };
-                (models, law)
+                (models, law, restitution)
             }
         })
     }

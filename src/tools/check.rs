@@ -71,6 +71,8 @@ use std::collections::{BTreeMap, BTreeSet};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
+use crate::impact::friction::Restitution;
+use crate::report::FrictionReport;
 use crate::impact::restitution::Model;
 use crate::impact::unilateral::Law;
 use crate::number::{parse_decimal, parse_number};
@@ -475,6 +477,12 @@ pub fn check_derivation(
             scene.law = law;
         }
         let symbolic = !case.symbols.is_empty();
+        if symbolic && scene.frictional() {
+            return Err(fmt_err(format!(
+                "case `{}`: a symbolic case is derived without friction only",
+                case.name
+            )));
+        }
         if symbolic && scene.law == Law::Unilateral {
             return Err(fmt_err(format!(
                 "case `{}`: a symbolic case is derived under the simultaneous law only",
@@ -505,12 +513,15 @@ pub fn check_derivation(
         crate::scalar::symbolic::take_assumptions();
         result.cases.push((
             case.name.clone(),
-            match (symbolic, solved.report.scalar) {
-                (true, _) => "symbolic",
-                (false, "symbolic") => "exact, radicals",
-                (false, s) => s,
+            match (symbolic, solved.report.scalar, solved.report.friction.is_empty()) {
+                (true, _, _) => "symbolic",
+                (false, "symbolic", true) => "exact, radicals",
+                (false, "symbolic", false) => "exact, radicals, friction",
+                (false, "exact", false) => "exact, friction",
+                (false, _, false) => "f64, friction",
+                (false, s, true) => s,
             },
-            if solved.report.models.is_empty() {
+            if solved.report.models.is_empty() && solved.report.friction.is_empty() {
                 None
             } else {
                 Some(solved.energy_identity.iter().all(|&b| b))
@@ -786,6 +797,43 @@ fn describe(v: &Value, printed: &str) -> String {
     }
 }
 
+/// A quantity of a frictional readout (see the module docs for the names).
+fn friction_value(
+    f: &FrictionReport,
+    name: &str,
+    idx: &dyn Fn(&str) -> Option<usize>,
+) -> Option<Vec<Value>> {
+    match name {
+        "Ep" => return Some(vec![f.lost_velocity_energy.clone()]),
+        "dEc" => return Some(vec![f.kinetic_energy_loss.clone()]),
+        "Ef" => return Some(vec![f.friction_dissipation.clone()]),
+        "omega" => return Some(f.angular_velocity.to_vec()),
+        "vC" => return Some(f.velocity.to_vec()),
+        "twist" => return Some(f.angular_velocity.iter().chain(&f.velocity).cloned().collect()),
+        "events" => return Some(f.events.clone()),
+        "end" => return Some(vec![f.end.clone()]),
+        "admissible" => return Some(vec![flag(f.verdicts.is_empty())]),
+        _ => {}
+    }
+    let contact = |prefix: &str| name.strip_prefix(prefix).and_then(|r| idx(r)).map(|i| &f.contacts[i]);
+    if let Some(c) = contact("Pt") {
+        return Some(c.tangential_impulse.to_vec());
+    }
+    if let Some(c) = name.strip_suffix('c').and_then(|n| n.strip_prefix('P')).and_then(|r| idx(r)) {
+        return Some(vec![f.contacts[c].compression_impulse.clone()]);
+    }
+    if let Some(c) = contact("P") {
+        return Some(vec![c.normal_impulse.clone()]);
+    }
+    if let Some(c) = contact("stick") {
+        return Some(vec![flag(c.sticks)]);
+    }
+    if let Some(c) = name.strip_suffix('x').and_then(|n| n.strip_prefix('v')).and_then(|r| idx(r)) {
+        return Some(vec![f.contacts[c].normal_velocity.clone()]);
+    }
+    contact("v").map(|c| c.velocity.to_vec())
+}
+
 /// The reported value(s) of a quantity.
 pub fn lookup(r: &Report, q: &str) -> Result<Vec<Value>, String> {
     // One entry of a vector quantity: `newton.omega[0]`.
@@ -808,6 +856,15 @@ pub fn lookup(r: &Report, q: &str) -> Result<Vec<Value>, String> {
             .map(|i| i - 1)
     };
     let axis = |c: char| "xyz".find(c);
+    if let (false, Some((law, rest))) = (r.friction.is_empty(), q.split_once('.')) {
+        let law = Restitution::from_name(law).ok_or_else(unknown)?;
+        let f = r
+            .friction
+            .iter()
+            .find(|f| f.law == law)
+            .ok_or_else(|| format!("`{q}`: the {law} law was not integrated"))?;
+        return friction_value(f, rest, &idx).ok_or_else(unknown);
+    }
     let (model, name) = match q.split_once('.') {
         Some((m, rest)) => (Some(Model::from_name(m).ok_or_else(unknown)?), rest),
         None => (None, q),
@@ -943,7 +1000,10 @@ pub fn render(results: &[FileResult]) -> (String, bool) {
     for r in results {
         let _ = writeln!(out, "{}", r.path.display());
         for (case, scalar, identity) in &r.cases {
+            let friction = scalar.ends_with("friction");
             let identity_text = match identity {
+                Some(true) if friction => "energy balance Σ∫v·dΛ = T⁰ − T holds",
+                Some(false) if friction => "energy balance Σ∫v·dΛ = T⁰ − T FAILS",
                 Some(true) => "energy identity (eq. 34) holds",
                 Some(false) => "energy identity (eq. 34) FAILS",
                 None => "G is singular (Δ = 0): model-independent values only",

@@ -47,6 +47,8 @@ pub struct Blocks<T: Scalar> {
     pub v0: Vec<T>,
     /// μ_i per contact.
     pub mu: Vec<T>,
+    /// The contact points A_i (from C, body axes).
+    pub points: Vec<Vec3<T>>,
     /// The plane's unit normal (coordinate axis 0, 1 or 2) when the scene is planar.
     pub plane: Option<usize>,
 }
@@ -161,6 +163,7 @@ impl<T: Scalar> Blocks<T> {
             k,
             v0,
             mu: problem.contacts().iter().map(|c| c.mu.clone()).collect(),
+            points: problem.contacts().iter().map(|c| c.point.clone()).collect(),
             plane,
         }
     }
