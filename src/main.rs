@@ -295,6 +295,11 @@ fn warn(path: &std::path::Path, report: &inertance::report::Report) {
             );
         }
     }
+    for f in &report.friction {
+        for v in &f.verdicts {
+            eprintln!("warning: {}: {} with friction: {v}", path.display(), f.law);
+        }
+    }
     let before = &report.contacts_before;
     if !before.is_empty() && before.iter().all(|v| v.components[0].f64 < 0.0) {
         eprintln!(

@@ -1,15 +1,21 @@
 //! Coulomb friction in impulse space (issue 13): the model against the paper (μ = 0), against
-//! closed forms we did not write, and against its own invariants.
+//! values derived by hand, and against its own invariants — exactly, in rationals and in the
+//! radical field.
 
 mod common;
 
-use inertance::impact::friction::{Restitution, solve_frictional};
+use common::SceneFile;
+use inertance::impact::friction::{FrictionError, Phase, Restitution, Verdict, solve_frictional};
 use inertance::impact::problem::Problem;
+use inertance::impact::restitution::Model;
+use inertance::impact::solve::{Impact, Outcome};
 use inertance::mechanics::body::RigidBody;
 use inertance::mechanics::contact::Contact;
 use inertance::mechanics::screw::{Screw, Vec3};
 use inertance::scalar::symbolic::RatFun;
 use inertance::scalar::{Exact, Scalar, int, ratio};
+use num_traits::{Signed, Zero};
+use proptest::prelude::*;
 
 fn v<T: Scalar>(x: T, y: T, z: T) -> Vec3<T> {
     Vec3::new(x, y, z)
@@ -34,12 +40,242 @@ fn example_3<T: Scalar>(mu: T) -> Problem<T> {
 }
 
 #[test]
-fn scratch() {
-    for mu in [ratio::<RatFun>(0, 1), ratio(1, 10), ratio(1, 2), int(1)] {
-        for law in Restitution::ALL {
-            let out = match solve_frictional(&example_3(mu.clone()), law, 1e-10) { Ok(o) => o, Err(e) => { println!("mu={mu:?} {law}: {e}"); continue; } };
-            println!("mu={} {law}", mu.exact_text().unwrap()); println!(": P={:?} twist={:?} dEc={} Ef={} res={} verdicts={:?}", out.impulses.iter().map(|x| x.exact_text().unwrap()).collect::<Vec<_>>(), out.velocity.as_slice().iter().map(|x| x.exact_text().unwrap()).collect::<Vec<_>>(), out.kinetic_energy_loss.exact_text().unwrap(), out.friction_dissipation.exact_text().unwrap(), out.energy_residual.exact_text().unwrap(), out.verdicts);
-            for s in &out.segments { println!("   [{}, {}] {} {:?} {:?}", s.from.exact_text().unwrap(), s.to.exact_text().unwrap(), s.phase, s.modes, s.rates.iter().map(|x| x.exact_text().unwrap()).collect::<Vec<_>>()); }
+fn mu_zero_reproduces_example_3_and_flags_the_negative_restitution_rate() {
+    let out = solve_frictional(&example_3::<Exact>(int(0)), Restitution::Newton, 0.0).unwrap();
+    assert_eq!(out.impulses, vec![ratio(329, 90), ratio(89, 450)]);
+    assert_eq!(out.kinetic_energy_loss, ratio(223769, 45000));
+    assert!(out.energy_residual.is_zero());
+    // The paper's Example 3: dp₂/ds = −1/450 on [1, 2], hidden by the algebraic answer.
+    assert_eq!(out.segments[1].rates, vec![ratio(77, 90), ratio(-1, 450)]);
+    assert!(out.verdicts.contains(&Verdict::TensileRate {
+        contact: 1,
+        s: 1.0,
+        phase: Phase::Restitution
+    }));
+    let out = solve_frictional(&example_3::<Exact>(int(0)), Restitution::Poisson, 0.0).unwrap();
+    assert_eq!(out.impulses, vec![ratio(91, 25), ratio(6, 25)]);
+    assert!(out.verdicts.is_empty());
+}
+
+#[test]
+fn newton_with_mu_1_has_no_consistent_stick_slip_assignment() {
+    // Both contacts stick from s = 2/3; at s = 1 Newton asks A₂ for a negative rate, which no
+    // cone holds and neither sense of slip is consistent with (derivations/friction-example-3.md).
+    let err = solve_frictional(&example_3::<Exact>(int(1)), Restitution::Newton, 0.0).unwrap_err();
+    assert_eq!(
+        err,
+        FrictionError::NoConsistentModes {
+            s: 1.0,
+            phase: Phase::Restitution
+        }
+    );
+}
+
+#[test]
+fn energetic_stops_live_in_the_radical_field() {
+    let out = solve_frictional(
+        &example_3::<RatFun>(ratio(1, 2)),
+        Restitution::Energetic,
+        0.0,
+    )
+    .unwrap();
+    // P₁ = (279 + √7239)/100: A₁ stops where its restitution work reaches k₁² times its
+    // compression work, a root of a quadratic; A₂ (k₂ = 1/5) at s = 6/5.
+    let sqrt = RatFun::sqrt(&Exact::from_integer(7239.into())).unwrap();
+    assert_eq!(
+        out.impulses[0],
+        (RatFun::from_integer(279) + sqrt) / RatFun::from_integer(100)
+    );
+    assert_eq!(out.impulses[2], ratio(6, 25));
+    assert_eq!(out.segments[1].to, ratio(6, 5));
+    assert!(out.energy_residual.is_zero());
+    // The energetic contacts end with restitution work = k² × compression work, exactly.
+    for (i, k) in [ratio::<RatFun>(3, 10), ratio(1, 5)].iter().enumerate() {
+        assert_eq!(
+            out.work_restitution[i],
+            k.clone() * k * &out.work_compression[i]
+        );
+    }
+    // The same scene in rationals needs the square root it does not hold.
+    let err = solve_frictional(
+        &example_3::<Exact>(ratio(1, 2)),
+        Restitution::Energetic,
+        0.0,
+    )
+    .unwrap_err();
+    assert_eq!(err, FrictionError::NeedsRadical { contact: 0 });
+}
+
+fn hatted_frictionless(p: &Problem<Exact>, model: Model) -> Option<Outcome<Exact>> {
+    let mut impact = Impact::assemble(p).ok()?;
+    let mut out = Outcome::default();
+    impact.solve(model, &mut out).ok()?;
+    Some(out)
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(48))]
+
+    /// With every μ_i = 0 the integrator is the paper's eq. 15, 20–23: the same impulses and
+    /// twist, in rationals — equality, not a tolerance.
+    #[test]
+    fn mu_zero_is_the_papers_solve_exactly(p in common::problem(3)) {
+        for model in Model::ALL {
+            let Some(expected) = hatted_frictionless(&p, model) else { continue };
+            let out = solve_frictional(&p, Restitution::from(model), 0.0).unwrap();
+            prop_assert_eq!(&out.impulses, &expected.impulses_hat);
+            prop_assert_eq!(&out.velocity, &expected.velocity);
+            prop_assert_eq!(&out.kinetic_energy_loss, &expected.kinetic_energy_loss);
+            prop_assert!(out.energy_residual.is_zero());
         }
     }
+
+    /// Planar frictional impacts: ΔE_c = Σ∫v·dΛ equals T⁰ − T exactly; friction dissipates
+    /// (∫ v_t·dτ ≥ 0) whenever no normal rate was negative; the Coulomb cone holds for the
+    /// accumulated impulses then; and under Poisson's law without a tensile rate, the same
+    /// normal impulses split as (1 + k) p^c.
+    #[test]
+    fn planar_friction_balances_energy_exactly(
+        p in common::problem(2),
+        mus in prop::collection::vec(common::rational(2, 4), 2),
+    ) {
+        // Flatten to the xy-plane: points and normals with z = 0, a planar twist.
+        let body = p.body().clone();
+        let vel = p.velocity();
+        let twist = Screw::new(
+            v(int(0), int(0), vel.top()[2].clone()),
+            v(vel.bottom()[0].clone(), vel.bottom()[1].clone(), int(0)),
+        );
+        let contacts: Vec<Contact<Exact>> = p
+            .contacts()
+            .iter()
+            .zip(&mus)
+            .filter(|(c, _)| !(c.normal[0].is_zero() && c.normal[1].is_zero()))
+            .map(|(c, mu)| {
+                let mut c = c.clone();
+                c.point[2] = int(0);
+                c.normal[2] = int(0);
+                c.tangent = None;
+                c.mu = mu.abs();
+                c
+            })
+            .collect();
+        prop_assume!(!contacts.is_empty());
+        let q = Problem::new(body, twist, contacts).unwrap();
+        for law in [Restitution::Newton, Restitution::Poisson] {
+            let Ok(out) = solve_frictional(&q, law, 0.0) else { continue };
+            prop_assert!(out.blocks.plane.is_some());
+            prop_assert!(out.energy_residual.is_zero());
+            let tensile = out.verdicts.iter().any(|v| matches!(v, Verdict::TensileRate { .. }));
+            if !tensile {
+                prop_assert!(!out.friction_dissipation.is_negative());
+                for i in 0..out.blocks.contacts() {
+                    let o = out.blocks.offset[i];
+                    if out.blocks.dims[i] == 1 {
+                        let bound = out.blocks.mu[i].clone() * &out.impulses[o];
+                        prop_assert!(out.impulses[o + 1].abs() <= bound);
+                    }
+                }
+            }
+        }
+    }
+}
+
+const ROUGH_BAR: &str = r#"
+name = "Example 3 with friction"
+[body]
+mass = 1
+inertia = [12, 1.6, 12]
+velocity = [3, 2, 0]
+angular_velocity = [0, 0, 0.4]
+[[contact]]
+point = [0, -2, 0]
+normal = [1, 0, 0]
+k = 0.3
+mu = 1
+[[contact]]
+point = [0, 4, 0]
+normal = [1, 0, 0]
+k = 0.2
+mu = 1
+[solve]
+restitution = "poisson"
+"#;
+
+#[test]
+fn the_cli_reports_modes_events_and_verdicts() {
+    let s = SceneFile::new("friction-cli", ROUGH_BAR);
+    let out = s.run(&["solve", "--exact", "--json"]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let j: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let f = &j["friction"]["poisson"];
+    assert_eq!(
+        f["contacts"][0]["modes"],
+        serde_json::json!(["slide+", "stick"])
+    );
+    assert_eq!(f["events"], serde_json::json!(["2/3", "1"]));
+    assert_eq!(f["friction_dissipation"], "2");
+    assert_eq!(
+        f["contacts"][0]["tangential_impulse"],
+        serde_json::json!(["0", "-28/15", "0"])
+    );
+    // The split of the shared tangential impulse is a verdict, said on stderr too.
+    assert!(String::from_utf8_lossy(&out.stderr).contains("split shown is one member"));
+    // Newton has no continuation: a verdict, exit 3, nothing on stdout.
+    let newton = SceneFile::new(
+        "friction-cli-newton",
+        &ROUGH_BAR.replace("poisson", "newton"),
+    );
+    let out = newton.run(&["solve", "--exact"]);
+    assert_eq!(out.status.code(), Some(3));
+    assert!(out.stdout.is_empty());
+    assert!(String::from_utf8_lossy(&out.stderr).contains("no assignment of stick and slip"));
+}
+
+#[test]
+fn bad_friction_input_names_the_key_and_value() {
+    let s = SceneFile::new(
+        "friction-negative",
+        &ROUGH_BAR.replacen("mu = 1", "mu = -0.2", 1),
+    );
+    let out = s.run(&["solve"]);
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("contact[0].mu") && err.contains("-0.2"),
+        "{err}"
+    );
+    let s = SceneFile::new(
+        "friction-unilateral",
+        &ROUGH_BAR.replace("restitution = \"poisson\"", "law = \"unilateral\""),
+    );
+    let out = s.run(&["solve"]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("simultaneous hypothesis"));
+    let s = SceneFile::new(
+        "friction-restitution",
+        &ROUGH_BAR.replace("\"poisson\"", "\"plastic\""),
+    );
+    let out = s.run(&["solve"]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("solve.restitution"));
+}
+
+#[test]
+fn a_spatial_scene_is_refused_in_exact_mode() {
+    // A spin about the bar's own axis moves the contacts out of the xy-plane.
+    let s = SceneFile::new(
+        "friction-spatial-exact",
+        &ROUGH_BAR.replace(
+            "angular_velocity = [0, 0, 0.4]",
+            "angular_velocity = [1, 0, 0.4]",
+        ),
+    );
+    let out = s.run(&["solve", "--exact"]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("not planar"));
 }

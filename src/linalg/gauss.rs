@@ -172,8 +172,13 @@ mod tests {
         let a = [4.0, -2.0, 1.0, -2.0, 4.0, -2.0, 1.0, -2.0, 4.0];
         let b = [11.0, -16.0, 17.0];
         let s = solve_general(&a, 3, 3, &b).unwrap();
-        let e = solve_general(&m(&[4, -2, 1, -2, 4, -2, 1, -2, 4]), 3, 3, &m(&[11, -16, 17]))
-            .unwrap();
+        let e = solve_general(
+            &m(&[4, -2, 1, -2, 4, -2, 1, -2, 4]),
+            3,
+            3,
+            &m(&[11, -16, 17]),
+        )
+        .unwrap();
         for (x, q) in s.particular.iter().zip(&e.particular) {
             assert!((x - q.to_f64()).abs() <= 1e-14 * q.to_f64().abs().max(1.0));
         }

@@ -285,7 +285,11 @@ fn friction_table(f: &FrictionReport) -> String {
     if !f.events.is_empty() {
         out += &format!(
             "  events at s = {} (end s = {})\n",
-            f.events.iter().map(Value::text).collect::<Vec<_>>().join(", "),
+            f.events
+                .iter()
+                .map(Value::text)
+                .collect::<Vec<_>>()
+                .join(", "),
             f.end.text()
         );
     }

@@ -270,11 +270,15 @@ pub fn finite(report: &Report) -> bool {
         })
         && report.friction.iter().all(|f| {
             f.contacts.iter().all(|p| {
-                [&p.normal_impulse, &p.compression_impulse, &p.normal_velocity]
-                    .into_iter()
-                    .chain(&p.tangential_impulse)
-                    .chain(&p.velocity)
-                    .all(ok)
+                [
+                    &p.normal_impulse,
+                    &p.compression_impulse,
+                    &p.normal_velocity,
+                ]
+                .into_iter()
+                .chain(&p.tangential_impulse)
+                .chain(&p.velocity)
+                .all(ok)
             }) && f
                 .angular_velocity
                 .iter()

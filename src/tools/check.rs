@@ -72,10 +72,10 @@ use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
 use crate::impact::friction::Restitution;
-use crate::report::FrictionReport;
 use crate::impact::restitution::Model;
 use crate::impact::unilateral::Law;
 use crate::number::{parse_decimal, parse_number};
+use crate::report::FrictionReport;
 use crate::report::{Report, Value};
 use crate::scalar::symbolic::RatFun;
 use crate::scalar::{Exact, Scalar as _};
@@ -513,7 +513,11 @@ pub fn check_derivation(
         crate::scalar::symbolic::take_assumptions();
         result.cases.push((
             case.name.clone(),
-            match (symbolic, solved.report.scalar, solved.report.friction.is_empty()) {
+            match (
+                symbolic,
+                solved.report.scalar,
+                solved.report.friction.is_empty(),
+            ) {
                 (true, _, _) => "symbolic",
                 (false, "symbolic", true) => "exact, radicals",
                 (false, "symbolic", false) => "exact, radicals, friction",
@@ -809,17 +813,33 @@ fn friction_value(
         "Ef" => return Some(vec![f.friction_dissipation.clone()]),
         "omega" => return Some(f.angular_velocity.to_vec()),
         "vC" => return Some(f.velocity.to_vec()),
-        "twist" => return Some(f.angular_velocity.iter().chain(&f.velocity).cloned().collect()),
+        "twist" => {
+            return Some(
+                f.angular_velocity
+                    .iter()
+                    .chain(&f.velocity)
+                    .cloned()
+                    .collect(),
+            );
+        }
         "events" => return Some(f.events.clone()),
         "end" => return Some(vec![f.end.clone()]),
         "admissible" => return Some(vec![flag(f.verdicts.is_empty())]),
         _ => {}
     }
-    let contact = |prefix: &str| name.strip_prefix(prefix).and_then(|r| idx(r)).map(|i| &f.contacts[i]);
+    let contact = |prefix: &str| {
+        name.strip_prefix(prefix)
+            .and_then(idx)
+            .map(|i| &f.contacts[i])
+    };
     if let Some(c) = contact("Pt") {
         return Some(c.tangential_impulse.to_vec());
     }
-    if let Some(c) = name.strip_suffix('c').and_then(|n| n.strip_prefix('P')).and_then(|r| idx(r)) {
+    if let Some(c) = name
+        .strip_suffix('c')
+        .and_then(|n| n.strip_prefix('P'))
+        .and_then(idx)
+    {
         return Some(vec![f.contacts[c].compression_impulse.clone()]);
     }
     if let Some(c) = contact("P") {
@@ -828,7 +848,11 @@ fn friction_value(
     if let Some(c) = contact("stick") {
         return Some(vec![flag(c.sticks)]);
     }
-    if let Some(c) = name.strip_suffix('x').and_then(|n| n.strip_prefix('v')).and_then(|r| idx(r)) {
+    if let Some(c) = name
+        .strip_suffix('x')
+        .and_then(|n| n.strip_prefix('v'))
+        .and_then(idx)
+    {
         return Some(vec![f.contacts[c].normal_velocity.clone()]);
     }
     contact("v").map(|c| c.velocity.to_vec())

@@ -148,7 +148,10 @@ impl<T: Scalar> Blocks<T> {
                 k.push(a.reciprocal(r));
             }
         }
-        let v0 = axes.iter().map(|a| a.reciprocal(problem.velocity())).collect();
+        let v0 = axes
+            .iter()
+            .map(|a| a.reciprocal(problem.velocity()))
+            .collect();
         let mut offset = Vec::with_capacity(dims.len());
         let mut at = 0;
         for d in &dims {
@@ -208,7 +211,8 @@ mod tests {
 
     fn bar(mu: Exact, omega_x: i64) -> Problem<Exact> {
         // Example 3's bar: points on Cy, normals along x, motion in the xy-plane.
-        let c = |y: i64, k: Exact| Contact::new(v(0, y, 0), v(1, 0, 0), k).with_friction(mu.clone());
+        let c =
+            |y: i64, k: Exact| Contact::new(v(0, y, 0), v(1, 0, 0), k).with_friction(mu.clone());
         Problem::new(
             RigidBody {
                 mass: int(1),

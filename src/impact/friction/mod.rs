@@ -268,7 +268,9 @@ pub enum FrictionError {
         s: f64,
     },
     /// Too many contacts at zero slip at once to try every assignment.
-    #[error("at s = {s}, {contacts} contacts are at zero slip at once: more than 8 are not resolved")]
+    #[error(
+        "at s = {s}, {contacts} contacts are at zero slip at once: more than 8 are not resolved"
+    )]
     TooManyAtRest {
         /// Where.
         s: f64,
@@ -367,12 +369,20 @@ impl<T: Scalar> Frictional<T> {
         for (c, r) in work_compression.iter().zip(&work_restitution) {
             kinetic_energy_loss += c.clone() - r;
         }
-        let energy_residual = body.kinetic_energy(before) - body.kinetic_energy(&velocity)
-            - &kinetic_energy_loss;
+        let energy_residual =
+            body.kinetic_energy(before) - body.kinetic_energy(&velocity) - &kinetic_energy_loss;
         verdicts.dedup_by(|a, b| match (a, b) {
             (
-                Verdict::TensileRate { contact: i, phase: p, .. },
-                Verdict::TensileRate { contact: j, phase: q, .. },
+                Verdict::TensileRate {
+                    contact: i,
+                    phase: p,
+                    ..
+                },
+                Verdict::TensileRate {
+                    contact: j,
+                    phase: q,
+                    ..
+                },
             ) => i == j && p == q,
             _ => false,
         });
@@ -382,7 +392,11 @@ impl<T: Scalar> Frictional<T> {
                 verdicts.push(Verdict::StillApproaching { contact: i });
             }
         }
-        if !modes::nonnegative(&kinetic_energy_loss, &body.kinetic_energy(before), blocks.len()) {
+        if !modes::nonnegative(
+            &kinetic_energy_loss,
+            &body.kinetic_energy(before),
+            blocks.len(),
+        ) {
             verdicts.push(Verdict::EnergyGain);
         }
         Frictional {

@@ -122,7 +122,9 @@ pub fn solve_planar<T: Scalar>(
         };
         let mut h = end.clone();
         let take = |cand: T, h: &mut Option<T>| {
-            if h.as_ref().is_none_or(|x| (cand.clone() - x).signum_i8() < 0) {
+            if h.as_ref()
+                .is_none_or(|x| (cand.clone() - x).signum_i8() < 0)
+            {
                 *h = Some(cand);
             }
         };
@@ -181,7 +183,7 @@ pub fn solve_planar<T: Scalar>(
                 rates: r.lambda,
             });
         }
-        let at_end = end.as_ref().is_some_and(|e| fired(e));
+        let at_end = end.as_ref().is_some_and(fired);
         match (st.phase, at_end) {
             (Phase::Compression, true) => {
                 st.s = T::one();
@@ -230,7 +232,11 @@ pub fn solve_planar<T: Scalar>(
 
 /// ±1 by the sign of `x` (x ≠ 0).
 fn sign<T: Scalar>(x: &T) -> T {
-    if x.signum_i8() < 0 { -T::one() } else { T::one() }
+    if x.signum_i8() < 0 {
+        -T::one()
+    } else {
+        T::one()
+    }
 }
 
 /// The normal rule of every contact in the current phase.
@@ -248,7 +254,9 @@ fn normals<T: Scalar>(
             let v0 = b.v0[b.offset[i]].clone();
             match (st.phase, law) {
                 (Phase::Compression, _) => Normal::Driven(v0),
-                (Phase::Restitution, Restitution::Newton) => Normal::Driven(c.k_newton.clone() * v0),
+                (Phase::Restitution, Restitution::Newton) => {
+                    Normal::Driven(c.k_newton.clone() * v0)
+                }
                 (Phase::Restitution, Restitution::Poisson) => {
                     Normal::Given(c.k_poisson.clone() * &st.compression[i])
                 }

@@ -226,9 +226,7 @@ fn middle_of_cones<T: Scalar>(
         }
     }
     match (lo, hi) {
-        (Some(l), Some(h)) if (h.clone() - &l).signum_i8() >= 0 => {
-            (l + h) / (T::one() + T::one())
-        }
+        (Some(l), Some(h)) if (h.clone() - &l).signum_i8() >= 0 => (l + h) / (T::one() + T::one()),
         _ => T::zero(),
     }
 }

@@ -132,7 +132,10 @@ impl<T: Scalar> Run<'_, T> {
     fn velocities(&self, y: &[T]) -> Vec<T> {
         let mut dv = Vec::new();
         self.b.velocity_change(&y[..self.len()], &mut dv);
-        dv.iter().zip(&self.b.v0).map(|(d, v0)| v0.clone() + d).collect()
+        dv.iter()
+            .zip(&self.b.v0)
+            .map(|(d, v0)| v0.clone() + d)
+            .collect()
     }
 
     fn normals(&self, st: &State<T>) -> Vec<Normal<T>> {
@@ -623,7 +626,10 @@ fn resolve<T: Scalar>(
         st.modes[i] = Mode::Slide(u.clone());
         let r = rates(b, &normals, &st.modes).map_err(|e| fail(e, &st.s, st.phase))?;
         let dv = &r.velocity[off + 1..off + 3];
-        let lambda: T = dv.iter().zip(&u).fold(T::zero(), |acc, (a, c)| acc + a.clone() * c);
+        let lambda: T = dv
+            .iter()
+            .zip(&u)
+            .fold(T::zero(), |acc, (a, c)| acc + a.clone() * c);
         if !converged || !positive(&lambda, &max_abs(&r.velocity), b.len()) {
             return Err(FrictionError::NoConsistentModes {
                 s: st.s.to_f64(),
