@@ -54,6 +54,13 @@ impl Plan {
         let points = grid_points(&opts.vary)?;
         let (file, doc, base) = read_scene(opts)?;
         check_paths(&opts.vary, &doc, &base, &file)?;
+        if base.frictional() || opts.vary.iter().any(|v| v.path.ends_with(".mu")) {
+            return Err(SweepError::Options(
+                "sweeps do not integrate friction yet (contact[i].mu, [solve] restitution): \
+                 run `inertance solve` per point"
+                    .into(),
+            ));
+        }
         let models = base.models.clone();
         let contacts = base.contacts.len();
         let series = if opts.plot.is_some() {
