@@ -279,3 +279,19 @@ fn a_spatial_scene_is_refused_in_exact_mode() {
     assert_eq!(out.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&out.stderr).contains("not planar"));
 }
+
+#[test]
+fn sweeps_refuse_friction_rather_than_write_empty_columns() {
+    let s = SceneFile::new("friction-sweep", ROUGH_BAR);
+    let csv = s.dir().join("out.csv");
+    let out = s.run(&[
+        "sweep",
+        "--vary",
+        "contact[0].k=0:1:3",
+        "--out",
+        csv.to_str().unwrap(),
+    ]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("do not integrate friction"));
+    assert!(!csv.exists());
+}
