@@ -300,6 +300,12 @@ fn warn(path: &std::path::Path, report: &inertance::report::Report) {
             eprintln!("warning: {}: {} with friction: {v}", path.display(), f.law);
         }
     }
+    for (law, message, _) in &report.friction_failures {
+        eprintln!(
+            "warning: {}: {law} with friction has no answer: {message}",
+            path.display()
+        );
+    }
     let before = &report.contacts_before;
     if !before.is_empty() && before.iter().all(|v| v.components[0].f64 < 0.0) {
         eprintln!(
@@ -474,7 +480,7 @@ fn run_sweep(
     match sweep(&opts) {
         Ok(s) => {
             eprintln!(
-                "{} points ({} singular) in {:.2} s → {}",
+                "{} points ({} without an answer: see `status`) in {:.2} s → {}",
                 s.points,
                 s.singular,
                 s.seconds,

@@ -657,7 +657,9 @@ fn solve_batch<'py>(
         .allow_threads(|| lib_sweep::solve_batch(doc, file, &vary, law))
         .map_err(|e| errors::sweep_error(py, &e))?;
     let out = PyDict::new(py);
-    let (w, n) = (b.outputs.len(), b.outputs.len() - 8);
+    let w = b.outputs.len();
+    let friction = b.outputs.last().is_some_and(|o| o == "Ef");
+    let n = w - 8 - usize::from(friction);
     for (m, values) in b.models.iter().zip(&b.values) {
         let d = PyDict::new(py);
         d.set_item("impulses", convert::columns(py, values, w, 0..n)?)?;
@@ -671,6 +673,9 @@ fn solve_batch<'py>(
             convert::column(py, values, w, n + 6),
         )?;
         d.set_item("kinetic_energy_loss", convert::column(py, values, w, n + 7))?;
+        if friction {
+            d.set_item("friction_dissipation", convert::column(py, values, w, n + 8))?;
+        }
         out.set_item(m.name(), d)?;
     }
     out.set_item("status", b.status)?;

@@ -54,6 +54,8 @@ pub struct FrictionReport {
     pub end: Value,
     /// The verdicts, as sentences.
     pub verdicts: Vec<String>,
+    /// Their short names (`tensile-rate`, …), in the same order.
+    pub verdict_names: Vec<&'static str>,
     /// The estimated error of impulses (N s), for the spatial integration.
     pub error_estimate: Option<f64>,
 }
@@ -109,6 +111,7 @@ impl FrictionReport {
             events,
             end: Value::of(&f.end),
             verdicts: f.verdicts.iter().map(|v| v.to_string()).collect(),
+            verdict_names: f.verdicts.iter().map(|v| v.name()).collect(),
             error_estimate: f.error_estimate,
         }
     }

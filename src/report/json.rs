@@ -55,6 +55,12 @@ impl Report {
             for f in &self.friction {
                 laws.insert(f.law.name().into(), friction_json(f));
             }
+            for (law, message, status) in &self.friction_failures {
+                laws.insert(
+                    law.name().into(),
+                    json!({ "error": message, "status": status }),
+                );
+            }
             obj.insert("friction".into(), Json::Object(laws));
         }
         if let (Some((f, grad)), Some(obj)) = (&self.surface, top.as_object_mut()) {

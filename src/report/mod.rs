@@ -274,6 +274,9 @@ pub struct Report {
     /// One readout per frictional law solved (a scene with friction or an energetic law:
     /// then `models` is empty).
     pub friction: Vec<FrictionReport>,
+    /// The frictional laws that have no answer for this scene: the law, why, and the short
+    /// status (`no-continuation`, `undetermined`, `never-ends`).
+    pub friction_failures: Vec<(crate::impact::friction::Restitution, String, &'static str)>,
 }
 
 impl Report {
@@ -304,6 +307,7 @@ impl Report {
             constraints: constraints.map(ConstraintsReport::new),
             surface: None,
             friction: Vec::new(),
+            friction_failures: Vec::new(),
         }
     }
 

@@ -33,6 +33,11 @@ impl Report {
             for f in &self.friction {
                 out += &friction_table(f);
             }
+            for (law, message, _) in &self.friction_failures {
+                out += &format!(
+                    "\nAfter impact, with friction — {law} restitution: no answer: {message}\n"
+                );
+            }
             return out;
         }
         out += "\nAfter impact:\n";

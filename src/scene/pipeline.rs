@@ -209,13 +209,30 @@ fn run_frictional<T: Scalar>(
         .extend(laws.iter().map(|l| l.name().to_string()));
     let mut energy_identity = Vec::new();
     let kinetic = problem.body().kinetic_energy(problem.velocity());
+    let mut first_failure = None;
     for law in laws {
-        let f = solve_frictional(problem, law, friction_tolerance::<T>())?;
+        let f = match solve_frictional(problem, law, friction_tolerance::<T>()) {
+            Ok(f) => f,
+            Err(e) => match e.status() {
+                // A verdict of the physics for this law: the others still answer.
+                Some(status) => {
+                    report
+                        .friction_failures
+                        .push((law, e.to_string(), status));
+                    first_failure.get_or_insert(e);
+                    continue;
+                }
+                None => return Err(e.into()),
+            },
+        };
         energy_identity.push(
             f.energy_residual
                 .is_negligible(&kinetic, 16 * problem.contacts().len()),
         );
         report.friction.push(FrictionReport::new(&f));
+    }
+    if let (true, Some(e)) = (report.friction.is_empty(), first_failure) {
+        return Err(e.into());
     }
     Ok(Solved {
         report,

@@ -886,7 +886,12 @@ pub fn lookup(r: &Report, q: &str) -> Result<Vec<Value>, String> {
             .friction
             .iter()
             .find(|f| f.law == law)
-            .ok_or_else(|| format!("`{q}`: the {law} law was not integrated"))?;
+            .ok_or_else(|| {
+                match r.friction_failures.iter().find(|(l, _, _)| *l == law) {
+                    Some((_, message, _)) => format!("`{q}`: the {law} law has no answer: {message}"),
+                    None => format!("`{q}`: the {law} law was not integrated"),
+                }
+            })?;
         return friction_value(f, rest, &idx).ok_or_else(unknown);
     }
     let (model, name) = match q.split_once('.') {

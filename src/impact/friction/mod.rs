@@ -218,6 +218,33 @@ pub enum Verdict {
     EnergyGain,
 }
 
+impl Verdict {
+    /// A short name for tables and sweep statuses: `tensile-rate`, `ambiguous`,
+    /// `split-not-unique`, `still-approaching`, `energy-gain`.
+    pub fn name(&self) -> &'static str {
+        match self {
+            Verdict::TensileRate { .. } => "tensile-rate",
+            Verdict::Ambiguous { .. } => "ambiguous",
+            Verdict::SplitNotUnique { .. } => "split-not-unique",
+            Verdict::StillApproaching { .. } => "still-approaching",
+            Verdict::EnergyGain => "energy-gain",
+        }
+    }
+}
+
+impl FrictionError {
+    /// The sweep status of a point the integration cannot follow: `no-continuation`,
+    /// `undetermined`, `never-ends`; `None` for errors that are not the physics' verdict.
+    pub fn status(&self) -> Option<&'static str> {
+        match self {
+            FrictionError::NoConsistentModes { .. } => Some("no-continuation"),
+            FrictionError::Undetermined { .. } => Some("undetermined"),
+            FrictionError::NeverEnds { .. } => Some("never-ends"),
+            _ => None,
+        }
+    }
+}
+
 impl fmt::Display for Verdict {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {

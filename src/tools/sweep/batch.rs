@@ -14,14 +14,13 @@ use rayon::prelude::*;
 use toml_edit::DocumentMut;
 
 use super::SweepError;
-use super::outputs::{model_values, output_names, status};
+use super::outputs::{law_values, output_names, point_status, status, sweep_laws};
 use super::slot::Slot;
 use super::text::toml_text;
-use crate::impact::restitution::Model;
-use crate::impact::solve::SolveError;
-use crate::impact::unilateral::{Law, UnilateralError};
+use crate::impact::friction::Restitution;
+use crate::impact::unilateral::Law;
 use crate::number::parse_decimal;
-use crate::scene::pipeline::{RunError, run};
+use crate::scene::pipeline::run;
 use crate::scene::{Scene, set_value};
 
 /// One varied number: its key path (`contact[1].k`, `body.mass`, …) and its value per point.
@@ -36,9 +35,11 @@ pub struct Varied {
 /// The results of a batch, per model as the sweep's CSV columns (without the CSV).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Batch {
-    /// The models solved, in the scene's order.
-    pub models: Vec<Model>,
-    /// The output names per model: `P1 … PN`, `vCx vCy vCz`, `wx wy wz`, `Ep`, `dEc`.
+    /// The laws solved, in the scene's order (its models; or, with friction, the laws it
+    /// integrates).
+    pub models: Vec<Restitution>,
+    /// The output names per law: `P1 … PN`, `vCx vCy vCz`, `wx wy wz`, `Ep`, `dEc` (and `Ef`
+    /// with friction).
     pub outputs: Vec<String>,
     /// Points solved.
     pub points: usize,
@@ -97,7 +98,8 @@ pub fn solve_batch(
         }
     }
     let slots: Option<Vec<Slot>> = vary.iter().map(|v| Slot::find(&v.path, &base)).collect();
-    let outputs = output_names(base.contacts.len());
+    let (models, friction) = sweep_laws(&base, vary.iter().map(|v| v.path.as_str()));
+    let outputs = output_names(base.contacts.len(), friction);
     let width = outputs.len();
     let solved = (0..points)
         .into_par_iter()
@@ -139,27 +141,26 @@ pub fn solve_batch(
             };
             match run::<f64>(&scene, None) {
                 Ok(s) => Ok((Some(s.report.clone()), status(&s.report))),
-                Err(RunError::Solve(SolveError::Singular { .. })) => Ok((None, "singular".into())),
-                Err(RunError::Unilateral(UnilateralError::Jammed { .. })) => {
-                    Ok((None, "jammed".into()))
-                }
-                Err(e) => Err(at(e.to_string())),
+                Err(e) => match point_status(&e) {
+                    Some(status) => Ok((None, status.to_string())),
+                    None => Err(at(e.to_string())),
+                },
             }
         })
         .collect::<Result<Vec<_>, SweepError>>()?;
-    let mut values = vec![Vec::with_capacity(points * width); base.models.len()];
+    let mut values = vec![Vec::with_capacity(points * width); models.len()];
     let mut statuses = Vec::with_capacity(points);
     for (report, s) in solved {
-        for (m, column) in base.models.iter().zip(&mut values) {
-            match report.as_ref().and_then(|r| r.model(*m)) {
-                Some(r) => column.extend(model_values(r)),
+        for (m, column) in models.iter().zip(&mut values) {
+            match report.as_ref().and_then(|r| law_values(r, *m, friction)) {
+                Some((v, _)) => column.extend(v),
                 None => column.extend(std::iter::repeat_n(f64::NAN, width)),
             }
         }
         statuses.push(s);
     }
     Ok(Batch {
-        models: base.models.clone(),
+        models,
         outputs,
         points,
         values,
@@ -196,7 +197,7 @@ mod tests {
             let scene = Scene::from_document(&d, "bar.toml").unwrap();
             let r = run::<f64>(&scene, None).unwrap().report;
             for (m, column) in b.models.iter().zip(&b.values) {
-                let expected = model_values(r.model(*m).unwrap());
+                let expected = law_values(&r, *m, false).unwrap().0;
                 let w = b.outputs.len();
                 assert_eq!(column[p * w..(p + 1) * w], expected[..], "{m:?} at k = {k}");
             }

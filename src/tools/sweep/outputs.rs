@@ -4,19 +4,57 @@
 use super::SweepError;
 use super::plan::Plan;
 use super::text::num;
+use crate::impact::friction::Restitution;
+use crate::impact::solve::SolveError;
+use crate::impact::unilateral::UnilateralError;
+use crate::scene::Scene;
+use crate::scene::pipeline::RunError;
 use crate::impact::restitution::Model;
 use crate::number::{format_rational, rational_to_f64};
-use crate::report::ModelReport;
+use crate::report::{ModelReport, Report, Value};
 
-/// The per-model outputs, in CSV order (after the `model_` prefix).
-pub(super) fn output_names(contacts: usize) -> Vec<String> {
+/// The per-law outputs, in CSV order (after the `law_` prefix); a frictional sweep adds the
+/// energy dissipated by friction, `Ef`.
+pub(super) fn output_names(contacts: usize, friction: bool) -> Vec<String> {
     let mut v: Vec<String> = (1..=contacts).map(|i| format!("P{i}")).collect();
     v.extend(
         ["vCx", "vCy", "vCz", "wx", "wy", "wz", "Ep", "dEc"]
             .iter()
             .map(|s| s.to_string()),
     );
+    if friction {
+        v.push("Ef".into());
+    }
     v
+}
+
+/// The laws a sweep solves and whether it integrates friction: a frictional sweep (some
+/// μ_i > 0 or varied, or `[solve] restitution`) integrates the scene's restitution laws, any
+/// other solves its models.
+pub(super) fn sweep_laws<'a>(
+    base: &Scene,
+    mut varied: impl Iterator<Item = &'a str>,
+) -> (Vec<Restitution>, bool) {
+    let friction = base.frictional() || varied.any(|p| p.ends_with(".mu"));
+    let laws = if friction {
+        base.restitutions(None)
+    } else {
+        base.models.iter().map(|&m| Restitution::from(m)).collect()
+    };
+    (laws, friction)
+}
+
+/// The status of a point without an answer, when the physics says why: `singular` (G
+/// singular under the simultaneous law), `jammed` (no admissible impulses under the
+/// unilateral law), `no-continuation`, `undetermined`, `never-ends` (friction); `None` for an
+/// error that stops the sweep.
+pub(super) fn point_status(e: &RunError) -> Option<&'static str> {
+    match e {
+        RunError::Solve(SolveError::Singular { .. }) => Some("singular"),
+        RunError::Unilateral(UnilateralError::Jammed { .. }) => Some("jammed"),
+        RunError::Friction(f) => f.status(),
+        _ => None,
+    }
 }
 
 /// One plotted line: a model's output.
@@ -54,13 +92,51 @@ pub(super) fn model_values(r: &ModelReport) -> Vec<f64> {
     v
 }
 
+/// One law's outputs at a solved point, in [`output_names`] order, with their exact texts
+/// (P_i, E_p, ΔE_c): from the frictional readout of `law`, or — at a point of a frictional
+/// sweep where every μ_i = 0 — from the paper's model of that name, which the integrator
+/// equals exactly there (with E_f = 0). `None` when the law was not solved.
+pub(super) fn law_values(
+    report: &Report,
+    law: Restitution,
+    friction: bool,
+) -> Option<(Vec<f64>, Vec<String>)> {
+    let exact = |v: &Value| v.exact.clone().unwrap_or_default();
+    if let Some(f) = report.friction.iter().find(|f| f.law == law) {
+        let mut v: Vec<f64> = f.contacts.iter().map(|c| c.normal_impulse.f64).collect();
+        v.extend(f.velocity.iter().chain(&f.angular_velocity).map(|x| x.f64));
+        v.push(f.lost_velocity_energy.f64);
+        v.push(f.kinetic_energy_loss.f64);
+        v.push(f.friction_dissipation.f64);
+        let mut e: Vec<String> = f.contacts.iter().map(|c| exact(&c.normal_impulse)).collect();
+        e.push(exact(&f.lost_velocity_energy));
+        e.push(exact(&f.kinetic_energy_loss));
+        return Some((v, e));
+    }
+    let model = match law {
+        Restitution::Newton => Model::Newton,
+        Restitution::Poisson => Model::Poisson,
+        Restitution::Energetic => return None,
+    };
+    let r = report.model(model)?;
+    let mut v = model_values(r);
+    if friction {
+        v.push(0.0);
+    }
+    let mut e: Vec<String> = r.impulses.iter().map(exact).collect();
+    e.push(exact(&r.lost_velocity_energy));
+    e.push(exact(&r.kinetic_energy_loss));
+    Some((v, e))
+}
+
 /// The plotted series for the names asked for (see [`super::SweepOptions::plot_outputs`]).
 pub(super) fn resolve_outputs(
     asked: &[String],
-    models: &[Model],
+    models: &[Restitution],
     contacts: usize,
+    friction: bool,
 ) -> Result<Vec<Series>, SweepError> {
-    let names = output_names(contacts);
+    let names = output_names(contacts, friction);
     let mut out: Vec<Series> = Vec::new();
     let mut push = |s: Series| {
         if !out
@@ -91,9 +167,13 @@ pub(super) fn resolve_outputs(
 
 /// The series one name asks for: a column (`newton_P1`) names one, a per-model name (`P1`)
 /// one per model solved.
-fn resolve_name(name: &str, names: &[String], models: &[Model]) -> Result<Vec<Series>, SweepError> {
+fn resolve_name(
+    name: &str,
+    names: &[String],
+    models: &[Restitution],
+) -> Result<Vec<Series>, SweepError> {
     let (model, output) = match name.split_once('_') {
-        Some((m, rest)) if Model::from_name(m).is_some() => (Model::from_name(m), rest),
+        Some((m, rest)) if Restitution::from_name(m).is_some() => (Restitution::from_name(m), rest),
         _ => (None, name),
     };
     let err = |reason: String| SweepError::Output {
@@ -139,7 +219,7 @@ fn resolve_name(name: &str, names: &[String], models: &[Model]) -> Result<Vec<Se
 }
 
 /// Every name a plot may ask for, for messages: per-model names, then columns.
-fn available(names: &[String], models: &[Model]) -> String {
+fn available(names: &[String], models: &[Restitution]) -> String {
     let mut all: Vec<String> = names.to_vec();
     for m in models {
         all.extend(names.iter().map(|n| format!("{m}_{n}")));
@@ -157,7 +237,7 @@ impl Plan {
                 h.push(format!("{}_exact", v.path));
             }
         }
-        let names = output_names(self.contacts);
+        let names = output_names(self.contacts, self.friction);
         for m in &self.models {
             for n in &names {
                 h.push(format!("{m}_{n}"));
@@ -176,7 +256,7 @@ impl Plan {
 
     /// The columns per model.
     fn model_width(&self) -> usize {
-        let n = self.contacts + 8;
+        let n = self.contacts + 8 + usize::from(self.friction);
         if self.exact { n + self.contacts + 2 } else { n }
     }
 
@@ -201,22 +281,17 @@ impl Plan {
         for m in &self.models {
             let r = report
                 .as_ref()
-                .and_then(|r| r.models.iter().find(|x| x.model == *m));
-            per_model.push(r.map(model_values));
-            match r {
+                .and_then(|r| law_values(r, *m, self.friction));
+            match &r {
                 None => fields.extend(std::iter::repeat_n(String::new(), self.model_width())),
-                Some(r) => {
-                    for x in model_values(r) {
-                        fields.push(num(x));
-                    }
+                Some((values, exact)) => {
+                    fields.extend(values.iter().map(|&x| num(x)));
                     if self.exact {
-                        let exact = |v: &crate::report::Value| v.exact.clone().unwrap_or_default();
-                        fields.extend(r.impulses.iter().map(exact));
-                        fields.push(exact(&r.lost_velocity_energy));
-                        fields.push(exact(&r.kinetic_energy_loss));
+                        fields.extend(exact.iter().cloned());
                     }
                 }
             }
+            per_model.push(r.map(|(v, _)| v));
         }
         let singular = report.is_none();
         fields.push(status.clone());
@@ -245,7 +320,18 @@ impl Plan {
 /// (`tensile`, `separating`, `still-approaching`, `energy-gain`), across the models, joined
 /// by `+` in that order.
 pub(super) fn status(report: &crate::report::Report) -> String {
-    let names = ["tensile", "separating", "still-approaching", "energy-gain"];
+    let names = [
+        "tensile",
+        "tensile-rate",
+        "separating",
+        "still-approaching",
+        "energy-gain",
+        "ambiguous",
+        "split-not-unique",
+        "no-continuation",
+        "undetermined",
+        "never-ends",
+    ];
     let found: Vec<&str> = names
         .into_iter()
         .filter(|n| {
@@ -253,6 +339,11 @@ pub(super) fn status(report: &crate::report::Report) -> String {
                 .models
                 .iter()
                 .any(|m| m.inadmissible.iter().any(|v| v.name() == *n))
+                || report
+                    .friction
+                    .iter()
+                    .any(|f| f.verdict_names.contains(n))
+                || report.friction_failures.iter().any(|(_, _, s)| s == n)
         })
         .collect();
     if found.is_empty() {
@@ -268,10 +359,10 @@ mod tests {
 
     #[test]
     fn outputs_resolve_by_column_or_per_model_name() {
-        let models = Model::ALL.to_vec();
+        let models = vec![Restitution::Newton, Restitution::Poisson];
         let pairs = |names: &[&str]| -> Vec<(usize, usize)> {
             let asked: Vec<String> = names.iter().map(|s| s.to_string()).collect();
-            resolve_outputs(&asked, &models, 2)
+            resolve_outputs(&asked, &models, 2, false)
                 .unwrap()
                 .iter()
                 .map(|s| (s.model, s.output))
@@ -288,10 +379,10 @@ mod tests {
             vec![(1, 1), (0, 8)]
         );
         let asked = vec!["P3".to_string()];
-        let e = resolve_outputs(&asked, &models, 2).unwrap_err();
+        let e = resolve_outputs(&asked, &models, 2, false).unwrap_err();
         assert!(e.to_string().contains("newton_P1"), "{e}");
         let asked = vec!["poisson_P1".to_string()];
-        let e = resolve_outputs(&asked, &[Model::Newton], 2).unwrap_err();
+        let e = resolve_outputs(&asked, &[Restitution::Newton], 2, false).unwrap_err();
         assert!(e.to_string().contains("poisson"), "{e}");
     }
 }

@@ -6,16 +6,15 @@
 use num_rational::BigRational;
 use toml_edit::DocumentMut;
 
-use super::outputs::{Series, resolve_outputs};
+use super::outputs::{Series, point_status, resolve_outputs, sweep_laws};
 use super::slot::Slot;
 use super::text::{text, toml_text};
 use super::{SweepError, SweepOptions, Vary};
-use crate::impact::restitution::Model;
-use crate::impact::solve::SolveError;
-use crate::impact::unilateral::{Law, UnilateralError};
+use crate::impact::friction::Restitution;
+use crate::impact::unilateral::Law;
 use crate::report::Report;
 use crate::scalar::Exact;
-use crate::scene::pipeline::{RunError, run};
+use crate::scene::pipeline::run;
 use crate::scene::{Scene, SceneError, parse_document, set_value};
 
 /// A validated sweep.
@@ -34,8 +33,11 @@ pub(super) struct Plan {
     pub(super) vary: Vec<Vary>,
     /// Whether points are solved in exact rationals.
     pub(super) exact: bool,
-    /// The restitution models solved, in the scene's order.
-    pub(super) models: Vec<Model>,
+    /// The restitution laws solved, in the scene's order: its models, or for a frictional
+    /// sweep (some μ_i > 0 or varied, or `[solve] restitution`) the laws it integrates.
+    pub(super) models: Vec<Restitution>,
+    /// Whether the sweep integrates friction (adds the `Ef` column).
+    pub(super) friction: bool,
     /// N, the number of contacts.
     pub(super) contacts: usize,
     /// The points of the whole grid (every shard).
@@ -54,17 +56,10 @@ impl Plan {
         let points = grid_points(&opts.vary)?;
         let (file, doc, base) = read_scene(opts)?;
         check_paths(&opts.vary, &doc, &base, &file)?;
-        if base.frictional() || opts.vary.iter().any(|v| v.path.ends_with(".mu")) {
-            return Err(SweepError::Options(
-                "sweeps do not integrate friction yet (contact[i].mu, [solve] restitution): \
-                 run `inertance solve` per point"
-                    .into(),
-            ));
-        }
-        let models = base.models.clone();
+        let (models, friction) = sweep_laws(&base, opts.vary.iter().map(|v| v.path.as_str()));
         let contacts = base.contacts.len();
         let series = if opts.plot.is_some() {
-            resolve_outputs(&opts.plot_outputs, &models, contacts)?
+            resolve_outputs(&opts.plot_outputs, &models, contacts, friction)?
         } else {
             Vec::new()
         };
@@ -82,6 +77,7 @@ impl Plan {
             vary: opts.vary.clone(),
             exact: opts.exact,
             models,
+            friction,
             contacts,
             points,
             series,
@@ -183,11 +179,10 @@ impl Plan {
         };
         match solved {
             Ok(s) => Ok((values, Ok(s.report))),
-            Err(RunError::Solve(SolveError::Singular { .. })) => Ok((values, Err("singular"))),
-            Err(RunError::Unilateral(UnilateralError::Jammed { .. })) => {
-                Ok((values, Err("jammed")))
-            }
-            Err(e) => Err(self.point_error(p, &values, e.to_string())),
+            Err(e) => match point_status(&e) {
+                Some(status) => Ok((values, Err(status))),
+                None => Err(self.point_error(p, &values, e.to_string())),
+            },
         }
     }
 }

@@ -10,7 +10,7 @@ use crate::scene::Scene;
 
 /// A varied number that can be set in a validated [`Scene`] directly, without re-reading the
 /// document: the numbers whose validity is convex (a value between two valid ones is valid:
-/// m, J > 0, k ∈ [0, 1], no condition on velocities or points), so checking START and STOP
+/// m, J > 0, k ∈ [0, 1], μ ≥ 0, no condition on velocities or points), so checking START and STOP
 /// covers the whole range. Normals, tangents and constraints (which must not be zero vectors)
 /// go through [`set_value`] and [`Scene::from_document`] at every point.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -23,6 +23,7 @@ pub(super) enum Slot {
     K(usize),
     KNewton(usize),
     KPoisson(usize),
+    Mu(usize),
 }
 
 impl Slot {
@@ -52,6 +53,7 @@ impl Slot {
             "k" => Some(Slot::K(c)),
             "k_newton" => Some(Slot::KNewton(c)),
             "k_poisson" => Some(Slot::KPoisson(c)),
+            "mu" => Some(Slot::Mu(c)),
             _ => {
                 let i = index(key.strip_prefix("point")?, 3)?;
                 Some(Slot::Point(c, i))
@@ -79,6 +81,7 @@ impl Slot {
             }
             Slot::KNewton(c) => scene.contacts[c].k_newton = n,
             Slot::KPoisson(c) => scene.contacts[c].k_poisson = n,
+            Slot::Mu(c) => scene.contacts[c].mu = n,
         }
     }
 }
@@ -122,6 +125,7 @@ mod tests {
             "contact[1].k",
             "contact[0].k_newton",
             "contact[1].k_poisson",
+            "contact[0].mu",
         ];
         for path in paths {
             let slot = Slot::find(path, &base).unwrap_or_else(|| panic!("{path}"));
