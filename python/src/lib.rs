@@ -674,7 +674,10 @@ fn solve_batch<'py>(
         )?;
         d.set_item("kinetic_energy_loss", convert::column(py, values, w, n + 7))?;
         if friction {
-            d.set_item("friction_dissipation", convert::column(py, values, w, n + 8))?;
+            d.set_item(
+                "friction_dissipation",
+                convert::column(py, values, w, n + 8),
+            )?;
         }
         out.set_item(m.name(), d)?;
     }

@@ -216,9 +216,7 @@ fn run_frictional<T: Scalar>(
             Err(e) => match e.status() {
                 // A verdict of the physics for this law: the others still answer.
                 Some(status) => {
-                    report
-                        .friction_failures
-                        .push((law, e.to_string(), status));
+                    report.friction_failures.push((law, e.to_string(), status));
                     first_failure.get_or_insert(e);
                     continue;
                 }

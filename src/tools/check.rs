@@ -882,16 +882,12 @@ pub fn lookup(r: &Report, q: &str) -> Result<Vec<Value>, String> {
     let axis = |c: char| "xyz".find(c);
     if let (false, Some((law, rest))) = (r.friction.is_empty(), q.split_once('.')) {
         let law = Restitution::from_name(law).ok_or_else(unknown)?;
-        let f = r
-            .friction
-            .iter()
-            .find(|f| f.law == law)
-            .ok_or_else(|| {
-                match r.friction_failures.iter().find(|(l, _, _)| *l == law) {
-                    Some((_, message, _)) => format!("`{q}`: the {law} law has no answer: {message}"),
-                    None => format!("`{q}`: the {law} law was not integrated"),
-                }
-            })?;
+        let f = r.friction.iter().find(|f| f.law == law).ok_or_else(|| {
+            match r.friction_failures.iter().find(|(l, _, _)| *l == law) {
+                Some((_, message, _)) => format!("`{q}`: the {law} law has no answer: {message}"),
+                None => format!("`{q}`: the {law} law was not integrated"),
+            }
+        })?;
         return friction_value(f, rest, &idx).ok_or_else(unknown);
     }
     let (model, name) = match q.split_once('.') {

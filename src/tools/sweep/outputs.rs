@@ -5,13 +5,13 @@ use super::SweepError;
 use super::plan::Plan;
 use super::text::num;
 use crate::impact::friction::Restitution;
+use crate::impact::restitution::Model;
 use crate::impact::solve::SolveError;
 use crate::impact::unilateral::UnilateralError;
-use crate::scene::Scene;
-use crate::scene::pipeline::RunError;
-use crate::impact::restitution::Model;
 use crate::number::{format_rational, rational_to_f64};
 use crate::report::{ModelReport, Report, Value};
+use crate::scene::Scene;
+use crate::scene::pipeline::RunError;
 
 /// The per-law outputs, in CSV order (after the `law_` prefix); a frictional sweep adds the
 /// energy dissipated by friction, `Ef`.
@@ -108,7 +108,11 @@ pub(super) fn law_values(
         v.push(f.lost_velocity_energy.f64);
         v.push(f.kinetic_energy_loss.f64);
         v.push(f.friction_dissipation.f64);
-        let mut e: Vec<String> = f.contacts.iter().map(|c| exact(&c.normal_impulse)).collect();
+        let mut e: Vec<String> = f
+            .contacts
+            .iter()
+            .map(|c| exact(&c.normal_impulse))
+            .collect();
         e.push(exact(&f.lost_velocity_energy));
         e.push(exact(&f.kinetic_energy_loss));
         return Some((v, e));
@@ -339,10 +343,7 @@ pub(super) fn status(report: &crate::report::Report) -> String {
                 .models
                 .iter()
                 .any(|m| m.inadmissible.iter().any(|v| v.name() == *n))
-                || report
-                    .friction
-                    .iter()
-                    .any(|f| f.verdict_names.contains(n))
+                || report.friction.iter().any(|f| f.verdict_names.contains(n))
                 || report.friction_failures.iter().any(|(_, _, s)| s == n)
         })
         .collect();
