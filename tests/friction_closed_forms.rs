@@ -7,9 +7,7 @@
 //! c = cos θ, s = sin θ; before impact v_C = (U, −V), ω = 0. The body axes are the rod's
 //! principal axes (x along the rod), so the scene is built by rotating these by −θ.
 
-use inertance::impact::friction::{
-    Frictional, ModeLabel, Restitution, Verdict, solve_frictional,
-};
+use inertance::impact::friction::{Frictional, ModeLabel, Restitution, Verdict, solve_frictional};
 use inertance::impact::problem::Problem;
 use inertance::mechanics::body::RigidBody;
 use inertance::mechanics::contact::Contact;
@@ -233,7 +231,10 @@ fn closed<T: Scalar>(r: &Rod<T>, law: Restitution) -> Option<Closed<T>> {
     let dec = (p.clone() * (v0.clone() + &vn) + tau.clone() * (u0.clone() + &vt)) / two.clone();
     let ep = (gnn * &p * &p + two.clone() * &gnt * &p * &tau + gtt * &tau * &tau) / two;
     let omega = -(three * (c.clone() * &p + s.clone() * &tau)) / (m.clone() * &r.l);
-    let vc_world = (u0.clone() - tau.clone() / m.clone(), -v0.clone() + p.clone() / m.clone());
+    let vc_world = (
+        u0.clone() - tau.clone() / m.clone(),
+        -v0.clone() + p.clone() / m.clone(),
+    );
     let label = |md: &M| match md {
         M::Stick => ModeLabel::Stick,
         M::Slide(1) => ModeLabel::SlidePlus,
@@ -300,7 +301,11 @@ fn check<T: Scalar>(rod: &Rod<T>, law: Restitution) -> bool {
         assert_eq!(out.after, vec![want.vn.clone()], "v after, {at}");
     } else {
         assert_eq!(out.impulses[1], want.tau, "tau, {at}");
-        assert_eq!(out.after, vec![want.vn.clone(), want.vt.clone()], "v after, {at}");
+        assert_eq!(
+            out.after,
+            vec![want.vn.clone(), want.vt.clone()],
+            "v after, {at}"
+        );
     }
     let (vx, vy) = rod.to_body(&want.vc_world.0, &want.vc_world.1);
     let twist = [T::zero(), T::zero(), want.omega.clone(), vx, vy, T::zero()];
@@ -312,11 +317,16 @@ fn check<T: Scalar>(rod: &Rod<T>, law: Restitution) -> bool {
     assert!(out.energy_residual.is_zero(), "energy residual, {at}");
     assert!(out.friction_dissipation.signum_i8() >= 0, "E_f < 0, {at}");
     if law == Restitution::Energetic {
-        assert!(out.kinetic_energy_loss.signum_i8() >= 0, "energetic dE_c < 0, {at}");
+        assert!(
+            out.kinetic_energy_loss.signum_i8() >= 0,
+            "energetic dE_c < 0, {at}"
+        );
         assert!(!out.verdicts.contains(&Verdict::EnergyGain), "{at}");
     }
     assert!(
-        !out.verdicts.iter().any(|v| matches!(v, Verdict::TensileRate { .. })),
+        !out.verdicts
+            .iter()
+            .any(|v| matches!(v, Verdict::TensileRate { .. })),
         "tensile, {at}"
     );
     true
@@ -348,10 +358,17 @@ fn slips<T: Scalar>(rod: &Rod<T>) -> Vec<T> {
     let gnt = three.clone() * s * c / m.clone();
     let gtt = (T::one() + three * s * s) / m.clone();
     let ratio_plus = (gnt.clone() + mu.clone() * &gtt) / (gnn + mu.clone() * &gnt);
-    let mut out: Vec<T> = [ratio::<T>(-2, 1), ratio(-1, 4), T::zero(), ratio(1, 4), int(1), int(3)]
-        .into_iter()
-        .map(|x| x * v)
-        .collect();
+    let mut out: Vec<T> = [
+        ratio::<T>(-2, 1),
+        ratio(-1, 4),
+        T::zero(),
+        ratio(1, 4),
+        int(1),
+        int(3),
+    ]
+    .into_iter()
+    .map(|x| x * v)
+    .collect();
     out.push(ratio_plus.clone() * v);
     out.push(ratio_plus * (T::one() + &rod.k) * v);
     out
@@ -429,9 +446,13 @@ fn a_contact_at_rest_sticks_from_mu_bar_and_reverses_below_it() {
     // μ̄ = 3cs/(1 + 3s²) = (36/25)/(73/25) = 36/73: the stick test |τ'| ≤ μ p' with
     // τ' = −(g_nt/g_tt) p' holds with equality.
     let at = |mu: Exact| {
-        solve_frictional(&rod_345(int(0), mu, ratio(1, 2)).problem(), Restitution::Poisson, 0.0)
-            .unwrap()
-            .history(0)
+        solve_frictional(
+            &rod_345(int(0), mu, ratio(1, 2)).problem(),
+            Restitution::Poisson,
+            0.0,
+        )
+        .unwrap()
+        .history(0)
     };
     assert_eq!(at(ratio(36, 73)), [ModeLabel::Stick]);
     assert_eq!(at(ratio(35, 73)), [ModeLabel::SlideMinus]);
@@ -450,16 +471,26 @@ fn a_contact_at_rest_sticks_from_mu_bar_and_reverses_below_it() {
     // s = (U/V)(a₊/b₊) = 1273/5256.
     assert_eq!(
         stop(ratio(36, 73)),
-        (vec![ModeLabel::SlidePlus, ModeLabel::Stick], vec![ratio(1273, 5256)])
+        (
+            vec![ModeLabel::SlidePlus, ModeLabel::Stick],
+            vec![ratio(1273, 5256)]
+        )
     );
-    assert_eq!(stop(ratio(35, 73)).0, [ModeLabel::SlidePlus, ModeLabel::SlideMinus]);
+    assert_eq!(
+        stop(ratio(35, 73)).0,
+        [ModeLabel::SlidePlus, ModeLabel::SlideMinus]
+    );
 }
 
 /// Kane's paradox (Kane and Levinson 1985; Stronge 1991) on the rod: the slip stops during
 /// compression and the end sticks, and Newton's law then returns more energy than it took.
 #[test]
 fn kane_newton_gains_energy_where_poisson_and_energetic_dissipate() {
-    let (u, mu, k) = (ratio::<RatFun>(1, 2), int::<RatFun>(1), ratio::<RatFun>(9, 10));
+    let (u, mu, k) = (
+        ratio::<RatFun>(1, 2),
+        int::<RatFun>(1),
+        ratio::<RatFun>(9, 10),
+    );
     let rod = rod_345(u.clone(), mu, k.clone());
     let run = |law| solve_frictional(&rod.problem(), law, 0.0).unwrap();
     let (newton, poisson, energetic) = (
@@ -478,8 +509,7 @@ fn kane_newton_gains_energy_where_poisson_and_energetic_dissipate() {
     let (gnn, gnt, gtt, det): (RatFun, RatFun, RatFun, RatFun) =
         (ratio(52, 25), ratio(36, 25), ratio(73, 25), int(4));
     let one = RatFun::from_integer(1);
-    let newton_loss = (gtt * (one - k.clone() * &k) - int::<RatFun>(2) * gnt * &u
-        + gnn * &u * &u)
+    let newton_loss = (gtt * (one - k.clone() * &k) - int::<RatFun>(2) * gnt * &u + gnn * &u * &u)
         / (int::<RatFun>(2) * det);
     assert_eq!(newton_loss, ratio(-913, 20000));
     assert_eq!(newton.kinetic_energy_loss, newton_loss);
@@ -497,5 +527,71 @@ fn kane_newton_gains_energy_where_poisson_and_energetic_dissipate() {
     // Each against the regime's closed forms too.
     for law in Restitution::ALL {
         assert!(check(&rod, law));
+    }
+}
+
+/// The scenes of derivations/friction-rod.md, at the values printed there.
+#[test]
+fn the_scenes_of_the_derivation_file() {
+    let case = |u: Exact, mu: Exact, k: Exact, law| {
+        let rod = rod_345(u, mu, k);
+        assert!(check(&rod, law));
+        let out = solve_frictional(&rod.problem(), law, 0.0).unwrap();
+        (
+            out.impulses[0].clone(),
+            events(&out),
+            out.kinetic_energy_loss,
+        )
+    };
+    let (quarter, half) = (ratio::<Exact>(1, 4), ratio::<Exact>(1, 2));
+    assert_eq!(
+        case(
+            quarter.clone(),
+            half.clone(),
+            half.clone(),
+            Restitution::Newton
+        ),
+        (ratio(201, 200), vec![ratio(7, 29)], ratio(1, 5))
+    );
+    assert_eq!(
+        case(
+            quarter.clone(),
+            half.clone(),
+            half.clone(),
+            Restitution::Poisson
+        ),
+        (ratio(24, 25), vec![ratio(7, 29)], ratio(12913, 58400))
+    );
+    assert_eq!(
+        case(
+            quarter.clone(),
+            quarter.clone(),
+            half.clone(),
+            Restitution::Newton
+        ),
+        (
+            ratio(15375, 18662),
+            vec![ratio(61, 217)],
+            ratio(2504710275, 11144647808)
+        )
+    );
+    assert_eq!(
+        case(
+            quarter.clone(),
+            quarter.clone(),
+            half.clone(),
+            Restitution::Poisson
+        ),
+        (
+            ratio(14925, 18662),
+            vec![ratio(61, 217)],
+            ratio(2600275875, 11144647808)
+        )
+    );
+    for law in [Restitution::Newton, Restitution::Poisson] {
+        assert_eq!(
+            case(int(3), quarter.clone(), half.clone(), law),
+            (ratio(75, 122), vec![], ratio(243975, 476288))
+        );
     }
 }

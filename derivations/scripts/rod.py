@@ -185,7 +185,7 @@ def rod(law, cs, mass, half, V0, U0, mu0, k0):
             P = rstop + x
             events.append(1 + (rstop - pc) / pc)
             seq_used = seq
-        P = sp.nsimplify(sp.radsimp(P))
+        P = sp.radsimp(P)
     # Tangential impulse and friction work, mode by mode: on a slide, v_t is linear in p
     # and the work mu u int v_t dp is the trapezoid rule.
     if len(seq_used) == 2:
@@ -204,7 +204,7 @@ def rod(law, cs, mass, half, V0, U0, mu0, k0):
     # Twist after: v_C = (U - tau/m, -V + P/m) (world), omega = -3 (c P + s tau) / (m L).
     w = -3 * (cc * P + ss * T) / (mass * half)
     vC = (U0 - T / mass, -V0 + P / mass)
-    tidy = lambda x: sp.nsimplify(sp.radsimp(sp.expand(x)))  # noqa: E731
+    tidy = lambda x: sp.radsimp(sp.expand(x))  # noqa: E731
     return dict(
         modes=["stick" if md == "stick" else ("slide+" if md == 1 else "slide-") for md in seq_used],
         events=events, Pc=pc, P=tidy(P), tau=tidy(T), vn=tidy(vn), vt=tidy(vt),
@@ -213,10 +213,44 @@ def rod(law, cs, mass, half, V0, U0, mu0, k0):
 
 
 R = sp.Rational
+
+
+def report(name, law, cs, mass, half, V0, U0, mu0, k0):
+    """The planned quantities of derivations/friction-rod.md, in body axes (x along the rod:
+    world (X, Y) -> (X c + Y s, -X s + Y c))."""
+    cc, ss = cs
+    o = rod(law, cs, mass, half, V0, U0, mu0, k0)
+    body = lambda X, Y: (sp.radsimp(X * cc + Y * ss), sp.radsimp(-X * ss + Y * cc))  # noqa: E731
+    n, t = (-ss, -cc), (cc, -ss)
+    pt = [sp.radsimp(-o["tau"] * x) for x in t] + [0]
+    v1 = [sp.radsimp(o["vn"] * a + o["vt"] * b) for a, b in zip(n, t)] + [0]
+    twist = [0, 0, o["omega"], *body(*o["vC"]), 0]
+    stick = 1 if o["modes"][-1] == "stick" and mu0 != 0 else 0
+    print(f"# {name}: {law}, modes {o['modes']}")
+    for key, val in [("P1", o["P"]), ("P1c", o["Pc"]), ("Pt1", pt), ("twist", twist), ("v1", v1),
+                     ("Ep", o["Ep"]), ("dEc", o["dEc"]), ("Ef", o["Ef"]), ("stick1", stick),
+                     ("events", o["events"])]:
+        print(f"{law}.{key} = {val}")
+
+
 if __name__ == "__main__":
     print()
     # The Kane-type example: theta with (c, s) = (3/5, 4/5), m = L = 1, V = 1, U = 1/2,
     # mu = 1, k = 9/10: the slip stops in compression and the end sticks.
-    for law in ("newton", "poisson", "energetic"):
-        out = rod(law, (R(3, 5), R(4, 5)), 1, 1, 1, R(1, 2), 1, R(9, 10))
-        print("Kane", law, {x: out[x] for x in ("modes", "events", "Pc", "P", "tau", "vn", "vt", "dEc", "Ep")})
+    print("Newton gains energy (stop in compression, then stick) for some U iff k^2 >",
+          reduce(det / (gnn * gtt)))
+    # Poisson in the same regime: P = (1+k) p^c, the end sticks.
+    tau_P = reduce((U - gnt * P_poisson) / gtt)
+    print("dEc (Poisson, stop in compression, stick) =", reduce(energy_loss(P_poisson, tau_P)))
+    print()
+    cs = (R(3, 5), R(4, 5))
+    scenes = [
+        ("stop-stick", cs, R(1, 4), R(1, 2), R(1, 2)),
+        ("stop-reverse", cs, R(1, 4), R(1, 4), R(1, 2)),
+        ("gross-slip", cs, 3, R(1, 4), R(1, 2)),
+        ("kane", cs, R(1, 2), 1, R(9, 10)),
+    ]
+    for name, cs_, U0, mu0, k0 in scenes:
+        for law in ("newton", "poisson", "energetic"):
+            report(name, law, cs_, 1, 1, 1, U0, mu0, k0)
+        print()
