@@ -126,13 +126,15 @@ pub struct BenchReport {
     /// Well-conditioned scenes whose exact unilateral answer leaves some contact without an
     /// impulse (there the simultaneous answer is not physical and the laws differ).
     pub unilateral_differs: usize,
+    /// The frictional solve, planar and spatial ([`crate::tools::friction_bench`]).
+    pub friction: crate::tools::friction_bench::FrictionBench,
 }
 
 /// A small deterministic generator (SplitMix64), so the corpus is the same on every machine.
-struct Seeded(u64);
+pub(crate) struct Seeded(pub(crate) u64);
 
 impl Seeded {
-    fn next(&mut self) -> u64 {
+    pub(crate) fn next(&mut self) -> u64 {
         self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
         let mut z = self.0;
         z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
@@ -141,7 +143,7 @@ impl Seeded {
     }
 
     /// A decimal with one fractional digit in [lo, hi].
-    fn decimal(&mut self, lo: i64, hi: i64) -> String {
+    pub(crate) fn decimal(&mut self, lo: i64, hi: i64) -> String {
         let span = (hi - lo) as u64 * 10 + 1;
         let x = lo * 10 + (self.next() % span) as i64;
         format!("{}", x as f64 / 10.0)
@@ -309,7 +311,10 @@ fn unilateral_outputs<T: Scalar>(p: &Problem<T>) -> Option<(Outputs, [Vec<bool>;
 
 /// Median wall time (ns) of `f`, repeating until each of three samples takes at least
 /// `budget`; `Err` when `f` fails.
-fn time_three<E>(budget: Duration, mut f: impl FnMut() -> Result<(), E>) -> Result<f64, E> {
+pub(crate) fn time_three<E>(
+    budget: Duration,
+    mut f: impl FnMut() -> Result<(), E>,
+) -> Result<f64, E> {
     f()?;
     let mut samples = Vec::with_capacity(3);
     for _ in 0..3 {
@@ -589,6 +594,7 @@ pub fn run(opts: &BenchOptions) -> BenchReport {
         rows,
         scaling,
         unilateral_differs,
+        friction: crate::tools::friction_bench::run(opts.quick),
     }
 }
 
@@ -782,7 +788,7 @@ impl BenchReport {
                 g.active.map_or("—".into(), |(n, p)| format!("{n} / {p}"))
             );
         }
-        s
+        s + &self.friction.to_text()
     }
 
     /// The JSON report.
@@ -824,6 +830,7 @@ impl BenchReport {
                 },
             })).collect::<Vec<_>>(),
             "unilateral_differs": self.unilateral_differs,
+            "friction": self.friction.to_json(),
             "scaling": self.scaling.iter().map(|g| json!({
                 "contacts": g.contacts,
                 "ns_per_assemble_and_analyze": self.rows.iter().zip(&g.analyze).map(|(r, x)| (r.name.to_string(), x.map(num).unwrap_or(Json::Null))).collect::<serde_json::Map<_, _>>(),

@@ -1,10 +1,11 @@
 //! The toolkit's commands, each a library function the CLI calls: [`analyze`] (degenerate
 //! cases of a scene, §8), [`check`] (the paper's worked examples and closed forms, checked),
-//! [`derive`](mod@derive) (closed forms over symbols), [`bench`](mod@bench) (accuracy against time per scalar) and
+//! [`derive`](mod@derive) (closed forms over symbols), [`bench`](mod@bench) (accuracy against time per scalar; [`friction_bench`] its frictional part) and
 //! [`sweep`] (parameter sweeps).
 
 pub mod analyze;
 pub mod bench;
 pub mod check;
 pub mod derive;
+pub mod friction_bench;
 pub mod sweep;
