@@ -13,7 +13,7 @@ class SceneError(InertanceError):
     message: str
 
 class SolveError(InertanceError):
-    """No answer (exit status 3): ``kind`` is ``"singular"`` (Δ = 0, §8) or ``"jammed"``."""
+    """No answer (exit status 3): ``kind`` is ``"singular"`` (Δ = 0, §8), ``"jammed"``, or with friction ``"no-continuation"``, ``"undetermined"``, ``"never-ends"`` (``"friction"`` for a spatial scene asked for exactly)."""
     kind: str
 
 class SweepError(InertanceError):
@@ -111,6 +111,8 @@ class Solution:
     def constraints(self) -> Optional[dict[str, Any]]: ...
     @property
     def surface(self) -> Optional[dict[str, Any]]: ...
+    @property
+    def friction(self) -> Optional[dict[str, Any]]: ...
     @property
     def models(self) -> list[tuple[str, ModelSolution]]: ...
     @property

@@ -124,6 +124,15 @@ pub fn run_error(py: Python<'_>, e: &RunError) -> PyErr {
                 &[("kind", kind.into_pyobject(py).unwrap().into_any().unbind())],
             )
         }
+        // A friction verdict (no consistent modes, …) or a spatial scene asked for exactly.
+        RunError::Friction(f) => {
+            let kind = f.status().unwrap_or("friction");
+            raise::<SolveError>(
+                py,
+                f.to_string(),
+                &[("kind", kind.into_pyobject(py).unwrap().into_any().unbind())],
+            )
+        }
     }
 }
 

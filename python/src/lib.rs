@@ -285,6 +285,13 @@ impl Solution {
     fn surface<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         self.key(py, "surface")
     }
+    /// Scenes with friction (`mu`, `[solve] restitution`, §14): per law, the frictional
+    /// readout — the `"friction"` object of the JSON report (impulses, modes, events,
+    /// verdicts, or `error` and `status` for a law without an answer); `None` otherwise.
+    #[getter]
+    fn friction<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        self.key(py, "friction")
+    }
     /// One result per model solved, by name.
     #[getter]
     fn models(&self) -> Vec<(String, ModelSolution)> {

@@ -127,3 +127,38 @@ def test_constrained_scene_has_constraint_impulses():
     r = inertance.solve(s, exact=True)
     assert r.constraints is not None
     assert all(isinstance(q, Fraction) for q in r.newton.constraint_impulses)
+
+
+ROUGH = """
+[body]
+mass = 1
+inertia = [12, 1.6, 12]
+velocity = [3, 2, 0]
+angular_velocity = [0, 0, 0.4]
+[[contact]]
+point = [0, -2, 0]
+normal = [1, 0, 0]
+k = 0.3
+mu = 1
+[[contact]]
+point = [0, 4, 0]
+normal = [1, 0, 0]
+k = 0.2
+mu = 1
+"""
+
+
+def test_friction_readout_per_law(tmp_path):
+    # derivations/friction-example-3.md: under Poisson the slip stops at s = 2/3 and both
+    # contacts stick; Newton has no consistent continuation at s = 1.
+    r = inertance.solve(ROUGH, exact=True)
+    assert r.effects == ["friction", "newton", "poisson"]
+    p = r.friction["poisson"]
+    assert p["events"] == [Fraction(2, 3), 1]
+    assert p["contacts"][0]["modes"] == ["slide+", "stick"]
+    assert p["contacts"][0]["tangential_impulse"][1] == Fraction(-28, 15)
+    assert p["friction_dissipation"] == 2
+    assert r.friction["newton"]["status"] == "no-continuation"
+    path = tmp_path / "rough.toml"
+    path.write_text(ROUGH)
+    assert r.to_json()["friction"] == cli_json("solve", path, "--exact")["friction"]
