@@ -274,3 +274,134 @@ for law in ("newton", "poisson"):
     for i in range(NC):
         print(f"  {law}.stick{i + 1} = {int(modes[i] == 'stick')}    modes: {' -> '.join(history[i])}")
     print(f"  (normal works {fmt(Wn)}; T0 = {T0}, T = {T}; slips after: v1t = {v[1]}, v2t = {v[3]})")
+
+
+# ---- Part 4: the energetic law (Stronge), with its square roots carried exactly ------------
+# On s >= 1 each active contact has dp_i/ds = p_i^c until its restitution work -int v_in dp_i
+# reaches k_i^2 times its compression work int v_in dp_i; it is then free (p', tau' = 0).
+# Both normal velocities are 0 at s = 1 and linear in s over a segment, so the first stop is
+# at s = 1 + sqrt(X), X rational; after it the other contact's v_n is linear again with a new
+# slope b, and its stop y past the first solves b y^2/2 + a sqrt(X) y + a X/2 = k^2 W_c / p^c:
+# the discriminant a^2 X - b(a X - 2 k^2 W_c/p^c) is rational again (X is), so every value is
+# in Q(sqrt X, sqrt D): no nested radical.
+import math
+
+
+class Q2:
+    """a + b sqrt(X) + c sqrt(D) + d sqrt(X D), exact."""
+
+    X = D = None
+
+    def __init__(self, a=0, b=0, c=0, d=0):
+        self.v = [Fr(a), Fr(b), Fr(c), Fr(d)]
+
+    def __add__(self, o):
+        o = o if isinstance(o, Q2) else Q2(o)
+        return Q2(*[x + y for x, y in zip(self.v, o.v)])
+
+    __radd__ = __add__
+
+    def __neg__(self):
+        return Q2(*[-x for x in self.v])
+
+    def __sub__(self, o):
+        return self + (-(o if isinstance(o, Q2) else Q2(o)))
+
+    def __mul__(self, o):
+        if not isinstance(o, Q2):
+            return Q2(*[x * Fr(o) for x in self.v])
+        a, b, c, d = self.v
+        e, f, g, h = o.v
+        X, D = Q2.X, Q2.D
+        return Q2(a * e + b * f * X + c * g * D + d * h * X * D,
+                  a * f + b * e + (c * h + d * g) * D,
+                  a * g + c * e + (b * h + d * f) * X,
+                  a * h + d * e + b * g + c * f)
+
+    __rmul__ = __mul__
+
+    def __float__(self):
+        a, b, c, d = self.v
+        return float(a) + float(b) * math.sqrt(Q2.X) + float(c) * math.sqrt(Q2.D) + float(d) * math.sqrt(Q2.X * Q2.D)
+
+    def __str__(self):
+        a, b, c, d = self.v
+        parts = [f"{a}"] + [f"({x})*{r}" for x, r in ((b, f"sqrt({Q2.X})"), (c, f"sqrt({Q2.D})"), (d, f"sqrt({Q2.X * Q2.D})")) if x]
+        return " + ".join(parts) + f"  (~ {float(self):.9f})"
+
+
+def energetic():
+    print("\n==== energetic ====")
+    lam, pc, events, Ef, Wn, history, modes = None, None, None, None, None, None, None
+    # compression as before (the law does not enter it)
+    s, lam = Fr(0), [Fr(0)] * 4
+    Wc = [Fr(0)] * NC
+    while s < 1:
+        mo, d = choose_modes(lam, "compression", None, None)
+        v = [a - b for a, b in zip(v0, matvec(G, lam))]
+        dv = [-x for x in matvec(G, d)]
+        nxt = Fr(1)
+        for i in range(NC):
+            if mo[i] != "stick" and dv[2 * i + 1] * mo[i] < 0:
+                nxt = min(nxt, s - v[2 * i + 1] / dv[2 * i + 1])
+        ds = nxt - s
+        for i in range(NC):
+            Wc[i] += (v[2 * i] + dv[2 * i] * ds / 2) * d[2 * i] * ds
+        lam = [a + b * ds for a, b in zip(lam, d)]
+        s = nxt
+    pc = [lam[0], lam[2]]
+    print(f"  compression works W_c = {fmt(Wc)}, p^c = {fmt(pc)}")
+    # s = 1: the mode of each contact, with p' = p^c (Poisson's rates with k = 1)
+    print("  at s = 1, modes with p' = p^c:")
+    mo, d = choose_modes(lam, "restitution", "poisson", [pc[0] * 2, pc[1] * 10 / 3])
+    assert [d[0], d[2]] == pc
+    dv = [-x for x in matvec(G, d)]
+    a = [-dv[0], -dv[2]]  # v_in = -a_i (s - 1)
+    Xs = [2 * k[i] ** 2 * Wc[i] / (a[i] * pc[i]) for i in range(NC)]  # (s - 1)^2 at each stop
+    j = min(range(NC), key=lambda i: Xs[i])  # the first to stop
+    i = 1 - j
+    Q2.X = Xs[j]
+    print(f"    modes {[name(x) for x in mo]}, rates {fmt(d)}, v_n slopes {fmt([-x for x in a])}")
+    print(f"    contact {j + 1} stops first, at s = 1 + sqrt({Xs[j]})  (~ {1 + math.sqrt(Xs[j]):.9f})")
+    # slips keep their senses on [1, s_a]: they start at 0 and grow with the chosen senses
+    # second segment: contact j free, contact i slides on in its sense u
+    u = mo[i]
+    assert u in (1, -1)
+    d2 = [Fr(0)] * 4
+    d2[2 * i] = pc[i]
+    d2[2 * i + 1] = mu[i] * u * pc[i]
+    dv2 = [-x for x in matvec(G, d2)]
+    b = -dv2[2 * i]
+    C = k[i] ** 2 * Wc[i] / pc[i]
+    Q2.D = a[i] ** 2 * Xs[j] - b * (a[i] * Xs[j] - 2 * C)
+    xa = Q2(0, 1)
+    y = (Q2(0, -a[i]) + Q2(0, 0, 1)) * (1 / b)  # (-a sqrt X + sqrt D) / b
+    end = Q2(1) + xa + y
+    print(f"    then contact {i + 1} alone (slide{'+' if u > 0 else '-'}), v_n slope {-b}; it stops at s = {end}")
+    # its slip must not vanish on the way: v_it at s_a and at the end
+    L = [Q2(x) for x in lam]
+    La = [x + xa * dd for x, dd in zip(L, d)]
+    Lend = [x + y * dd for x, dd in zip(La, d2)]
+    vt = lambda LL, c: Q2(v0[2 * c + 1]) - sum((LL[q] * G[2 * c + 1][q] for q in range(4)), Q2())
+    print(f"    slips at the first stop: {float(vt(La, 0)):.6f}, {float(vt(La, 1)):.6f}; "
+          f"contact {i + 1} at the end: {float(vt(Lend, i)):.6f}")
+    assert u * float(vt(La, i)) > 0 and u * float(vt(Lend, i)) > 0
+    assert mo[j] * float(vt(La, j)) > 0
+    p1, tau1, p2, tau2 = Lend
+    vx = Q2(vC0[0]) - (p1 * n[0][0] + tau1 * t[0][0] + p2 * n[1][0] + tau2 * t[1][0]) * (1 / m)
+    vy = Q2(vC0[1]) - (p1 * n[0][1] + tau1 * t[0][1] + p2 * n[1][1] + tau2 * t[1][1]) * (1 / m)
+    w = Q2(w0) - (tau1 + tau2) * (R / J)
+    T = (vx * vx + vy * vy) * (m / 2) + w * w * (J / 2)
+    print(f"  energetic.P1 = {p1}")
+    print(f"  energetic.P2 = {p2}")
+    print(f"  energetic.P1c = {pc[0]}, energetic.P2c = {pc[1]}")
+    print(f"  energetic.Pt1 = [0, {-tau1}, 0]")
+    print(f"  energetic.Pt2 = [{tau2}, 0, 0]")
+    print(f"  energetic.twist = [0, 0, {w}, {vx}, {vy}, 0]")
+    print(f"  energetic.dEc = {Q2(T0) - T}")
+    print(f"  energetic.events = [8/39, 1, {Q2(1) + xa}]")
+    print(f"  energetic.end = {end}")
+    print(f"  modes: contact {i + 1} ends sliding, contact {j + 1} free: stick1 = stick2 = 0")
+
+
+energetic()
