@@ -122,6 +122,11 @@ struct Run<'a, T: Scalar> {
     tol: f64,
     /// Below this slip speed a contact is at zero slip.
     delta: f64,
+    /// Below this slip speed (16 δ) a sliding contact keeps the direction it was given rather
+    /// than the direction of its slip: near zero the slip's direction is integration noise,
+    /// and a slip restarting along its invariant direction would be turned by that noise and
+    /// declared at rest again at once (stick–slip chatter at a cone's edge).
+    lock: f64,
     /// Impulse scale for the absolute tolerance.
     lambda_scale: f64,
     /// Work scale.
@@ -139,6 +144,19 @@ struct State<T: Scalar> {
     modes: Vec<Mode<T>>,
     stopped: Vec<bool>,
     compression: Vec<T>,
+    /// Per axis, the slip set aside when a contact was last declared at zero slip (its
+    /// residual, below δ): slip directions are measured from it, so that a slip restarting
+    /// along its invariant direction is not turned by the residual's arbitrary direction
+    /// (which made contacts chatter between zero slip and slip).
+    origin: Vec<T>,
+    /// Per contact: sliding away from zero slip with its direction held at the invariant
+    /// direction, re-found after every step, rather than taken from its slip. Near zero slip
+    /// the slip's direction is pulled back to the invariant direction at a rate |dv_t|/ρ: a
+    /// stiff flow an explicit step cannot follow (at a cone's edge, where the slip grows at a
+    /// small λ, it took 10⁴–10⁵ steps and ran out of budget). The lock is released once
+    /// |dv_t| h ≤ ρ, where the step resolves that flow; each re-found direction's change Δu
+    /// adds μ p' |Δu| h to the error estimate.
+    locked: Vec<bool>,
 }
 
 /// The right-hand side at one point: dy/ds and the rates it came from.
@@ -239,25 +257,29 @@ impl<T: Scalar> Run<'_, T> {
             .collect()
     }
 
-    /// The slip of contact i along its tangent axes, and its speed.
-    fn slip<'v>(&self, v: &'v [T], i: usize) -> (&'v [T], f64) {
+    /// The slip of contact i along its tangent axes, measured from its `origin`, and its
+    /// speed.
+    fn slip(&self, v: &[T], origin: &[T], i: usize) -> (Vec<T>, f64) {
         let off = self.b.offset[i] + 1;
-        let vt = &v[off..off + 2];
-        (vt, norm(vt).to_f64())
+        let vt: Vec<T> = (off..off + 2)
+            .map(|q| v[q].clone() - &origin[q])
+            .collect();
+        let rho = norm(&vt).to_f64();
+        (vt, rho)
     }
 
     /// The modes at velocities `v`: a sliding contact takes the direction of its slip above δ
     /// and keeps the direction it was given at or below (where the slip is rounding and the
     /// direction chosen at zero slip governs).
-    fn modes_at(&self, v: &[T], modes: &[Mode<T>]) -> Vec<Mode<T>> {
-        modes
+    fn modes_at(&self, v: &[T], st: &State<T>) -> Vec<Mode<T>> {
+        st.modes
             .iter()
             .enumerate()
             .map(|(i, m)| match m {
                 Mode::Slide(_) => {
-                    let (vt, rho) = self.slip(v, i);
-                    if rho > self.delta {
-                        Mode::Slide(unit(vt))
+                    let (vt, rho) = self.slip(v, &st.origin, i);
+                    if rho > self.lock && !st.locked[i] {
+                        Mode::Slide(unit(&vt))
                     } else {
                         m.clone()
                     }
@@ -275,7 +297,12 @@ impl<T: Scalar> Run<'_, T> {
         y: &[T],
     ) -> Result<Slope<T>, FrictionError> {
         let v = self.velocities(y);
-        let modes = self.modes_at(&v, &st.modes);
+        let mut modes = self.modes_at(&v, st);
+        for i in 0..self.n() {
+            if st.locked[i] {
+                self.settle(&mut modes, normals, i);
+            }
+        }
         let r = rates(self.b, normals, &modes).map_err(|e| self.fail(e, st))?;
         let n = self.n();
         let len = self.len();
@@ -302,6 +329,40 @@ impl<T: Scalar> Run<'_, T> {
         dy.extend(wr);
         dy.push(ef);
         Ok(Slope { dy, rates: r })
+    }
+
+    /// A locked slip's direction at the current state (see `State::locked`): the invariant
+    /// direction u = dv_t(u)/|dv_t(u)| by fixed-point iteration from the direction held in
+    /// `modes`, which is kept when the iteration does not settle.
+    fn settle(&self, modes: &mut [Mode<T>], normals: &[Normal<T>], i: usize) {
+        let Mode::Slide(held) = modes[i].clone() else {
+            return;
+        };
+        let off = self.b.offset[i] + 1;
+        let settled = self.tol.max(64.0 * T::epsilon_f64());
+        let mut u = held.clone();
+        for _ in 0..50 {
+            modes[i] = Mode::Slide(u.clone());
+            let Ok(r) = rates(self.b, normals, modes) else {
+                break;
+            };
+            let dv = &r.velocity[off..off + 2];
+            if dot(&u, dv).signum_i8() <= 0 {
+                break;
+            }
+            let next = unit(dv);
+            let diff = next
+                .iter()
+                .zip(&u)
+                .map(|(a, c)| (a.clone() - c).to_f64().abs())
+                .fold(0.0, f64::max);
+            u = next;
+            if diff <= settled {
+                modes[i] = Mode::Slide(u);
+                return;
+            }
+        }
+        modes[i] = Mode::Slide(held);
     }
 
     /// One Dormand–Prince step of length h from st.y, whose slope is `k0`.
@@ -364,7 +425,9 @@ impl<T: Scalar> Run<'_, T> {
     }
 
     /// The event functions at a state with rates `r`: per contact, the margin of a sticking
-    /// contact's cone, (μ p' − |τ'|) / Λ-scale, and of an energetic contact's restitution work,
+    /// contact's cone, (μ p' − |τ'|) / Λ-scale + tol (a stick holds until its required rate
+    /// leaves the cone by more than the tolerance — without that slack a requirement grazing
+    /// the cone's edge makes the contact chatter between stick and a slip of λ ≈ 0⁺), and of an energetic contact's restitution work,
     /// (k² W_c − W_r) / work scale; +∞ where a function does not apply. An event is a margin
     /// that was ≥ 0 and is < 0.
     fn margins(&self, st: &State<T>, y: &[T], r: &Rates<T>) -> Vec<f64> {
@@ -375,7 +438,8 @@ impl<T: Scalar> Run<'_, T> {
             if st.modes[i] == Mode::Stick {
                 let off = b.offset[i];
                 let tau = norm(&r.lambda[off + 1..off + 1 + b.dims[i]]);
-                g[2 * i] = (b.mu[i].clone() * &r.lambda[off] - tau).to_f64() / self.lambda_scale;
+                g[2 * i] = (b.mu[i].clone() * &r.lambda[off] - tau).to_f64() / self.lambda_scale
+                    + self.tol;
             }
             if st.phase == Phase::Restitution
                 && self.law == Restitution::Energetic
@@ -444,6 +508,7 @@ pub fn integrate<T: Scalar>(
         law,
         tol,
         delta: tol * vscale,
+        lock: 16.0 * tol * vscale,
         lambda_scale: vscale / kscale,
         work_scale: vscale * vscale / kscale,
         a: A.iter()
@@ -458,6 +523,8 @@ pub fn integrate<T: Scalar>(
         modes: vec![Mode::Free; n],
         stopped: vec![false; n],
         compression: Vec::new(),
+        origin: vec![T::zero(); len],
+        locked: vec![false; n],
     };
     let mut stats = Stats::default();
     let mut segments: Vec<Segment<T>> = Vec::new();
@@ -466,7 +533,7 @@ pub fn integrate<T: Scalar>(
     let mut error = 0.0;
     let rounding = 16.0 * (len as f64) * T::epsilon_f64();
     let mut h: f64 = 0.05;
-    resolve(&run, &mut st, &[], &mut verdicts)?;
+    resolve(&run, &mut st, &[], &[], &mut verdicts)?;
     let mut normals = run.normals(&st);
     let mut k0 = run.slope(&st, &normals, &st.y)?;
     let mut seg_start = st.s.clone();
@@ -497,19 +564,21 @@ pub fn integrate<T: Scalar>(
         let v = run.velocities(&st.y);
         let rate_scale = max_abs(&r.lambda).to_f64();
         let mut at_rest: Option<f64> = None;
+        let mut resting: Vec<usize> = Vec::new();
         for i in 0..n {
             let Mode::Slide(u) = &st.modes[i] else {
                 continue;
             };
             let off = b.offset[i] + 1;
             let dv = &r.velocity[off..off + 2];
-            let (vt, rho) = run.slip(&v, i);
-            let drho = if rho > run.delta {
-                dot(vt, dv).to_f64() / rho
+            let (vt, rho) = run.slip(&v, &st.origin, i);
+            let free = rho > run.lock && !st.locked[i];
+            let drho = if free {
+                dot(&vt, dv).to_f64() / rho
             } else {
                 dot(u, dv).to_f64()
             };
-            if rho > run.delta {
+            if free {
                 // The direction turns at |dv_t⊥| / ρ: at most a quarter radian per step, or
                 // the step outruns it and the slip chatters about a fixed speed.
                 let along = drho;
@@ -526,6 +595,7 @@ pub fn integrate<T: Scalar>(
                 // by at most twice the largest rate over that interval.
                 let left = rho / -drho;
                 at_rest = Some(at_rest.map_or(left, |x| x.min(left)));
+                resting.push(i);
                 error += 2.0 * left * rate_scale;
             } else {
                 h = h.min(0.9 * rho / -drho);
@@ -552,8 +622,9 @@ pub fn integrate<T: Scalar>(
             }
             st.s += &ds;
             close_segment(&mut segments, &seg_start, &st, &seg_modes, &seg_rates);
-            resolve(&run, &mut st, &[], &mut verdicts)?;
+            resolve(&run, &mut st, &[], &resting, &mut verdicts)?;
             k0 = run.slope(&st, &normals, &st.y)?;
+
             seg_start = st.s.clone();
             seg_modes = st.modes.clone();
             seg_rates = k0.rates.lambda.clone();
@@ -623,7 +694,7 @@ pub fn integrate<T: Scalar>(
             }
             close_segment(&mut segments, &seg_start, &st, &seg_modes, &seg_rates);
             normals = run.normals(&st);
-            resolve(&run, &mut st, &leaving, &mut verdicts)?;
+            resolve(&run, &mut st, &leaving, &[], &mut verdicts)?;
             k0 = run.slope(&st, &normals, &st.y)?;
             seg_start = st.s.clone();
             seg_modes = st.modes.clone();
@@ -637,7 +708,39 @@ pub fn integrate<T: Scalar>(
                 st.s.clone() + &hh
             };
             k0 = trial.slope;
-            st.modes = run.modes_at(&run.velocities(&st.y), &st.modes);
+            st.modes = run.modes_at(&run.velocities(&st.y), &st);
+            // Locked slips: hold the direction settled at the new state; add the lag of the
+            // quasi-static direction, μ p' (ρ/|dv_t|) |Δu|, to the estimate; release once the
+            // direction's own time scale ρ/|dv_t| exceeds a hundredth of the impact.
+            let v = run.velocities(&st.y);
+            let mut settled_modes = st.modes.clone();
+            for i in 0..n {
+                let Mode::Slide(old) = st.modes[i].clone() else {
+                    st.locked[i] = false;
+                    continue;
+                };
+                if !st.locked[i] {
+                    continue;
+                }
+                run.settle(&mut settled_modes, &normals, i);
+                let Mode::Slide(u) = settled_modes[i].clone() else {
+                    continue;
+                };
+                let (_, rho) = run.slip(&v, &st.origin, i);
+                let off = b.offset[i];
+                let dv = norm(&k0.rates.velocity[off + 1..off + 3]).to_f64();
+                let change = u
+                    .iter()
+                    .zip(&old)
+                    .map(|(a, c)| (a.clone() - c).to_f64().abs())
+                    .fold(0.0, f64::max);
+                let p = k0.rates.lambda[off].to_f64().abs();
+                error += b.mu[i].to_f64() * p * change * rho / dv.max(f64::MIN_POSITIVE);
+                st.modes[i] = Mode::Slide(u);
+                if rho >= 1e-2 * dv {
+                    st.locked[i] = false;
+                }
+            }
             h = hh.to_f64() * grow;
             if hit_end {
                 close_segment(&mut segments, &seg_start, &st, &seg_modes, &seg_rates);
@@ -654,7 +757,7 @@ pub fn integrate<T: Scalar>(
                     }
                 }
                 normals = run.normals(&st);
-                resolve(&run, &mut st, &[], &mut verdicts)?;
+                resolve(&run, &mut st, &[], &[], &mut verdicts)?;
                 k0 = run.slope(&st, &normals, &st.y)?;
                 seg_start = st.s.clone();
                 seg_modes = st.modes.clone();
@@ -720,6 +823,7 @@ fn resolve<T: Scalar>(
     run: &Run<'_, T>,
     st: &mut State<T>,
     leaving: &[usize],
+    resting: &[usize],
     verdicts: &mut Vec<Verdict>,
 ) -> Result<(), FrictionError> {
     let b = run.b;
@@ -734,48 +838,165 @@ fn resolve<T: Scalar>(
         };
         if b.dims[i] == 0 || !carries {
             st.modes[i] = Mode::Free;
+            st.locked[i] = false;
             continue;
         }
-        let (vt, rho) = run.slip(&v, i);
-        if rho > run.delta {
-            st.modes[i] = Mode::Slide(unit(vt));
+        let (vt, rho) = run.slip(&v, &st.origin, i);
+        // A contact just declared at zero slip is at zero slip, whatever the turn of its
+        // direction left over the last (Euler) stretch.
+        if rho > run.delta && !resting.contains(&i) {
+            if !(st.locked[i] && matches!(st.modes[i], Mode::Slide(_))) {
+                st.modes[i] = Mode::Slide(unit(&vt));
+                st.locked[i] = false;
+            }
         } else {
+            // At zero slip: its residual is set aside (see `State::origin`).
+            let off = b.offset[i] + 1;
+            for q in off..off + 2 {
+                st.origin[q] = v[q].clone();
+            }
             candidates.push(i);
             st.modes[i] = Mode::Stick;
+            st.locked[i] = false;
         }
     }
-    for _ in 0..=candidates.len() {
-        let r = rates(b, &normals, &st.modes).map_err(|e| run.fail(e, st))?;
+    let m = candidates.len();
+    if m > crate::impact::friction::modes::MAX_CANDIDATES {
+        return Err(FrictionError::TooManyAtRest {
+            s: st.s.to_f64(),
+            contacts: m,
+        });
+    }
+    // All at zero slip stick, if their cones hold them.
+    let r = rates(b, &normals, &st.modes).map_err(|e| run.fail(e, st))?;
+    if leaving.is_empty() && sticks_hold(run, st, &candidates, &r) {
         if !r.split_unique {
             verdicts.push(Verdict::SplitNotUnique { s: st.s.to_f64() });
         }
-        let scale = max_abs(&r.lambda);
-        let violated = candidates.iter().copied().find(|&i| {
-            if st.modes[i] != Mode::Stick {
+        return Ok(());
+    }
+    // The slip starts along the required sticking impulse, to first approximation.
+    let guesses: Vec<Vec<T>> = candidates
+        .iter()
+        .map(|&i| {
+            let off = b.offset[i];
+            let tau = &r.lambda[off + 1..off + 3];
+            if norm(tau).is_zero() {
+                vec![T::one(), T::zero()]
+            } else {
+                unit(tau)
+            }
+        })
+        .collect();
+    // Otherwise the fewest contacts slide: every subset S of the candidates that holds the
+    // contacts forced out of stick, by size, each slide along its invariant direction (jointly
+    // when several slide), the others sticking in their cones.
+    let mut subsets: Vec<usize> = (1..1usize << m)
+        .filter(|&bits| {
+            leaving
+                .iter()
+                .all(|l| candidates.iter().position(|c| c == l).is_none_or(|k| bits >> k & 1 == 1))
+        })
+        .collect();
+    subsets.sort_by_key(|bits| bits.count_ones());
+    let start = st.modes.clone();
+    for bits in subsets {
+        st.modes.clone_from(&start);
+        let sliding: Vec<usize> = (0..m).filter(|k| bits >> k & 1 == 1).collect();
+        let found = if let [k] = sliding[..] {
+            invariant_direction(run, st, &normals, candidates[k], guesses[k].clone(), verdicts)
+                .map(|u| st.modes[candidates[k]] = Mode::Slide(u))
+                .is_ok()
+        } else {
+            joint_directions(run, st, &normals, &candidates, &sliding, &guesses)
+        };
+        if !found {
+            continue;
+        }
+        let Ok(r) = rates(b, &normals, &st.modes) else {
+            continue;
+        };
+        if sticks_hold(run, st, &candidates, &r) {
+            if !r.split_unique {
+                verdicts.push(Verdict::SplitNotUnique { s: st.s.to_f64() });
+            }
+            for &k in &sliding {
+                st.locked[candidates[k]] = true;
+            }
+            return Ok(());
+        }
+    }
+    Err(FrictionError::NoConsistentModes {
+        s: st.s.to_f64(),
+        phase: st.phase,
+    })
+}
+
+/// Whether every sticking candidate's required rate lies in its cone (to the tolerance's
+/// slack, as the event margins) with a nonnegative normal rate.
+fn sticks_hold<T: Scalar>(run: &Run<'_, T>, st: &State<T>, candidates: &[usize], r: &Rates<T>) -> bool {
+    let b = run.b;
+    let scale = max_abs(&r.lambda);
+    candidates.iter().all(|&i| {
+        if st.modes[i] != Mode::Stick {
+            return true;
+        }
+        let off = b.offset[i];
+        let p = &r.lambda[off];
+        let tau = norm(&r.lambda[off + 1..off + 3]);
+        let margin = (b.mu[i].clone() * p - tau).to_f64() + run.tol * run.lambda_scale;
+        nonnegative(p, &scale, b.len()) && margin >= 0.0
+    })
+}
+
+/// Several contacts leaving zero slip together: their slip directions by a joint fixed-point
+/// iteration u_i ← dv_it/|dv_it| from the `guesses`; true when it settles with every λ_i > 0
+/// and nonnegative normal rates (the modes are left set).
+fn joint_directions<T: Scalar>(
+    run: &Run<'_, T>,
+    st: &mut State<T>,
+    normals: &[Normal<T>],
+    candidates: &[usize],
+    sliding: &[usize],
+    guesses: &[Vec<T>],
+) -> bool {
+    let b = run.b;
+    let settled = run.tol.max(64.0 * T::epsilon_f64());
+    for &k in sliding {
+        st.modes[candidates[k]] = Mode::Slide(guesses[k].clone());
+    }
+    for _ in 0..200 {
+        let Ok(r) = rates(b, normals, &st.modes) else {
+            return false;
+        };
+        let mut diff: f64 = 0.0;
+        let mut all_out = true;
+        for &k in sliding {
+            let i = candidates[k];
+            let off = b.offset[i];
+            let dv = &r.velocity[off + 1..off + 3];
+            if norm(dv).is_zero() {
                 return false;
             }
-            let off = b.offset[i];
-            let p = &r.lambda[off];
-            let tau = norm(&r.lambda[off + 1..off + 3]);
-            leaving.contains(&i)
-                || !(nonnegative(p, &scale, b.len())
-                    && nonnegative(&(b.mu[i].clone() * p - tau), &scale, b.len()))
-        });
-        let Some(i) = violated else {
-            return Ok(());
-        };
-        // The slip starts along the required sticking impulse, to first approximation.
-        let off = b.offset[i];
-        let tau = &r.lambda[off + 1..off + 3];
-        let guess = if norm(tau).is_zero() {
-            vec![T::one(), T::zero()]
-        } else {
-            unit(tau)
-        };
-        let u = invariant_direction(run, st, &normals, i, guess, verdicts)?;
-        st.modes[i] = Mode::Slide(u);
+            let next = unit(dv);
+            let Mode::Slide(u) = &st.modes[i] else {
+                return false;
+            };
+            diff = diff.max(
+                next.iter()
+                    .zip(u)
+                    .map(|(a, c)| (a.clone() - c).to_f64().abs())
+                    .fold(0.0, f64::max),
+            );
+            all_out &= dot(u, dv).signum_i8() > 0
+                && nonnegative(&r.lambda[off], &max_abs(&r.lambda), b.len());
+            st.modes[i] = Mode::Slide(next);
+        }
+        if diff <= settled {
+            return all_out;
+        }
     }
-    Ok(())
+    false
 }
 
 /// u × (dv_t/ds), λ = u · (dv_t/ds) and dv_t/ds for contact i sliding along u from zero
