@@ -323,13 +323,6 @@ fn run_analyze(path: PathBuf, exact: bool, model: Option<ModelArg>, json: bool) 
         Err(code) => return code,
     };
     let models = model.map(ModelArg::models);
-    if scene.frictional() {
-        eprintln!(
-            "note: {}: `analyze` studies the frictionless system (G, Δ, ranks, admissibility); \
-             the frictional impact (contact[i].mu, [solve] restitution) is integrated by `solve`",
-            path.display()
-        );
-    }
     let report = if exact && !scene.is_rational() {
         analyze_scene::<RatFun>(&scene, models.as_deref())
     } else if exact {

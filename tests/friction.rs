@@ -314,3 +314,41 @@ fn a_sweep_of_mu_integrates_every_point_and_says_which_have_no_answer() {
     assert!(rows[5][col("status")].contains("no-continuation"));
     assert!(!rows[1][col("poisson_Ef")].is_empty());
 }
+
+/// The rod of derivations/friction-rod.md at cos θ = 3/5: `analyze` gives its sticking
+/// threshold μ̄ = 3 sin θ cos θ / (1 + 3 sin² θ) = 36/73 exactly, beside the frictional readout.
+const ROD: &str = r#"
+name = "rod, cos(theta) = 3/5"
+[body]
+mass = 1
+inertia = ["1/300", "1/3", "1/3"]
+velocity = ["-13/20", "-4/5", 0]
+angular_velocity = [0, 0, 0]
+[[contact]]
+point = [-1, 0, 0]
+normal = ["-4/5", "-3/5", 0]
+k = 0.5
+mu = 0.5
+[solve]
+restitution = "poisson"
+"#;
+
+#[test]
+fn analyze_gives_the_sticking_threshold_and_the_frictional_readout() {
+    let s = SceneFile::new("friction-analyze", ROD);
+    let out = s.run(&["analyze", "--exact", "--json"]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let j: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(
+        j["friction"]["stick_thresholds"],
+        serde_json::json!(["36/73"])
+    );
+    // μ = 1/2 ≥ 36/73: the slip stops in compression (s = 7/29) and sticks.
+    let p = &j["friction"]["laws"]["poisson"];
+    assert_eq!(p["events"], serde_json::json!(["7/29", "1"]));
+    assert_eq!(p["contacts"][0]["normal_impulse"], "24/25");
+}

@@ -53,7 +53,7 @@ impl Report {
         if let (false, Some(obj)) = (self.friction.is_empty(), top.as_object_mut()) {
             let mut laws = Map::new();
             for f in &self.friction {
-                laws.insert(f.law.name().into(), friction_json(f));
+                laws.insert(f.law.name().into(), f.to_json());
             }
             for (law, message, status) in &self.friction_failures {
                 laws.insert(
@@ -142,7 +142,13 @@ fn contact_json(b: &PointVelocity, a: &PointVelocity) -> Json {
     })
 }
 
-/// One frictional law's object under `friction`.
+impl FrictionReport {
+    /// One frictional law's object under the report's `friction` (keys in the README).
+    pub fn to_json(&self) -> Json {
+        friction_json(self)
+    }
+}
+
 fn friction_json(f: &FrictionReport) -> Json {
     json!({
         "method": f.method,

@@ -31,7 +31,7 @@ impl Report {
         out += &self.before();
         if !self.friction.is_empty() {
             for f in &self.friction {
-                out += &friction_table(f);
+                out += &f.to_text();
             }
             for (law, message, _) in &self.friction_failures {
                 out += &format!(
@@ -254,8 +254,14 @@ fn aligned(header: &[String], rows: &[Row]) -> String {
     out
 }
 
-/// One frictional law's readout: per contact, the impulses, the velocity after and the modes;
-/// the twist, the energies, the events and the verdicts.
+impl FrictionReport {
+    /// One frictional law's readout as text: per contact, the impulses, the velocity after
+    /// and the modes; the twist, the energies, the events and the verdicts.
+    pub fn to_text(&self) -> String {
+        friction_table(self)
+    }
+}
+
 fn friction_table(f: &FrictionReport) -> String {
     let mut out = format!(
         "\nAfter impact, with friction — {} restitution ({}):\n",

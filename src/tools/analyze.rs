@@ -4,6 +4,7 @@
 use serde_json::{Map, Value as Json, json};
 
 use crate::analysis::{Analysis, Classification, analyze, condition_number, largest_eigenvalue};
+use crate::impact::problem::Problem;
 use crate::impact::restitution::Model;
 use crate::impact::solve::Impact;
 use crate::mechanics::contact::Surd;
@@ -38,6 +39,9 @@ pub struct AnalysisReport {
     /// Coincident contact pairs (1-based in text), whether the axes coincide, and the
     /// single-impulse reduction (Newton, Poisson).
     pub coincident: Vec<((usize, usize), bool, [Value; 2])>,
+    /// For a scene with friction (`mu`, `[solve] restitution`): each frictional contact's
+    /// sticking threshold and the frictional integration of each law.
+    pub friction: Option<FrictionAnalysis>,
 }
 
 /// One model's analysis, readable.
@@ -234,6 +238,9 @@ pub fn analyze_scene<T: Scalar>(
         models: model_reports,
         newton_equals_poisson: analysis.newton_equals_poisson,
         coincident,
+        friction: scene
+            .frictional()
+            .then(|| friction_analysis(scene, impact.problem())),
     };
     if !report.finite() {
         // Never an ∞ or NaN where a number belongs: the scene spans more than T holds.
@@ -244,6 +251,85 @@ pub fn analyze_scene<T: Scalar>(
         )));
     }
     Ok(report)
+}
+
+/// What `analyze` says about friction (see [`crate::impact::friction`]).
+#[derive(Clone, Debug)]
+pub struct FrictionAnalysis {
+    /// Per contact (`None` without friction, or a spatial scene in an exact type): μ̄_i, the
+    /// coefficient from which a slip of this contact alone that comes to rest sticks
+    /// (|τ'| ≤ μ p' with τ' = −G_tt⁻¹ G_tx p': μ̄ = |G_tt⁻¹ G_tx|; Keller's threshold, the
+    /// rod's μ̄ = 3 sin θ cos θ / (1 + 3 sin² θ) in derivations/friction-rod.md). Below it
+    /// such a slip reverses instead.
+    pub stick_thresholds: Vec<Option<Value>>,
+    /// The frictional readouts, one per law, as `solve` gives them.
+    pub readouts: Vec<crate::report::FrictionReport>,
+    /// Laws without an answer, and why; or why no integration ran (an exact type on a
+    /// spatial scene).
+    pub failures: Vec<String>,
+}
+
+/// The friction part of the analysis of `scene` in `T`.
+fn friction_analysis<T: Scalar>(scene: &Scene, problem: &Problem<T>) -> FrictionAnalysis {
+    use crate::impact::friction::Blocks;
+    let planar = Blocks::planar(problem);
+    let spatial = if planar.is_none() && !T::IS_EXACT {
+        let frames: Option<Vec<_>> = problem
+            .contacts()
+            .iter()
+            .enumerate()
+            .map(|(i, c)| {
+                crate::mechanics::contact::ContactFrame::new(i, c, problem.velocity()).ok()
+            })
+            .collect();
+        frames.map(|f| Blocks::spatial(problem, &f))
+    } else {
+        None
+    };
+    let stick_thresholds = match planar.as_ref().or(spatial.as_ref()) {
+        None => vec![None; problem.contacts().len()],
+        Some(b) => (0..b.contacts())
+            .map(|i| {
+                let o = b.offset[i];
+                match b.dims[i] {
+                    0 => None,
+                    1 => {
+                        let r = b.at(o + 1, o).clone() / b.at(o + 1, o + 1).clone();
+                        Some(Value::of(&if r.signum_i8() < 0 { -r } else { r }))
+                    }
+                    _ => {
+                        // |G_tt⁻¹ G_tx| with the 2×2 tangential block.
+                        let (a, bb, c, d) = (
+                            b.at(o + 1, o + 1).to_f64(),
+                            b.at(o + 1, o + 2).to_f64(),
+                            b.at(o + 2, o + 1).to_f64(),
+                            b.at(o + 2, o + 2).to_f64(),
+                        );
+                        let (x, y) = (b.at(o + 1, o).to_f64(), b.at(o + 2, o).to_f64());
+                        let det = a * d - bb * c;
+                        let (u, w) = ((d * x - bb * y) / det, (a * y - c * x) / det);
+                        Some(Value::float(u.hypot(w)))
+                    }
+                }
+            })
+            .collect(),
+    };
+    let (readouts, failures) = match crate::scene::pipeline::run_with::<T>(scene, None, true) {
+        Ok(s) => (
+            s.report.friction,
+            s.report
+                .friction_failures
+                .into_iter()
+                .map(|(law, m, _)| format!("{law}: {m}"))
+                .collect(),
+        ),
+        Err(e) => (Vec::new(), vec![e.to_string()]),
+    };
+    FrictionAnalysis {
+        stick_thresholds,
+        readouts,
+        failures,
+    }
 }
 
 impl AnalysisReport {
@@ -397,6 +483,16 @@ impl AnalysisReport {
                 obj.insert(
                     "newton_equals_poisson".into(),
                     json!({"equal": equal, "reason": reason}),
+                );
+            }
+            if let Some(f) = &self.friction {
+                obj.insert(
+                    "friction".into(),
+                    json!({
+                        "stick_thresholds": f.stick_thresholds.iter().map(|t| t.as_ref().map(Value::json)).collect::<Vec<_>>(),
+                        "laws": f.readouts.iter().map(|r| (r.law.name().to_string(), r.to_json())).collect::<Map<_, _>>(),
+                        "failures": f.failures,
+                    }),
                 );
             }
             if let Some(t) = self.tolerance {
@@ -557,6 +653,24 @@ impl AnalysisReport {
                 "\nNewton {} Poisson: {reason}\n",
                 if *equal { "=" } else { "≠" }
             );
+        }
+        if let Some(f) = &self.friction {
+            s += "\nFriction (the analysis above is of the frictionless system):\n";
+            for (i, t) in f.stick_thresholds.iter().enumerate() {
+                if let Some(t) = t {
+                    s += &format!(
+                        "  A{}: a slip of this contact alone that comes to rest sticks iff μ ≥ μ̄ = {} (else it reverses)\n",
+                        i + 1,
+                        t.text()
+                    );
+                }
+            }
+            for r in &f.readouts {
+                s += &r.to_text();
+            }
+            for m in &f.failures {
+                s += &format!("  no answer: {m}\n");
+            }
         }
         s
     }
