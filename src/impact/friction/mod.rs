@@ -216,6 +216,15 @@ pub enum Verdict {
     },
     /// The kinetic energy grew: ΔE_c < 0 (Kane's paradox under Newton's law with friction).
     EnergyGain,
+    /// A slip left zero slip along an invariant direction that repels the slips around it
+    /// (spatial scenes): the outcome follows that one slip, and neighbouring initial
+    /// conditions can end far from it — the impact is sensitive there.
+    UnstableSlip {
+        /// The contact (0-based).
+        contact: usize,
+        /// Where.
+        s: f64,
+    },
 }
 
 impl Verdict {
@@ -228,6 +237,7 @@ impl Verdict {
             Verdict::SplitNotUnique { .. } => "split-not-unique",
             Verdict::StillApproaching { .. } => "still-approaching",
             Verdict::EnergyGain => "energy-gain",
+            Verdict::UnstableSlip { .. } => "unstable-slip",
         }
     }
 }
@@ -267,6 +277,12 @@ impl fmt::Display for Verdict {
                 write!(f, "contact {}: still approaching after impact", contact + 1)
             }
             Verdict::EnergyGain => write!(f, "the kinetic energy grew (ΔE_c < 0)"),
+            Verdict::UnstableSlip { contact, s } => write!(
+                f,
+                "contact {}: from s = {s} its slip leaves zero along an invariant direction that \
+                 repels nearby slips — the outcome is sensitive to the initial conditions",
+                contact + 1
+            ),
         }
     }
 }

@@ -332,6 +332,7 @@ pub(super) fn status(report: &crate::report::Report) -> String {
         "energy-gain",
         "ambiguous",
         "split-not-unique",
+        "unstable-slip",
         "no-continuation",
         "undetermined",
         "never-ends",
