@@ -10,7 +10,7 @@
 
 use crate::impact::friction::blocks::Blocks;
 use crate::impact::friction::modes::{MAX_CANDIDATES, resolve_planar};
-use crate::impact::friction::rates::{Mode, Normal};
+use crate::impact::friction::rates::{Mode, Normal, normal_rules};
 use crate::impact::friction::{
     FrictionError, Frictional, Phase, Restitution, Segment, Verdict, label,
 };
@@ -246,29 +246,7 @@ fn normals<T: Scalar>(
     st: &State<T>,
     law: Restitution,
 ) -> Vec<Normal<T>> {
-    problem
-        .contacts()
-        .iter()
-        .enumerate()
-        .map(|(i, c)| {
-            let v0 = b.v0[b.offset[i]].clone();
-            match (st.phase, law) {
-                (Phase::Compression, _) => Normal::Driven(v0),
-                (Phase::Restitution, Restitution::Newton) => {
-                    Normal::Driven(c.k_newton.clone() * v0)
-                }
-                (Phase::Restitution, Restitution::Poisson) => {
-                    Normal::Given(c.k_poisson.clone() * &st.compression[i])
-                }
-                (Phase::Restitution, Restitution::Energetic) if st.stopped[i] => {
-                    Normal::Given(T::zero())
-                }
-                (Phase::Restitution, Restitution::Energetic) => {
-                    Normal::Given(st.compression[i].clone())
-                }
-            }
-        })
-        .collect()
+    normal_rules(problem, b, st.phase, law, &st.compression, &st.stopped)
 }
 
 /// Move the state by `h` at the rates `dl` (impulses) and `dv` (velocities), integrating the

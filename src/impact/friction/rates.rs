@@ -31,6 +31,44 @@ pub enum Normal<T: Scalar> {
     Given(T),
 }
 
+/// The normal rule of every contact of `problem` in `phase` under `law` (the module docs of
+/// [`super`]): compression drives every normal velocity to zero at s = 1; Newton's restitution
+/// drives it to −k^N v⁰; Poisson's prescribes k^P p^c; the energetic law p^c until the contact
+/// has `stopped`. `compression` holds p^c (read in restitution only).
+pub fn normal_rules<T: Scalar>(
+    problem: &crate::impact::problem::Problem<T>,
+    b: &Blocks<T>,
+    phase: super::Phase,
+    law: super::Restitution,
+    compression: &[T],
+    stopped: &[bool],
+) -> Vec<Normal<T>> {
+    use super::{Phase, Restitution};
+    problem
+        .contacts()
+        .iter()
+        .enumerate()
+        .map(|(i, c)| {
+            let v0 = b.v0[b.offset[i]].clone();
+            match (phase, law) {
+                (Phase::Compression, _) => Normal::Driven(v0),
+                (Phase::Restitution, Restitution::Newton) => {
+                    Normal::Driven(c.k_newton.clone() * v0)
+                }
+                (Phase::Restitution, Restitution::Poisson) => {
+                    Normal::Given(c.k_poisson.clone() * &compression[i])
+                }
+                (Phase::Restitution, Restitution::Energetic) if stopped[i] => {
+                    Normal::Given(T::zero())
+                }
+                (Phase::Restitution, Restitution::Energetic) => {
+                    Normal::Given(compression[i].clone())
+                }
+            }
+        })
+        .collect()
+}
+
 /// The tangential mode of a contact over a segment.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Mode<T: Scalar> {

@@ -47,7 +47,9 @@
 
 use crate::impact::friction::blocks::Blocks;
 use crate::impact::friction::modes::nonnegative;
-use crate::impact::friction::rates::{Mode, Normal, RateFailure, Rates, max_abs, rates};
+use crate::impact::friction::rates::{
+    Mode, Normal, RateFailure, Rates, max_abs, normal_rules, rates,
+};
 use crate::impact::friction::{
     FrictionError, Frictional, Phase, Restitution, Segment, Verdict, label,
 };
@@ -237,30 +239,14 @@ impl<T: Scalar> Run<'_, T> {
     }
 
     fn normals(&self, st: &State<T>) -> Vec<Normal<T>> {
-        let b = self.b;
-        self.problem
-            .contacts()
-            .iter()
-            .enumerate()
-            .map(|(i, c)| {
-                let v0 = b.v0[b.offset[i]].clone();
-                match (st.phase, self.law) {
-                    (Phase::Compression, _) => Normal::Driven(v0),
-                    (Phase::Restitution, Restitution::Newton) => {
-                        Normal::Driven(c.k_newton.clone() * v0)
-                    }
-                    (Phase::Restitution, Restitution::Poisson) => {
-                        Normal::Given(c.k_poisson.clone() * &st.compression[i])
-                    }
-                    (Phase::Restitution, Restitution::Energetic) if st.stopped[i] => {
-                        Normal::Given(T::zero())
-                    }
-                    (Phase::Restitution, Restitution::Energetic) => {
-                        Normal::Given(st.compression[i].clone())
-                    }
-                }
-            })
-            .collect()
+        normal_rules(
+            self.problem,
+            self.b,
+            st.phase,
+            self.law,
+            &st.compression,
+            &st.stopped,
+        )
     }
 
     /// The slip of contact i along its tangent axes, measured from its `origin`, and its
