@@ -1,7 +1,7 @@
 //! Coulomb friction at the contacts (§14, eq. 137–145), integrated in impulse space.
 //!
 //! The paper ends with friction: tangential impulses μ_i P_i opposing the slip, the inertance
-//! rows [H_ix], [H_iy], [H_iz] (eq. 143), and the remark that the system must be worked "with
+//! rows \[H_ix\], \[H_iy\], \[H_iz\] (eq. 143), and the remark that the system must be worked "with
 //! differentials" (eq. 145). This module is that integration.
 //!
 //! **The model.** Contact i has a coefficient of friction μ_i ≥ 0. Let p_i be its accumulated
