@@ -132,8 +132,8 @@ proptest! {
 
     /// Planar frictional impacts: ΔE_c = Σ∫v·dΛ equals T⁰ − T exactly; friction dissipates
     /// (∫ v_t·dτ ≥ 0) whenever no normal rate was negative; the Coulomb cone holds for the
-    /// accumulated impulses then; and under Poisson's law without a tensile rate, the same
-    /// normal impulses split as (1 + k) p^c.
+    /// accumulated impulses then; under Poisson's law P_i = (1 + k_i) p_i^c (eq. 23, with
+    /// friction); and the energetic law gains no energy from approaching contacts.
     #[test]
     fn planar_friction_balances_energy_exactly(
         p in common::problem(2),
@@ -162,13 +162,21 @@ proptest! {
             .collect();
         prop_assume!(!contacts.is_empty());
         let q = Problem::new(body, twist, contacts).unwrap();
-        for law in [Restitution::Newton, Restitution::Poisson] {
+        for law in Restitution::ALL {
+            // An energetic stop at an irrational s needs the radical field: skipped here (the
+            // rod's closed forms cover that field).
             let Ok(out) = solve_frictional(&q, law, 0.0) else { continue };
             prop_assert!(out.blocks.plane.is_some());
             prop_assert!(out.energy_residual.is_zero());
             let tensile = out.verdicts.iter().any(|v| matches!(v, Verdict::TensileRate { .. }));
             if !tensile {
                 prop_assert!(!out.friction_dissipation.is_negative());
+                // The energetic law: each contact's normal work is (1 − k²) W_c ≥ 0 when it
+                // approached (W_c ≥ 0), and friction dissipates — a theorem, asserted.
+                let approaching = out.blocks.offset.iter().all(|&o| out.blocks.v0[o].is_positive());
+                if law == Restitution::Energetic && approaching {
+                    prop_assert!(!out.kinetic_energy_loss.is_negative());
+                }
                 for i in 0..out.blocks.contacts() {
                     let o = out.blocks.offset[i];
                     if out.blocks.dims[i] == 1 {
