@@ -241,8 +241,21 @@ fn main() -> ExitCode {
 }
 
 /// Read a scene, or report why not (status 2).
+/// Read the scene at `path`; `-` reads it from standard input (named `<stdin>` in messages).
 fn load(path: &std::path::Path) -> Result<Scene, ExitCode> {
-    Scene::load(path).map_err(|e| {
+    let scene = if path.as_os_str() == "-" {
+        let mut text = String::new();
+        match std::io::Read::read_to_string(&mut std::io::stdin(), &mut text) {
+            Ok(_) => Scene::parse(&text, "<stdin>"),
+            Err(e) => {
+                eprintln!("error: <stdin>: cannot read the scene: {e}");
+                return Err(ExitCode::from(2));
+            }
+        }
+    } else {
+        Scene::load(path)
+    };
+    scene.map_err(|e| {
         eprintln!("error: {e}");
         ExitCode::from(2)
     })
@@ -629,6 +642,13 @@ fn run_check(dir: PathBuf, quiet: bool) -> ExitCode {
             return ExitCode::from(2);
         }
     };
+    if results.is_empty() {
+        eprintln!(
+            "error: {}: no derivation files (*.md besides README.md and ERRATA.md): nothing to check",
+            dir.display()
+        );
+        return ExitCode::from(2);
+    }
     let (text, passed) = check::render(&results);
     if quiet {
         let mut kept = String::new();

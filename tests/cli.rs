@@ -729,3 +729,70 @@ fn bench_batch_times_the_batch_api_per_point() {
     let out = inertance(&["bench", "--batch", "contact[1].k=0:1:5"]);
     assert_eq!(out.status.code(), Some(2));
 }
+
+/// Paper-cuts of issue 14: a scene from standard input, degree hints, a 3×3 inertia refused
+/// with what to write, and `check` on a folder with no derivations.
+#[test]
+fn scenes_from_stdin_and_hints_for_degrees_and_inertia_tensors() {
+    use std::io::Write;
+    let bar = std::fs::read_to_string(
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/planar-bar.toml"),
+    )
+    .unwrap();
+    let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_inertance"))
+        .args(["solve", "-", "--exact", "--json"])
+        .stdin(std::process::Stdio::piped())
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    child
+        .stdin
+        .take()
+        .unwrap()
+        .write_all(bar.as_bytes())
+        .unwrap();
+    let out = child.wait_with_output().unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let j: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(j["models"]["newton"]["impulses"][1], "89/450");
+
+    let dir = std::env::temp_dir().join(format!("inertance-papercuts-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let run = |name: &str, text: &str, args: &[&str]| {
+        let path = dir.join(name);
+        std::fs::write(&path, text).unwrap();
+        let mut all = vec![args[0], path.to_str().unwrap()];
+        all.extend(&args[1..]);
+        std::process::Command::new(env!("CARGO_BIN_EXE_inertance"))
+            .args(&all)
+            .output()
+            .unwrap()
+    };
+    let out = run("deg.toml", &bar.replace("0.4]", "\"3°\"]"), &["solve"]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("did you mean `3 deg`"));
+    let out = run(
+        "tensor.toml",
+        &bar.replace(
+            "inertia = [12, 1.6, 12]",
+            "inertia = [[12, 0, 0], [0, 1.6, 0], [0, 0, 12]]",
+        ),
+        &["solve"],
+    );
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("central principal moments"));
+    let empty = dir.join("empty");
+    std::fs::create_dir_all(&empty).unwrap();
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_inertance"))
+        .args(["check", empty.to_str().unwrap()])
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("no derivation files"));
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -240,10 +240,17 @@ impl Reader<'_> {
             Value::Float(f) => f.display_repr().into_owned(),
             Value::String(s) => s.value().clone(),
             other => {
+                let tensor = key.starts_with("body.inertia") && matches!(other, Value::Array(_));
                 return Err(self.err(
                     key,
                     Some(other.to_string().trim().to_string()),
-                    "must be a number (or a string such as \"1/3\")",
+                    if tensor {
+                        "must be a number: `inertia` takes the three central principal moments \
+                         [Jx, Jy, Jz], with points, normals and velocities in those principal axes \
+                         (a full 3×3 tensor is not read yet: diagonalise it and rotate the scene)"
+                    } else {
+                        "must be a number (or a string such as \"1/3\")"
+                    },
                 ));
             }
         };
@@ -252,6 +259,9 @@ impl Reader<'_> {
             let mut message = e.to_string();
             if self.symbols.is_empty() && message.contains("unknown name") {
                 message += "; a symbolic scene is for `inertance derive SCENE --symbols NAME,…`";
+            }
+            if let Some(hint) = degree_hint(&text) {
+                message += &hint;
             }
             self.err(key, Some(shown), message)
         })
@@ -363,4 +373,19 @@ impl Reader<'_> {
             Ok(())
         }
     }
+}
+
+/// "3°" or "3 degrees" for an angle: the grammar's unit is `deg` (a bare number is radians).
+fn degree_hint(text: &str) -> Option<String> {
+    let lower = text.to_ascii_lowercase();
+    let at = lower.find('°').or_else(|| lower.find("degree"))?;
+    let before = text[..at].trim_end();
+    let start = before
+        .rfind(|c: char| !(c.is_ascii_digit() || c == '.'))
+        .map_or(0, |i| i + 1);
+    let number = &before[start..];
+    let number = if number.is_empty() { "30" } else { number };
+    Some(format!(
+        "; did you mean `{number} deg`? (angles are written with `deg`; a bare number is radians)"
+    ))
 }
