@@ -216,3 +216,32 @@ fn surface_errors_name_the_key_and_value() {
         "{e}"
     );
 }
+
+/// Issue 14: a point typed to five digits on a sphere misses it by ~10⁻⁶; the refusal says
+/// how far, and what to write instead.
+#[test]
+fn a_rounded_point_on_the_surface_gets_a_hint() {
+    let text = r#"
+[body]
+mass = 1
+inertia = [0.4, 0.4, 0.4]
+velocity = [0, 0, -1]
+angular_velocity = [0, 0, 0]
+[surface]
+f = "x^2 + y^2 + z^2 - 1"
+[[contact]]
+point = [0, 0.86603, -0.5]
+k = 0.5
+"#;
+    let scene = inertance::scene::Scene::parse(text, "rounded.toml").unwrap();
+    let err = scene.problem::<f64>().unwrap_err().to_string();
+    assert!(err.contains("contact[0].point"), "{err}");
+    assert!(
+        err.contains("rounded coordinate") && err.contains("`normal`"),
+        "{err}"
+    );
+    // Written exactly, the same point is on the sphere.
+    let exact = text.replace("0.86603", "\"cos(30 deg)\"");
+    let scene = inertance::scene::Scene::parse(&exact, "exact.toml").unwrap();
+    assert!(scene.problem::<f64>().is_ok());
+}

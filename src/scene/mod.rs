@@ -514,7 +514,10 @@ impl Scene {
 
     /// The outward normal of a contact on the surface: ∇f at its point (eq. 103–107), after
     /// checking that the point lies on f = 0 (exactly in exact types; in floats, the distance
-    /// estimate |f|/|∇f| must be ≤ 10⁻⁹ of max(|p|, 1)) and that ∇f ≠ 0 there.
+    /// estimate |f|/|∇f| must be ≤ 10⁻⁹ of max(|p|, 1) — f at a point typed exactly is
+    /// evaluated with an error of a few ε times its terms, far below 10⁻⁹, while a coordinate
+    /// typed to nine or fewer significant digits of an irrational value misses by more, and is
+    /// refused with a hint to write it exactly or give `normal`) and that ∇f ≠ 0 there.
     fn surface_normal<T: Scalar>(
         &self,
         surface: &SurfaceSpec,
@@ -557,11 +560,24 @@ impl Scene {
             f <= 1e-9 * g * r
         };
         if !on {
+            // |f|/|∇f| estimates the distance to the surface; a small one is a rounded
+            // coordinate, not a wrong point.
+            let distance = f.to_f64().abs() / g2.to_f64().sqrt();
+            let scale = norm2(p).to_f64().sqrt().max(1.0);
+            let hint = if distance <= 1e-3 * scale {
+                format!(
+                    " — the point is about {distance:.1e} from it, a rounded coordinate? Write it \
+                     exactly (a fraction, or an expression such as \"0.108*cos(30 deg)\"), or give \
+                     `normal` explicitly"
+                )
+            } else {
+                String::new()
+            };
             return Err(self.error(
                 &key,
                 Some(shown),
                 format!(
-                    "not on the surface f = {}: f(point) = {} ≠ 0",
+                    "not on the surface f = {}: f(point) = {} ≠ 0{hint}",
                     surface.text,
                     f.exact_text().unwrap_or_else(|| f.to_f64().to_string())
                 ),
