@@ -255,10 +255,14 @@ fn load(path: &std::path::Path) -> Result<Scene, ExitCode> {
     } else {
         Scene::load(path)
     };
-    scene.map_err(|e| {
+    let scene = scene.map_err(|e| {
         eprintln!("error: {e}");
         ExitCode::from(2)
-    })
+    })?;
+    if let Some(note) = scene.radian_note() {
+        eprintln!("{note}");
+    }
+    Ok(scene)
 }
 
 fn solve(

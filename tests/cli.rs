@@ -773,6 +773,18 @@ fn scenes_from_stdin_and_hints_for_degrees_and_inertia_tensors() {
             .output()
             .unwrap()
     };
+    // sin(3) beside an angle in `deg`: a note (radians were read), the solve goes on.
+    let mixed = bar.replace("0.4]", "\"sin(3)\"]").replace(
+        "velocity = [3, 2, 0]",
+        "velocity = [\"3*cos(0 deg)\", 2, 0]",
+    );
+    let out = run("mixed.toml", &mixed, &["solve"]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(String::from_utf8_lossy(&out.stderr).contains("write `3 deg` if degrees were meant"));
     let out = run("deg.toml", &bar.replace("0.4]", "\"3°\"]"), &["solve"]);
     assert_eq!(out.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&out.stderr).contains("did you mean `3 deg`"));

@@ -175,6 +175,35 @@ impl Scene {
         read::scene(doc, file, symbols)
     }
 
+    /// A note when the scene writes angles both ways: some value uses `deg` while another
+    /// applies sin, cos or tan to a bare number (read as radians) — `sin(3)` beside `30 deg`
+    /// is likely a slip. Names the key and value.
+    pub fn radian_note(&self) -> Option<String> {
+        let numbers: Vec<(String, &Number)> = self.numbers().collect();
+        if !numbers.iter().any(|(_, n)| n.text.contains("deg")) {
+            return None;
+        }
+        numbers.iter().find_map(|(key, n)| {
+            let t = &n.text;
+            ["sin(", "cos(", "tan("].iter().find_map(|f| {
+                let at = t.find(f)? + f.len();
+                let inner = t[at..].split(')').next()?.trim();
+                let bare = !inner.is_empty()
+                    && inner
+                        .chars()
+                        .all(|c| c.is_ascii_digit() || c == '.' || c == '-' || c == '/');
+                bare.then(|| {
+                    format!(
+                        "note: {}: `{key}` = \"{t}\" takes {} of {inner} radians, while the scene writes \
+                         other angles in `deg`; write `{inner} deg` if degrees were meant",
+                        self.file,
+                        &f[..3]
+                    )
+                })
+            })
+        })
+    }
+
     /// Whether the impact is integrated in impulse space ([`crate::impact::friction`]): some
     /// μ_i ≠ 0, or `[solve] restitution` given.
     pub fn frictional(&self) -> bool {
