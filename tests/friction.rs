@@ -360,3 +360,44 @@ fn analyze_gives_the_sticking_threshold_and_the_frictional_readout() {
     assert_eq!(p["events"], serde_json::json!(["7/29", "1"]));
     assert_eq!(p["contacts"][0]["normal_impulse"], "24/25");
 }
+
+/// A slider (prismatic joint along the normal) cannot move along the contact's tangent:
+/// g_tt = 0. `analyze` used to divide by it (a panic in exact mode); it has no sticking
+/// threshold, and the frictional readout still comes.
+#[test]
+fn regression_analyze_threshold_with_a_tangent_the_body_cannot_move_along() {
+    let slider = r#"
+[body]
+mass = 2
+inertia = [1, 1, 1]
+velocity = [3, 0, 0]
+angular_velocity = [0, 0, 0]
+[[contact]]
+point = [0, 1, 0]
+normal = [1, 0, 0]
+k = 0.5
+mu = 0.5
+[[constraints.joint]]
+kind = "prismatic"
+axis = [1, 0, 0]
+"#;
+    let s = SceneFile::new("friction-slider", slider);
+    for exact in [true, false] {
+        let args: &[&str] = if exact {
+            &["analyze", "--exact", "--json"]
+        } else {
+            &["analyze", "--json"]
+        };
+        let out = s.run(args);
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let j: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+        assert_eq!(j["friction"]["stick_thresholds"], serde_json::json!([null]));
+        // P = (1 + k) m v⁰ = 9 N s: the slider's normal impulse, friction absorbed by the joint.
+        let p = &j["friction"]["laws"]["poisson"]["contacts"][0]["normal_impulse"];
+        assert!(p == "9" || p == 9.0, "{p}");
+    }
+}

@@ -293,6 +293,9 @@ fn friction_analysis<T: Scalar>(scene: &Scene, problem: &Problem<T>) -> Friction
                 let o = b.offset[i];
                 match b.dims[i] {
                     0 => None,
+                    // A body that cannot move along the tangent (a constraint) has
+                    // g_tt = 0: no slip, no threshold.
+                    1 if b.at(o + 1, o + 1).is_zero() => None,
                     1 => {
                         let r = b.at(o + 1, o).clone() / b.at(o + 1, o + 1).clone();
                         Some(Value::of(&if r.signum_i8() < 0 { -r } else { r }))
@@ -308,7 +311,9 @@ fn friction_analysis<T: Scalar>(scene: &Scene, problem: &Problem<T>) -> Friction
                         let (x, y) = (b.at(o + 1, o).to_f64(), b.at(o + 2, o).to_f64());
                         let det = a * d - bb * c;
                         let (u, w) = ((d * x - bb * y) / det, (a * y - c * x) / det);
-                        Some(Value::float(u.hypot(w)))
+                        // A singular tangential block (a constrained body): no threshold.
+                        let t = u.hypot(w);
+                        t.is_finite().then(|| Value::float(t))
                     }
                 }
             })
