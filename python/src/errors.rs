@@ -99,41 +99,31 @@ pub fn scene_error(py: Python<'_>, e: &LibSceneError) -> PyErr {
 
 /// A solve that failed: bad input, or no answer.
 pub fn run_error(py: Python<'_>, e: &RunError) -> PyErr {
-    match e {
-        RunError::Scene(s) => scene_error(py, s),
-        RunError::Solve(s) => {
-            let kind = match s {
+    let (message, kind) = match e {
+        RunError::Scene(s) => return scene_error(py, s),
+        RunError::Solve(s) => (
+            s.to_string(),
+            match s {
                 LibSolveError::Singular { .. } => "singular",
                 LibSolveError::Tangent(_) => "frame",
                 LibSolveError::NotSemidefinite(_) => "not-semidefinite",
-            };
-            raise::<SolveError>(
-                py,
-                s.to_string(),
-                &[("kind", kind.into_pyobject(py).unwrap().into_any().unbind())],
-            )
-        }
-        RunError::Unilateral(u) => {
-            let kind = match u {
+            },
+        ),
+        RunError::Unilateral(u) => (
+            u.to_string(),
+            match u {
                 UnilateralError::Jammed { .. } => "jammed",
                 _ => "pivots",
-            };
-            raise::<SolveError>(
-                py,
-                u.to_string(),
-                &[("kind", kind.into_pyobject(py).unwrap().into_any().unbind())],
-            )
-        }
+            },
+        ),
         // A friction verdict (no consistent modes, …) or a spatial scene asked for exactly.
-        RunError::Friction(f) => {
-            let kind = f.status().unwrap_or("friction");
-            raise::<SolveError>(
-                py,
-                f.to_string(),
-                &[("kind", kind.into_pyobject(py).unwrap().into_any().unbind())],
-            )
-        }
-    }
+        RunError::Friction(f) => (f.to_string(), f.status().unwrap_or("friction")),
+    };
+    raise::<SolveError>(
+        py,
+        message,
+        &[("kind", kind.into_pyobject(py).unwrap().into_any().unbind())],
+    )
 }
 
 /// A sweep or batch that failed.
