@@ -522,6 +522,7 @@ fn eval<T: Scalar>(e: &Expr, p: &[T; 3]) -> Result<T, String> {
             exact: Err(c.reason.clone()),
             approx: c.approx,
             symbols: c.symbols.clone(),
+            tangent: 0.0,
         })
         .map_err(|_| {
             format!(

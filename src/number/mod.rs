@@ -42,6 +42,9 @@ pub struct Number {
     /// The declared symbols the text names, sorted and without duplicates (see
     /// [`parse_number_with`]); empty for an ordinary number.
     pub symbols: Vec<String>,
+    /// The derivative of the value with respect to the one parameter a sensitivity run
+    /// seeds (forward mode, a dual-number run); 0 otherwise.
+    pub tangent: f64,
 }
 
 /// Why a text could not be read as a finite number.
@@ -160,6 +163,7 @@ pub(crate) fn evaluate(src: &str, node: &Node) -> Result<Number, NumberError> {
             exact: Err(format!("{text} names the symbol{s} {}", symbols.join(", "))),
             approx: f64::NAN,
             symbols,
+            tangent: 0.0,
         });
     }
     // An exact rational whose f64 overflows is still a number (exact mode reads it; f64 mode
@@ -187,6 +191,7 @@ pub(crate) fn evaluate(src: &str, node: &Node) -> Result<Number, NumberError> {
         exact,
         approx: value.f,
         symbols,
+        tangent: 0.0,
     })
 }
 

@@ -110,8 +110,12 @@ pub struct Scene {
     pub name: String,
     /// m.
     pub mass: Number,
-    /// (J_x, J_y, J_z).
+    /// The diagonal of the central inertia tensor in the solver's axes, (J_xx, J_yy, J_zz):
+    /// the central principal moments (J_x, J_y, J_z) when the axes are principal.
     pub inertia: [Number; 3],
+    /// The tensor's entries off the diagonal, (J_xy, J_xz, J_yz), when the axes are not
+    /// principal (a full tensor, or a posed body reported in world axes); `None` when they vanish.
+    pub inertia_products: Option<[Number; 3]>,
     /// v_C⁰.
     pub velocity: [Number; 3],
     /// ω⁰.

@@ -58,6 +58,7 @@ pub(super) fn scene(
         name,
         mass: body.mass,
         inertia: body.inertia,
+        inertia_products: None,
         velocity: body.velocity,
         angular_velocity: body.angular_velocity,
         contacts,

@@ -68,6 +68,7 @@ impl Slot {
             exact: Ok(q.clone()),
             approx: rational_to_f64(q),
             symbols: Vec::new(),
+            tangent: 0.0,
         };
         match self {
             Slot::Mass => scene.mass = n,
