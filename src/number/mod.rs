@@ -23,6 +23,7 @@ use num_traits::{One, Signed, ToPrimitive, Zero};
 
 pub mod expr;
 mod rational;
+pub(crate) mod tangent;
 
 use expr::{Func, Kind, Lit, MAX_DECIMAL_EXPONENT, Node, Op, Wording};
 

@@ -44,6 +44,7 @@
 //! ([`ContactSpec`], [`ConstraintsSpec`], …) and how each is read, `path` the key paths and
 //! [`set_value`]; [`pipeline`] runs a scene from assembly to report.
 
+pub mod model;
 mod path;
 pub mod pipeline;
 mod read;
@@ -52,6 +53,8 @@ mod schema;
 
 pub use path::set_value;
 pub use read::parse_document;
+pub use model::Axes;
+pub use model::params::ParamSpec;
 pub use schema::{ConstraintsSpec, ContactSpec, JointKind, JointSpec, SurfaceSpec};
 
 use std::fmt;
@@ -133,6 +136,11 @@ pub struct Scene {
     pub constraints: Option<ConstraintsSpec>,
     /// The `[surface]` effect, if declared.
     pub surface: Option<SurfaceSpec>,
+    /// The `[params]`, in order.
+    pub params: Vec<ParamSpec>,
+    /// The axes of a modelled scene (world frame, pose, shape, obstacles: [`model`]); `None`
+    /// for a scene written in the paper's body axes.
+    pub axes: Option<Axes>,
 }
 
 impl Scene {
@@ -176,7 +184,18 @@ impl Scene {
         file: &str,
         symbols: &[String],
     ) -> Result<Scene, SceneError> {
-        read::scene(doc, file, symbols)
+        read::scene(doc, file, symbols, None)
+    }
+
+    /// As [`Scene::from_document_with`], with the parameter `seed` seeded: every number
+    /// carries its derivative with respect to it ([`Number::tangent`]), for a sensitivity run.
+    pub fn from_document_seeded(
+        doc: &DocumentMut,
+        file: &str,
+        symbols: &[String],
+        seed: &str,
+    ) -> Result<Scene, SceneError> {
+        read::scene(doc, file, symbols, Some(seed))
     }
 
     /// A note when the scene writes angles both ways: some value uses `deg` while another

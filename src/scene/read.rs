@@ -8,7 +8,8 @@ use toml_edit::{DocumentMut, Item, Table, TableLike, Value};
 
 use super::schema::ContactSpec;
 use super::{Scene, SceneError};
-use crate::number::{Number, parse_number_with};
+use super::model::{self, params::Params};
+use crate::number::Number;
 
 /// Parse TOML text into a document (syntax errors name the file and the position).
 pub fn parse_document(text: &str, file: &str) -> Result<DocumentMut, SceneError> {
@@ -26,13 +27,22 @@ pub(super) fn scene(
     doc: &DocumentMut,
     file: &str,
     symbols: &[String],
+    seed: Option<&str>,
 ) -> Result<Scene, SceneError> {
-    let r = Reader { file, symbols };
     let root = doc.as_table();
+    let r = Reader {
+        file,
+        symbols,
+        params: Params::new(symbols, seed),
+    };
     r.only_keys(root, "", TOP_KEYS)?;
+    let r = Reader {
+        params: r.params(root, seed)?,
+        ..r
+    };
     let name = r.name(root)?;
-    let body = r.body(root)?;
-    let contacts = r.contacts(root)?;
+    let modelled = model::declared(root);
+    let mut contacts = r.contacts(root)?;
     let (models, law, restitution) = r.solve(root)?;
     let rough = contacts
         .iter()
@@ -45,9 +55,15 @@ pub(super) fn scene(
              with `[solve] law = \"unilateral\"`",
         ));
     }
-    let constraints = match root.get("constraints") {
+    let mut constraints = match root.get("constraints") {
         None => None,
         Some(item) => Some(r.constraints(item)?),
+    };
+    let (body, axes) = if modelled {
+        let lowered = r.lower(root, &mut contacts, &mut constraints)?;
+        (lowered.body, Some(lowered.axes))
+    } else {
+        (r.body(root)?, None)
     };
     let surface = match root.get("surface") {
         None => None,
@@ -58,7 +74,7 @@ pub(super) fn scene(
         name,
         mass: body.mass,
         inertia: body.inertia,
-        inertia_products: None,
+        inertia_products: body.inertia_products,
         velocity: body.velocity,
         angular_velocity: body.angular_velocity,
         contacts,
@@ -67,10 +83,58 @@ pub(super) fn scene(
         restitution,
         constraints,
         surface,
+        params: r.params.specs(),
+        axes,
     })
 }
 
 impl Reader<'_> {
+    /// `[params]`: each name = a value, read in order (a value may use the names above it);
+    /// `seed` must name one of them.
+    fn params(&self, root: &Table, seed: Option<&str>) -> Result<Params, SceneError> {
+        let mut params = Params::new(self.symbols, seed);
+        if let Some(item) = root.get("params") {
+            let t = item.as_table_like().ok_or_else(|| {
+                self.err("params", Some(short(item)), "must be a table: [params] name = value")
+            })?;
+            for (name, v) in t.iter() {
+                let key = format!("params.{name}");
+                if let Some(why) = params.refuse_name(name) {
+                    return Err(self.err(&key, Some(short(v)), why));
+                }
+                let text = match v.as_value() {
+                    Some(Value::Integer(f)) => f.display_repr().into_owned(),
+                    Some(Value::Float(f)) => f.display_repr().into_owned(),
+                    Some(Value::String(s)) => s.value().clone(),
+                    _ => {
+                        return Err(self.err(&key, Some(short(v)), "must be a number or an expression string"));
+                    }
+                };
+                params.push(name, &text).map_err(|e| {
+                    let mut message = e.to_string();
+                    if let Some(hint) = degree_hint(&text) {
+                        message += &hint;
+                    }
+                    if message.contains("unknown name") {
+                        message += "; a parameter may use only the parameters above it";
+                    }
+                    self.err(&key, Some(short(v)), message)
+                })?;
+            }
+        }
+        if let Some(s) = seed
+            && !params.specs().iter().any(|p| p.name == s)
+        {
+            let names: Vec<String> = params.specs().into_iter().map(|p| p.name).collect();
+            return Err(self.err(
+                &format!("params.{s}"),
+                None,
+                format!("no such parameter; [params] has: {}", if names.is_empty() { "none".into() } else { names.join(", ") }),
+            ));
+        }
+        Ok(params)
+    }
+
     /// The scene's `name` (the file name when absent); `description` must be a string.
     fn name(&self, root: &Table) -> Result<String, SceneError> {
         let file = self.file;
@@ -119,7 +183,9 @@ pub(super) fn short(item: &Item) -> String {
 const TOP_KEYS: &[&str] = &[
     "name",
     "description",
+    "params",
     "body",
+    "obstacle",
     "contact",
     "solve",
     "constraints",
@@ -138,6 +204,8 @@ pub(super) struct Reader<'a> {
     file: &'a str,
     /// Names values may use as symbols.
     pub(super) symbols: &'a [String],
+    /// The scene's `[params]`, substituted into every value.
+    pub(super) params: Params,
 }
 
 impl Reader<'_> {
@@ -256,7 +324,7 @@ impl Reader<'_> {
             }
         };
         let shown = v.to_string().trim().to_string();
-        parse_number_with(&text, self.symbols).map_err(|e| {
+        self.params.number(&text).map_err(|e| {
             let mut message = e.to_string();
             if self.symbols.is_empty() && message.contains("unknown name") {
                 message += "; a symbolic scene is for `inertance derive SCENE --symbols NAME,…`";

@@ -13,11 +13,13 @@ use crate::mechanics::surface::Surface;
 use crate::number::Number;
 
 /// The `[body]` table, before it is spread over the [`super::Scene`]'s fields.
-pub(super) struct BodyTable {
+pub(crate) struct BodyTable {
     /// m.
     pub(super) mass: Number,
-    /// (J_x, J_y, J_z).
+    /// (J_x, J_y, J_z), or the tensor's diagonal.
     pub(super) inertia: [Number; 3],
+    /// The tensor's off-diagonal entries (J_xy, J_xz, J_yz), if any.
+    pub(super) inertia_products: Option<[Number; 3]>,
     /// v_C⁰.
     pub(super) velocity: [Number; 3],
     /// ω⁰.
@@ -146,6 +148,7 @@ impl Reader<'_> {
         Ok(BodyTable {
             mass,
             inertia,
+            inertia_products: None,
             velocity,
             angular_velocity,
         })
@@ -163,7 +166,7 @@ impl Reader<'_> {
                 let t = item.as_table().ok_or_else(|| {
                     self.err("solve", Some(short(item)), "must be a table: [solve]")
                 })?;
-                self.only_keys(t, "solve", &["models", "law", "restitution"])?;
+                self.only_keys(t, "solve", &["models", "law", "restitution", "axes"])?;
                 let restitution = match t.get("restitution") {
                     None => None,
                     Some(r) => Some(r.as_str().and_then(Restitution::from_name).ok_or_else(
@@ -211,9 +214,20 @@ impl Reader<'_> {
                 "k_energetic",
                 "mu",
                 "name",
+                "body_point",
+                "corner",
+                "obstacle",
             ],
         )?;
-        let point = self.triple(self.get(t, "point", &at)?, &format!("{at}.point"))?;
+        // A modelled contact may be placed by `body_point`, `corner` or its obstacle instead
+        // (see `model`), which then sets the point.
+        let placed = ["body_point", "corner", "obstacle"]
+            .iter()
+            .any(|k| t.contains_key(k));
+        let point = match t.get("point") {
+            None if placed => std::array::from_fn(|_| crate::number::parse_number("0").expect("0 is a number")),
+            item => self.triple(item.ok_or_else(|| self.err(&format!("{at}.point"), None, "missing (required)"))?, &format!("{at}.point"))?,
+        };
         let normal = match t.get("normal") {
             None => None,
             Some(item) => {
@@ -294,7 +308,11 @@ impl Reader<'_> {
                 "must be a string, e.g. \"x^2 + y^2/4 + z^2/9 - 1\"",
             )
         })?;
-        let surface = Surface::parse_with(text, self.symbols)
+        let expanded = self
+            .params
+            .expand(text, &["x", "y", "z"])
+            .map_err(|e| self.err("surface.f", Some(short(f)), e.to_string()))?;
+        let surface = Surface::parse_with(&expanded, self.symbols)
             .map_err(|e| self.err("surface.f", Some(short(f)), e.message))?;
         Ok(SurfaceSpec {
             text: text.to_string(),

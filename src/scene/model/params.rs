@@ -1,0 +1,202 @@
+//! Named parameters: `[params] theta = "3 deg"`, `L = 2`, usable in every expression of the
+//! scene.
+//!
+//! A parameter is read in order (it may use the parameters above it) and is substituted into
+//! each expression that names it, so a number keeps one self-contained text that every scalar
+//! reads: `sin(theta)` becomes `sin((3 deg))`, exact where the value is. A parameter that
+//! `inertance derive --symbols` declares stays a symbol instead. For a sensitivity run one
+//! parameter is *seeded*: every number that depends on it carries its derivative with respect
+//! to it in [`Number::tangent`] ([`crate::number::tangent`]).
+
+use crate::number::expr::{self, Kind, Node};
+use crate::number::tangent::derivative;
+use crate::number::{Number, NumberError, parse_checked, parse_number_with};
+
+/// One parameter as read.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ParamSpec {
+    /// Its name.
+    pub name: String,
+    /// Its value as written (`"3 deg"`), for sweeps that keep its unit.
+    pub text: String,
+    /// Its value; a declared symbol's has none.
+    pub value: Number,
+}
+
+/// The parameters of a scene, with the symbols values may name and the seeded parameter.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct Params {
+    list: Vec<Param>,
+    symbols: Vec<String>,
+    seed: Option<String>,
+}
+
+#[derive(Clone, Debug)]
+struct Param {
+    spec: ParamSpec,
+    /// The value as a self-contained text (names only symbols): what replaces the name.
+    expanded: String,
+    /// Whether it is a declared symbol (then it is not substituted).
+    symbol: bool,
+}
+
+/// Names a parameter may not take: the grammar's own and a surface's variables.
+const TAKEN: [&str; 3] = ["x", "y", "z"];
+
+impl Params {
+    /// No parameters yet; values may name `symbols`; `seed` is the parameter whose derivative
+    /// numbers carry.
+    pub(crate) fn new(symbols: &[String], seed: Option<&str>) -> Params {
+        Params {
+            list: Vec::new(),
+            symbols: symbols.to_vec(),
+            seed: seed.map(str::to_string),
+        }
+    }
+
+    /// The parameters read so far.
+    pub(crate) fn specs(&self) -> Vec<ParamSpec> {
+        self.list.iter().map(|p| p.spec.clone()).collect()
+    }
+
+    /// Why `name` cannot be a parameter, if it cannot.
+    pub(crate) fn refuse_name(&self, name: &str) -> Option<String> {
+        if !expr::is_symbol_name(name) {
+            Some(
+                "not a parameter name (a letter or '_', then letters, digits or '_'; not one of \
+                 pi, deg, sqrt, sin, cos, tan)"
+                    .into(),
+            )
+        } else if TAKEN.contains(&name) {
+            Some("x, y and z are a surface's coordinates; give the parameter another name".into())
+        } else if self.list.iter().any(|p| p.spec.name == name) {
+            Some("defined twice".into())
+        } else {
+            None
+        }
+    }
+
+    /// Read the parameter `name = text` (after the ones already read).
+    pub(crate) fn push(&mut self, name: &str, text: &str) -> Result<(), NumberError> {
+        let symbol = self.symbols.iter().any(|s| s == name);
+        let (value, expanded) = if symbol {
+            let mut n = parse_number_with(name, &self.symbols)?;
+            n.tangent = 0.0;
+            (n, name.to_string())
+        } else {
+            let mut n = self.number(text)?;
+            if self.seed.as_deref() == Some(name) {
+                n.tangent = 1.0;
+            }
+            let expanded = n.text.clone();
+            (n, expanded)
+        };
+        self.list.push(Param {
+            spec: ParamSpec {
+                name: name.to_string(),
+                text: text.trim().to_string(),
+                value,
+            },
+            expanded,
+            symbol,
+        });
+        Ok(())
+    }
+
+    /// The names an expression may use: symbols and parameters, plus `extra`.
+    fn names(&self, extra: &[&str]) -> Vec<String> {
+        let mut names = self.symbols.clone();
+        names.extend(self.list.iter().map(|p| p.spec.name.clone()));
+        names.extend(extra.iter().map(|s| s.to_string()));
+        names
+    }
+
+    /// `src` with each parameter it names replaced by its value in parentheses.
+    fn substitute(&self, src: &str, root: &Node) -> String {
+        let mut out = src.to_string();
+        // Right to left, so that earlier byte ranges stay valid.
+        for node in root.names().into_iter().rev() {
+            if let Kind::Name(name) = &node.kind
+                && let Some(p) = self.list.iter().find(|p| *p.spec.name == **name && !p.symbol)
+            {
+                out.replace_range(node.start..node.end, &format!("({})", p.expanded));
+            }
+        }
+        out
+    }
+
+    /// The number written `text`, parameters substituted, with its tangent when a parameter
+    /// is seeded.
+    pub(crate) fn number(&self, text: &str) -> Result<Number, NumberError> {
+        if self.list.is_empty() {
+            return parse_number_with(text, &self.symbols);
+        }
+        let src = text.trim();
+        let root = parse_checked(src, &self.names(&[]))?;
+        let mut n = parse_number_with(&self.substitute(src, &root), &self.symbols)?;
+        if self.seed.is_some() && root.has_name {
+            let env = |name: &str| {
+                let p = self.list.iter().find(|p| p.spec.name == name)?;
+                (!p.symbol).then_some((p.spec.value.approx, p.spec.value.tangent))
+            };
+            n.tangent = derivative(src, &root, &env).map_or(0.0, |(_, d)| d);
+        }
+        Ok(n)
+    }
+
+    /// `text` (an expression that may also name `extra`, e.g. a surface's x, y, z) with the
+    /// parameters substituted; `text` unchanged when it names none.
+    pub(crate) fn expand(&self, text: &str, extra: &[&str]) -> Result<String, NumberError> {
+        if self.list.is_empty() {
+            return Ok(text.to_string());
+        }
+        let src = text.trim();
+        let root = parse_checked(src, &self.names(extra))?;
+        Ok(self.substitute(src, &root))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn parameters_substitute_exactly_and_chain() {
+        let mut p = Params::new(&[], None);
+        p.push("theta", "30 deg").expect("reads");
+        p.push("h", "2*sin(theta)").expect("reads");
+        let n = p.number("h + 1").expect("reads");
+        assert_eq!(n.text, "((2*sin((30 deg)))) + 1");
+        assert_eq!(n.exact, Ok(num_rational::BigRational::from_integer(2.into())));
+        assert_eq!(n.tangent, 0.0);
+    }
+
+    #[test]
+    fn a_seeded_parameter_gives_derivatives_through_others() {
+        let mut p = Params::new(&[], Some("L"));
+        p.push("L", "3").expect("reads");
+        p.push("A", "L^2").expect("reads");
+        let n = p.number("2*A + L").expect("reads");
+        assert_eq!(n.approx, 21.0);
+        // d/dL (2L² + L) = 4L + 1 = 13.
+        assert_eq!(n.tangent, 13.0);
+    }
+
+    #[test]
+    fn a_declared_symbol_stays_a_symbol() {
+        let mut p = Params::new(&["theta".to_string()], None);
+        p.push("theta", "3 deg").expect("reads");
+        let n = p.number("cos(theta)").expect("reads");
+        assert_eq!(n.symbols, vec!["theta".to_string()]);
+        assert_eq!(n.text, "cos(theta)");
+    }
+
+    #[test]
+    fn names_that_cannot_be_parameters() {
+        let p = Params::new(&[], None);
+        assert!(p.refuse_name("x").is_some());
+        assert!(p.refuse_name("sin").is_some());
+        assert!(p.refuse_name("2a").is_some());
+        assert!(p.refuse_name("theta").is_none());
+    }
+}
