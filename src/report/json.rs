@@ -50,6 +50,9 @@ impl Report {
             })).collect::<Vec<_>>(),
             "models": Json::Object(models),
         });
+        if let Some(axes) = self.axes {
+            top["axes"] = json!(axes);
+        }
         if let (false, Some(obj)) = (self.friction.is_empty(), top.as_object_mut()) {
             let mut laws = Map::new();
             for f in &self.friction {

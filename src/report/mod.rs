@@ -277,6 +277,9 @@ pub struct Report {
     /// The frictional laws that have no answer for this scene: the law, why, and the short
     /// status (`no-continuation`, `undetermined`, `never-ends`).
     pub friction_failures: Vec<(crate::impact::friction::Restitution, String, &'static str)>,
+    /// The axes of a modelled scene's vectors (`"world"` or `"body"`, origin at the centre of
+    /// mass); `None` for the paper's body-axes scenes.
+    pub axes: Option<&'static str>,
 }
 
 impl Report {
@@ -291,6 +294,7 @@ impl Report {
         let n = impact.contacts();
         let frames = impact.frames();
         Report {
+            axes: None,
             scene: scene.to_string(),
             scalar: T::NAME,
             effects,

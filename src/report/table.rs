@@ -27,6 +27,9 @@ impl Report {
             self.scalar,
             self.effects.join(", ")
         );
+        if let Some(axes) = self.axes {
+            out += &format!("Vectors in {axes} axes, positions from the centre of mass C.\n\n");
+        }
         out += &self.assembled();
         out += &self.before();
         if !self.friction.is_empty() {

@@ -365,6 +365,7 @@ impl<T: Scalar> Assembled<T> {
             .surface
             .as_ref()
             .map(|s| (s.text.clone(), s.surface.gradient_text()));
+        report.axes = scene.axes.map(|a| a.name());
         report
     }
 }

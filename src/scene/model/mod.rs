@@ -614,9 +614,9 @@ impl Reader<'_> {
         let label = ob.label(o);
         let scale = point.iter().chain(frame.centre.iter()).map(|x| self.magnitude(x)).fold(0.0, f64::max).max(1e-300)
             * n.iter().map(|x| self.magnitude(x)).fold(0.0, f64::max);
-        // C must lie on the side N points to.
+        // C must not lie inside the obstacle (on the plane is allowed: a bar's contacts on its axis).
         let above = dot(&sub(&frame.centre, point), n);
-        if self.sign_at(&above, scale, at)?.is_some_and(|s| s <= 0) {
+        if self.sign_at(&above, scale, at)?.is_some_and(|s| s < 0) {
             return Err(self.err(
                 &format!("{at}.obstacle"),
                 None,
