@@ -103,3 +103,160 @@ fn the_tilted_box_on_a_floor_equals_its_hand_rotated_scene_in_exact_radicals() {
     let c = "cos(30 deg)";
     same_physics::<RatFun>("tilted-box", [[c, "0", "1/2"], ["0", "1", "0"], ["-1/2", "0", c]]);
 }
+
+/// The report of a scene text in exact rationals, as JSON without its name and axes.
+fn exact_json(text: &str) -> serde_json::Value {
+    report_json::<Exact>(&Scene::parse(text, "inline.toml").expect("a valid scene"))
+}
+
+fn error(text: &str) -> inertance::scene::SceneError {
+    Scene::parse(text, "inline.toml").expect_err("refused")
+}
+
+const CONTACTS_ON_A_FLOOR: &str = r#"
+velocity = [1, 0, -2]
+angular_velocity = [0, 0, 1]
+[[obstacle]]
+normal = [0, 0, 1]
+[[contact]]
+obstacle = 0
+body_point = [1, 0, -1]
+k = 0.5
+[[contact]]
+obstacle = 0
+body_point = [-1, 1, -1]
+k = 0.25
+"#;
+
+#[test]
+fn a_rational_quaternion_and_its_rotation_matrix_give_the_same_impact() {
+    // q = (2, 0, 0, 1)/√5: a turn about z with cos = 3/5, sin = 4/5.
+    let by = |pose: &str| {
+        exact_json(&format!(
+            "[body]\nmass = 3\ninertia = [1, 2, 3]\npose = {pose}\n{CONTACTS_ON_A_FLOOR}"
+        ))
+    };
+    let q = by("{ quaternion = [2, 0, 0, 1] }");
+    assert_eq!(q, by("{ matrix = [[0.6, -0.8, 0], [0.8, 0.6, 0], [0, 0, 1]] }"));
+    // Two quarter turns in a list are a half turn.
+    assert_eq!(
+        by("[{ axis = [0, 0, 1], angle = \"90 deg\" }, { axis = [0, 0, 2], angle = \"pi/2\" }]"),
+        by("{ axis = [0, 0, 1], angle = \"180 deg\" }")
+    );
+}
+
+#[test]
+fn shapes_give_their_textbook_mass_properties_exactly() {
+    let solve = |body: &str| exact_json(&format!("[body]\n{body}\n{CONTACTS_ON_A_FLOOR}"));
+    // A 0.1 m steel-like cube of density 1000 has m = 1 and J = m a²/6 = 1/600.
+    assert_eq!(
+        solve("shape = { box = [0.1, 0.1, 0.1] }\ndensity = 1000"),
+        solve("mass = 1\ninertia = [\"1/600\", \"1/600\", \"1/600\"]")
+    );
+    // Point masses: 1 at (±1, 0, 0), 2 at (0, 3, 0): m = 4, c = (0, 3/2, 0), J_C = diag(9, 2, 11).
+    assert_eq!(
+        solve(
+            "shape = { points = [{ mass = 1, at = [1, 0, 0] }, { mass = 1, at = [-1, 0, 0] }, \
+             { mass = 2, at = [0, 3, 0] }] }"
+        ),
+        solve("mass = 4\ninertia = [9, 2, 11]\ncentre_of_mass = [0, 1.5, 0]")
+    );
+    // The parallel-axis theorem: the tensor about a corner A = (1, 1, 0) of a body with
+    // J_C = diag(1, 2, 3), m = 2: J_A = J_C + m (|d|² I − d dᵀ), d = (1, 1, 0).
+    assert_eq!(
+        solve("mass = 2\ninertia = [[3, -2, 0], [-2, 4, 0], [0, 0, 7]]\ninertia_about = [1, 1, 0]"),
+        solve("mass = 2\ninertia = [1, 2, 3]")
+    );
+    // A cylinder r = 1, h = 2, m = 6: J = diag(m(3r² + h²)/12, same, m r²/2) = diag(7/2, 7/2, 3).
+    assert_eq!(
+        solve("shape = { cylinder = [1, 2] }\nmass = 6"),
+        solve("mass = 6\ninertia = [3.5, 3.5, 3]")
+    );
+    // A sphere r = 1/2, m = 2: J = 2/5 m r² = 1/5.
+    assert_eq!(
+        solve("shape = { sphere = 0.5 }\nmass = 2"),
+        solve("mass = 2\ninertia = [0.2, 0.2, 0.2]")
+    );
+}
+
+#[test]
+fn parameters_reach_every_value_and_chain() {
+    let with = |params: &str, body: &str| {
+        exact_json(&format!("[params]\n{params}\n[body]\n{body}\n{CONTACTS_ON_A_FLOOR}"))
+    };
+    assert_eq!(
+        with(
+            "a = 2\nhalf = \"a/4\"\nturn = \"90 deg\"",
+            "shape = { box = [\"a\", \"a/2\", \"half\"] }\nmass = \"a + 1\"\npose = { axis = [0, 0, 1], angle = \"turn\" }"
+        ),
+        exact_json(&format!(
+            "[body]\nshape = {{ box = [2, 1, 0.5] }}\nmass = 3\npose = {{ axis = [0, 0, 1], angle = \"90 deg\" }}\n{CONTACTS_ON_A_FLOOR}"
+        ))
+    );
+}
+
+#[test]
+fn obstacle_mistakes_are_named_with_the_fix() {
+    let box_on = |normal: &str, corner: &str| {
+        format!(
+            "[body]\nshape = {{ box = [2, 1, 1] }}\nmass = 1\npose = {{ axis = [0, 1, 0], angle = \"30 deg\" }}\n\
+             velocity = [0, 0, -1]\nangular_velocity = [0, 0, 0]\n[[obstacle]]\nname = \"floor\"\nnormal = {normal}\n\
+             [[contact]]\nobstacle = \"floor\"\n{corner}\nk = 0.5\n"
+        )
+    };
+    // A floor whose normal points down, into the floor: the centre of mass is below it.
+    let e = error(&box_on("[0, 0, -1]", "corner = [1, 1, -1]"));
+    assert_eq!(e.key, "contact[0].obstacle");
+    assert!(e.message.contains("flip its sign"), "{e}");
+    // A corner that is not the lowest: the box would pass through the floor.
+    let e = error(&box_on("[0, 0, 1]", "corner = [-1, 1, -1]"));
+    assert_eq!(e.key, "contact[0]");
+    assert!(e.message.contains("above the box's lowest corner"), "{e}");
+    assert!(e.message.contains("[1, -1, -1], [1, 1, -1]"), "{e}");
+    // No corner named while an edge touches: the two corners are listed.
+    let e = error(&box_on("[0, 0, 1]", ""));
+    assert_eq!(e.key, "contact[0].corner");
+    assert!(e.message.contains("2 corners of the box touch obstacle \"floor\""), "{e}");
+    // A normal given beside the obstacle's.
+    let e = error(&box_on("[0, 0, 1]", "corner = [1, 1, -1]\nnormal = [0, 0, -1]"));
+    assert_eq!(e.key, "contact[0].normal");
+    // An obstacle with a point the contact misses, with the distance.
+    let e = error(
+        "[body]\nshape = { sphere = 1 }\nmass = 1\nposition = [0, 0, 2]\nvelocity = [0, 0, -1]\n\
+         angular_velocity = [0, 0, 0]\n[[obstacle]]\nnormal = [0, 0, 1]\npoint = [0, 0, 0]\n\
+         [[contact]]\nobstacle = 0\nk = 1\n",
+    );
+    assert!(e.message.contains("(A − P)·N = 1 (above it: no contact)"), "{e}");
+    // An unknown obstacle name lists the ones there are.
+    let e = error(&box_on("[0, 0, 1]", "corner = [1, 1, -1]").replace("obstacle = \"floor\"\ncorner", "obstacle = \"flor\"\ncorner"));
+    assert_eq!(e.key, "contact[0].obstacle");
+    assert!(e.message.contains("\"floor\""), "{e}");
+}
+
+#[test]
+fn poses_and_parameters_that_are_wrong_are_named() {
+    let body = |extra: &str| {
+        format!("{extra}\n[body]\nmass = 1\ninertia = [1, 1, 1]\n{}\n{CONTACTS_ON_A_FLOOR}", "")
+    };
+    // A rotation matrix typed to three digits is not a rotation; the fix is named.
+    let e = error(&format!(
+        "[body]\nmass = 1\ninertia = [1, 1, 1]\npose = {{ matrix = [[0.866, -0.5, 0], [0.5, 0.866, 0], [0, 0, 1]] }}\n{CONTACTS_ON_A_FLOOR}"
+    ));
+    assert_eq!(e.key, "body.pose.matrix");
+    assert!(e.message.contains("not a rotation"), "{e}");
+    assert!(e.message.contains("cos(30 deg)"), "{e}");
+    // A reflection.
+    let e = error(&format!(
+        "[body]\nmass = 1\ninertia = [1, 1, 1]\npose = {{ matrix = [[1, 0, 0], [0, 1, 0], [0, 0, -1]] }}\n{CONTACTS_ON_A_FLOOR}"
+    ));
+    assert!(e.message.contains("reflection"), "{e}");
+    // A parameter used before it is defined, and one named like a function.
+    let e = error(&body("[params]\nh = \"2*L\"\nL = 1"));
+    assert_eq!(e.key, "params.h");
+    assert!(e.message.contains("only the parameters above it"), "{e}");
+    let e = error(&body("[params]\nsin = 1"));
+    assert_eq!(e.key, "params.sin");
+    // A parameter in degrees written with °: the usual hint.
+    let e = error(&body("[params]\ntheta = \"3°\""));
+    assert!(e.message.contains("did you mean `3 deg`"), "{e}");
+}

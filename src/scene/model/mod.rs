@@ -614,25 +614,12 @@ impl Reader<'_> {
         let label = ob.label(o);
         let scale = point.iter().chain(frame.centre.iter()).map(|x| self.magnitude(x)).fold(0.0, f64::max).max(1e-300)
             * n.iter().map(|x| self.magnitude(x)).fold(0.0, f64::max);
-        // C must not lie inside the obstacle (on the plane is allowed: a bar's contacts on its axis).
-        let above = dot(&sub(&frame.centre, point), n);
-        if self.sign_at(&above, scale, at)?.is_some_and(|s| s < 0) {
-            return Err(self.err(
-                &format!("{at}.obstacle"),
-                None,
-                format!(
-                    "the centre of mass is not on the side {label}'s normal points to ((C − A)·N = {}): an \
-                     obstacle's normal points out of the obstacle, toward the body — flip its sign",
-                    self.approx(&above)
-                ),
-            ));
-        }
         let height = dot(point, n);
         if let Some(p) = &ob.point {
             let d = &height - &dot(p, n);
             if self.sign_at(&d, scale, at)?.is_some_and(|s| s != 0) {
                 return Err(self.err(
-                    &format!("{at}"),
+                    at,
                     None,
                     format!(
                         "the contact point is off the plane of {label}: (A − P)·N = {} ({}); move the body \
@@ -643,6 +630,18 @@ impl Reader<'_> {
                 ));
             }
         }
+        let flip = |value: &Term| {
+            self.err(
+                &format!("{at}.obstacle"),
+                None,
+                format!(
+                    "the body is on the wrong side of {label} ((C − A)·N = {}): an obstacle's normal \
+                     points out of the obstacle, toward the body — flip its sign",
+                    self.approx(value)
+                ),
+            )
+        };
+        let above = dot(&sub(&frame.centre, point), n);
         if let (Some(Shape::Box(dims)), Some(bp)) = (shape, body_point) {
             let h_here = dot(&apply(&frame.r, bp), n);
             let lowest = self.touching(dims, frame, n, at)?;
@@ -650,8 +649,14 @@ impl Reader<'_> {
                 let min = dot(&apply(&frame.r, &Shape::corner(dims, *s)), n);
                 let gap = &h_here - &min;
                 if self.sign_at(&gap, scale, at)?.is_some_and(|s| s > 0) {
+                    // Lowest along −N instead: the normal points the wrong way.
+                    let down = n.each_ref().map(|x| -x);
+                    let highest = self.touching(dims, frame, &down, at)?;
+                    if highest.iter().any(|s| Shape::corner(dims, *s) == *bp) {
+                        return Err(flip(&above));
+                    }
                     return Err(self.err(
-                        &format!("{at}"),
+                        at,
                         None,
                         format!(
                             "this point is {} above the box's lowest corner along {label}'s normal, so the box \
@@ -662,6 +667,10 @@ impl Reader<'_> {
                     ));
                 }
             }
+        }
+        // C must not lie inside the obstacle (on the plane is allowed: a bar's contacts on its axis).
+        if self.sign_at(&above, scale, at)?.is_some_and(|s| s < 0) {
+            return Err(flip(&above));
         }
         Ok(height)
     }
