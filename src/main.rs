@@ -31,6 +31,23 @@ struct Cli {
     command: Command,
 }
 
+/// Overrides of a scene's parameters and output axes, shared by the commands that read one.
+#[derive(clap::Args, Clone, Default)]
+struct SceneOpts {
+    /// Set a parameter of the scene's [params], e.g. --param theta="10 deg" (repeatable).
+    #[arg(long = "param", value_name = "NAME=VALUE")]
+    params: Vec<String>,
+    /// The axes results are given in, for a scene with a pose: `world` (default) or `body`.
+    #[arg(long, value_enum)]
+    axes: Option<AxesArg>,
+}
+
+#[derive(Clone, Copy, clap::ValueEnum)]
+enum AxesArg {
+    World,
+    Body,
+}
+
 #[derive(Subcommand)]
 enum Command {
     /// Solve a scene: impulses, velocities after impact, energies.
@@ -51,6 +68,8 @@ enum Command {
         /// Print the JSON report instead of the table.
         #[arg(long)]
         json: bool,
+        #[command(flatten)]
+        opts: SceneOpts,
     },
     /// Analyse a scene's degenerate cases: Δ, ranks, compatibility, families of solutions,
     /// admissibility, coincident points, Newton vs Poisson, conditioning.
@@ -66,6 +85,8 @@ enum Command {
         /// Print the JSON report instead of the text.
         #[arg(long)]
         json: bool,
+        #[command(flatten)]
+        opts: SceneOpts,
     },
     /// Derive the closed forms of a scene whose values name symbols: impulses, velocities
     /// after impact, E_p, ΔE_c, Δ and q as expressions, with the conditions they hold under;
@@ -73,8 +94,9 @@ enum Command {
     Derive {
         /// The scene file (TOML); values may be expressions in the symbols, e.g. mass = "m".
         scene: PathBuf,
-        /// The symbols the scene's values may name, comma-separated (e.g. m,Jz,a,b,k1,k2).
-        #[arg(long, value_delimiter = ',', required = true)]
+        /// The symbols the scene's values may name, comma-separated (e.g. m,Jz,a,b,k1,k2);
+        /// default: the scene's [params], each a symbol.
+        #[arg(long, value_delimiter = ',')]
         symbols: Vec<String>,
         /// Which restitution model(s); default: the scene's `[solve] models`.
         #[arg(long, value_enum)]
@@ -85,6 +107,8 @@ enum Command {
         /// Print JSON (the report's keys with expression strings, plus conditions).
         #[arg(long)]
         json: bool,
+        #[command(flatten)]
+        opts: SceneOpts,
     },
     /// Solve a scene over a grid of one or two varied inputs, in parallel, streamed to CSV.
     Sweep {
@@ -208,13 +232,15 @@ fn main() -> ExitCode {
             model,
             law,
             json,
-        } => solve(scene, exact, model, law, json),
+            opts,
+        } => solve(scene, exact, model, law, json, &opts),
         Command::Analyze {
             scene,
             exact,
             model,
             json,
-        } => run_analyze(scene, exact, model, json),
+            opts,
+        } => run_analyze(scene, exact, model, json, &opts),
         Command::Check { dir, quiet } => run_check(dir, quiet),
         Command::Derive {
             scene,
@@ -222,7 +248,8 @@ fn main() -> ExitCode {
             model,
             latex,
             json,
-        } => run_derive(scene, symbols, model, latex, json),
+            opts,
+        } => run_derive(scene, symbols, model, latex, json, &opts),
         Command::Bench {
             quick,
             json,
@@ -240,29 +267,51 @@ fn main() -> ExitCode {
     }
 }
 
-/// Read a scene, or report why not (status 2).
-/// Read the scene at `path`; `-` reads it from standard input (named `<stdin>` in messages).
-fn load(path: &std::path::Path) -> Result<Scene, ExitCode> {
-    let scene = if path.as_os_str() == "-" {
-        let mut text = String::new();
-        match std::io::Read::read_to_string(&mut std::io::stdin(), &mut text) {
-            Ok(_) => Scene::parse(&text, "<stdin>"),
-            Err(e) => {
-                eprintln!("error: <stdin>: cannot read the scene: {e}");
-                return Err(ExitCode::from(2));
-            }
-        }
-    } else {
-        Scene::load(path)
-    };
-    let scene = scene.map_err(|e| {
-        eprintln!("error: {e}");
+/// Read the scene at `path` with the overrides `opts` and the `symbols`; `-` reads it from
+/// standard input (named `<stdin>` in messages). A scene that cannot be read is status 2.
+fn load_with(path: &std::path::Path, opts: &SceneOpts, symbols: &[String]) -> Result<Scene, ExitCode> {
+    let fail = |message: String| {
+        eprintln!("error: {message}");
         ExitCode::from(2)
-    })?;
+    };
+    let (text, file) = if path.as_os_str() == "-" {
+        let mut text = String::new();
+        std::io::Read::read_to_string(&mut std::io::stdin(), &mut text)
+            .map_err(|e| fail(format!("<stdin>: cannot read the scene: {e}")))?;
+        (text, "<stdin>".to_string())
+    } else {
+        let file = path.display().to_string();
+        let text = std::fs::read_to_string(path)
+            .map_err(|e| fail(format!("{file}: cannot read the file: {e}")))?;
+        (text, file)
+    };
+    let mut doc = inertance::scene::parse_document(&text, &file).map_err(|e| fail(e.to_string()))?;
+    for p in &opts.params {
+        let (name, value) = p
+            .split_once('=')
+            .ok_or_else(|| fail(format!("--param {p}: expected NAME=VALUE, e.g. theta=\"10 deg\"")))?;
+        inertance::scene::set_param(&mut doc, name.trim(), value)
+            .map_err(|e| fail(format!("{file}: {e}")))?;
+    }
+    if let Some(axes) = opts.axes {
+        inertance::scene::set_axes(
+            &mut doc,
+            match axes {
+                AxesArg::World => "world",
+                AxesArg::Body => "body",
+            },
+        );
+    }
+    let scene = Scene::from_document_with(&doc, &file, symbols).map_err(|e| fail(e.to_string()))?;
     if let Some(note) = scene.radian_note() {
         eprintln!("{note}");
     }
     Ok(scene)
+}
+
+/// Read a scene, or report why not (status 2).
+fn load(path: &std::path::Path) -> Result<Scene, ExitCode> {
+    load_with(path, &SceneOpts::default(), &[])
 }
 
 fn solve(
@@ -271,8 +320,9 @@ fn solve(
     model: Option<ModelArg>,
     law: Option<LawArg>,
     json: bool,
+    opts: &SceneOpts,
 ) -> ExitCode {
-    let mut scene = match load(&path) {
+    let mut scene = match load_with(&path, opts, &[]) {
         Ok(s) => s,
         Err(code) => return code,
     };
@@ -334,8 +384,14 @@ fn warn(path: &std::path::Path, report: &inertance::report::Report) {
     }
 }
 
-fn run_analyze(path: PathBuf, exact: bool, model: Option<ModelArg>, json: bool) -> ExitCode {
-    let scene = match load(&path) {
+fn run_analyze(
+    path: PathBuf,
+    exact: bool,
+    model: Option<ModelArg>,
+    json: bool,
+    opts: &SceneOpts,
+) -> ExitCode {
+    let scene = match load_with(&path, opts, &[]) {
         Ok(s) => s,
         Err(code) => return code,
     };
@@ -359,8 +415,33 @@ fn run_derive(
     model: Option<ModelArg>,
     latex: bool,
     json: bool,
+    opts: &SceneOpts,
 ) -> ExitCode {
-    let symbols: Vec<String> = symbols.iter().map(|s| s.trim().to_string()).collect();
+    let mut symbols: Vec<String> = symbols.iter().map(|s| s.trim().to_string()).collect();
+    if symbols.is_empty() {
+        // Default: every parameter of the scene is a symbol (those set by --param excepted).
+        let names = std::fs::read_to_string(&path)
+            .ok()
+            .and_then(|t| t.parse::<toml_edit::DocumentMut>().ok())
+            .and_then(|d| {
+                d.get("params")
+                    .and_then(toml_edit::Item::as_table_like)
+                    .map(|t| t.iter().map(|(k, _)| k.to_string()).collect::<Vec<_>>())
+            })
+            .unwrap_or_default();
+        symbols = names
+            .into_iter()
+            .filter(|n| !opts.params.iter().any(|p| p.split('=').next().map(str::trim) == Some(n)))
+            .collect();
+        if symbols.is_empty() {
+            eprintln!(
+                "error: {}: give --symbols NAME,… (the names the scene's values use as symbols), or \
+                 declare [params], which derive takes as symbols",
+                path.display()
+            );
+            return ExitCode::from(2);
+        }
+    }
     if let Some(bad) = symbols
         .iter()
         .find(|s| !inertance::number::expr::is_symbol_name(s))
@@ -371,12 +452,9 @@ fn run_derive(
         );
         return ExitCode::from(2);
     }
-    let scene = match Scene::load_with(&path, &symbols) {
+    let scene = match load_with(&path, opts, &symbols) {
         Ok(s) => s,
-        Err(e) => {
-            eprintln!("error: {e}");
-            return ExitCode::from(2);
-        }
+        Err(code) => return code,
     };
     let models = model.map(ModelArg::models);
     match inertance::tools::derive::derive(&scene, &symbols, models.as_deref()) {

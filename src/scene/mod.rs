@@ -51,7 +51,7 @@ mod read;
 pub mod scale;
 mod schema;
 
-pub use path::set_value;
+pub use path::{set_axes, set_param, set_value};
 pub use read::parse_document;
 pub use model::Axes;
 pub use model::params::ParamSpec;

@@ -75,3 +75,33 @@ fn split_index(seg: &str) -> Option<(&str, Option<usize>)> {
         }
     }
 }
+
+/// Set the parameter `name` of a scene document to the expression `value` (`--param
+/// theta="10 deg"`); the parameter must exist in `[params]`.
+pub fn set_param(doc: &mut DocumentMut, name: &str, value: &str) -> Result<(), String> {
+    let params = doc.get("params").and_then(Item::as_table_like);
+    let known: Vec<String> = params
+        .map(|t| t.iter().map(|(k, _)| k.to_string()).collect())
+        .unwrap_or_default();
+    if !known.iter().any(|k| k == name) {
+        return Err(format!(
+            "--param {name}: no such parameter; the scene's [params] has: {}",
+            if known.is_empty() {
+                "none".to_string()
+            } else {
+                known.join(", ")
+            }
+        ));
+    }
+    set_value(doc, &format!("params.{name}"), &Value::from(value.trim()).to_string())
+}
+
+/// Set `[solve] axes` of a scene document (`"world"` or `"body"`), creating `[solve]` if need be.
+pub fn set_axes(doc: &mut DocumentMut, axes: &str) {
+    if doc.get("solve").and_then(Item::as_table_like).is_none() {
+        doc.insert("solve", toml_edit::table());
+    }
+    if let Some(t) = doc.get_mut("solve").and_then(Item::as_table_like_mut) {
+        t.insert("axes", toml_edit::value(axes));
+    }
+}

@@ -548,7 +548,13 @@ impl Reader<'_> {
                 Ok(term::add(&frame.centre_body, &down))
             }
             Some(Shape::Box(dims)) => {
-                let lowest = self.touching(dims, frame, &ob.normal, at)?;
+                let Some(lowest) = self.touching(dims, frame, &ob.normal, at)? else {
+                    return Err(self.err(
+                        &format!("{at}.corner"),
+                        None,
+                        "which corner touches depends on the symbols: name it with `corner`",
+                    ));
+                };
                 match lowest.as_slice() {
                     [s] => Ok(Shape::corner(dims, *s)),
                     many => Err(self.err(
@@ -571,30 +577,33 @@ impl Reader<'_> {
         }
     }
 
-    /// A box's touching corners against the plane normal `n`.
+    /// A box's touching corners against the plane normal `n`; `None` when a comparison
+    /// depends on symbols (then the reader of the derived formulas answers for it).
     fn touching(
         &self,
         dims: &Vec3,
         frame: &Frame,
         n: &Vec3,
         at: &str,
-    ) -> Result<Vec<[i64; 3]>, SceneError> {
+    ) -> Result<Option<Vec<[i64; 3]>>, SceneError> {
         let scale = dims.iter().map(|d| self.magnitude(d)).fold(0.0, f64::max)
             * n.iter().map(|d| self.magnitude(d)).fold(0.0, f64::max);
         let mut failure = None;
-        let result = touching_corners(dims, &frame.r, n, |a, b| {
-            match self.sign_at(&(a - b), scale, at) {
-                Ok(Some(s)) => Some(s.cmp(&0)),
-                Ok(None) => None,
-                Err(e) => {
-                    failure = Some(e);
-                    None
-                }
+        let mut undecided = false;
+        let result = touching_corners(dims, &frame.r, n, |a, b| match self.sign_at(&(a - b), scale, at) {
+            Ok(Some(s)) => Some(s.cmp(&0)),
+            Ok(None) => {
+                undecided = true;
+                None
+            }
+            Err(e) => {
+                failure = Some(e);
+                None
             }
         });
         match failure {
             Some(e) => Err(e),
-            None => Ok(result),
+            None => Ok((!undecided).then_some(result)),
         }
     }
 
@@ -644,14 +653,14 @@ impl Reader<'_> {
         let above = dot(&sub(&frame.centre, point), n);
         if let (Some(Shape::Box(dims)), Some(bp)) = (shape, body_point) {
             let h_here = dot(&apply(&frame.r, bp), n);
-            let lowest = self.touching(dims, frame, n, at)?;
+            let lowest = self.touching(dims, frame, n, at)?.unwrap_or_default();
             if let Some(s) = lowest.first() {
                 let min = dot(&apply(&frame.r, &Shape::corner(dims, *s)), n);
                 let gap = &h_here - &min;
                 if self.sign_at(&gap, scale, at)?.is_some_and(|s| s > 0) {
                     // Lowest along −N instead: the normal points the wrong way.
                     let down = n.each_ref().map(|x| -x);
-                    let highest = self.touching(dims, frame, &down, at)?;
+                    let highest = self.touching(dims, frame, &down, at)?.unwrap_or_default();
                     if highest.iter().any(|s| Shape::corner(dims, *s) == *bp) {
                         return Err(flip(&above));
                     }
