@@ -260,3 +260,47 @@ fn poses_and_parameters_that_are_wrong_are_named() {
     let e = error(&body("[params]\ntheta = \"3°\""));
     assert!(e.message.contains("did you mean `3 deg`"), "{e}");
 }
+
+fn inertance(args: &[&str]) -> std::process::Output {
+    std::process::Command::new(env!("CARGO_BIN_EXE_inertance"))
+        .args(args)
+        .output()
+        .expect("runs")
+}
+
+fn stdout_json(out: &std::process::Output) -> serde_json::Value {
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    serde_json::from_slice(&out.stdout).expect("json")
+}
+
+#[test]
+fn the_cli_sets_parameters_and_axes_and_derives_in_the_parameters() {
+    let world = path("tilted-box.world.toml");
+    let world = world.to_str().expect("utf-8");
+    // --param overrides [params]: at 45° the impulses are 51/61 (derived below as
+    // 51/(2(45 cos²θ − 24 cos θ sin θ + 20)) = 51/(2·61/2)).
+    let at45 = stdout_json(&inertance(&["solve", world, "--exact", "--json", "--param", "theta=45 deg"]));
+    assert_eq!(at45["axes"], "world");
+    assert_eq!(at45["models"]["newton"]["impulses"][0], "51/61");
+    // --axes body gives the hand-rotated scene's twist.
+    let body = path("tilted-box.body.toml");
+    let in_body = stdout_json(&inertance(&["solve", world, "--exact", "--json", "--axes", "body"]));
+    let hand = stdout_json(&inertance(&["solve", body.to_str().expect("utf-8"), "--exact", "--json"]));
+    assert_eq!(in_body["axes"], "body");
+    for key in ["velocity", "angular_velocity"] {
+        assert_eq!(in_body["models"]["newton"][key], hand["models"]["newton"][key]);
+    }
+    // An unknown parameter is named with the ones there are (status 2).
+    let out = inertance(&["solve", world, "--param", "phi=2"]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("has: theta"));
+    // derive takes the parameters as symbols by default.
+    let out = inertance(&["derive", world, "--model", "newton"]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(text.contains("symbols: theta"), "{text}");
+    assert!(
+        text.contains("newton.P1 = 51/(2*(45*cos(theta)^2 - 24*cos(theta)*sin(theta) + 20))"),
+        "{text}"
+    );
+}
