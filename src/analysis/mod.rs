@@ -22,6 +22,8 @@
 //! In exact types every rank and sign decision is exact. In floats a pivot counts as zero when
 //! it is ≤ N·ε·max g_ii — the tolerance is reported.
 
+pub mod accuracy;
+
 use crate::impact::problem::Problem;
 use crate::impact::restitution::Model;
 use crate::impact::solve::{Impact, Outcome};
