@@ -661,6 +661,23 @@ fn bench_quick_json_and_plot() {
     for r in rows {
         assert!(r["unilateral"]["median_ns_per_solve"].as_f64().unwrap() > 0.0);
     }
+    // The accuracy contract, per float type and output: the largest error/bound is reported,
+    // and it is at most 1.
+    let contract = v["contract"]["scalars"].as_array().unwrap();
+    assert_eq!(contract.len(), 3, "{contract:?}");
+    for r in contract {
+        assert!(r["solves"].as_u64().unwrap() > 0, "{r}");
+        let ratios = r["max_error_over_bound"].as_object().unwrap();
+        assert_eq!(ratios.len(), 5, "{r}");
+        for (output, x) in ratios {
+            let ratio = x["ratio"].as_f64().unwrap();
+            assert!(
+                (0.0..=1.0).contains(&ratio),
+                "{} {output}: {ratio}",
+                r["scalar"]
+            );
+        }
+    }
     // Against N: a free body's G is singular beyond six contacts, so the simultaneous solve
     // is impossible there. The landing scenes never jam: their normals all have n_z = 1, so no
     // impulses y ≥ 0 but 0 have B y = 0 (Σ y_i n_iz = Σ y_i), which infeasibility of an LCP
