@@ -236,6 +236,12 @@ impl<T: Scalar> Impact<T> {
         &self.det_hat
     }
 
+    /// The pivot order of G's factorization: `pivots()[k]` is the contact pivoted k-th, so
+    /// the first `rank()` are a set of contacts whose inertances are independent.
+    pub fn pivots(&self) -> &[usize] {
+        &self.perm
+    }
+
     /// rank G.
     pub fn rank(&self) -> usize {
         self.rank
