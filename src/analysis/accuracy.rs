@@ -44,7 +44,7 @@
 //!    ½ε; the free-body metric is diagonal in the principal axes the body is given in, so a
 //!    componentwise bound |δE| ≤ 3ε|E| gives ‖δE‖ ≤ 3ε‖|E|‖);
 //! 2. Gram–Schmidt with reorthogonalisation, backward stable column by column: the computed
-//!    factors are exact for E + δE with ‖δE_j‖ ≤ 16 N ε ‖E_j‖ (two passes of at most N − 1
+//!    factors are exact for E + δE with ‖δE_j‖ ≤ 16 N ε ‖E_j‖ (at most two passes of N − 1
 //!    projections, each a 12-flop reciprocal product and a 12-flop update; the triangular
 //!    solves with U add at most N ε Σ_k |u_kj| d_k^½ ≤ N^{3/2} ε ‖E_j‖, within the same
 //!    constant for N ≤ 6, the most contacts a full-rank G can have);

@@ -39,9 +39,9 @@
 //! as the difference of the axes themselves (to ε‖Ê‖ absolutely), d_2 from it, and the twist
 //! from W q̂_k: its error follows cond(Ê) = √cond G, not cond G (Björck, *Numerical Methods for
 //! Least Squares Problems*, §2.4: orthogonalising the columns rather than forming the normal
-//! equations). Each vector is orthogonalised twice ("twice is enough", Giraud, Langou and
-//! Rozložník 2005), so Q is orthogonal to working precision and the sums of squares above hold
-//! in floats too. The error bounds this gives are derived in [`crate::analysis::accuracy`].
+//! equations). A vector whose first pass removed more than half its squared norm is
+//! orthogonalised a second time ("twice is enough": Giraud, Langou and Rozložník 2005), so Q
+//! is orthogonal to working precision and the sums of squares above hold in floats too. The error bounds this gives are derived in [`crate::analysis::accuracy`].
 //!
 //! Float solves take the impulses from here too: formed from the wrenches, they are never
 //! less accurate than the normal equations' and far more so near a singular G, where the
@@ -104,12 +104,19 @@ pub struct BasisOutcome<T: Scalar> {
 }
 
 impl<T: Scalar> WrenchBasis<T> {
-    /// Orthogonalise the axis screws `axes` (in order) in the metric of `mobility`. `false`
-    /// when some d_k is not positive (G singular, or so nearly that rounding decided it): the
-    /// basis is then unusable.
+    /// Orthogonalise the axis screws in the metric of `mobility`: `axes` yields, in order,
+    /// each axis screw Ê_k with its response W Ê_k (already computed for G). `false` when some
+    /// d_k is not positive (G singular, or so nearly that rounding decided it): the basis is
+    /// then unusable.
+    ///
+    /// A vector is orthogonalised a second time only when the first pass removed more than
+    /// half its squared norm (Σ_i r_i² d_i > ĝ_kk/2, Pythagoras; Kahan and Parlett's test,
+    /// Parlett, *The Symmetric Eigenvalue Problem*, §6.9): otherwise rounding cannot have left
+    /// it measurably off orthogonal, and a well-conditioned G costs one pass. In exact types
+    /// the second pass would change nothing.
     pub fn build<'a>(
         &mut self,
-        axes: impl ExactSizeIterator<Item = &'a Screw<T>>,
+        axes: impl ExactSizeIterator<Item = (&'a Screw<T>, &'a Screw<T>)>,
         mobility: &impl Mobility<T>,
     ) -> bool {
         let n = axes.len();
@@ -118,18 +125,32 @@ impl<T: Scalar> WrenchBasis<T> {
         self.norms2.clear();
         self.u.clear();
         self.u.resize(n * n, T::zero());
-        for (k, e) in axes.enumerate() {
+        let two = T::one() + T::one();
+        for (k, (e, response)) in axes.enumerate() {
+            let own = e.reciprocal(response);
             let mut q = e.clone();
-            // Twice: the second pass removes what rounding left of the first projections.
-            for _ in 0..2 {
+            let mut removed = T::zero();
+            for pass in 0..2 {
                 for i in 0..k {
                     let r = q.reciprocal(&self.responses[i]) / &self.norms2[i];
                     q.add_scaled(&-r.clone(), &self.wrenches[i]);
+                    if pass == 0 {
+                        removed += r.clone() * &r * &self.norms2[i];
+                    }
                     self.u[i * n + k] += r;
                 }
+                if k == 0 || !(removed.clone() * &two).abs_gt(&own) {
+                    break;
+                }
             }
-            let s = mobility.response(&q);
-            let d = q.reciprocal(&s);
+            // The first wrench is its axis: its response and norm are those of G.
+            let (s, d) = if k == 0 {
+                (response.clone(), own)
+            } else {
+                let s = mobility.response(&q);
+                let d = q.reciprocal(&s);
+                (s, d)
+            };
             if d.signum_i8() <= 0 {
                 return false;
             }

@@ -355,8 +355,8 @@ impl<T: Scalar> Impact<T> {
     /// Orthogonalise the normals' axis screws in the metric of the mobility; `false` when
     /// some d_k ≤ 0.
     fn build_basis(&mut self) -> bool {
-        self.basis
-            .build(self.frames.iter().map(|f| &f.axes[0]), &self.problem)
+        let axes = self.frames.iter().map(|f| &f.axes[0]);
+        self.basis.build(axes.zip(&self.responses), &self.problem)
     }
 
     /// The solve of a float type with G of full rank, from the orthogonalised wrenches
