@@ -128,3 +128,21 @@ k = 1
     with pytest.raises(inertance.SolveError) as e:
         inertance.solve(jammed, law="unilateral", model="newton")
     assert e.value.kind == "jammed"
+
+
+def test_a_scene_in_the_world_frame_with_a_parameter():
+    tilted = inertance.Scene.load(BAR.parent / "tilted-box.toml")
+    # At 45° the corners take 51/61 each (derivations/modelled-tilted-box.md).
+    r = inertance.solve(tilted.with_values({"params.theta": "45 deg"}), exact=True)
+    assert r.newton.impulses == [Fraction(51, 61), Fraction(51, 61)]
+    assert r.newton.kinetic_energy_loss == Fraction(51, 122)
+    # The same box from a dict: shape, pose and an obstacle, no hand rotation.
+    d = {
+        "params": {"theta": "45 deg"},
+        "body": {"shape": {"box": [0.4, 0.2, 0.1]}, "mass": 2,
+                 "pose": {"axis": [0, 1, 0], "angle": "theta"},
+                 "velocity": [0, 0, -1], "angular_velocity": [0, 0, 0]},
+        "obstacle": [{"name": "floor", "normal": [0, 0, 1]}],
+        "contact": [{"obstacle": "floor", "corner": [1, s, -1], "k": 0.5} for s in (-1, 1)],
+    }
+    assert inertance.solve(d, exact=True).newton.impulses == r.newton.impulses
