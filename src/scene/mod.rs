@@ -258,7 +258,8 @@ impl Scene {
             && self.problem::<crate::scalar::Exact>().is_ok()
     }
 
-    /// Every number with its key path.
+    /// Every number with its key path. [`Scene::numbers_mut`] lists the same keys: a number
+    /// added here must be added there too (or a sensitivity cannot be seeded on it).
     pub fn numbers(&self) -> impl Iterator<Item = (String, &Number)> {
         let mut v: Vec<(String, &Number)> = vec![("body.mass".into(), &self.mass)];
         let triples = [
