@@ -61,7 +61,7 @@
 //! | module | what lives there |
 //! |---|---|
 //! | [`number`] | numbers as written: the one expression grammar, exact reading, rational text |
-//! | [`scalar`] | the fields a solve runs in: f32, f64, double-double, exact rationals, symbolic |
+//! | [`scalar`] | the fields a solve runs in: f32, f64, double-double, exact rationals, symbolic; dual numbers over them (sensitivities) |
 //! | [`linalg`] | field-only linear algebra: pivoted LDLᵀ, rank, null space |
 //! | [`mechanics`] | screws, the body and its mobility, contact frames, constraints, surfaces |
 //! | [`impact`] | the validated problem, the restitution laws, the solve, the solution in physical units |

@@ -138,6 +138,10 @@ enum Command {
         /// The impact law; default: the scene's `[solve] law`.
         #[arg(long, value_enum)]
         law: Option<LawArg>,
+        /// Add d(OUTPUT)/d(PATH) columns: each output's derivative with respect to each
+        /// varied input (dual numbers; exact with --exact).
+        #[arg(long)]
+        sensitivity: bool,
     },
     /// Show what accuracy costs in time: every scalar type on a corpus, against exact.
     Bench {
@@ -225,7 +229,19 @@ fn main() -> ExitCode {
             shard,
             threads,
             law,
-        } => run_sweep(scene, vary, exact, out, plot, outputs, shard, threads, law),
+            sensitivity,
+        } => run_sweep(
+            scene,
+            vary,
+            exact,
+            out,
+            plot,
+            outputs,
+            shard,
+            threads,
+            law,
+            sensitivity,
+        ),
         Command::Solve {
             scene,
             exact,
@@ -539,6 +555,7 @@ fn run_sweep(
     shard: Option<String>,
     threads: Option<usize>,
     law: Option<LawArg>,
+    sensitivity: bool,
 ) -> ExitCode {
     use inertance::tools::sweep::{Shard, SweepOptions, Vary, sweep};
     let parsed = vary
@@ -564,6 +581,7 @@ fn run_sweep(
         threads,
         progress: true,
         law: law.map(LawArg::law),
+        sensitivity,
     };
     match sweep(&opts) {
         Ok(s) => {

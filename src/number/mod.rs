@@ -44,7 +44,10 @@ pub struct Number {
     /// [`parse_number_with`]); empty for an ordinary number.
     pub symbols: Vec<String>,
     /// The derivative of the value with respect to the one parameter a sensitivity run
-    /// seeds (forward mode, a dual-number run); 0 otherwise.
+    /// seeds (forward mode, a dual-number run: [`crate::scalar::dual`],
+    /// [`crate::scene::seed`]); 0 otherwise. An f64: a dual run over an exact type converts it
+    /// exactly (`BigRational::from_float`), so a derivative seeded here is exact only as that
+    /// f64 (1 for the number itself; a parameter's derivative d x/dθ rounded once).
     pub tangent: f64,
 }
 

@@ -42,7 +42,8 @@
 //! Here: [`Scene`] and its conversion to a [`Problem`] in a scalar type. `read` walks a
 //! document and holds the reader's primitives, `schema` the tables a scene may have
 //! ([`ContactSpec`], [`ConstraintsSpec`], …) and how each is read, `path` the key paths and
-//! [`set_value`]; [`pipeline`] runs a scene from assembly to report.
+//! [`set_value`]; [`pipeline`] runs a scene from assembly to report; [`seed`] marks the input
+//! a sensitivity run differentiates with respect to.
 
 pub mod model;
 mod path;
@@ -50,6 +51,7 @@ pub mod pipeline;
 mod read;
 pub mod scale;
 mod schema;
+pub mod seed;
 
 pub use path::{set_axes, set_param, set_value};
 pub use read::parse_document;
@@ -228,11 +230,13 @@ impl Scene {
     }
 
     /// Whether the impact is integrated in impulse space ([`crate::impact::friction`]): some
-    /// μ_i ≠ 0, or `[solve] restitution` given.
+    /// μ_i ≠ 0, or `[solve] restitution` given. A μ_i = 0 seeded with a derivative (a
+    /// sensitivity run) counts as frictional: the derivative with respect to μ at 0 is that of
+    /// the frictional integration (μ ≥ 0, one-sided), not of the frictionless model.
     pub fn frictional(&self) -> bool {
         self.restitution.is_some()
             || self.contacts.iter().any(|c| match &c.mu.exact {
-                Ok(q) => !num_traits::Zero::is_zero(q),
+                Ok(q) => !num_traits::Zero::is_zero(q) || c.mu.tangent != 0.0,
                 Err(_) => true,
             })
     }
@@ -273,7 +277,8 @@ impl Scene {
             && self.problem::<crate::scalar::Exact>().is_ok()
     }
 
-    /// Every number with its key path.
+    /// Every number with its key path. [`Scene::numbers_mut`] lists the same keys: a number
+    /// added here must be added there too (or a sensitivity cannot be seeded on it).
     pub fn numbers(&self) -> impl Iterator<Item = (String, &Number)> {
         let mut v: Vec<(String, &Number)> = vec![("body.mass".into(), &self.mass)];
         let triples = [
@@ -321,6 +326,64 @@ impl Scene {
                 for (j, joint) in joints.iter().enumerate() {
                     for (key, vec) in joint.kind.keys().iter().zip(&joint.vectors) {
                         for (k, n) in vec.iter().enumerate() {
+                            v.push((format!("constraints.joint[{j}].{key}[{k}]"), n));
+                        }
+                    }
+                }
+            }
+        }
+        v.into_iter()
+    }
+
+    /// Every number with its key path, mutable: the keys of [`Scene::numbers`], in the same
+    /// order (tested). How a sensitivity run seeds a number's [`Number::tangent`] ([`seed`]).
+    pub fn numbers_mut(&mut self) -> impl Iterator<Item = (String, &mut Number)> {
+        let mut v: Vec<(String, &mut Number)> = vec![("body.mass".into(), &mut self.mass)];
+        let triples = [
+            ("body.inertia", &mut self.inertia),
+            ("body.velocity", &mut self.velocity),
+            ("body.angular_velocity", &mut self.angular_velocity),
+        ];
+        for (k, t) in triples {
+            for (i, n) in t.iter_mut().enumerate() {
+                v.push((format!("{k}[{i}]"), n));
+            }
+        }
+        for (c, spec) in self.contacts.iter_mut().enumerate() {
+            for (i, n) in spec.point.iter_mut().enumerate() {
+                v.push((format!("contact[{c}].point[{i}]"), n));
+            }
+            for (i, n) in spec.normal.iter_mut().flatten().enumerate() {
+                v.push((format!("contact[{c}].normal[{i}]"), n));
+            }
+            if let Some(t) = &mut spec.tangent {
+                for (i, n) in t.iter_mut().enumerate() {
+                    v.push((format!("contact[{c}].tangent[{i}]"), n));
+                }
+            }
+            v.push((format!("contact[{c}].k_newton"), &mut spec.k_newton));
+            v.push((format!("contact[{c}].k_poisson"), &mut spec.k_poisson));
+            if let Some(k) = &mut spec.k_energetic {
+                v.push((format!("contact[{c}].k_energetic"), k));
+            }
+            v.push((format!("contact[{c}].mu"), &mut spec.mu));
+        }
+        match &mut self.constraints {
+            None => {}
+            Some(ConstraintsSpec::Screws { free, blocked }) => {
+                let lists = [("free", Some(free)), ("blocked", blocked.as_mut())];
+                for (name, list) in lists {
+                    for (i, screw) in list.into_iter().flatten().enumerate() {
+                        for (k, n) in screw.iter_mut().enumerate() {
+                            v.push((format!("constraints.{name}[{i}][{k}]"), n));
+                        }
+                    }
+                }
+            }
+            Some(ConstraintsSpec::Joints(joints)) => {
+                for (j, joint) in joints.iter_mut().enumerate() {
+                    for (key, vec) in joint.kind.keys().iter().zip(&mut joint.vectors) {
+                        for (k, n) in vec.iter_mut().enumerate() {
                             v.push((format!("constraints.joint[{j}].{key}[{k}]"), n));
                         }
                     }

@@ -14,8 +14,22 @@ use crate::impact::friction::Restitution;
 use crate::impact::unilateral::Law;
 use crate::report::Report;
 use crate::scalar::Exact;
-use crate::scene::pipeline::run;
+use crate::scalar::dual::Dual;
+use crate::scene::pipeline::{RunError, run};
+use crate::scene::seed::seeded;
 use crate::scene::{Scene, SceneError, parse_document, set_value};
+
+/// A solved point: its varied values, its report (or the status of a point without one) and,
+/// with `--sensitivity`, per varied path the report of the dual-number run seeded on it
+/// (`None` where the point has no answer: it is not differentiated).
+pub(super) struct Solved {
+    /// The varied values, outer first.
+    pub(super) values: Vec<BigRational>,
+    /// The report, or the status of a point without an answer.
+    pub(super) report: Result<Report, &'static str>,
+    /// Per varied path, the dual run's report (its values carry the derivatives).
+    pub(super) derivatives: Vec<Option<Report>>,
+}
 
 /// A validated sweep.
 pub(super) struct Plan {
@@ -46,6 +60,8 @@ pub(super) struct Plan {
     pub(super) series: Vec<Series>,
     /// The impact law, when `--law` overrides the scene's.
     law: Option<Law>,
+    /// Whether each point is also differentiated with respect to each varied path.
+    pub(super) sensitivity: bool,
 }
 
 impl Plan {
@@ -58,8 +74,13 @@ impl Plan {
         check_paths(&opts.vary, &doc, &base, &file)?;
         let (models, friction) = sweep_laws(&base, opts.vary.iter().map(|v| v.path.as_str()));
         let contacts = base.contacts.len();
+        let keys: Vec<String> = if opts.sensitivity {
+            opts.vary.iter().map(|v| v.path.clone()).collect()
+        } else {
+            Vec::new()
+        };
         let series = if opts.plot.is_some() {
-            resolve_outputs(&opts.plot_outputs, &models, contacts, friction)?
+            resolve_outputs(&opts.plot_outputs, &models, contacts, friction, &keys)?
         } else {
             Vec::new()
         };
@@ -82,13 +103,15 @@ impl Plan {
             points,
             series,
             law: opts.law,
+            sensitivity: opts.sensitivity,
         };
         plan.solve_corners()?;
         Ok(plan)
     }
 
     /// Solve the grid's corners once: irrational numbers in exact mode, constraints and
-    /// tangents are caught before the sweep starts.
+    /// tangents (and, with `--sensitivity`, a scene that cannot be differentiated) are caught
+    /// before the sweep starts.
     fn solve_corners(&self) -> Result<(), SweepError> {
         let last: Vec<usize> = self.vary.iter().map(|v| v.count - 1).collect();
         let inner = self.vary.get(1).map_or(1, |v| v.count);
@@ -163,27 +186,44 @@ impl Plan {
 
     /// Solve point p: its report, or the status of a point without one — `singular` (G
     /// singular under the simultaneous law) or `jammed` (no admissible impulses under the
-    /// unilateral law).
-    pub(super) fn solve(
-        &self,
-        p: usize,
-    ) -> Result<(Vec<BigRational>, Result<Report, &'static str>), SweepError> {
+    /// unilateral law) — and with `--sensitivity` its derivatives.
+    pub(super) fn solve(&self, p: usize) -> Result<Solved, SweepError> {
         let values = self.values(p);
-        let scene = self
-            .scene_at(&values)
-            .map_err(|e| self.point_error(p, &values, e))?;
+        let fail = |message: String| self.point_error(p, &values, message);
+        let scene = self.scene_at(&values).map_err(fail)?;
         let solved = if self.exact {
             run::<Exact>(&scene, None)
         } else {
             run::<f64>(&scene, None)
         };
-        match solved {
-            Ok(s) => Ok((values, Ok(s.report))),
-            Err(e) => match point_status(&e) {
-                Some(status) => Ok((values, Err(status))),
-                None => Err(self.point_error(p, &values, e.to_string())),
-            },
+        let report = match solved {
+            Ok(s) => Ok(s.report),
+            Err(e) => Err(point_status(&e).ok_or_else(|| fail(e.to_string()))?),
+        };
+        let mut derivatives = Vec::new();
+        if self.sensitivity && report.is_ok() {
+            for v in &self.vary {
+                let at = |e: RunError| fail(format!("d/d({}): {e}", v.path));
+                let seeded = seeded(&scene, &v.path).ok_or_else(|| {
+                    fail(format!("`{}` names no number to differentiate by", v.path))
+                })?;
+                let solved = if self.exact {
+                    run::<Dual<Exact>>(&seeded, None)
+                } else {
+                    run::<Dual<f64>>(&seeded, None)
+                };
+                derivatives.push(match solved {
+                    Ok(s) => Some(s.report),
+                    Err(e) if point_status(&e).is_some() => None,
+                    Err(e) => return Err(at(e)),
+                });
+            }
         }
+        Ok(Solved {
+            values,
+            report,
+            derivatives,
+        })
     }
 }
 
