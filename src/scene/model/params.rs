@@ -134,6 +134,9 @@ impl Params {
         let src = text.trim();
         let root = parse_checked(src, &self.names(&[]))?;
         let mut n = parse_number_with(&self.substitute(src, &root), &self.symbols)?;
+        if n.text != src {
+            n.source = Some(src.to_string());
+        }
         if self.seed.is_some() && root.has_name {
             let env = |name: &str| {
                 let p = self.list.iter().find(|p| p.spec.name == name)?;

@@ -62,7 +62,81 @@ pub(super) struct Plan {
     law: Option<Law>,
     /// Whether each point is also differentiated with respect to each varied path.
     pub(super) sensitivity: bool,
+    /// Where each varied value goes in the document.
+    targets: Vec<Target>,
 }
+
+/// Where a varied value is written: a key path of the document, or a parameter of `[params]`
+/// (its value in degrees when the parameter is written in degrees).
+#[derive(Clone, Debug)]
+struct Target {
+    /// The document path (`contact[1].k`, `params.theta`).
+    path: String,
+    /// Whether the value is in degrees (a parameter written `"… deg"`).
+    degrees: bool,
+    /// Whether it is a parameter.
+    param: bool,
+}
+
+impl Target {
+    /// The target of the varied path `path` in the scene `base`: a name of `[params]` (bare or
+    /// as `params.NAME`), or a key path.
+    fn of(path: &str, base: &Scene) -> Target {
+        let name = path.strip_prefix("params.").unwrap_or(path);
+        match base.params.iter().find(|p| p.name == name) {
+            Some(p) => Target {
+                path: format!("params.{name}"),
+                degrees: p.text.trim_end().ends_with("deg"),
+                param: true,
+            },
+            None => Target {
+                path: path.to_string(),
+                degrees: false,
+                param: false,
+            },
+        }
+    }
+
+    /// The TOML text of the value q at this target.
+    fn text(&self, q: &BigRational) -> String {
+        if self.degrees {
+            toml_edit::Value::from(format!("{} deg", text(q))).to_string()
+        } else {
+            toml_text(q)
+        }
+    }
+
+    /// `doc` with this target set to q.
+    fn set(&self, doc: &mut DocumentMut, q: &BigRational) -> Result<(), String> {
+        set_value(doc, &self.path, &self.text(q))
+    }
+
+    /// `doc` seeded to differentiate by this target at q: a parameter `__seed` = q first in
+    /// `[params]`, and the target written as an expression of it — so every number computed
+    /// from it (a shape's moments, a pose, other parameters) carries its derivative, per unit
+    /// of the swept value (per degree for a parameter in degrees).
+    fn seed(&self, doc: &DocumentMut, q: &BigRational) -> Result<DocumentMut, String> {
+        let mut d = doc.clone();
+        let mut params = toml_edit::Table::new();
+        params.insert(SEED, toml_edit::value(text(q)));
+        if let Some(old) = d.get("params").and_then(toml_edit::Item::as_table_like) {
+            for (k, v) in old.iter() {
+                params.insert(k, v.clone());
+            }
+        }
+        d.insert("params", toml_edit::Item::Table(params));
+        let expr = if self.degrees {
+            format!("{SEED} deg")
+        } else {
+            SEED.to_string()
+        };
+        set_value(&mut d, &self.path, &toml_edit::Value::from(expr).to_string())?;
+        Ok(d)
+    }
+}
+
+/// The parameter a seeded document differentiates by.
+const SEED: &str = "__seed";
 
 impl Plan {
     /// Check the options, read the scene and check every varied path against it.
@@ -71,7 +145,8 @@ impl Plan {
         check_shard_and_files(opts)?;
         let points = grid_points(&opts.vary)?;
         let (file, doc, base) = read_scene(opts)?;
-        check_paths(&opts.vary, &doc, &base, &file)?;
+        let targets: Vec<Target> = opts.vary.iter().map(|v| Target::of(&v.path, &base)).collect();
+        check_paths(&opts.vary, &targets, &doc, &base, &file)?;
         let (models, friction) = sweep_laws(&base, opts.vary.iter().map(|v| v.path.as_str()));
         let contacts = base.contacts.len();
         let keys: Vec<String> = if opts.sensitivity {
@@ -84,11 +159,16 @@ impl Plan {
         } else {
             Vec::new()
         };
-        let slots = opts
-            .vary
-            .iter()
-            .map(|v| Slot::find(&v.path, &base))
-            .collect::<Option<Vec<_>>>();
+        // A modelled scene's numbers are computed from what was written (a shape's mass
+        // gives its moments), and a parameter may feed many: those re-read the document.
+        let slots = if base.axes.is_some() || targets.iter().any(|t| t.param) {
+            None
+        } else {
+            opts.vary
+                .iter()
+                .map(|v| Slot::find(&v.path, &base))
+                .collect::<Option<Vec<_>>>()
+        };
         let plan = Plan {
             file,
             name: base.name.clone(),
@@ -104,6 +184,7 @@ impl Plan {
             series,
             law: opts.law,
             sensitivity: opts.sensitivity,
+            targets,
         };
         plan.solve_corners()?;
         Ok(plan)
@@ -160,6 +241,28 @@ impl Plan {
         }
     }
 
+    /// The document at the varied values.
+    fn doc_at(&self, values: &[BigRational]) -> Result<DocumentMut, String> {
+        let mut doc = self.doc.clone();
+        for (t, q) in self.targets.iter().zip(values) {
+            t.set(&mut doc, q)?;
+        }
+        Ok(doc)
+    }
+
+    /// The scene at the varied values seeded to differentiate by varied input `i`.
+    fn seeded_at(&self, scene: &Scene, values: &[BigRational], i: usize) -> Result<Scene, String> {
+        let t = &self.targets[i];
+        if self.slots.is_some() {
+            return seeded(scene, &t.path)
+                .ok_or_else(|| format!("`{}` names no number to differentiate by", self.vary[i].path));
+        }
+        let doc = t.seed(&self.doc_at(values)?, &values[i])?;
+        let mut s = Scene::from_document_seeded(&doc, &self.file, &[], SEED).map_err(|e| e.to_string())?;
+        s.law = scene.law;
+        Ok(s)
+    }
+
     /// The scene at the varied values (under `--law`, when given).
     fn scene_at(&self, values: &[BigRational]) -> Result<Scene, String> {
         let mut scene = match &self.slots {
@@ -170,13 +273,8 @@ impl Plan {
                 }
                 scene
             }
-            None => {
-                let mut doc = self.doc.clone();
-                for (v, q) in self.vary.iter().zip(values) {
-                    set_value(&mut doc, &v.path, &toml_text(q))?;
-                }
-                Scene::from_document(&doc, &self.file).map_err(|e| e.to_string())?
-            }
+            None => Scene::from_document(&self.doc_at(values)?, &self.file)
+                .map_err(|e| e.to_string())?,
         };
         if let Some(law) = self.law {
             scene.law = law;
@@ -202,11 +300,9 @@ impl Plan {
         };
         let mut derivatives = Vec::new();
         if self.sensitivity && report.is_ok() {
-            for v in &self.vary {
+            for (i, v) in self.vary.iter().enumerate() {
                 let at = |e: RunError| fail(format!("d/d({}): {e}", v.path));
-                let seeded = seeded(&scene, &v.path).ok_or_else(|| {
-                    fail(format!("`{}` names no number to differentiate by", v.path))
-                })?;
+                let seeded = self.seeded_at(&scene, &values, i).map_err(fail)?;
                 let solved = if self.exact {
                     run::<Dual<Exact>>(&seeded, None)
                 } else {
@@ -328,23 +424,29 @@ fn read_scene(opts: &SweepOptions) -> Result<(String, DocumentMut, Scene), Sweep
 /// Each path must name a number, and the scene must be valid at both ends.
 fn check_paths(
     vary: &[Vary],
+    targets: &[Target],
     doc: &DocumentMut,
     base: &Scene,
     file: &str,
 ) -> Result<(), SweepError> {
-    let keys: Vec<String> = base.numbers().map(|(k, _)| k).collect();
-    for (v, spec) in vary.iter().zip(specs(vary)) {
-        let known = keys.iter().any(|k| {
-            *k == v.path
-                || v.path
-                    .strip_suffix(".k")
-                    .is_some_and(|c| *k == format!("{c}.k_newton"))
-        });
+    let mut keys: Vec<String> = base.params.iter().map(|p| p.name.clone()).collect();
+    keys.extend(base.numbers().map(|(k, _)| k));
+    for ((v, t), spec) in vary.iter().zip(targets).zip(specs(vary)) {
+        // A modelled scene's written numbers (a shape's edges, a pose's angle) are not the
+        // solver's: any number of the document may be varied, as its re-reading checks.
+        let known = t.param
+            || base.axes.is_some()
+            || keys.iter().any(|k| {
+                *k == v.path
+                    || v.path
+                        .strip_suffix(".k")
+                        .is_some_and(|c| *k == format!("{c}.k_newton"))
+            });
         if !known {
             return Err(SweepError::Vary {
                 spec,
                 reason: format!(
-                    "`{}` is not a number of the scene; vary one of its numbers: {}",
+                    "`{}` is not a number or parameter of the scene; vary one of: {}",
                     v.path,
                     listing(&keys)
                 ),
@@ -352,7 +454,7 @@ fn check_paths(
         }
         for (which, q) in [("START", &v.start), ("STOP", &v.stop)] {
             let mut d = doc.clone();
-            set_value(&mut d, &v.path, &toml_text(q)).map_err(|e| SweepError::Vary {
+            t.set(&mut d, q).map_err(|e| SweepError::Vary {
                 spec: spec.clone(),
                 reason: e,
             })?;
