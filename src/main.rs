@@ -285,7 +285,11 @@ fn main() -> ExitCode {
 
 /// Read the scene at `path` with the overrides `opts` and the `symbols`; `-` reads it from
 /// standard input (named `<stdin>` in messages). A scene that cannot be read is status 2.
-fn load_with(path: &std::path::Path, opts: &SceneOpts, symbols: &[String]) -> Result<Scene, ExitCode> {
+fn load_with(
+    path: &std::path::Path,
+    opts: &SceneOpts,
+    symbols: &[String],
+) -> Result<Scene, ExitCode> {
     let fail = |message: String| {
         eprintln!("error: {message}");
         ExitCode::from(2)
@@ -301,11 +305,14 @@ fn load_with(path: &std::path::Path, opts: &SceneOpts, symbols: &[String]) -> Re
             .map_err(|e| fail(format!("{file}: cannot read the file: {e}")))?;
         (text, file)
     };
-    let mut doc = inertance::scene::parse_document(&text, &file).map_err(|e| fail(e.to_string()))?;
+    let mut doc =
+        inertance::scene::parse_document(&text, &file).map_err(|e| fail(e.to_string()))?;
     for p in &opts.params {
-        let (name, value) = p
-            .split_once('=')
-            .ok_or_else(|| fail(format!("--param {p}: expected NAME=VALUE, e.g. theta=\"10 deg\"")))?;
+        let (name, value) = p.split_once('=').ok_or_else(|| {
+            fail(format!(
+                "--param {p}: expected NAME=VALUE, e.g. theta=\"10 deg\""
+            ))
+        })?;
         inertance::scene::set_param(&mut doc, name.trim(), value)
             .map_err(|e| fail(format!("{file}: {e}")))?;
     }
@@ -447,7 +454,12 @@ fn run_derive(
             .unwrap_or_default();
         symbols = names
             .into_iter()
-            .filter(|n| !opts.params.iter().any(|p| p.split('=').next().map(str::trim) == Some(n)))
+            .filter(|n| {
+                !opts
+                    .params
+                    .iter()
+                    .any(|p| p.split('=').next().map(str::trim) == Some(n))
+            })
             .collect();
         if symbols.is_empty() {
             eprintln!(

@@ -53,10 +53,10 @@ pub mod scale;
 mod schema;
 pub mod seed;
 
-pub use path::{set_axes, set_param, set_value};
-pub use read::parse_document;
 pub use model::Axes;
 pub use model::params::ParamSpec;
+pub use path::{set_axes, set_param, set_value};
+pub use read::parse_document;
 pub use schema::{ConstraintsSpec, ContactSpec, JointKind, JointSpec, SurfaceSpec};
 
 use std::fmt;

@@ -93,7 +93,11 @@ pub fn set_param(doc: &mut DocumentMut, name: &str, value: &str) -> Result<(), S
             }
         ));
     }
-    set_value(doc, &format!("params.{name}"), &Value::from(value.trim()).to_string())
+    set_value(
+        doc,
+        &format!("params.{name}"),
+        &Value::from(value.trim()).to_string(),
+    )
 }
 
 /// Set `[solve] axes` of a scene document (`"world"` or `"body"`), creating `[solve]` if need be.

@@ -6,9 +6,9 @@ use crate::impact::unilateral::Law;
 use num_traits::Signed;
 use toml_edit::{DocumentMut, Item, Table, TableLike, Value};
 
+use super::model::{self, params::Params};
 use super::schema::ContactSpec;
 use super::{Scene, SceneError};
-use super::model::{self, params::Params};
 use crate::number::Number;
 
 /// Parse TOML text into a document (syntax errors name the file and the position).
@@ -95,7 +95,11 @@ impl Reader<'_> {
         let mut params = Params::new(self.symbols, seed);
         if let Some(item) = root.get("params") {
             let t = item.as_table_like().ok_or_else(|| {
-                self.err("params", Some(short(item)), "must be a table: [params] name = value")
+                self.err(
+                    "params",
+                    Some(short(item)),
+                    "must be a table: [params] name = value",
+                )
             })?;
             for (name, v) in t.iter() {
                 let key = format!("params.{name}");
@@ -107,7 +111,11 @@ impl Reader<'_> {
                     Some(Value::Float(f)) => f.display_repr().into_owned(),
                     Some(Value::String(s)) => s.value().clone(),
                     _ => {
-                        return Err(self.err(&key, Some(short(v)), "must be a number or an expression string"));
+                        return Err(self.err(
+                            &key,
+                            Some(short(v)),
+                            "must be a number or an expression string",
+                        ));
                     }
                 };
                 params.push(name, &text).map_err(|e| {
@@ -129,7 +137,14 @@ impl Reader<'_> {
             return Err(self.err(
                 &format!("params.{s}"),
                 None,
-                format!("no such parameter; [params] has: {}", if names.is_empty() { "none".into() } else { names.join(", ") }),
+                format!(
+                    "no such parameter; [params] has: {}",
+                    if names.is_empty() {
+                        "none".into()
+                    } else {
+                        names.join(", ")
+                    }
+                ),
             ));
         }
         Ok(params)

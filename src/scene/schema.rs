@@ -225,8 +225,13 @@ impl Reader<'_> {
             .iter()
             .any(|k| t.contains_key(k));
         let point = match t.get("point") {
-            None if placed => std::array::from_fn(|_| crate::number::parse_number("0").expect("0 is a number")),
-            item => self.triple(item.ok_or_else(|| self.err(&format!("{at}.point"), None, "missing (required)"))?, &format!("{at}.point"))?,
+            None if placed => {
+                std::array::from_fn(|_| crate::number::parse_number("0").expect("0 is a number"))
+            }
+            item => self.triple(
+                item.ok_or_else(|| self.err(&format!("{at}.point"), None, "missing (required)"))?,
+                &format!("{at}.point"),
+            )?,
         };
         let normal = match t.get("normal") {
             None => None,

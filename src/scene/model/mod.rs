@@ -34,9 +34,9 @@ pub(crate) mod term;
 
 use toml_edit::{Item, Table};
 
+use super::SceneError;
 use super::read::{Reader, short};
 use super::schema::{BodyTable, ConstraintsSpec, ContactSpec};
-use super::SceneError;
 use crate::number::Number;
 use obstacle::{Obstacle, touching_corners, world};
 use shape::Shape;
@@ -147,7 +147,12 @@ impl Reader<'_> {
     /// The sign of a term: exact for rationals and radicals (`cos(30 deg)`), to 2⁻⁴⁰ relative
     /// to `scale` for other irrational values (`cos(3 deg)`, read in f64), `None` when it names
     /// a symbol (its sign is the reader's to assume).
-    pub(super) fn sign_at(&self, t: &Term, scale: f64, key: &str) -> Result<Option<i8>, SceneError> {
+    pub(super) fn sign_at(
+        &self,
+        t: &Term,
+        scale: f64,
+        key: &str,
+    ) -> Result<Option<i8>, SceneError> {
         if let Term::Rat(q) = t {
             return Ok(Some(sign_of(q)));
         }
@@ -184,9 +189,13 @@ impl Reader<'_> {
 
     /// The magnitude of a term in f64 (for tolerances).
     fn magnitude(&self, t: &Term) -> f64 {
-        self.params
-            .number(&t.to_string())
-            .map_or(1.0, |n| if n.approx.is_finite() { n.approx.abs() } else { 1.0 })
+        self.params.number(&t.to_string()).map_or(1.0, |n| {
+            if n.approx.is_finite() {
+                n.approx.abs()
+            } else {
+                1.0
+            }
+        })
     }
 
     /// Read a modelled scene's body, and bring its contacts and constraints to the solver's
@@ -235,7 +244,10 @@ impl Reader<'_> {
             self.get(body, "angular_velocity", "body")?,
             "body.angular_velocity",
         )?;
-        let velocity = self.numbers3(&frame.out(&velocity.each_ref().map(Term::of)), "body.velocity")?;
+        let velocity = self.numbers3(
+            &frame.out(&velocity.each_ref().map(Term::of)),
+            "body.velocity",
+        )?;
         let angular_velocity = self.numbers3(
             &frame.out(&omega.each_ref().map(Term::of)),
             "body.angular_velocity",
@@ -338,10 +350,18 @@ impl Reader<'_> {
                         &Term::of(&rho) * &volume
                     }
                     (Some(_), Some(_)) => {
-                        return Err(self.err("body.density", None, "give `mass` or `density`, not both"));
+                        return Err(self.err(
+                            "body.density",
+                            None,
+                            "give `mass` or `density`, not both",
+                        ));
                     }
                     (None, None) => {
-                        return Err(self.err("body.mass", None, "missing: give the body's `mass` or `density`"));
+                        return Err(self.err(
+                            "body.mass",
+                            None,
+                            "missing: give the body's `mass` or `density`",
+                        ));
                     }
                 }
             };
@@ -354,11 +374,17 @@ impl Reader<'_> {
         let mass = Term::of(&m);
         let item = self.get(body, "inertia", "body")?;
         let j_a: Mat3 = match item.as_array() {
-            Some(a) if a.iter().all(|v| v.as_array().is_some()) => self.matrix3(item, "body.inertia")?,
+            Some(a) if a.iter().all(|v| v.as_array().is_some()) => {
+                self.matrix3(item, "body.inertia")?
+            }
             _ => {
                 let d = self.triple(item, "body.inertia")?;
                 for (i, j) in d.iter().enumerate() {
-                    self.positive(j, &format!("body.inertia[{i}]"), "principal moments must be positive")?;
+                    self.positive(
+                        j,
+                        &format!("body.inertia[{i}]"),
+                        "principal moments must be positive",
+                    )?;
                 }
                 let d = d.each_ref().map(Term::of);
                 std::array::from_fn(|i| {
@@ -380,18 +406,28 @@ impl Reader<'_> {
         }
         let centre = match body.get("centre_of_mass") {
             None => zero(),
-            Some(c) => self.triple(c, "body.centre_of_mass")?.each_ref().map(Term::of),
+            Some(c) => self
+                .triple(c, "body.centre_of_mass")?
+                .each_ref()
+                .map(Term::of),
         };
         let j_c = match body.get("inertia_about") {
             None => j_a,
             Some(a) => {
                 // J_C = J_A − m (|d|² I − d dᵀ), d = A − c.
-                let about = self.triple(a, "body.inertia_about")?.each_ref().map(Term::of);
+                let about = self
+                    .triple(a, "body.inertia_about")?
+                    .each_ref()
+                    .map(Term::of);
                 let d = sub(&about, &centre);
                 let d2 = dot(&d, &d);
                 std::array::from_fn(|i| {
                     std::array::from_fn(|k| {
-                        let shift = if i == k { &d2 - &(&d[i] * &d[k]) } else { -&(&d[i] * &d[k]) };
+                        let shift = if i == k {
+                            &d2 - &(&d[i] * &d[k])
+                        } else {
+                            -&(&d[i] * &d[k])
+                        };
                         &j_a[i][k] - &(&mass * &shift)
                     })
                 })
@@ -450,12 +486,19 @@ impl Reader<'_> {
             let (body_point, world_point): (Option<Vec3>, Vec3) = match given.first().copied() {
                 Some("point") => (None, spec.point.each_ref().map(Term::of)),
                 Some("body_point") => {
-                    let p = self.triple(t.get("body_point").expect("given"), &format!("{at}.body_point"))?;
+                    let p = self.triple(
+                        t.get("body_point").expect("given"),
+                        &format!("{at}.body_point"),
+                    )?;
                     let p = p.each_ref().map(Term::of);
                     (Some(p.clone()), world(&frame.position, &frame.r, &p))
                 }
                 Some(_) => {
-                    let p = self.corner(t.get("corner").expect("given"), &format!("{at}.corner"), shape)?;
+                    let p = self.corner(
+                        t.get("corner").expect("given"),
+                        &format!("{at}.corner"),
+                        shape,
+                    )?;
                     (Some(p.clone()), world(&frame.position, &frame.r, &p))
                 }
                 None => {
@@ -472,19 +515,33 @@ impl Reader<'_> {
             };
             spec.point = self.numbers3(&r, &format!("{at}.point"))?;
             if let Some(t) = &spec.tangent {
-                spec.tangent = Some(self.numbers3(&frame.out(&t.each_ref().map(Term::of)), &format!("{at}.tangent"))?);
+                spec.tangent = Some(self.numbers3(
+                    &frame.out(&t.each_ref().map(Term::of)),
+                    &format!("{at}.tangent"),
+                )?);
             }
             match obstacle {
                 Some(o) => {
                     let ob = &obstacles[o];
                     let n = ob.normal.each_ref().map(|x| -x);
                     spec.normal = Some(self.numbers3(&frame.out(&n), &format!("{at}.normal"))?);
-                    let h = self.check_obstacle(ob, o, &world_point, body_point.as_ref(), frame, shape, &at)?;
+                    let h = self.check_obstacle(
+                        ob,
+                        o,
+                        &world_point,
+                        body_point.as_ref(),
+                        frame,
+                        shape,
+                        &at,
+                    )?;
                     heights.push(Some((i, o, h)));
                 }
                 None => {
                     if let Some(n) = &spec.normal {
-                        spec.normal = Some(self.numbers3(&frame.out(&n.each_ref().map(Term::of)), &format!("{at}.normal"))?);
+                        spec.normal = Some(self.numbers3(
+                            &frame.out(&n.each_ref().map(Term::of)),
+                            &format!("{at}.normal"),
+                        )?);
                     }
                     heights.push(None);
                 }
@@ -496,7 +553,14 @@ impl Reader<'_> {
             for (j, p, g) in &on[a + 1..] {
                 if o == p && obstacles[*o].point.is_none() {
                     let diff = g - h;
-                    if self.sign_at(&diff, self.magnitude(h).max(self.magnitude(g)), &format!("contact[{j}].obstacle"))? .is_some_and(|s| s != 0) {
+                    if self
+                        .sign_at(
+                            &diff,
+                            self.magnitude(h).max(self.magnitude(g)),
+                            &format!("contact[{j}].obstacle"),
+                        )?
+                        .is_some_and(|s| s != 0)
+                    {
                         return Err(self.err(
                             &format!("contact[{j}]"),
                             None,
@@ -517,7 +581,11 @@ impl Reader<'_> {
     /// `corner = [±1, ±1, ±1]` of a box shape, in body axes.
     fn corner(&self, item: &Item, key: &str, shape: Option<&Shape>) -> Result<Vec3, SceneError> {
         let Some(Shape::Box(dims)) = shape else {
-            return Err(self.err(key, Some(short(item)), "a corner needs `[body] shape = { box = [a, b, c] }`; give `body_point` otherwise"));
+            return Err(self.err(
+                key,
+                Some(short(item)),
+                "a corner needs `[body] shape = { box = [a, b, c] }`; give `body_point` otherwise",
+            ));
         };
         let signs: Option<Vec<i64>> = item.as_array().filter(|a| a.len() == 3).and_then(|a| {
             a.iter()
@@ -525,7 +593,11 @@ impl Reader<'_> {
                 .collect()
         });
         let s = signs.ok_or_else(|| {
-            self.err(key, Some(short(item)), "must be three signs, e.g. [1, -1, -1]: the corner (±a/2, ±b/2, ±c/2)")
+            self.err(
+                key,
+                Some(short(item)),
+                "must be three signs, e.g. [1, -1, -1]: the corner (±a/2, ±b/2, ±c/2)",
+            )
         })?;
         Ok(Shape::corner(dims, [s[0], s[1], s[2]]))
     }
@@ -590,15 +662,17 @@ impl Reader<'_> {
             * n.iter().map(|d| self.magnitude(d)).fold(0.0, f64::max);
         let mut failure = None;
         let mut undecided = false;
-        let result = touching_corners(dims, &frame.r, n, |a, b| match self.sign_at(&(a - b), scale, at) {
-            Ok(Some(s)) => Some(s.cmp(&0)),
-            Ok(None) => {
-                undecided = true;
-                None
-            }
-            Err(e) => {
-                failure = Some(e);
-                None
+        let result = touching_corners(dims, &frame.r, n, |a, b| {
+            match self.sign_at(&(a - b), scale, at) {
+                Ok(Some(s)) => Some(s.cmp(&0)),
+                Ok(None) => {
+                    undecided = true;
+                    None
+                }
+                Err(e) => {
+                    failure = Some(e);
+                    None
+                }
             }
         });
         match failure {
@@ -621,7 +695,12 @@ impl Reader<'_> {
     ) -> Result<Term, SceneError> {
         let n = &ob.normal;
         let label = ob.label(o);
-        let scale = point.iter().chain(frame.centre.iter()).map(|x| self.magnitude(x)).fold(0.0, f64::max).max(1e-300)
+        let scale = point
+            .iter()
+            .chain(frame.centre.iter())
+            .map(|x| self.magnitude(x))
+            .fold(0.0, f64::max)
+            .max(1e-300)
             * n.iter().map(|x| self.magnitude(x)).fold(0.0, f64::max);
         let height = dot(point, n);
         if let Some(p) = &ob.point {
@@ -693,7 +772,8 @@ impl Reader<'_> {
                     for (i, s) in list.into_iter().flatten().enumerate() {
                         let key = format!("constraints.{name}[{i}]");
                         let top = frame.out(&[Term::of(&s[0]), Term::of(&s[1]), Term::of(&s[2])]);
-                        let bottom = frame.out(&[Term::of(&s[3]), Term::of(&s[4]), Term::of(&s[5])]);
+                        let bottom =
+                            frame.out(&[Term::of(&s[3]), Term::of(&s[4]), Term::of(&s[5])]);
                         let [a, b, cc] = self.numbers3(&top, &key)?;
                         let [d, e, f] = self.numbers3(&bottom, &key)?;
                         *s = [a, b, cc, d, e, f];

@@ -117,7 +117,10 @@ impl Params {
         // Right to left, so that earlier byte ranges stay valid.
         for node in root.names().into_iter().rev() {
             if let Kind::Name(name) = &node.kind
-                && let Some(p) = self.list.iter().find(|p| *p.spec.name == **name && !p.symbol)
+                && let Some(p) = self
+                    .list
+                    .iter()
+                    .find(|p| *p.spec.name == **name && !p.symbol)
             {
                 out.replace_range(node.start..node.end, &format!("({})", p.expanded));
             }
@@ -170,7 +173,10 @@ mod tests {
         p.push("h", "2*sin(theta)").expect("reads");
         let n = p.number("h + 1").expect("reads");
         assert_eq!(n.text, "((2*sin((30 deg)))) + 1");
-        assert_eq!(n.exact, Ok(num_rational::BigRational::from_integer(2.into())));
+        assert_eq!(
+            n.exact,
+            Ok(num_rational::BigRational::from_integer(2.into()))
+        );
         assert_eq!(n.tangent, 0.0);
     }
 

@@ -124,6 +124,7 @@ mod plan;
 mod plot;
 mod slot;
 mod stream;
+mod target;
 mod text;
 
 use std::path::PathBuf;

@@ -8,7 +8,8 @@ use toml_edit::DocumentMut;
 
 use super::outputs::{Series, point_status, resolve_outputs, sweep_laws};
 use super::slot::Slot;
-use super::text::{text, toml_text};
+use super::target::{SEED, Target};
+use super::text::text;
 use super::{SweepError, SweepOptions, Vary};
 use crate::impact::friction::Restitution;
 use crate::impact::unilateral::Law;
@@ -17,7 +18,7 @@ use crate::scalar::Exact;
 use crate::scalar::dual::Dual;
 use crate::scene::pipeline::{RunError, run};
 use crate::scene::seed::seeded;
-use crate::scene::{Scene, SceneError, parse_document, set_value};
+use crate::scene::{Scene, SceneError, parse_document};
 
 /// A solved point: its varied values, its report (or the status of a point without one) and,
 /// with `--sensitivity`, per varied path the report of the dual-number run seeded on it
@@ -66,78 +67,6 @@ pub(super) struct Plan {
     targets: Vec<Target>,
 }
 
-/// Where a varied value is written: a key path of the document, or a parameter of `[params]`
-/// (its value in degrees when the parameter is written in degrees).
-#[derive(Clone, Debug)]
-struct Target {
-    /// The document path (`contact[1].k`, `params.theta`).
-    path: String,
-    /// Whether the value is in degrees (a parameter written `"… deg"`).
-    degrees: bool,
-    /// Whether it is a parameter.
-    param: bool,
-}
-
-impl Target {
-    /// The target of the varied path `path` in the scene `base`: a name of `[params]` (bare or
-    /// as `params.NAME`), or a key path.
-    fn of(path: &str, base: &Scene) -> Target {
-        let name = path.strip_prefix("params.").unwrap_or(path);
-        match base.params.iter().find(|p| p.name == name) {
-            Some(p) => Target {
-                path: format!("params.{name}"),
-                degrees: p.text.trim_end().ends_with("deg"),
-                param: true,
-            },
-            None => Target {
-                path: path.to_string(),
-                degrees: false,
-                param: false,
-            },
-        }
-    }
-
-    /// The TOML text of the value q at this target.
-    fn text(&self, q: &BigRational) -> String {
-        if self.degrees {
-            toml_edit::Value::from(format!("{} deg", text(q))).to_string()
-        } else {
-            toml_text(q)
-        }
-    }
-
-    /// `doc` with this target set to q.
-    fn set(&self, doc: &mut DocumentMut, q: &BigRational) -> Result<(), String> {
-        set_value(doc, &self.path, &self.text(q))
-    }
-
-    /// `doc` seeded to differentiate by this target at q: a parameter `__seed` = q first in
-    /// `[params]`, and the target written as an expression of it — so every number computed
-    /// from it (a shape's moments, a pose, other parameters) carries its derivative, per unit
-    /// of the swept value (per degree for a parameter in degrees).
-    fn seed(&self, doc: &DocumentMut, q: &BigRational) -> Result<DocumentMut, String> {
-        let mut d = doc.clone();
-        let mut params = toml_edit::Table::new();
-        params.insert(SEED, toml_edit::value(text(q)));
-        if let Some(old) = d.get("params").and_then(toml_edit::Item::as_table_like) {
-            for (k, v) in old.iter() {
-                params.insert(k, v.clone());
-            }
-        }
-        d.insert("params", toml_edit::Item::Table(params));
-        let expr = if self.degrees {
-            format!("{SEED} deg")
-        } else {
-            SEED.to_string()
-        };
-        set_value(&mut d, &self.path, &toml_edit::Value::from(expr).to_string())?;
-        Ok(d)
-    }
-}
-
-/// The parameter a seeded document differentiates by.
-const SEED: &str = "__seed";
-
 impl Plan {
     /// Check the options, read the scene and check every varied path against it.
     pub(super) fn new(opts: &SweepOptions) -> Result<Plan, SweepError> {
@@ -145,7 +74,11 @@ impl Plan {
         check_shard_and_files(opts)?;
         let points = grid_points(&opts.vary)?;
         let (file, doc, base) = read_scene(opts)?;
-        let targets: Vec<Target> = opts.vary.iter().map(|v| Target::of(&v.path, &base)).collect();
+        let targets: Vec<Target> = opts
+            .vary
+            .iter()
+            .map(|v| Target::of(&v.path, &base))
+            .collect();
         check_paths(&opts.vary, &targets, &doc, &base, &file)?;
         let (models, friction) = sweep_laws(&base, opts.vary.iter().map(|v| v.path.as_str()));
         let contacts = base.contacts.len();
@@ -254,11 +187,16 @@ impl Plan {
     fn seeded_at(&self, scene: &Scene, values: &[BigRational], i: usize) -> Result<Scene, String> {
         let t = &self.targets[i];
         if self.slots.is_some() {
-            return seeded(scene, &t.path)
-                .ok_or_else(|| format!("`{}` names no number to differentiate by", self.vary[i].path));
+            return seeded(scene, &t.path).ok_or_else(|| {
+                format!(
+                    "`{}` names no number to differentiate by",
+                    self.vary[i].path
+                )
+            });
         }
         let doc = t.seed(&self.doc_at(values)?, &values[i])?;
-        let mut s = Scene::from_document_seeded(&doc, &self.file, &[], SEED).map_err(|e| e.to_string())?;
+        let mut s =
+            Scene::from_document_seeded(&doc, &self.file, &[], SEED).map_err(|e| e.to_string())?;
         s.law = scene.law;
         Ok(s)
     }
