@@ -71,10 +71,7 @@ fn scene(n: usize, shift: f64) -> Problem<f64> {
         })
         .collect();
     valid(
-        RigidBody {
-            mass: 2.0,
-            inertia: Vec3::new(1.0, 2.0, 3.0),
-        },
+        RigidBody::principal(2.0, Vec3::new(1.0, 2.0, 3.0)),
         Screw::new(Vec3::new(0.1, -0.2, 0.3), Vec3::new(1.0, 2.0, -0.5)),
         contacts,
     )

@@ -58,7 +58,7 @@ pub(super) fn scene(
         name,
         mass: body.mass,
         inertia: body.inertia,
-        inertia_products: None,
+        inertia_products: body.inertia_products,
         velocity: body.velocity,
         angular_velocity: body.angular_velocity,
         contacts,
@@ -241,17 +241,10 @@ impl Reader<'_> {
             Value::Float(f) => f.display_repr().into_owned(),
             Value::String(s) => s.value().clone(),
             other => {
-                let tensor = key.starts_with("body.inertia") && matches!(other, Value::Array(_));
                 return Err(self.err(
                     key,
                     Some(other.to_string().trim().to_string()),
-                    if tensor {
-                        "must be a number: `inertia` takes the three central principal moments \
-                         [Jx, Jy, Jz], with points, normals and velocities in those principal axes \
-                         (a full 3×3 tensor is not read yet: diagonalise it and rotate the scene)"
-                    } else {
-                        "must be a number (or a string such as \"1/3\")"
-                    },
+                    "must be a number (or a string such as \"1/3\")",
                 ));
             }
         };
