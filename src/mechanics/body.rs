@@ -122,16 +122,26 @@ impl<T: Scalar> Mobility<T> for RigidBody<T> {
     fn response(&self, e: &Screw<T>) -> Screw<T> {
         let u = e.top();
         let mu = e.bottom();
-        let w = match &self.inertia {
-            Inertia::Principal(j) => Vec3::new(
-                mu[0].clone() / &j[0],
-                mu[1].clone() / &j[1],
-                mu[2].clone() / &j[2],
+        match &self.inertia {
+            Inertia::Principal(j) => Screw::new(
+                Vec3::new(
+                    mu[0].clone() / &j[0],
+                    mu[1].clone() / &j[1],
+                    mu[2].clone() / &j[2],
+                ),
+                u / self.mass.clone(),
             ),
-            Inertia::Tensor(t) => t.solve(&mu),
-        };
-        Screw::new(w, u / self.mass.clone())
+            Inertia::Tensor(t) => tensor_response(t, &mu, u, &self.mass),
+        }
     }
+}
+
+/// [J⁻¹ μ; u / m], out of line: were u / m shared by both arms of [`RigidBody::response`], the
+/// compiler would move it after the branch, and the principal arm could no longer pair its
+/// six f64 divisions into three vector ones as it did before the tensor existed.
+#[inline(never)]
+fn tensor_response<T: Scalar>(t: &InertiaTensor<T>, mu: &Vec3<T>, u: Vec3<T>, m: &T) -> Screw<T> {
+    Screw::new(t.solve(mu), u / m.clone())
 }
 
 /// The inertance g = {E_a}ᵀ \[η\] W {E_b} (eq. 12, 86): the velocity along axis a produced by a
