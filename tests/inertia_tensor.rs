@@ -18,14 +18,16 @@
 //! Then invariants with random symmetric positive definite tensors J = AᵀA + I (small integer
 //! A): J (J⁻¹ μ) = μ exactly, G symmetric and equal to eq. (57), momentum balance and both
 //! energies against formulas written out here; the refusal of tensors that are not positive
-//! definite or not symmetric, naming the key; and a scene file with a 3×3 `inertia` solved
-//! through the CLI with the impulses of its principal-axes version.
+//! definite or not symmetric, naming the key; a scene file with a 3×3 `inertia` solved
+//! through the CLI with the impulses of its principal-axes version, scaled, swept, and read
+//! with symbols (eq. 57 in closed form); and the limit of the exact planar test (a plane
+//! whose normal has an irrational length).
 //!
 //! **f64 against exact.** Every f64 output of the frictionless solve is a rational function of
 //! the inputs evaluated in a fixed sequence of about 10² roundings (J' rounded once per entry,
 //! J⁻¹ by the adjugate: ~40 operations; each ĝ_ij: ~30; the N×N elimination; the twist and the
-//! energies), each of relative error ≤ ε = 2⁻⁵², and the impulses solve G P = b, which
-//! amplifies relative errors by at most κ(G) = ‖G‖_∞ ‖G⁻¹‖_∞. So we allow
+//! energies), each of relative error ≤ ε = 2⁻⁵² (`f64::EPSILON`), and the impulses solve
+//! G P = b, which amplifies relative errors by at most κ(G) = ‖G‖_∞ ‖G⁻¹‖_∞. So we allow
 //! 2¹⁰ ε κ(G) (a factor 10 over 10² roundings) times the largest magnitude among the values
 //! compared, with κ(G) computed exactly from the exact G.
 
@@ -969,4 +971,30 @@ fn a_symbolic_tensor_gives_the_closed_form_of_eq_57() {
     )
     .unwrap_err();
     assert_eq!(e.key, "body.inertia[1][0]");
+}
+
+/// The limit of the exact planar test: a bar moving in the plane of normal (1, 1, 0)/√2 is
+/// planar, but the unit normal, hence the cone, would carry √2 — and no rational rotation
+/// changes that (it keeps |R d| = |d|, and a rational vector along R (1, 1, 0) has a length in
+/// ℚ√2). Exact types refuse it; floats integrate it as a spatial scene.
+#[test]
+fn a_plane_whose_normal_has_an_irrational_length_is_left_to_the_spatial_integrator() {
+    use inertance::impact::friction::{Blocks, FrictionError};
+    // J = diag(12, 12, 8/5): (1, 1, 0) is a principal direction, the bar lies along z.
+    let n = vi(1, -1, 0);
+    let c = |z: i64, k: Exact| Contact::new(vi(0, 0, z), n.clone(), k).with_friction(q(1, 2));
+    let p = Problem::new(
+        RigidBody::principal(int(1), v(int(12), int(12), q(8, 5))),
+        Screw::new(v(q(2, 5), q(2, 5), int(0)), vi(3, -3, 2)),
+        vec![c(-2, q(3, 10)), c(4, q(1, 5))],
+    )
+    .unwrap();
+    assert!(Blocks::planar(&p).is_none());
+    assert_eq!(
+        solve_frictional(&p, Restitution::Poisson, 0.0).unwrap_err(),
+        FrictionError::NotPlanar
+    );
+    let f = solve_frictional(&common::convert::<f64>(&p), Restitution::Poisson, 1e-10).unwrap();
+    assert!(f.error_estimate.is_some(), "spatial");
+    assert!(Blocks::planar(&pose(&p, &quaternion(1, 2, 3, 4))).is_none());
 }
