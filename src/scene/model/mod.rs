@@ -372,38 +372,18 @@ impl Reader<'_> {
         let m = self.number(self.get(body, "mass", "body")?, "body.mass")?;
         self.positive(&m, "body.mass", "a mass must be positive")?;
         let mass = Term::of(&m);
-        let item = self.get(body, "inertia", "body")?;
-        let j_a: Mat3 = match item.as_array() {
-            Some(a) if a.iter().all(|v| v.as_array().is_some()) => {
-                self.matrix3(item, "body.inertia")?
-            }
-            _ => {
-                let d = self.triple(item, "body.inertia")?;
-                for (i, j) in d.iter().enumerate() {
-                    self.positive(
-                        j,
-                        &format!("body.inertia[{i}]"),
-                        "principal moments must be positive",
-                    )?;
-                }
-                let d = d.each_ref().map(Term::of);
-                std::array::from_fn(|i| {
-                    std::array::from_fn(|k| if i == k { d[i].clone() } else { Term::int(0) })
-                })
-            }
-        };
-        for i in 0..3 {
-            for k in i + 1..3 {
-                let diff = &j_a[i][k] - &j_a[k][i];
-                if self.decide_zero(&diff, "body.inertia")? == Some(false) {
-                    return Err(self.err(
-                        &format!("body.inertia[{k}][{i}]"),
-                        Some(format!("{} (and [{i}][{k}] = {})", j_a[k][i], j_a[i][k])),
-                        "an inertia tensor is symmetric: [i][k] and [k][i] must be equal",
-                    ));
-                }
-            }
-        }
+        let (diagonal, products) =
+            self.inertia(self.get(body, "inertia", "body")?, "body.inertia")?;
+        let d = diagonal.each_ref().map(Term::of);
+        let p = products.as_ref().map(|p| p.each_ref().map(Term::of));
+        // (J_xy, J_xz, J_yz) at (0, 1), (0, 2), (1, 2), mirrored.
+        let j_a: Mat3 = std::array::from_fn(|i| {
+            std::array::from_fn(|k| match (i == k, &p) {
+                (true, _) => d[i].clone(),
+                (false, None) => Term::int(0),
+                (false, Some(p)) => p[i + k - 1].clone(),
+            })
+        });
         let centre = match body.get("centre_of_mass") {
             None => zero(),
             Some(c) => self
