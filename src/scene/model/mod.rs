@@ -96,6 +96,14 @@ pub(crate) struct Lowered {
     pub(crate) axes: Axes,
 }
 
+/// A body whose central inertia tensor is singular.
+enum Degenerate {
+    /// No moment about the line through C along u (body axes).
+    Line(Vec3),
+    /// No moment at all.
+    Point,
+}
+
 /// The frame of a modelled scene: R, the body origin, C, and the output axes.
 struct Frame {
     r: Mat3,
@@ -219,7 +227,8 @@ impl Reader<'_> {
         let mut keys = vec!["mass", "inertia", "velocity", "angular_velocity"];
         keys.extend(BODY_KEYS);
         self.only_keys(body, "body", &keys)?;
-        let (props, shape) = self.mass_properties(body)?;
+        let (mut props, shape) = self.mass_properties(body)?;
+        let degenerate = self.degenerate(&mut props, shape.as_ref())?;
         let r = self.pose(body.get("pose"))?;
         let position = match body.get("position") {
             None => zero(),
@@ -238,6 +247,9 @@ impl Reader<'_> {
         self.place_contacts(root, contacts, &frame, &obstacles, shape.as_ref())?;
         if let Some(c) = constraints {
             self.lower_constraints(c, &frame)?;
+        }
+        if let Some(d) = &degenerate {
+            self.check_degenerate(d, contacts, constraints.is_some(), &frame)?;
         }
         let velocity = self.triple(self.get(body, "velocity", "body")?, "body.velocity")?;
         let omega = self.triple(
@@ -283,6 +295,135 @@ impl Reader<'_> {
             },
             axes,
         })
+    }
+
+    /// A body with no moment of inertia about a line through C (a thin rod, point masses on a
+    /// line) or about any (one point mass): J_C is singular, with null space spanned by the
+    /// axis u (or everything). No contact on that line has a moment about it, so the impact does
+    /// not depend on the missing moment: J_C is completed to J_C + c·P (P the projector on the
+    /// null space, c = tr J_C / 2, the rod's transverse moment) — any c > 0 gives the same
+    /// impulses, twist and energies, since J⁻¹ never acts along u — and each contact is then
+    /// checked to have no moment about u ([`Reader::check_degenerate`]).
+    fn degenerate(
+        &self,
+        props: &mut shape::MassProperties,
+        shape: Option<&Shape>,
+    ) -> Result<Option<Degenerate>, SceneError> {
+        let j = &mut props.inertia;
+        let found = match shape {
+            Some(Shape::Rod(_)) => {
+                Some(Degenerate::Line([Term::int(0), Term::int(0), Term::int(1)]))
+            }
+            Some(Shape::Points(points)) => {
+                let d: Vec<Vec3> = points.iter().map(|(_, p)| sub(p, &props.centre)).collect();
+                let mut axis: Option<Vec3> = None;
+                for di in &d {
+                    if dot(di, di).is_zero()
+                        || self.decide_zero(&dot(di, di), "body.shape.points")? == Some(true)
+                    {
+                        continue;
+                    }
+                    match &axis {
+                        None => axis = Some(di.clone()),
+                        Some(u) => {
+                            let c = term::cross(u, di);
+                            let off = dot(&c, &c);
+                            if self.decide_zero(&off, "body.shape.points")? != Some(true) {
+                                return Ok(None);
+                            }
+                        }
+                    }
+                }
+                Some(match axis {
+                    Some(u) => Degenerate::Line(u),
+                    None => Degenerate::Point,
+                })
+            }
+            _ => None,
+        };
+        let Some(found) = found else {
+            return Ok(None);
+        };
+        let trace = &(&j[0][0] + &j[1][1]) + &j[2][2];
+        let c = match &found {
+            Degenerate::Line(_) => &trace / &Term::int(2),
+            // One point mass: no moment at all; any c serves, c = m (in units of kg m²).
+            Degenerate::Point => props.mass.clone(),
+        };
+        for a in 0..3 {
+            for b in 0..3 {
+                let p = match &found {
+                    Degenerate::Line(u) => &(&u[a] * &u[b]) / &dot(u, u),
+                    Degenerate::Point => Term::int(i64::from(a == b)),
+                };
+                j[a][b] = &j[a][b] + &(&c * &p);
+            }
+        }
+        Ok(Some(found))
+    }
+
+    /// A body without a moment about u (or at all): every contact must have none either —
+    /// (r × n)·u = 0, and with friction r × u = 0 (the tangential impulses too) — and
+    /// constraints are refused (their screws may have one).
+    fn check_degenerate(
+        &self,
+        d: &Degenerate,
+        contacts: &[ContactSpec],
+        constrained: bool,
+        frame: &Frame,
+    ) -> Result<(), SceneError> {
+        let what = match d {
+            Degenerate::Line(_) => "about its own axis (a thin rod, or point masses on a line)",
+            Degenerate::Point => "at all (a single point mass)",
+        };
+        if constrained {
+            return Err(self.err(
+                "constraints",
+                None,
+                format!("the body has no moment of inertia {what}; constraints on such a body are not supported — give it a thickness (a cylinder, or masses off the line)"),
+            ));
+        }
+        let axis = match d {
+            Degenerate::Line(u) => Some(match frame.axes {
+                Axes::World => apply(&frame.r, u),
+                Axes::Body => u.clone(),
+            }),
+            Degenerate::Point => None,
+        };
+        for (i, c) in contacts.iter().enumerate() {
+            let r = c.point.each_ref().map(Term::of);
+            let Some(n) = &c.normal else { continue };
+            let n = n.each_ref().map(Term::of);
+            let moment = term::cross(&r, &n);
+            let rough = !matches!(&c.mu.exact, Ok(q) if num_traits::Zero::is_zero(q));
+            let (bad, reason) = match &axis {
+                Some(u) => {
+                    let about = dot(&moment, u);
+                    let off = term::cross(&r, u);
+                    let off_axis =
+                        rough && self.decide_zero(&dot(&off, &off), "contact")? == Some(false);
+                    (
+                        self.decide_zero(&about, "contact")? == Some(false) || off_axis,
+                        "a moment about the body's axis",
+                    )
+                }
+                None => (
+                    self.decide_zero(&dot(&moment, &moment), "contact")? == Some(false),
+                    "a moment about the centre of mass",
+                ),
+            };
+            if bad {
+                return Err(self.err(
+                    &format!("contact[{i}]"),
+                    None,
+                    format!(
+                        "its impulse has {reason}, but the body has no moment of inertia {what}: touch it on \
+                         its axis (for a rod, `body_point = [0, 0, z]`), or give it a thickness"
+                    ),
+                ));
+            }
+        }
+        Ok(())
     }
 
     /// `[solve] axes`.
