@@ -4,13 +4,13 @@
 //! The paper writes every vector in the body's central principal axes. A modelled scene writes
 //! them where the user sees them:
 //!
-//! * `[params]`: named values usable in every expression ([`params`]);
+//! * `[params]`: named values usable in every expression (`params.rs`);
 //! * `[body] shape` (or `mass` with `inertia` — three principal moments or a full tensor —
-//!   about `inertia_about`, with `centre_of_mass`), all in body axes ([`shape`]);
-//! * `[body] pose` (R, body → world, [`pose`]) and `position` (the body origin in the world);
+//!   about `inertia_about`, with `centre_of_mass`), all in body axes (`shape.rs`);
+//! * `[body] pose` (R, body → world, `pose.rs`) and `position` (the body origin in the world);
 //!   `velocity` (of the centre of mass C) and `angular_velocity` in the world frame;
 //! * contacts at a world `point`, a `body_point` (body axes) or a box `corner`, against an
-//!   `[[obstacle]]` plane ([`obstacle`]) or with a world `normal` and `tangent`.
+//!   `[[obstacle]]` plane (`obstacle.rs`) or with a world `normal` and `tangent`.
 //!
 //! The solver then works with its origin at C, in world axes (the default: results come back in
 //! the world frame) or in body axes (`[solve] axes = "body"`):
@@ -21,7 +21,7 @@
 //! J_C = J_A − m (|d|² I − d dᵀ),  d = A − c   (the parallel-axis theorem, `inertia_about` A)
 //! ```
 //!
-//! Every value is combined as an expression ([`term`]) and read again like a written number,
+//! Every value is combined as an expression (`term.rs`) and read again like a written number,
 //! so exact scenes stay exact (a rational rotation gives fractions, `30 deg` radicals) and a
 //! parameter is a symbol for `derive` and carries its derivative in a sensitivity run. A scene
 //! that uses none of these keys is read exactly as before.

@@ -27,7 +27,7 @@ use crate::scene::pipeline::run;
 /// One varied number: its key path (`contact[1].k`, `body.mass`, …) and its value per point.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Varied {
-    /// The key path, as in [`set_value`].
+    /// The key path, as in [`set_value`](crate::scene::set_value).
     pub path: String,
     /// One value per point.
     pub values: Vec<f64>,
