@@ -138,6 +138,10 @@ enum Command {
         /// The impact law; default: the scene's `[solve] law`.
         #[arg(long, value_enum)]
         law: Option<LawArg>,
+        /// Add d(OUTPUT)/d(PATH) columns: each output's derivative with respect to each
+        /// varied input (dual numbers; exact with --exact).
+        #[arg(long)]
+        sensitivity: bool,
     },
     /// Show what accuracy costs in time: every scalar type on a corpus, against exact.
     Bench {
@@ -225,7 +229,19 @@ fn main() -> ExitCode {
             shard,
             threads,
             law,
-        } => run_sweep(scene, vary, exact, out, plot, outputs, shard, threads, law),
+            sensitivity,
+        } => run_sweep(
+            scene,
+            vary,
+            exact,
+            out,
+            plot,
+            outputs,
+            shard,
+            threads,
+            law,
+            sensitivity,
+        ),
         Command::Solve {
             scene,
             exact,
@@ -269,7 +285,11 @@ fn main() -> ExitCode {
 
 /// Read the scene at `path` with the overrides `opts` and the `symbols`; `-` reads it from
 /// standard input (named `<stdin>` in messages). A scene that cannot be read is status 2.
-fn load_with(path: &std::path::Path, opts: &SceneOpts, symbols: &[String]) -> Result<Scene, ExitCode> {
+fn load_with(
+    path: &std::path::Path,
+    opts: &SceneOpts,
+    symbols: &[String],
+) -> Result<Scene, ExitCode> {
     let fail = |message: String| {
         eprintln!("error: {message}");
         ExitCode::from(2)
@@ -285,11 +305,14 @@ fn load_with(path: &std::path::Path, opts: &SceneOpts, symbols: &[String]) -> Re
             .map_err(|e| fail(format!("{file}: cannot read the file: {e}")))?;
         (text, file)
     };
-    let mut doc = inertance::scene::parse_document(&text, &file).map_err(|e| fail(e.to_string()))?;
+    let mut doc =
+        inertance::scene::parse_document(&text, &file).map_err(|e| fail(e.to_string()))?;
     for p in &opts.params {
-        let (name, value) = p
-            .split_once('=')
-            .ok_or_else(|| fail(format!("--param {p}: expected NAME=VALUE, e.g. theta=\"10 deg\"")))?;
+        let (name, value) = p.split_once('=').ok_or_else(|| {
+            fail(format!(
+                "--param {p}: expected NAME=VALUE, e.g. theta=\"10 deg\""
+            ))
+        })?;
         inertance::scene::set_param(&mut doc, name.trim(), value)
             .map_err(|e| fail(format!("{file}: {e}")))?;
     }
@@ -431,7 +454,12 @@ fn run_derive(
             .unwrap_or_default();
         symbols = names
             .into_iter()
-            .filter(|n| !opts.params.iter().any(|p| p.split('=').next().map(str::trim) == Some(n)))
+            .filter(|n| {
+                !opts
+                    .params
+                    .iter()
+                    .any(|p| p.split('=').next().map(str::trim) == Some(n))
+            })
             .collect();
         if symbols.is_empty() {
             eprintln!(
@@ -539,6 +567,7 @@ fn run_sweep(
     shard: Option<String>,
     threads: Option<usize>,
     law: Option<LawArg>,
+    sensitivity: bool,
 ) -> ExitCode {
     use inertance::tools::sweep::{Shard, SweepOptions, Vary, sweep};
     let parsed = vary
@@ -564,6 +593,7 @@ fn run_sweep(
         threads,
         progress: true,
         law: law.map(LawArg::law),
+        sensitivity,
     };
     match sweep(&opts) {
         Ok(s) => {

@@ -805,16 +805,42 @@ fn scenes_from_stdin_and_hints_for_degrees_and_inertia_tensors() {
     let out = run("deg.toml", &bar.replace("0.4]", "\"3°\"]"), &["solve"]);
     assert_eq!(out.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&out.stderr).contains("did you mean `3 deg`"));
+    // A 3×3 tensor is read: here the principal moments written as a diagonal tensor (the same
+    // answer), then with J_yz = 1, which couples the spin about z to the bar's axis y — a
+    // different body, other impulses.
     let out = run(
         "tensor.toml",
         &bar.replace(
             "inertia = [12, 1.6, 12]",
             "inertia = [[12, 0, 0], [0, 1.6, 0], [0, 0, 12]]",
         ),
-        &["solve"],
+        &["solve", "--exact", "--json"],
     );
-    assert_eq!(out.status.code(), Some(2));
-    assert!(String::from_utf8_lossy(&out.stderr).contains("central principal moments"));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let t: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(t["models"], j["models"]);
+    let out = run(
+        "products.toml",
+        &bar.replace(
+            "inertia = [12, 1.6, 12]",
+            "inertia = [[12, 0, 0], [0, 1.6, 1], [0, 1, 12]]",
+        ),
+        &["solve", "--exact", "--json"],
+    );
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let t: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_ne!(
+        t["models"]["newton"]["impulses"],
+        j["models"]["newton"]["impulses"]
+    );
     let empty = dir.join("empty");
     std::fs::create_dir_all(&empty).unwrap();
     let out = std::process::Command::new(env!("CARGO_BIN_EXE_inertance"))

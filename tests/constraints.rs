@@ -186,10 +186,7 @@ fn example_5(
     use inertance::mechanics::contact::Contact;
     let zero = Exact::zero;
     let x = Vec3::new(Exact::one(), zero(), zero());
-    let body = RigidBody {
-        mass: m.clone(),
-        inertia: Vec3::new(jz.clone(), jz.clone(), jz.clone()),
-    };
+    let body = RigidBody::principal(m.clone(), Vec3::new(jz.clone(), jz.clone(), jz.clone()));
     let joint = Joint::Revolute {
         point: Vec3::new(zero(), -l.clone(), zero()),
         axis: Vec3::new(zero(), zero(), Exact::one()),

@@ -289,10 +289,10 @@ fn singular_g_is_detected_exactly() {
         mu: Exact::zero(),
     };
     let p = valid(
-        inertance::mechanics::body::RigidBody {
-            mass: Exact::one(),
-            inertia: Vec3::new(Exact::one(), Exact::one(), Exact::one()),
-        },
+        inertance::mechanics::body::RigidBody::principal(
+            Exact::one(),
+            Vec3::new(Exact::one(), Exact::one(), Exact::one()),
+        ),
         Screw::new(
             Vec3::zeros(),
             Vec3::new(Exact::one(), Exact::zero(), Exact::zero()),

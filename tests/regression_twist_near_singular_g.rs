@@ -116,15 +116,13 @@ fn twist_error(impact: &Impact<Exact>, a: &Screw<f64>, e: &Screw<Exact>) -> f64 
     (2.0 * impact.problem().body().kinetic_energy(&d).to_f64()).sqrt()
 }
 
-/// Solve `scene` exactly and in `T`; per model, the contract's checks (`None`: `T` declared
-/// G singular), with the exact impact, conditioning and outcome.
-fn solve_both<T: Scalar>(
-    scene: &Scene,
-) -> (
-    Impact<Exact>,
-    Conditioning,
-    Vec<(Model, Outcome<Exact>, Option<[Check; 5]>)>,
-) {
+/// Per model: the exact outcome and the contract's checks of the float one (`None`: the
+/// float type declared G singular).
+type Models = Vec<(Model, Outcome<Exact>, Option<[Check; 5]>)>;
+
+/// Solve `scene` exactly and in `T`: the exact impact, its conditioning, and per model the
+/// exact outcome with the float checks.
+fn solve_both<T: Scalar>(scene: &Scene) -> (Impact<Exact>, Conditioning, Models) {
     let mut exact = Impact::assemble(&scene.problem::<Exact>().unwrap()).unwrap();
     let cond = Conditioning::of(&mut exact).expect("G is regular");
     let mut float = Impact::assemble(&scene.problem::<T>().unwrap()).unwrap();

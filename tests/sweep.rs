@@ -308,7 +308,7 @@ fn bad_vary_names_the_path_and_value_and_leaves_no_file() {
     // A path the scene does not have.
     let e = fails(&["contact[5].k=0:1:3"]).to_string();
     assert!(
-        e.contains("contact[5].k") && e.contains("not a number of the scene"),
+        e.contains("contact[5].k") && e.contains("not a number or parameter of the scene"),
         "{e}"
     );
     let e = fails(&["body.density=1:2:3"]).to_string();

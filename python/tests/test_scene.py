@@ -45,6 +45,18 @@ def test_with_values_sets_numbers_exactly(bar):
     assert inertance.solve(s).newton.impulses[0] == pytest.approx(3.655556, abs=1e-6)
 
 
+def test_a_3x3_inertia_tensor_from_numpy():
+    # The principal moments as a diagonal tensor: the same body, the same impulses.
+    d = dict(BAR_DICT, body=dict(BAR_DICT["body"], inertia=np.diag([12, 1.6, 12])))
+    same = inertance.solve(d, exact=True)
+    assert same.newton.impulses == inertance.solve(BAR_DICT, exact=True).newton.impulses
+    # An entry off the diagonal is one number under the keys numbers() lists, set with its
+    # mirror: J_yz = 1/2 couples the bar's spin to its axis, and changes the impulses.
+    s = inertance.Scene.from_dict(d).with_values({"body.inertia[1][2]": Fraction(1, 2)})
+    assert ("body.inertia[1][2]", "1/2") in s.numbers()
+    assert inertance.solve(s, exact=True).newton.impulses != same.newton.impulses
+
+
 def test_an_irrational_number_runs_in_f64_and_exactly():
     d = dict(BAR_DICT, contact=[dict(BAR_DICT["contact"][0], k="sqrt(2)/2"),
                                 BAR_DICT["contact"][1]])
@@ -128,3 +140,21 @@ k = 1
     with pytest.raises(inertance.SolveError) as e:
         inertance.solve(jammed, law="unilateral", model="newton")
     assert e.value.kind == "jammed"
+
+
+def test_a_scene_in_the_world_frame_with_a_parameter():
+    tilted = inertance.Scene.load(BAR.parent / "tilted-box.toml")
+    # At 45° the corners take 51/61 each (derivations/modelled-tilted-box.md).
+    r = inertance.solve(tilted.with_values({"params.theta": "45 deg"}), exact=True)
+    assert r.newton.impulses == [Fraction(51, 61), Fraction(51, 61)]
+    assert r.newton.kinetic_energy_loss == Fraction(51, 122)
+    # The same box from a dict: shape, pose and an obstacle, no hand rotation.
+    d = {
+        "params": {"theta": "45 deg"},
+        "body": {"shape": {"box": [0.4, 0.2, 0.1]}, "mass": 2,
+                 "pose": {"axis": [0, 1, 0], "angle": "theta"},
+                 "velocity": [0, 0, -1], "angular_velocity": [0, 0, 0]},
+        "obstacle": [{"name": "floor", "normal": [0, 0, 1]}],
+        "contact": [{"obstacle": "floor", "corner": [1, s, -1], "k": 0.5} for s in (-1, 1)],
+    }
+    assert inertance.solve(d, exact=True).newton.impulses == r.newton.impulses

@@ -41,8 +41,9 @@
 //! 1. the rounding of the inputs and of E_j = [n; r × n] and W E_j (a component of E_j is at
 //!    most a difference of two products of inputs): ‖δE_j‖ ≤ 3 ε ℓ ‖E_j‖ (the inputs ½ε each,
 //!    two products and a difference ½ε each, the mobility's division ½ε, the metric's inputs
-//!    ½ε; the free-body metric is diagonal in the principal axes the body is given in, so a
-//!    componentwise bound |δE| ≤ 3ε|E| gives ‖δE‖ ≤ 3ε‖|E|‖);
+//!    ½ε; the free-body metric is diagonal in principal axes, so a componentwise bound
+//!    |δE| ≤ 3ε|E| gives ‖δE‖ ≤ 3ε‖|E|‖ — with a full inertia tensor ‖|E|‖ bounds the moment
+//!    part by |·|²/λ_min(J), for which the same holds);
 //! 2. Gram–Schmidt with reorthogonalisation, backward stable column by column: the computed
 //!    factors are exact for E + δE with ‖δE_j‖ ≤ 16 N ε ‖E_j‖ (at most two passes of N − 1
 //!    projections, each a 12-flop reciprocal product and a 12-flop update; the triangular
@@ -94,7 +95,7 @@ use num_traits::{Signed, Zero};
 
 use crate::impact::restitution::Model;
 use crate::impact::solve::{Impact, Outcome};
-use crate::mechanics::body::{Mobility, RigidBody};
+use crate::mechanics::body::{Inertia, Mobility, RigidBody};
 use crate::mechanics::screw::{Screw, Vec3};
 use crate::number::rational_to_f64;
 use crate::scalar::{Exact, Scalar};
@@ -256,16 +257,33 @@ impl Conditioning {
 
 /// ‖|E|‖ in the free-body metric η M⁻¹: the norm of the componentwise magnitudes of the axis
 /// screw E = [u; r × u] through the point `r` with direction `u`, (r × u)_a's magnitude being
-/// |r_b u_c| + |r_c u_b| (what its rounding is relative to).
+/// |r_b u_c| + |r_c u_b| (what its rounding is relative to). With a full inertia tensor the
+/// moment part is bounded by |·|²/λ_min(J), which a componentwise bound does imply.
 fn magnitude_norm(body: &RigidBody<Exact>, r: &Vec3<Exact>, u: &Vec3<Exact>) -> f64 {
     let mut s = 0.0;
+    let mut moment = [0.0; 3];
     for a in 0..3 {
         let (b, c) = ((a + 1) % 3, (a + 2) % 3);
         let m = (&r[b] * &u[c]).abs() + (&r[c] * &u[b]).abs();
         s += rational_to_f64(&(&u[a] * &u[a] / &body.mass));
-        s += rational_to_f64(&(&m * &m / &body.inertia[a]));
+        moment[a] = match &body.inertia {
+            Inertia::Principal(j) => rational_to_f64(&(&m * &m / &j[a])),
+            Inertia::Tensor(_) => rational_to_f64(&(&m * &m)),
+        };
     }
-    s.sqrt()
+    s + match &body.inertia {
+        Inertia::Principal(_) => moment.iter().sum::<f64>(),
+        Inertia::Tensor(t) => {
+            let j = t.matrix().map(|x| rational_to_f64(&x));
+            let smallest = j
+                .symmetric_eigenvalues()
+                .iter()
+                .cloned()
+                .fold(f64::INFINITY, f64::min);
+            moment.iter().sum::<f64>() / smallest
+        }
+    }
+    .sqrt()
 }
 
 /// ‖v‖_M = (2 T(v))^½ of an exact twist.

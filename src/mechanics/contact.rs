@@ -265,6 +265,23 @@ impl<T: Scalar> Surd<T> {
         })
     }
 
+    /// For dual numbers ([`crate::scalar::dual`]): the derivative of q·√r, again a surd with
+    /// the radicand r — d(q√r) = q′√r + q r′/(2√r) = (q′ + q r′/(2r))√r — so it stays exact
+    /// in `Dual<Exact>` whatever |n_i| is. `None` for other types, and at r = 0 with r′ ≠ 0
+    /// (no derivative; never for an axis norm).
+    pub fn derivative(&self) -> Option<Surd<T>> {
+        let (q, dq) = self.coeff.dual_parts()?;
+        let (r, dr) = self.radicand.dual_parts()?;
+        let coeff = if dr.is_zero() {
+            dq
+        } else if r.is_zero() {
+            return None;
+        } else {
+            dq + &(q * &dr / (r.clone() + &r))
+        };
+        Some(Surd { coeff, radicand: r })
+    }
+
     /// q·√r as one value of the type, when √r is exactly representable.
     fn exact_value(&self) -> Option<T> {
         Some(self.coeff.clone() * &self.radicand.sqrt_exact()?)
@@ -334,5 +351,26 @@ mod tests {
         let f = ContactFrame::new(0, &contact(v(1, 1, 0), v(4, 1, 0), None), &v0).unwrap();
         assert_eq!(f.norm2[0], int(17));
         assert_eq!(f.norm2[2], f.norm2[0].clone() * &f.norm2[1]);
+    }
+
+    #[test]
+    fn the_derivative_of_a_dual_surd_is_a_surd_of_the_same_radicand() {
+        use crate::scalar::dual::Dual;
+        let d = |v: i64, t: i64| Dual::new(int::<Exact>(v), int::<Exact>(t));
+        // (3 + ε)·√(4 + 4ε) = (3 + ε)(2 + ε) = 6 + 5ε: the derivative 5/2·√4.
+        let s = Surd::times_norm(&d(3, 1), &d(4, 4));
+        let ds = s.derivative().unwrap();
+        assert_eq!(ds.exact_text().as_deref(), Some("5"));
+        assert_eq!(ds.radicand, d(4, 0));
+        // (1 + 0ε)·√(2 + ε): d = 1/(2√2) = √2/4, exactly.
+        let s = Surd::times_norm(&d(1, 0), &d(2, 1));
+        assert_eq!(
+            s.derivative().unwrap().exact_text().as_deref(),
+            Some("1/4*sqrt(2)")
+        );
+        assert_eq!(
+            Surd::times_norm(&int::<Exact>(1), &int(2)).derivative(),
+            None
+        );
     }
 }

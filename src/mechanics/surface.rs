@@ -523,6 +523,7 @@ fn eval<T: Scalar>(e: &Expr, p: &[T; 3]) -> Result<T, String> {
             approx: c.approx,
             symbols: c.symbols.clone(),
             tangent: 0.0,
+            source: None,
         })
         .map_err(|_| {
             format!(

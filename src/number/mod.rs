@@ -44,8 +44,15 @@ pub struct Number {
     /// [`parse_number_with`]); empty for an ordinary number.
     pub symbols: Vec<String>,
     /// The derivative of the value with respect to the one parameter a sensitivity run
-    /// seeds (forward mode, a dual-number run); 0 otherwise.
+    /// seeds (forward mode, a dual-number run: [`crate::scalar::dual`],
+    /// [`crate::scene::seed`]); 0 otherwise. An f64: a dual run over an exact type converts it
+    /// exactly (`BigRational::from_float`), so a derivative seeded here is exact only as that
+    /// f64 (1 for the number itself; a parameter's derivative d x/dθ rounded once).
     pub tangent: f64,
+    /// The text as written, when named parameters were substituted into [`Number::text`]
+    /// (`sin(theta)` for `sin((3 deg))`); `None` otherwise. Combining numbers into new ones
+    /// (a pose, a shape's moments) starts from it, so that their derivatives follow.
+    pub source: Option<String>,
 }
 
 /// Why a text could not be read as a finite number.
@@ -165,6 +172,7 @@ pub(crate) fn evaluate(src: &str, node: &Node) -> Result<Number, NumberError> {
             approx: f64::NAN,
             symbols,
             tangent: 0.0,
+            source: None,
         });
     }
     // An exact rational whose f64 overflows is still a number (exact mode reads it; f64 mode
@@ -193,6 +201,7 @@ pub(crate) fn evaluate(src: &str, node: &Node) -> Result<Number, NumberError> {
         approx: value.f,
         symbols,
         tangent: 0.0,
+        source: None,
     })
 }
 

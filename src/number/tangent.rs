@@ -24,7 +24,11 @@ type Dual = (f64, f64);
 
 /// The value and derivative of `node` (a tree of `src`), with `name` giving each name's value
 /// and derivative; `None` when a name is unknown to it or a sub-expression has no value.
-pub(crate) fn derivative(src: &str, node: &Node, name: &dyn Fn(&str) -> Option<Dual>) -> Option<Dual> {
+pub(crate) fn derivative(
+    src: &str,
+    node: &Node,
+    name: &dyn Fn(&str) -> Option<Dual>,
+) -> Option<Dual> {
     if !node.has_name {
         return evaluate(src, node).ok().map(|n: Number| (n.approx, 0.0));
     }

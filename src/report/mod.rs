@@ -29,7 +29,8 @@ use crate::mechanics::constraint::Constrained;
 use crate::mechanics::contact::{ContactFrame, Surd, TangentRule};
 use crate::scalar::Scalar;
 
-/// One reported number: f64 always, exact text in exact mode.
+/// One reported number: f64 always, exact text in exact mode; in a dual-number run (a
+/// sensitivity, [`crate::scalar::dual`]) also its derivative with respect to the seeded input.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Value {
     /// The value (rounded, in exact mode).
@@ -38,24 +39,52 @@ pub struct Value {
     pub exact: Option<String>,
     /// The LaTeX form, in symbolic mode.
     pub latex: Option<String>,
+    /// d(value)/d(seeded input), in a dual-number run (its `exact` text in `Dual<Exact>`; a
+    /// `f64` of NaN where the value has no derivative); `None` in every other run.
+    pub derivative: Option<Box<Value>>,
 }
 
 impl Value {
-    /// The value of `x`: f64, and its exact text for exact types.
+    /// The value of `x`: f64, and its exact text for exact types; its derivative for dual
+    /// numbers.
     pub fn of<T: Scalar>(x: &T) -> Self {
+        match x.dual_parts() {
+            Some((v, d)) => Value {
+                derivative: Some(Box::new(Value::plain(&d))),
+                ..Value::plain(&v)
+            },
+            None => Value::plain(x),
+        }
+    }
+
+    /// The value of `x` without a derivative.
+    fn plain<T: Scalar>(x: &T) -> Self {
         Value {
             f64: x.to_f64(),
             exact: x.exact_text(),
             latex: x.latex_text(),
+            derivative: None,
         }
     }
 
-    /// The value of the surd `s`.
+    /// The value of the surd `s` (and its derivative, d(q√r) = (q′ + q r′/(2r))√r, for dual
+    /// numbers).
     pub fn surd<T: Scalar>(s: &Surd<T>) -> Self {
-        Value {
+        let plain = |s: &Surd<T>| Value {
             f64: s.to_f64(),
             exact: s.exact_text(),
             latex: s.latex_text(),
+            derivative: None,
+        };
+        let derivative = s.coeff.dual_parts().map(|_| {
+            Box::new(match s.derivative() {
+                Some(d) => plain(&d),
+                None => Value::float(f64::NAN),
+            })
+        });
+        Value {
+            derivative,
+            ..plain(s)
         }
     }
 
@@ -65,6 +94,7 @@ impl Value {
             f64: x,
             exact: None,
             latex: None,
+            derivative: None,
         }
     }
 

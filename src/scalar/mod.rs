@@ -14,6 +14,13 @@
 //! | `f64` | `"f64"` | `|x| ≤ n·ε·|reference|` |
 //! | [`DoubleDouble`](crate::scalar::dd::DoubleDouble) | `"double-double"` | `|x| ≤ n·2⁻¹⁰⁴·|reference|` |
 //! | [`Exact`] = `BigRational` | `"exact"` | `x = 0` |
+//! | [`RatFun`](crate::scalar::symbolic::RatFun) | `"symbolic"` | `x ≡ 0` (as a rational function) |
+//! | [`Dual<T>`](crate::scalar::dual::Dual) over any of the above | `"dual"` (f64), `"dual-exact"`, … | the value's zero test |
+//!
+//! `Dual<T>` is a value and one derivative (forward-mode automatic differentiation): the
+//! solver run over it gives each output's derivative with respect to the one input seeded
+//! with a nonzero [`Number::tangent`] — the derivative of the branch the value takes
+//! ([`dual`]).
 
 use std::fmt::Debug;
 use std::ops::{Add, AddAssign, Div, DivAssign, Mul, MulAssign, Neg, Sub, SubAssign};
@@ -23,6 +30,7 @@ use num_rational::BigRational;
 use num_traits::{One, Signed, Zero};
 
 pub mod dd;
+pub mod dual;
 pub mod symbolic;
 
 use crate::number::Number;
@@ -93,6 +101,10 @@ pub trait Scalar: Field {
     const NAME: &'static str;
     /// Whether every operation is exact, so that a zero test is a proof.
     const IS_EXACT: bool;
+    /// Whether a value carries a derivative ([`dual::Dual`]): a stage whose steps are not
+    /// differentiable functions of its inputs (the adaptive spatial friction integrator)
+    /// refuses such a type rather than return a wrong derivative.
+    const IS_DUAL: bool = false;
 
     /// The value of an exact rational in this type (rounded for floats).
     fn from_rational(q: &BigRational) -> Self;
@@ -180,6 +192,13 @@ pub trait Scalar: Field {
     /// no assumption here, unlike [`Scalar::signum_i8`]).
     fn known_sign(&self) -> Option<i8> {
         Some(self.signum_i8())
+    }
+
+    /// A dual number's value and derivative, each as a number of this type with a zero
+    /// derivative ([`dual::Dual`]); `None` for every other type. How a report reads a
+    /// derivative out of a generic solve.
+    fn dual_parts(&self) -> Option<(Self, Self)> {
+        None
     }
 }
 

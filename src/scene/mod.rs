@@ -4,7 +4,8 @@
 //! name = "planar bar on two supports"
 //! [body]
 //! mass = 1
-//! inertia = [12, 1.6, 12]          # central principal moments Jx, Jy, Jz
+//! inertia = [12, 1.6, 12]          # central principal moments Jx, Jy, Jz, or the 3×3
+//!                                  # tensor [[Jxx, Jxy, Jxz], [Jxy, Jyy, Jyz], [Jxz, Jyz, Jzz]]
 //! velocity = [3, 2, 0]             # v_C before impact, body axes
 //! angular_velocity = [0, 0, 0.4]   # omega before impact
 //! [[contact]]
@@ -42,7 +43,8 @@
 //! Here: [`Scene`] and its conversion to a [`Problem`] in a scalar type. `read` walks a
 //! document and holds the reader's primitives, `schema` the tables a scene may have
 //! ([`ContactSpec`], [`ConstraintsSpec`], …) and how each is read, `path` the key paths and
-//! [`set_value`]; [`pipeline`] runs a scene from assembly to report.
+//! [`set_value`]; [`pipeline`] runs a scene from assembly to report; [`seed`] marks the input
+//! a sensitivity run differentiates with respect to.
 
 pub mod model;
 mod path;
@@ -50,11 +52,12 @@ pub mod pipeline;
 mod read;
 pub mod scale;
 mod schema;
+pub mod seed;
 
-pub use path::{set_axes, set_param, set_value};
-pub use read::parse_document;
 pub use model::Axes;
 pub use model::params::ParamSpec;
+pub use path::{set_axes, set_param, set_value};
+pub use read::parse_document;
 pub use schema::{ConstraintsSpec, ContactSpec, JointKind, JointSpec, SurfaceSpec};
 
 use std::fmt;
@@ -72,6 +75,14 @@ use crate::mechanics::screw::{Screw, Vec3, norm2};
 use crate::mechanics::surface::SurfaceError;
 use crate::number::Number;
 use crate::scalar::Scalar;
+
+/// The keys of the inertia tensor's entries off the diagonal, in the order of
+/// [`Scene::inertia_products`]: J_xy, J_xz, J_yz.
+pub const PRODUCT_KEYS: [&str; 3] = [
+    "body.inertia[0][1]",
+    "body.inertia[0][2]",
+    "body.inertia[1][2]",
+];
 
 /// The end of the message for a number a float type cannot hold (the pipeline recognises it).
 pub const OUT_OF_RANGE: &str = "`--exact` solves the scene exactly";
@@ -228,11 +239,13 @@ impl Scene {
     }
 
     /// Whether the impact is integrated in impulse space ([`crate::impact::friction`]): some
-    /// μ_i ≠ 0, or `[solve] restitution` given.
+    /// μ_i ≠ 0, or `[solve] restitution` given. A μ_i = 0 seeded with a derivative (a
+    /// sensitivity run) counts as frictional: the derivative with respect to μ at 0 is that of
+    /// the frictional integration (μ ≥ 0, one-sided), not of the frictionless model.
     pub fn frictional(&self) -> bool {
         self.restitution.is_some()
             || self.contacts.iter().any(|c| match &c.mu.exact {
-                Ok(q) => !num_traits::Zero::is_zero(q),
+                Ok(q) => !num_traits::Zero::is_zero(q) || c.mu.tangent != 0.0,
                 Err(_) => true,
             })
     }
@@ -273,11 +286,23 @@ impl Scene {
             && self.problem::<crate::scalar::Exact>().is_ok()
     }
 
-    /// Every number with its key path.
+    /// Every number with its key path. The inertia tensor's diagonal is `body.inertia[k]`
+    /// (whether written as moments or as a 3×3 array), its entries off the diagonal
+    /// `body.inertia[0][1]`, `body.inertia[0][2]`, `body.inertia[1][2]` ([`PRODUCT_KEYS`]).
+    /// [`Scene::numbers_mut`] lists the same keys: a number added here must be added there
+    /// too (or a sensitivity cannot be seeded on it).
     pub fn numbers(&self) -> impl Iterator<Item = (String, &Number)> {
         let mut v: Vec<(String, &Number)> = vec![("body.mass".into(), &self.mass)];
+        for (i, n) in self.inertia.iter().enumerate() {
+            v.push((format!("body.inertia[{i}]"), n));
+        }
+        for (key, n) in PRODUCT_KEYS
+            .iter()
+            .zip(self.inertia_products.iter().flatten())
+        {
+            v.push((key.to_string(), n));
+        }
         let triples = [
-            ("body.inertia", &self.inertia),
             ("body.velocity", &self.velocity),
             ("body.angular_velocity", &self.angular_velocity),
         ];
@@ -330,6 +355,72 @@ impl Scene {
         v.into_iter()
     }
 
+    /// Every number with its key path, mutable: the keys of [`Scene::numbers`], in the same
+    /// order (tested). How a sensitivity run seeds a number's [`Number::tangent`] ([`seed`]).
+    pub fn numbers_mut(&mut self) -> impl Iterator<Item = (String, &mut Number)> {
+        let mut v: Vec<(String, &mut Number)> = vec![("body.mass".into(), &mut self.mass)];
+        for (i, n) in self.inertia.iter_mut().enumerate() {
+            v.push((format!("body.inertia[{i}]"), n));
+        }
+        for (key, n) in PRODUCT_KEYS
+            .iter()
+            .zip(self.inertia_products.iter_mut().flatten())
+        {
+            v.push((key.to_string(), n));
+        }
+        let triples = [
+            ("body.velocity", &mut self.velocity),
+            ("body.angular_velocity", &mut self.angular_velocity),
+        ];
+        for (k, t) in triples {
+            for (i, n) in t.iter_mut().enumerate() {
+                v.push((format!("{k}[{i}]"), n));
+            }
+        }
+        for (c, spec) in self.contacts.iter_mut().enumerate() {
+            for (i, n) in spec.point.iter_mut().enumerate() {
+                v.push((format!("contact[{c}].point[{i}]"), n));
+            }
+            for (i, n) in spec.normal.iter_mut().flatten().enumerate() {
+                v.push((format!("contact[{c}].normal[{i}]"), n));
+            }
+            if let Some(t) = &mut spec.tangent {
+                for (i, n) in t.iter_mut().enumerate() {
+                    v.push((format!("contact[{c}].tangent[{i}]"), n));
+                }
+            }
+            v.push((format!("contact[{c}].k_newton"), &mut spec.k_newton));
+            v.push((format!("contact[{c}].k_poisson"), &mut spec.k_poisson));
+            if let Some(k) = &mut spec.k_energetic {
+                v.push((format!("contact[{c}].k_energetic"), k));
+            }
+            v.push((format!("contact[{c}].mu"), &mut spec.mu));
+        }
+        match &mut self.constraints {
+            None => {}
+            Some(ConstraintsSpec::Screws { free, blocked }) => {
+                let lists = [("free", Some(free)), ("blocked", blocked.as_mut())];
+                for (name, list) in lists {
+                    for (i, screw) in list.into_iter().flatten().enumerate() {
+                        for (k, n) in screw.iter_mut().enumerate() {
+                            v.push((format!("constraints.{name}[{i}][{k}]"), n));
+                        }
+                    }
+                }
+            }
+            Some(ConstraintsSpec::Joints(joints)) => {
+                for (j, joint) in joints.iter_mut().enumerate() {
+                    for (key, vec) in joint.kind.keys().iter().zip(&mut joint.vectors) {
+                        for (k, n) in vec.iter_mut().enumerate() {
+                            v.push((format!("constraints.joint[{j}].{key}[{k}]"), n));
+                        }
+                    }
+                }
+            }
+        }
+        v.into_iter()
+    }
+
     /// The problem in the scalar type `T`. Exact types take each number's exact value and
     /// refuse irrational ones (naming the key and the value); floats take the rounded value.
     pub fn problem<T: Scalar>(&self) -> Result<Problem<T>, SceneError> {
@@ -341,9 +432,22 @@ impl Scene {
                 num(&t[2], &format!("{key}[2]"))?,
             ))
         };
-        let body = RigidBody {
-            mass: num(&self.mass, "body.mass")?,
-            inertia: vec3(&self.inertia, "body.inertia")?,
+        let mass = num(&self.mass, "body.mass")?;
+        let body = match &self.inertia_products {
+            None => RigidBody::principal(mass, vec3(&self.inertia, "body.inertia")?),
+            Some(products) => {
+                let d = |k: usize| num(&self.inertia[k], &format!("body.inertia[{k}]"));
+                let p = |k: usize| num(&products[k], PRODUCT_KEYS[k]);
+                let (xy, xz, yz) = (p(0)?, p(1)?, p(2)?);
+                RigidBody::with_tensor(
+                    mass,
+                    [
+                        [d(0)?, xy.clone(), xz.clone()],
+                        [xy, d(1)?, yz.clone()],
+                        [xz, yz, d(2)?],
+                    ],
+                )
+            }
         };
         let velocity = Screw::new(
             vec3(&self.angular_velocity, "body.angular_velocity")?,
@@ -414,6 +518,12 @@ impl Scene {
     /// The value at `key` as written: a number, or a vector `[x, y, z]` of the numbers at
     /// `key[0]`, `key[1]`, … (for messages that show what was given); for a joint, its vectors.
     pub fn text_of(&self, key: &str) -> Option<String> {
+        if let ("body.inertia", Some([xy, xz, yz])) = (key, &self.inertia_products) {
+            let [x, y, z] = &self.inertia;
+            let rows = [[x, xy, xz], [xy, y, yz], [xz, yz, z]]
+                .map(|r| format!("[{}, {}, {}]", r[0].text, r[1].text, r[2].text));
+            return Some(format!("[{}]", rows.join(", ")));
+        }
         let prefix = format!("{key}[");
         let joint = format!("{key}.");
         let mut parts = Vec::new();

@@ -4,6 +4,12 @@
 //! `[constraints]` (§9–11) and `[surface]` (§12); friction will join as an effect of its own. The pipeline
 //! assembles the collision once (frames, inertances, Δ) and runs only the models listed; the
 //! report names the effects it simulated.
+//!
+//! Every stage is generic over the scalar, so a dual-number run (a sensitivity,
+//! [`crate::scalar::dual`]) is this same code: the float units of [`super::scale`] carry the
+//! seeded tangent and scale each derivative back with its output, the exact path's hand-over
+//! to the radical field is not taken (that field carries no derivative), and the spatial
+//! frictional integrator refuses it.
 
 use crate::impact::admissibility::{Inadmissible, energy_gain, verdicts};
 use crate::impact::friction::{FrictionError, solve_frictional};
@@ -13,8 +19,8 @@ use crate::impact::solve::{Impact, Outcome, SolveError};
 use crate::impact::unilateral::{Activity, Law, UnilateralError};
 use crate::mechanics::constraint::{Constrained, ConstraintError};
 use crate::report::{FrictionReport, Report, Value};
-use crate::scalar::Scalar;
 use crate::scalar::symbolic::RatFun;
+use crate::scalar::{Exact, Scalar};
 use crate::scene::scale::{finite, scale, unrepresentable, unscale};
 use crate::scene::{OUT_OF_RANGE, Scene, SceneError};
 
@@ -64,10 +70,11 @@ pub fn run_with<T: Scalar>(
     allow_singular: bool,
 ) -> Result<Solved, RunError> {
     if T::IS_EXACT {
-        // An energetic stop at an irrational s needs the radical field.
+        // An energetic stop at an irrational s needs the radical field: rationals hand over
+        // to it (a dual run does not: the radical field carries no derivative).
         return match run_as_written::<T>(scene, models, allow_singular) {
             Err(RunError::Friction(FrictionError::NeedsRadical { .. }))
-                if T::NAME != RatFun::NAME =>
+                if T::NAME == Exact::NAME =>
             {
                 run_as_written::<RatFun>(scene, models, allow_singular)
             }

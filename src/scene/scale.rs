@@ -12,14 +12,21 @@
 //! ```
 //!
 //! with a, b from the mass and the largest contact coordinate, c making the largest velocity
-//! (|v_C| or |ω|·L) about 1, and e_i, f_i the axes' own scales. The laws are invariant under
-//! this change of units (k and μ are dimensionless), and every output is scaled back by its
+//! (|v_C| or |ω|·L) about 1, and e_i, f_i the axes' own scales; J′ scales every entry of the
+//! inertia tensor (a full tensor's entries off the diagonal as well). The laws are invariant
+//! under this change of units (k and μ are dimensionless), and every output is scaled back by its
 //! dimension: impulses M·L/T, velocities L/T, ω 1/T, energies M·L²/T², inertances 1/M, Δ 1/M^N.
 //! So any scene whose results are representable is solved in f32, f64 and double-double; what
 //! is not representable is refused by the caller, never reported as NaN or ∞.
 //!
 //! Free bodies without a `[surface]` are scaled; constraint screws and surface equations mix
 //! units in ways this does not follow, so those scenes run as written.
+//!
+//! **Sensitivities.** In a dual-number run ([`crate::scalar::dual`]) a seeded input's tangent
+//! is scaled with its value and each output's derivative is scaled back like the output: with
+//! x′ = 2^k x and y = 2^K y′, dy/dx = 2^(K−k) dy′/dx′, and the seed dx′ = 2^k dx carries the
+//! 2^−k. The units are constant near the point (they move only where a number's binary
+//! exponent does, where they stay valid on either side), so they add no derivative of their own.
 
 use num_rational::BigRational;
 use num_traits::{Signed, Zero};
@@ -65,7 +72,10 @@ fn shifted(q: &BigRational, k: i64) -> BigRational {
     if k >= 0 { q * factor } else { q / factor }
 }
 
-/// The number `n` times 2^k, as a number (its text the exact scaled value).
+/// The number `n` times 2^k, as a number (its text the exact scaled value); its derivative
+/// ([`Number::tangent`], a sensitivity run's seed) is scaled with it, exactly: the powers of
+/// two are constant near the point (they change only where an exponent does), so the scaled
+/// input's derivative is 2^k times the input's.
 fn scale_number(n: &mut Number, k: i64) {
     if k == 0 {
         return;
@@ -75,6 +85,7 @@ fn scale_number(n: &mut Number, k: i64) {
         n.text = format_rational(&q);
         n.approx = rational_to_f64(&q);
         n.exact = Ok(q);
+        n.tangent = ldexp(n.tangent, k);
     }
 }
 
@@ -98,7 +109,12 @@ pub fn scale(scene: &Scene) -> Option<(Scene, Units)> {
     let c = speed.map_or(0, |s| b - s);
     let mut s = scene.clone();
     scale_number(&mut s.mass, -a);
-    for j in &mut s.inertia {
+    // The products of inertia have the moments' dimension, M·L².
+    for j in s
+        .inertia
+        .iter_mut()
+        .chain(s.inertia_products.iter_mut().flatten())
+    {
         scale_number(j, -a - 2 * b);
     }
     for x in &mut s.velocity {
@@ -155,9 +171,14 @@ fn ldexp(x: f64, k: i64) -> f64 {
     y
 }
 
-/// Multiply a reported value by 2^k (a float report: no exact text to change).
+/// Multiply a reported value by 2^k (a float report: no exact text to change), and its
+/// derivative with it (a derivative has the dimension of its output over that of the seeded
+/// input, whose scaling [`scale_number`] already applied to the seed).
 fn times(v: &mut Value, k: i64) {
     v.f64 = ldexp(v.f64, k);
+    if let Some(d) = &mut v.derivative {
+        d.f64 = ldexp(d.f64, k);
+    }
 }
 
 /// Scale a contact point's velocities (L/T) back.

@@ -690,6 +690,7 @@ fn compatibility(
             f64: f64::NAN,
             exact: Some(c.to_text()),
             latex: Some(c.to_latex()),
+            derivative: None,
         })
         .collect())
 }
@@ -1010,6 +1011,7 @@ fn angle_value(
             f64: f64::NAN,
             exact: Some("undefined (no tangential velocity)".into()),
             latex: None,
+            derivative: None,
         },
         (0, Some(a)) => a.cos.clone(),
         (1, Some(a)) => a.sin.clone(),

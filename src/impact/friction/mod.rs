@@ -338,10 +338,21 @@ pub enum FrictionError {
     },
     /// A spatial scene in an exact type (spatial scenes are integrated in floats).
     #[error(
-        "the scene is not planar (no coordinate plane holds every frictional contact and the \
-         motion), so it is integrated numerically: run it in f64 or double-double"
+        "the scene is not planar (no coordinate plane, nor a plane whose normal has a rational \
+         length, holds every frictional contact and the motion), so it is integrated \
+         numerically: run it in f64 or double-double"
     )]
     NotPlanar,
+    /// A spatial scene in a dual-number type (a sensitivity run): the adaptive integrator
+    /// chooses its steps and locates its events in f64, so its result is not a differentiable
+    /// function of the inputs the dual numbers could follow.
+    #[error(
+        "the scene is not planar, or its seeded derivative moves it out of its plane, so it is \
+         integrated numerically with adaptive steps and bisected events, which carry no \
+         derivative: sensitivities of frictional scenes are computed for planar scenes only \
+         (estimate this one by finite differences)"
+    )]
+    NotDifferentiable,
     /// More events or steps than any physical impact needs.
     #[error("the integration did not end within its event or step budget")]
     Runaway,
@@ -499,7 +510,10 @@ impl<T: Scalar> Frictional<T> {
 /// `tolerance`.
 ///
 /// # Errors
-/// [`FrictionError`]; [`FrictionError::NotPlanar`] for a spatial scene in an exact type.
+/// [`FrictionError`]; [`FrictionError::NotPlanar`] for a spatial scene in an exact type,
+/// [`FrictionError::NotDifferentiable`] in a dual-number type (a planar scene runs event by
+/// event, its events solved in the scalar type, so their dependence on the inputs is carried;
+/// the spatial integrator's step sizes and bisected events are f64 and would drop it).
 pub fn solve_frictional<T: Scalar>(
     problem: &Problem<T>,
     law: Restitution,
@@ -510,6 +524,9 @@ pub fn solve_frictional<T: Scalar>(
     }
     if T::IS_EXACT {
         return Err(FrictionError::NotPlanar);
+    }
+    if T::IS_DUAL {
+        return Err(FrictionError::NotDifferentiable);
     }
     let frames: Vec<ContactFrame<T>> = problem
         .contacts()

@@ -413,6 +413,22 @@ impl Poly {
         Some(Poly { terms })
     }
 
+    /// ∂self/∂x_id: each term c·x^e·m ↦ (c·e)·x^(e−1)·m, every other symbol a constant. The
+    /// result is reduced (exponents only decrease) and re-sorted (the order of the lowered
+    /// monomials may change). A derivation of the quotient ring whenever x_id carries no
+    /// relation and no relation names it (a free symbol): it maps each relation x² − p to 0.
+    pub(crate) fn derivative(&self, id: u32) -> Poly {
+        let x = Monomial::var(id, 1);
+        let mut map = HashMap::with_capacity(self.terms.len());
+        for (m, c) in &self.terms {
+            let e = m.exponent(id);
+            if let (true, Some(lowered)) = (e > 0, m.div(&x)) {
+                map.insert(lowered, c * BigRational::from_integer(BigInt::from(e)));
+            }
+        }
+        Poly::from_map(map)
+    }
+
     /// The conjugate under r ↦ −r (for a symbol r of exponent ≤ 1): the terms with r
     /// negated. For self = A + B·r it is A − B·r.
     pub(crate) fn conjugate(&self, r: u32) -> Poly {

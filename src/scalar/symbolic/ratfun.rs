@@ -231,6 +231,69 @@ impl RatFun {
         }
     }
 
+    /// d(self)/d`name`, exactly, for the free symbol `name`: the quotient rule over the
+    /// numerator and the factored denominator, num/Π f_i^{e_i} ↦
+    /// num′/Π f_i^{e_i} − (num/Π f_i^{e_i})·Σ e_i f_i′/f_i, each polynomial differentiated
+    /// term by term ([`Poly`]). Radicals √p and the cos θ, sin θ of other angles are constants
+    /// here (their relations do not involve `name`, so this is a derivation of the field).
+    /// Nothing is recorded: the factors divided by are the value's own, already assumed ≠ 0.
+    /// A symbol `name` that does not occur gives 0.
+    ///
+    /// # Errors
+    /// When `name` is an angle whose cos or sin occurs (θ enters only through them: the
+    /// chain rule d cos θ = −sin θ dθ is not applied here), or names a radical (a constant,
+    /// not a variable).
+    pub fn derivative(&self, name: &str) -> Result<RatFun, String> {
+        let table = symbols::snapshot();
+        for id in self.symbols_ids() {
+            let key = table.info(id).map(|i| &i.key);
+            match key {
+                Some(Key::Cos(a) | Key::Sin(a)) if a == name => {
+                    return Err(format!(
+                        "`{name}` is an angle (it occurs as cos({name}), sin({name})): its \
+                         derivative is not taken here; differentiate with respect to a free symbol"
+                    ));
+                }
+                Some(Key::Radical(_)) if table.name(id) == name => {
+                    return Err(format!("`{name}` is a radical, a constant: no derivative"));
+                }
+                _ => {}
+            }
+        }
+        let Some(id) = self
+            .symbols_ids()
+            .into_iter()
+            .find(|&id| matches!(table.info(id).map(|i| &i.key), Some(Key::Free(n)) if n == name))
+        else {
+            return Ok(RatFun::zero_value());
+        };
+        let mut d = assemble(vec![self.num.derivative(id)], self.den.clone());
+        for (f, e) in &self.den {
+            let df = f.derivative(id);
+            if df.is_zero() {
+                continue;
+            }
+            let e = BigRational::from_integer(BigInt::from(*e));
+            let term = assemble(
+                vec![self.num.clone(), df.scale(&e)],
+                product(&self.den, &vec![(f.clone(), 1)]),
+            );
+            d = sub_ref(&d, &term);
+        }
+        Ok(d)
+    }
+
+    /// The ids of the symbols occurring (numerator and denominator), sorted.
+    fn symbols_ids(&self) -> Vec<u32> {
+        let mut ids = self.num.symbol_ids();
+        for (f, _) in &self.den {
+            ids.extend(f.symbol_ids());
+        }
+        ids.sort_unstable();
+        ids.dedup();
+        ids
+    }
+
     /// Whether the two representations are identical (not just equal values).
     pub(crate) fn same_repr(&self, other: &Self) -> bool {
         self.num == other.num && same_factors(&self.den, &other.den)
@@ -854,6 +917,31 @@ mod tests {
         })
     }
 
+    #[test]
+    fn derivatives_by_the_quotient_rule() {
+        // f = 1/m + y1²/Jz (g_11 of eq. 17).
+        let (m, jz, y1) = (s("m"), s("Jz"), s("y1"));
+        let f = n(1) / &m + y1.clone() * &y1 / &jz;
+        take_assumptions();
+        let [dm, dy1, djz, dk] = ["m", "y1", "Jz", "k9"].map(|x| f.derivative(x).unwrap());
+        assert!(take_assumptions().is_empty(), "nothing recorded");
+        assert_eq!(dm, -(n(1) / (m.clone() * &m)));
+        assert_eq!(dy1, n(2) * &y1 / &jz);
+        assert_eq!(djz, -(y1.clone() * &y1 / (jz.clone() * &jz)));
+        assert_eq!(dk, n(0));
+        // A repeated polynomial factor: d/dx 1/(x + y)³ = −3/(x + y)⁴.
+        let (x, y) = (s("x"), s("y"));
+        let g = n(1) / (x.clone() + &y).pow(3);
+        assert_eq!(g.derivative("x").unwrap(), n(-3) / (x.clone() + &y).pow(4));
+        // Radicals and other angles are constants: d/dx (√2 x² cos φ) = 2√2 x cos φ.
+        let (c, _) = RatFun::angle("phi");
+        let h = sqrt(2) * &x * &x * &c;
+        assert_eq!(h.derivative("x").unwrap(), n(2) * sqrt(2) * &x * &c);
+        // The angle itself, and a radical, are refused.
+        assert!(h.derivative("phi").unwrap_err().contains("angle"));
+        assert!(h.derivative("sqrt(2)").unwrap_err().contains("radical"));
+    }
+
     proptest::proptest! {
         #![proptest_config(proptest::prelude::ProptestConfig { cases: 48, ..Default::default() })]
 
@@ -874,6 +962,22 @@ mod tests {
                     proptest::prop_assert_eq!((f.clone() / &b).recip(), b.clone() / &f);
                 }
             }
+            take_assumptions();
+        }
+
+        /// The derivative is a derivation: linear, Leibniz's rule, the quotient rule — on
+        /// random rational functions, with exact equality.
+        #[test]
+        fn derivative_rules(a in poly_strategy(), b in poly_strategy(), c in poly_strategy()) {
+            let d = |f: &RatFun| f.derivative("x").unwrap();
+            let f = if b.is_zero() { a.clone() } else { a.clone() / &b };
+            let g = c.clone() * &c + n(1);
+            proptest::prop_assert_eq!(d(&(f.clone() + &g)), d(&f) + d(&g));
+            proptest::prop_assert_eq!(d(&(f.clone() * &g)), d(&f) * &g + f.clone() * d(&g));
+            proptest::prop_assert_eq!(
+                d(&(f.clone() / &g)),
+                (d(&f) * &g - f.clone() * d(&g)) / (g.clone() * &g)
+            );
             take_assumptions();
         }
     }

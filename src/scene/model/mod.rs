@@ -4,13 +4,13 @@
 //! The paper writes every vector in the body's central principal axes. A modelled scene writes
 //! them where the user sees them:
 //!
-//! * `[params]`: named values usable in every expression ([`params`]);
+//! * `[params]`: named values usable in every expression (`params.rs`);
 //! * `[body] shape` (or `mass` with `inertia` — three principal moments or a full tensor —
-//!   about `inertia_about`, with `centre_of_mass`), all in body axes ([`shape`]);
-//! * `[body] pose` (R, body → world, [`pose`]) and `position` (the body origin in the world);
+//!   about `inertia_about`, with `centre_of_mass`), all in body axes (`shape.rs`);
+//! * `[body] pose` (R, body → world, `pose.rs`) and `position` (the body origin in the world);
 //!   `velocity` (of the centre of mass C) and `angular_velocity` in the world frame;
 //! * contacts at a world `point`, a `body_point` (body axes) or a box `corner`, against an
-//!   `[[obstacle]]` plane ([`obstacle`]) or with a world `normal` and `tangent`.
+//!   `[[obstacle]]` plane (`obstacle.rs`) or with a world `normal` and `tangent`.
 //!
 //! The solver then works with its origin at C, in world axes (the default: results come back in
 //! the world frame) or in body axes (`[solve] axes = "body"`):
@@ -21,7 +21,7 @@
 //! J_C = J_A − m (|d|² I − d dᵀ),  d = A − c   (the parallel-axis theorem, `inertia_about` A)
 //! ```
 //!
-//! Every value is combined as an expression ([`term`]) and read again like a written number,
+//! Every value is combined as an expression (`term.rs`) and read again like a written number,
 //! so exact scenes stay exact (a rational rotation gives fractions, `30 deg` radicals) and a
 //! parameter is a symbol for `derive` and carries its derivative in a sensitivity run. A scene
 //! that uses none of these keys is read exactly as before.
@@ -34,9 +34,9 @@ pub(crate) mod term;
 
 use toml_edit::{Item, Table};
 
+use super::SceneError;
 use super::read::{Reader, short};
 use super::schema::{BodyTable, ConstraintsSpec, ContactSpec};
-use super::SceneError;
 use crate::number::Number;
 use obstacle::{Obstacle, touching_corners, world};
 use shape::Shape;
@@ -96,6 +96,14 @@ pub(crate) struct Lowered {
     pub(crate) axes: Axes,
 }
 
+/// A body whose central inertia tensor is singular.
+enum Degenerate {
+    /// No moment about the line through C along u (body axes).
+    Line(Vec3),
+    /// No moment at all.
+    Point,
+}
+
 /// The frame of a modelled scene: R, the body origin, C, and the output axes.
 struct Frame {
     r: Mat3,
@@ -147,7 +155,12 @@ impl Reader<'_> {
     /// The sign of a term: exact for rationals and radicals (`cos(30 deg)`), to 2⁻⁴⁰ relative
     /// to `scale` for other irrational values (`cos(3 deg)`, read in f64), `None` when it names
     /// a symbol (its sign is the reader's to assume).
-    pub(super) fn sign_at(&self, t: &Term, scale: f64, key: &str) -> Result<Option<i8>, SceneError> {
+    pub(super) fn sign_at(
+        &self,
+        t: &Term,
+        scale: f64,
+        key: &str,
+    ) -> Result<Option<i8>, SceneError> {
         if let Term::Rat(q) = t {
             return Ok(Some(sign_of(q)));
         }
@@ -184,9 +197,13 @@ impl Reader<'_> {
 
     /// The magnitude of a term in f64 (for tolerances).
     fn magnitude(&self, t: &Term) -> f64 {
-        self.params
-            .number(&t.to_string())
-            .map_or(1.0, |n| if n.approx.is_finite() { n.approx.abs() } else { 1.0 })
+        self.params.number(&t.to_string()).map_or(1.0, |n| {
+            if n.approx.is_finite() {
+                n.approx.abs()
+            } else {
+                1.0
+            }
+        })
     }
 
     /// Read a modelled scene's body, and bring its contacts and constraints to the solver's
@@ -210,7 +227,8 @@ impl Reader<'_> {
         let mut keys = vec!["mass", "inertia", "velocity", "angular_velocity"];
         keys.extend(BODY_KEYS);
         self.only_keys(body, "body", &keys)?;
-        let (props, shape) = self.mass_properties(body)?;
+        let (mut props, shape) = self.mass_properties(body)?;
+        let degenerate = self.degenerate(&mut props, shape.as_ref())?;
         let r = self.pose(body.get("pose"))?;
         let position = match body.get("position") {
             None => zero(),
@@ -230,12 +248,18 @@ impl Reader<'_> {
         if let Some(c) = constraints {
             self.lower_constraints(c, &frame)?;
         }
+        if let Some(d) = &degenerate {
+            self.check_degenerate(d, contacts, constraints.is_some(), &frame)?;
+        }
         let velocity = self.triple(self.get(body, "velocity", "body")?, "body.velocity")?;
         let omega = self.triple(
             self.get(body, "angular_velocity", "body")?,
             "body.angular_velocity",
         )?;
-        let velocity = self.numbers3(&frame.out(&velocity.each_ref().map(Term::of)), "body.velocity")?;
+        let velocity = self.numbers3(
+            &frame.out(&velocity.each_ref().map(Term::of)),
+            "body.velocity",
+        )?;
         let angular_velocity = self.numbers3(
             &frame.out(&omega.each_ref().map(Term::of)),
             "body.angular_velocity",
@@ -271,6 +295,135 @@ impl Reader<'_> {
             },
             axes,
         })
+    }
+
+    /// A body with no moment of inertia about a line through C (a thin rod, point masses on a
+    /// line) or about any (one point mass): J_C is singular, with null space spanned by the
+    /// axis u (or everything). No contact on that line has a moment about it, so the impact does
+    /// not depend on the missing moment: J_C is completed to J_C + c·P (P the projector on the
+    /// null space, c = tr J_C / 2, the rod's transverse moment) — any c > 0 gives the same
+    /// impulses, twist and energies, since J⁻¹ never acts along u — and each contact is then
+    /// checked to have no moment about u ([`Reader::check_degenerate`]).
+    fn degenerate(
+        &self,
+        props: &mut shape::MassProperties,
+        shape: Option<&Shape>,
+    ) -> Result<Option<Degenerate>, SceneError> {
+        let j = &mut props.inertia;
+        let found = match shape {
+            Some(Shape::Rod(_)) => {
+                Some(Degenerate::Line([Term::int(0), Term::int(0), Term::int(1)]))
+            }
+            Some(Shape::Points(points)) => {
+                let d: Vec<Vec3> = points.iter().map(|(_, p)| sub(p, &props.centre)).collect();
+                let mut axis: Option<Vec3> = None;
+                for di in &d {
+                    if dot(di, di).is_zero()
+                        || self.decide_zero(&dot(di, di), "body.shape.points")? == Some(true)
+                    {
+                        continue;
+                    }
+                    match &axis {
+                        None => axis = Some(di.clone()),
+                        Some(u) => {
+                            let c = term::cross(u, di);
+                            let off = dot(&c, &c);
+                            if self.decide_zero(&off, "body.shape.points")? != Some(true) {
+                                return Ok(None);
+                            }
+                        }
+                    }
+                }
+                Some(match axis {
+                    Some(u) => Degenerate::Line(u),
+                    None => Degenerate::Point,
+                })
+            }
+            _ => None,
+        };
+        let Some(found) = found else {
+            return Ok(None);
+        };
+        let trace = &(&j[0][0] + &j[1][1]) + &j[2][2];
+        let c = match &found {
+            Degenerate::Line(_) => &trace / &Term::int(2),
+            // One point mass: no moment at all; any c serves, c = m (in units of kg m²).
+            Degenerate::Point => props.mass.clone(),
+        };
+        for a in 0..3 {
+            for b in 0..3 {
+                let p = match &found {
+                    Degenerate::Line(u) => &(&u[a] * &u[b]) / &dot(u, u),
+                    Degenerate::Point => Term::int(i64::from(a == b)),
+                };
+                j[a][b] = &j[a][b] + &(&c * &p);
+            }
+        }
+        Ok(Some(found))
+    }
+
+    /// A body without a moment about u (or at all): every contact must have none either —
+    /// (r × n)·u = 0, and with friction r × u = 0 (the tangential impulses too) — and
+    /// constraints are refused (their screws may have one).
+    fn check_degenerate(
+        &self,
+        d: &Degenerate,
+        contacts: &[ContactSpec],
+        constrained: bool,
+        frame: &Frame,
+    ) -> Result<(), SceneError> {
+        let what = match d {
+            Degenerate::Line(_) => "about its own axis (a thin rod, or point masses on a line)",
+            Degenerate::Point => "at all (a single point mass)",
+        };
+        if constrained {
+            return Err(self.err(
+                "constraints",
+                None,
+                format!("the body has no moment of inertia {what}; constraints on such a body are not supported — give it a thickness (a cylinder, or masses off the line)"),
+            ));
+        }
+        let axis = match d {
+            Degenerate::Line(u) => Some(match frame.axes {
+                Axes::World => apply(&frame.r, u),
+                Axes::Body => u.clone(),
+            }),
+            Degenerate::Point => None,
+        };
+        for (i, c) in contacts.iter().enumerate() {
+            let r = c.point.each_ref().map(Term::of);
+            let Some(n) = &c.normal else { continue };
+            let n = n.each_ref().map(Term::of);
+            let moment = term::cross(&r, &n);
+            let rough = !matches!(&c.mu.exact, Ok(q) if num_traits::Zero::is_zero(q));
+            let (bad, reason) = match &axis {
+                Some(u) => {
+                    let about = dot(&moment, u);
+                    let off = term::cross(&r, u);
+                    let off_axis =
+                        rough && self.decide_zero(&dot(&off, &off), "contact")? == Some(false);
+                    (
+                        self.decide_zero(&about, "contact")? == Some(false) || off_axis,
+                        "a moment about the body's axis",
+                    )
+                }
+                None => (
+                    self.decide_zero(&dot(&moment, &moment), "contact")? == Some(false),
+                    "a moment about the centre of mass",
+                ),
+            };
+            if bad {
+                return Err(self.err(
+                    &format!("contact[{i}]"),
+                    None,
+                    format!(
+                        "its impulse has {reason}, but the body has no moment of inertia {what}: touch it on \
+                         its axis (for a rod, `body_point = [0, 0, z]`), or give it a thickness"
+                    ),
+                ));
+            }
+        }
+        Ok(())
     }
 
     /// `[solve] axes`.
@@ -338,10 +491,18 @@ impl Reader<'_> {
                         &Term::of(&rho) * &volume
                     }
                     (Some(_), Some(_)) => {
-                        return Err(self.err("body.density", None, "give `mass` or `density`, not both"));
+                        return Err(self.err(
+                            "body.density",
+                            None,
+                            "give `mass` or `density`, not both",
+                        ));
                     }
                     (None, None) => {
-                        return Err(self.err("body.mass", None, "missing: give the body's `mass` or `density`"));
+                        return Err(self.err(
+                            "body.mass",
+                            None,
+                            "missing: give the body's `mass` or `density`",
+                        ));
                     }
                 }
             };
@@ -352,46 +513,42 @@ impl Reader<'_> {
         let m = self.number(self.get(body, "mass", "body")?, "body.mass")?;
         self.positive(&m, "body.mass", "a mass must be positive")?;
         let mass = Term::of(&m);
-        let item = self.get(body, "inertia", "body")?;
-        let j_a: Mat3 = match item.as_array() {
-            Some(a) if a.iter().all(|v| v.as_array().is_some()) => self.matrix3(item, "body.inertia")?,
-            _ => {
-                let d = self.triple(item, "body.inertia")?;
-                for (i, j) in d.iter().enumerate() {
-                    self.positive(j, &format!("body.inertia[{i}]"), "principal moments must be positive")?;
-                }
-                let d = d.each_ref().map(Term::of);
-                std::array::from_fn(|i| {
-                    std::array::from_fn(|k| if i == k { d[i].clone() } else { Term::int(0) })
-                })
-            }
-        };
-        for i in 0..3 {
-            for k in i + 1..3 {
-                let diff = &j_a[i][k] - &j_a[k][i];
-                if self.decide_zero(&diff, "body.inertia")? == Some(false) {
-                    return Err(self.err(
-                        &format!("body.inertia[{k}][{i}]"),
-                        Some(format!("{} (and [{i}][{k}] = {})", j_a[k][i], j_a[i][k])),
-                        "an inertia tensor is symmetric: [i][k] and [k][i] must be equal",
-                    ));
-                }
-            }
-        }
+        let (diagonal, products) =
+            self.inertia(self.get(body, "inertia", "body")?, "body.inertia")?;
+        let d = diagonal.each_ref().map(Term::of);
+        let p = products.as_ref().map(|p| p.each_ref().map(Term::of));
+        // (J_xy, J_xz, J_yz) at (0, 1), (0, 2), (1, 2), mirrored.
+        let j_a: Mat3 = std::array::from_fn(|i| {
+            std::array::from_fn(|k| match (i == k, &p) {
+                (true, _) => d[i].clone(),
+                (false, None) => Term::int(0),
+                (false, Some(p)) => p[i + k - 1].clone(),
+            })
+        });
         let centre = match body.get("centre_of_mass") {
             None => zero(),
-            Some(c) => self.triple(c, "body.centre_of_mass")?.each_ref().map(Term::of),
+            Some(c) => self
+                .triple(c, "body.centre_of_mass")?
+                .each_ref()
+                .map(Term::of),
         };
         let j_c = match body.get("inertia_about") {
             None => j_a,
             Some(a) => {
                 // J_C = J_A − m (|d|² I − d dᵀ), d = A − c.
-                let about = self.triple(a, "body.inertia_about")?.each_ref().map(Term::of);
+                let about = self
+                    .triple(a, "body.inertia_about")?
+                    .each_ref()
+                    .map(Term::of);
                 let d = sub(&about, &centre);
                 let d2 = dot(&d, &d);
                 std::array::from_fn(|i| {
                     std::array::from_fn(|k| {
-                        let shift = if i == k { &d2 - &(&d[i] * &d[k]) } else { -&(&d[i] * &d[k]) };
+                        let shift = if i == k {
+                            &d2 - &(&d[i] * &d[k])
+                        } else {
+                            -&(&d[i] * &d[k])
+                        };
                         &j_a[i][k] - &(&mass * &shift)
                     })
                 })
@@ -450,12 +607,19 @@ impl Reader<'_> {
             let (body_point, world_point): (Option<Vec3>, Vec3) = match given.first().copied() {
                 Some("point") => (None, spec.point.each_ref().map(Term::of)),
                 Some("body_point") => {
-                    let p = self.triple(t.get("body_point").expect("given"), &format!("{at}.body_point"))?;
+                    let p = self.triple(
+                        t.get("body_point").expect("given"),
+                        &format!("{at}.body_point"),
+                    )?;
                     let p = p.each_ref().map(Term::of);
                     (Some(p.clone()), world(&frame.position, &frame.r, &p))
                 }
                 Some(_) => {
-                    let p = self.corner(t.get("corner").expect("given"), &format!("{at}.corner"), shape)?;
+                    let p = self.corner(
+                        t.get("corner").expect("given"),
+                        &format!("{at}.corner"),
+                        shape,
+                    )?;
                     (Some(p.clone()), world(&frame.position, &frame.r, &p))
                 }
                 None => {
@@ -472,19 +636,33 @@ impl Reader<'_> {
             };
             spec.point = self.numbers3(&r, &format!("{at}.point"))?;
             if let Some(t) = &spec.tangent {
-                spec.tangent = Some(self.numbers3(&frame.out(&t.each_ref().map(Term::of)), &format!("{at}.tangent"))?);
+                spec.tangent = Some(self.numbers3(
+                    &frame.out(&t.each_ref().map(Term::of)),
+                    &format!("{at}.tangent"),
+                )?);
             }
             match obstacle {
                 Some(o) => {
                     let ob = &obstacles[o];
                     let n = ob.normal.each_ref().map(|x| -x);
                     spec.normal = Some(self.numbers3(&frame.out(&n), &format!("{at}.normal"))?);
-                    let h = self.check_obstacle(ob, o, &world_point, body_point.as_ref(), frame, shape, &at)?;
+                    let h = self.check_obstacle(
+                        ob,
+                        o,
+                        &world_point,
+                        body_point.as_ref(),
+                        frame,
+                        shape,
+                        &at,
+                    )?;
                     heights.push(Some((i, o, h)));
                 }
                 None => {
                     if let Some(n) = &spec.normal {
-                        spec.normal = Some(self.numbers3(&frame.out(&n.each_ref().map(Term::of)), &format!("{at}.normal"))?);
+                        spec.normal = Some(self.numbers3(
+                            &frame.out(&n.each_ref().map(Term::of)),
+                            &format!("{at}.normal"),
+                        )?);
                     }
                     heights.push(None);
                 }
@@ -496,7 +674,14 @@ impl Reader<'_> {
             for (j, p, g) in &on[a + 1..] {
                 if o == p && obstacles[*o].point.is_none() {
                     let diff = g - h;
-                    if self.sign_at(&diff, self.magnitude(h).max(self.magnitude(g)), &format!("contact[{j}].obstacle"))? .is_some_and(|s| s != 0) {
+                    if self
+                        .sign_at(
+                            &diff,
+                            self.magnitude(h).max(self.magnitude(g)),
+                            &format!("contact[{j}].obstacle"),
+                        )?
+                        .is_some_and(|s| s != 0)
+                    {
                         return Err(self.err(
                             &format!("contact[{j}]"),
                             None,
@@ -517,7 +702,11 @@ impl Reader<'_> {
     /// `corner = [±1, ±1, ±1]` of a box shape, in body axes.
     fn corner(&self, item: &Item, key: &str, shape: Option<&Shape>) -> Result<Vec3, SceneError> {
         let Some(Shape::Box(dims)) = shape else {
-            return Err(self.err(key, Some(short(item)), "a corner needs `[body] shape = { box = [a, b, c] }`; give `body_point` otherwise"));
+            return Err(self.err(
+                key,
+                Some(short(item)),
+                "a corner needs `[body] shape = { box = [a, b, c] }`; give `body_point` otherwise",
+            ));
         };
         let signs: Option<Vec<i64>> = item.as_array().filter(|a| a.len() == 3).and_then(|a| {
             a.iter()
@@ -525,7 +714,11 @@ impl Reader<'_> {
                 .collect()
         });
         let s = signs.ok_or_else(|| {
-            self.err(key, Some(short(item)), "must be three signs, e.g. [1, -1, -1]: the corner (±a/2, ±b/2, ±c/2)")
+            self.err(
+                key,
+                Some(short(item)),
+                "must be three signs, e.g. [1, -1, -1]: the corner (±a/2, ±b/2, ±c/2)",
+            )
         })?;
         Ok(Shape::corner(dims, [s[0], s[1], s[2]]))
     }
@@ -590,15 +783,17 @@ impl Reader<'_> {
             * n.iter().map(|d| self.magnitude(d)).fold(0.0, f64::max);
         let mut failure = None;
         let mut undecided = false;
-        let result = touching_corners(dims, &frame.r, n, |a, b| match self.sign_at(&(a - b), scale, at) {
-            Ok(Some(s)) => Some(s.cmp(&0)),
-            Ok(None) => {
-                undecided = true;
-                None
-            }
-            Err(e) => {
-                failure = Some(e);
-                None
+        let result = touching_corners(dims, &frame.r, n, |a, b| {
+            match self.sign_at(&(a - b), scale, at) {
+                Ok(Some(s)) => Some(s.cmp(&0)),
+                Ok(None) => {
+                    undecided = true;
+                    None
+                }
+                Err(e) => {
+                    failure = Some(e);
+                    None
+                }
             }
         });
         match failure {
@@ -621,7 +816,12 @@ impl Reader<'_> {
     ) -> Result<Term, SceneError> {
         let n = &ob.normal;
         let label = ob.label(o);
-        let scale = point.iter().chain(frame.centre.iter()).map(|x| self.magnitude(x)).fold(0.0, f64::max).max(1e-300)
+        let scale = point
+            .iter()
+            .chain(frame.centre.iter())
+            .map(|x| self.magnitude(x))
+            .fold(0.0, f64::max)
+            .max(1e-300)
             * n.iter().map(|x| self.magnitude(x)).fold(0.0, f64::max);
         let height = dot(point, n);
         if let Some(p) = &ob.point {
@@ -693,7 +893,8 @@ impl Reader<'_> {
                     for (i, s) in list.into_iter().flatten().enumerate() {
                         let key = format!("constraints.{name}[{i}]");
                         let top = frame.out(&[Term::of(&s[0]), Term::of(&s[1]), Term::of(&s[2])]);
-                        let bottom = frame.out(&[Term::of(&s[3]), Term::of(&s[4]), Term::of(&s[5])]);
+                        let bottom =
+                            frame.out(&[Term::of(&s[3]), Term::of(&s[4]), Term::of(&s[5])]);
                         let [a, b, cc] = self.numbers3(&top, &key)?;
                         let [d, e, f] = self.numbers3(&bottom, &key)?;
                         *s = [a, b, cc, d, e, f];

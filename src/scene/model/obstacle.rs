@@ -11,8 +11,8 @@ use toml_edit::{Item, Table};
 
 use super::super::SceneError;
 use super::super::read::{Reader, short};
-use super::term::{Mat3, Term, Vec3, add, apply, dot};
 use super::shape::Shape;
+use super::term::{Mat3, Term, Vec3, add, apply, dot};
 
 /// One obstacle plane.
 #[derive(Clone, Debug)]
@@ -72,7 +72,11 @@ impl Reader<'_> {
             self.nonzero(&normal, &nk, "an obstacle's normal")?;
             let point = match t.get("point") {
                 None => None,
-                Some(p) => Some(self.triple(p, &format!("{at}.point"))?.each_ref().map(Term::of)),
+                Some(p) => Some(
+                    self.triple(p, &format!("{at}.point"))?
+                        .each_ref()
+                        .map(Term::of),
+                ),
             };
             out.push(Obstacle {
                 name,
@@ -105,7 +109,8 @@ impl Reader<'_> {
                 key,
                 Some(short(item)),
                 if obstacles.is_empty() {
-                    "there is no [[obstacle]] to name; declare one (normal out of the obstacle)".to_string()
+                    "there is no [[obstacle]] to name; declare one (normal out of the obstacle)"
+                        .to_string()
                 } else {
                     format!("no such obstacle; the scene has: {}", names.join(", "))
                 },

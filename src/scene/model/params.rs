@@ -117,7 +117,10 @@ impl Params {
         // Right to left, so that earlier byte ranges stay valid.
         for node in root.names().into_iter().rev() {
             if let Kind::Name(name) = &node.kind
-                && let Some(p) = self.list.iter().find(|p| *p.spec.name == **name && !p.symbol)
+                && let Some(p) = self
+                    .list
+                    .iter()
+                    .find(|p| *p.spec.name == **name && !p.symbol)
             {
                 out.replace_range(node.start..node.end, &format!("({})", p.expanded));
             }
@@ -134,6 +137,9 @@ impl Params {
         let src = text.trim();
         let root = parse_checked(src, &self.names(&[]))?;
         let mut n = parse_number_with(&self.substitute(src, &root), &self.symbols)?;
+        if n.text != src {
+            n.source = Some(src.to_string());
+        }
         if self.seed.is_some() && root.has_name {
             let env = |name: &str| {
                 let p = self.list.iter().find(|p| p.spec.name == name)?;
@@ -166,8 +172,12 @@ mod tests {
         p.push("theta", "30 deg").expect("reads");
         p.push("h", "2*sin(theta)").expect("reads");
         let n = p.number("h + 1").expect("reads");
-        assert_eq!(n.text, "((2*sin((30 deg)))) + 1");
-        assert_eq!(n.exact, Ok(num_rational::BigRational::from_integer(2.into())));
+        assert_eq!(n.text, "(2*sin((30 deg))) + 1");
+        assert_eq!(n.source.as_deref(), Some("h + 1"));
+        assert_eq!(
+            n.exact,
+            Ok(num_rational::BigRational::from_integer(2.into()))
+        );
         assert_eq!(n.tangent, 0.0);
     }
 

@@ -111,9 +111,10 @@ impl Reader<'_> {
     }
 
     fn quaternion(&self, item: &Item, key: &str) -> Result<Mat3, SceneError> {
-        let arr = item.as_array().filter(|a| a.len() == 4).ok_or_else(|| {
-            self.err(key, Some(short(item)), "must be four numbers [w, x, y, z]")
-        })?;
+        let arr = item
+            .as_array()
+            .filter(|a| a.len() == 4)
+            .ok_or_else(|| self.err(key, Some(short(item)), "must be four numbers [w, x, y, z]"))?;
         let mut q = Vec::with_capacity(4);
         for (i, v) in arr.iter().enumerate() {
             q.push(Term::of(&self.number_value(v, &format!("{key}[{i}]"))?));
@@ -183,7 +184,11 @@ impl Reader<'_> {
     /// A 3×3 array of numbers, by rows.
     pub(super) fn matrix3(&self, item: &Item, key: &str) -> Result<Mat3, SceneError> {
         let rows = item.as_array().filter(|a| a.len() == 3).ok_or_else(|| {
-            self.err(key, Some(short(item)), "must be three rows of three numbers")
+            self.err(
+                key,
+                Some(short(item)),
+                "must be three rows of three numbers",
+            )
         })?;
         let mut m: Vec<Vec3> = Vec::with_capacity(3);
         for (i, row) in rows.iter().enumerate() {

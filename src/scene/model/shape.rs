@@ -51,9 +51,16 @@ impl Reader<'_> {
     /// `[body] shape`.
     pub(super) fn shape(&self, item: &Item) -> Result<Shape, SceneError> {
         let key = "body.shape";
-        let t = item.as_table_like().filter(|t| t.len() == 1).ok_or_else(|| {
-            self.err(key, Some(short(item)), format!("must name one shape: {{ {KINDS} }}"))
-        })?;
+        let t = item
+            .as_table_like()
+            .filter(|t| t.len() == 1)
+            .ok_or_else(|| {
+                self.err(
+                    key,
+                    Some(short(item)),
+                    format!("must name one shape: {{ {KINDS} }}"),
+                )
+            })?;
         let (kind, value) = t.iter().next().expect("one entry");
         let at = format!("{key}.{kind}");
         let positive = |n: crate::number::Number, k: &str| -> Result<Term, SceneError> {
@@ -72,11 +79,18 @@ impl Reader<'_> {
             "sphere" => Shape::Sphere(positive(self.number(value, &at)?, &at)?),
             "rod" => Shape::Rod(positive(self.number(value, &at)?, &at)?),
             "cylinder" => {
-                let arr = value.as_array().filter(|a| a.len() == 2).ok_or_else(|| {
-                    self.err(&at, Some(short(value)), "must be [radius, height]")
-                })?;
-                let r = positive(self.number_value(&arr.get(0).expect("two").clone(), &format!("{at}[0]"))?, &format!("{at}[0]"))?;
-                let h = positive(self.number_value(&arr.get(1).expect("two").clone(), &format!("{at}[1]"))?, &format!("{at}[1]"))?;
+                let arr = value
+                    .as_array()
+                    .filter(|a| a.len() == 2)
+                    .ok_or_else(|| self.err(&at, Some(short(value)), "must be [radius, height]"))?;
+                let r = positive(
+                    self.number_value(&arr.get(0).expect("two").clone(), &format!("{at}[0]"))?,
+                    &format!("{at}[0]"),
+                )?;
+                let h = positive(
+                    self.number_value(&arr.get(1).expect("two").clone(), &format!("{at}[1]"))?,
+                    &format!("{at}[1]"),
+                )?;
                 Shape::Cylinder(r, h)
             }
             "points" => {
@@ -153,7 +167,11 @@ impl Shape {
         match self {
             Shape::Box([a, b, c]) => {
                 let (a2, b2, c2) = (a.square(), b.square(), c.square());
-                solid(diag(twelfth(&b2 + &c2), twelfth(&a2 + &c2), twelfth(&a2 + &b2)))
+                solid(diag(
+                    twelfth(&b2 + &c2),
+                    twelfth(&a2 + &c2),
+                    twelfth(&a2 + &b2),
+                ))
             }
             Shape::Sphere(r) => {
                 let j = &(&Term::text("2/5") * m) * &r.square();
@@ -169,9 +187,7 @@ impl Shape {
                 solid(diag(side.clone(), side, Term::int(0)))
             }
             Shape::Points(points) => {
-                let mass = points
-                    .iter()
-                    .fold(Term::int(0), |acc, (mi, _)| &acc + mi);
+                let mass = points.iter().fold(Term::int(0), |acc, (mi, _)| &acc + mi);
                 let moment = points
                     .iter()
                     .fold(zero(), |acc, (mi, p)| add(&acc, &scale(mi, p)));
@@ -202,7 +218,9 @@ impl Shape {
 
     /// A box's corner with the signs `s` (each ±1): (s₀a/2, s₁b/2, s₂c/2).
     pub(crate) fn corner(dims: &Vec3, s: [i64; 3]) -> Vec3 {
-        std::array::from_fn(|i| &dims[i] * &Term::Rat(num_rational::BigRational::new(s[i].into(), 2.into())))
+        std::array::from_fn(|i| {
+            &dims[i] * &Term::Rat(num_rational::BigRational::new(s[i].into(), 2.into()))
+        })
     }
 
     /// The eight sign patterns of a box's corners.

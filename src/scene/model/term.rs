@@ -35,11 +35,11 @@ impl Term {
     }
 
     /// A number as read: its exact value when it has one and depends on nothing (no symbol, no
-    /// seeded derivative), else its text.
+    /// seeded derivative), else its text as written (naming its parameters).
     pub(crate) fn of(n: &Number) -> Term {
         match &n.exact {
             Ok(q) if n.tangent == 0.0 => Term::Rat(q.clone()),
-            _ => Term::Text(n.text.clone()),
+            _ => Term::Text(n.source.clone().unwrap_or_else(|| n.text.clone())),
         }
     }
 

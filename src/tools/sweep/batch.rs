@@ -16,17 +16,18 @@ use toml_edit::DocumentMut;
 use super::SweepError;
 use super::outputs::{law_values, output_names, point_status, status, sweep_laws};
 use super::slot::Slot;
-use super::text::toml_text;
+use super::target::Target;
+
 use crate::impact::friction::Restitution;
 use crate::impact::unilateral::Law;
 use crate::number::parse_decimal;
+use crate::scene::Scene;
 use crate::scene::pipeline::run;
-use crate::scene::{Scene, set_value};
 
 /// One varied number: its key path (`contact[1].k`, `body.mass`, …) and its value per point.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Varied {
-    /// The key path, as in [`set_value`].
+    /// The key path, as in [`set_value`](crate::scene::set_value).
     pub path: String,
     /// One value per point.
     pub values: Vec<f64>,
@@ -69,14 +70,18 @@ pub fn solve_batch(
         base.law = law;
     }
     let points = vary.first().map_or(0, |v| v.values.len());
-    let keys: Vec<String> = base.numbers().map(|(k, _)| k).collect();
-    for v in vary {
-        let known = keys.iter().any(|k| {
-            *k == v.path
-                || v.path
-                    .strip_suffix(".k")
-                    .is_some_and(|c| *k == format!("{c}.k_newton"))
-        });
+    let mut keys: Vec<String> = base.params.iter().map(|p| p.name.clone()).collect();
+    keys.extend(base.numbers().map(|(k, _)| k));
+    let targets: Vec<Target> = vary.iter().map(|v| Target::of(&v.path, &base)).collect();
+    for (v, t) in vary.iter().zip(&targets) {
+        let known = t.param
+            || base.axes.is_some()
+            || keys.iter().any(|k| {
+                *k == v.path
+                    || v.path
+                        .strip_suffix(".k")
+                        .is_some_and(|c| *k == format!("{c}.k_newton"))
+            });
         if !known {
             return Err(SweepError::Vary {
                 spec: v.path.clone(),
@@ -97,7 +102,12 @@ pub fn solve_batch(
             });
         }
     }
-    let slots: Option<Vec<Slot>> = vary.iter().map(|v| Slot::find(&v.path, &base)).collect();
+    // Modelled scenes and parameters re-read the document (see `Plan`).
+    let slots: Option<Vec<Slot>> = if base.axes.is_some() || targets.iter().any(|t| t.param) {
+        None
+    } else {
+        vary.iter().map(|v| Slot::find(&v.path, &base)).collect()
+    };
     let (models, friction) = sweep_laws(&base, vary.iter().map(|v| v.path.as_str()));
     let outputs = output_names(base.contacts.len(), friction);
     let width = outputs.len();
@@ -130,8 +140,8 @@ pub fn solve_batch(
                 }
                 None => {
                     let mut d = doc.clone();
-                    for (v, q) in vary.iter().zip(&values) {
-                        set_value(&mut d, &v.path, &toml_text(q)).map_err(&at)?;
+                    for (t, q) in targets.iter().zip(&values) {
+                        t.set(&mut d, q).map_err(&at)?;
                     }
                     let mut scene =
                         Scene::from_document(&d, file).map_err(|e| at(e.to_string()))?;
@@ -171,7 +181,7 @@ pub fn solve_batch(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scene::parse_document;
+    use crate::scene::{parse_document, set_value};
 
     const BAR: &str = include_str!("../../../examples/planar-bar.toml");
 

@@ -33,9 +33,28 @@
 //!   impact), `Ep` (E_p) and `dEc` (ΔE_c). In `--exact` mode these are the f64 values of the
 //!   exact results, followed (so the f64 columns keep their order) by `P1_exact … PN_exact`,
 //!   `Ep_exact`, `dEc_exact`: `p/q`, or `c*sqrt(r)` for an impulse along a non-unit normal.
+//! * with `--sensitivity`, per varied path KEY (in `--vary` order), per model, per output
+//!   column above: `d(newton_P1)/d(KEY)`, …, and in `--exact` mode `d(newton_P1)/d(KEY)_exact`
+//!   for P_i, E_p, ΔE_c (see [Sensitivities](#sensitivities)).
 //! * `status`: `ok` or `singular` (then every output column of the row is empty).
 //!
 //! f64 values are written with full round-trip precision (Rust's `{:?}`, e.g. `0.1`, `1e-7`).
+//!
+//! ## Sensitivities
+//!
+//! With `--sensitivity` ([`SweepOptions::sensitivity`]) every point is also solved once per
+//! varied path KEY in dual numbers ([`crate::scalar::dual`]: `Dual<f64>`, or `Dual<Exact>`
+//! with `--exact`), the scene there seeded with KEY's number carrying tangent 1
+//! ([`crate::scene::seed::seeded`]), and the columns `d(OUTPUT)/d(KEY)` hold each output's
+//! derivative with respect to KEY — forward-mode automatic differentiation through the
+//! unchanged solver, exact in `--exact` mode (a surd `c*sqrt(r)` where the output is one), to
+//! rounding in f64. It is the derivative of the branch the point's value takes (which contacts
+//! take an impulse, which modes friction follows); at a branch point it is one-sided. Where a
+//! law has no answer its derivative cells are empty like its outputs; where its answer is
+//! inadmissible (`tensile`, …) both are written, the derivative that of that answer. A
+//! derivative that does not exist (√ at 0) or is not finite is an empty cell. Frictional
+//! scenes are differentiated when planar (event by event); a spatial one is refused before the
+//! sweep starts. Without the flag nothing is solved twice and the columns are unchanged.
 //!
 //! ## Shards (array jobs)
 //!
@@ -71,7 +90,10 @@
 //! (they coincide when every k_i is equal, eq. 50–55). Outputs are named like CSV columns
 //! (`newton_P1`), or without the model prefix (`P1`, `dEc`) for every model solved; the
 //! default is `P1 … PN` and `dEc` for every model. A 2-D sweep draws one line per value of
-//! the second varied input, all in the output's colour. Singular points leave a gap.
+//! the second varied input, all in the output's colour. Singular points leave a gap. With
+//! `--sensitivity` the default adds each plotted output's derivative with respect to the first
+//! varied input (the slope of its curve) as a thin line in its colour; a derivative column may
+//! also be named (`d(P1)/d(contact[1].k)`, `d(newton_P1)/d(contact[1].k)`).
 //!
 //! Where the regime switches, the plot says so: each x-range whose `status` is not `ok` is
 //! shaded over the whole height, behind the lines, from the midpoint with the previous grid
@@ -102,6 +124,7 @@ mod plan;
 mod plot;
 mod slot;
 mod stream;
+mod target;
 mod text;
 
 use std::path::PathBuf;
@@ -140,6 +163,9 @@ pub struct SweepOptions {
     pub progress: bool,
     /// The impact law; `None`: the scene's `[solve] law`.
     pub law: Option<crate::impact::unilateral::Law>,
+    /// Add the derivative of every output with respect to every varied input
+    /// (`d(OUTPUT)/d(KEY)` columns; see [Sensitivities](crate::tools::sweep#sensitivities)).
+    pub sensitivity: bool,
 }
 
 /// What a sweep did.

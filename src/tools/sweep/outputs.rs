@@ -57,13 +57,16 @@ pub(super) fn point_status(e: &RunError) -> Option<&'static str> {
     }
 }
 
-/// One plotted line: a model's output.
+/// One plotted line: a model's output, or its derivative with respect to a varied input.
 #[derive(Clone, Debug)]
 pub(super) struct Series {
     /// Index into the plan's models.
     pub(super) model: usize,
     /// Index into [`output_names`].
     pub(super) output: usize,
+    /// The derivative with respect to this varied input (an index into the plan's `vary`),
+    /// or the output itself.
+    pub(super) wrt: Option<usize>,
 }
 
 /// One solved point.
@@ -82,40 +85,38 @@ pub(super) struct Row {
     pub(super) status: String,
 }
 
-/// A model's numeric outputs, in [`output_names`] order.
-pub(super) fn model_values(r: &ModelReport) -> Vec<f64> {
-    let mut v: Vec<f64> = r.impulses.iter().map(|x| x.f64).collect();
-    v.extend(r.velocity.iter().map(|x| x.f64));
-    v.extend(r.angular_velocity.iter().map(|x| x.f64));
-    v.push(r.lost_velocity_energy.f64);
-    v.push(r.kinetic_energy_loss.f64);
+/// A model's outputs, in [`output_names`] order.
+fn model_outputs(r: &ModelReport) -> Vec<Value> {
+    let mut v: Vec<Value> = r.impulses.clone();
+    v.extend(r.velocity.iter().cloned());
+    v.extend(r.angular_velocity.iter().cloned());
+    v.push(r.lost_velocity_energy.clone());
+    v.push(r.kinetic_energy_loss.clone());
     v
 }
 
-/// One law's outputs at a solved point, in [`output_names`] order, with their exact texts
-/// (P_i, E_p, ΔE_c): from the frictional readout of `law`, or — at a point of a frictional
-/// sweep where every μ_i = 0 — from the paper's model of that name, which the integrator
-/// equals exactly there (with E_f = 0). `None` when the law was not solved.
-pub(super) fn law_values(
-    report: &Report,
-    law: Restitution,
-    friction: bool,
-) -> Option<(Vec<f64>, Vec<String>)> {
-    let exact = |v: &Value| v.exact.clone().unwrap_or_default();
+/// The indices among [`output_names`] that also get an exact column: P_i, E_p, ΔE_c.
+pub(super) fn exact_outputs(contacts: usize) -> impl Iterator<Item = usize> {
+    (0..contacts).chain([contacts + 6, contacts + 7])
+}
+
+/// One law's outputs at a solved point, in [`output_names`] order: from the frictional
+/// readout of `law`, or — at a point of a frictional sweep where every μ_i = 0 — from the
+/// paper's model of that name, which the integrator equals exactly there (with E_f = 0, whose
+/// derivative is 0 too: no μ_i moves at such a point unless seeded, which makes it frictional).
+/// `None` when the law was not solved.
+pub(super) fn law_outputs(report: &Report, law: Restitution, friction: bool) -> Option<Vec<Value>> {
     if let Some(f) = report.friction.iter().find(|f| f.law == law) {
-        let mut v: Vec<f64> = f.contacts.iter().map(|c| c.normal_impulse.f64).collect();
-        v.extend(f.velocity.iter().chain(&f.angular_velocity).map(|x| x.f64));
-        v.push(f.lost_velocity_energy.f64);
-        v.push(f.kinetic_energy_loss.f64);
-        v.push(f.friction_dissipation.f64);
-        let mut e: Vec<String> = f
+        let mut v: Vec<Value> = f
             .contacts
             .iter()
-            .map(|c| exact(&c.normal_impulse))
+            .map(|c| c.normal_impulse.clone())
             .collect();
-        e.push(exact(&f.lost_velocity_energy));
-        e.push(exact(&f.kinetic_energy_loss));
-        return Some((v, e));
+        v.extend(f.velocity.iter().chain(&f.angular_velocity).cloned());
+        v.push(f.lost_velocity_energy.clone());
+        v.push(f.kinetic_energy_loss.clone());
+        v.push(f.friction_dissipation.clone());
+        return Some(v);
     }
     let model = match law {
         Restitution::Newton => Model::Newton,
@@ -123,46 +124,89 @@ pub(super) fn law_values(
         Restitution::Energetic => return None,
     };
     let r = report.model(model)?;
-    let mut v = model_values(r);
+    let mut v = model_outputs(r);
     if friction {
-        v.push(0.0);
+        v.push(zero_like(&r.kinetic_energy_loss));
     }
-    let mut e: Vec<String> = r.impulses.iter().map(exact).collect();
-    e.push(exact(&r.lost_velocity_energy));
-    e.push(exact(&r.kinetic_energy_loss));
-    Some((v, e))
+    Some(v)
 }
 
-/// The plotted series for the names asked for (see [`super::SweepOptions::plot_outputs`]).
+/// Zero in the form of `v`: with an exact text and a derivative when `v` has them.
+fn zero_like(v: &Value) -> Value {
+    let zero = |v: &Value| Value {
+        exact: v.exact.as_ref().map(|_| "0".to_string()),
+        ..Value::float(0.0)
+    };
+    Value {
+        derivative: v.derivative.as_deref().map(|d| Box::new(zero(d))),
+        ..zero(v)
+    }
+}
+
+/// One law's outputs at a solved point, in [`output_names`] order, with the exact texts of
+/// P_i, E_p, ΔE_c (see [`law_outputs`]).
+pub(super) fn law_values(
+    report: &Report,
+    law: Restitution,
+    friction: bool,
+) -> Option<(Vec<f64>, Vec<String>)> {
+    let v = law_outputs(report, law, friction)?;
+    let contacts = v.len() - 8 - usize::from(friction);
+    let exact = exact_outputs(contacts)
+        .map(|k| v[k].exact.clone().unwrap_or_default())
+        .collect();
+    Some((v.iter().map(|x| x.f64).collect(), exact))
+}
+
+/// A derivative as a CSV cell and a plotted y: empty and NaN when it does not exist or is not
+/// finite.
+fn derivative_cell(v: &Value) -> (String, f64) {
+    match v.derivative.as_deref() {
+        Some(d) if d.f64.is_finite() => (num(d.f64), d.f64),
+        _ => (String::new(), f64::NAN),
+    }
+}
+
+/// The exact text of a derivative (`--exact`), empty when there is none.
+fn derivative_exact(v: &Value) -> String {
+    match v.derivative.as_deref() {
+        Some(d) if d.f64.is_finite() => d.exact.clone().unwrap_or_default(),
+        _ => String::new(),
+    }
+}
+
+/// The plotted series for the names asked for (see [`super::SweepOptions::plot_outputs`]);
+/// `keys` are the varied paths when derivatives are computed (`--sensitivity`), else empty.
 pub(super) fn resolve_outputs(
     asked: &[String],
     models: &[Restitution],
     contacts: usize,
     friction: bool,
+    keys: &[String],
 ) -> Result<Vec<Series>, SweepError> {
     let names = output_names(contacts, friction);
     let mut out: Vec<Series> = Vec::new();
     let mut push = |s: Series| {
         if !out
             .iter()
-            .any(|o| o.model == s.model && o.output == s.output)
+            .any(|o| o.model == s.model && o.output == s.output && o.wrt == s.wrt)
         {
             out.push(s);
         }
     };
     if asked.is_empty() {
-        for m in 0..models.len() {
-            for o in (0..contacts).chain([names.len() - 1]) {
-                push(Series {
-                    model: m,
-                    output: o,
-                });
+        let wrts = std::iter::once(None).chain((!keys.is_empty()).then_some(Some(0)));
+        for wrt in wrts {
+            for model in 0..models.len() {
+                for output in (0..contacts).chain([names.len() - 1]) {
+                    push(Series { model, output, wrt });
+                }
             }
         }
         return Ok(out);
     }
     for name in asked {
-        for s in resolve_name(name.trim(), &names, models)? {
+        for s in resolve_name(name.trim(), &names, models, keys)? {
             push(s);
         }
     }
@@ -170,19 +214,41 @@ pub(super) fn resolve_outputs(
 }
 
 /// The series one name asks for: a column (`newton_P1`) names one, a per-model name (`P1`)
-/// one per model solved.
+/// one per model solved; `d(NAME)/d(KEY)` their derivatives with respect to the varied KEY.
 fn resolve_name(
     name: &str,
     names: &[String],
     models: &[Restitution],
+    keys: &[String],
 ) -> Result<Vec<Series>, SweepError> {
-    let (model, output) = match name.split_once('_') {
-        Some((m, rest)) if Restitution::from_name(m).is_some() => (Restitution::from_name(m), rest),
-        _ => (None, name),
-    };
     let err = |reason: String| SweepError::Output {
         name: name.to_string(),
         reason,
+    };
+    let (name, wrt) = match name
+        .strip_prefix("d(")
+        .and_then(|rest| rest.strip_suffix(')'))
+        .and_then(|rest| rest.split_once(")/d("))
+    {
+        Some((output, key)) => {
+            if keys.is_empty() {
+                return Err(err(
+                    "a derivative is plotted only with --sensitivity".to_string()
+                ));
+            }
+            let k = keys.iter().position(|k| k == key).ok_or_else(|| {
+                err(format!(
+                    "`{key}` is not varied; derivatives are taken with respect to: {}",
+                    keys.join(", ")
+                ))
+            })?;
+            (output, Some(k))
+        }
+        None => (name, None),
+    };
+    let (model, output) = match name.split_once('_') {
+        Some((m, rest)) if Restitution::from_name(m).is_some() => (Restitution::from_name(m), rest),
+        _ => (None, name),
     };
     if output.ends_with("_exact") {
         return Err(err(format!(
@@ -201,6 +267,7 @@ fn resolve_name(
             .map(|m| Series {
                 model: m,
                 output: o,
+                wrt,
             })
             .collect()),
         Some(model) => {
@@ -217,6 +284,7 @@ fn resolve_name(
             Ok(vec![Series {
                 model: m,
                 output: o,
+                wrt,
             }])
         }
     }
@@ -232,7 +300,8 @@ fn available(names: &[String], models: &[Restitution]) -> String {
 }
 
 impl Plan {
-    /// The CSV header: `point`, the varied paths, the per-model outputs, `status`.
+    /// The CSV header: `point`, the varied paths, the per-model outputs, with `--sensitivity`
+    /// their derivatives per varied path, `status`.
     pub(super) fn header(&self) -> Vec<String> {
         let mut h = vec!["point".to_string()];
         for v in &self.vary {
@@ -242,16 +311,26 @@ impl Plan {
             }
         }
         let names = output_names(self.contacts, self.friction);
-        for m in &self.models {
-            for n in &names {
-                h.push(format!("{m}_{n}"));
-            }
+        let model_columns = |m: &Restitution| -> Vec<String> {
+            let mut c: Vec<String> = names.iter().map(|n| format!("{m}_{n}")).collect();
             if self.exact {
-                for i in 1..=self.contacts {
-                    h.push(format!("{m}_P{i}_exact"));
+                c.extend(exact_outputs(self.contacts).map(|k| format!("{m}_{}_exact", names[k])));
+            }
+            c
+        };
+        for m in &self.models {
+            h.extend(model_columns(m));
+        }
+        if self.sensitivity {
+            for v in &self.vary {
+                for m in &self.models {
+                    h.extend(model_columns(m).into_iter().map(
+                        |c| match c.strip_suffix("_exact") {
+                            Some(c) => format!("d({c})/d({})_exact", v.path),
+                            None => format!("d({c})/d({})", v.path),
+                        },
+                    ));
                 }
-                h.push(format!("{m}_Ep_exact"));
-                h.push(format!("{m}_dEc_exact"));
             }
         }
         h.push("status".into());
@@ -266,47 +345,83 @@ impl Plan {
 
     /// Solve point p into its CSV row and plotted values.
     pub(super) fn row(&self, p: usize) -> Result<Row, SweepError> {
-        let (values, solved) = self.solve(p)?;
-        let status = match &solved {
+        let solved = self.solve(p)?;
+        let values = &solved.values;
+        let status = match &solved.report {
             Ok(r) => status(r),
             Err(s) => (*s).to_string(),
         };
-        let report = solved.ok();
-        let mut fields =
-            Vec::with_capacity(2 + 2 * values.len() + self.models.len() * self.model_width());
+        let report = solved.report.as_ref().ok();
+        let keys = if self.sensitivity { self.vary.len() } else { 0 };
+        let mut fields = Vec::with_capacity(
+            2 + 2 * values.len() + (1 + keys) * self.models.len() * self.model_width(),
+        );
         fields.push(p.to_string());
-        for q in &values {
+        for q in values {
             fields.push(num(rational_to_f64(q)));
             if self.exact {
                 fields.push(format_rational(q));
             }
         }
-        let mut per_model: Vec<Option<Vec<f64>>> = Vec::with_capacity(self.models.len());
-        for m in &self.models {
-            let r = report
-                .as_ref()
-                .and_then(|r| law_values(r, *m, self.friction));
-            match &r {
+        let outputs: Vec<Option<Vec<Value>>> = self
+            .models
+            .iter()
+            .map(|m| report.and_then(|r| law_outputs(r, *m, self.friction)))
+            .collect();
+        for v in &outputs {
+            match v {
                 None => fields.extend(std::iter::repeat_n(String::new(), self.model_width())),
-                Some((values, exact)) => {
-                    fields.extend(values.iter().map(|&x| num(x)));
+                Some(v) => {
+                    fields.extend(v.iter().map(|x| num(x.f64)));
                     if self.exact {
-                        fields.extend(exact.iter().cloned());
+                        fields.extend(
+                            exact_outputs(self.contacts)
+                                .map(|k| v[k].exact.clone().unwrap_or_default()),
+                        );
                     }
                 }
             }
-            per_model.push(r.map(|(v, _)| v));
         }
-        let singular = report.is_none();
+        // Per varied path and model, the derivatives (NaN where there are none).
+        let mut slopes: Vec<Vec<Option<Vec<f64>>>> = Vec::with_capacity(keys);
+        for k in 0..keys {
+            let dual = solved.derivatives.get(k).and_then(Option::as_ref);
+            let mut per_model = Vec::with_capacity(self.models.len());
+            for (m, plain) in self.models.iter().zip(&outputs) {
+                let d = match (plain, dual) {
+                    (Some(_), Some(r)) => law_outputs(r, *m, self.friction),
+                    _ => None,
+                };
+                match &d {
+                    None => fields.extend(std::iter::repeat_n(String::new(), self.model_width())),
+                    Some(d) => {
+                        fields.extend(d.iter().map(|x| derivative_cell(x).0));
+                        if self.exact {
+                            fields.extend(
+                                exact_outputs(self.contacts).map(|k| derivative_exact(&d[k])),
+                            );
+                        }
+                    }
+                }
+                per_model.push(d.map(|d| d.iter().map(|x| derivative_cell(x).1).collect()));
+            }
+            slopes.push(per_model);
+        }
         fields.push(status.clone());
         let ys = self
             .series
             .iter()
             .map(|s| {
-                per_model[s.model]
-                    .as_ref()
-                    .and_then(|v| v.get(s.output).copied())
-                    .unwrap_or(f64::NAN)
+                let y = match s.wrt {
+                    None => outputs[s.model]
+                        .as_ref()
+                        .and_then(|v| v.get(s.output))
+                        .map(|x| x.f64),
+                    Some(k) => slopes[k][s.model]
+                        .as_ref()
+                        .and_then(|v| v.get(s.output).copied()),
+                };
+                y.unwrap_or(f64::NAN)
             })
             .collect();
         Ok(Row {
@@ -314,7 +429,7 @@ impl Plan {
             x: rational_to_f64(&values[0]),
             j: self.indices(p).1,
             ys,
-            singular,
+            singular: report.is_none(),
             status,
         })
     }
@@ -364,7 +479,7 @@ mod tests {
         let models = vec![Restitution::Newton, Restitution::Poisson];
         let pairs = |names: &[&str]| -> Vec<(usize, usize)> {
             let asked: Vec<String> = names.iter().map(|s| s.to_string()).collect();
-            resolve_outputs(&asked, &models, 2, false)
+            resolve_outputs(&asked, &models, 2, false, &[])
                 .unwrap()
                 .iter()
                 .map(|s| (s.model, s.output))
@@ -381,10 +496,65 @@ mod tests {
             vec![(1, 1), (0, 8)]
         );
         let asked = vec!["P3".to_string()];
-        let e = resolve_outputs(&asked, &models, 2, false).unwrap_err();
+        let e = resolve_outputs(&asked, &models, 2, false, &[]).unwrap_err();
         assert!(e.to_string().contains("newton_P1"), "{e}");
         let asked = vec!["poisson_P1".to_string()];
-        let e = resolve_outputs(&asked, &[Restitution::Newton], 2, false).unwrap_err();
+        let e = resolve_outputs(&asked, &[Restitution::Newton], 2, false, &[]).unwrap_err();
         assert!(e.to_string().contains("poisson"), "{e}");
+    }
+
+    #[test]
+    fn derivatives_resolve_against_the_varied_paths() {
+        let models = vec![Restitution::Newton, Restitution::Poisson];
+        let keys = vec!["contact[1].k".to_string(), "body.mass".to_string()];
+        let series = |names: &[&str], keys: &[String]| {
+            let asked: Vec<String> = names.iter().map(|s| s.to_string()).collect();
+            resolve_outputs(&asked, &models, 2, false, keys).map(|v| {
+                v.iter()
+                    .map(|s| (s.model, s.output, s.wrt))
+                    .collect::<Vec<_>>()
+            })
+        };
+        // Default with --sensitivity: the outputs, then their slopes along the first path.
+        let default = series(&[], &keys).unwrap();
+        assert_eq!(default.len(), 12);
+        assert_eq!(
+            default[6..],
+            [
+                (0, 0, Some(0)),
+                (0, 1, Some(0)),
+                (0, 9, Some(0)),
+                (1, 0, Some(0)),
+                (1, 1, Some(0)),
+                (1, 9, Some(0))
+            ]
+        );
+        assert_eq!(
+            series(
+                &["d(newton_P2)/d(body.mass)", "d(Ep)/d(contact[1].k)"],
+                &keys
+            )
+            .unwrap(),
+            vec![(0, 1, Some(1)), (0, 8, Some(0)), (1, 8, Some(0))]
+        );
+        let e = series(&["d(P1)/d(body.inertia[0])"], &keys).unwrap_err();
+        assert!(e.to_string().contains("not varied"), "{e}");
+        let e = series(&["d(P1)/d(contact[1].k)"], &[]).unwrap_err();
+        assert!(e.to_string().contains("--sensitivity"), "{e}");
+    }
+
+    #[test]
+    fn the_frictionless_dissipation_is_zero_with_a_zero_derivative() {
+        let mut v = Value::float(2.5);
+        assert_eq!(zero_like(&v), Value::float(0.0));
+        v.exact = Some("5/2".into());
+        v.derivative = Some(Box::new(Value {
+            exact: Some("1/3".into()),
+            ..Value::float(1.0 / 3.0)
+        }));
+        let z = zero_like(&v);
+        assert_eq!((z.f64, z.exact.as_deref()), (0.0, Some("0")));
+        let d = z.derivative.unwrap();
+        assert_eq!((d.f64, d.exact.as_deref()), (0.0, Some("0")));
     }
 }

@@ -8,14 +8,29 @@ use toml_edit::DocumentMut;
 
 use super::outputs::{Series, point_status, resolve_outputs, sweep_laws};
 use super::slot::Slot;
-use super::text::{text, toml_text};
+use super::target::{SEED, Target};
+use super::text::text;
 use super::{SweepError, SweepOptions, Vary};
 use crate::impact::friction::Restitution;
 use crate::impact::unilateral::Law;
 use crate::report::Report;
 use crate::scalar::Exact;
-use crate::scene::pipeline::run;
-use crate::scene::{Scene, SceneError, parse_document, set_value};
+use crate::scalar::dual::Dual;
+use crate::scene::pipeline::{RunError, run};
+use crate::scene::seed::seeded;
+use crate::scene::{Scene, SceneError, parse_document};
+
+/// A solved point: its varied values, its report (or the status of a point without one) and,
+/// with `--sensitivity`, per varied path the report of the dual-number run seeded on it
+/// (`None` where the point has no answer: it is not differentiated).
+pub(super) struct Solved {
+    /// The varied values, outer first.
+    pub(super) values: Vec<BigRational>,
+    /// The report, or the status of a point without an answer.
+    pub(super) report: Result<Report, &'static str>,
+    /// Per varied path, the dual run's report (its values carry the derivatives).
+    pub(super) derivatives: Vec<Option<Report>>,
+}
 
 /// A validated sweep.
 pub(super) struct Plan {
@@ -46,6 +61,10 @@ pub(super) struct Plan {
     pub(super) series: Vec<Series>,
     /// The impact law, when `--law` overrides the scene's.
     law: Option<Law>,
+    /// Whether each point is also differentiated with respect to each varied path.
+    pub(super) sensitivity: bool,
+    /// Where each varied value goes in the document.
+    targets: Vec<Target>,
 }
 
 impl Plan {
@@ -55,19 +74,34 @@ impl Plan {
         check_shard_and_files(opts)?;
         let points = grid_points(&opts.vary)?;
         let (file, doc, base) = read_scene(opts)?;
-        check_paths(&opts.vary, &doc, &base, &file)?;
+        let targets: Vec<Target> = opts
+            .vary
+            .iter()
+            .map(|v| Target::of(&v.path, &base))
+            .collect();
+        check_paths(&opts.vary, &targets, &doc, &base, &file)?;
         let (models, friction) = sweep_laws(&base, opts.vary.iter().map(|v| v.path.as_str()));
         let contacts = base.contacts.len();
-        let series = if opts.plot.is_some() {
-            resolve_outputs(&opts.plot_outputs, &models, contacts, friction)?
+        let keys: Vec<String> = if opts.sensitivity {
+            opts.vary.iter().map(|v| v.path.clone()).collect()
         } else {
             Vec::new()
         };
-        let slots = opts
-            .vary
-            .iter()
-            .map(|v| Slot::find(&v.path, &base))
-            .collect::<Option<Vec<_>>>();
+        let series = if opts.plot.is_some() {
+            resolve_outputs(&opts.plot_outputs, &models, contacts, friction, &keys)?
+        } else {
+            Vec::new()
+        };
+        // A modelled scene's numbers are computed from what was written (a shape's mass
+        // gives its moments), and a parameter may feed many: those re-read the document.
+        let slots = if base.axes.is_some() || targets.iter().any(|t| t.param) {
+            None
+        } else {
+            opts.vary
+                .iter()
+                .map(|v| Slot::find(&v.path, &base))
+                .collect::<Option<Vec<_>>>()
+        };
         let plan = Plan {
             file,
             name: base.name.clone(),
@@ -82,13 +116,16 @@ impl Plan {
             points,
             series,
             law: opts.law,
+            sensitivity: opts.sensitivity,
+            targets,
         };
         plan.solve_corners()?;
         Ok(plan)
     }
 
     /// Solve the grid's corners once: irrational numbers in exact mode, constraints and
-    /// tangents are caught before the sweep starts.
+    /// tangents (and, with `--sensitivity`, a scene that cannot be differentiated) are caught
+    /// before the sweep starts.
     fn solve_corners(&self) -> Result<(), SweepError> {
         let last: Vec<usize> = self.vary.iter().map(|v| v.count - 1).collect();
         let inner = self.vary.get(1).map_or(1, |v| v.count);
@@ -137,6 +174,33 @@ impl Plan {
         }
     }
 
+    /// The document at the varied values.
+    fn doc_at(&self, values: &[BigRational]) -> Result<DocumentMut, String> {
+        let mut doc = self.doc.clone();
+        for (t, q) in self.targets.iter().zip(values) {
+            t.set(&mut doc, q)?;
+        }
+        Ok(doc)
+    }
+
+    /// The scene at the varied values seeded to differentiate by varied input `i`.
+    fn seeded_at(&self, scene: &Scene, values: &[BigRational], i: usize) -> Result<Scene, String> {
+        let t = &self.targets[i];
+        if self.slots.is_some() {
+            return seeded(scene, &t.path).ok_or_else(|| {
+                format!(
+                    "`{}` names no number to differentiate by",
+                    self.vary[i].path
+                )
+            });
+        }
+        let doc = t.seed(&self.doc_at(values)?, &values[i])?;
+        let mut s =
+            Scene::from_document_seeded(&doc, &self.file, &[], SEED).map_err(|e| e.to_string())?;
+        s.law = scene.law;
+        Ok(s)
+    }
+
     /// The scene at the varied values (under `--law`, when given).
     fn scene_at(&self, values: &[BigRational]) -> Result<Scene, String> {
         let mut scene = match &self.slots {
@@ -147,13 +211,8 @@ impl Plan {
                 }
                 scene
             }
-            None => {
-                let mut doc = self.doc.clone();
-                for (v, q) in self.vary.iter().zip(values) {
-                    set_value(&mut doc, &v.path, &toml_text(q))?;
-                }
-                Scene::from_document(&doc, &self.file).map_err(|e| e.to_string())?
-            }
+            None => Scene::from_document(&self.doc_at(values)?, &self.file)
+                .map_err(|e| e.to_string())?,
         };
         if let Some(law) = self.law {
             scene.law = law;
@@ -163,27 +222,42 @@ impl Plan {
 
     /// Solve point p: its report, or the status of a point without one — `singular` (G
     /// singular under the simultaneous law) or `jammed` (no admissible impulses under the
-    /// unilateral law).
-    pub(super) fn solve(
-        &self,
-        p: usize,
-    ) -> Result<(Vec<BigRational>, Result<Report, &'static str>), SweepError> {
+    /// unilateral law) — and with `--sensitivity` its derivatives.
+    pub(super) fn solve(&self, p: usize) -> Result<Solved, SweepError> {
         let values = self.values(p);
-        let scene = self
-            .scene_at(&values)
-            .map_err(|e| self.point_error(p, &values, e))?;
+        let fail = |message: String| self.point_error(p, &values, message);
+        let scene = self.scene_at(&values).map_err(fail)?;
         let solved = if self.exact {
             run::<Exact>(&scene, None)
         } else {
             run::<f64>(&scene, None)
         };
-        match solved {
-            Ok(s) => Ok((values, Ok(s.report))),
-            Err(e) => match point_status(&e) {
-                Some(status) => Ok((values, Err(status))),
-                None => Err(self.point_error(p, &values, e.to_string())),
-            },
+        let report = match solved {
+            Ok(s) => Ok(s.report),
+            Err(e) => Err(point_status(&e).ok_or_else(|| fail(e.to_string()))?),
+        };
+        let mut derivatives = Vec::new();
+        if self.sensitivity && report.is_ok() {
+            for (i, v) in self.vary.iter().enumerate() {
+                let at = |e: RunError| fail(format!("d/d({}): {e}", v.path));
+                let seeded = self.seeded_at(&scene, &values, i).map_err(fail)?;
+                let solved = if self.exact {
+                    run::<Dual<Exact>>(&seeded, None)
+                } else {
+                    run::<Dual<f64>>(&seeded, None)
+                };
+                derivatives.push(match solved {
+                    Ok(s) => Some(s.report),
+                    Err(e) if point_status(&e).is_some() => None,
+                    Err(e) => return Err(at(e)),
+                });
+            }
         }
+        Ok(Solved {
+            values,
+            report,
+            derivatives,
+        })
     }
 }
 
@@ -288,23 +362,29 @@ fn read_scene(opts: &SweepOptions) -> Result<(String, DocumentMut, Scene), Sweep
 /// Each path must name a number, and the scene must be valid at both ends.
 fn check_paths(
     vary: &[Vary],
+    targets: &[Target],
     doc: &DocumentMut,
     base: &Scene,
     file: &str,
 ) -> Result<(), SweepError> {
-    let keys: Vec<String> = base.numbers().map(|(k, _)| k).collect();
-    for (v, spec) in vary.iter().zip(specs(vary)) {
-        let known = keys.iter().any(|k| {
-            *k == v.path
-                || v.path
-                    .strip_suffix(".k")
-                    .is_some_and(|c| *k == format!("{c}.k_newton"))
-        });
+    let mut keys: Vec<String> = base.params.iter().map(|p| p.name.clone()).collect();
+    keys.extend(base.numbers().map(|(k, _)| k));
+    for ((v, t), spec) in vary.iter().zip(targets).zip(specs(vary)) {
+        // A modelled scene's written numbers (a shape's edges, a pose's angle) are not the
+        // solver's: any number of the document may be varied, as its re-reading checks.
+        let known = t.param
+            || base.axes.is_some()
+            || keys.iter().any(|k| {
+                *k == v.path
+                    || v.path
+                        .strip_suffix(".k")
+                        .is_some_and(|c| *k == format!("{c}.k_newton"))
+            });
         if !known {
             return Err(SweepError::Vary {
                 spec,
                 reason: format!(
-                    "`{}` is not a number of the scene; vary one of its numbers: {}",
+                    "`{}` is not a number or parameter of the scene; vary one of: {}",
                     v.path,
                     listing(&keys)
                 ),
@@ -312,7 +392,7 @@ fn check_paths(
         }
         for (which, q) in [("START", &v.start), ("STOP", &v.stop)] {
             let mut d = doc.clone();
-            set_value(&mut d, &v.path, &toml_text(q)).map_err(|e| SweepError::Vary {
+            t.set(&mut d, q).map_err(|e| SweepError::Vary {
                 spec: spec.clone(),
                 reason: e,
             })?;

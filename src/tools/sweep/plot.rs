@@ -58,10 +58,15 @@ impl Plan {
                 .y_label_area_size(80)
                 .build_cartesian_2d(x0..x1, y0..y1)
                 .map_err(|e| err(&e))?;
+            let y_desc = if self.series.iter().any(|s| s.wrt.is_some()) {
+                "P / velocity / energy, and thin: their derivatives (scene units)"
+            } else {
+                "impulse P / velocity / energy (scene units)"
+            };
             chart
                 .configure_mesh()
                 .x_desc(v0.path.as_str())
-                .y_desc("impulse P / velocity / energy (scene units)")
+                .y_desc(y_desc)
                 .draw()
                 .map_err(|e| err(&e))?;
             draw_regimes(&mut chart, &regimes(&plotted.status, x0, x1), (y0, y1))?;
@@ -69,8 +74,23 @@ impl Plan {
                 let k = colours.iter().position(|c| *c == s.output).unwrap_or(0);
                 let (r, g, b) = PALETTE[k % PALETTE.len()];
                 let colour = RGBColor(r, g, b).to_rgba();
-                let label = format!("{} {}", self.models[s.model], names[s.output]);
-                draw_series(&mut chart, points, colour, s.model > 0, label, dots)?;
+                let (label, width) = match s.wrt {
+                    None => (format!("{} {}", self.models[s.model], names[s.output]), 2),
+                    Some(k) => (
+                        format!(
+                            "{} d({})/d({})",
+                            self.models[s.model], names[s.output], self.vary[k].path
+                        ),
+                        1,
+                    ),
+                };
+                let style = Style {
+                    colour,
+                    width,
+                    dashed: s.model > 0,
+                    dots,
+                };
+                draw_series(&mut chart, points, style, label)?;
             }
             chart
                 .configure_series_labels()
@@ -100,18 +120,30 @@ impl Plan {
 /// The chart a sweep is drawn on: f64 × f64, in SVG.
 type Chart<'a, 'b> = ChartContext<'a, SVGBackend<'b>, Cartesian2d<RangedCoordf64, RangedCoordf64>>;
 
-/// Draw one series in its colour (dashed for the second model, with dots when the points are
-/// few), labelled once in the legend.
+/// How a series is drawn: its output's colour, 2 px (an output) or 1 px (a derivative), dashed
+/// for the second model, with dots when the points are few.
+struct Style {
+    colour: RGBAColor,
+    width: u32,
+    dashed: bool,
+    dots: bool,
+}
+
+/// Draw one series in its style, labelled once in the legend.
 fn draw_series(
     chart: &mut Chart,
     points: &[(usize, f64, f64)],
-    colour: RGBAColor,
-    dashed: bool,
+    style: Style,
     label: String,
-    dots: bool,
 ) -> Result<(), SweepError> {
     let err = |e: &dyn std::fmt::Display| SweepError::Plot(e.to_string());
-    let style = colour.stroke_width(2);
+    let Style {
+        colour,
+        width,
+        dashed,
+        dots,
+    } = style;
+    let style = colour.stroke_width(width);
     let mut labelled = false;
     for seg in segments(points) {
         let drawn = if dashed {

@@ -69,6 +69,7 @@ impl Slot {
             approx: rational_to_f64(q),
             symbols: Vec::new(),
             tangent: 0.0,
+            source: None,
         };
         match self {
             Slot::Mass => scene.mass = n,
