@@ -282,8 +282,8 @@ impl<T: Scalar> Impact<T> {
         let fac = linalg::factor_psd(&mut self.factor, n, &mut self.perm)?;
         self.rank = fac.rank;
         self.det_hat = linalg::determinant(&self.factor, n);
-        // Exact types solve G x = b: every route gives the same numbers, that one the fastest.
         self.kinetic_before = problem.body().kinetic_energy(problem.velocity());
+        // Exact types solve G x = b: every route gives the same numbers, that one the fastest.
         self.basis_built = !T::IS_EXACT && self.rank == n && self.build_basis();
         Ok(())
     }
