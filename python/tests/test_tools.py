@@ -74,7 +74,8 @@ def test_derive_gives_sympy_expressions():
 def test_derive_errors():
     with pytest.raises(inertance.SceneError) as e:
         inertance.derive(SYMBOLIC, symbols=["m"])
-    assert e.value.key == "body.inertia[0]" and e.value.value == '"Jx"' 
+    # The first undeclared symbol read: the reader takes the contacts before the body.
+    assert e.value.key == "contact[0].point[1]" and e.value.value == '"y1"'
 
 
 def test_sweep_returns_arrays_and_matches_exact_grid():

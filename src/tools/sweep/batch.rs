@@ -181,7 +181,7 @@ pub fn solve_batch(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scene::parse_document;
+    use crate::scene::{parse_document, set_value};
 
     const BAR: &str = include_str!("../../../examples/planar-bar.toml");
 
