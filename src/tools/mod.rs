@@ -6,6 +6,7 @@
 pub mod analyze;
 pub mod bench;
 pub mod check;
+pub mod corpus;
 pub mod derive;
 pub mod friction_bench;
 pub mod sweep;
