@@ -88,6 +88,15 @@ pub(super) fn add(a: &BigInt, b: &BigInt, c: &BigInt, d: &BigInt) -> Parts {
     (exact_div(&t, &g2), b1 * exact_div(d, &g2))
 }
 
+/// √x for x ≥ 0 when x is a perfect square: in 128-bit integers when x fits them.
+pub(super) fn sqrt_exact(x: &BigInt) -> Option<BigInt> {
+    let root = match x.magnitude().to_u128() {
+        Some(v) => BigInt::from(v.isqrt()),
+        None => x.sqrt(),
+    };
+    (&root * &root == *x).then_some(root)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -111,5 +120,15 @@ mod tests {
         assert_eq!(add(&b(1), &b(6), &b(1), &b(10)), (b(4), b(15)));
         assert_eq!(add(&b(1), &b(6), &b(-1), &b(6)), (b(0), b(1)));
         assert_eq!(div(&b(1), &b(2), &b(-3), &b(4)), (b(-2), b(3)));
+    }
+
+    #[test]
+    fn square_roots_of_squares_only() {
+        let big = b(1 << 100) * b(3);
+        assert_eq!(sqrt_exact(&(&big * &big)), Some(big.clone()));
+        assert_eq!(sqrt_exact(&(&big * &big + 1)), None);
+        assert_eq!(sqrt_exact(&b(u128::MAX as i128 >> 1)), None);
+        let w = b((1 << 62) + 7);
+        assert_eq!(sqrt_exact(&(&w * &w)), Some(w));
     }
 }

@@ -39,6 +39,8 @@ mod big;
 mod ops;
 mod word;
 
+pub(crate) use word::gcd_u128;
+
 use std::cmp::Ordering;
 use std::fmt;
 
@@ -287,7 +289,15 @@ impl Scalar for Rational {
     fn sqrt_exact(&self) -> Option<Self> {
         match &self.0 {
             Repr::Word(n, d) => word::sqrt(*n, *d).map(|(n, d)| Rational(Repr::Word(n, d))),
-            Repr::Big(q) => q.sqrt_exact().map(Rational::from),
+            Repr::Big(q) => {
+                // In lowest terms, √(n/d) is rational exactly when n and d are both squares.
+                if q.is_negative() {
+                    return None;
+                }
+                let rn = big::sqrt_exact(q.numer())?;
+                let rd = big::sqrt_exact(q.denom())?;
+                Some(Rational::from_parts(rn, rd))
+            }
         }
     }
 }

@@ -44,7 +44,7 @@ fn binary_gcd(mut a: u64, mut b: u64) -> u64 {
 }
 
 /// gcd(a, b) of two 128-bit integers, binary, finishing in [`gcd`] once both fit a word.
-pub(super) fn gcd_u128(mut a: u128, mut b: u128) -> u128 {
+pub(crate) fn gcd_u128(mut a: u128, mut b: u128) -> u128 {
     if a == 0 {
         return b;
     }
