@@ -12,10 +12,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
 
 /// Sweep and print to `out` (the tests read it).
 pub fn run(out: &mut impl std::io::Write) -> Result<(), Box<dyn std::error::Error>> {
-    let body = RigidBody {
-        mass: 1.0,
-        inertia: Vec3::new(12.0, 1.6, 12.0),
-    };
+    let body = RigidBody::principal(1.0, Vec3::new(12.0, 1.6, 12.0));
     let twist = Screw::new(Vec3::new(0.0, 0.0, 0.4), Vec3::new(3.0, 2.0, 0.0));
     let normal = Vec3::new(1.0, 0.0, 0.0);
     writeln!(

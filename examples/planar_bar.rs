@@ -14,10 +14,7 @@ use inertance::{
 fn example_3<T: Scalar>() -> Result<Problem<T>, InvalidProblem> {
     let q = ratio::<T>;
     let v = |x, y, z| Vec3::new(q(x, 1), q(y, 1), q(z, 1));
-    let body = RigidBody {
-        mass: q(1, 1),
-        inertia: Vec3::new(q(12, 1), q(8, 5), q(12, 1)),
-    };
+    let body = RigidBody::principal(q(1, 1), Vec3::new(q(12, 1), q(8, 5), q(12, 1)));
     let twist = Screw::new(Vec3::new(q(0, 1), q(0, 1), q(2, 5)), v(3, 2, 0));
     let contacts = vec![
         Contact::new(v(0, -2, 0), v(1, 0, 0), q(3, 10)),

@@ -15,7 +15,7 @@
 //! fn example_3<T: Scalar>() -> Result<Problem<T>, inertance::InvalidProblem> {
 //!     let q = inertance::scalar::ratio::<T>;
 //!     let v = |x, y, z| Vec3::new(q(x, 1), q(y, 1), q(z, 1));
-//!     let body = RigidBody { mass: q(1, 1), inertia: Vec3::new(q(12, 1), q(8, 5), q(12, 1)) };
+//!     let body = RigidBody::principal(q(1, 1), Vec3::new(q(12, 1), q(8, 5), q(12, 1)));
 //!     // {v⁰} = [ω⁰; v_C⁰]: ω⁰ = 0.4 rad/s about z, v_C⁰ = (3, 2, 0) m/s.
 //!     let twist = Screw::new(Vec3::new(q(0, 1), q(0, 1), q(2, 5)), v(3, 2, 0));
 //!     let contacts = vec![
@@ -35,21 +35,24 @@
 //! assert_eq!(exact.lost_velocity_energy.to_f64(), 413791.0 / 45000.0); // E_p, J
 //!
 //! // Bad input is refused with the field named, as in scene files.
-//! let body = RigidBody { mass: -1.0, inertia: Vec3::new(1.0, 1.0, 1.0) };
+//! let body = RigidBody::principal(-1.0, Vec3::new(1.0, 1.0, 1.0));
 //! let err = Problem::new(body, Screw::zero(), vec![]).unwrap_err();
 //! assert_eq!(err.to_string(), "body.mass must be positive");
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 //!
-//! [`Problem::new`] validates (m > 0, J_k > 0, finite numbers, nonzero normals, tangents
-//! perpendicular to their normals, k ∈ [0, 1], at least one contact) and names the offending
-//! field; [`solve`] returns a [`Solution`] in the paper's units. Scenes written as TOML files
-//! go through [`scene::Scene`] and [`scene::pipeline`]; the lower-level
-//! [`impact::solve::Impact`] reuses its buffers across solves (no allocation in f64).
+//! [`Problem::new`] validates (m > 0, J_k > 0 or a symmetric positive definite tensor, finite
+//! numbers, nonzero normals, tangents perpendicular to their normals, k ∈ [0, 1], at least one
+//! contact) and names the offending field; [`solve`] returns a [`Solution`] in the paper's
+//! units. Scenes written as TOML files go through [`scene::Scene`] and [`scene::pipeline`]; the
+//! lower-level [`impact::solve::Impact`] reuses its buffers across solves (no allocation in
+//! f64).
 //!
 //! ## Notation (used everywhere)
 //!
-//! * Cxyz: central principal axes of the body; m, J = diag(J_x, J_y, J_z).
+//! * Cxyz: the body axes through the centre of mass C — central principal axes, with
+//!   m, J = diag(J_x, J_y, J_z) as in the paper, or any axes, with J the full symmetric central
+//!   inertia tensor ([`RigidBody::with_tensor`]; J⁻¹ exact, by the adjugate).
 //! * Twist {v} = [ω; v_C]; axis screw {E} = [u; r × u] (eq. 3–4); η = [[0, I], [I, 0]] (eq. 5)
 //!   and the mixed product {a}ᵀ η {b} (eq. 6).
 //! * \[M\] = [[0, m I], [J, 0]] and \[M\]⁻¹ = [[0, J⁻¹], [m⁻¹ I, 0]] (eq. 9).

@@ -19,10 +19,7 @@ fn v(x: f64, y: f64, z: f64) -> Vec3<f64> {
 
 /// Example 3 in f64, the starting point every refusal below changes one value of.
 fn parts() -> (RigidBody<f64>, Screw<f64>, Vec<Contact<f64>>) {
-    let body = RigidBody {
-        mass: 1.0,
-        inertia: v(12.0, 1.6, 12.0),
-    };
+    let body = RigidBody::principal(1.0, v(12.0, 1.6, 12.0));
     let twist = Screw::new(v(0.0, 0.0, 0.4), v(3.0, 2.0, 0.0));
     let contacts = vec![
         Contact::new(v(0.0, -2.0, 0.0), v(1.0, 0.0, 0.0), 0.3),
@@ -38,6 +35,13 @@ fn refusal(
     let (mut body, mut twist, mut contacts) = parts();
     change(&mut body, &mut twist, &mut contacts);
     Problem::new(body, twist, contacts).expect_err("the change makes the problem invalid")
+}
+
+/// Set the principal moment J_k of Example 3's body.
+fn moment(body: &mut RigidBody<f64>, k: usize, x: f64) {
+    let mut j = Vec3::new(12.0, 1.6, 12.0);
+    j[k] = x;
+    body.inertia = j.into();
 }
 
 fn is(e: InvalidProblem, field: Field, reason: Reason) {
@@ -73,17 +77,17 @@ fn body_values_without_physical_meaning_are_refused() {
         Reason::NotFinite,
     );
     is(
-        refusal(|b, _, _| b.inertia[1] = -1.6),
+        refusal(|b, _, _| moment(b, 1, -1.6)),
         Field::Inertia(1),
         Reason::NotPositive,
     );
     is(
-        refusal(|b, _, _| b.inertia[2] = 0.0),
+        refusal(|b, _, _| moment(b, 2, 0.0)),
         Field::Inertia(2),
         Reason::NotPositive,
     );
     is(
-        refusal(|b, _, _| b.inertia[0] = f64::NAN),
+        refusal(|b, _, _| moment(b, 0, f64::NAN)),
         Field::Inertia(0),
         Reason::NotFinite,
     );
@@ -159,7 +163,7 @@ fn messages_name_the_key_as_in_scene_files() {
         e.to_string(),
         "contact[1].k_poisson must lie in [0, 1] (0: plastic, 1: elastic)"
     );
-    let e = refusal(|b, _, _| b.inertia[1] = -1.0);
+    let e = refusal(|b, _, _| moment(b, 1, -1.0));
     assert_eq!(e.to_string(), "body.inertia[1] must be positive");
 }
 
@@ -184,10 +188,7 @@ fn inconsistent_constraints_are_refused() {
 fn example_3_scaled(s: i64) -> Problem<Exact> {
     let q = ratio::<Exact>;
     let e = |x, y, z| Vec3::new(q(x, 1), q(y, 1), q(z, 1));
-    let body = RigidBody {
-        mass: q(1, 1),
-        inertia: Vec3::new(q(12, 1), q(8, 5), q(12, 1)),
-    };
+    let body = RigidBody::principal(q(1, 1), Vec3::new(q(12, 1), q(8, 5), q(12, 1)));
     let twist = Screw::new(e(0, 0, 0), e(3, 2, 0));
     let twist = Screw::new(Vec3::new(q(0, 1), q(0, 1), q(2, 5)), twist.bottom());
     let contacts = vec![
@@ -324,10 +325,7 @@ fn a_constrained_problem_reports_its_constraint_impulses() {
     // Example 5's shape: a bar hinged about z through (0, −1, 0), struck at two points.
     let q = ratio::<Exact>;
     let zero = || q(0, 1);
-    let body = RigidBody {
-        mass: q(1, 1),
-        inertia: Vec3::new(q(1, 3), q(1, 12), q(1, 3)),
-    };
+    let body = RigidBody::principal(q(1, 1), Vec3::new(q(1, 3), q(1, 12), q(1, 3)));
     let hinge = Joint::Revolute {
         point: Vec3::new(zero(), q(-1, 1), zero()),
         axis: Vec3::new(zero(), zero(), q(1, 1)),
@@ -354,10 +352,7 @@ fn the_unilateral_law_is_one_call_too() {
     // lets A₂ separate: P₁ = (1 + k₁) v_1x⁰ / g₁₁ = 1.3·4.4·3/4 = 429/100, P₂ = 0.
     let q = ratio::<Exact>;
     let e = |x, y, z| Vec3::new(q(x, 1), q(y, 1), q(z, 1));
-    let body = RigidBody {
-        mass: q(1, 1),
-        inertia: Vec3::new(q(12, 1), q(8, 5), q(12, 1)),
-    };
+    let body = RigidBody::principal(q(1, 1), Vec3::new(q(12, 1), q(8, 5), q(12, 1)));
     let twist = Screw::new(Vec3::new(q(0, 1), q(0, 1), q(7, 10)), e(3, 2, 0));
     let contacts = vec![
         Contact::new(e(0, -2, 0), e(1, 0, 0), q(3, 10)),

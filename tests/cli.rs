@@ -661,6 +661,23 @@ fn bench_quick_json_and_plot() {
     for r in rows {
         assert!(r["unilateral"]["median_ns_per_solve"].as_f64().unwrap() > 0.0);
     }
+    // The accuracy contract, per float type and output: the largest error/bound is reported,
+    // and it is at most 1.
+    let contract = v["contract"]["scalars"].as_array().unwrap();
+    assert_eq!(contract.len(), 3, "{contract:?}");
+    for r in contract {
+        assert!(r["solves"].as_u64().unwrap() > 0, "{r}");
+        let ratios = r["max_error_over_bound"].as_object().unwrap();
+        assert_eq!(ratios.len(), 5, "{r}");
+        for (output, x) in ratios {
+            let ratio = x["ratio"].as_f64().unwrap();
+            assert!(
+                (0.0..=1.0).contains(&ratio),
+                "{} {output}: {ratio}",
+                r["scalar"]
+            );
+        }
+    }
     // Against N: a free body's G is singular beyond six contacts, so the simultaneous solve
     // is impossible there. The landing scenes never jam: their normals all have n_z = 1, so no
     // impulses y ≥ 0 but 0 have B y = 0 (Σ y_i n_iz = Σ y_i), which infeasibility of an LCP
@@ -788,16 +805,42 @@ fn scenes_from_stdin_and_hints_for_degrees_and_inertia_tensors() {
     let out = run("deg.toml", &bar.replace("0.4]", "\"3°\"]"), &["solve"]);
     assert_eq!(out.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&out.stderr).contains("did you mean `3 deg`"));
+    // A 3×3 tensor is read: here the principal moments written as a diagonal tensor (the same
+    // answer), then with J_yz = 1, which couples the spin about z to the bar's axis y — a
+    // different body, other impulses.
     let out = run(
         "tensor.toml",
         &bar.replace(
             "inertia = [12, 1.6, 12]",
             "inertia = [[12, 0, 0], [0, 1.6, 0], [0, 0, 12]]",
         ),
-        &["solve"],
+        &["solve", "--exact", "--json"],
     );
-    assert_eq!(out.status.code(), Some(2));
-    assert!(String::from_utf8_lossy(&out.stderr).contains("central principal moments"));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let t: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(t["models"], j["models"]);
+    let out = run(
+        "products.toml",
+        &bar.replace(
+            "inertia = [12, 1.6, 12]",
+            "inertia = [[12, 0, 0], [0, 1.6, 1], [0, 1, 12]]",
+        ),
+        &["solve", "--exact", "--json"],
+    );
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let t: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_ne!(
+        t["models"]["newton"]["impulses"],
+        j["models"]["newton"]["impulses"]
+    );
     let empty = dir.join("empty");
     std::fs::create_dir_all(&empty).unwrap();
     let out = std::process::Command::new(env!("CARGO_BIN_EXE_inertance"))

@@ -29,10 +29,7 @@ fn example_3<T: Scalar>(mu: T) -> Problem<T> {
             .with_friction(mu.clone())
     };
     Problem::new(
-        RigidBody {
-            mass: int(1),
-            inertia: v(int(12), ratio(8, 5), int(12)),
-        },
+        RigidBody::principal(int(1), v(int(12), ratio(8, 5), int(12))),
         Screw::new(v(int(0), int(0), ratio(2, 5)), v(int(3), int(2), int(0))),
         vec![c(-2, ratio(3, 10)), c(4, ratio(1, 5))],
     )

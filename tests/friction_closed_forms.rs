@@ -37,10 +37,10 @@ impl<T: Scalar> Rod<T> {
         let j: T = self.m.clone() * &self.l * &self.l / int::<T>(3);
         let (vcx, vcy) = self.to_body(&self.u, &-self.v.clone());
         Problem::new(
-            RigidBody {
-                mass: self.m.clone(),
-                inertia: Vec3::new(j.clone() / int::<T>(100), j.clone(), j),
-            },
+            RigidBody::principal(
+                self.m.clone(),
+                Vec3::new(j.clone() / int::<T>(100), j.clone(), j),
+            ),
             Screw::new(Vec3::zeros(), Vec3::new(vcx, vcy, T::zero())),
             vec![
                 Contact::new(

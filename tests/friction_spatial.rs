@@ -36,10 +36,7 @@ fn example_3<T: Scalar>(a: i64, b: i64) -> Problem<T> {
             .with_friction(q(a, b))
     };
     Problem::new(
-        RigidBody {
-            mass: int(1),
-            inertia: v(int(12), q(8, 5), int(12)),
-        },
+        RigidBody::principal(int(1), v(int(12), q(8, 5), int(12))),
         Screw::new(v(int(0), int(0), q(2, 5)), v(int(3), int(2), int(0))),
         vec![c(-2, q(3, 10)), c(4, q(1, 5))],
     )
@@ -51,10 +48,7 @@ fn example_3<T: Scalar>(a: i64, b: i64) -> Problem<T> {
 /// when μ = 4/5, and reverses when μ = 3/10 (the cone cannot hold it).
 fn rod<T: Scalar>(mu_num: i64, mu_den: i64) -> Problem<T> {
     Problem::new(
-        RigidBody {
-            mass: int(1),
-            inertia: v(q(3, 10), q(3, 10), q(3, 10)),
-        },
+        RigidBody::principal(int(1), v(q(3, 10), q(3, 10), q(3, 10))),
         Screw::new(v(int(0), int(0), int(0)), v(q(-1, 5), int(-1), int(0))),
         vec![
             Contact::new(
@@ -74,10 +68,7 @@ fn example_8<T: Scalar>(mu: (i64, i64), spin: [i64; 3]) -> Problem<T> {
     let r: T = q(1, 2);
     let c = |p: Vec3<T>, n: Vec3<T>, k: T| Contact::new(p, n, k).with_friction(q(mu.0, mu.1));
     Problem::new(
-        RigidBody {
-            mass: int(2),
-            inertia: v(q(1, 5), q(1, 5), q(1, 5)),
-        },
+        RigidBody::principal(int(2), v(q(1, 5), q(1, 5), q(1, 5))),
         Screw::new(
             v(int(spin[0]), int(spin[1]), int(spin[2])),
             v(int(3), int(6), int(0)),
@@ -105,10 +96,7 @@ fn box_corner<T: Scalar>(mu: (i64, i64), velocity: [i64; 3], spin: [i64; 3]) -> 
         third * (a.clone() * &a + b.clone() * &b),
     );
     Problem::new(
-        RigidBody {
-            mass: int(1),
-            inertia,
-        },
+        RigidBody::principal(int(1), inertia),
         Screw::new(
             v(q(spin[0], 10), q(spin[1], 10), q(spin[2], 10)),
             v(q(velocity[0], 10), q(velocity[1], 10), q(velocity[2], 10)),
@@ -126,10 +114,7 @@ fn bowling_ball<T: Scalar>() -> Problem<T> {
     let r: T = q(11, 100);
     let inertia = q::<T>(2, 5) * int::<T>(7) * &r * &r;
     Problem::new(
-        RigidBody {
-            mass: int(7),
-            inertia: v(inertia.clone(), inertia.clone(), inertia),
-        },
+        RigidBody::principal(int(7), v(inertia.clone(), inertia.clone(), inertia)),
         Screw::new(v(int(0), int(30), int(5)), v(int(3), int(1), q(-1, 2))),
         vec![
             Contact::new(

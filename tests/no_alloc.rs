@@ -1,8 +1,8 @@
 //! The f64 solve allocates nothing: once an `Impact` and its `Outcome`s have been sized by a
 //! first solve, assembling and solving again (the same or another scene with no more
-//! contacts) performs no heap allocation. Shown with a counting global allocator that counts
-//! only the allocations of the thread under test (the test harness allocates on its own
-//! threads meanwhile).
+//! contacts, a body in principal axes or with a full inertia tensor) performs no heap
+//! allocation. Shown with a counting global allocator that counts only the allocations of the
+//! thread under test (the test harness allocates on its own threads meanwhile).
 
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::cell::Cell;
@@ -71,20 +71,24 @@ fn scene(n: usize, shift: f64) -> Problem<f64> {
         })
         .collect();
     valid(
-        RigidBody {
-            mass: 2.0,
-            inertia: Vec3::new(1.0, 2.0, 3.0),
-        },
+        RigidBody::principal(2.0, Vec3::new(1.0, 2.0, 3.0)),
         Screw::new(Vec3::new(0.1, -0.2, 0.3), Vec3::new(1.0, 2.0, -0.5)),
         contacts,
     )
+}
+
+/// The same scene with a full inertia tensor (J⁻¹ stored in the body: no allocation either).
+fn tensor(p: Problem<f64>) -> Problem<f64> {
+    let (_, velocity, contacts) = p.into_parts();
+    let j = [[1.0, 0.2, -0.1], [0.2, 2.0, 0.3], [-0.1, 0.3, 3.0]];
+    valid(RigidBody::with_tensor(2.0, j), velocity, contacts)
 }
 
 #[test]
 fn repeated_f64_solves_do_not_allocate() {
     let scenes: Vec<Problem<f64>> = (0..8)
         .map(|s| scene(6, s as f64 * 0.37))
-        .chain([scene(2, 0.1)])
+        .chain([scene(2, 0.1), tensor(scene(6, 0.2)), tensor(scene(3, 1.1))])
         .collect();
     let (mut newton, mut poisson) = (Outcome::default(), Outcome::default());
     // Size the buffers once.
@@ -128,6 +132,6 @@ fn repeated_f64_solves_do_not_allocate() {
     assert_eq!(
         after - before,
         0,
-        "allocations during 900 assemble+solve rounds (both laws)"
+        "allocations during 1100 assemble+solve rounds (both laws)"
     );
 }

@@ -290,10 +290,7 @@ fn wide_problem(max: usize) -> impl Strategy<Value = Problem<Exact>> {
         prop::collection::vec(contact, 1..=max),
     )
         .prop_map(|(mass, (a, b, c), w, v, contacts)| {
-            let body = RigidBody {
-                mass,
-                inertia: Vec3::new(a, b, c),
-            };
+            let body = RigidBody::principal(mass, Vec3::new(a, b, c));
             Problem::new(body, Screw::new(w, v), contacts).expect("valid by construction")
         })
 }

@@ -68,10 +68,7 @@ fn general<T: Scalar>(value: &impl Fn(&str) -> T) -> Problem<T> {
         )
     };
     valid(
-        RigidBody {
-            mass: value("m"),
-            inertia: v3(value("Jx"), value("Jy"), value("Jz")),
-        },
+        RigidBody::principal(value("m"), v3(value("Jx"), value("Jy"), value("Jz"))),
         Screw::new(
             v3(value("w1"), value("w2"), value("w3")),
             v3(value("v1"), value("v2"), value("v3")),
@@ -85,10 +82,7 @@ fn general<T: Scalar>(value: &impl Fn(&str) -> T) -> Problem<T> {
 fn planar<T: Scalar>(value: &impl Fn(&str) -> T) -> Problem<T> {
     let z = || T::zero();
     valid(
-        RigidBody {
-            mass: value("m"),
-            inertia: v3(value("Jx"), value("Jy"), value("Jz")),
-        },
+        RigidBody::principal(value("m"), v3(value("Jx"), value("Jy"), value("Jz"))),
         Screw::new(v3(z(), z(), value("w")), v3(value("vx"), value("vy"), z())),
         vec![
             contact(v3(z(), value("y1"), z()), value("k1")),
@@ -385,10 +379,7 @@ fn sphere_at_two_points_with_a_symbolic_angle() {
         mu: RatFun::zero(),
     };
     let problem = valid(
-        RigidBody {
-            mass: m.clone(),
-            inertia: v3(j.clone(), j.clone(), j),
-        },
+        RigidBody::principal(m.clone(), v3(j.clone(), j.clone(), j)),
         Screw::new(v3(n(0), n(0), w0.clone()), v3(w0.clone() * &r, n(0), n(0))),
         vec![
             contact(
@@ -435,10 +426,7 @@ fn one_dof_constrained_body_energy_identity() {
     take_assumptions();
     let start = Instant::now();
     let (a, b) = (s("a"), s("b"));
-    let body = RigidBody {
-        mass: s("m"),
-        inertia: v3(s("Jx"), s("Jy"), s("Jz")),
-    };
+    let body = RigidBody::principal(s("m"), v3(s("Jx"), s("Jy"), s("Jz")));
     // A revolute joint about the axis through (a, b, 0) along z: D = [k; p × k].
     let point = v3(a.clone(), b.clone(), n(0));
     let axis = v3(n(0), n(0), n(1));
@@ -493,10 +481,7 @@ fn general_one_dof_constrained_body() {
     take_assumptions();
     let start = Instant::now();
     let d: Vec<RatFun> = (1..=6).map(|i| s(&format!("d{i}"))).collect();
-    let body = RigidBody {
-        mass: s("m"),
-        inertia: v3(s("Jx"), s("Jy"), s("Jz")),
-    };
+    let body = RigidBody::principal(s("m"), v3(s("Jx"), s("Jy"), s("Jz")));
     let free = Screw::new(
         v3(d[0].clone(), d[1].clone(), d[2].clone()),
         v3(d[3].clone(), d[4].clone(), d[5].clone()),

@@ -45,6 +45,18 @@ def test_with_values_sets_numbers_exactly(bar):
     assert inertance.solve(s).newton.impulses[0] == pytest.approx(3.655556, abs=1e-6)
 
 
+def test_a_3x3_inertia_tensor_from_numpy():
+    # The principal moments as a diagonal tensor: the same body, the same impulses.
+    d = dict(BAR_DICT, body=dict(BAR_DICT["body"], inertia=np.diag([12, 1.6, 12])))
+    same = inertance.solve(d, exact=True)
+    assert same.newton.impulses == inertance.solve(BAR_DICT, exact=True).newton.impulses
+    # An entry off the diagonal is one number under the keys numbers() lists, set with its
+    # mirror: J_yz = 1/2 couples the bar's spin to its axis, and changes the impulses.
+    s = inertance.Scene.from_dict(d).with_values({"body.inertia[1][2]": Fraction(1, 2)})
+    assert ("body.inertia[1][2]", "1/2") in s.numbers()
+    assert inertance.solve(s, exact=True).newton.impulses != same.newton.impulses
+
+
 def test_an_irrational_number_runs_in_f64_and_exactly():
     d = dict(BAR_DICT, contact=[dict(BAR_DICT["contact"][0], k="sqrt(2)/2"),
                                 BAR_DICT["contact"][1]])

@@ -22,6 +22,8 @@
 //! In exact types every rank and sign decision is exact. In floats a pivot counts as zero when
 //! it is ≤ N·ε·max g_ii — the tolerance is reported.
 
+pub mod accuracy;
+
 use crate::impact::problem::Problem;
 use crate::impact::restitution::Model;
 use crate::impact::solve::{Impact, Outcome};
@@ -249,38 +251,68 @@ fn analyze_model<T: Scalar>(impact: &mut Impact<T>, model: Model) -> ModelAnalys
     }
 }
 
-/// Replace `p` by the member of p + span(basis) of least physical norm Σ (P̂_i |x̂_i|)²:
-/// solve (Bᵀ W B) c = Bᵀ W p with W = diag(|x̂_i|²) and set p ← p − B c.
+/// Replace `p` by the member of p + span(basis) of least physical norm Σ (P̂_i |x̂_i|)², for
+/// `basis` the null space of G from [`Impact::null_space`] scaled per contact: with the
+/// contacts in pivot order, basis vector j is Πᵀ [−m_j; e_j] up to a factor, where the first
+/// r = rank G entries are the pivoted ones. With W = diag(|x̂_i|²) split the same way, the
+/// minimiser x satisfies Bᵀ W x = 0, i.e. x₂ = W₂⁻¹ Mᵀ W₁ x₁, and x₁ + M x₂ = p₁ + M p₂; so
+///
+/// ```text
+/// S y = p₁ + M p₂,   S = W₁⁻¹ + M W₂⁻¹ Mᵀ (r×r, positive definite),   x₁ = W₁⁻¹ y,   x₂ = W₂⁻¹ Mᵀ y
+/// ```
+///
+/// — O(r² (N − r)) work where the normal equations of the family, (Bᵀ W B) c = Bᵀ W p, cost
+/// O((N − r)³): a minute in rationals for 220 contacts (r ≤ 6), milliseconds this way.
 fn least_norm<T: Scalar>(p: &mut [T], basis: &[Vec<T>], impact: &Impact<T>) {
     let k = basis.len();
     if k == 0 {
         return;
     }
-    let w: Vec<T> = impact.frames().iter().map(|f| f.norm2[0].clone()).collect();
-    let dot = |a: &[T], b: &[T]| -> T {
-        let mut s = T::zero();
-        for i in 0..a.len() {
-            s += a[i].clone() * &b[i] * &w[i];
-        }
-        s
-    };
-    let mut gram = vec![T::zero(); k * k];
-    let mut rhs = Vec::with_capacity(k);
-    for a in 0..k {
-        for c in 0..k {
-            gram[a * k + c] = dot(&basis[a], &basis[c]);
-        }
-        rhs.push(dot(&basis[a], p));
+    let (n, perm) = (impact.contacts(), impact.pivots());
+    let r = n - k;
+    let w: Vec<T> = perm
+        .iter()
+        .map(|&i| impact.frames()[i].norm2[0].clone())
+        .collect();
+    // m_j: the pivoted entries of basis vector j over its entry at its own free contact.
+    let m: Vec<Vec<T>> = basis
+        .iter()
+        .enumerate()
+        .map(|(j, b)| {
+            let own = b[perm[r + j]].clone();
+            (0..r).map(|i| -(b[perm[i]].clone() / &own)).collect()
+        })
+        .collect();
+    let mut s = vec![T::zero(); r * r];
+    let mut rhs: Vec<T> = (0..r).map(|i| p[perm[i]].clone()).collect();
+    for i in 0..r {
+        s[i * r + i] = T::one() / &w[i];
     }
-    let mut perm = vec![0; k];
-    if crate::linalg::factor_psd(&mut gram, k, &mut perm).is_ok_and(|f| f.rank == k) {
-        let mut work = vec![T::zero(); k];
-        crate::linalg::solve_factored(&gram, k, &perm, &mut rhs, &mut work);
-        for (z, c) in basis.iter().zip(&rhs) {
-            for i in 0..p.len() {
-                p[i] -= z[i].clone() * c;
+    for (j, mj) in m.iter().enumerate() {
+        let (wj, pj) = (&w[r + j], &p[perm[r + j]]);
+        for a in 0..r {
+            rhs[a] += mj[a].clone() * pj;
+            let t = mj[a].clone() / wj;
+            for c in 0..r {
+                s[a * r + c] += t.clone() * &mj[c];
             }
         }
+    }
+    let mut pivots = vec![0; r];
+    if !crate::linalg::factor_psd(&mut s, r, &mut pivots).is_ok_and(|f| f.rank == r) {
+        return;
+    }
+    let mut work = vec![T::zero(); r];
+    crate::linalg::solve_factored(&s, r, &pivots, &mut rhs, &mut work);
+    for (j, mj) in m.iter().enumerate() {
+        let mut x = T::zero();
+        for (a, y) in rhs.iter().enumerate() {
+            x += mj[a].clone() * y;
+        }
+        p[perm[r + j]] = x / &w[r + j];
+    }
+    for (i, y) in rhs.into_iter().enumerate() {
+        p[perm[i]] = y / &w[i];
     }
 }
 

@@ -4,7 +4,9 @@
 //! [`problem`]: the validated input — body, twist before impact, contacts, constraints ·
 //! [`restitution`]: Newton's and Poisson's laws (eq. 14–15, 20–23) · [`solve`](mod@solve): the
 //! assembled collision — frames, inertances G, its factorization and Δ — and one law solved on
-//! it, in the hatted form the solver works in · [`solution`]: the outcome in the paper's units,
+//! it, in the hatted form the solver works in · [`gram_schmidt`]: the contact wrenches
+//! orthogonalised in the metric of the mobility, from which float solves take the twist and
+//! the energies, accurate however nearly singular G is · [`solution`]: the outcome in the paper's units,
 //! and the one-call [`solution::solve`] · [`unilateral`]: the laws in inequality form, as
 //! complementarity problems, for when the simultaneous hypothesis fails · [`admissibility`]:
 //! whether a simultaneous answer is physical (tensile, separating, still approaching, energy
@@ -13,6 +15,7 @@
 
 pub mod admissibility;
 pub mod friction;
+pub mod gram_schmidt;
 pub mod problem;
 pub mod restitution;
 pub mod solution;

@@ -2,12 +2,19 @@
 //! contacts and, optionally, ideal constraints (§9–11).
 //!
 //! [`Problem::new`] refuses what has no physical meaning — a mass or principal moment that is
-//! not positive, a number that is not finite, a zero normal or tangent, a tangent not
-//! perpendicular to its normal, a coefficient of restitution outside [0, 1], no contact at
-//! all — with an [`InvalidProblem`] naming the field (`body.mass`, `contact[1].normal`, keys
-//! as in scene files, contacts counted from 0). Everything downstream may then rely on
-//! m > 0, J_k > 0 and n_i ≠ 0, so [`crate::impact::solve::Impact`] cannot be handed a problem
-//! it would divide by zero on.
+//! not positive, an inertia tensor that is not symmetric positive definite, a number that is
+//! not finite, a zero normal or tangent, a tangent not perpendicular to its normal, a
+//! coefficient of restitution outside [0, 1], no contact at all — with an [`InvalidProblem`]
+//! naming the field (`body.mass`, `contact[1].normal`, keys as in scene files, contacts
+//! counted from 0). Everything downstream may then rely on m > 0, J positive definite (J_k > 0,
+//! or det J > 0 with J⁻¹ formed) and n_i ≠ 0, so [`crate::impact::solve::Impact`] cannot be
+//! handed a problem it would divide by zero on.
+//!
+//! A full inertia tensor J ([`crate::mechanics::inertia`]) must be symmetric — exactly in
+//! exact types, to 2ε of the larger entry in floats — and positive definite, which Sylvester's
+//! criterion decides from the signs of its leading principal minors: its diagonal entries
+//! J_kk > 0 (necessary, and named like principal moments), then Δ₂ = J_xx J_yy − J_xy² > 0 and
+//! Δ₃ = det J > 0. Exact types decide these signs exactly.
 //!
 //! A value whose sign is not decided without assumptions (a symbol `m` in the symbolic type)
 //! passes the range checks: they are left to the reader of the derived formulas, as `derive`
@@ -15,9 +22,10 @@
 
 use std::fmt;
 
-use crate::mechanics::body::{Mobility, RigidBody};
+use crate::mechanics::body::{Inertia, Mobility, RigidBody};
 use crate::mechanics::constraint::{Constrained, ConstraintError, Joint};
 use crate::mechanics::contact::Contact;
+use crate::mechanics::inertia::InertiaTensor;
 use crate::mechanics::screw::{Screw, Vec3, dot, norm2};
 use crate::scalar::Scalar;
 
@@ -57,8 +65,14 @@ impl<T: Scalar> Clone for Problem<T> {
 pub enum Field {
     /// `body.mass`.
     Mass,
-    /// `body.inertia[k]`: the central principal moment J_k.
+    /// `body.inertia[k]`: the central principal moment J_k, or the diagonal entry J_kk of a
+    /// full tensor.
     Inertia(usize),
+    /// `body.inertia[i][k]`, i ≠ k: an entry of a full inertia tensor off its diagonal (J_xy,
+    /// J_xz, J_yz and their mirrors).
+    InertiaProduct(usize, usize),
+    /// `body.inertia`: the inertia tensor as a whole (its leading principal minors).
+    InertiaTensor,
     /// `body.angular_velocity[k]`: ω⁰_k.
     AngularVelocity(usize),
     /// `body.velocity[k]`: v_C⁰_k.
@@ -88,6 +102,8 @@ impl fmt::Display for Field {
         match self {
             Field::Mass => write!(f, "body.mass"),
             Field::Inertia(k) => write!(f, "body.inertia[{k}]"),
+            Field::InertiaProduct(i, k) => write!(f, "body.inertia[{i}][{k}]"),
+            Field::InertiaTensor => write!(f, "body.inertia"),
             Field::AngularVelocity(k) => write!(f, "body.angular_velocity[{k}]"),
             Field::Velocity(k) => write!(f, "body.velocity[{k}]"),
             Field::Contacts => write!(f, "contact"),
@@ -112,6 +128,28 @@ pub enum Reason {
     /// A mass or moment of inertia ≤ 0.
     #[error("must be positive")]
     NotPositive,
+    /// An inertia tensor whose entry differs from its mirror across the diagonal.
+    #[error(
+        "is {value} but its mirror across the diagonal is {mirror}: an inertia tensor is symmetric"
+    )]
+    NotSymmetric {
+        /// The entry, in f64.
+        value: f64,
+        /// The mirrored entry, in f64.
+        mirror: f64,
+    },
+    /// An inertia tensor with a leading principal minor ≤ 0 (Sylvester's criterion).
+    #[error(
+        "is not positive definite: its leading principal minor {} = {value} is not positive \
+         (Sylvester's criterion); a physical inertia tensor must be positive definite",
+        minor_formula(.minor)
+    )]
+    NotPositiveDefinite {
+        /// Which leading principal minor fails: 1, 2 or 3.
+        minor: usize,
+        /// Its value, in f64.
+        value: f64,
+    },
     /// A normal or tangent that is the zero vector.
     #[error("is the zero vector: an axis needs a direction")]
     ZeroVector,
@@ -145,6 +183,15 @@ pub struct InvalidProblem {
     pub reason: Reason,
 }
 
+/// The leading principal minor Δ_k of the inertia tensor, written out.
+fn minor_formula(k: &usize) -> &'static str {
+    match k {
+        1 => "Δ₁ = J_xx",
+        2 => "Δ₂ = J_xx J_yy − J_xy²",
+        _ => "Δ₃ = det J",
+    }
+}
+
 fn invalid(field: Field, reason: Reason) -> InvalidProblem {
     InvalidProblem { field, reason }
 }
@@ -165,6 +212,47 @@ fn positive<T: Scalar>(x: &T, field: Field) -> Result<(), InvalidProblem> {
         Some(s) if s <= 0 => Err(invalid(field, Reason::NotPositive)),
         _ => Ok(()),
     }
+}
+
+/// Refuse an inertia tensor that is not symmetric positive definite (see the module docs).
+fn tensor<T: Scalar>(t: &InertiaTensor<T>) -> Result<(), InvalidProblem> {
+    let j = t.matrix();
+    let field = |i: usize, k: usize| {
+        if i == k {
+            Field::Inertia(i)
+        } else {
+            Field::InertiaProduct(i, k)
+        }
+    };
+    for i in 0..3 {
+        for k in 0..3 {
+            finite(&j[(i, k)], field(i, k))?;
+        }
+    }
+    for (i, k) in [(1, 0), (2, 0), (2, 1)] {
+        let (a, b) = (&j[(i, k)], &j[(k, i)]);
+        let larger = if a.abs_gt(b) { a } else { b };
+        if !(a.clone() - b).is_negligible(larger, 2) {
+            let reason = Reason::NotSymmetric {
+                value: a.to_f64(),
+                mirror: b.to_f64(),
+            };
+            return Err(invalid(field(i, k), reason));
+        }
+    }
+    for k in 0..3 {
+        positive(&j[(k, k)], Field::Inertia(k))?;
+    }
+    for (m, minor) in t.leading_minors().iter().enumerate() {
+        if matches!(minor.known_sign(), Some(s) if s <= 0) {
+            let reason = Reason::NotPositiveDefinite {
+                minor: m + 1,
+                value: minor.to_f64(),
+            };
+            return Err(invalid(Field::InertiaTensor, reason));
+        }
+    }
+    Ok(())
 }
 
 /// Refuse a coefficient of restitution outside [0, 1].
@@ -212,20 +300,26 @@ pub fn perpendicular<T: Scalar>(n: &Vec3<T>, t: &Vec3<T>) -> Result<(), T> {
 }
 
 impl<T: Scalar> Problem<T> {
-    /// A free body of mass and central principal moments `body`, moving with the twist
+    /// A free body of mass and central inertia tensor `body`, moving with the twist
     /// `velocity` = {v⁰} = [ω⁰; v_C⁰] (body axes) before impact, hit at `contacts`.
     ///
     /// # Errors
-    /// [`InvalidProblem`] for m ≤ 0, J_k ≤ 0, a non-finite number, a zero normal or tangent, a
-    /// tangent not perpendicular to its normal, k outside [0, 1], or no contact.
+    /// [`InvalidProblem`] for m ≤ 0, J_k ≤ 0, an inertia tensor that is not symmetric positive
+    /// definite, a non-finite number, a zero normal or tangent, a tangent not perpendicular to
+    /// its normal, k outside [0, 1], or no contact.
     pub fn new(
         body: RigidBody<T>,
         velocity: Screw<T>,
         contacts: Vec<Contact<T>>,
     ) -> Result<Self, InvalidProblem> {
         positive(&body.mass, Field::Mass)?;
-        for k in 0..3 {
-            positive(&body.inertia[k], Field::Inertia(k))?;
+        match &body.inertia {
+            Inertia::Principal(j) => {
+                for k in 0..3 {
+                    positive(&j[k], Field::Inertia(k))?;
+                }
+            }
+            Inertia::Tensor(t) => tensor(t)?,
         }
         finite_vector(&velocity.top(), Field::AngularVelocity)?;
         finite_vector(&velocity.bottom(), Field::Velocity)?;
@@ -299,7 +393,7 @@ impl<T: Scalar> Problem<T> {
         Ok(self)
     }
 
-    /// Mass and central principal moments.
+    /// Mass and central inertia tensor.
     pub fn body(&self) -> &RigidBody<T> {
         &self.body
     }
@@ -358,10 +452,7 @@ mod tests {
     }
 
     fn body(mass: i64) -> RigidBody<Exact> {
-        RigidBody {
-            mass: int(mass),
-            inertia: v(12, 2, 12),
-        }
+        RigidBody::principal(int(mass), v(12, 2, 12))
     }
 
     fn refused(p: Result<Problem<Exact>, InvalidProblem>) -> (String, Reason) {
@@ -390,6 +481,64 @@ mod tests {
         assert_eq!(
             refused(Problem::new(body(1), twist, vec![c])),
             ("contact[0].k_poisson".into(), Reason::OutsideUnitInterval)
+        );
+    }
+
+    fn tensor(rows: [[i64; 3]; 3]) -> RigidBody<Exact> {
+        RigidBody::with_tensor(int(1), rows.map(|r| r.map(int)))
+    }
+
+    #[test]
+    fn a_tensor_must_be_symmetric_positive_definite() {
+        let twist = Screw::new(v(0, 0, 0), v(3, 0, 0));
+        let refuse = |rows| refused(Problem::new(tensor(rows), twist.clone(), vec![contact()]));
+        assert!(
+            Problem::new(
+                tensor([[4, 1, 0], [1, 3, 1], [0, 1, 2]]),
+                twist.clone(),
+                vec![contact()]
+            )
+            .is_ok()
+        );
+        assert_eq!(
+            refuse([[4, 1, 0], [2, 3, 1], [0, 1, 2]]),
+            (
+                "body.inertia[1][0]".into(),
+                Reason::NotSymmetric {
+                    value: 2.0,
+                    mirror: 1.0
+                }
+            )
+        );
+        assert_eq!(
+            refuse([[4, 1, 0], [1, 0, 1], [0, 1, 2]]),
+            ("body.inertia[1]".into(), Reason::NotPositive)
+        );
+        // Δ₂ = 1·1 − 2² = −3.
+        assert_eq!(
+            refuse([[1, 2, 0], [2, 1, 0], [0, 0, 1]]),
+            (
+                "body.inertia".into(),
+                Reason::NotPositiveDefinite {
+                    minor: 2,
+                    value: -3.0
+                }
+            )
+        );
+        // Δ₂ = 1 > 0 but Δ₃ = det J = −1: a positive diagonal, and still indefinite.
+        let (key, reason) = refuse([[1, 0, 1], [0, 1, 1], [1, 1, 1]]);
+        assert_eq!(key, "body.inertia");
+        assert_eq!(
+            reason,
+            Reason::NotPositiveDefinite {
+                minor: 3,
+                value: -1.0
+            }
+        );
+        assert_eq!(
+            reason.to_string(),
+            "is not positive definite: its leading principal minor Δ₃ = det J = -1 is not \
+             positive (Sylvester's criterion); a physical inertia tensor must be positive definite"
         );
     }
 }

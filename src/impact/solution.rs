@@ -57,7 +57,7 @@ pub struct Solution<T: Scalar> {
 /// use inertance::{Contact, Model, Problem, RigidBody, Screw, Vec3, solve};
 ///
 /// // A bar on two supports (the paper's Example 3, in f64).
-/// let body = RigidBody { mass: 1.0, inertia: Vec3::new(12.0, 1.6, 12.0) };
+/// let body = RigidBody::principal(1.0, Vec3::new(12.0, 1.6, 12.0));
 /// let twist = Screw::new(Vec3::new(0.0, 0.0, 0.4), Vec3::new(3.0, 2.0, 0.0));
 /// let at = |y: f64, k: f64| Contact::new(Vec3::new(0.0, y, 0.0), Vec3::new(1.0, 0.0, 0.0), k);
 /// let problem = Problem::new(body, twist, vec![at(-2.0, 0.3), at(4.0, 0.2)])?;

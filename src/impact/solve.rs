@@ -22,10 +22,21 @@
 //! ΔE_c = −E_p + Σ P_i v_ix⁰ (eq. 34) are then checks on the solve, not definitions — exact
 //! equalities in exact types.
 //!
+//! **Floats solve from the wrenches, not from G.** G's rounding leaves the split of the
+//! impulse between nearly dependent contacts uncertain to cond(G)·ε, and the sum of eq. 24
+//! would pass that to the twist. So in float types with G of full rank [`Impact::solve`] takes
+//! every output from the contact wrenches orthogonalised in the metric ηW
+//! ([`crate::impact::gram_schmidt`]; the same laws, rewritten there), which keeps the twist,
+//! the contact velocities and the energies to √cond(G)·ε (the accuracy contract,
+//! [`crate::analysis::accuracy`]). Exact types solve G x = b as written above, and there both
+//! routes give the same numbers ([`Impact::solve_orthogonal`], tested). The factorization of
+//! G decides the rank and Δ in every type.
+//!
 //! [`Impact::assemble`] does the model-independent work once (frames, G, its factorization,
 //! Δ); [`Impact::solve`] then runs one restitution model. Both reuse the buffers they own, so
 //! repeated f64 solves allocate nothing.
 
+use crate::impact::gram_schmidt::WrenchBasis;
 use crate::impact::problem::Problem;
 use crate::impact::restitution::Model;
 use crate::impact::unilateral::UnilateralWork;
@@ -92,6 +103,11 @@ pub struct Impact<T: Scalar> {
     factor: Vec<T>,
     perm: Vec<usize>,
     work: Vec<T>,
+    /// The normals' axis screws orthogonalised in the metric ηW ([`crate::impact::gram_schmidt`]):
+    /// float types with G of full rank solve from it.
+    basis: WrenchBasis<T>,
+    /// Whether `basis` holds the current problem's basis.
+    basis_built: bool,
     /// The buffers of [`Impact::solve_unilateral`].
     pub(crate) unilateral: UnilateralWork<T>,
 }
@@ -152,6 +168,8 @@ impl<T: Scalar> Impact<T> {
             factor: Vec::new(),
             perm: Vec::new(),
             work: Vec::new(),
+            basis: WrenchBasis::default(),
+            basis_built: false,
             unilateral: UnilateralWork::default(),
         };
         impact.build()?;
@@ -218,6 +236,12 @@ impl<T: Scalar> Impact<T> {
         &self.det_hat
     }
 
+    /// The pivot order of G's factorization: `pivots()[k]` is the contact pivoted k-th, so
+    /// the first `rank()` are a set of contacts whose inertances are independent.
+    pub fn pivots(&self) -> &[usize] {
+        &self.perm
+    }
+
     /// rank G.
     pub fn rank(&self) -> usize {
         self.rank
@@ -259,6 +283,8 @@ impl<T: Scalar> Impact<T> {
         self.rank = fac.rank;
         self.det_hat = linalg::determinant(&self.factor, n);
         self.kinetic_before = problem.body().kinetic_energy(problem.velocity());
+        // Exact types solve G x = b: every route gives the same numbers, that one the fastest.
+        self.basis_built = !T::IS_EXACT && self.rank == n && self.build_basis();
         Ok(())
     }
 
@@ -274,6 +300,10 @@ impl<T: Scalar> Impact<T> {
                 rank: self.rank,
                 contacts: n,
             });
+        }
+        if !T::IS_EXACT && self.basis_built {
+            self.solve_in_basis(model, out);
+            return Ok(());
         }
         // Scratch for the general solve; it writes every entry before reading it.
         self.work.resize(n, T::zero());
@@ -297,6 +327,69 @@ impl<T: Scalar> Impact<T> {
         }
         self.complete(out);
         Ok(())
+    }
+
+    /// The route float types take in [`Impact::solve`], in any type: in exact types it gives
+    /// the very outcome [`Impact::solve`] gives (tested), so it is the check of that route.
+    ///
+    /// # Errors
+    /// [`SolveError::Singular`] when G is singular, or (floats) when rounding makes an
+    /// orthogonalised wrench's d_k ≤ 0.
+    pub fn solve_orthogonal(
+        &mut self,
+        model: Model,
+        out: &mut Outcome<T>,
+    ) -> Result<(), SolveError> {
+        let n = self.contacts();
+        if self.rank < n || !(self.basis_built || self.build_basis()) {
+            return Err(SolveError::Singular {
+                rank: self.rank.min(self.basis.len()),
+                contacts: n,
+            });
+        }
+        self.basis_built = true;
+        self.solve_in_basis(model, out);
+        Ok(())
+    }
+
+    /// Orthogonalise the normals' axis screws in the metric of the mobility; `false` when
+    /// some d_k ≤ 0.
+    fn build_basis(&mut self) -> bool {
+        let axes = self.frames.iter().map(|f| &f.axes[0]);
+        self.basis.build(axes.zip(&self.responses), &self.problem)
+    }
+
+    /// The solve of a float type with G of full rank, from the orthogonalised wrenches
+    /// ([`crate::impact::gram_schmidt`]) instead of the normal equations G x = b: impulses,
+    /// twist, velocities along the normals and both energies, so that they keep the accuracy
+    /// the wrenches determine when G is nearly singular. The tangential velocities follow
+    /// from the twist change (eq. 25–26: v̂_ia = v̂_ia⁰ + {Ê_ia}ᵀ η ({v} − {v⁰})).
+    fn solve_in_basis(&mut self, model: Model, out: &mut Outcome<T>) {
+        let problem = &self.problem;
+        let b = self.basis.solve(
+            model,
+            problem.velocity(),
+            problem.contacts(),
+            &self.before_hat,
+        );
+        out.velocity = problem.velocity().clone();
+        out.velocity.add_scaled(&T::one(), &b.twist_change);
+        out.after_hat.clear();
+        for (i, (f, v0)) in self.frames.iter().zip(&self.before_hat).enumerate() {
+            out.after_hat.push([
+                self.basis.normal_velocity(i, &v0[0]),
+                v0[1].clone() + f.axes[1].reciprocal(&b.twist_change),
+                v0[2].clone() + f.axes[2].reciprocal(&b.twist_change),
+            ]);
+        }
+        out.lost_velocity_energy = b.lost_velocity_energy;
+        out.kinetic_energy_loss = b.kinetic_energy_loss;
+        self.basis.impulses(&mut out.impulses_hat);
+        match model {
+            Model::Newton => out.compression_hat.clear(),
+            Model::Poisson => self.basis.compression_impulses(&mut out.compression_hat),
+        }
+        self.constraint_impulses(&b.twist_change, out);
     }
 
     /// The right-hand side of the model's system G x = b: b_i = (1 + k_i^N) v̂_ix⁰ (Newton,
@@ -349,11 +442,17 @@ impl<T: Scalar> Impact<T> {
             loss += p.clone() * &(b[0].clone() + &a[0]);
         }
         out.kinetic_energy_loss = loss / (T::one() + T::one());
-        match problem.constraints() {
+        self.constraint_impulses(&dv, out);
+    }
+
+    /// The constraint impulses q for the twist change `dv` and the impulses of `out` (eq.
+    /// 90–93; none for a free body).
+    fn constraint_impulses(&self, dv: &Screw<T>, out: &mut Outcome<T>) {
+        match self.problem.constraints() {
             Some(c) => {
                 let axes = self.frames.iter().map(|f| &f.axes[0]);
                 c.impulses_into(
-                    &dv,
+                    dv,
                     out.impulses_hat.iter().zip(axes),
                     &mut out.constraint_impulses,
                 );

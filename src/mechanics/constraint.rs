@@ -424,10 +424,7 @@ mod tests {
     }
 
     fn body() -> RigidBody<Exact> {
-        RigidBody {
-            mass: int(10),
-            inertia: v(1, 2, 3),
-        }
+        RigidBody::principal(int(10), v(1, 2, 3))
     }
 
     #[test]

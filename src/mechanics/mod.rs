@@ -1,6 +1,7 @@
 //! The mechanics of the body and its contacts, in screw coordinates (§2, §9–12).
 //!
-//! [`screw`]: Plücker coordinates, the mixed product with η (eq. 3–6) · [`body`]: the mass
+//! [`screw`]: Plücker coordinates, the mixed product with η (eq. 3–6) · [`inertia`]: the
+//! central inertia tensor, principal or full, and its exact inverse · [`body`]: the mass
 //! matrix and the body's mobility (eq. 9, 11) · [`contact`]: the contacts and their frames
 //! (eq. 2–4, 112–123) · [`constraint`]: ideal constraints and joints (§9–11) · [`surface`]:
 //! implicit surfaces f(x, y, z) = 0 and their normals (§12).
@@ -8,5 +9,6 @@
 pub mod body;
 pub mod constraint;
 pub mod contact;
+pub mod inertia;
 pub mod screw;
 pub mod surface;

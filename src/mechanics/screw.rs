@@ -16,7 +16,8 @@ use nalgebra::{SVector, Vector3};
 
 use crate::scalar::Scalar;
 
-/// A 3-vector of the body frame Cxyz (central principal axes).
+/// A 3-vector of the body frame Cxyz (central axes: principal ones, unless the body has a full
+/// inertia tensor).
 pub type Vec3<T> = Vector3<T>;
 
 /// A screw in Plücker coordinates, `[top; bottom]` (see the module docs).

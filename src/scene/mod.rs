@@ -4,7 +4,8 @@
 //! name = "planar bar on two supports"
 //! [body]
 //! mass = 1
-//! inertia = [12, 1.6, 12]          # central principal moments Jx, Jy, Jz
+//! inertia = [12, 1.6, 12]          # central principal moments Jx, Jy, Jz, or the 3×3
+//!                                  # tensor [[Jxx, Jxy, Jxz], [Jxy, Jyy, Jyz], [Jxz, Jyz, Jzz]]
 //! velocity = [3, 2, 0]             # v_C before impact, body axes
 //! angular_velocity = [0, 0, 0.4]   # omega before impact
 //! [[contact]]
@@ -74,6 +75,14 @@ use crate::mechanics::screw::{Screw, Vec3, norm2};
 use crate::mechanics::surface::SurfaceError;
 use crate::number::Number;
 use crate::scalar::Scalar;
+
+/// The keys of the inertia tensor's entries off the diagonal, in the order of
+/// [`Scene::inertia_products`]: J_xy, J_xz, J_yz.
+pub const PRODUCT_KEYS: [&str; 3] = [
+    "body.inertia[0][1]",
+    "body.inertia[0][2]",
+    "body.inertia[1][2]",
+];
 
 /// The end of the message for a number a float type cannot hold (the pipeline recognises it).
 pub const OUT_OF_RANGE: &str = "`--exact` solves the scene exactly";
@@ -277,12 +286,23 @@ impl Scene {
             && self.problem::<crate::scalar::Exact>().is_ok()
     }
 
-    /// Every number with its key path. [`Scene::numbers_mut`] lists the same keys: a number
-    /// added here must be added there too (or a sensitivity cannot be seeded on it).
+    /// Every number with its key path. The inertia tensor's diagonal is `body.inertia[k]`
+    /// (whether written as moments or as a 3×3 array), its entries off the diagonal
+    /// `body.inertia[0][1]`, `body.inertia[0][2]`, `body.inertia[1][2]` ([`PRODUCT_KEYS`]).
+    /// [`Scene::numbers_mut`] lists the same keys: a number added here must be added there
+    /// too (or a sensitivity cannot be seeded on it).
     pub fn numbers(&self) -> impl Iterator<Item = (String, &Number)> {
         let mut v: Vec<(String, &Number)> = vec![("body.mass".into(), &self.mass)];
+        for (i, n) in self.inertia.iter().enumerate() {
+            v.push((format!("body.inertia[{i}]"), n));
+        }
+        for (key, n) in PRODUCT_KEYS
+            .iter()
+            .zip(self.inertia_products.iter().flatten())
+        {
+            v.push((key.to_string(), n));
+        }
         let triples = [
-            ("body.inertia", &self.inertia),
             ("body.velocity", &self.velocity),
             ("body.angular_velocity", &self.angular_velocity),
         ];
@@ -339,8 +359,16 @@ impl Scene {
     /// order (tested). How a sensitivity run seeds a number's [`Number::tangent`] ([`seed`]).
     pub fn numbers_mut(&mut self) -> impl Iterator<Item = (String, &mut Number)> {
         let mut v: Vec<(String, &mut Number)> = vec![("body.mass".into(), &mut self.mass)];
+        for (i, n) in self.inertia.iter_mut().enumerate() {
+            v.push((format!("body.inertia[{i}]"), n));
+        }
+        for (key, n) in PRODUCT_KEYS
+            .iter()
+            .zip(self.inertia_products.iter_mut().flatten())
+        {
+            v.push((key.to_string(), n));
+        }
         let triples = [
-            ("body.inertia", &mut self.inertia),
             ("body.velocity", &mut self.velocity),
             ("body.angular_velocity", &mut self.angular_velocity),
         ];
@@ -404,9 +432,22 @@ impl Scene {
                 num(&t[2], &format!("{key}[2]"))?,
             ))
         };
-        let body = RigidBody {
-            mass: num(&self.mass, "body.mass")?,
-            inertia: vec3(&self.inertia, "body.inertia")?,
+        let mass = num(&self.mass, "body.mass")?;
+        let body = match &self.inertia_products {
+            None => RigidBody::principal(mass, vec3(&self.inertia, "body.inertia")?),
+            Some(products) => {
+                let d = |k: usize| num(&self.inertia[k], &format!("body.inertia[{k}]"));
+                let p = |k: usize| num(&products[k], PRODUCT_KEYS[k]);
+                let (xy, xz, yz) = (p(0)?, p(1)?, p(2)?);
+                RigidBody::with_tensor(
+                    mass,
+                    [
+                        [d(0)?, xy.clone(), xz.clone()],
+                        [xy, d(1)?, yz.clone()],
+                        [xz, yz, d(2)?],
+                    ],
+                )
+            }
         };
         let velocity = Screw::new(
             vec3(&self.angular_velocity, "body.angular_velocity")?,
@@ -477,6 +518,12 @@ impl Scene {
     /// The value at `key` as written: a number, or a vector `[x, y, z]` of the numbers at
     /// `key[0]`, `key[1]`, … (for messages that show what was given); for a joint, its vectors.
     pub fn text_of(&self, key: &str) -> Option<String> {
+        if let ("body.inertia", Some([xy, xz, yz])) = (key, &self.inertia_products) {
+            let [x, y, z] = &self.inertia;
+            let rows = [[x, xy, xz], [xy, y, yz], [xz, yz, z]]
+                .map(|r| format!("[{}, {}, {}]", r[0].text, r[1].text, r[2].text));
+            return Some(format!("[{}]", rows.join(", ")));
+        }
         let prefix = format!("{key}[");
         let joint = format!("{key}.");
         let mut parts = Vec::new();

@@ -6,6 +6,10 @@ use toml_edit::{DocumentMut, Item, TableLike, Value};
 /// Override one value of a scene document: `path` like `body.mass`, `contact[1].k`,
 /// `body.velocity[0]`; `value` is TOML text (`0.5`, `"1/3"`, `[1, 0, 0]`). Used by
 /// derivations (`set` lines) and parameter sweeps.
+///
+/// A 3×3 `inertia` is addressed by the keys [`crate::scene::Scene::numbers`] lists: its
+/// diagonal entry J_kk as `body.inertia[k]`, an entry off the diagonal as
+/// `body.inertia[i][k]`, which sets its mirror `[k][i]` too (the tensor stays symmetric).
 pub fn set_value(doc: &mut DocumentMut, path: &str, value: &str) -> Result<(), String> {
     let new: Value = value
         .trim()
@@ -14,6 +18,11 @@ pub fn set_value(doc: &mut DocumentMut, path: &str, value: &str) -> Result<(), S
     let segments: Vec<&str> = path.split('.').collect();
     let mut table: &mut dyn TableLike = doc.as_table_mut();
     for (depth, seg) in segments.iter().enumerate() {
+        if depth + 1 == segments.len()
+            && let Some((name, i, k)) = tensor_index(seg)
+        {
+            return set_tensor_entry(table, name, i, k, new, path);
+        }
         let (name, index) =
             split_index(seg).ok_or_else(|| format!("bad key `{seg}` in `{path}`"))?;
         if depth + 1 == segments.len() {
@@ -26,6 +35,9 @@ pub fn set_value(doc: &mut DocumentMut, path: &str, value: &str) -> Result<(), S
                     } else if name == "k_newton" || name == "k_poisson" {
                         split_k(table);
                     }
+                }
+                Some(i) if name == "inertia" && tensor_row(table, i) => {
+                    return set_tensor_entry(table, name, i, i, new, path);
                 }
                 Some(i) => {
                     let slot = table
@@ -51,6 +63,48 @@ pub fn set_value(doc: &mut DocumentMut, path: &str, value: &str) -> Result<(), S
         };
     }
     Err(format!("`{path}`: nothing to set"))
+}
+
+/// `inertia[i][k]` → ("inertia", i, k), for an entry of a 3×3 tensor.
+fn tensor_index(seg: &str) -> Option<(&str, usize, usize)> {
+    let (head, k) = seg.strip_suffix(']')?.rsplit_once('[')?;
+    let (name, Some(i)) = split_index(head)? else {
+        return None;
+    };
+    Some((name, i, k.parse().ok()?))
+}
+
+/// Whether `inertia[i]` of the table is a row of a 3×3 tensor (not a principal moment).
+fn tensor_row(table: &dyn TableLike, i: usize) -> bool {
+    table
+        .get("inertia")
+        .and_then(Item::as_array)
+        .and_then(|a| a.get(i))
+        .is_some_and(Value::is_array)
+}
+
+/// Set the tensor entry `name[i][k]` and its mirror `name[k][i]`.
+fn set_tensor_entry(
+    table: &mut dyn TableLike,
+    name: &str,
+    i: usize,
+    k: usize,
+    new: Value,
+    path: &str,
+) -> Result<(), String> {
+    let rows = table
+        .get_mut(name)
+        .and_then(Item::as_array_mut)
+        .ok_or_else(|| format!("`{path}`: there is no {name}[{i}][{k}]"))?;
+    for (r, c) in [(i, k), (k, i)] {
+        let slot = rows
+            .get_mut(r)
+            .and_then(Value::as_array_mut)
+            .and_then(|row| row.get_mut(c))
+            .ok_or_else(|| format!("`{path}`: there is no {name}[{r}][{c}]"))?;
+        *slot = new.clone();
+    }
+    Ok(())
 }
 
 /// When `k` is replaced by one of `k_newton`/`k_poisson`, keep the other at the old `k`.

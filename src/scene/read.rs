@@ -42,6 +42,8 @@ pub(super) fn scene(
     };
     let name = r.name(root)?;
     let modelled = model::declared(root);
+    // The paper's body first, as it was always read (messages name its keys first).
+    let classic = if modelled { None } else { Some(r.body(root)?) };
     let mut contacts = r.contacts(root)?;
     let (models, law, restitution) = r.solve(root)?;
     let rough = contacts
@@ -59,11 +61,12 @@ pub(super) fn scene(
         None => None,
         Some(item) => Some(r.constraints(item)?),
     };
-    let (body, axes) = if modelled {
-        let lowered = r.lower(root, &mut contacts, &mut constraints)?;
-        (lowered.body, Some(lowered.axes))
-    } else {
-        (r.body(root)?, None)
+    let (body, axes) = match classic {
+        Some(body) => (body, None),
+        None => {
+            let lowered = r.lower(root, &mut contacts, &mut constraints)?;
+            (lowered.body, Some(lowered.axes))
+        }
     };
     let surface = match root.get("surface") {
         None => None,
@@ -324,17 +327,10 @@ impl Reader<'_> {
             Value::Float(f) => f.display_repr().into_owned(),
             Value::String(s) => s.value().clone(),
             other => {
-                let tensor = key.starts_with("body.inertia") && matches!(other, Value::Array(_));
                 return Err(self.err(
                     key,
                     Some(other.to_string().trim().to_string()),
-                    if tensor {
-                        "must be a number: `inertia` takes the three central principal moments \
-                         [Jx, Jy, Jz], with points, normals and velocities in those principal axes \
-                         (a full 3×3 tensor is not read yet: diagonalise it and rotate the scene)"
-                    } else {
-                        "must be a number (or a string such as \"1/3\")"
-                    },
+                    "must be a number (or a string such as \"1/3\")",
                 ));
             }
         };

@@ -12,8 +12,9 @@
 //! ```
 //!
 //! with a, b from the mass and the largest contact coordinate, c making the largest velocity
-//! (|v_C| or |ω|·L) about 1, and e_i, f_i the axes' own scales. The laws are invariant under
-//! this change of units (k and μ are dimensionless), and every output is scaled back by its
+//! (|v_C| or |ω|·L) about 1, and e_i, f_i the axes' own scales; J′ scales every entry of the
+//! inertia tensor (a full tensor's entries off the diagonal as well). The laws are invariant
+//! under this change of units (k and μ are dimensionless), and every output is scaled back by its
 //! dimension: impulses M·L/T, velocities L/T, ω 1/T, energies M·L²/T², inertances 1/M, Δ 1/M^N.
 //! So any scene whose results are representable is solved in f32, f64 and double-double; what
 //! is not representable is refused by the caller, never reported as NaN or ∞.
@@ -108,7 +109,12 @@ pub fn scale(scene: &Scene) -> Option<(Scene, Units)> {
     let c = speed.map_or(0, |s| b - s);
     let mut s = scene.clone();
     scale_number(&mut s.mass, -a);
-    for j in &mut s.inertia {
+    // The products of inertia have the moments' dimension, M·L².
+    for j in s
+        .inertia
+        .iter_mut()
+        .chain(s.inertia_products.iter_mut().flatten())
+    {
         scale_number(j, -a - 2 * b);
     }
     for x in &mut s.velocity {

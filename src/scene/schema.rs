@@ -16,9 +16,10 @@ use crate::number::Number;
 pub(crate) struct BodyTable {
     /// m.
     pub(super) mass: Number,
-    /// (J_x, J_y, J_z), or the tensor's diagonal.
+    /// (J_x, J_y, J_z), or the diagonal (J_xx, J_yy, J_zz) of a 3×3 tensor.
     pub(super) inertia: [Number; 3],
-    /// The tensor's off-diagonal entries (J_xy, J_xz, J_yz), if any.
+    /// A 3×3 tensor's entries off the diagonal (J_xy, J_xz, J_yz); `None` for principal
+    /// moments, or when they are all 0.
     pub(super) inertia_products: Option<[Number; 3]>,
     /// v_C⁰.
     pub(super) velocity: [Number; 3],
@@ -121,6 +122,23 @@ pub enum ConstraintsSpec {
     Joints(Vec<JointSpec>),
 }
 
+/// Whether two numbers are the same value: exactly when both are rational, as expressions
+/// when either names a symbol, and to 4 ulps of the larger in f64 otherwise (irrational
+/// values, evaluated in floating point).
+fn same_value(a: &Number, b: &Number) -> bool {
+    if let (Ok(x), Ok(y)) = (&a.exact, &b.exact) {
+        return x == y;
+    }
+    if !a.symbols.is_empty() || !b.symbols.is_empty() {
+        let symbolic = |n: &Number| crate::scalar::symbolic::symbolic(&n.text, &n.symbols);
+        return match (symbolic(a), symbolic(b)) {
+            (Ok(x), Ok(y)) => num_traits::Zero::is_zero(&(x - y)),
+            _ => false,
+        };
+    }
+    (a.approx - b.approx).abs() <= 4.0 * f64::EPSILON * a.approx.abs().max(b.approx.abs())
+}
+
 impl Reader<'_> {
     /// The `[body]` table: m and J (positive), v_C⁰ and ω⁰.
     pub(super) fn body(&self, root: &Table) -> Result<BodyTable, SceneError> {
@@ -132,7 +150,8 @@ impl Reader<'_> {
         )?;
         let mass = self.number(self.get(body, "mass", "body")?, "body.mass")?;
         self.positive(&mass, "body.mass", "a mass must be positive")?;
-        let inertia = self.triple(self.get(body, "inertia", "body")?, "body.inertia")?;
+        let (inertia, inertia_products) =
+            self.inertia(self.get(body, "inertia", "body")?, "body.inertia")?;
         for (i, j) in inertia.iter().enumerate() {
             self.positive(
                 j,
@@ -148,10 +167,78 @@ impl Reader<'_> {
         Ok(BodyTable {
             mass,
             inertia,
-            inertia_products: None,
+            inertia_products,
             velocity,
             angular_velocity,
         })
+    }
+
+    /// `inertia`: the central principal moments `[Jx, Jy, Jz]`, or the full tensor as a 3×3
+    /// array `[[Jxx, Jxy, Jxz], [Jxy, Jyy, Jyz], [Jxz, Jyz, Jzz]]` — symmetric (exactly when
+    /// both entries are rational or symbolic, to 4 ulps in f64 otherwise) with a positive
+    /// diagonal. Returns the diagonal and the entries off it (J_xy, J_xz, J_yz), `None` when
+    /// those are all exactly 0. Positive definiteness is checked with the problem
+    /// ([`crate::impact::problem::Problem::new`]), in the scalar it runs in.
+    pub(super) fn inertia(
+        &self,
+        item: &Item,
+        key: &str,
+    ) -> Result<([Number; 3], Option<[Number; 3]>), SceneError> {
+        let rows = match item.as_array() {
+            Some(a) if a.len() == 3 && a.iter().all(|v| v.as_array().is_some()) => a,
+            Some(a) if a.iter().any(|v| v.as_array().is_some()) => {
+                return Err(self.err(
+                    key,
+                    Some(short(item)),
+                    "must be the three central principal moments [Jx, Jy, Jz] or a 3×3 tensor \
+                     [[Jxx, Jxy, Jxz], [Jxy, Jyy, Jyz], [Jxz, Jyz, Jzz]] (three rows of three)",
+                ));
+            }
+            _ => return Ok((self.triple(item, key)?, None)),
+        };
+        let mut j: Vec<Vec<Number>> = Vec::with_capacity(3);
+        for (i, row) in rows.iter().enumerate() {
+            let row_key = format!("{key}[{i}]");
+            let row = row.as_array().filter(|r| r.len() == 3).ok_or_else(|| {
+                self.err(
+                    &row_key,
+                    Some(row.to_string().trim().to_string()),
+                    "must be a row of three numbers: a 3×3 tensor has three rows of three",
+                )
+            })?;
+            let mut entries = Vec::with_capacity(3);
+            for (k, v) in row.iter().enumerate() {
+                entries.push(self.number_value(v, &format!("{key}[{i}][{k}]"))?);
+            }
+            j.push(entries);
+        }
+        for (i, k) in [(1, 0), (2, 0), (2, 1)] {
+            let (a, b) = (&j[i][k], &j[k][i]);
+            if !same_value(a, b) {
+                return Err(self.err(
+                    &format!("{key}[{i}][{k}]"),
+                    Some(a.text.clone()),
+                    format!(
+                        "differs from `{key}[{k}][{i}]` = {}: an inertia tensor is symmetric, \
+                         so the entries mirrored across the diagonal must be equal",
+                        b.text
+                    ),
+                ));
+            }
+        }
+        for k in 0..3 {
+            self.positive(
+                &j[k][k],
+                &format!("{key}[{k}][{k}]"),
+                "the diagonal entries of an inertia tensor must be positive",
+            )?;
+        }
+        let diagonal = [j[0][0].clone(), j[1][1].clone(), j[2][2].clone()];
+        let products = [j[0][1].clone(), j[0][2].clone(), j[1][2].clone()];
+        let vanish = products
+            .iter()
+            .all(|n| matches!(&n.exact, Ok(q) if num_traits::Zero::is_zero(q)));
+        Ok((diagonal, (!vanish).then_some(products)))
     }
 
     /// The `[solve]` table: the models asked for (all of them when absent) and the impact law

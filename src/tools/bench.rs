@@ -9,6 +9,12 @@
 //! its group's scale; energies relative to T⁰). Errors are measured on each type's exact
 //! stored value ([`Scalar::exact_value`]), so a double-double's 10⁻³⁰ is not rounded away.
 //!
+//! The accuracy contract ([`crate::analysis::accuracy`]) is measured on the same scenes, the
+//! constrained hard cases and seeded scenes spanning ratios of 10^±12
+//! ([`crate::tools::accuracy`]): per float type and per output (impulses, twist, contact
+//! velocities, E_p, ΔE_c) the largest ratio of the error to its bound, at most 1 when the
+//! contract holds.
+//!
 //! The cost growth with the number of contacts is measured on `assemble` + `analyze` (both
 //! models): a free body has six independent directions, so beyond six contacts G is always
 //! singular and `analyze` (the family of solutions) is the operation that works for every N.
@@ -27,6 +33,7 @@ use num_rational::BigRational;
 use num_traits::Signed;
 use serde_json::{Value as Json, json};
 
+use crate::analysis::accuracy::Output;
 use crate::analysis::analyze;
 use crate::impact::problem::Problem;
 use crate::impact::restitution::Model;
@@ -35,6 +42,7 @@ use crate::impact::unilateral::{Activity, active};
 use crate::scalar::dd::DoubleDouble;
 use crate::scalar::{Exact, Scalar};
 use crate::scene::Scene;
+use crate::tools::accuracy::ContractRow;
 
 /// Options of a bench run.
 #[derive(Clone, Debug)]
@@ -128,6 +136,9 @@ pub struct BenchReport {
     pub unilateral_differs: usize,
     /// The frictional solve, planar and spatial ([`crate::tools::friction_bench`]).
     pub friction: crate::tools::friction_bench::FrictionBench,
+    /// The accuracy contract measured per output, f32, f64 and double-double
+    /// ([`crate::tools::accuracy`]), and how many scenes spanning ratios of 10^±12 it included.
+    pub contract: (Vec<ContractRow>, usize),
 }
 
 /// A small deterministic generator (SplitMix64), so the corpus is the same on every machine.
@@ -519,6 +530,18 @@ pub fn run(opts: &BenchOptions) -> BenchReport {
             }
         }
     }
+    // The contract: every scene above (the constrained hard cases too) and scenes spanning
+    // ratios of 10^±12.
+    let ratio_count = if opts.quick { 24 } else { 120 };
+    let mut contract_scenes: Vec<Scene> = well.iter().map(|c| c.0.clone()).collect();
+    if let Some(dir) = opts.hard_cases.as_deref().filter(|d| d.is_dir()) {
+        contract_scenes.extend(crate::tools::accuracy::hard_cases(dir));
+    }
+    contract_scenes.extend(crate::tools::accuracy::ratio_scenes(
+        ratio_count,
+        0x5eed_0016,
+    ));
+    let contract = (crate::tools::accuracy::run(&contract_scenes), ratio_count);
     let rows = vec![
         measure::<f32>(&well, &hard, budget),
         measure::<f64>(&well, &hard, budget),
@@ -595,6 +618,7 @@ pub fn run(opts: &BenchOptions) -> BenchReport {
         scaling,
         unilateral_differs,
         friction: crate::tools::friction_bench::run(opts.quick),
+        contract,
     }
 }
 
@@ -788,6 +812,7 @@ impl BenchReport {
                 g.active.map_or("—".into(), |(n, p)| format!("{n} / {p}"))
             );
         }
+        s += &self.contract_text();
         s + &self.friction.to_text()
     }
 
@@ -830,6 +855,7 @@ impl BenchReport {
                 },
             })).collect::<Vec<_>>(),
             "unilateral_differs": self.unilateral_differs,
+            "contract": self.contract_json(),
             "friction": self.friction.to_json(),
             "scaling": self.scaling.iter().map(|g| json!({
                 "contacts": g.contacts,
@@ -838,6 +864,64 @@ impl BenchReport {
                 "ns_per_solve_unilateral": by_scalar(&g.unilateral),
                 "unilateral_active": g.active.map(|(n, p)| json!({"newton": n, "poisson": p})),
             })).collect::<Vec<_>>(),
+        })
+    }
+
+    /// The contract's table: per scalar, the largest error/bound per output.
+    fn contract_text(&self) -> String {
+        let (rows, ratios) = &self.contract;
+        let mut s = format!(
+            "\nAccuracy contract (analysis::accuracy): the largest error / bound per output over every solve of the scenes above (hard cases included) and {ratios} scenes spanning ratios of 10^±12; ≤ 1 is the contract:\n\n| scalar | solves | declared singular (smallest cond₂ G) |"
+        );
+        for o in Output::ALL {
+            s += &format!(" {} |", o.name());
+        }
+        s += "\n|---|---|---|";
+        s += &"---|".repeat(Output::ALL.len());
+        s += "\n";
+        for r in rows {
+            let (singular, cond) = r.declared_singular();
+            let solves = r.measurements.len() - singular;
+            s += &format!(
+                "| {} | {solves} | {} |",
+                r.scalar,
+                if singular > 0 {
+                    format!("{singular} ({cond:.1e})")
+                } else {
+                    "0".into()
+                }
+            );
+            for o in Output::ALL {
+                s += &format!(" {} |", fmt_err(r.worst(o).0));
+            }
+            s += "\n";
+        }
+        s
+    }
+
+    /// The contract's JSON: per scalar, solves, declared singular, and per output the largest
+    /// ratio and its case.
+    fn contract_json(&self) -> Json {
+        let num = |x: f64| {
+            serde_json::Number::from_f64(x)
+                .map(Json::Number)
+                .unwrap_or(Json::Null)
+        };
+        let (rows, ratios) = &self.contract;
+        json!({
+            "ratio_scenes": ratios,
+            "scalars": rows.iter().map(|r| {
+                let (singular, _) = r.declared_singular();
+                json!({
+                    "scalar": r.scalar,
+                    "solves": r.measurements.len() - singular,
+                    "declared_singular": singular,
+                    "max_error_over_bound": Output::ALL.iter().map(|o| {
+                        let (ratio, case) = r.worst(*o);
+                        (o.name().to_string(), json!({"ratio": num(ratio), "case": case}))
+                    }).collect::<serde_json::Map<_, _>>(),
+                })
+            }).collect::<Vec<_>>(),
         })
     }
 

@@ -1,8 +1,10 @@
 //! The toolkit's commands, each a library function the CLI calls: [`analyze`] (degenerate
 //! cases of a scene, §8), [`check`] (the paper's worked examples and closed forms, checked),
-//! [`derive`](mod@derive) (closed forms over symbols), [`bench`](mod@bench) (accuracy against time per scalar; [`friction_bench`] its frictional part) and
+//! [`derive`](mod@derive) (closed forms over symbols), [`bench`](mod@bench) (accuracy against time per scalar; [`friction_bench`] its frictional part;
+//! [`accuracy`] the accuracy contract measured per output) and
 //! [`sweep`] (parameter sweeps).
 
+pub mod accuracy;
 pub mod analyze;
 pub mod bench;
 pub mod check;

@@ -8,7 +8,7 @@
 use inertance::impact::problem::Problem;
 use inertance::impact::restitution::Model;
 use inertance::impact::solve::{Impact, Outcome, SolveError};
-use inertance::mechanics::body::RigidBody;
+use inertance::mechanics::body::{Inertia, RigidBody};
 use inertance::mechanics::contact::Contact;
 use inertance::mechanics::screw::{Screw, Vec3};
 use inertance::scalar::{Exact, Scalar, int};
@@ -50,10 +50,7 @@ pub fn body() -> impl Strategy<Value = RigidBody<Exact>> {
         positive(20, 4),
         positive(20, 4),
     )
-        .prop_map(|(m, a, b, c)| RigidBody {
-            mass: m,
-            inertia: Vec3::new(a, b, c),
-        })
+        .prop_map(|(m, a, b, c)| RigidBody::principal(m, Vec3::new(a, b, c)))
 }
 
 pub fn contact() -> impl Strategy<Value = Contact<Exact>> {
@@ -85,9 +82,13 @@ pub fn problem(max: usize) -> impl Strategy<Value = Problem<Exact>> {
 pub fn convert<T: Scalar>(p: &Problem<Exact>) -> Problem<T> {
     let c = |x: &Exact| T::from_rational(&x.to_big_rational());
     let v = |x: &Vec3<Exact>| Vec3::new(c(&x[0]), c(&x[1]), c(&x[2]));
-    let body = RigidBody {
-        mass: c(&p.body().mass),
-        inertia: v(&p.body().inertia),
+    let mass = c(&p.body().mass);
+    let body = match &p.body().inertia {
+        Inertia::Principal(j) => RigidBody::principal(mass, v(j)),
+        Inertia::Tensor(t) => RigidBody::with_tensor(
+            mass,
+            std::array::from_fn(|i| std::array::from_fn(|k| c(&t.matrix()[(i, k)]))),
+        ),
     };
     let velocity = Screw::new(v(&p.velocity().top()), v(&p.velocity().bottom()));
     let contacts = p
@@ -130,13 +131,15 @@ pub fn solve_models<T: Scalar>(p: &Problem<T>, models: &[Model]) -> Result<Solve
     Ok((impact, outcomes))
 }
 
-/// ½(m|v_C|² + Σ J_k ω_k²), written out independently of the library.
+/// ½(m|v_C|² + Σ_ik J_ik ω_i ω_k), written out independently of the library.
 pub fn kinetic_energy(body: &RigidBody<Exact>, twist: &Screw<Exact>) -> Exact {
     let (w, v) = (twist.top(), twist.bottom());
     let mut t =
         body.mass.clone() * (v[0].clone() * &v[0] + v[1].clone() * &v[1] + v[2].clone() * &v[2]);
-    for k in 0..3 {
-        t += body.inertia[k].clone() * &w[k] * &w[k];
+    for i in 0..3 {
+        for k in 0..3 {
+            t += body.inertia.entry(i, k) * &w[i] * &w[k];
+        }
     }
     t / Exact::from_integer(2.into())
 }

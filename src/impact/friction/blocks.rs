@@ -10,12 +10,22 @@
 //! v_q  = v_q⁰ − Σ_r K_qr Λ_r        (eq. 144, for every axis at once)
 //! ```
 //!
-//! **Planar scenes, exactly.** In a plane with unit normal e (a coordinate axis of the body
-//! frame), a contact's in-plane tangent is t_i = e × n_i: it has the length of n_i, so with
-//! the hatted (unnormalised) axes of [`crate::mechanics::contact`] the Coulomb cone
-//! |τ_i| ≤ μ_i P_i reads |τ̂_i| ≤ μ_i p̂_i with no square root, and every quantity stays in
-//! the scalar's field. The scene is planar when no impulse along any stacked axis can move a
-//! frictional contact out of the plane and none moves out of it before impact:
+//! **Planar scenes, exactly.** In a plane with unit normal e, a contact's in-plane tangent is
+//! t_i = e × n_i: it has the length of n_i, so with the hatted (unnormalised) axes of
+//! [`crate::mechanics::contact`] the Coulomb cone |τ_i| ≤ μ_i P_i reads |τ̂_i| ≤ μ_i p̂_i with
+//! no square root, and every quantity stays in the scalar's field — as long as e itself is in
+//! the field. The planes tried are the coordinate planes of the body axes (z, y, x: every
+//! scene written in principal axes), then, in exact types, the planes whose normal is a
+//! direction d built from the scene's own vectors (d = n_a × n_b for two frictional normals
+//! that are not parallel; otherwise d = n × w, with n the common direction of the frictional
+//! normals and w a contact point, a normal, v_C⁰ or ω⁰; or d = ω⁰) whose length |d| is
+//! rational, so that e = d/|d| is: a scene posed in world axes by a rational rotation (a
+//! body with a full inertia tensor) keeps its plane. A plane whose normal has an irrational
+//! length (e ∝ (1, 1, 0)) would put μ_i/|d| in the cone; such a scene is integrated as a
+//! spatial one (floats) instead.
+//!
+//! The scene is planar when no impulse along any stacked axis can move a frictional contact
+//! out of the plane and none moves out of it before impact:
 //! {Z_i}ᵀ η W {E_r} = 0 for every r and {Z_i}ᵀ η {v⁰} = 0, with Z_i the axis through A_i
 //! along e — then v_iz ≡ 0 (eq. 144), slip stays along t_i and sticking needs no impulse
 //! along e. The test is exact in exact types; it makes no assumption on the body (a
@@ -27,7 +37,7 @@
 use crate::impact::problem::Problem;
 use crate::mechanics::body::Mobility;
 use crate::mechanics::contact::ContactFrame;
-use crate::mechanics::screw::{Screw, Vec3, norm2};
+use crate::mechanics::screw::{Screw, Vec3, dot, norm2};
 use crate::scalar::Scalar;
 
 /// The stacked axes of a frictional impact and their inertance matrix K.
@@ -49,8 +59,8 @@ pub struct Blocks<T: Scalar> {
     pub mu: Vec<T>,
     /// The contact points A_i (from C, body axes).
     pub points: Vec<Vec3<T>>,
-    /// The plane's unit normal (coordinate axis 0, 1 or 2) when the scene is planar.
-    pub plane: Option<usize>,
+    /// The plane's unit normal e when the scene is planar.
+    pub plane: Option<Vec3<T>>,
 }
 
 impl<T: Scalar> Blocks<T> {
@@ -74,37 +84,51 @@ impl<T: Scalar> Blocks<T> {
         &self.k[q * self.len() + r]
     }
 
-    /// The planar blocks of `problem`, exact: tangents e × n_i in the first coordinate plane
-    /// that passes the planarity test; `None` when no coordinate plane does.
+    /// The planar blocks of `problem`, exact: tangents e × n_i in the first plane that passes
+    /// the planarity test — a coordinate plane (z, y, x), then in exact types a plane of
+    /// rational unit normal found from the scene's vectors (see the module docs); `None` when
+    /// none does.
     pub fn planar(problem: &Problem<T>) -> Option<Self> {
-        (0..3).rev().find_map(|e| Self::in_plane(problem, e))
+        let coordinate = (0..3).rev().find_map(|k| {
+            let mut unit = Vec3::zeros();
+            unit[k] = T::one();
+            Self::in_plane(problem, unit)
+        });
+        if coordinate.is_some() || !T::IS_EXACT {
+            return coordinate;
+        }
+        plane_normals(problem)
+            .into_iter()
+            .find_map(|unit| Self::in_plane(problem, unit))
     }
 
-    fn in_plane(problem: &Problem<T>, e: usize) -> Option<Self> {
-        let mut unit = Vec3::zeros();
-        unit[e] = T::one();
+    /// The blocks in the plane of unit normal `unit`, if the scene stays in it.
+    fn in_plane(problem: &Problem<T>, unit: Vec3<T>) -> Option<Self> {
         let mut axes = Vec::new();
         let mut dims = Vec::new();
         let mut out_of_plane = Vec::new();
+        let velocity = problem.velocity();
         for c in problem.contacts() {
             axes.push(Screw::axis(&c.point, &c.normal));
             if c.mu.is_zero() {
                 dims.push(0);
                 continue;
             }
-            if !c.normal[e].is_zero() {
+            if !dot(&unit, &c.normal).is_zero() {
+                return None;
+            }
+            let z = Screw::axis(&c.point, &unit);
+            if !z.reciprocal(velocity).is_zero() {
                 return None;
             }
             axes.push(Screw::axis(&c.point, &unit.cross(&c.normal)));
-            out_of_plane.push(Screw::axis(&c.point, &unit));
+            out_of_plane.push(z);
             dims.push(1);
         }
-        let blocks = Self::from_axes(problem, axes, dims, Some(e));
-        let velocity = problem.velocity();
-        let stays = out_of_plane.iter().all(|z| {
-            z.reciprocal(velocity).is_zero()
-                && blocks.responses.iter().all(|r| z.reciprocal(r).is_zero())
-        });
+        let blocks = Self::from_axes(problem, axes, dims, Some(unit));
+        let stays = out_of_plane
+            .iter()
+            .all(|z| blocks.responses.iter().all(|r| z.reciprocal(r).is_zero()));
         stays.then_some(blocks)
     }
 
@@ -138,7 +162,7 @@ impl<T: Scalar> Blocks<T> {
         problem: &Problem<T>,
         axes: Vec<Screw<T>>,
         dims: Vec<usize>,
-        plane: Option<usize>,
+        plane: Option<Vec3<T>>,
     ) -> Self {
         let responses: Vec<Screw<T>> = axes.iter().map(|a| problem.response(a)).collect();
         let len = axes.len();
@@ -198,6 +222,60 @@ impl<T: Scalar> Blocks<T> {
     }
 }
 
+/// The unit normals e = d/|d| of the planes a planar scene in other than coordinate axes may
+/// lie in: d from the scene's vectors (see the module docs), kept when d ≠ 0, d ⊥ every
+/// frictional normal and |d|² is the square of a rational; each plane once, coordinate planes
+/// (tried already) left out.
+fn plane_normals<T: Scalar>(problem: &Problem<T>) -> Vec<Vec3<T>> {
+    let contacts = problem.contacts();
+    let rough: Vec<&Vec3<T>> = contacts
+        .iter()
+        .filter(|c| !c.mu.is_zero())
+        .map(|c| &c.normal)
+        .collect();
+    let Some(&n) = rough.first() else {
+        return Vec::new();
+    };
+    let (w0, v0) = (problem.velocity().top(), problem.velocity().bottom());
+    let crossing = rough.iter().map(|m| n.cross(m)).find(|d| !is_zero(d));
+    let directions: Vec<Vec3<T>> = match crossing {
+        Some(d) => vec![d],
+        None => {
+            let others = contacts
+                .iter()
+                .flat_map(|c| [&c.point, &c.normal])
+                .chain([&v0, &w0]);
+            std::iter::once(w0.clone())
+                .chain(others.map(|w| n.cross(w)))
+                .collect()
+        }
+    };
+    let mut normals: Vec<Vec3<T>> = Vec::new();
+    for d in directions {
+        if is_zero(&d) || !rough.iter().all(|m| dot(&d, m).is_zero()) {
+            continue;
+        }
+        let Some(length) = norm2(&d)
+            .to_rational()
+            .and_then(|q| q.sqrt_exact())
+            .map(|q| T::from_rational(&q))
+        else {
+            continue;
+        };
+        let e = d / length;
+        let coordinate = e.iter().filter(|x| x.is_zero()).count() == 2;
+        let seen = normals.iter().any(|f| is_zero(&f.cross(&e)));
+        if !coordinate && !seen {
+            normals.push(e);
+        }
+    }
+    normals
+}
+
+fn is_zero<T: Scalar>(v: &Vec3<T>) -> bool {
+    v.iter().all(T::is_zero)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -214,10 +292,7 @@ mod tests {
         let c =
             |y: i64, k: Exact| Contact::new(v(0, y, 0), v(1, 0, 0), k).with_friction(mu.clone());
         Problem::new(
-            RigidBody {
-                mass: int(1),
-                inertia: Vec3::new(int(12), ratio(8, 5), int(12)),
-            },
+            RigidBody::principal(int(1), Vec3::new(int(12), ratio(8, 5), int(12))),
             Screw::new(Vec3::new(int(omega_x), int(0), ratio(2, 5)), v(3, 2, 0)),
             vec![c(-2, ratio(3, 10)), c(4, ratio(1, 5))],
         )
@@ -227,7 +302,7 @@ mod tests {
     #[test]
     fn example_3_is_planar_in_the_xy_plane() {
         let b = Blocks::planar(&bar(ratio(1, 2), 0)).unwrap();
-        assert_eq!(b.plane, Some(2));
+        assert_eq!(b.plane, Some(v(0, 0, 1)));
         assert_eq!(b.dims, vec![1, 1]);
         // The normal-normal blocks are the paper's g_ij (eq. 17, 19): 4/3, 1/3, 7/3.
         assert_eq!(b.at(0, 0), &ratio(4, 3));

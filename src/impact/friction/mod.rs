@@ -338,8 +338,9 @@ pub enum FrictionError {
     },
     /// A spatial scene in an exact type (spatial scenes are integrated in floats).
     #[error(
-        "the scene is not planar (no coordinate plane holds every frictional contact and the \
-         motion), so it is integrated numerically: run it in f64 or double-double"
+        "the scene is not planar (no coordinate plane, nor a plane whose normal has a rational \
+         length, holds every frictional contact and the motion), so it is integrated \
+         numerically: run it in f64 or double-double"
     )]
     NotPlanar,
     /// A spatial scene in a dual-number type (a sensitivity run): the adaptive integrator

@@ -4,13 +4,13 @@
 //! The paper writes every vector in the body's central principal axes. A modelled scene writes
 //! them where the user sees them:
 //!
-//! * `[params]`: named values usable in every expression ([`params`]);
+//! * `[params]`: named values usable in every expression (`params.rs`);
 //! * `[body] shape` (or `mass` with `inertia` — three principal moments or a full tensor —
-//!   about `inertia_about`, with `centre_of_mass`), all in body axes ([`shape`]);
-//! * `[body] pose` (R, body → world, [`pose`]) and `position` (the body origin in the world);
+//!   about `inertia_about`, with `centre_of_mass`), all in body axes (`shape.rs`);
+//! * `[body] pose` (R, body → world, `pose.rs`) and `position` (the body origin in the world);
 //!   `velocity` (of the centre of mass C) and `angular_velocity` in the world frame;
 //! * contacts at a world `point`, a `body_point` (body axes) or a box `corner`, against an
-//!   `[[obstacle]]` plane ([`obstacle`]) or with a world `normal` and `tangent`.
+//!   `[[obstacle]]` plane (`obstacle.rs`) or with a world `normal` and `tangent`.
 //!
 //! The solver then works with its origin at C, in world axes (the default: results come back in
 //! the world frame) or in body axes (`[solve] axes = "body"`):
@@ -21,7 +21,7 @@
 //! J_C = J_A − m (|d|² I − d dᵀ),  d = A − c   (the parallel-axis theorem, `inertia_about` A)
 //! ```
 //!
-//! Every value is combined as an expression ([`term`]) and read again like a written number,
+//! Every value is combined as an expression (`term.rs`) and read again like a written number,
 //! so exact scenes stay exact (a rational rotation gives fractions, `30 deg` radicals) and a
 //! parameter is a symbol for `derive` and carries its derivative in a sensitivity run. A scene
 //! that uses none of these keys is read exactly as before.
@@ -96,6 +96,14 @@ pub(crate) struct Lowered {
     pub(crate) axes: Axes,
 }
 
+/// A body whose central inertia tensor is singular.
+enum Degenerate {
+    /// No moment about the line through C along u (body axes).
+    Line(Vec3),
+    /// No moment at all.
+    Point,
+}
+
 /// The frame of a modelled scene: R, the body origin, C, and the output axes.
 struct Frame {
     r: Mat3,
@@ -156,6 +164,11 @@ impl Reader<'_> {
         if let Term::Rat(q) = t {
             return Ok(Some(sign_of(q)));
         }
+        // Far from zero — beyond twice the error bound carried along — the f64 value decides.
+        let (x, e) = (t.approx(), t.error());
+        if x.is_finite() && e.is_finite() && x.abs() > 2.0 * e {
+            return Ok(Some(if x > 0.0 { 1 } else { -1 }));
+        }
         let n = self.term_number(t, key)?;
         if let Ok(q) = &n.exact {
             return Ok(Some(sign_of(q)));
@@ -189,13 +202,8 @@ impl Reader<'_> {
 
     /// The magnitude of a term in f64 (for tolerances).
     fn magnitude(&self, t: &Term) -> f64 {
-        self.params.number(&t.to_string()).map_or(1.0, |n| {
-            if n.approx.is_finite() {
-                n.approx.abs()
-            } else {
-                1.0
-            }
-        })
+        let x = t.approx().abs();
+        if x.is_finite() { x } else { 1.0 }
     }
 
     /// Read a modelled scene's body, and bring its contacts and constraints to the solver's
@@ -219,7 +227,8 @@ impl Reader<'_> {
         let mut keys = vec!["mass", "inertia", "velocity", "angular_velocity"];
         keys.extend(BODY_KEYS);
         self.only_keys(body, "body", &keys)?;
-        let (props, shape) = self.mass_properties(body)?;
+        let (mut props, shape) = self.mass_properties(body)?;
+        let degenerate = self.degenerate(&mut props, shape.as_ref())?;
         let r = self.pose(body.get("pose"))?;
         let position = match body.get("position") {
             None => zero(),
@@ -238,6 +247,9 @@ impl Reader<'_> {
         self.place_contacts(root, contacts, &frame, &obstacles, shape.as_ref())?;
         if let Some(c) = constraints {
             self.lower_constraints(c, &frame)?;
+        }
+        if let Some(d) = &degenerate {
+            self.check_degenerate(d, contacts, constraints.is_some(), &frame)?;
         }
         let velocity = self.triple(self.get(body, "velocity", "body")?, "body.velocity")?;
         let omega = self.triple(
@@ -283,6 +295,135 @@ impl Reader<'_> {
             },
             axes,
         })
+    }
+
+    /// A body with no moment of inertia about a line through C (a thin rod, point masses on a
+    /// line) or about any (one point mass): J_C is singular, with null space spanned by the
+    /// axis u (or everything). No contact on that line has a moment about it, so the impact does
+    /// not depend on the missing moment: J_C is completed to J_C + c·P (P the projector on the
+    /// null space, c = tr J_C / 2, the rod's transverse moment) — any c > 0 gives the same
+    /// impulses, twist and energies, since J⁻¹ never acts along u — and each contact is then
+    /// checked to have no moment about u ([`Reader::check_degenerate`]).
+    fn degenerate(
+        &self,
+        props: &mut shape::MassProperties,
+        shape: Option<&Shape>,
+    ) -> Result<Option<Degenerate>, SceneError> {
+        let j = &mut props.inertia;
+        let found = match shape {
+            Some(Shape::Rod(_)) => {
+                Some(Degenerate::Line([Term::int(0), Term::int(0), Term::int(1)]))
+            }
+            Some(Shape::Points(points)) => {
+                let d: Vec<Vec3> = points.iter().map(|(_, p)| sub(p, &props.centre)).collect();
+                let mut axis: Option<Vec3> = None;
+                for di in &d {
+                    if dot(di, di).is_zero()
+                        || self.decide_zero(&dot(di, di), "body.shape.points")? == Some(true)
+                    {
+                        continue;
+                    }
+                    match &axis {
+                        None => axis = Some(di.clone()),
+                        Some(u) => {
+                            let c = term::cross(u, di);
+                            let off = dot(&c, &c);
+                            if self.decide_zero(&off, "body.shape.points")? != Some(true) {
+                                return Ok(None);
+                            }
+                        }
+                    }
+                }
+                Some(match axis {
+                    Some(u) => Degenerate::Line(u),
+                    None => Degenerate::Point,
+                })
+            }
+            _ => None,
+        };
+        let Some(found) = found else {
+            return Ok(None);
+        };
+        let trace = &(&j[0][0] + &j[1][1]) + &j[2][2];
+        let c = match &found {
+            Degenerate::Line(_) => &trace / &Term::int(2),
+            // One point mass: no moment at all; any c serves, c = m (in units of kg m²).
+            Degenerate::Point => props.mass.clone(),
+        };
+        for a in 0..3 {
+            for b in 0..3 {
+                let p = match &found {
+                    Degenerate::Line(u) => &(&u[a] * &u[b]) / &dot(u, u),
+                    Degenerate::Point => Term::int(i64::from(a == b)),
+                };
+                j[a][b] = &j[a][b] + &(&c * &p);
+            }
+        }
+        Ok(Some(found))
+    }
+
+    /// A body without a moment about u (or at all): every contact must have none either —
+    /// (r × n)·u = 0, and with friction r × u = 0 (the tangential impulses too) — and
+    /// constraints are refused (their screws may have one).
+    fn check_degenerate(
+        &self,
+        d: &Degenerate,
+        contacts: &[ContactSpec],
+        constrained: bool,
+        frame: &Frame,
+    ) -> Result<(), SceneError> {
+        let what = match d {
+            Degenerate::Line(_) => "about its own axis (a thin rod, or point masses on a line)",
+            Degenerate::Point => "at all (a single point mass)",
+        };
+        if constrained {
+            return Err(self.err(
+                "constraints",
+                None,
+                format!("the body has no moment of inertia {what}; constraints on such a body are not supported — give it a thickness (a cylinder, or masses off the line)"),
+            ));
+        }
+        let axis = match d {
+            Degenerate::Line(u) => Some(match frame.axes {
+                Axes::World => apply(&frame.r, u),
+                Axes::Body => u.clone(),
+            }),
+            Degenerate::Point => None,
+        };
+        for (i, c) in contacts.iter().enumerate() {
+            let r = c.point.each_ref().map(Term::of);
+            let Some(n) = &c.normal else { continue };
+            let n = n.each_ref().map(Term::of);
+            let moment = term::cross(&r, &n);
+            let rough = !matches!(&c.mu.exact, Ok(q) if num_traits::Zero::is_zero(q));
+            let (bad, reason) = match &axis {
+                Some(u) => {
+                    let about = dot(&moment, u);
+                    let off = term::cross(&r, u);
+                    let off_axis =
+                        rough && self.decide_zero(&dot(&off, &off), "contact")? == Some(false);
+                    (
+                        self.decide_zero(&about, "contact")? == Some(false) || off_axis,
+                        "a moment about the body's axis",
+                    )
+                }
+                None => (
+                    self.decide_zero(&dot(&moment, &moment), "contact")? == Some(false),
+                    "a moment about the centre of mass",
+                ),
+            };
+            if bad {
+                return Err(self.err(
+                    &format!("contact[{i}]"),
+                    None,
+                    format!(
+                        "its impulse has {reason}, but the body has no moment of inertia {what}: touch it on \
+                         its axis (for a rod, `body_point = [0, 0, z]`), or give it a thickness"
+                    ),
+                ));
+            }
+        }
+        Ok(())
     }
 
     /// `[solve] axes`.
@@ -372,38 +513,18 @@ impl Reader<'_> {
         let m = self.number(self.get(body, "mass", "body")?, "body.mass")?;
         self.positive(&m, "body.mass", "a mass must be positive")?;
         let mass = Term::of(&m);
-        let item = self.get(body, "inertia", "body")?;
-        let j_a: Mat3 = match item.as_array() {
-            Some(a) if a.iter().all(|v| v.as_array().is_some()) => {
-                self.matrix3(item, "body.inertia")?
-            }
-            _ => {
-                let d = self.triple(item, "body.inertia")?;
-                for (i, j) in d.iter().enumerate() {
-                    self.positive(
-                        j,
-                        &format!("body.inertia[{i}]"),
-                        "principal moments must be positive",
-                    )?;
-                }
-                let d = d.each_ref().map(Term::of);
-                std::array::from_fn(|i| {
-                    std::array::from_fn(|k| if i == k { d[i].clone() } else { Term::int(0) })
-                })
-            }
-        };
-        for i in 0..3 {
-            for k in i + 1..3 {
-                let diff = &j_a[i][k] - &j_a[k][i];
-                if self.decide_zero(&diff, "body.inertia")? == Some(false) {
-                    return Err(self.err(
-                        &format!("body.inertia[{k}][{i}]"),
-                        Some(format!("{} (and [{i}][{k}] = {})", j_a[k][i], j_a[i][k])),
-                        "an inertia tensor is symmetric: [i][k] and [k][i] must be equal",
-                    ));
-                }
-            }
-        }
+        let (diagonal, products) =
+            self.inertia(self.get(body, "inertia", "body")?, "body.inertia")?;
+        let d = diagonal.each_ref().map(Term::of);
+        let p = products.as_ref().map(|p| p.each_ref().map(Term::of));
+        // (J_xy, J_xz, J_yz) at (0, 1), (0, 2), (1, 2), mirrored.
+        let j_a: Mat3 = std::array::from_fn(|i| {
+            std::array::from_fn(|k| match (i == k, &p) {
+                (true, _) => d[i].clone(),
+                (false, None) => Term::int(0),
+                (false, Some(p)) => p[i + k - 1].clone(),
+            })
+        });
         let centre = match body.get("centre_of_mass") {
             None => zero(),
             Some(c) => self

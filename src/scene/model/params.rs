@@ -173,6 +173,7 @@ mod tests {
         p.push("h", "2*sin(theta)").expect("reads");
         let n = p.number("h + 1").expect("reads");
         assert_eq!(n.text, "(2*sin((30 deg))) + 1");
+        assert_eq!(n.source.as_deref(), Some("h + 1"));
         assert_eq!(
             n.exact,
             Ok(num_rational::BigRational::from_integer(2.into()))

@@ -1,0 +1,412 @@
+//! The accuracy contract of a float solve, per output, and its measurement against an exact
+//! solve.
+//!
+//! # The bounds
+//!
+//! A float solve (f32, f64, double-double; ε its machine epsilon: 2⁻²³, 2⁻⁵², 2⁻¹⁰⁴) of a
+//! problem whose G has full rank in that type returns, for each restitution model, outputs
+//! within these distances of the exact outputs of the problem as written (every input
+//! rounded once into the type), to first order in ε:
+//!
+//! ```text
+//! impulses               ‖δP‖₂        ≤ B_P  = 4 c ε (√κ ‖P‖₂ + κ V / √λ_max)
+//! twist after impact     ‖δv‖_M       ≤ B_v  = c ε (√κ V + 4 δk κ ‖v⁰‖_M)
+//! contact velocities     |δv_ia|      ≤ B_ia = √g_ia B_v + 4 ε s_ia V
+//! E_p                    |δE_p|       ≤ ‖Δv‖_M B_v + N ε E_p
+//! ΔE_c                   |δΔE_c|      ≤ 3 V B_v + N ε V²
+//!
+//! c = μ (2 √N (3ℓ + 16N) + 1)
+//! ```
+//!
+//! in the problem's own terms, so every bound is independent of the units:
+//!
+//! - κ = cond₂ G = λ_max/λ_min of the physical inertance matrix (unit normals);
+//! - ‖v‖_M = (vᵀ η M v)^½ = (2T(v))^½, the kinetic-energy norm of a twist; Δv = {v} − {v⁰};
+//!   V = ‖v⁰‖_M + ‖Δv‖_M = (2T⁰)^½ + (2E_p)^½, the velocity scale of the impact;
+//! - δk = (max k_i^P − min k_i^P)/2 for Poisson, 0 for Newton;
+//! - g_ia = ⟨e_ia, e_ia⟩ the inertance along the unit axis a of contact i (g_ii for a = x), and
+//!   s_ia the same norm of |e_ia|, the axis screw's componentwise magnitudes, in the free-body
+//!   metric (below);
+//! - ℓ = max_j ‖|E_j|‖/‖E_j‖ ≥ 1, the cancellation in the contacts' axis screws
+//!   E_j = [n_j; r_j × n_j]: |E_j| holds each component's magnitudes, |n_j| and
+//!   |r_b n_c| + |r_c n_b| for (r × n)_a, measured in the free-body metric ηM⁻¹, E_j in the
+//!   body's metric ηW. ℓ = 1 when no component of r × n cancels; it grows when a normal
+//!   passes close to C, or when a constraint absorbs most of a contact's wrench;
+//! - μ = cond₂ M_red (eq. 83) for a constrained body, 1 for a free one: the accuracy to which
+//!   its mobility W is applied.
+//!
+//! **Where the terms come from.** The solve ([`crate::impact::gram_schmidt`]) is, to first
+//! order, the exact solve of a problem whose data are perturbed by
+//!
+//! 1. the rounding of the inputs and of E_j = [n; r × n] and W E_j (a component of E_j is at
+//!    most a difference of two products of inputs): ‖δE_j‖ ≤ 3 ε ℓ ‖E_j‖ (the inputs ½ε each,
+//!    two products and a difference ½ε each, the mobility's division ½ε, the metric's inputs
+//!    ½ε; the free-body metric is diagonal in principal axes, so a componentwise bound
+//!    |δE| ≤ 3ε|E| gives ‖δE‖ ≤ 3ε‖|E|‖ — with a full inertia tensor ‖|E|‖ bounds the moment
+//!    part by |·|²/λ_min(J), for which the same holds);
+//! 2. Gram–Schmidt with reorthogonalisation, backward stable column by column: the computed
+//!    factors are exact for E + δE with ‖δE_j‖ ≤ 16 N ε ‖E_j‖ (at most two passes of N − 1
+//!    projections, each a 12-flop reciprocal product and a 12-flop update; the triangular
+//!    solves with U add at most N ε Σ_k |u_kj| d_k^½ ≤ N^{3/2} ε ‖E_j‖, within the same
+//!    constant for N ≤ 6, the most contacts a full-rank G can have);
+//! 3. the velocities along the normals before impact, |δv̂⁰_ix| ≤ 3 ε ℓ ‖E_i‖ ‖v⁰‖_M
+//!    (weighted Cauchy–Schwarz: Σ|E_k v_k| ≤ ‖|E|‖ ‖v‖_M in the diagonal metrics), so the
+//!    right-hand side b = (1 + K) v̂⁰_x (Newton; 1 + k_i ≤ 2) moves by |δb_i| ≤ 2 η_E √g_ii ‖v⁰‖_M.
+//!
+//! With η_E = (3ℓ + 16N) ε the relative perturbation of each wrench, first-order perturbation
+//! of y = E G⁻¹ b (the impulses' wrench; Δv = −W y and ‖Δv‖_M = ‖y‖):
+//!
+//! ```text
+//! δy = (I − Π) δE P − E G⁻¹ δEᵀ A y + E G⁻¹ δb,        Π = E G⁻¹ Eᵀ A
+//! ‖(I − Π) δE P‖ ≤ ‖δE P‖ ≤ η_E (Σ g_jj)^½ ‖P‖₂ ≤ η_E √N √λ_max ‖y‖/√λ_min = √N √κ η_E ‖Δv‖_M
+//! ‖E G⁻¹ δEᵀ A y‖ = ‖G^(−½) δEᵀ A y‖₂ ≤ √N √κ η_E ‖Δv‖_M
+//! ‖E G⁻¹ δb‖ = ‖G^(−½) δb‖₂ ≤ 2 √N √κ η_E ‖v⁰‖_M
+//! ```
+//!
+//! (‖E x‖ = ‖G^½ x‖₂, and ‖δEᵀ A y‖₂ ≤ (Σ_j ‖δE_j‖²)^½ ‖y‖), so ‖δΔv‖_M ≤ 2√N √κ η_E V, plus
+//! ε V for forming {v⁰} + Δv: B_v with c = 2√N (3ℓ + 16N) + 1. The same steps on P = G⁻¹ b give
+//! ‖G⁻¹ δG P‖ ≤ √N η_E (√κ ‖P‖ + κ ‖Δv‖_M/√λ_max) and ‖G⁻¹ δb‖ ≤ 2√N η_E κ ‖v⁰‖_M/√λ_max,
+//! together ≤ c ε (√κ ‖P‖ + κ V/√λ_max). Poisson's impulses are (1 + k_i) P^c_i, with
+//! ‖P^c‖ ≤ ‖P‖ and ‖Δv_c‖_M ≤ ‖v⁰‖_M (the compression twist change is a projection of −v⁰):
+//! a factor 2 twice, hence the 4 in B_P. Poisson's twist is −W E (1 + K) P^c =
+//! (1 + k̄) Δv_c − W E (K − k̄) P^c: the first part is a projection like Newton's, the second
+//! weighs the compression impulses' split between the contacts, ‖W E (K − k̄) δP^c‖_M ≤
+//! δk √λ_max ‖δP^c‖₂ ≤ 3 c ε δk κ ‖v⁰‖_M (as √λ_max ‖P^c‖ ≤ √κ ‖Δv_c‖_M) — the one term in
+//! cond G itself, present only when the k_i^P differ: then the twist does depend on how the
+//! impulse splits, and the split is what a nearly singular G leaves uncertain.
+//!
+//! A contact velocity is v_ia = e_iaᵀ η {v}, so |e_iaᵀ η δv| ≤ √g_ia ‖δv‖_M, plus its own
+//! rounding (4 ε s_ia V). E_p = ½ ‖Δv‖²_M = ½ Σ_k d_k (w⁺_k)²: ‖Δv‖_M B_v plus N ε E_p for the
+//! sum. ΔE_c = ½ ⟨y⁺, y⁻⟩ with ‖y⁻‖ ≤ ‖v⁰ + v‖_M ≤ 2V and ‖δy⁻‖ ≤ 2‖δy⁰‖ + ‖δy⁺‖: 3 V B_v, plus
+//! N ε V² for the sum.
+//!
+//! The bounds are worst cases; measured errors sit 10² to 10⁵ below them (the largest ratio
+//! measured on `tests/accuracy_contract.rs`'s corpora is 1.5·10⁻²; [`Check::ratio`], and
+//! `inertance bench` prints the largest ratio per output). The impulses are usually far
+//! better than B_P's κ term: it is reached only when the rounding of the data hits the
+//! nearly dependent direction head on, while the split between two contacts 10⁻⁸ apart is
+//! formed from the difference of their wrenches, which the data give to ε‖E‖ absolutely.
+//!
+//! The bounds hold where the type keeps G of full rank: a float solve declares G singular
+//! when a pivot is ≤ N·ε·max g_ii, which happens only for κ ≳ 1/(N ε).
+
+use num_traits::{One, Zero};
+
+use crate::impact::restitution::Model;
+use crate::impact::solve::{Impact, Outcome};
+use crate::mechanics::body::{Inertia, Mobility, RigidBody};
+use crate::mechanics::screw::{Screw, Vec3};
+use crate::scalar::{Exact, Scalar};
+
+use super::largest_eigenvalue;
+
+/// The outputs the contract covers.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Output {
+    /// P_i.
+    Impulses,
+    /// {v} = [ω; v_C] after impact.
+    Twist,
+    /// v_ix, v_iy, v_iz after impact.
+    ContactVelocities,
+    /// E_p.
+    LostVelocityEnergy,
+    /// ΔE_c.
+    KineticEnergyLoss,
+}
+
+impl Output {
+    /// Every output, in report order.
+    pub const ALL: [Output; 5] = [
+        Output::Impulses,
+        Output::Twist,
+        Output::ContactVelocities,
+        Output::LostVelocityEnergy,
+        Output::KineticEnergyLoss,
+    ];
+
+    /// The name used in reports.
+    pub fn name(self) -> &'static str {
+        match self {
+            Output::Impulses => "impulses",
+            Output::Twist => "twist",
+            Output::ContactVelocities => "contact velocities",
+            Output::LostVelocityEnergy => "E_p",
+            Output::KineticEnergyLoss => "ΔE_c",
+        }
+    }
+
+    /// The bound's form, as the module docs state it.
+    pub fn bound_text(self) -> &'static str {
+        match self {
+            Output::Impulses => "‖δP‖₂ ≤ 4cε(√κ‖P‖₂ + κV/√λ_max)",
+            Output::Twist => "‖δv‖_M ≤ B_v = cε(√κV + 4δk κ‖v⁰‖_M)",
+            Output::ContactVelocities => "|δv_ia| ≤ √g_ia B_v + 4ε s_ia V",
+            Output::LostVelocityEnergy => "|δE_p| ≤ ‖Δv‖_M B_v + NεE_p",
+            Output::KineticEnergyLoss => "|δΔE_c| ≤ 3V B_v + NεV²",
+        }
+    }
+}
+
+/// One output's measured error and its bound.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Check {
+    /// The measured error (in the output's norm, see the module docs).
+    pub error: f64,
+    /// The contract's bound.
+    pub bound: f64,
+}
+
+impl Check {
+    /// error / bound: at most 1 when the contract holds (0 when both vanish).
+    pub fn ratio(&self) -> f64 {
+        if self.error == 0.0 {
+            0.0
+        } else {
+            self.error / self.bound
+        }
+    }
+}
+
+/// What the bounds of one exactly solved problem are made of (module docs).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Conditioning {
+    /// κ = cond₂ G (physical, unit normals).
+    pub cond: f64,
+    /// λ_max(G).
+    pub lambda_max: f64,
+    /// ℓ ≥ 1, the cancellation in the axis screws.
+    pub lever: f64,
+    /// μ = cond₂ M_red (1 for a free body).
+    pub metric: f64,
+    /// N.
+    pub contacts: usize,
+}
+
+impl Conditioning {
+    /// The conditioning of an exactly assembled problem; `None` when G is singular.
+    pub fn of(impact: &mut Impact<Exact>) -> Option<Self> {
+        let n = impact.contacts();
+        if impact.singular() {
+            return None;
+        }
+        let norm: Vec<f64> = impact
+            .frames()
+            .iter()
+            .map(|f| to_f64(&f.norm2[0]).sqrt())
+            .collect();
+        let g: Vec<f64> = (0..n * n)
+            .map(|k| to_f64(&impact.g_hat()[k]) / (norm[k / n] * norm[k % n]))
+            .collect();
+        // G⁻¹ exactly, then rounded: its eigenvalues are accurate however large κ is.
+        let mut inv = vec![0.0; n * n];
+        for j in 0..n {
+            let mut col: Vec<Exact> = (0..n)
+                .map(|i| {
+                    if i == j {
+                        Exact::one()
+                    } else {
+                        Exact::zero()
+                    }
+                })
+                .collect();
+            impact.solve_system(&mut col);
+            for (i, x) in col.iter().enumerate() {
+                inv[i * n + j] = to_f64(x) * norm[i] * norm[j];
+            }
+        }
+        let lambda_max = largest_eigenvalue(&g, n);
+        let problem = impact.problem();
+        let lever = impact
+            .frames()
+            .iter()
+            .enumerate()
+            .map(|(j, f)| {
+                let own = to_f64(&impact.g_hat()[j * n + j]).sqrt();
+                let point = &problem.contacts()[j].point;
+                magnitude_norm(problem.body(), point, &f.axes[0].top()) / own
+            })
+            .fold(1.0, f64::max);
+        let metric = problem.constraints().map_or(1.0, |c| {
+            let d = c.free.len();
+            let m: Vec<f64> = (0..d * d)
+                .map(|k| {
+                    let momentum = problem.body().momentum(&c.free[k % d]);
+                    to_f64(&c.free[k / d].reciprocal(&momentum))
+                })
+                .collect();
+            super::condition_number(&m, d)
+        });
+        Some(Conditioning {
+            cond: lambda_max * largest_eigenvalue(&inv, n),
+            lambda_max,
+            lever,
+            metric,
+            contacts: n,
+        })
+    }
+
+    /// c = μ (2 √N (3ℓ + 16N) + 1).
+    pub fn constant(&self) -> f64 {
+        let n = self.contacts as f64;
+        self.metric * (2.0 * n.sqrt() * (3.0 * self.lever + 16.0 * n) + 1.0)
+    }
+}
+
+/// ‖|E|‖ in the free-body metric η M⁻¹: the norm of the componentwise magnitudes of the axis
+/// screw E = [u; r × u] through the point `r` with direction `u`, (r × u)_a's magnitude being
+/// |r_b u_c| + |r_c u_b| (what its rounding is relative to). With a full inertia tensor the
+/// moment part is bounded by |·|²/λ_min(J), which a componentwise bound does imply.
+fn magnitude_norm(body: &RigidBody<Exact>, r: &Vec3<Exact>, u: &Vec3<Exact>) -> f64 {
+    let mut s = 0.0;
+    let mut moment = [0.0; 3];
+    for a in 0..3 {
+        let (b, c) = ((a + 1) % 3, (a + 2) % 3);
+        let m = (&r[b] * &u[c]).abs() + (&r[c] * &u[b]).abs();
+        s += to_f64(&(&u[a] * &u[a] / &body.mass));
+        moment[a] = match &body.inertia {
+            Inertia::Principal(j) => to_f64(&(&m * &m / &j[a])),
+            Inertia::Tensor(_) => to_f64(&(&m * &m)),
+        };
+    }
+    s + match &body.inertia {
+        Inertia::Principal(_) => moment.iter().sum::<f64>(),
+        Inertia::Tensor(t) => {
+            let j = t.matrix().map(|x| to_f64(&x));
+            let smallest = j
+                .symmetric_eigenvalues()
+                .iter()
+                .cloned()
+                .fold(f64::INFINITY, f64::min);
+            moment.iter().sum::<f64>() / smallest
+        }
+    }
+    .sqrt()
+}
+
+/// The nearest f64 to an exact value.
+fn to_f64(x: &Exact) -> f64 {
+    Scalar::to_f64(x)
+}
+
+/// ‖v‖_M = (2 T(v))^½ of an exact twist.
+fn energy_norm(body: &RigidBody<Exact>, v: &Screw<Exact>) -> f64 {
+    (2.0 * to_f64(&body.kinetic_energy(v))).sqrt()
+}
+
+/// (‖v⁰‖_M, ‖Δv‖_M) of an exact outcome on `exact`: V is their sum.
+pub fn speeds(exact: &Impact<Exact>, out: &Outcome<Exact>) -> (f64, f64) {
+    let problem = exact.problem();
+    let mut dv = out.velocity.clone();
+    dv.add_scaled(&-Exact::one(), problem.velocity());
+    (
+        energy_norm(problem.body(), problem.velocity()),
+        energy_norm(problem.body(), &dv),
+    )
+}
+
+/// The exact value of a float twist; `None` if not finite.
+fn exact_screw<T: Scalar>(v: &Screw<T>) -> Option<Screw<Exact>> {
+    let mut out = Screw::zero();
+    for k in 0..6 {
+        out.0[k] = Exact::from(v.0[k].exact_value()?);
+    }
+    Some(out)
+}
+
+/// Measure `out`, a float solve of `model` (on `float`, the same problem rounded into `T`),
+/// against `exact_out` (on `exact`, with conditioning `cond`): one [`Check`] per [`Output`],
+/// in [`Output::ALL`] order. `None` when a float output is not finite.
+pub fn measure<T: Scalar>(
+    exact: &Impact<Exact>,
+    cond: &Conditioning,
+    model: Model,
+    exact_out: &Outcome<Exact>,
+    float: &Impact<T>,
+    out: &Outcome<T>,
+) -> Option<[Check; 5]> {
+    let eps = T::epsilon_f64();
+    let problem = exact.problem();
+    let body = problem.body();
+    let n = exact.contacts();
+    let (norm_v0, norm_dv) = speeds(exact, exact_out);
+    let speed = norm_v0 + norm_dv;
+    let spread = match model {
+        Model::Newton => 0.0,
+        Model::Poisson => {
+            let k: Vec<f64> = problem
+                .contacts()
+                .iter()
+                .map(|c| to_f64(&c.k_poisson))
+                .collect();
+            let (lo, hi) = k
+                .iter()
+                .fold((f64::MAX, f64::MIN), |(a, b), x| (a.min(*x), b.max(*x)));
+            (hi - lo) / 2.0
+        }
+    };
+    let c = cond.constant();
+    let b_v = c * eps * (cond.cond.sqrt() * speed + 4.0 * spread * cond.cond * norm_v0);
+
+    // Impulses, physical: P_i = P̂_i |n_i|.
+    let (mut diff2, mut size2) = (Exact::zero(), Exact::zero());
+    for (i, f) in exact.frames().iter().enumerate() {
+        let d = Exact::from(out.impulses_hat[i].exact_value()?) - &exact_out.impulses_hat[i];
+        diff2 += &d * &d * &f.norm2[0];
+        size2 += &exact_out.impulses_hat[i] * &exact_out.impulses_hat[i] * &f.norm2[0];
+    }
+    let impulses = Check {
+        error: to_f64(&diff2).sqrt(),
+        bound: 4.0
+            * c
+            * eps
+            * (cond.cond.sqrt() * to_f64(&size2).sqrt()
+                + cond.cond * speed / cond.lambda_max.sqrt()),
+    };
+
+    let velocity = exact_screw(&out.velocity)?;
+    let mut twist_error = velocity.clone();
+    twist_error.add_scaled(&-Exact::one(), &exact_out.velocity);
+    let twist = Check {
+        error: energy_norm(body, &twist_error),
+        bound: b_v,
+    };
+
+    // Contact velocities, on the float solve's own frame (its axes as the exact values of the
+    // rounded ones): the solver is measured, not the choice of tangent.
+    let mut contact = Check {
+        error: 0.0,
+        bound: 1.0,
+    };
+    for (i, f) in float.frames().iter().enumerate() {
+        let point = &problem.contacts()[i].point;
+        for a in 0..3 {
+            let axis = exact_screw(&f.axes[a])?;
+            let unit2: Exact = axis.top().iter().map(|x| x * x).sum();
+            let unit = to_f64(&unit2).sqrt();
+            let reference = axis.reciprocal(&exact_out.velocity);
+            let error =
+                to_f64(&(Exact::from(out.after_hat[i][a].exact_value()?) - reference).abs()) / unit;
+            let g = to_f64(&(axis.reciprocal(&problem.response(&axis)) / &unit2));
+            let bound = g.max(0.0).sqrt() * b_v
+                + 4.0 * eps * magnitude_norm(body, point, &axis.top()) / unit * speed;
+            let check = Check { error, bound };
+            if check.ratio() >= contact.ratio() {
+                contact = check;
+            }
+        }
+    }
+
+    let e_p = to_f64(&exact_out.lost_velocity_energy);
+    let err =
+        |x: &T, e: &Exact| -> Option<f64> { Some(to_f64(&(Exact::from(x.exact_value()?) - e).abs())) };
+    let lost = Check {
+        error: err(&out.lost_velocity_energy, &exact_out.lost_velocity_energy)?,
+        bound: norm_dv * b_v + n as f64 * eps * e_p,
+    };
+    let loss = Check {
+        error: err(&out.kinetic_energy_loss, &exact_out.kinetic_energy_loss)?,
+        bound: 3.0 * speed * b_v + n as f64 * eps * speed * speed,
+    };
+    Some([impulses, twist, contact, lost, loss])
+}

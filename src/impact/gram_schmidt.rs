@@ -1,0 +1,296 @@
+//! The contact wrenches orthogonalised in the metric of the mobility: the twist after impact
+//! without the impulses' split.
+//!
+//! G is a Gram matrix: ĝ_ij = ⟨Ê_i, Ê_j⟩ with the inner product ⟨a, b⟩ = {a}ᵀ η W {b} of the
+//! body's mobility W (eq. 12, 86; positive definite for a free body, semidefinite for a
+//! constrained one). Modified Gram–Schmidt in that inner product, without normalising (so no
+//! square root is taken and the code is field-generic), writes the contact axes as
+//!
+//! ```text
+//! Ê = Q U,   ⟨q̂_k, q̂_l⟩ = d_k δ_kl,   U unit upper triangular,   G = Uᵀ D U
+//! ```
+//!
+//! (the square-root-free Cholesky factor of G, obtained from the wrenches themselves rather
+//! than from G). Every simultaneous outcome is a wrench y = Σ_j P̂_j Ê_j = Σ_k w_k q̂_k. With
+//! c⁰_k = {q̂_k}ᵀ η {v⁰} (the velocity before impact along the k-th orthogonal wrench;
+//! c⁰ = U⁻ᵀ v̂⁰_x), a_k = c⁰_k / d_k (the wrench that stops every contact: G⁻¹ v̂⁰_x = U⁻¹ a)
+//! and a mean k̄ of the model's coefficients k_i:
+//!
+//! ```text
+//! Newton:   w± = (1 ± k̄) a ± D⁻¹ U⁻ᵀ (K − k̄) v̂⁰_x        (P̂ = G⁻¹ (1 + K) v̂⁰_x,  eq. 15)
+//! Poisson:  w± = (1 ± k̄) a ± U (K − k̄) U⁻¹ a             (P̂ = (1 + K) G⁻¹ v̂⁰_x,  eq. 21–23)
+//! P̂ = U⁻¹ w⁺,   P̂^c = U⁻¹ a                                     impulses (eq. 15, 21)
+//! {v} − {v⁰} = −Σ_k w⁺_k W q̂_k                                              (eq. 24)
+//! v̂_ix = v̂⁰_ix − Σ_{k ≤ i} u_ki d_k w⁺_k                                    (eq. 13)
+//! E_p  = ½ Σ_k d_k (w⁺_k)²                                                   (eq. 28)
+//! ΔE_c = ½ Σ_k d_k w⁺_k w⁻_k                                                 (eq. 32)
+//! ```
+//!
+//! with K = diag(k_i): w⁺ = U P̂ are the coordinates of the impulses' wrench, w⁻ those of
+//! G⁻¹(v̂⁰_x + v̂_x), the impulses that would give each contact its mean velocity; ΔE_c = ½ Σ P_i
+//! (v_ix⁰ + v_ix) = ½ ⟨y⁺, y⁻⟩ and E_p = ½ ⟨y⁺, y⁺⟩ because W is the mobility (eq. 28, 32). The
+//! identities hold for any k̄; k̄ = (min k_i + max k_i)/2 makes the correction vanish when the
+//! k_i are equal.
+//!
+//! **Why.** The impulses are ill-determined when G is nearly singular (cond₂ G ≈ 10¹³ for two
+//! contacts 10⁻⁸ apart): their split between nearby contacts is, the motion is not. Σ P̂_j W Ê_j
+//! sums impulses of size 1/λ_min(G) into a twist of size 1/√λ_min(G), so it loses a factor
+//! √cond G beyond what the problem allows. Here the small wrench q̂_2 = Ê_2 − u_12 Ê_1 is formed
+//! as the difference of the axes themselves (to ε‖Ê‖ absolutely), d_2 from it, and the twist
+//! from W q̂_k: its error follows cond(Ê) = √cond G, not cond G (Björck, *Numerical Methods for
+//! Least Squares Problems*, §2.4: orthogonalising the columns rather than forming the normal
+//! equations). A vector whose first pass removed more than half its squared norm is
+//! orthogonalised a second time ("twice is enough": Giraud, Langou and Rozložník 2005), so Q
+//! is orthogonal to working precision and the sums of squares above hold in floats too. The error bounds this gives are derived in [`crate::analysis::accuracy`].
+//!
+//! Float solves take the impulses from here too: formed from the wrenches, they are never
+//! less accurate than the normal equations' and far more so near a singular G, where the
+//! split between two contacts comes from the difference of their wrenches. The pivoted LDLᵀ
+//! of G ([`crate::linalg::ldlt`]) still decides the rank and Δ, and exact types solve G x = b:
+//! there every route gives the same numbers.
+
+use crate::impact::restitution::Model;
+use crate::mechanics::body::Mobility;
+use crate::mechanics::contact::Contact;
+use crate::mechanics::screw::Screw;
+use crate::scalar::Scalar;
+
+/// The contact normals' axis screws orthogonalised in ⟨a, b⟩ = {a}ᵀ η W {b} (module docs),
+/// with the buffers of the solve (reused: repeated f64 solves allocate nothing).
+#[derive(Clone, Debug)]
+pub struct WrenchBasis<T: Scalar> {
+    /// q̂_k.
+    wrenches: Vec<Screw<T>>,
+    /// W q̂_k.
+    responses: Vec<Screw<T>>,
+    /// d_k = ⟨q̂_k, q̂_k⟩ > 0.
+    norms2: Vec<T>,
+    /// U, N×N row-major: u_ik for i < k above the diagonal (1 on it, 0 below, not stored).
+    u: Vec<T>,
+    /// a_k = c⁰_k / d_k.
+    stop: Vec<T>,
+    /// w⁺_k.
+    plus: Vec<T>,
+    /// w⁻_k.
+    minus: Vec<T>,
+    /// Scratch of length N.
+    work: Vec<T>,
+}
+
+impl<T: Scalar> Default for WrenchBasis<T> {
+    fn default() -> Self {
+        WrenchBasis {
+            wrenches: Vec::new(),
+            responses: Vec::new(),
+            norms2: Vec::new(),
+            u: Vec::new(),
+            stop: Vec::new(),
+            plus: Vec::new(),
+            minus: Vec::new(),
+            work: Vec::new(),
+        }
+    }
+}
+
+/// What one model gives in the orthogonal basis (see the module docs).
+#[derive(Clone, Debug, PartialEq)]
+pub struct BasisOutcome<T: Scalar> {
+    /// {v} − {v⁰}.
+    pub twist_change: Screw<T>,
+    /// E_p.
+    pub lost_velocity_energy: T,
+    /// ΔE_c.
+    pub kinetic_energy_loss: T,
+}
+
+impl<T: Scalar> WrenchBasis<T> {
+    /// Orthogonalise the axis screws in the metric of `mobility`: `axes` yields, in order,
+    /// each axis screw Ê_k with its response W Ê_k (already computed for G). `false` when some
+    /// d_k is not positive (G singular, or so nearly that rounding decided it): the basis is
+    /// then unusable.
+    ///
+    /// A vector is orthogonalised a second time only when the first pass removed more than
+    /// half its squared norm (Σ_i r_i² d_i > ĝ_kk/2, Pythagoras; Kahan and Parlett's test,
+    /// Parlett, *The Symmetric Eigenvalue Problem*, §6.9): otherwise rounding cannot have left
+    /// it measurably off orthogonal, and a well-conditioned G costs one pass. In exact types
+    /// the second pass would change nothing.
+    pub fn build<'a>(
+        &mut self,
+        axes: impl ExactSizeIterator<Item = (&'a Screw<T>, &'a Screw<T>)>,
+        mobility: &impl Mobility<T>,
+    ) -> bool {
+        let n = axes.len();
+        self.wrenches.clear();
+        self.responses.clear();
+        self.norms2.clear();
+        self.u.clear();
+        self.u.resize(n * n, T::zero());
+        let two = T::one() + T::one();
+        for (k, (e, response)) in axes.enumerate() {
+            let own = e.reciprocal(response);
+            let mut q = e.clone();
+            let mut removed = T::zero();
+            for pass in 0..2 {
+                for i in 0..k {
+                    let r = q.reciprocal(&self.responses[i]) / &self.norms2[i];
+                    q.add_scaled(&-r.clone(), &self.wrenches[i]);
+                    if pass == 0 {
+                        removed += r.clone() * &r * &self.norms2[i];
+                    }
+                    self.u[i * n + k] += r;
+                }
+                if k == 0 || !(removed.clone() * &two).abs_gt(&own) {
+                    break;
+                }
+            }
+            // The first wrench is its axis: its response and norm are those of G.
+            let (s, d) = if k == 0 {
+                (response.clone(), own)
+            } else {
+                let s = mobility.response(&q);
+                let d = q.reciprocal(&s);
+                (s, d)
+            };
+            if d.signum_i8() <= 0 {
+                return false;
+            }
+            self.u[k * n + k] = T::one();
+            self.wrenches.push(q);
+            self.responses.push(s);
+            self.norms2.push(d);
+        }
+        true
+    }
+
+    /// Number of wrenches.
+    pub fn len(&self) -> usize {
+        self.norms2.len()
+    }
+
+    /// Whether there are none.
+    pub fn is_empty(&self) -> bool {
+        self.norms2.is_empty()
+    }
+
+    /// d_k = ⟨q̂_k, q̂_k⟩: the pivots of G = Uᵀ D U, so Δ̂ = Π d_k.
+    pub fn norms2(&self) -> &[T] {
+        &self.norms2
+    }
+
+    /// The outcome of `model` for the twist before impact `velocity`, the `contacts` (for
+    /// their k_i) and the velocities before impact `before` (v̂⁰_ia, eq. 8); the velocities
+    /// along the normals after impact are then [`WrenchBasis::normal_velocity`].
+    pub fn solve(
+        &mut self,
+        model: Model,
+        velocity: &Screw<T>,
+        contacts: &[Contact<T>],
+        before: &[[T; 3]],
+    ) -> BasisOutcome<T> {
+        let n = self.len();
+        debug_assert_eq!(contacts.len(), n, "one contact per wrench");
+        let k = |i: usize| match model {
+            Model::Newton => &contacts[i].k_newton,
+            Model::Poisson => &contacts[i].k_poisson,
+        };
+        let two = T::one() + T::one();
+        // k̄ = (min k + max k)/2.
+        let (mut lo, mut hi) = (k(0).clone(), k(0).clone());
+        for i in 1..n {
+            if (k(i).clone() - &lo).signum_i8() < 0 {
+                lo = k(i).clone();
+            }
+            if (k(i).clone() - &hi).signum_i8() > 0 {
+                hi = k(i).clone();
+            }
+        }
+        let mean = (lo + hi) / two.clone();
+        self.stop.clear();
+        for (q, d) in self.wrenches.iter().zip(&self.norms2) {
+            self.stop.push(q.reciprocal(velocity) / d);
+        }
+        // The correction δ (module docs), into `work`.
+        self.work.clear();
+        if model == Model::Newton {
+            // U⁻ᵀ (K − k̄) v̂⁰_x by forward substitution (Uᵀ is unit lower triangular), / d.
+            for (i, v) in before.iter().enumerate() {
+                let mut t = (k(i).clone() - &mean) * &v[0];
+                for j in 0..i {
+                    t -= self.u[j * n + i].clone() * &self.work[j];
+                }
+                self.work.push(t);
+            }
+            for (t, d) in self.work.iter_mut().zip(&self.norms2) {
+                *t /= d;
+            }
+        } else {
+            // p = U⁻¹ a = P̂^c, then U (K − k̄) p.
+            let mut work = std::mem::take(&mut self.work);
+            self.back_substitute(&self.stop, &mut work);
+            self.work = work;
+            for (i, p) in self.work.iter_mut().enumerate() {
+                *p *= k(i).clone() - &mean;
+            }
+            for i in 0..n {
+                for j in i + 1..n {
+                    let t = self.u[i * n + j].clone() * &self.work[j];
+                    self.work[i] += t;
+                }
+            }
+        }
+        self.plus.clear();
+        self.minus.clear();
+        let (one_plus, one_minus) = (T::one() + &mean, T::one() - &mean);
+        for (a, delta) in self.stop.iter().zip(&self.work) {
+            self.plus.push(one_plus.clone() * a + delta);
+            self.minus.push(one_minus.clone() * a - delta);
+        }
+        let mut twist_change = Screw::zero();
+        let (mut lost, mut loss) = (T::zero(), T::zero());
+        for j in 0..n {
+            let (wp, d) = (&self.plus[j], &self.norms2[j]);
+            twist_change.add_scaled(&-wp.clone(), &self.responses[j]);
+            let dw = d.clone() * wp;
+            lost += dw.clone() * wp;
+            loss += dw * &self.minus[j];
+        }
+        BasisOutcome {
+            twist_change,
+            lost_velocity_energy: lost / two.clone(),
+            kinetic_energy_loss: loss / two,
+        }
+    }
+
+    /// The impulses P̂ = U⁻¹ w⁺ of the model last solved, into `p`.
+    pub fn impulses(&self, p: &mut Vec<T>) {
+        self.back_substitute(&self.plus, p);
+    }
+
+    /// The compression impulses P̂^c = G⁻¹ v̂⁰_x = U⁻¹ a (Poisson, eq. 21), into `p`.
+    pub fn compression_impulses(&self, p: &mut Vec<T>) {
+        self.back_substitute(&self.stop, p);
+    }
+
+    /// x = U⁻¹ y into `x` (U is unit upper triangular).
+    fn back_substitute(&self, y: &[T], x: &mut Vec<T>) {
+        let n = self.len();
+        x.clear();
+        x.extend(y.iter().cloned());
+        for i in (0..n).rev() {
+            for j in i + 1..n {
+                let t = self.u[i * n + j].clone() * &x[j];
+                x[i] -= t;
+            }
+        }
+    }
+
+    /// v̂_ix = v̂⁰_ix − (Uᵀ D w⁺)_i (eq. 13) for the model last solved, from `before_x` = v̂⁰_ix.
+    pub fn normal_velocity(&self, i: usize, before_x: &T) -> T {
+        let n = self.len();
+        let mut v = before_x.clone();
+        for k in 0..=i {
+            v -= self.u[k * n + i].clone() * &self.norms2[k] * &self.plus[k];
+        }
+        v
+    }
+}
