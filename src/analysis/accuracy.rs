@@ -202,13 +202,7 @@ impl Conditioning {
         let mut inv = vec![0.0; n * n];
         for j in 0..n {
             let mut col: Vec<Exact> = (0..n)
-                .map(|i| {
-                    if i == j {
-                        Exact::one()
-                    } else {
-                        Exact::zero()
-                    }
-                })
+                .map(|i| if i == j { Exact::one() } else { Exact::zero() })
                 .collect();
             impact.solve_system(&mut col);
             for (i, x) in col.iter().enumerate() {
@@ -398,8 +392,9 @@ pub fn measure<T: Scalar>(
     }
 
     let e_p = to_f64(&exact_out.lost_velocity_energy);
-    let err =
-        |x: &T, e: &Exact| -> Option<f64> { Some(to_f64(&(Exact::from(x.exact_value()?) - e).abs())) };
+    let err = |x: &T, e: &Exact| -> Option<f64> {
+        Some(to_f64(&(Exact::from(x.exact_value()?) - e).abs()))
+    };
     let lost = Check {
         error: err(&out.lost_velocity_energy, &exact_out.lost_velocity_energy)?,
         bound: norm_dv * b_v + n as f64 * eps * e_p,

@@ -19,7 +19,11 @@ pub fn format_rational(q: &BigRational) -> String {
         && d > 0
         && crate::scalar::rational::gcd_u128(n.unsigned_abs().into(), d as u128) == 1
     {
-        return if d == 1 { n.to_string() } else { format!("{n}/{d}") };
+        return if d == 1 {
+            n.to_string()
+        } else {
+            format!("{n}/{d}")
+        };
     }
     // Rebuild through `new` so that a hand-made unreduced ratio still prints canonically.
     let q = if q.denom().is_zero() {
@@ -313,16 +317,19 @@ mod tests {
     /// large cofactor (a square or not).
     fn radicand() -> impl Strategy<Value = BigInt> {
         let small = prop::sample::select(vec![2u32, 3, 5, 7, 11, 13, 97, 9_973, 10_007, 65_537]);
-        (prop::collection::vec((small, 0u32..4), 0..6), 1u64..u64::MAX, any::<bool>()).prop_map(
-            |(factors, big, square)| {
+        (
+            prop::collection::vec((small, 0u32..4), 0..6),
+            1u64..u64::MAX,
+            any::<bool>(),
+        )
+            .prop_map(|(factors, big, square)| {
                 let mut n = factors
                     .iter()
                     .fold(BigInt::one(), |n, &(p, e)| n * BigInt::from(p).pow(e));
                 let big = BigInt::from(big);
                 n *= if square { &big * &big } else { big };
                 n
-            },
-        )
+            })
     }
 
     proptest! {
@@ -342,7 +349,15 @@ mod tests {
 
     #[test]
     fn split_square_at_the_edges() {
-        for n in [1u64, 2, 4, 9_973 * 9_973, 10_007 * 10_007, 9_973 * 10_007, 1 << 63] {
+        for n in [
+            1u64,
+            2,
+            4,
+            9_973 * 9_973,
+            10_007 * 10_007,
+            9_973 * 10_007,
+            1 << 63,
+        ] {
             let n = BigInt::from(n);
             assert_eq!(split_square(&n), split_square_by_trial_division(&n), "{n}");
         }
