@@ -74,8 +74,7 @@ def test_derive_gives_sympy_expressions():
 def test_derive_errors():
     with pytest.raises(inertance.SceneError) as e:
         inertance.derive(SYMBOLIC, symbols=["m"])
-    # The first undeclared symbol read: the reader takes the contacts before the body.
-    assert e.value.key == "contact[0].point[1]" and e.value.value == '"y1"'
+    assert e.value.key == "body.inertia[0]" and e.value.value == '"Jx"' 
 
 
 def test_sweep_returns_arrays_and_matches_exact_grid():
