@@ -17,8 +17,7 @@
 //! Environment: `INERTANCE_FUZZ_SEED` (default a fixed seed), `INERTANCE_FUZZ_CASES` (cases of
 //! the long run, `fuzz_long`, ignored by default), `INERTANCE_FUZZ_FINDINGS` (where the long run
 //! writes failing scenes; default `target/fuzz-findings`). Corpus: `tests/fuzz_corpus/*.toml`
-//! (regression inputs, run by `corpus_files_keep_the_contract`); `tests/fuzz_corpus/pending/`
-//! (now empty) holds findings whose fix is outside the reader and the CLI, not run.
+//! (regression inputs, run by `corpus_files_keep_the_contract`).
 //! A corpus file may say `# symbols: m,k1` and `# vary: body.mass=1:2:3` in its first lines.
 
 #[path = "fuzz/scenes.rs"]
@@ -460,23 +459,6 @@ impl Drop for Scratch {
 // ---------------------------------------------------------------------------------------------
 // Runs.
 
-/// The classes of known findings whose fix is outside the reader and the CLI (reported, kept in
-/// `tests/fuzz_corpus/pending/`): their `derive` runs are skipped unless `INERTANCE_FUZZ_ALL` is
-/// set, so that the suite stays green while they are open. Every other command still runs on
-/// such cases.
-fn pending(c: &scenes::Case) -> Option<&'static str> {
-    let has = |m: &str| c.mutations.iter().any(|x| x.starts_with(m));
-    if c.symbols.is_empty() {
-        None
-    } else if has("extreme") {
-        // `derive` on numbers near the ends of f64 (5e-324, 2^-99999, 1e300): symbolic
-        // arithmetic on 1000-bit coefficients runs past the time limit.
-        Some("derive-extreme-numbers")
-    } else {
-        None
-    }
-}
-
 /// `analyze` on more than this many contacts is left to release builds (the long run): in a
 /// debug build its f64 Lemke pivots take 11 s at 220 contacts (0.3 s in release). Beyond
 /// `tools::analyze::MAX_EXACT_CONTACTS` (exact) and `MAX_FLOAT_CONTACTS` it refuses at once
@@ -500,10 +482,7 @@ fn fuzz(
     let scratch = Scratch::new(&format!("{seed:x}-{}", range.start));
     let mut findings = vec![];
     for i in range {
-        let mut c = scenes::case(seed, i);
-        if pending(&c).is_some() && std::env::var_os("INERTANCE_FUZZ_ALL").is_none() {
-            c.symbols.clear(); // run every command but `derive`
-        }
+        let c = scenes::case(seed, i);
         let text = c.render();
         let large = c.contacts > 24;
         let mut faults = if in_proc {
