@@ -43,11 +43,13 @@
 //! orthogonalised a second time ("twice is enough": Giraud, Langou and Rozložník 2005), so Q
 //! is orthogonal to working precision and the sums of squares above hold in floats too. The error bounds this gives are derived in [`crate::analysis::accuracy`].
 //!
-//! Float solves take the impulses from here too: formed from the wrenches, they are never
-//! less accurate than the normal equations' and far more so near a singular G, where the
-//! split between two contacts comes from the difference of their wrenches. The pivoted LDLᵀ
-//! of G ([`crate::linalg::ldlt`]) still decides the rank and Δ, and exact types solve G x = b:
-//! there every route gives the same numbers.
+//! Float solves that take this route ([`crate::impact::route`]: a G too ill conditioned for
+//! the normal equations to meet the accuracy contract, a constrained body, a full inertia
+//! tensor) take the impulses from here too: formed from the wrenches, they are never less
+//! accurate than the normal equations' and far more so near a singular G, where the split
+//! between two contacts comes from the difference of their wrenches. The pivoted LDLᵀ of G
+//! ([`crate::linalg::ldlt`]) still decides the rank and Δ; well-conditioned problems and
+//! exact types solve G x = b, and in exact types every route gives the same numbers.
 
 use crate::impact::restitution::Model;
 use crate::mechanics::body::Mobility;
@@ -160,6 +162,22 @@ impl<T: Scalar> WrenchBasis<T> {
             self.norms2.push(d);
         }
         true
+    }
+
+    /// Room for `n` wrenches in every buffer, so that building and solving for at most `n`
+    /// contacts allocates nothing.
+    pub fn reserve(&mut self, n: usize) {
+        fn room<T>(v: &mut Vec<T>, n: usize) {
+            v.reserve(n.saturating_sub(v.len()));
+        }
+        room(&mut self.wrenches, n);
+        room(&mut self.responses, n);
+        room(&mut self.norms2, n);
+        room(&mut self.u, n * n);
+        room(&mut self.stop, n);
+        room(&mut self.plus, n);
+        room(&mut self.minus, n);
+        room(&mut self.work, n);
     }
 
     /// Number of wrenches.

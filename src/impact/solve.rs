@@ -22,15 +22,18 @@
 //! ΔE_c = −E_p + Σ P_i v_ix⁰ (eq. 34) are then checks on the solve, not definitions — exact
 //! equalities in exact types.
 //!
-//! **Floats solve from the wrenches, not from G.** G's rounding leaves the split of the
-//! impulse between nearly dependent contacts uncertain to cond(G)·ε, and the sum of eq. 24
-//! would pass that to the twist. So in float types with G of full rank [`Impact::solve`] takes
-//! every output from the contact wrenches orthogonalised in the metric ηW
-//! ([`crate::impact::gram_schmidt`]; the same laws, rewritten there), which keeps the twist,
-//! the contact velocities and the energies to √cond(G)·ε (the accuracy contract,
-//! [`crate::analysis::accuracy`]). Exact types solve G x = b as written above, and there both
-//! routes give the same numbers ([`Impact::solve_orthogonal`], tested). The factorization of
-//! G decides the rank and Δ in every type.
+//! **Near a singular G, floats solve from the wrenches, not from G.** G's rounding leaves the
+//! split of the impulse between nearly dependent contacts uncertain to cond(G)·ε, and the sum
+//! of eq. 24 would pass that to the twist. So where that could break the accuracy contract
+//! ([`crate::analysis::accuracy`]) [`Impact::solve`] takes every output from the contact
+//! wrenches orthogonalised in the metric ηW ([`crate::impact::gram_schmidt`]; the same laws,
+//! rewritten there), which keeps the twist, the contact velocities and the energies to
+//! √cond(G)·ε. Where G is well conditioned the normal equations above meet the same bounds
+//! at less cost, and a float solve takes them: [`crate::impact::route`] derives the
+//! threshold and decides per problem, once, at assembly ([`Impact::route`]). Exact types
+//! always solve G x = b, and there both routes give the same numbers
+//! ([`Impact::solve_orthogonal`], tested). The factorization of G decides the rank and Δ in
+//! every type.
 //!
 //! [`Impact::assemble`] does the model-independent work once (frames, G, its factorization,
 //! Δ); [`Impact::solve`] then runs one restitution model. Both reuse the buffers they own, so
@@ -39,6 +42,7 @@
 use crate::impact::gram_schmidt::WrenchBasis;
 use crate::impact::problem::Problem;
 use crate::impact::restitution::Model;
+use crate::impact::route::{self, Route};
 use crate::impact::unilateral::UnilateralWork;
 use crate::linalg::{self, NotSemidefinite};
 use crate::mechanics::body::Mobility;
@@ -104,10 +108,15 @@ pub struct Impact<T: Scalar> {
     perm: Vec<usize>,
     work: Vec<T>,
     /// The normals' axis screws orthogonalised in the metric ηW ([`crate::impact::gram_schmidt`]):
-    /// float types with G of full rank solve from it.
+    /// float types solve from it where [`crate::impact::route`] says so.
     basis: WrenchBasis<T>,
     /// Whether `basis` holds the current problem's basis.
     basis_built: bool,
+    /// The route [`Impact::solve`] takes for this problem.
+    route: Route,
+    /// The most contacts both routes' buffers have room for: a problem routed one way does
+    /// not leave the other way's buffers unsized (repeated f64 solves allocate nothing).
+    sized: usize,
     /// The buffers of [`Impact::solve_unilateral`].
     pub(crate) unilateral: UnilateralWork<T>,
 }
@@ -170,6 +179,8 @@ impl<T: Scalar> Impact<T> {
             work: Vec::new(),
             basis: WrenchBasis::default(),
             basis_built: false,
+            route: Route::NormalEquations,
+            sized: 0,
             unilateral: UnilateralWork::default(),
         };
         impact.build()?;
@@ -247,6 +258,14 @@ impl<T: Scalar> Impact<T> {
         self.rank
     }
 
+    /// The route [`Impact::solve`] takes for this problem ([`crate::impact::route`]): the
+    /// normal equations in exact types, and in float types unless G is too ill conditioned for
+    /// them to meet the accuracy contract (or the body is constrained or has a full inertia
+    /// tensor), where the orthogonalised wrenches are taken — when they can be built.
+    pub fn route(&self) -> Route {
+        self.route
+    }
+
     /// T⁰ = ½ {v⁰}ᵀ η M {v⁰}, the kinetic energy before impact.
     pub fn kinetic_before(&self) -> &T {
         &self.kinetic_before
@@ -255,8 +274,13 @@ impl<T: Scalar> Impact<T> {
     /// Frames, velocities before impact, the inertances (eq. 12, 126–128), the
     /// factorization of G and Δ̂, for `self.problem`.
     fn build(&mut self) -> Result<(), SolveError> {
+        let n = self.problem.contacts().len();
+        if n > self.sized {
+            self.work.reserve(n.saturating_sub(self.work.len()));
+            self.basis.reserve(n);
+            self.sized = n;
+        }
         let problem = &self.problem;
-        let n = problem.contacts().len();
         self.before_hat.clear();
         self.responses.clear();
         self.frames.clear();
@@ -283,8 +307,17 @@ impl<T: Scalar> Impact<T> {
         self.rank = fac.rank;
         self.det_hat = linalg::determinant(&self.factor, n);
         self.kinetic_before = problem.body().kinetic_energy(problem.velocity());
-        // Exact types solve G x = b: every route gives the same numbers, that one the fastest.
-        self.basis_built = !T::IS_EXACT && self.rank == n && self.build_basis();
+        // Exact types solve G x = b (every route gives the same numbers, that one the fastest),
+        // and so do floats whose G is well conditioned. A singular G is refused whatever the
+        // route; should the basis fail to build for a regular one (rounding made some
+        // d_k ≤ 0), the normal equations answer.
+        let orthogonal = route::route(&self.problem, &self.g_hat, n) == Route::OrthogonalWrenches;
+        self.basis_built = orthogonal && self.rank == n && self.build_basis();
+        self.route = if orthogonal && (self.basis_built || self.rank < n) {
+            Route::OrthogonalWrenches
+        } else {
+            Route::NormalEquations
+        };
         Ok(())
     }
 
@@ -301,7 +334,7 @@ impl<T: Scalar> Impact<T> {
                 contacts: n,
             });
         }
-        if !T::IS_EXACT && self.basis_built {
+        if self.route == Route::OrthogonalWrenches {
             self.solve_in_basis(model, out);
             return Ok(());
         }
@@ -329,8 +362,10 @@ impl<T: Scalar> Impact<T> {
         Ok(())
     }
 
-    /// The route float types take in [`Impact::solve`], in any type: in exact types it gives
-    /// the very outcome [`Impact::solve`] gives (tested), so it is the check of that route.
+    /// The orthogonalised wrenches' route, whatever [`Impact::route`] says, in any type: in
+    /// exact types it gives the very outcome [`Impact::solve`] gives (tested), so it is the
+    /// check of that route; in float types, where both routes apply, the two agree within
+    /// the accuracy contract (tested).
     ///
     /// # Errors
     /// [`SolveError::Singular`] when G is singular, or (floats) when rounding makes an
@@ -359,7 +394,7 @@ impl<T: Scalar> Impact<T> {
         self.basis.build(axes.zip(&self.responses), &self.problem)
     }
 
-    /// The solve of a float type with G of full rank, from the orthogonalised wrenches
+    /// The solve from the orthogonalised wrenches
     /// ([`crate::impact::gram_schmidt`]) instead of the normal equations G x = b: impulses,
     /// twist, velocities along the normals and both energies, so that they keep the accuracy
     /// the wrenches determine when G is nearly singular. The tangential velocities follow
