@@ -39,3 +39,11 @@ fn exact_values_below_f64_print_their_decimals_not_zero() {
     assert!(t.contains("≈ 7.500000e-401"), "{t}");
     assert!(t.contains("≈ 2.000000e400"), "{t}");
 }
+
+#[test]
+fn a_mantissa_rounding_to_ten_carries_into_the_exponent() {
+    // P1c = 1/(10^400 + 1) = 9.99…e-401: seven significant digits round it to 1.000000e-400.
+    let t = exact_table("exact-mantissa-rounds-to-ten.toml");
+    assert!(!t.contains("≈ 10."), "{t}");
+    assert!(t.contains("≈ 1.000000e-400"), "{t}");
+}

@@ -180,6 +180,11 @@ fn approx_exact(text: &str) -> Option<String> {
         m *= 10.0;
         e -= 1;
     }
+    // Seven significant digits may round the mantissa up to 10 (9.9999999… → 10.000000).
+    if format!("{m:.6}").starts_with("10") {
+        m /= 10.0;
+        e += 1;
+    }
     Some(format!("{}{m:.6}e{e}", if neg { "-" } else { "" }))
 }
 

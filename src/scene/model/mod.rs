@@ -164,6 +164,11 @@ impl Reader<'_> {
         if let Term::Rat(q) = t {
             return Ok(Some(sign_of(q)));
         }
+        // Far from zero — beyond twice the error bound carried along — the f64 value decides.
+        let (x, e) = (t.approx(), t.error());
+        if x.is_finite() && e.is_finite() && x.abs() > 2.0 * e {
+            return Ok(Some(if x > 0.0 { 1 } else { -1 }));
+        }
         let n = self.term_number(t, key)?;
         if let Ok(q) = &n.exact {
             return Ok(Some(sign_of(q)));
@@ -197,13 +202,8 @@ impl Reader<'_> {
 
     /// The magnitude of a term in f64 (for tolerances).
     fn magnitude(&self, t: &Term) -> f64 {
-        self.params.number(&t.to_string()).map_or(1.0, |n| {
-            if n.approx.is_finite() {
-                n.approx.abs()
-            } else {
-                1.0
-            }
-        })
+        let x = t.approx().abs();
+        if x.is_finite() { x } else { 1.0 }
     }
 
     /// Read a modelled scene's body, and bring its contacts and constraints to the solver's

@@ -140,10 +140,10 @@ impl Reader<'_> {
 impl Shape {
     /// The volume of a solid (`None` for point masses).
     pub(crate) fn volume(&self) -> Option<Term> {
-        let pi = Term::text("pi");
+        let pi = Term::constant("pi");
         Some(match self {
             Shape::Box([a, b, c]) => &(a * b) * c,
-            Shape::Sphere(r) => &(&Term::text("4/3*pi") * &r.square()) * r,
+            Shape::Sphere(r) => &(&Term::constant("4/3*pi") * &r.square()) * r,
             Shape::Cylinder(r, h) => &(&pi * &r.square()) * h,
             Shape::Rod(_) | Shape::Points(_) => return None,
         })
@@ -174,7 +174,7 @@ impl Shape {
                 ))
             }
             Shape::Sphere(r) => {
-                let j = &(&Term::text("2/5") * m) * &r.square();
+                let j = &(&Term::constant("2/5") * m) * &r.square();
                 solid(diag(j.clone(), j.clone(), j))
             }
             Shape::Cylinder(r, h) => {

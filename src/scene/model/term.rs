@@ -14,14 +14,25 @@ use num_traits::{One, Signed, Zero};
 
 use crate::number::{Number, format_rational};
 
-/// A value as an expression: an exact rational, or a text of the grammar.
+/// A value as an expression: an exact rational, or a text of the grammar with its f64 value
+/// and a bound on that value's error carried along (NaN when it names a symbol), so that a
+/// sign far from zero is decided without reading the text again.
+///
+/// The bound follows each operation to first order in ε (the unit roundoff u = ε/2 per
+/// rounding, taken as ε): e(a ± b) = e_a + e_b + ε|a ± b|, e(ab) = |a| e_b + |b| e_a + ε|ab|,
+/// e(a/b) = (e_a + |a/b| e_b)/|b| + ε|a/b|, e(f(a)) = |f′(a)| e_a + ε|f(a)| (|f′| ≤ 1 for sin
+/// and cos, 1/(2√a) for √).
 #[derive(Clone, Debug, PartialEq)]
 pub(crate) enum Term {
     /// An exact rational (folded).
     Rat(BigRational),
-    /// Any other expression; names parameters or symbols, or is irrational.
-    Text(String),
+    /// Any other expression — it names parameters or symbols, or is irrational — with its f64
+    /// value and error bound.
+    Text(String, f64, f64),
 }
+
+/// ε.
+const EPS: f64 = f64::EPSILON;
 
 /// A vector of terms.
 pub(crate) type Vec3 = [Term; 3];
@@ -39,13 +50,40 @@ impl Term {
     pub(crate) fn of(n: &Number) -> Term {
         match &n.exact {
             Ok(q) if n.tangent == 0.0 => Term::Rat(q.clone()),
-            _ => Term::Text(n.source.clone().unwrap_or_else(|| n.text.clone())),
+            // An irrational number is evaluated in f64 by a handful of operations: 8ε of it.
+            _ => Term::Text(
+                n.source.clone().unwrap_or_else(|| n.text.clone()),
+                n.approx,
+                8.0 * EPS * n.approx.abs(),
+            ),
         }
     }
 
-    /// A text in the grammar.
-    pub(crate) fn text(s: impl Into<String>) -> Term {
-        Term::Text(s.into())
+    /// A constant of the grammar (`pi`, `4/3*pi`), read once.
+    pub(crate) fn constant(s: &str) -> Term {
+        let n = crate::number::parse_number(s).expect("a constant of the grammar");
+        Term::of(&n)
+    }
+
+    /// The f64 value (NaN for a symbolic one).
+    pub(crate) fn approx(&self) -> f64 {
+        match self {
+            Term::Rat(q) => crate::number::rational_to_f64(q),
+            Term::Text(_, f, _) => *f,
+        }
+    }
+
+    /// A bound on the error of [`Term::approx`].
+    pub(crate) fn error(&self) -> f64 {
+        match self {
+            Term::Rat(_) => EPS * self.approx().abs(),
+            Term::Text(_, _, e) => *e,
+        }
+    }
+
+    /// A text of value v with error bound e.
+    fn made(text: String, v: f64, e: f64) -> Term {
+        Term::Text(text, v, e + EPS * v.abs())
     }
 
     /// Whether it is exactly 0 (as a folded rational).
@@ -64,13 +102,18 @@ impl Term {
                 format!("({})", format_rational(q))
             }
             Term::Rat(q) => format_rational(q),
-            Term::Text(t) => format!("({t})"),
+            Term::Text(t, _, _) => format!("({t})"),
         }
     }
 
-    /// `f(self)` for a function of the grammar (`cos`, `sin`, `sqrt`).
+    /// `f(self)` for a function of the grammar: `cos`, `sin` or `sqrt`.
     pub(crate) fn call(&self, f: &str) -> Term {
-        Term::Text(format!("{f}({self})"))
+        let (x, e) = (self.approx(), self.error());
+        let (v, slope) = match f {
+            "cos" | "sin" => (if f == "cos" { x.cos() } else { x.sin() }, 1.0),
+            _ => (x.sqrt(), 0.5 / x.sqrt()),
+        };
+        Term::made(format!("{f}({self})"), v, slope * e)
     }
 
     /// self².
@@ -83,7 +126,7 @@ impl fmt::Display for Term {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
             Term::Rat(q) => write!(f, "{}", format_rational(q)),
-            Term::Text(t) => write!(f, "{t}"),
+            Term::Text(t, _, _) => write!(f, "{t}"),
         }
     }
 }
@@ -95,7 +138,11 @@ impl Add for &Term {
             (Term::Rat(x), Term::Rat(y)) => Term::Rat(x + y),
             (a, b) if a.is_zero() => b.clone(),
             (a, b) if b.is_zero() => a.clone(),
-            (a, b) => Term::Text(format!("{} + {}", a.operand(), b.operand())),
+            (a, b) => Term::made(
+                format!("{} + {}", a.operand(), b.operand()),
+                a.approx() + b.approx(),
+                a.error() + b.error(),
+            ),
         }
     }
 }
@@ -107,7 +154,11 @@ impl Sub for &Term {
             (Term::Rat(x), Term::Rat(y)) => Term::Rat(x - y),
             (a, b) if b.is_zero() => a.clone(),
             (a, b) if a.is_zero() => -b,
-            (a, b) => Term::Text(format!("{} - {}", a.operand(), b.operand())),
+            (a, b) => Term::made(
+                format!("{} - {}", a.operand(), b.operand()),
+                a.approx() - b.approx(),
+                a.error() + b.error(),
+            ),
         }
     }
 }
@@ -120,7 +171,11 @@ impl Mul for &Term {
             (a, b) if a.is_zero() || b.is_zero() => Term::int(0),
             (a, b) if a.is_one() => b.clone(),
             (a, b) if b.is_one() => a.clone(),
-            (a, b) => Term::Text(format!("{}*{}", a.operand(), b.operand())),
+            (a, b) => Term::made(
+                format!("{}*{}", a.operand(), b.operand()),
+                a.approx() * b.approx(),
+                a.approx().abs() * b.error() + b.approx().abs() * a.error(),
+            ),
         }
     }
 }
@@ -133,7 +188,14 @@ impl Div for &Term {
             (Term::Rat(x), Term::Rat(y)) if !y.is_zero() => Term::Rat(x / y),
             (a, _) if a.is_zero() => Term::int(0),
             (a, b) if b.is_one() => a.clone(),
-            (a, b) => Term::Text(format!("{}/{}", a.operand(), b.operand())),
+            (a, b) => {
+                let q = a.approx() / b.approx();
+                Term::made(
+                    format!("{}/{}", a.operand(), b.operand()),
+                    q,
+                    (a.error() + q.abs() * b.error()) / b.approx().abs(),
+                )
+            }
         }
     }
 }
@@ -143,7 +205,7 @@ impl Neg for &Term {
     fn neg(self) -> Term {
         match self {
             Term::Rat(x) => Term::Rat(-x),
-            a => Term::Text(format!("-{}", a.operand())),
+            a => Term::Text(format!("-{}", a.operand()), -a.approx(), a.error()),
         }
     }
 }
@@ -214,12 +276,29 @@ mod tests {
     #[test]
     fn rationals_fold_and_texts_parenthesise() {
         assert_eq!(&q(1, 2) + &q(1, 3), q(5, 6));
-        let c = Term::text("cos(theta)");
-        assert_eq!(&c * &Term::int(1), c);
+        let c = Term::Text("cos(theta)".into(), f64::NAN, f64::NAN);
+        assert_eq!((&c * &Term::int(1)).to_string(), c.to_string());
         assert!((&c * &Term::int(0)).is_zero());
         assert_eq!((&c * &q(-1, 2)).to_string(), "(cos(theta))*(-1/2)");
         assert_eq!((&q(3, 1) - &c).to_string(), "3 - (cos(theta))");
         assert_eq!((-&c).to_string(), "-(cos(theta))");
+    }
+
+    #[test]
+    fn the_error_bound_covers_the_f64_value() {
+        let r2 = Term::constant("sqrt(2)");
+        let r3 = Term::constant("sqrt(3)");
+        // √2·√2 − 2 = 0 exactly: the f64 value is a rounding, within the bound, so no sign is
+        // read from it.
+        let zero = &(&r2 * &r2) - &Term::int(2);
+        assert!(zero.approx().abs() <= zero.error());
+        // (√3 + √2)(√3 − √2) = 1: the value is within its bound of 1.
+        let one = &(&r3 + &r2) * &(&r3 - &r2);
+        assert!((one.approx() - 1.0).abs() <= one.error());
+        // About 100ε: 8ε per radical, grown through the sum, difference and product.
+        assert!(one.error() < 200.0 * f64::EPSILON);
+        let c = Term::constant("cos(3 deg)").call("sqrt");
+        assert!((c.approx() - 3f64.to_radians().cos().sqrt()).abs() <= c.error());
     }
 
     #[test]

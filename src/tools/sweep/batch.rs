@@ -70,19 +70,10 @@ pub fn solve_batch(
         base.law = law;
     }
     let points = vary.first().map_or(0, |v| v.values.len());
-    let mut keys: Vec<String> = base.params.iter().map(|p| p.name.clone()).collect();
-    keys.extend(base.numbers().map(|(k, _)| k));
+    let keys = Target::keys(&base);
     let targets: Vec<Target> = vary.iter().map(|v| Target::of(&v.path, &base)).collect();
     for (v, t) in vary.iter().zip(&targets) {
-        let known = t.param
-            || base.axes.is_some()
-            || keys.iter().any(|k| {
-                *k == v.path
-                    || v.path
-                        .strip_suffix(".k")
-                        .is_some_and(|c| *k == format!("{c}.k_newton"))
-            });
-        if !known {
+        if !t.known(&v.path, &base, &keys) {
             return Err(SweepError::Vary {
                 spec: v.path.clone(),
                 reason: format!(

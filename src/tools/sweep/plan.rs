@@ -367,20 +367,9 @@ fn check_paths(
     base: &Scene,
     file: &str,
 ) -> Result<(), SweepError> {
-    let mut keys: Vec<String> = base.params.iter().map(|p| p.name.clone()).collect();
-    keys.extend(base.numbers().map(|(k, _)| k));
+    let keys = Target::keys(base);
     for ((v, t), spec) in vary.iter().zip(targets).zip(specs(vary)) {
-        // A modelled scene's written numbers (a shape's edges, a pose's angle) are not the
-        // solver's: any number of the document may be varied, as its re-reading checks.
-        let known = t.param
-            || base.axes.is_some()
-            || keys.iter().any(|k| {
-                *k == v.path
-                    || v.path
-                        .strip_suffix(".k")
-                        .is_some_and(|c| *k == format!("{c}.k_newton"))
-            });
-        if !known {
+        if !t.known(&v.path, base, &keys) {
             return Err(SweepError::Vary {
                 spec,
                 reason: format!(

@@ -39,6 +39,27 @@ impl Target {
         }
     }
 
+    /// Whether `path` (this target's spelling) can be varied in `base`: a parameter, any
+    /// number of a modelled scene's document (its written numbers are not the solver's; the
+    /// re-reading checks them), or one of `keys` (`contact[i].k` for its two coefficients).
+    pub(super) fn known(&self, path: &str, base: &Scene, keys: &[String]) -> bool {
+        self.param
+            || base.axes.is_some()
+            || keys.iter().any(|k| {
+                k == path
+                    || path
+                        .strip_suffix(".k")
+                        .is_some_and(|c| *k == format!("{c}.k_newton"))
+            })
+    }
+
+    /// The names that can be varied in `base`, for messages: its parameters, then its numbers.
+    pub(super) fn keys(base: &Scene) -> Vec<String> {
+        let mut keys: Vec<String> = base.params.iter().map(|p| p.name.clone()).collect();
+        keys.extend(base.numbers().map(|(k, _)| k));
+        keys
+    }
+
     /// The TOML text of the value q at this target.
     pub(super) fn text(&self, q: &BigRational) -> String {
         if self.degrees {
