@@ -51,6 +51,7 @@
 //! ([`crate::linalg::ldlt`]) still decides the rank and Δ; well-conditioned problems and
 //! exact types solve G x = b, and in exact types every route gives the same numbers.
 
+use crate::impact::outputs::Outputs;
 use crate::impact::restitution::Model;
 use crate::mechanics::body::Mobility;
 use crate::mechanics::contact::Contact;
@@ -197,13 +198,16 @@ impl<T: Scalar> WrenchBasis<T> {
 
     /// The outcome of `model` for the twist before impact `velocity`, the `contacts` (for
     /// their k_i) and the velocities before impact `before` (v̂⁰_ia, eq. 8); the velocities
-    /// along the normals after impact are then [`WrenchBasis::normal_velocity`].
+    /// along the normals after impact are then [`WrenchBasis::normal_velocity`]. The twist
+    /// change and the energies are formed only when `needs` holds [`Outputs::TWIST`] and
+    /// [`Outputs::ENERGIES`] (zero otherwise), each by the same operations either way.
     pub fn solve(
         &mut self,
         model: Model,
         velocity: &Screw<T>,
         contacts: &[Contact<T>],
         before: &[[T; 3]],
+        needs: Outputs,
     ) -> BasisOutcome<T> {
         let n = self.len();
         debug_assert_eq!(contacts.len(), n, "one contact per wrench");
@@ -265,12 +269,20 @@ impl<T: Scalar> WrenchBasis<T> {
         }
         let mut twist_change = Screw::zero();
         let (mut lost, mut loss) = (T::zero(), T::zero());
+        let (twist, energies) = (
+            needs.contains(Outputs::TWIST),
+            needs.contains(Outputs::ENERGIES),
+        );
         for j in 0..n {
             let (wp, d) = (&self.plus[j], &self.norms2[j]);
-            twist_change.add_scaled(&-wp.clone(), &self.responses[j]);
-            let dw = d.clone() * wp;
-            lost += dw.clone() * wp;
-            loss += dw * &self.minus[j];
+            if twist {
+                twist_change.add_scaled(&-wp.clone(), &self.responses[j]);
+            }
+            if energies {
+                let dw = d.clone() * wp;
+                lost += dw.clone() * wp;
+                loss += dw * &self.minus[j];
+            }
         }
         BasisOutcome {
             twist_change,
