@@ -3,7 +3,7 @@
 //!
 //! Both meet the accuracy contract ([`crate::analysis::accuracy`]) when G is well
 //! conditioned; only the orthogonalised wrenches meet it near a singular G, and they cost more
-//! (Example 3 in f64, assemble + both models: 3,960 instructions against 2,810, callgrind). So
+//! (Example 3 in f64, assemble + both models: 3,960 instructions against 2,900, callgrind). So
 //! each problem is routed once, when it is assembled, by a cheap and rigorous bound on its
 //! conditioning. Exact types always solve G x = b: there both routes give the same numbers.
 //!
@@ -57,12 +57,13 @@
 //! for N = 1 … 6 (θ ≥ 1 always meets the lower root), and then every other bound too, each
 //! of which is the twist's error carried through: a contact velocity's (√g_ia times it, item 3
 //! included in a(N)); E_p's (‖Δv‖_M times it: E_p is formed from the computed Δv); ΔE_c's,
-//! ½ Σ P̂_i (v̂⁰_ix + v̂_ix) = ½⟨Δv, v⁰ + v⟩_M, moves by at most ½(2V + V) times it, within its
-//! 3V·B_v. The impulses' move by ‖S⁻¹ C⁻¹ Γ S P‖₂ ≤ √κ N γ θ ‖P‖₂ (unit normals, S² ≤ λ_max,
-//! S⁻² ≤ 1/λ_min), within the 4·32N^{3/2} ε √κ ‖P‖₂ of B_P as N(3N + 7)θ/2 ≤ 128 N^{3/2} for
-//! θ ≤ θ*(N). Poisson's split term −W Ê (K − k̄) δP̂^c moves the twist by at most
+//! ½ Σ P̂_i (v̂⁰_ix + v̂_ix) = −½⟨Δv, v⁰ + v⟩_M, moves by at most ½(2V + V) times it, within
+//! its 3V·B_v. The impulses move by ‖S⁻¹ C⁻¹ Γ S P‖₂ ≤ √κ N γ θ ‖P‖₂ (unit normals, S² ≤ λ_max,
+//! S⁻² ≤ 1/λ_min), twice that for Poisson's (1 + K) P^c with ‖P^c‖₂ ≤ ‖P‖₂, within the
+//! 4·32N^{3/2} ε √κ ‖P‖₂ of B_P as N(3N + 7)θ ≤ 128 N^{3/2} for θ ≤ θ*(N). Poisson's split term −W Ê (K − k̄) δP̂^c moves the twist by at most
 //! δk λ_max(C)^½ N γ θ^{3/2} ‖v⁰‖_M ≤ δk √κ N γ θ^{3/2} ‖v⁰‖_M (λ_max(C) ≤ λ_max(G)/min g_ii
-//! ≤ κ), within the contract's 4·32N^{3/2} ε δk κ ‖v⁰‖_M by the same inequality and √θ ≤ √κ.
+//! ≤ κ), within the contract's 4·32N^{3/2} ε δk κ ‖v⁰‖_M by the same inequality and √θ ≤ √κ
+//! (N(3N + 7)θ/2 ≤ 128 N^{3/2}).
 //! For these θ both routes meet every bound; beyond, only the orthogonalised wrenches are
 //! guaranteed to.
 //!

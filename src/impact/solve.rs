@@ -37,7 +37,9 @@
 //!
 //! [`Impact::assemble`] does the model-independent work once (frames, G, its factorization,
 //! Δ); [`Impact::solve`] then runs one restitution model. Both reuse the buffers they own, so
-//! repeated f64 solves allocate nothing.
+//! repeated f64 solves allocate nothing. [`Impact::assemble_for`] does the same for the outputs
+//! a caller asks for only ([`crate::impact::outputs`]): impulses and twist cost about 0.6 of
+//! every output on Example 3.
 
 use crate::impact::gram_schmidt::WrenchBasis;
 use crate::impact::outputs::Outputs;
@@ -551,19 +553,35 @@ impl<T: Scalar> Impact<T> {
             needs.contains(Outputs::TANGENTIAL),
         );
         if normal || tangential {
+            // Each component's sum in the same order whichever are formed; one loop per case,
+            // so that asking for every output costs no test per term.
             for i in 0..n {
                 let mut v = self.before_hat[i].clone();
-                for (j, p) in out.impulses_hat.iter().enumerate() {
-                    if normal {
-                        v[0] -= self.g_hat[i * n + j].clone() * p;
+                let terms = out
+                    .impulses_hat
+                    .iter()
+                    .enumerate()
+                    .map(|(j, p)| (i * n + j, p));
+                match (normal, tangential) {
+                    (true, true) => {
+                        for (k, p) in terms {
+                            v[0] -= self.g_hat[k].clone() * p;
+                            v[1] -= self.g_yx_hat[k].clone() * p;
+                            v[2] -= self.g_zx_hat[k].clone() * p;
+                        }
                     }
-                    if tangential {
-                        v[1] -= self.g_yx_hat[i * n + j].clone() * p;
-                        v[2] -= self.g_zx_hat[i * n + j].clone() * p;
+                    (true, false) => {
+                        for (k, p) in terms {
+                            v[0] -= self.g_hat[k].clone() * p;
+                        }
                     }
-                }
-                if !normal {
-                    v[0] = T::zero();
+                    _ => {
+                        v[0] = T::zero();
+                        for (k, p) in terms {
+                            v[1] -= self.g_yx_hat[k].clone() * p;
+                            v[2] -= self.g_zx_hat[k].clone() * p;
+                        }
+                    }
                 }
                 out.after_hat.push(v);
             }
