@@ -170,6 +170,11 @@ enum Command {
         /// The hard-case corpus to include, when present.
         #[arg(long, default_value = "tests/hard_cases")]
         hard_cases: PathBuf,
+        /// Time only the scenes of this corpus file (`benches/peers/corpus.txt`: one
+        /// two-contact scene a line): ns per solve over the whole corpus, exact (and plain
+        /// BigRational, the arithmetic it replaced) and f64.
+        #[arg(long, value_name = "CORPUS.txt", conflicts_with_all = ["scene", "plot"])]
+        corpus: Option<PathBuf>,
     },
     /// Reproduce the paper's worked examples in a derivations directory.
     Check {
@@ -279,8 +284,11 @@ fn main() -> ExitCode {
             scene,
             batch,
             hard_cases,
+            corpus,
         } => {
-            if let (Some(scene), false) = (&scene, batch.is_empty()) {
+            if let Some(corpus) = corpus {
+                run_bench_corpus(&corpus, quick, json)
+            } else if let (Some(scene), false) = (&scene, batch.is_empty()) {
                 run_bench_batch(scene, &batch, quick, json)
             } else {
                 run_bench(quick, json, plot, scene, hard_cases)
@@ -699,6 +707,48 @@ fn run_bench_batch(path: &std::path::Path, specs: &[String], quick: bool, json: 
             t.runs,
             t.threads
         );
+    }
+    ExitCode::SUCCESS
+}
+
+/// `inertance bench --corpus FILE`: ns per solve over a corpus file, per type.
+fn run_bench_corpus(path: &std::path::Path, quick: bool, json: bool) -> ExitCode {
+    let text = match std::fs::read_to_string(path) {
+        Ok(t) => t,
+        Err(e) => {
+            eprintln!("error: {}: {e}", path.display());
+            return ExitCode::from(2);
+        }
+    };
+    let scenes = match inertance::tools::corpus::parse(&text) {
+        Ok(s) => s,
+        Err(e) => {
+            eprintln!("error: {}: {e}", path.display());
+            return ExitCode::from(2);
+        }
+    };
+    let times = inertance::tools::corpus::time(&scenes, if quick { 1 } else { 5 });
+    if json {
+        let ns: serde_json::Map<String, serde_json::Value> = times
+            .iter()
+            .map(|(name, t)| (name.to_string(), serde_json::json!(t)))
+            .collect();
+        println!(
+            "{}",
+            serde_json::json!({"corpus": path.display().to_string(), "scenes": scenes.len(), "ns_per_solve": ns})
+        );
+    } else {
+        println!(
+            "{}: {} scenes, one solve = assemble + Newton + Poisson, every output",
+            path.display(),
+            scenes.len()
+        );
+        for (name, t) in times {
+            println!(
+                "{name:>12}: {}",
+                t.map_or("singular".to_string(), |x| format!("{x:.0} ns per solve"))
+            );
+        }
     }
     ExitCode::SUCCESS
 }

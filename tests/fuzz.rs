@@ -18,7 +18,7 @@
 //! the long run, `fuzz_long`, ignored by default), `INERTANCE_FUZZ_FINDINGS` (where the long run
 //! writes failing scenes; default `target/fuzz-findings`). Corpus: `tests/fuzz_corpus/*.toml`
 //! (regression inputs, run by `corpus_files_keep_the_contract`); `tests/fuzz_corpus/pending/`
-//! holds findings whose fix is outside the reader and the CLI, not run.
+//! (now empty) holds findings whose fix is outside the reader and the CLI, not run.
 //! A corpus file may say `# symbols: m,k1` and `# vary: body.mass=1:2:3` in its first lines.
 
 #[path = "fuzz/scenes.rs"]

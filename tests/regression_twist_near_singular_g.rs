@@ -114,7 +114,7 @@ fn twist_from_normal_equations(impact: &Impact<f64>, model: Model) -> Screw<f64>
 fn twist_error(impact: &Impact<Exact>, a: &Screw<f64>, e: &Screw<Exact>) -> f64 {
     let mut d = Screw::zero();
     for k in 0..6 {
-        d.0[k] = a.0[k].exact_value().unwrap() - &e.0[k];
+        d.0[k] = Exact::from(a.0[k].exact_value().unwrap()) - &e.0[k];
     }
     (2.0 * impact.problem().body().kinetic_energy(&d).to_f64()).sqrt()
 }

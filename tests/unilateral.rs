@@ -13,7 +13,7 @@ use inertance::mechanics::constraint::Joint;
 use inertance::mechanics::screw::Screw;
 use inertance::scalar::Exact;
 use inertance::{Model, Problem};
-use num_traits::{One, Signed, Zero};
+use num_traits::{One, Zero};
 use proptest::prelude::*;
 
 /// (v̂_ix⁰, v̂_ix) per contact.

@@ -162,6 +162,45 @@ def random_scene(rng: random.Random, idx: int) -> Scene:
         return s
 
 
+# The exact corpus (benches/peers/corpus.txt): random scenes as one line each, the same rationals
+# on both sides (the Rust criterion bench `exact` and `inertance bench --corpus` read this file).
+CORPUS = REPO / "benches" / "peers" / "corpus.txt"
+CORPUS_FIELDS = ("m Jx Jy Jz vCx vCy vCz wx wy wz "
+                 "A1x A1y A1z n1x n1y n1z k1 A2x A2y A2z n2x n2y n2z k2")
+
+
+def corpus_line(s: Scene) -> str:
+    """A two-contact scene with one coefficient per contact as one line of 24 rationals."""
+    nums = [s.mass, *s.inertia, *s.velocity, *s.angular_velocity]
+    for c in s.contacts:
+        assert c.k_newton == c.k_poisson
+        nums += [*c.point, *c.normal, c.k_newton]
+    return " ".join(str(F(x)) for x in nums)
+
+
+def corpus_scene(line: str, idx: int) -> Scene:
+    """The inverse of `corpus_line`."""
+    x = [F(t) for t in line.split()]
+    assert len(x) == 24, f"corpus line {idx}: {len(x)} numbers, expected 24"
+    contacts = [Contact(tuple(x[o:o + 3]), tuple(x[o + 3:o + 6]), x[o + 6], x[o + 6]) for o in (10, 17)]
+    return Scene(f"corpus-{idx}", f"corpus scene {idx}, k = {x[16]}, {x[23]}", x[0], tuple(x[1:4]),
+                 tuple(x[4:7]), tuple(x[7:10]), contacts)
+
+
+def read_corpus(path: Path, limit: int | None = None) -> list:
+    lines = [ln for ln in path.read_text().splitlines() if ln.strip() and not ln.startswith("#")]
+    return [corpus_scene(ln, i + 1) for i, ln in enumerate(lines[:limit])]
+
+
+def write_corpus(path: Path, seed: int, n: int) -> None:
+    rng = random.Random(seed)
+    head = [f"# The exact peer corpus: {n} random two-contact scenes of `random_scene` (seed {seed}),",
+            "# written by `python3 benches/peers/compare.py --write-corpus`; one scene a line:",
+            f"# {CORPUS_FIELDS}"]
+    body = [corpus_line(random_scene(rng, i + 1)) for i in range(n)]
+    path.write_text("\n".join(head + body) + "\n")
+
+
 def build_scenes(seed: int, n_random: int) -> list:
     scenes = [
         example3("example-3", "Example 3 of the paper, k1 = 0.3, k2 = 0.2 (no Pinocchio impulseDynamics)",
@@ -291,6 +330,50 @@ def sympy_solve(x: SympyInputs) -> dict:
     poisson["compression_impulses"] = list(PC)
     return {"G": G, "det": G.det(), "v0": v0, "X": X, "D": D,
             "newton": after(list(PN)), "poisson": poisson}
+
+
+def sympy_closed_form(x: SympyInputs) -> dict:
+    """The numpy closed form's equations (eq. 57, 8, 20, 22-24, 28, 32: Cramer's rule, every
+    product written out) in SymPy `Rational` scalars, for two contacts: SymPy's exact arithmetic
+    without its Matrix and LUsolve machinery -- the cheapest exact SymPy solve of these outputs."""
+    m, J = x.m, x.J
+    vC, w = list(x.vC), list(x.w)
+    X = []
+    for nr in x.nrm:
+        s = sp.sqrt(nr[0] * nr[0] + nr[1] * nr[1] + nr[2] * nr[2])  # rational for these normals
+        X.append([c / s for c in nr])
+    P = [list(p) for p in x.pts]
+    D = [[p[1] * a[2] - p[2] * a[1], p[2] * a[0] - p[0] * a[2], p[0] * a[1] - p[1] * a[0]]
+         for p, a in zip(P, X)]
+
+    def dot(a, b):
+        return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+
+    G = [[dot(X[i], X[j]) / m + D[i][0] * D[j][0] / J[0] + D[i][1] * D[j][1] / J[1]
+          + D[i][2] * D[j][2] / J[2] for j in range(2)] for i in range(2)]
+    v0 = [dot(X[i], vC) + dot(D[i], w) for i in range(2)]
+    det = G[0][0] * G[1][1] - G[0][1] * G[1][0]
+
+    def cramer(b):
+        return [(b[0] * G[1][1] - G[0][1] * b[1]) / det, (G[0][0] * b[1] - b[0] * G[1][0]) / det]
+
+    T0 = (m * dot(vC, vC) + J[0] * w[0] ** 2 + J[1] * w[1] ** 2 + J[2] * w[2] ** 2) / 2
+
+    def after(Pi):
+        dv = [-(Pi[0] * X[0][k] + Pi[1] * X[1][k]) / m for k in range(3)]
+        dw = [-(Pi[0] * D[0][k] + Pi[1] * D[1][k]) / J[k] for k in range(3)]
+        v1 = [vC[k] + dv[k] for k in range(3)]
+        w1 = [w[k] + dw[k] for k in range(3)]
+        Ep = (m * dot(dv, dv) + J[0] * dw[0] ** 2 + J[1] * dw[1] ** 2 + J[2] * dw[2] ** 2) / 2
+        dEc = T0 - (m * dot(v1, v1) + J[0] * w1[0] ** 2 + J[1] * w1[1] ** 2 + J[2] * w1[2] ** 2) / 2
+        return {"impulses": Pi, "velocity": v1, "angular_velocity": w1,
+                "lost_velocity_energy": Ep, "kinetic_energy_loss": dEc}
+
+    PN = cramer([(1 + x.kN[i]) * v0[i] for i in range(2)])
+    PC = cramer(v0)
+    poisson = after([(1 + x.kP[i]) * PC[i] for i in range(2)])
+    poisson["compression_impulses"] = PC
+    return {"G": sp.Matrix(G), "det": det, "newton": after(PN), "poisson": poisson}
 
 
 def sympy_no_slip(s: Scene, ex: dict) -> bool:
@@ -706,6 +789,80 @@ def batch_compare(py, binary: Path, points: int, rounds: int) -> None:
     print()
 
 
+def corpus_compare(py, binary: Path, corpus: Path, n: int, rounds: int, outdir: Path) -> bool:
+    """Issue 15, item 4: the exact solve on the peer corpus (the first `n` scenes of `corpus`),
+    side by side with SymPy: rounds alternate between `inertance bench --corpus` (Rust in-process:
+    Exact, plain BigRational, f64, each the median of 5 passes over the corpus) and one timed pass
+    of `sympy_solve` over every scene (inputs built beforehand); medians over the rounds, per
+    scene.  Every scene is first checked: `inertance solve --exact --json` equals SymPy exactly."""
+    scenes = read_corpus(corpus, n)
+    sub = outdir / "corpus.txt"
+    sub.write_text("\n".join(corpus_line(s) for s in scenes) + "\n")
+    print(f"── exact corpus: {len(scenes)} random two-contact scenes of {corpus.relative_to(REPO)} "
+          f"(assemble + Newton + Poisson, every output; SymPy: G, Δ, both models)")
+    xs = [SympyInputs(s) for s in scenes]
+    bad = []
+    for s, x in zip(scenes, xs):
+        path = outdir / f"{s.name}.toml"
+        path.write_text(scene_toml(s))
+        refex = from_inertance(run_json([binary, "solve", path, "--json", "--exact"]), sp.sympify)
+        if compare_exact(sympy_solve(x), refex) or compare_exact(sympy_closed_form(x), refex):
+            bad.append(s.name)
+    print(f"   agreement: inertance --exact == SymPy (both methods) on {len(scenes) - len(bad)} of {len(scenes)} scenes"
+          + (f"; DIFFERS on {', '.join(bad[:5])}" if bad else ""))
+    py_scenes = [py.Scene.load(str(outdir / f"{s.name}.toml")) for s in scenes] if py else []
+    rust, sym, closed, pyx = [], [], [], []
+    for r in range(rounds):
+        try:
+            j = run_json([binary, "bench", "--corpus", sub, "--json"])
+            rust.append({k: v * 1e-9 for k, v in j["ns_per_solve"].items() if v is not None})
+        except (RuntimeError, KeyError, ValueError) as e:
+            print(f"   Rust corpus timing unavailable ({e})")
+            return not bad
+        gc_was = gc.isenabled()
+        gc.disable()
+        try:
+            t = timeit.default_timer()
+            for x in xs:
+                sympy_solve(x)
+            sym.append((timeit.default_timer() - t) / len(xs))
+            t = timeit.default_timer()
+            for x in xs:
+                sympy_closed_form(x)
+            closed.append((timeit.default_timer() - t) / len(xs))
+            if py:
+                t = timeit.default_timer()
+                for sc in py_scenes:
+                    py.solve(sc, exact=True)
+                pyx.append((timeit.default_timer() - t) / len(py_scenes))
+        finally:
+            if gc_was:
+                gc.enable()
+        print(f"   round {r + 1}: Rust exact {fmt_time(rust[-1].get('exact'))}, "
+              f"BigRational {fmt_time(rust[-1].get('bigrational'))}, SymPy LU {fmt_time(sym[-1])}, "
+              f"SymPy closed form {fmt_time(closed[-1])} per scene"
+              + (f", Python exact {fmt_time(pyx[-1])}" if py else ""))
+    med = {k: statistics.median(t[k] for t in rust) for k in ("exact", "bigrational", "f64") if all(k in t for t in rust)}
+    s_med, c_med = statistics.median(sym), statistics.median(closed)
+    rows = [("inertance exact, Rust in-process (Exact)", med.get("exact")),
+            ("inertance exact on plain BigRational (before)", med.get("bigrational")),
+            ("inertance f64, Rust in-process", med.get("f64"))]
+    if py:
+        rows.append(("inertance.solve(scene, exact=True), Python", statistics.median(pyx)))
+    rows.append(("SymPy exact (Rational, LUsolve)", s_med))
+    rows.append(("SymPy exact closed form (Rational, Cramer)", c_med))
+    print(f"   {'method':<48} {'per scene':>11} {'LU ÷ it':>11} {'closed ÷ it':>11}")
+    for label, t in rows:
+        print(f"   {label:<48} {fmt_time(t):>11} {fmt_ratio(s_med / t if t else None):>11} "
+              f"{fmt_ratio(c_med / t if t else None):>11}")
+    if med.get("exact") and med.get("bigrational"):
+        print(f"   BigRational ÷ Exact: {med['bigrational'] / med['exact']:.1f}×; SymPy ÷ inertance exact: "
+              f"{s_med / med['exact']:.1f}× (LU), {c_med / med['exact']:.1f}× (closed form); "
+              f"medians over {rounds} rounds")
+    print()
+    return not bad
+
+
 def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--seed", type=int, default=1924, help="seed of the random scenes (default 1924)")
@@ -722,7 +879,21 @@ def main() -> int:
     ap.add_argument("--batch-rounds", type=int, default=3,
                     help="alternating Rust / Python rounds of the batch comparison (default 3)")
     ap.add_argument("--keep", help="write the scene TOML files to this directory and keep them")
+    ap.add_argument("--corpus-scenes", type=int, default=1000,
+                    help="scenes of benches/peers/corpus.txt in the exact corpus comparison (default all "
+                         "1000; 0 skips it)")
+    ap.add_argument("--corpus-rounds", type=int, default=3,
+                    help="alternating Rust / SymPy rounds of the exact corpus comparison (default 3)")
+    ap.add_argument("--corpus-only", action="store_true",
+                    help="run only the exact corpus comparison (no Pinocchio or numpy, no batch)")
+    ap.add_argument("--write-corpus", type=int, metavar="N",
+                    help="write N random scenes (seed --seed) to benches/peers/corpus.txt and exit")
     args = ap.parse_args()
+
+    if args.write_corpus:
+        write_corpus(CORPUS, args.seed, args.write_corpus)
+        print(f"wrote {args.write_corpus} scenes to {CORPUS}")
+        return 0
 
     binary = inertance_bin(args.inertance, args.rebuild)
     py, py_why = import_inertance_py(args.python_package)
@@ -735,10 +906,14 @@ def main() -> int:
           "Py = `inertance.solve` on a prebuilt Scene, from this Python")
     print()
 
-    scenes = build_scenes(args.seed, args.random)
     tmp = tempfile.TemporaryDirectory(prefix="inertance-peers-")
     outdir = Path(args.keep) if args.keep else Path(tmp.name)
     outdir.mkdir(parents=True, exist_ok=True)
+    if args.corpus_only:
+        ok = corpus_compare(py, binary, CORPUS, args.corpus_scenes, max(1, args.corpus_rounds), outdir)
+        tmp.cleanup()
+        return 0 if ok else 1
+    scenes = build_scenes(args.seed, args.random)
 
     all_ok = True
     bench_reason = None
@@ -886,6 +1061,8 @@ def main() -> int:
         print(f"inertance Python package unavailable ({py_why}); the Python ratios were not computed.")
     print("agreement: " + ("every peer agrees with inertance" if all_ok else "SOME PEER DISAGREES (see ✗)"))
     print()
+    if args.corpus_scenes > 0:
+        all_ok &= corpus_compare(py, binary, CORPUS, args.corpus_scenes, max(1, args.corpus_rounds), outdir)
     if py and args.batch_points > 1:
         batch_compare(py, binary, args.batch_points, max(1, args.batch_rounds))
     if args.keep:

@@ -97,14 +97,12 @@
 //! Gram–Schmidt's backward error takes above (2√N·16N), so the same bounds hold, with the
 //! same constants, whichever route a problem takes.
 
-use num_rational::BigRational;
-use num_traits::{Signed, Zero};
+use num_traits::{One, Zero};
 
 use crate::impact::restitution::Model;
 use crate::impact::solve::{Impact, Outcome};
 use crate::mechanics::body::{Inertia, Mobility, RigidBody};
 use crate::mechanics::screw::{Screw, Vec3};
-use crate::number::rational_to_f64;
 use crate::scalar::{Exact, Scalar};
 
 use super::largest_eigenvalue;
@@ -202,26 +200,20 @@ impl Conditioning {
         let norm: Vec<f64> = impact
             .frames()
             .iter()
-            .map(|f| rational_to_f64(&f.norm2[0]).sqrt())
+            .map(|f| to_f64(&f.norm2[0]).sqrt())
             .collect();
         let g: Vec<f64> = (0..n * n)
-            .map(|k| rational_to_f64(&impact.g_hat()[k]) / (norm[k / n] * norm[k % n]))
+            .map(|k| to_f64(&impact.g_hat()[k]) / (norm[k / n] * norm[k % n]))
             .collect();
         // G⁻¹ exactly, then rounded: its eigenvalues are accurate however large κ is.
         let mut inv = vec![0.0; n * n];
         for j in 0..n {
             let mut col: Vec<Exact> = (0..n)
-                .map(|i| {
-                    if i == j {
-                        BigRational::from_integer(1.into())
-                    } else {
-                        BigRational::zero()
-                    }
-                })
+                .map(|i| if i == j { Exact::one() } else { Exact::zero() })
                 .collect();
             impact.solve_system(&mut col);
             for (i, x) in col.iter().enumerate() {
-                inv[i * n + j] = rational_to_f64(x) * norm[i] * norm[j];
+                inv[i * n + j] = to_f64(x) * norm[i] * norm[j];
             }
         }
         let lambda_max = largest_eigenvalue(&g, n);
@@ -231,7 +223,7 @@ impl Conditioning {
             .iter()
             .enumerate()
             .map(|(j, f)| {
-                let own = rational_to_f64(&impact.g_hat()[j * n + j]).sqrt();
+                let own = to_f64(&impact.g_hat()[j * n + j]).sqrt();
                 let point = &problem.contacts()[j].point;
                 magnitude_norm(problem.body(), point, &f.axes[0].top()) / own
             })
@@ -241,7 +233,7 @@ impl Conditioning {
             let m: Vec<f64> = (0..d * d)
                 .map(|k| {
                     let momentum = problem.body().momentum(&c.free[k % d]);
-                    rational_to_f64(&c.free[k / d].reciprocal(&momentum))
+                    to_f64(&c.free[k / d].reciprocal(&momentum))
                 })
                 .collect();
             super::condition_number(&m, d)
@@ -272,16 +264,16 @@ fn magnitude_norm(body: &RigidBody<Exact>, r: &Vec3<Exact>, u: &Vec3<Exact>) -> 
     for a in 0..3 {
         let (b, c) = ((a + 1) % 3, (a + 2) % 3);
         let m = (&r[b] * &u[c]).abs() + (&r[c] * &u[b]).abs();
-        s += rational_to_f64(&(&u[a] * &u[a] / &body.mass));
+        s += to_f64(&(&u[a] * &u[a] / &body.mass));
         moment[a] = match &body.inertia {
-            Inertia::Principal(j) => rational_to_f64(&(&m * &m / &j[a])),
-            Inertia::Tensor(_) => rational_to_f64(&(&m * &m)),
+            Inertia::Principal(j) => to_f64(&(&m * &m / &j[a])),
+            Inertia::Tensor(_) => to_f64(&(&m * &m)),
         };
     }
     s + match &body.inertia {
         Inertia::Principal(_) => moment.iter().sum::<f64>(),
         Inertia::Tensor(t) => {
-            let j = t.matrix().map(|x| rational_to_f64(&x));
+            let j = t.matrix().map(|x| to_f64(&x));
             let smallest = j
                 .symmetric_eigenvalues()
                 .iter()
@@ -293,16 +285,21 @@ fn magnitude_norm(body: &RigidBody<Exact>, r: &Vec3<Exact>, u: &Vec3<Exact>) -> 
     .sqrt()
 }
 
+/// The nearest f64 to an exact value.
+fn to_f64(x: &Exact) -> f64 {
+    Scalar::to_f64(x)
+}
+
 /// ‖v‖_M = (2 T(v))^½ of an exact twist.
 fn energy_norm(body: &RigidBody<Exact>, v: &Screw<Exact>) -> f64 {
-    (2.0 * rational_to_f64(&body.kinetic_energy(v))).sqrt()
+    (2.0 * to_f64(&body.kinetic_energy(v))).sqrt()
 }
 
 /// (‖v⁰‖_M, ‖Δv‖_M) of an exact outcome on `exact`: V is their sum.
 pub fn speeds(exact: &Impact<Exact>, out: &Outcome<Exact>) -> (f64, f64) {
     let problem = exact.problem();
     let mut dv = out.velocity.clone();
-    dv.add_scaled(&-BigRational::from_integer(1.into()), problem.velocity());
+    dv.add_scaled(&-Exact::one(), problem.velocity());
     (
         energy_norm(problem.body(), problem.velocity()),
         energy_norm(problem.body(), &dv),
@@ -313,7 +310,7 @@ pub fn speeds(exact: &Impact<Exact>, out: &Outcome<Exact>) -> (f64, f64) {
 fn exact_screw<T: Scalar>(v: &Screw<T>) -> Option<Screw<Exact>> {
     let mut out = Screw::zero();
     for k in 0..6 {
-        out.0[k] = v.0[k].exact_value()?;
+        out.0[k] = Exact::from(v.0[k].exact_value()?);
     }
     Some(out)
 }
@@ -341,7 +338,7 @@ pub fn measure<T: Scalar>(
             let k: Vec<f64> = problem
                 .contacts()
                 .iter()
-                .map(|c| rational_to_f64(&c.k_poisson))
+                .map(|c| to_f64(&c.k_poisson))
                 .collect();
             let (lo, hi) = k
                 .iter()
@@ -353,24 +350,24 @@ pub fn measure<T: Scalar>(
     let b_v = c * eps * (cond.cond.sqrt() * speed + 4.0 * spread * cond.cond * norm_v0);
 
     // Impulses, physical: P_i = P̂_i |n_i|.
-    let (mut diff2, mut size2) = (BigRational::zero(), BigRational::zero());
+    let (mut diff2, mut size2) = (Exact::zero(), Exact::zero());
     for (i, f) in exact.frames().iter().enumerate() {
-        let d = out.impulses_hat[i].exact_value()? - &exact_out.impulses_hat[i];
+        let d = Exact::from(out.impulses_hat[i].exact_value()?) - &exact_out.impulses_hat[i];
         diff2 += &d * &d * &f.norm2[0];
         size2 += &exact_out.impulses_hat[i] * &exact_out.impulses_hat[i] * &f.norm2[0];
     }
     let impulses = Check {
-        error: rational_to_f64(&diff2).sqrt(),
+        error: to_f64(&diff2).sqrt(),
         bound: 4.0
             * c
             * eps
-            * (cond.cond.sqrt() * rational_to_f64(&size2).sqrt()
+            * (cond.cond.sqrt() * to_f64(&size2).sqrt()
                 + cond.cond * speed / cond.lambda_max.sqrt()),
     };
 
     let velocity = exact_screw(&out.velocity)?;
     let mut twist_error = velocity.clone();
-    twist_error.add_scaled(&-BigRational::from_integer(1.into()), &exact_out.velocity);
+    twist_error.add_scaled(&-Exact::one(), &exact_out.velocity);
     let twist = Check {
         error: energy_norm(body, &twist_error),
         bound: b_v,
@@ -387,11 +384,11 @@ pub fn measure<T: Scalar>(
         for a in 0..3 {
             let axis = exact_screw(&f.axes[a])?;
             let unit2: Exact = axis.top().iter().map(|x| x * x).sum();
-            let unit = rational_to_f64(&unit2).sqrt();
+            let unit = to_f64(&unit2).sqrt();
             let reference = axis.reciprocal(&exact_out.velocity);
             let error =
-                rational_to_f64(&(out.after_hat[i][a].exact_value()? - reference).abs()) / unit;
-            let g = rational_to_f64(&(axis.reciprocal(&problem.response(&axis)) / &unit2));
+                to_f64(&(Exact::from(out.after_hat[i][a].exact_value()?) - reference).abs()) / unit;
+            let g = to_f64(&(axis.reciprocal(&problem.response(&axis)) / &unit2));
             let bound = g.max(0.0).sqrt() * b_v
                 + 4.0 * eps * magnitude_norm(body, point, &axis.top()) / unit * speed;
             let check = Check { error, bound };
@@ -401,9 +398,10 @@ pub fn measure<T: Scalar>(
         }
     }
 
-    let e_p = rational_to_f64(&exact_out.lost_velocity_energy);
-    let err =
-        |x: &T, e: &Exact| -> Option<f64> { Some(rational_to_f64(&(x.exact_value()? - e).abs())) };
+    let e_p = to_f64(&exact_out.lost_velocity_energy);
+    let err = |x: &T, e: &Exact| -> Option<f64> {
+        Some(to_f64(&(Exact::from(x.exact_value()?) - e).abs()))
+    };
     let lost = Check {
         error: err(&out.lost_velocity_energy, &exact_out.lost_velocity_energy)?,
         bound: norm_dv * b_v + n as f64 * eps * e_p,

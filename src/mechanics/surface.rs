@@ -713,7 +713,7 @@ mod tests {
     use crate::scalar::Exact;
 
     fn q(n: i64, d: i64) -> Exact {
-        BigRational::new(BigInt::from(n), BigInt::from(d))
+        Exact::new(BigInt::from(n), BigInt::from(d))
     }
 
     fn surface(text: &str) -> Surface {

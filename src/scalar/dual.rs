@@ -384,7 +384,7 @@ mod tests {
         assert_eq!(D::from_number(&n).unwrap(), d((1, 10), (1, 1)));
         n.tangent = 0.1; // the binary f64 0.1, exactly
         let t = D::from_number(&n).unwrap().tangent;
-        assert_eq!(t, BigRational::from_float(0.1).unwrap());
+        assert_eq!(t, Exact::from(BigRational::from_float(0.1).unwrap()));
         assert_ne!(t, ratio(1, 10));
         let f = Dual::<f64>::from_number(&n).unwrap();
         assert_eq!((f.value, f.tangent), (0.1, 0.1));

@@ -13,7 +13,8 @@
 //! | `f32` | `"f32"` | `|x| ≤ n·ε·|reference|` |
 //! | `f64` | `"f64"` | `|x| ≤ n·ε·|reference|` |
 //! | [`DoubleDouble`](crate::scalar::dd::DoubleDouble) | `"double-double"` | `|x| ≤ n·2⁻¹⁰⁴·|reference|` |
-//! | [`Exact`] = `BigRational` | `"exact"` | `x = 0` |
+//! | [`Exact`] = [`Rational`](crate::scalar::rational::Rational) | `"exact"` | `x = 0` |
+//! | `BigRational` (the plain num-rational type `Exact` is tested against) | `"exact"` | `x = 0` |
 //! | [`RatFun`](crate::scalar::symbolic::RatFun) | `"symbolic"` | `x ≡ 0` (as a rational function) |
 //! | [`Dual<T>`](crate::scalar::dual::Dual) over any of the above | `"dual"` (f64), `"dual-exact"`, … | the value's zero test |
 //!
@@ -31,12 +32,14 @@ use num_traits::{One, Signed, Zero};
 
 pub mod dd;
 pub mod dual;
+pub mod rational;
 pub mod symbolic;
 
 use crate::number::Number;
 
-/// Exact rational arithmetic: the reference scalar of the toolkit.
-pub type Exact = BigRational;
+/// Exact rational arithmetic: the reference scalar of the toolkit ([`rational::Rational`], the
+/// same numbers as `BigRational` with a machine-word fast path).
+pub type Exact = rational::Rational;
 
 /// The arithmetic the solver needs: a field, with operations by value and by reference
 /// (so big rationals are not cloned needlessly).
@@ -316,7 +319,7 @@ mod tests {
     use super::*;
 
     fn q(n: i64, d: i64) -> Exact {
-        BigRational::new(n.into(), d.into())
+        Exact::new(n.into(), d.into())
     }
 
     #[test]
@@ -334,8 +337,8 @@ mod tests {
 
     #[test]
     fn conversions_round_trip_small_rationals() {
-        assert_eq!(<f64 as Scalar>::from_rational(&q(1, 4)), 0.25);
-        assert_eq!(<f32 as Scalar>::from_rational(&q(-3, 2)), -1.5f32);
+        assert_eq!(<f64 as Scalar>::from_rational(&ratio(1, 4)), 0.25);
+        assert_eq!(<f32 as Scalar>::from_rational(&ratio(-3, 2)), -1.5f32);
         assert_eq!(q(1, 3).to_f64(), 1.0 / 3.0);
         assert_eq!(Exact::from_f64(0.5), None);
         assert_eq!(int::<Exact>(-7), q(-7, 1));

@@ -8,6 +8,7 @@ pub mod accuracy;
 pub mod analyze;
 pub mod bench;
 pub mod check;
+pub mod corpus;
 pub mod derive;
 pub mod friction_bench;
 pub mod sweep;

@@ -13,7 +13,7 @@ use inertance::mechanics::contact::Contact;
 use inertance::mechanics::screw::{Screw, Vec3};
 use inertance::scalar::{Exact, Scalar, int};
 use num_bigint::BigInt;
-use num_traits::{Signed, Zero};
+use num_traits::Zero;
 use proptest::prelude::*;
 
 /// n/d with n in [-lo, lo], d in [1, den].
@@ -80,7 +80,7 @@ pub fn problem(max: usize) -> impl Strategy<Value = Problem<Exact>> {
 
 /// The same problem in another scalar type (inputs rounded once).
 pub fn convert<T: Scalar>(p: &Problem<Exact>) -> Problem<T> {
-    let c = |x: &Exact| T::from_rational(x);
+    let c = |x: &Exact| T::from_rational(&x.to_big_rational());
     let v = |x: &Vec3<Exact>| Vec3::new(c(&x[0]), c(&x[1]), c(&x[2]));
     let mass = c(&p.body().mass);
     let body = match &p.body().inertia {

@@ -20,6 +20,17 @@ use super::symbols::{self, Key, Table};
 /// otherwise (its prime factorisation, which canonical forms need, is not known).
 const TRIAL_LIMIT: u64 = 1 << 20;
 
+/// The trial division bound for radicands of more than [`LARGE_RADICAND_BITS`] bits: such
+/// numbers come from hostile or degenerate inputs (a subnormal f64 written as a rational,
+/// 2⁻¹⁰⁷⁴, gives a radicand of 4,300 bits), where trial division to 2²⁰ costs about 0.2 s each
+/// and a derivation asks for dozens. Lowering the bound can only refuse more radicands
+/// (`None`), never give a wrong factorization: a cofactor is accepted as prime only below the
+/// square of the bound used.
+const LARGE_TRIAL_LIMIT: u64 = 1 << 14;
+
+/// See [`LARGE_TRIAL_LIMIT`].
+const LARGE_RADICAND_BITS: u64 = 512;
+
 /// The symbol r_p for the prime p (relation r_p² = p).
 pub(crate) fn radical_symbol(p: &BigInt) -> Poly {
     let relation = Poly::constant(BigRational::from_integer(p.clone()));
@@ -36,12 +47,42 @@ pub(crate) fn sqrt_parts(q: &BigRational) -> Option<(BigRational, Vec<BigInt>)> 
         return Some((BigRational::zero(), Vec::new()));
     }
     let (num, den) = (q.numer().clone(), q.denom().clone());
-    let (square_root, primes) = square_free(&(&num * &den))?;
+    let (square_root, primes) = square_free_cached(&num * &den)?;
     Some((BigRational::new(square_root, den), primes))
+}
+
+/// [`square_free`], remembered per thread for radicands beyond a machine word: a derivation
+/// asks for the same large radicand many times (a normal's length in every entry it reaches),
+/// and trial division of a number of thousands of bits costs a fraction of a second.
+fn square_free_cached(n: BigInt) -> Option<(BigInt, Vec<BigInt>)> {
+    use std::cell::RefCell;
+    use std::collections::HashMap;
+    type Memo = HashMap<BigInt, Option<(BigInt, Vec<BigInt>)>>;
+    thread_local!(static MEMO: RefCell<Memo> = RefCell::new(HashMap::new()));
+    if n.bits() <= 128 {
+        return square_free(&n);
+    }
+    if let Some(hit) = MEMO.with(|m| m.borrow().get(&n).cloned()) {
+        return hit;
+    }
+    let result = square_free(&n);
+    MEMO.with(|m| {
+        let mut m = m.borrow_mut();
+        if m.len() >= 4096 {
+            m.clear();
+        }
+        m.insert(n, result.clone());
+    });
+    result
 }
 
 /// n = s² · Π p_i (distinct primes): `(s, [p_i])` for n > 0.
 fn square_free(n: &BigInt) -> Option<(BigInt, Vec<BigInt>)> {
+    let trial_limit = if n.bits() > LARGE_RADICAND_BITS {
+        LARGE_TRIAL_LIMIT
+    } else {
+        TRIAL_LIMIT
+    };
     let mut s = BigInt::one();
     let mut primes = Vec::new();
     let mut add = |d: BigInt, e: u32, s: &mut BigInt| {
@@ -66,27 +107,37 @@ fn square_free(n: &BigInt) -> Option<(BigInt, Vec<BigInt>)> {
         }
         (BigInt::from(m), d > TRIAL_LIMIT)
     } else {
+        // Remainders by a machine word, over 64-bit digits (most significant first; a 128 by
+        // 64-bit division per digit): one pass each, no allocation; a division only when d
+        // divides.
         let mut m = n.clone();
+        let mut digits: Vec<u64> = m.magnitude().to_u64_digits();
         let mut d: u64 = 2;
         loop {
-            let dd = BigInt::from(d);
-            if d > TRIAL_LIMIT || &dd * &dd > m {
+            if d > trial_limit || BigInt::from(d) * BigInt::from(d) > m {
                 break;
             }
+            let rem = |digits: &[u64]| {
+                digits
+                    .iter()
+                    .rev()
+                    .fold(0u128, |r, &w| ((r << 64) | u128::from(w)) % u128::from(d))
+            };
             let mut e = 0;
-            while (&m % &dd).is_zero() {
-                m /= &dd;
+            while rem(&digits) == 0 {
+                m /= d;
+                digits = m.magnitude().to_u64_digits();
                 e += 1;
             }
             if e > 0 {
-                add(dd, e, &mut s);
+                add(BigInt::from(d), e, &mut s);
             }
             d += if d == 2 { 1 } else { 2 };
         }
-        (m, d > TRIAL_LIMIT)
+        (m, d > trial_limit)
     };
     if rest > BigInt::one() {
-        let limit = BigInt::from(TRIAL_LIMIT);
+        let limit = BigInt::from(trial_limit);
         let r = rest.sqrt();
         if &r * &r == rest {
             s *= r;
@@ -243,5 +294,35 @@ mod tests {
         // Two primes beyond the bound: refused rather than risk a non-canonical form.
         let p2 = BigInt::from(1_048_589u64);
         assert_eq!(sqrt_parts(&BigRational::from_integer(&p * &p2)), None);
+    }
+
+    #[test]
+    fn large_radicands_are_split_by_word_remainders_or_refused() {
+        // Beyond 128 bits the trial division runs on u64 digits; beyond 512 bits to 2¹⁴.
+        let big = |e: u32| BigInt::one() << e;
+        // 2⁶⁰⁰·3³·5·7² (smooth, > 512 bits): √ = 2³⁰⁰·3·7 · √3·√5.
+        let n = big(600) * 27 * 5 * 49;
+        assert_eq!(
+            sqrt_parts(&BigRational::from_integer(n)),
+            Some((BigRational::from_integer(big(300) * 21), ints(&[3, 5])))
+        );
+        // 200 bits, a prime factor under 2²⁰ found by word remainders: 2²⁰⁰·1048573.
+        let n = big(200) * 1_048_573u64;
+        assert_eq!(
+            sqrt_parts(&BigRational::from_integer(n)),
+            Some((BigRational::from_integer(big(100)), ints(&[1_048_573])))
+        );
+        // |n|² for n = (2, 1, 2⁻¹⁰⁷⁴) (the fuzz finding derive-subnormal-number): 5 + 2⁻²¹⁴⁸,
+        // whose cofactor stays far beyond the square of the bound: refused, and again (the memo).
+        let q = BigRational::from_integer(5.into()) + BigRational::new(1.into(), big(2148));
+        assert_eq!(sqrt_parts(&q), None);
+        assert_eq!(sqrt_parts(&q), None);
+        // A perfect square of thousands of bits is still recognised: (2²¹⁰⁰ + 1)²/4.
+        let r = big(2100) + 1;
+        let q = BigRational::new(&r * &r, 4.into());
+        assert_eq!(
+            sqrt_parts(&q),
+            Some((BigRational::new(r, 2.into()), vec![]))
+        );
     }
 }
