@@ -107,10 +107,11 @@ fn in_solver_units(scene: &Scene) -> Scene {
 
 /// The exact value of a float outcome, as an outcome in rationals.
 fn exact_outcome<T: Scalar>(o: &Outcome<T>) -> Outcome<Exact> {
-    let all = |v: &[T]| -> Vec<Exact> { v.iter().map(|x| x.exact_value().unwrap()).collect() };
+    let x = |x: &T| -> Exact { x.exact_value().unwrap().into() };
+    let all = |v: &[T]| -> Vec<Exact> { v.iter().map(x).collect() };
     let mut velocity = Screw::zero();
     for k in 0..6 {
-        velocity.0[k] = o.velocity.0[k].exact_value().unwrap();
+        velocity.0[k] = x(&o.velocity.0[k]);
     }
     Outcome {
         impulses_hat: all(&o.impulses_hat),
@@ -119,10 +120,10 @@ fn exact_outcome<T: Scalar>(o: &Outcome<T>) -> Outcome<Exact> {
         after_hat: o
             .after_hat
             .iter()
-            .map(|a| a.clone().map(|x| x.exact_value().unwrap()))
+            .map(|a| a.clone().map(|v| x(&v)))
             .collect(),
-        lost_velocity_energy: o.lost_velocity_energy.exact_value().unwrap(),
-        kinetic_energy_loss: o.kinetic_energy_loss.exact_value().unwrap(),
+        lost_velocity_energy: x(&o.lost_velocity_energy),
+        kinetic_energy_loss: x(&o.kinetic_energy_loss),
         constraint_impulses: all(&o.constraint_impulses),
     }
 }
