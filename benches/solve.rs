@@ -1,5 +1,6 @@
 //! The cost of a solve per scalar type: the paper's Example 3 (free body, two contacts, Newton
-//! and Poisson, every output) with a hand-written f64 closed form as the baseline; N = 3 and 6
+//! and Poisson, every output; in f64 also impulses and twist only) with a hand-written f64
+//! closed form as the baseline; N = 3 and 6
 //! contacts (solve) and 12, 24 (assemble + analyze: beyond six contacts a free body is always
 //! singular); a constrained scene (Example 6); building a scene apart from solving it; and a
 //! batch of scenes. The unilateral law (assemble + unilateral Newton + Poisson, every output)
@@ -13,6 +14,7 @@ use std::hint::black_box;
 
 use criterion::Criterion;
 use inertance::analysis::analyze;
+use inertance::impact::outputs::Outputs;
 use inertance::impact::problem::Problem;
 use inertance::impact::restitution::Model;
 use inertance::impact::solve::{Impact, Outcome};
@@ -87,6 +89,23 @@ fn bench_scalar<T: Scalar>(c: &mut Criterion, scene: &Scene) {
         b.iter(|| {
             solve_both(black_box(&p), &mut impact, &mut n, &mut q);
             black_box(&q.kinetic_energy_loss);
+        })
+    });
+}
+
+/// Example 3 in f64 assembled and solved for `outputs` only (`impact::outputs`), named
+/// `example3/f64/{outputs}`: the cheapest public path, impulses and twist, against every output.
+fn bench_outputs(c: &mut Criterion, scene: &Scene, outputs: Outputs) {
+    let p = scene.problem::<f64>().unwrap();
+    let (mut impact, mut n, mut q) = (
+        Impact::assemble_for(&p, outputs).unwrap(),
+        Outcome::default(),
+        Outcome::default(),
+    );
+    c.bench_function(&format!("example3/f64/{outputs}"), |b| {
+        b.iter(|| {
+            solve_both(black_box(&p), &mut impact, &mut n, &mut q);
+            black_box(&q.velocity);
         })
     });
 }
@@ -292,6 +311,8 @@ fn benches(c: &mut Criterion) {
     });
     bench_scalar::<f32>(c, &scene);
     bench_scalar::<f64>(c, &scene);
+    bench_outputs(c, &scene, Outputs::IMPULSES | Outputs::TWIST);
+    bench_outputs(c, &scene, Outputs::ALL);
     bench_scalar::<DoubleDouble>(c, &scene);
     bench_scalar::<Exact>(c, &scene);
     bench_unilateral::<f64>(c, "example3", &scene);

@@ -90,9 +90,10 @@ pub mod scalar;
 pub mod scene;
 pub mod tools;
 
+pub use impact::outputs::Outputs;
 pub use impact::problem::{Field, InvalidProblem, Problem, Reason};
 pub use impact::restitution::Model;
-pub use impact::solution::{Solution, solve, solve_unilateral};
+pub use impact::solution::{Solution, solve, solve_for, solve_unilateral};
 pub use impact::solve::SolveError;
 pub use impact::unilateral::{Law, UnilateralError};
 pub use mechanics::body::RigidBody;

@@ -68,6 +68,11 @@ enum Command {
         /// Print the JSON report instead of the table.
         #[arg(long)]
         json: bool,
+        /// Only these outputs, comma-separated: impulses, twist, normal-velocities,
+        /// tangential, energies, constraint-impulses, or all; default: the scene's
+        /// `[solve] outputs`.
+        #[arg(long, value_delimiter = ',', value_name = "NAMES")]
+        outputs: Option<Vec<String>>,
         #[command(flatten)]
         opts: SceneOpts,
     },
@@ -253,8 +258,9 @@ fn main() -> ExitCode {
             model,
             law,
             json,
+            outputs,
             opts,
-        } => solve(scene, exact, model, law, json, &opts),
+        } => solve(scene, exact, model, law, json, outputs, &opts),
         Command::Analyze {
             scene,
             exact,
@@ -351,6 +357,7 @@ fn solve(
     model: Option<ModelArg>,
     law: Option<LawArg>,
     json: bool,
+    outputs: Option<Vec<String>>,
     opts: &SceneOpts,
 ) -> ExitCode {
     let mut scene = match load_with(&path, opts, &[]) {
@@ -359,6 +366,19 @@ fn solve(
     };
     if let Some(law) = law {
         scene.law = law.law();
+    }
+    if let Some(names) = outputs {
+        match inertance::Outputs::parse(names.iter().map(String::as_str)) {
+            Ok(set) if !set.is_empty() => scene.outputs = set,
+            Ok(_) => {
+                eprintln!("error: --outputs: list at least one output");
+                return ExitCode::from(2);
+            }
+            Err(e) => {
+                eprintln!("error: --outputs: {e}");
+                return ExitCode::from(2);
+            }
+        }
     }
     let models = model.map(ModelArg::models);
     let solved = if exact && !scene.is_rational() {
@@ -763,7 +783,7 @@ fn run_bench(
         } else {
             for (name, t) in times {
                 println!(
-                    "{name:>14}: {}",
+                    "{name:>18}: {}",
                     t.map_or("singular".to_string(), |x| format!("{x:.0} ns per solve"))
                 );
             }

@@ -12,8 +12,10 @@
 //! singular only where κ·ε ≥ 10⁻³ (G is then singular to its working precision); and the
 //! corpus is not vacuous (how many solves each type made). Measured (the test prints them): the
 //! largest ratio over both corpora is about 2·10⁻² (a twist, f64), most are 10⁻³ or below; the
-//! normal equations' route that float solves used before broke the same bounds by up to 4·10⁴
-//! in f64 and 10⁹ in double-double on the hard corpus.
+//! normal equations' route, had float solves taken it on every problem, broke the same bounds
+//! by up to 4·10⁴ in f64 and 10⁹ in double-double on the hard corpus. They take it only where
+//! G is well conditioned (`impact::route`), and the corpora exercise both routes
+//! (`tests/route.rs` counts them and compares the two where both apply).
 
 use inertance::analysis::accuracy::Output;
 use inertance::tools::accuracy::{ContractRow, hard_cases, ratio_scenes, run};

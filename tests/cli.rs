@@ -712,7 +712,7 @@ fn bench_one_scene_reports_every_scalar() {
         "--scene",
         scene.path.to_str().unwrap(),
     ]));
-    for s in ["f32", "f64", "double-double", "exact"] {
+    for s in ["f32", "f64", "double-double", "exact", "f64/impulses,twist"] {
         assert!(v["ns_per_solve"][s].as_f64().unwrap() > 0.0, "{s}");
     }
 }
@@ -850,4 +850,80 @@ fn scenes_from_stdin_and_hints_for_degrees_and_inertia_tensors() {
     assert_eq!(out.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&out.stderr).contains("no derivation files"));
     let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// `--outputs` (and `[solve] outputs`): the JSON holds the outputs asked for, each equal to
+/// the full report's, and not the others; the table prints only their rows.
+#[test]
+fn outputs_flag_prints_only_the_outputs_asked_for() {
+    let scene = Scene::new("outputs", GOOD);
+    let path = scene.path.to_str().unwrap();
+    for exact in [false, true] {
+        let run = |extra: &[&str]| {
+            let mut args = vec!["solve", path, "--json"];
+            if exact {
+                args.push("--exact");
+            }
+            args.extend_from_slice(extra);
+            json(&inertance(&args))
+        };
+        let all = run(&[]);
+        let some = run(&["--outputs", "impulses,twist"]);
+        assert_eq!(some["outputs"], "impulses,twist");
+        assert!(all.get("outputs").is_none());
+        assert!(some.get("inertance_yx").is_none() && some["frames"][0].get("y").is_none());
+        assert_eq!(some["inertance"], all["inertance"]);
+        for m in ["newton", "poisson"] {
+            let (s, a) = (&some["models"][m], &all["models"][m]);
+            for key in ["impulses", "velocity", "angular_velocity", "admissible"] {
+                assert_eq!(s[key], a[key], "{m} {key}");
+            }
+            for key in ["contacts", "lost_velocity_energy", "kinetic_energy_loss"] {
+                assert!(s.get(key).is_none(), "{m} {key}");
+            }
+        }
+        let normal = run(&["--outputs", "normal-velocities,energies"]);
+        let (s, a) = (&normal["models"]["newton"], &all["models"]["newton"]);
+        assert!(s.get("impulses").is_none() && s.get("velocity").is_none());
+        assert_eq!(s["kinetic_energy_loss"], a["kinetic_energy_loss"]);
+        assert_eq!(
+            s["contacts"][1]["normal_velocity_after"],
+            a["contacts"][1]["velocity_after"][0]
+        );
+    }
+    let table = inertance(&["solve", path, "--outputs", "twist"]);
+    let text = String::from_utf8_lossy(&table.stdout);
+    assert!(text.contains("ωz [rad/s]") && !text.contains("P1 [N s]") && !text.contains("E_p"));
+    // The scene key does the same.
+    let keyed = Scene::new(
+        "outputs-key",
+        &GOOD.replace("[solve]\n", "[solve]\noutputs = [\"impulses\"]\n"),
+    );
+    let v = json(&inertance(&[
+        "solve",
+        keyed.path.to_str().unwrap(),
+        "--json",
+    ]));
+    assert_eq!(v["outputs"], "impulses");
+    assert!(v["models"]["newton"].get("velocity").is_none());
+}
+
+#[test]
+fn an_unknown_output_is_refused_naming_it() {
+    rejects(
+        "outputs-key-bad",
+        "[solve]\n",
+        "[solve]\noutputs = [\"impulses\", \"angles\"]\n",
+        &["solve.outputs", "angles", "unknown output"],
+    );
+    let scene = Scene::new("outputs-flag-bad", GOOD);
+    let out = inertance(&[
+        "solve",
+        scene.path.to_str().unwrap(),
+        "--outputs",
+        "twist,speed",
+    ]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(err.contains("--outputs") && err.contains("speed"), "{err}");
 }

@@ -122,8 +122,9 @@ proptest! {
         }
     }
 
-    /// The orthogonalised-wrench route (floats' route; the metric ηW is only semidefinite
-    /// here) gives the normal equations' outcome exactly, constraint impulses included.
+    /// The orthogonalised-wrench route (floats' route for constrained bodies; the metric ηW
+    /// is only semidefinite here) gives the normal equations' outcome exactly, constraint
+    /// impulses included.
     #[test]
     fn orthogonalised_wrenches_give_the_constrained_outcome((p, free) in constrained_problem()) {
         let Some((_, mut impact, outs)) = solve(&p, free) else { return Ok(()) };

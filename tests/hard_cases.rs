@@ -11,8 +11,8 @@
 //! ‖ΔG‖ ≲ N·ε·‖G‖ (Higham, ASNA §10.3); first-order perturbation theory turns a relative
 //! backward error η into a forward error ≤ 2·cond·η. That gives ≲ 2(2N + 4)·cond·ε ≤ C·cond·ε.
 //! The twist and the energies, which float solves take from the orthogonalised wrenches
-//! (`impact::gram_schmidt`), meet the same bound a fortiori: their own bounds grow with
-//! √cond G only (the accuracy contract, per output, in `tests/accuracy_contract.rs`). The
+//! (`impact::gram_schmidt`) unless G is well conditioned (`impact::route`), meet the same
+//! bound a fortiori: their own bounds grow with √cond G only (the accuracy contract, per output, in `tests/accuracy_contract.rs`). The
 //! energies are measured relative to their scale max(T⁰, E_p), the scale their inputs'
 //! rounding moves them by. Measured: the largest ratio error/(cond·ε) over the corpus is
 //! printed by this test (0.5, on a well-conditioned scene: the impulses at a few ε).

@@ -1,7 +1,7 @@
 //! The f64 solve allocates nothing: once an `Impact` and its `Outcome`s have been sized by a
 //! first solve, assembling and solving again (the same or another scene with no more
-//! contacts, a body in principal axes or with a full inertia tensor) performs no heap
-//! allocation. Shown with a counting global allocator that counts only the allocations of the
+//! contacts, a body in principal axes or with a full inertia tensor, by either route of
+//! `impact::route`) performs no heap allocation. Shown with a counting global allocator that counts only the allocations of the
 //! thread under test (the test harness allocates on its own threads meanwhile).
 
 use std::alloc::{GlobalAlloc, Layout, System};
@@ -10,6 +10,7 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 
 use inertance::impact::problem::Problem;
 use inertance::impact::restitution::Model;
+use inertance::impact::route::Route;
 use inertance::impact::solve::{Impact, Outcome};
 use inertance::mechanics::body::RigidBody;
 use inertance::mechanics::contact::Contact;
@@ -98,11 +99,18 @@ fn repeated_f64_solves_do_not_allocate() {
     // The unilateral law's buffers too (tableau, right-hand sides, the sub-matrix of the
     // contacts that meet their law, whose size varies by scene): one pass sizes them.
     let (mut un, mut up) = (Outcome::default(), Outcome::default());
+    let mut routes = Vec::new();
     for p in &scenes {
         impact.reassemble(p).unwrap();
+        routes.push(impact.route());
         impact.solve_unilateral(Model::Newton, &mut un).unwrap();
         impact.solve_unilateral(Model::Poisson, &mut up).unwrap();
     }
+
+    // The first scene takes the orthogonalised wrenches; the two-contact one, assembled
+    // later, the normal equations, whose buffers that first assemble sized too.
+    assert_eq!(routes[0], Route::OrthogonalWrenches);
+    assert_eq!(routes[8], Route::NormalEquations);
 
     // The counter works: one allocation on this thread is seen.
     COUNTING.with(|c| c.set(true));

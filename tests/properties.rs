@@ -100,8 +100,9 @@ proptest! {
         }
     }
 
-    /// The route float types take (the wrenches orthogonalised in the metric ηM⁻¹,
-    /// `impact::gram_schmidt`) and the normal equations G x = b give the same outcome, every
+    /// The route float types take unless G is well conditioned (the wrenches orthogonalised
+    /// in the metric ηM⁻¹, `impact::gram_schmidt`; `impact::route`) and the normal equations
+    /// G x = b give the same outcome, every
     /// output equal in rationals: impulses, compression impulses, twist, the three velocity
     /// components at every contact and both energies.
     #[test]

@@ -7,9 +7,11 @@
 //! normal equations G P = b and the twist summed as {v⁰} − Σ P_j W E_j: the split of the impulse
 //! between the two contacts is uncertain to cond(G)·ε, and that sum turned the uncertainty into
 //! twist although it lies along a wrench difference E_2 − E_1 that hardly moves the body. Float
-//! solves now orthogonalise the wrenches in the metric ηW (`impact::gram_schmidt`: the small
-//! wrench E_2 − u E_1 is formed from the data, not from G) and take impulses, twist, contact
-//! velocities and energies from that basis.
+//! solves of such problems now orthogonalise the wrenches in the metric ηW
+//! (`impact::gram_schmidt`: the small wrench E_2 − u E_1 is formed from the data, not from G)
+//! and take impulses, twist, contact velocities and energies from that basis; the normal
+//! equations are kept only where G is well conditioned enough for them to meet the same
+//! bounds (`impact::route`; every scene here takes the orthogonalised wrenches, asserted).
 //!
 //! **The bounds asserted** are the accuracy contract's (`analysis::accuracy`, where they are
 //! derived), first order in ε, with V = ‖v⁰‖_M + ‖Δv‖_M the impact's speed in the
@@ -40,6 +42,7 @@
 
 use inertance::analysis::accuracy::{Check, Conditioning, measure, speeds};
 use inertance::impact::restitution::Model;
+use inertance::impact::route::Route;
 use inertance::impact::solve::{Impact, Outcome};
 use inertance::linalg::{factor_psd, solve_factored};
 use inertance::mechanics::screw::Screw;
@@ -126,6 +129,14 @@ fn solve_both<T: Scalar>(scene: &Scene) -> (Impact<Exact>, Conditioning, Models)
     let mut exact = Impact::assemble(&scene.problem::<Exact>().unwrap()).unwrap();
     let cond = Conditioning::of(&mut exact).expect("G is regular");
     let mut float = Impact::assemble(&scene.problem::<T>().unwrap()).unwrap();
+    if !float.singular() {
+        assert_eq!(
+            float.route(),
+            Route::OrthogonalWrenches,
+            "{}: the orthogonalised wrenches",
+            scene.name
+        );
+    }
     let mut models = Vec::new();
     for m in Model::ALL {
         let (mut e, mut f) = (Outcome::default(), Outcome::default());

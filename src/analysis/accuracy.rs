@@ -35,8 +35,9 @@
 //! - μ = cond₂ M_red (eq. 83) for a constrained body, 1 for a free one: the accuracy to which
 //!   its mobility W is applied.
 //!
-//! **Where the terms come from.** The solve ([`crate::impact::gram_schmidt`]) is, to first
-//! order, the exact solve of a problem whose data are perturbed by
+//! **Where the terms come from.** The solve from the orthogonalised wrenches
+//! ([`crate::impact::gram_schmidt`]) is, to first order, the exact solve of a problem whose
+//! data are perturbed by
 //!
 //! 1. the rounding of the inputs and of E_j = [n; r × n] and W E_j (a component of E_j is at
 //!    most a difference of two products of inputs): ‖δE_j‖ ≤ 3 ε ℓ ‖E_j‖ (the inputs ½ε each,
@@ -89,6 +90,12 @@
 //!
 //! The bounds hold where the type keeps G of full rank: a float solve declares G singular
 //! when a pivot is ≤ N·ε·max g_ii, which happens only for κ ≳ 1/(N ε).
+//!
+//! **Both routes.** A float solve takes the normal equations G x = b instead where G is well
+//! conditioned ([`crate::impact::route`]): their own rounding, at most 2 a(N) θ ε V with
+//! θ = 1/λ_min of G's correlation matrix (θ ≤ κ), fits within the share of c that
+//! Gram–Schmidt's backward error takes above (2√N·16N), so the same bounds hold, with the
+//! same constants, whichever route a problem takes.
 
 use num_traits::{One, Zero};
 

@@ -43,12 +43,15 @@
 //! orthogonalised a second time ("twice is enough": Giraud, Langou and Rozložník 2005), so Q
 //! is orthogonal to working precision and the sums of squares above hold in floats too. The error bounds this gives are derived in [`crate::analysis::accuracy`].
 //!
-//! Float solves take the impulses from here too: formed from the wrenches, they are never
-//! less accurate than the normal equations' and far more so near a singular G, where the
-//! split between two contacts comes from the difference of their wrenches. The pivoted LDLᵀ
-//! of G ([`crate::linalg::ldlt`]) still decides the rank and Δ, and exact types solve G x = b:
-//! there every route gives the same numbers.
+//! Float solves that take this route ([`crate::impact::route`]: a G too ill conditioned for
+//! the normal equations to meet the accuracy contract, a constrained body, a full inertia
+//! tensor) take the impulses from here too: formed from the wrenches, they are never less
+//! accurate than the normal equations' and far more so near a singular G, where the split
+//! between two contacts comes from the difference of their wrenches. The pivoted LDLᵀ of G
+//! ([`crate::linalg::ldlt`]) still decides the rank and Δ; well-conditioned problems and
+//! exact types solve G x = b, and in exact types every route gives the same numbers.
 
+use crate::impact::outputs::Outputs;
 use crate::impact::restitution::Model;
 use crate::mechanics::body::Mobility;
 use crate::mechanics::contact::Contact;
@@ -162,6 +165,22 @@ impl<T: Scalar> WrenchBasis<T> {
         true
     }
 
+    /// Room for `n` wrenches in every buffer, so that building and solving for at most `n`
+    /// contacts allocates nothing.
+    pub fn reserve(&mut self, n: usize) {
+        fn room<T>(v: &mut Vec<T>, n: usize) {
+            v.reserve(n.saturating_sub(v.len()));
+        }
+        room(&mut self.wrenches, n);
+        room(&mut self.responses, n);
+        room(&mut self.norms2, n);
+        room(&mut self.u, n * n);
+        room(&mut self.stop, n);
+        room(&mut self.plus, n);
+        room(&mut self.minus, n);
+        room(&mut self.work, n);
+    }
+
     /// Number of wrenches.
     pub fn len(&self) -> usize {
         self.norms2.len()
@@ -179,13 +198,16 @@ impl<T: Scalar> WrenchBasis<T> {
 
     /// The outcome of `model` for the twist before impact `velocity`, the `contacts` (for
     /// their k_i) and the velocities before impact `before` (v̂⁰_ia, eq. 8); the velocities
-    /// along the normals after impact are then [`WrenchBasis::normal_velocity`].
+    /// along the normals after impact are then [`WrenchBasis::normal_velocity`]. The twist
+    /// change and the energies are formed only when `needs` holds [`Outputs::TWIST`] and
+    /// [`Outputs::ENERGIES`] (zero otherwise), each by the same operations either way.
     pub fn solve(
         &mut self,
         model: Model,
         velocity: &Screw<T>,
         contacts: &[Contact<T>],
         before: &[[T; 3]],
+        needs: Outputs,
     ) -> BasisOutcome<T> {
         let n = self.len();
         debug_assert_eq!(contacts.len(), n, "one contact per wrench");
@@ -247,12 +269,20 @@ impl<T: Scalar> WrenchBasis<T> {
         }
         let mut twist_change = Screw::zero();
         let (mut lost, mut loss) = (T::zero(), T::zero());
+        let (twist, energies) = (
+            needs.contains(Outputs::TWIST),
+            needs.contains(Outputs::ENERGIES),
+        );
         for j in 0..n {
             let (wp, d) = (&self.plus[j], &self.norms2[j]);
-            twist_change.add_scaled(&-wp.clone(), &self.responses[j]);
-            let dw = d.clone() * wp;
-            lost += dw.clone() * wp;
-            loss += dw * &self.minus[j];
+            if twist {
+                twist_change.add_scaled(&-wp.clone(), &self.responses[j]);
+            }
+            if energies {
+                let dw = d.clone() * wp;
+                lost += dw.clone() * wp;
+                loss += dw * &self.minus[j];
+            }
         }
         BasisOutcome {
             twist_change,

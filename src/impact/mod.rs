@@ -6,7 +6,9 @@
 //! assembled collision — frames, inertances G, its factorization and Δ — and one law solved on
 //! it, in the hatted form the solver works in · [`gram_schmidt`]: the contact wrenches
 //! orthogonalised in the metric of the mobility, from which float solves take the twist and
-//! the energies, accurate however nearly singular G is · [`solution`]: the outcome in the paper's units,
+//! the energies, accurate however nearly singular G is · [`route`]: which of the two a float
+//! solve takes, by a bound on G's conditioning · [`outputs`]: which outputs a solve computes,
+//! the rest not built · [`solution`]: the outcome in the paper's units,
 //! and the one-call [`solution::solve`] · [`unilateral`]: the laws in inequality form, as
 //! complementarity problems, for when the simultaneous hypothesis fails · [`admissibility`]:
 //! whether a simultaneous answer is physical (tensile, separating, still approaching, energy
@@ -16,8 +18,10 @@
 pub mod admissibility;
 pub mod friction;
 pub mod gram_schmidt;
+pub mod outputs;
 pub mod problem;
 pub mod restitution;
+pub mod route;
 pub mod solution;
 pub mod solve;
 pub mod unilateral;

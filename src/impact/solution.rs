@@ -13,6 +13,7 @@
 //! is (always in floats, for perfect squares in rationals). The twist after impact, Δ, both
 //! energies and the constraint impulses carry no norm and are plain values.
 
+use crate::impact::outputs::Outputs;
 use crate::impact::problem::Problem;
 use crate::impact::restitution::Model;
 use crate::impact::solve::{Impact, Outcome, SolveError};
@@ -73,6 +74,34 @@ pub fn solve<T: Scalar>(problem: &Problem<T>, model: Model) -> Result<Solution<T
     Impact::assemble(problem)?.solution(model)
 }
 
+/// [`solve`] computing only the `outputs` asked for ([`crate::impact::outputs`]), each bit for
+/// bit what [`solve`] gives; the vectors of the others are empty, their numbers zero, and
+/// without [`Outputs::TANGENTIAL`] the tangential velocity components are zero.
+///
+/// ```
+/// use inertance::{Contact, Model, Outputs, Problem, RigidBody, Screw, Vec3, solve, solve_for};
+///
+/// let body = RigidBody::principal(1.0, Vec3::new(12.0, 1.6, 12.0));
+/// let twist = Screw::new(Vec3::new(0.0, 0.0, 0.4), Vec3::new(3.0, 2.0, 0.0));
+/// let at = |y: f64, k: f64| Contact::new(Vec3::new(0.0, y, 0.0), Vec3::new(1.0, 0.0, 0.0), k);
+/// let problem = Problem::new(body, twist, vec![at(-2.0, 0.3), at(4.0, 0.2)])?;
+/// let fast = solve_for(&problem, Model::Newton, Outputs::IMPULSES | Outputs::TWIST)?;
+/// let all = solve(&problem, Model::Newton)?;
+/// assert_eq!((&fast.impulses, &fast.twist), (&all.impulses, &all.twist));
+/// assert!(fast.contact_velocities.is_empty());
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+///
+/// # Errors
+/// As [`solve`].
+pub fn solve_for<T: Scalar>(
+    problem: &Problem<T>,
+    model: Model,
+    outputs: Outputs,
+) -> Result<Solution<T>, SolveError> {
+    Impact::assemble_for(problem, outputs)?.solution(model)
+}
+
 /// Solve `problem` under the restitution `model` in **inequality form** (the unilateral law of
 /// [`crate::impact::unilateral`]): contacts that would pull separate instead. In the paper's
 /// units; `solution.impulses[i]` is zero at a contact that separates.
@@ -124,10 +153,17 @@ impl<T: Scalar> Solution<T> {
                 .map(|(i, p)| Surd::times_norm(p, normal2(i)))
                 .collect()
         };
+        // Without the tangent axes (norm 0), their components are reported as zero.
+        let tangential = impact.outputs().contains(Outputs::TANGENTIAL);
         let velocities = |hat: &[[T; 3]]| -> Vec<[Surd<T>; 3]> {
             hat.iter()
                 .zip(frames)
-                .map(|(v, f)| std::array::from_fn(|a| Surd::over_norm(&v[a], &f.norm2[a])))
+                .map(|(v, f)| {
+                    std::array::from_fn(|a| match a == 0 || tangential {
+                        true => Surd::over_norm(&v[a], &f.norm2[a]),
+                        false => Surd::times_norm(&T::zero(), &T::one()),
+                    })
+                })
                 .collect()
         };
         Solution {
@@ -136,7 +172,10 @@ impl<T: Scalar> Solution<T> {
             inertances,
             impulses: impulses(&out.impulses_hat),
             compression_impulses: impulses(&out.compression_hat),
-            twist: out.velocity,
+            twist: match impact.outputs().contains(Outputs::TWIST) {
+                true => out.velocity,
+                false => Screw::zero(),
+            },
             contact_velocities_before: velocities(impact.before_hat()),
             contact_velocities: velocities(&out.after_hat),
             lost_velocity_energy: out.lost_velocity_energy,

@@ -22,23 +22,30 @@
 //! ΔE_c = −E_p + Σ P_i v_ix⁰ (eq. 34) are then checks on the solve, not definitions — exact
 //! equalities in exact types.
 //!
-//! **Floats solve from the wrenches, not from G.** G's rounding leaves the split of the
-//! impulse between nearly dependent contacts uncertain to cond(G)·ε, and the sum of eq. 24
-//! would pass that to the twist. So in float types with G of full rank [`Impact::solve`] takes
-//! every output from the contact wrenches orthogonalised in the metric ηW
-//! ([`crate::impact::gram_schmidt`]; the same laws, rewritten there), which keeps the twist,
-//! the contact velocities and the energies to √cond(G)·ε (the accuracy contract,
-//! [`crate::analysis::accuracy`]). Exact types solve G x = b as written above, and there both
-//! routes give the same numbers ([`Impact::solve_orthogonal`], tested). The factorization of
-//! G decides the rank and Δ in every type.
+//! **Near a singular G, floats solve from the wrenches, not from G.** G's rounding leaves the
+//! split of the impulse between nearly dependent contacts uncertain to cond(G)·ε, and the sum
+//! of eq. 24 would pass that to the twist. So where that could break the accuracy contract
+//! ([`crate::analysis::accuracy`]) [`Impact::solve`] takes every output from the contact
+//! wrenches orthogonalised in the metric ηW ([`crate::impact::gram_schmidt`]; the same laws,
+//! rewritten there), which keeps the twist, the contact velocities and the energies to
+//! √cond(G)·ε. Where G is well conditioned the normal equations above meet the same bounds
+//! at less cost, and a float solve takes them: [`crate::impact::route`] derives the
+//! threshold and decides per problem, once, at assembly ([`Impact::route`]). Exact types
+//! always solve G x = b, and there both routes give the same numbers
+//! ([`Impact::solve_orthogonal`], tested). The factorization of G decides the rank and Δ in
+//! every type.
 //!
 //! [`Impact::assemble`] does the model-independent work once (frames, G, its factorization,
 //! Δ); [`Impact::solve`] then runs one restitution model. Both reuse the buffers they own, so
-//! repeated f64 solves allocate nothing.
+//! repeated f64 solves allocate nothing. [`Impact::assemble_for`] does the same for the outputs
+//! a caller asks for only ([`crate::impact::outputs`]): impulses and twist cost about 0.6 of
+//! every output on Example 3.
 
 use crate::impact::gram_schmidt::WrenchBasis;
+use crate::impact::outputs::Outputs;
 use crate::impact::problem::Problem;
 use crate::impact::restitution::Model;
+use crate::impact::route::{self, Route};
 use crate::impact::unilateral::UnilateralWork;
 use crate::linalg::{self, NotSemidefinite};
 use crate::mechanics::body::Mobility;
@@ -104,10 +111,17 @@ pub struct Impact<T: Scalar> {
     perm: Vec<usize>,
     work: Vec<T>,
     /// The normals' axis screws orthogonalised in the metric ηW ([`crate::impact::gram_schmidt`]):
-    /// float types with G of full rank solve from it.
+    /// float types solve from it where [`crate::impact::route`] says so.
     basis: WrenchBasis<T>,
     /// Whether `basis` holds the current problem's basis.
     basis_built: bool,
+    /// The route [`Impact::solve`] takes for this problem.
+    route: Route,
+    /// The most contacts both routes' buffers have room for: a problem routed one way does
+    /// not leave the other way's buffers unsized (repeated f64 solves allocate nothing).
+    sized: usize,
+    /// The outputs asked for ([`Impact::assemble_for`]).
+    outputs: Outputs,
     /// The buffers of [`Impact::solve_unilateral`].
     pub(crate) unilateral: UnilateralWork<T>,
 }
@@ -154,6 +168,18 @@ impl<T: Scalar> Impact<T> {
     /// # Errors
     /// [`SolveError::NotSemidefinite`] if rounding made G indefinite (floats only).
     pub fn assemble(problem: &Problem<T>) -> Result<Self, SolveError> {
+        Impact::assemble_for(problem, Outputs::ALL)
+    }
+
+    /// [`Impact::assemble`] for the `outputs` asked for ([`crate::impact::outputs`]): the
+    /// tangent axes and the tangential inertances are built only for
+    /// [`Outputs::TANGENTIAL`], T⁰ only for [`Outputs::ENERGIES`], and [`Impact::solve`] then
+    /// computes only those outputs and what they are formed from. G, its factorization, Δ
+    /// and the velocities along the normals before impact are built whatever is asked.
+    ///
+    /// # Errors
+    /// As [`Impact::assemble`].
+    pub fn assemble_for(problem: &Problem<T>, outputs: Outputs) -> Result<Self, SolveError> {
         let mut impact = Impact {
             problem: problem.clone(),
             frames: Vec::new(),
@@ -170,6 +196,9 @@ impl<T: Scalar> Impact<T> {
             work: Vec::new(),
             basis: WrenchBasis::default(),
             basis_built: false,
+            route: Route::NormalEquations,
+            sized: 0,
+            outputs,
             unilateral: UnilateralWork::default(),
         };
         impact.build()?;
@@ -177,7 +206,7 @@ impl<T: Scalar> Impact<T> {
     }
 
     /// [`Impact::assemble`] for another problem, reusing this impact's buffers (repeated f64
-    /// solves of free bodies allocate nothing).
+    /// solves of free bodies allocate nothing), for the same outputs.
     ///
     /// # Errors
     /// As [`Impact::assemble`].
@@ -201,12 +230,25 @@ impl<T: Scalar> Impact<T> {
         self.rank < self.contacts()
     }
 
-    /// The contact frames.
+    /// The outputs asked for ([`Impact::assemble_for`]; [`Outputs::ALL`] by default).
+    pub fn outputs(&self) -> Outputs {
+        self.outputs
+    }
+
+    /// Whether the tangent axes and tangential inertances were built
+    /// ([`Outputs::TANGENTIAL`] asked for).
+    fn tangential(&self) -> bool {
+        self.outputs.needs().contains(Outputs::TANGENTIAL)
+    }
+
+    /// The contact frames; without [`Outputs::TANGENTIAL`] only their normals x̂ (the
+    /// tangent axes and their norms are zero, [`ContactFrame::normal`]).
     pub fn frames(&self) -> &[ContactFrame<T>] {
         &self.frames
     }
 
-    /// (v̂_ix⁰, v̂_iy⁰, v̂_iz⁰) per contact, hatted (eq. 8).
+    /// (v̂_ix⁰, v̂_iy⁰, v̂_iz⁰) per contact, hatted (eq. 8); v̂_iy⁰ = v̂_iz⁰ = 0 unless
+    /// [`Outputs::TANGENTIAL`] was asked for.
     pub fn before_hat(&self) -> &[[T; 3]] {
         &self.before_hat
     }
@@ -221,12 +263,12 @@ impl<T: Scalar> Impact<T> {
         &self.g_hat
     }
 
-    /// \[ĝ_ij,yx\] (eq. 127), hatted.
+    /// \[ĝ_ij,yx\] (eq. 127), hatted; empty unless [`Outputs::TANGENTIAL`] was asked for.
     pub fn g_yx_hat(&self) -> &[T] {
         &self.g_yx_hat
     }
 
-    /// \[ĝ_ij,zx\] (eq. 128), hatted.
+    /// \[ĝ_ij,zx\] (eq. 128), hatted; empty unless [`Outputs::TANGENTIAL`] was asked for.
     pub fn g_zx_hat(&self) -> &[T] {
         &self.g_zx_hat
     }
@@ -247,7 +289,16 @@ impl<T: Scalar> Impact<T> {
         self.rank
     }
 
-    /// T⁰ = ½ {v⁰}ᵀ η M {v⁰}, the kinetic energy before impact.
+    /// The route [`Impact::solve`] takes for this problem ([`crate::impact::route`]): the
+    /// normal equations in exact types, and in float types unless G is too ill conditioned for
+    /// them to meet the accuracy contract (or the body is constrained or has a full inertia
+    /// tensor), where the orthogonalised wrenches are taken — when they can be built.
+    pub fn route(&self) -> Route {
+        self.route
+    }
+
+    /// T⁰ = ½ {v⁰}ᵀ η M {v⁰}, the kinetic energy before impact (zero unless
+    /// [`Outputs::ENERGIES`] was asked for).
     pub fn kinetic_before(&self) -> &T {
         &self.kinetic_before
     }
@@ -255,17 +306,29 @@ impl<T: Scalar> Impact<T> {
     /// Frames, velocities before impact, the inertances (eq. 12, 126–128), the
     /// factorization of G and Δ̂, for `self.problem`.
     fn build(&mut self) -> Result<(), SolveError> {
+        let n = self.problem.contacts().len();
+        if n > self.sized {
+            self.work.reserve(n.saturating_sub(self.work.len()));
+            self.basis.reserve(n);
+            self.sized = n;
+        }
+        let tangential = self.tangential();
         let problem = &self.problem;
-        let n = problem.contacts().len();
         self.before_hat.clear();
         self.responses.clear();
         self.frames.clear();
         for (i, c) in problem.contacts().iter().enumerate() {
-            self.frames
-                .push(ContactFrame::new(i, c, problem.velocity())?);
-            let f = &self.frames[i];
-            self.before_hat.push(f.velocity(problem.velocity()));
-            self.responses.push(problem.response(&f.axes[0]));
+            let v0 = problem.velocity();
+            if tangential {
+                self.frames.push(ContactFrame::new(i, c, v0)?);
+                self.before_hat.push(self.frames[i].velocity(v0));
+            } else {
+                self.frames.push(ContactFrame::normal(c));
+                let x = self.frames[i].axes[0].reciprocal(v0);
+                self.before_hat.push([x, T::zero(), T::zero()]);
+            }
+            self.responses
+                .push(problem.response(&self.frames[i].axes[0]));
         }
         self.g_hat.clear();
         self.g_yx_hat.clear();
@@ -273,8 +336,10 @@ impl<T: Scalar> Impact<T> {
         for f in &self.frames {
             for r in &self.responses {
                 self.g_hat.push(f.axes[0].reciprocal(r));
-                self.g_yx_hat.push(f.axes[1].reciprocal(r));
-                self.g_zx_hat.push(f.axes[2].reciprocal(r));
+                if tangential {
+                    self.g_yx_hat.push(f.axes[1].reciprocal(r));
+                    self.g_zx_hat.push(f.axes[2].reciprocal(r));
+                }
             }
         }
         self.factor.clone_from(&self.g_hat);
@@ -282,14 +347,29 @@ impl<T: Scalar> Impact<T> {
         let fac = linalg::factor_psd(&mut self.factor, n, &mut self.perm)?;
         self.rank = fac.rank;
         self.det_hat = linalg::determinant(&self.factor, n);
-        self.kinetic_before = problem.body().kinetic_energy(problem.velocity());
-        // Exact types solve G x = b: every route gives the same numbers, that one the fastest.
-        self.basis_built = !T::IS_EXACT && self.rank == n && self.build_basis();
+        self.kinetic_before = if self.outputs.contains(Outputs::ENERGIES) {
+            problem.body().kinetic_energy(problem.velocity())
+        } else {
+            T::zero()
+        };
+        // Exact types solve G x = b (every route gives the same numbers, that one the fastest),
+        // and so do floats whose G is well conditioned. A singular G is refused whatever the
+        // route; should the basis fail to build for a regular one (rounding made some
+        // d_k ≤ 0), the normal equations answer.
+        let orthogonal = route::route(&self.problem, &self.g_hat, n) == Route::OrthogonalWrenches;
+        self.basis_built = orthogonal && self.rank == n && self.build_basis();
+        self.route = if orthogonal && (self.basis_built || self.rank < n) {
+            Route::OrthogonalWrenches
+        } else {
+            Route::NormalEquations
+        };
         Ok(())
     }
 
     /// Solve the restitution `model` for the assembled problem into `out` (its buffers are
-    /// reused), with the constraint impulses q for a constrained body.
+    /// reused), with the constraint impulses q for a constrained body: the outputs asked for
+    /// ([`Impact::outputs`]), each bit for bit what [`Outputs::ALL`] gives; the vectors of
+    /// the others are left empty and their numbers as they were.
     ///
     /// # Errors
     /// [`SolveError::Singular`] when G is singular (Δ = 0): see [`crate::analysis`].
@@ -301,10 +381,27 @@ impl<T: Scalar> Impact<T> {
                 contacts: n,
             });
         }
-        if !T::IS_EXACT && self.basis_built {
+        if self.route == Route::OrthogonalWrenches {
             self.solve_in_basis(model, out);
-            return Ok(());
+        } else {
+            self.solve_normal_equations(model, out);
         }
+        if !self.outputs.contains(Outputs::IMPULSES) {
+            out.impulses_hat.clear();
+            out.compression_hat.clear();
+        }
+        if !self
+            .outputs
+            .intersects(Outputs::NORMAL_VELOCITIES | Outputs::TANGENTIAL)
+        {
+            out.after_hat.clear();
+        }
+        Ok(())
+    }
+
+    /// The impulses from G x = b, every other output asked for from them.
+    fn solve_normal_equations(&mut self, model: Model, out: &mut Outcome<T>) {
+        let n = self.contacts();
         // Scratch for the general solve; it writes every entry before reading it.
         self.work.resize(n, T::zero());
         self.rhs(model, &mut out.impulses_hat);
@@ -315,22 +412,22 @@ impl<T: Scalar> Impact<T> {
             &mut out.impulses_hat,
             &mut self.work,
         );
-        match model {
-            Model::Newton => out.compression_hat.clear(),
-            Model::Poisson => {
-                out.compression_hat.clear();
+        out.compression_hat.clear();
+        if model == Model::Poisson {
+            if self.outputs.contains(Outputs::IMPULSES) {
                 out.compression_hat.extend(out.impulses_hat.iter().cloned());
-                for (p, c) in out.impulses_hat.iter_mut().zip(self.problem.contacts()) {
-                    *p *= T::one() + &c.k_poisson; // eq. 23
-                }
+            }
+            for (p, c) in out.impulses_hat.iter_mut().zip(self.problem.contacts()) {
+                *p *= T::one() + &c.k_poisson; // eq. 23
             }
         }
         self.complete(out);
-        Ok(())
     }
 
-    /// The route float types take in [`Impact::solve`], in any type: in exact types it gives
-    /// the very outcome [`Impact::solve`] gives (tested), so it is the check of that route.
+    /// The orthogonalised wrenches' route, whatever [`Impact::route`] says, in any type: in
+    /// exact types it gives the very outcome [`Impact::solve`] gives (tested), so it is the
+    /// check of that route; in float types, where both routes apply, the two agree within
+    /// the accuracy contract (tested).
     ///
     /// # Errors
     /// [`SolveError::Singular`] when G is singular, or (floats) when rounding makes an
@@ -359,37 +456,64 @@ impl<T: Scalar> Impact<T> {
         self.basis.build(axes.zip(&self.responses), &self.problem)
     }
 
-    /// The solve of a float type with G of full rank, from the orthogonalised wrenches
+    /// The solve from the orthogonalised wrenches
     /// ([`crate::impact::gram_schmidt`]) instead of the normal equations G x = b: impulses,
     /// twist, velocities along the normals and both energies, so that they keep the accuracy
     /// the wrenches determine when G is nearly singular. The tangential velocities follow
     /// from the twist change (eq. 25–26: v̂_ia = v̂_ia⁰ + {Ê_ia}ᵀ η ({v} − {v⁰})).
     fn solve_in_basis(&mut self, model: Model, out: &mut Outcome<T>) {
+        let (asked, needs) = (self.outputs, self.outputs.needs());
         let problem = &self.problem;
         let b = self.basis.solve(
             model,
             problem.velocity(),
             problem.contacts(),
             &self.before_hat,
+            needs,
         );
-        out.velocity = problem.velocity().clone();
-        out.velocity.add_scaled(&T::one(), &b.twist_change);
+        if needs.contains(Outputs::TWIST) {
+            out.velocity = problem.velocity().clone();
+            out.velocity.add_scaled(&T::one(), &b.twist_change);
+        }
         out.after_hat.clear();
-        for (i, (f, v0)) in self.frames.iter().zip(&self.before_hat).enumerate() {
-            out.after_hat.push([
-                self.basis.normal_velocity(i, &v0[0]),
-                v0[1].clone() + f.axes[1].reciprocal(&b.twist_change),
-                v0[2].clone() + f.axes[2].reciprocal(&b.twist_change),
-            ]);
+        let (normal, tangential) = (
+            needs.contains(Outputs::NORMAL_VELOCITIES),
+            needs.contains(Outputs::TANGENTIAL),
+        );
+        if normal || tangential {
+            for (i, (f, v0)) in self.frames.iter().zip(&self.before_hat).enumerate() {
+                let along = |a: usize| match tangential {
+                    true => v0[a].clone() + f.axes[a].reciprocal(&b.twist_change),
+                    false => T::zero(),
+                };
+                out.after_hat.push([
+                    match normal {
+                        true => self.basis.normal_velocity(i, &v0[0]),
+                        false => T::zero(),
+                    },
+                    along(1),
+                    along(2),
+                ]);
+            }
         }
-        out.lost_velocity_energy = b.lost_velocity_energy;
-        out.kinetic_energy_loss = b.kinetic_energy_loss;
-        self.basis.impulses(&mut out.impulses_hat);
-        match model {
-            Model::Newton => out.compression_hat.clear(),
-            Model::Poisson => self.basis.compression_impulses(&mut out.compression_hat),
+        if needs.contains(Outputs::ENERGIES) {
+            out.lost_velocity_energy = b.lost_velocity_energy;
+            out.kinetic_energy_loss = b.kinetic_energy_loss;
         }
-        self.constraint_impulses(&b.twist_change, out);
+        out.compression_hat.clear();
+        if asked.contains(Outputs::IMPULSES) || needs.contains(Outputs::CONSTRAINT_IMPULSES) {
+            self.basis.impulses(&mut out.impulses_hat);
+            if model == Model::Poisson {
+                self.basis.compression_impulses(&mut out.compression_hat);
+            }
+        } else {
+            out.impulses_hat.clear();
+        }
+        if needs.contains(Outputs::CONSTRAINT_IMPULSES) {
+            self.constraint_impulses(&b.twist_change, out);
+        } else {
+            out.constraint_impulses.clear();
+        }
     }
 
     /// The right-hand side of the model's system G x = b: b_i = (1 + k_i^N) v̂_ix⁰ (Newton,
@@ -408,29 +532,71 @@ impl<T: Scalar> Impact<T> {
     /// Everything that follows from the impulses `out.impulses_hat` (one per contact): the
     /// twist after impact, the contact velocities, both energies (eq. 24–26, 28, 32) and, for
     /// a constrained body, the constraint impulses (eq. 90–93).
+    ///
+    /// Only the outputs asked for ([`Impact::outputs`]) and what they are formed from.
     pub(crate) fn complete(&self, out: &mut Outcome<T>) {
         let n = self.contacts();
         debug_assert_eq!(out.impulses_hat.len(), n, "one impulse per contact");
+        let needs = self.outputs.needs();
         let problem = &self.problem;
-        // eq. 24: {v} = {v⁰} − Σ P̂_j W{Ê_jx}.
-        out.velocity = problem.velocity().clone();
-        for (p, r) in out.impulses_hat.iter().zip(&self.responses) {
-            out.velocity.add_scaled(&-p.clone(), r);
+        if needs.contains(Outputs::TWIST) {
+            // eq. 24: {v} = {v⁰} − Σ P̂_j W{Ê_jx}.
+            out.velocity = problem.velocity().clone();
+            for (p, r) in out.impulses_hat.iter().zip(&self.responses) {
+                out.velocity.add_scaled(&-p.clone(), r);
+            }
         }
         // eq. 13, 25, 26 through the inertances.
         out.after_hat.clear();
-        for i in 0..n {
-            let mut v = self.before_hat[i].clone();
-            for (j, p) in out.impulses_hat.iter().enumerate() {
-                v[0] -= self.g_hat[i * n + j].clone() * p;
-                v[1] -= self.g_yx_hat[i * n + j].clone() * p;
-                v[2] -= self.g_zx_hat[i * n + j].clone() * p;
+        let (normal, tangential) = (
+            needs.contains(Outputs::NORMAL_VELOCITIES),
+            needs.contains(Outputs::TANGENTIAL),
+        );
+        if normal || tangential {
+            // Each component's sum in the same order whichever are formed; one loop per case,
+            // so that asking for every output costs no test per term.
+            for i in 0..n {
+                let mut v = self.before_hat[i].clone();
+                let terms = out
+                    .impulses_hat
+                    .iter()
+                    .enumerate()
+                    .map(|(j, p)| (i * n + j, p));
+                match (normal, tangential) {
+                    (true, true) => {
+                        for (k, p) in terms {
+                            v[0] -= self.g_hat[k].clone() * p;
+                            v[1] -= self.g_yx_hat[k].clone() * p;
+                            v[2] -= self.g_zx_hat[k].clone() * p;
+                        }
+                    }
+                    (true, false) => {
+                        for (k, p) in terms {
+                            v[0] -= self.g_hat[k].clone() * p;
+                        }
+                    }
+                    _ => {
+                        v[0] = T::zero();
+                        for (k, p) in terms {
+                            v[1] -= self.g_yx_hat[k].clone() * p;
+                            v[2] -= self.g_zx_hat[k].clone() * p;
+                        }
+                    }
+                }
+                out.after_hat.push(v);
             }
-            out.after_hat.push(v);
+        }
+        if !needs.intersects(Outputs::ENERGIES | Outputs::CONSTRAINT_IMPULSES) {
+            out.constraint_impulses.clear();
+            return;
         }
         // eq. 28 from the velocity change; ΔE_c from the momentum balance, ½ Σ P̂_i (v̂_ix⁰ + v̂_ix)
         // (module docs), free of the cancellation in T⁰ − T.
         let dv = Screw(out.velocity.0.clone() - problem.velocity().0.clone());
+        if !needs.contains(Outputs::ENERGIES) {
+            self.constraint_impulses(&dv, out);
+            return;
+        }
         out.lost_velocity_energy = problem.body().kinetic_energy(&dv);
         let mut loss = T::zero();
         for ((p, b), a) in out
@@ -442,7 +608,11 @@ impl<T: Scalar> Impact<T> {
             loss += p.clone() * &(b[0].clone() + &a[0]);
         }
         out.kinetic_energy_loss = loss / (T::one() + T::one());
-        self.constraint_impulses(&dv, out);
+        if needs.contains(Outputs::CONSTRAINT_IMPULSES) {
+            self.constraint_impulses(&dv, out);
+        } else {
+            out.constraint_impulses.clear();
+        }
     }
 
     /// The constraint impulses q for the twist change `dv` and the impulses of `out` (eq.

@@ -164,6 +164,18 @@ impl<T: Scalar> ContactFrame<T> {
         Ok(ContactFrame { axes, norm2, rule })
     }
 
+    /// The frame of `contact` reduced to its normal: x̂ = n_i and |x̂|², the tangent axes and
+    /// their norms zero (for a solve that reports nothing tangential,
+    /// [`crate::impact::outputs::Outputs::TANGENTIAL`]).
+    pub fn normal(contact: &Contact<T>) -> Self {
+        let zero = || Screw::axis(&contact.point, &Vec3::zeros());
+        ContactFrame {
+            axes: [Screw::axis(&contact.point, &contact.normal), zero(), zero()],
+            norm2: [norm2(&contact.normal), T::zero(), T::zero()],
+            rule: TangentRule::Given,
+        }
+    }
+
     /// The hatted velocity components (Ê_x, Ê_y, Ê_z)·{v} of the contact point (eq. 8).
     pub fn velocity(&self, v: &Screw<T>) -> [T; 3] {
         [

@@ -4,6 +4,7 @@
 use serde_json::{Map, Value as Json, json};
 
 use super::{FrictionReport, ModelReport, PointVelocity, Report, Value, json_f64};
+use crate::impact::outputs::Outputs;
 use crate::mechanics::contact::TangentRule;
 
 /// A matrix, row by row.
@@ -53,6 +54,21 @@ impl Report {
         if let Some(axes) = self.axes {
             top["axes"] = json!(axes);
         }
+        if let (false, Some(obj)) = (self.outputs == Outputs::ALL, top.as_object_mut()) {
+            // Only the outputs asked for: say which, and leave the tangential part out.
+            obj.insert("outputs".into(), self.outputs.to_string().into());
+            if !self.outputs.contains(Outputs::TANGENTIAL) {
+                obj.remove("inertance_yx");
+                obj.remove("inertance_zx");
+                for f in obj["frames"].as_array_mut().into_iter().flatten() {
+                    if let Some(f) = f.as_object_mut() {
+                        f.remove("y");
+                        f.remove("z");
+                        f.remove("tangent");
+                    }
+                }
+            }
+        }
         if let (false, Some(obj)) = (self.friction.is_empty(), top.as_object_mut()) {
             let mut laws = Map::new();
             for f in &self.friction {
@@ -86,26 +102,36 @@ impl Report {
     /// One model's object under `models`.
     fn model_json(&self, r: &ModelReport) -> Json {
         let mut o = Map::new();
-        o.insert("impulses".into(), vec(&r.impulses));
-        o.insert("impulses_per_normal".into(), vec(&r.impulse_multiples));
-        if let Some(c) = &r.compression_impulses {
-            o.insert("compression_impulses".into(), vec(c));
+        let asked = |x: Outputs| self.outputs.contains(x);
+        if asked(Outputs::IMPULSES) {
+            o.insert("impulses".into(), vec(&r.impulses));
+            o.insert("impulses_per_normal".into(), vec(&r.impulse_multiples));
+            if let Some(c) = &r.compression_impulses {
+                o.insert("compression_impulses".into(), vec(c));
+            }
         }
-        o.insert("velocity".into(), vec(&r.velocity));
-        o.insert("angular_velocity".into(), vec(&r.angular_velocity));
-        o.insert(
-            "contacts".into(),
-            Json::Array(
-                self.contacts_before
-                    .iter()
-                    .zip(&r.contacts)
-                    .map(|(b, a)| contact_json(b, a))
-                    .collect(),
-            ),
-        );
-        o.insert("lost_velocity_energy".into(), r.lost_velocity_energy.json());
-        o.insert("kinetic_energy_loss".into(), r.kinetic_energy_loss.json());
-        if self.constraints.is_some() {
+        if asked(Outputs::TWIST) {
+            o.insert("velocity".into(), vec(&r.velocity));
+            o.insert("angular_velocity".into(), vec(&r.angular_velocity));
+        }
+        let pairs = self.contacts_before.iter().zip(&r.contacts);
+        if asked(Outputs::TANGENTIAL) {
+            let contacts = pairs.map(|(b, a)| contact_json(b, a)).collect();
+            o.insert("contacts".into(), Json::Array(contacts));
+        } else if asked(Outputs::NORMAL_VELOCITIES) {
+            let contacts = pairs.map(|(b, a)| {
+                json!({
+                    "normal_velocity_before": b.components[0].json(),
+                    "normal_velocity_after": a.components[0].json(),
+                })
+            });
+            o.insert("contacts".into(), Json::Array(contacts.collect()));
+        }
+        if asked(Outputs::ENERGIES) {
+            o.insert("lost_velocity_energy".into(), r.lost_velocity_energy.json());
+            o.insert("kinetic_energy_loss".into(), r.kinetic_energy_loss.json());
+        }
+        if self.constraints.is_some() && asked(Outputs::CONSTRAINT_IMPULSES) {
             o.insert("constraint_impulses".into(), vec(&r.constraint_impulses));
         }
         o.insert("law".into(), r.law.name().into());

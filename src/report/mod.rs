@@ -22,6 +22,7 @@ pub use friction::{FrictionContact, FrictionReport};
 use serde_json::Value as Json;
 
 use crate::impact::admissibility::Inadmissible;
+use crate::impact::outputs::Outputs;
 use crate::impact::restitution::Model;
 use crate::impact::solve::{Impact, Outcome};
 use crate::impact::unilateral::{Activity, Law};
@@ -315,6 +316,10 @@ pub struct Report {
     /// The axes of a modelled scene's vectors (`"world"` or `"body"`, origin at the centre of
     /// mass); `None` for the paper's body-axes scenes.
     pub axes: Option<&'static str>,
+    /// The outputs printed (`[solve] outputs`, `--outputs`): the table and the JSON leave
+    /// the others out. Without [`Outputs::TANGENTIAL`] the frames' tangent axes, the
+    /// tangential inertances and velocities and the angles were not computed (zero here).
+    pub outputs: Outputs,
 }
 
 impl Report {
@@ -328,20 +333,29 @@ impl Report {
     ) -> Report {
         let n = impact.contacts();
         let frames = impact.frames();
+        let tangential = impact.outputs().needs().contains(Outputs::TANGENTIAL);
+        let velocities = |hats: &[[T; 3]]| point_velocities(hats, frames, tangential);
         Report {
             axes: None,
+            outputs: impact.outputs(),
             scene: scene.to_string(),
             scalar: T::NAME,
             effects,
             inertance: inertances(impact.g_hat(), frames, n, 0),
-            inertance_yx: inertances(impact.g_yx_hat(), frames, n, 1),
-            inertance_zx: inertances(impact.g_zx_hat(), frames, n, 2),
+            inertance_yx: match tangential {
+                true => inertances(impact.g_yx_hat(), frames, n, 1),
+                false => Vec::new(),
+            },
+            inertance_zx: match tangential {
+                true => inertances(impact.g_zx_hat(), frames, n, 2),
+                false => Vec::new(),
+            },
             det: determinant(impact.det_hat(), frames),
-            frames: frames.iter().map(unit_axes).collect(),
-            contacts_before: point_velocities(impact.before_hat(), frames),
+            frames: frames.iter().map(|f| unit_axes(f, tangential)).collect(),
+            contacts_before: velocities(impact.before_hat()),
             models: outcomes
                 .iter()
-                .map(|(m, o)| ModelReport::new(*m, o, frames))
+                .map(|(m, o)| ModelReport::new(*m, o, frames, &velocities))
                 .collect(),
             constraints: constraints.map(ConstraintsReport::new),
             surface: None,
@@ -385,20 +399,39 @@ fn determinant<T: Scalar>(det: &T, frames: &[ContactFrame<T>]) -> Value {
     Value::of(&(det.clone() / &norms))
 }
 
-/// A contact frame's unit axes (x_i, y_i, z_i), and how y_i was chosen.
-fn unit_axes<T: Scalar>(f: &ContactFrame<T>) -> ([[Value; 3]; 3], TangentRule) {
+/// A contact frame's unit axes (x_i, y_i, z_i), and how y_i was chosen; y_i and z_i zero when
+/// they were not built (`tangential` false).
+fn unit_axes<T: Scalar>(f: &ContactFrame<T>, tangential: bool) -> ([[Value; 3]; 3], TangentRule) {
     let unit = |a: usize| -> [Value; 3] {
         let d = f.axes[a].top();
-        [0, 1, 2].map(|k| Value::surd(&Surd::over_norm(&d[k], &f.norm2[a])))
+        [0, 1, 2].map(|k| match a == 0 || tangential {
+            true => Value::surd(&Surd::over_norm(&d[k], &f.norm2[a])),
+            false => Value::of(&T::zero()),
+        })
     };
     ([unit(0), unit(1), unit(2)], f.rule)
 }
 
-/// Each contact point's velocity in its own frame.
-fn point_velocities<T: Scalar>(hats: &[[T; 3]], frames: &[ContactFrame<T>]) -> Vec<PointVelocity> {
+/// Each contact point's velocity in its own frame; along the normal only (the rest zero, no
+/// angle) when the tangent axes were not built (`tangential` false).
+fn point_velocities<T: Scalar>(
+    hats: &[[T; 3]],
+    frames: &[ContactFrame<T>],
+    tangential: bool,
+) -> Vec<PointVelocity> {
     hats.iter()
         .zip(frames)
-        .map(|(v, f)| point_velocity(v, f))
+        .map(|(v, f)| match tangential {
+            true => point_velocity(v, f),
+            false => PointVelocity {
+                components: [
+                    Value::surd(&Surd::over_norm(&v[0], &f.norm2[0])),
+                    Value::of(&T::zero()),
+                    Value::of(&T::zero()),
+                ],
+                angle: None,
+            },
+        })
         .collect()
 }
 
@@ -412,7 +445,12 @@ fn impulses<T: Scalar>(hats: &[T], frames: &[ContactFrame<T>]) -> Vec<Value> {
 
 impl ModelReport {
     /// Read out one model's outcome.
-    fn new<T: Scalar>(model: Model, o: &Outcome<T>, frames: &[ContactFrame<T>]) -> ModelReport {
+    fn new<T: Scalar>(
+        model: Model,
+        o: &Outcome<T>,
+        frames: &[ContactFrame<T>],
+        velocities: &dyn Fn(&[[T; 3]]) -> Vec<PointVelocity>,
+    ) -> ModelReport {
         ModelReport {
             model,
             impulses: impulses(&o.impulses_hat, frames),
@@ -429,7 +467,7 @@ impl ModelReport {
                 let v = o.velocity.bottom();
                 [0, 1, 2].map(|k| Value::of(&v[k]))
             },
-            contacts: point_velocities(&o.after_hat, frames),
+            contacts: velocities(&o.after_hat),
             lost_velocity_energy: Value::of(&o.lost_velocity_energy),
             kinetic_energy_loss: Value::of(&o.kinetic_energy_loss),
             constraint_impulses: o.constraint_impulses.iter().map(Value::of).collect(),

@@ -2,6 +2,7 @@
 //! velocities before impact, then the models side by side after impact, in SI units.
 
 use super::{FrictionReport, ModelReport, Report, Value, fmt_f64};
+use crate::impact::outputs::Outputs;
 
 /// A row of the after-impact table: its label, and one cell per model.
 type Row = (String, Vec<String>);
@@ -135,6 +136,12 @@ impl Report {
     /// The contact-point velocities before impact, one line per contact.
     fn before(&self) -> String {
         let mut out = "\nBefore impact:\n".to_string();
+        if !self.outputs.contains(Outputs::TANGENTIAL) {
+            for (i, b) in self.contacts_before.iter().enumerate() {
+                out += &format!("  A{}: v_x = {} m/s\n", i + 1, b.components[0].text());
+            }
+            return out;
+        }
         for (i, b) in self.contacts_before.iter().enumerate() {
             out += &format!(
                 "  A{}: v = ({}, {}, {}) m/s, α⁰ = {}\n",
@@ -161,7 +168,8 @@ impl Report {
         let each = |f: &dyn Fn(&ModelReport) -> String| -> Vec<String> {
             self.models.iter().map(f).collect()
         };
-        for i in 0..n {
+        let asked = |x: Outputs| self.outputs.contains(x);
+        for i in (0..n).filter(|_| asked(Outputs::IMPULSES)) {
             rows.push((format!("P{} [N s]", i + 1), each(&|m| m.impulses[i].text())));
         }
         if self.models.iter().any(|m| m.activity.is_some()) {
@@ -177,7 +185,7 @@ impl Report {
                 ));
             }
         }
-        for i in 0..n {
+        for i in (0..n).filter(|_| asked(Outputs::IMPULSES)) {
             if self.models.iter().any(|m| m.compression_impulses.is_some()) {
                 rows.push((
                     format!("P{}c [N s]", i + 1),
@@ -190,16 +198,24 @@ impl Report {
             }
         }
         let axes = ["x", "y", "z"];
-        for (k, a) in axes.iter().enumerate() {
+        let twist = if asked(Outputs::TWIST) { 3 } else { 0 };
+        for (k, a) in axes.iter().enumerate().take(twist) {
             rows.push((
                 format!("ω{a} [rad/s]"),
                 each(&|m| m.angular_velocity[k].text()),
             ));
         }
-        for (k, a) in axes.iter().enumerate() {
+        for (k, a) in axes.iter().enumerate().take(twist) {
             rows.push((format!("vC{a} [m/s]"), each(&|m| m.velocity[k].text())));
         }
-        for i in 0..n {
+        for i in (0..n).filter(|_| !asked(Outputs::TANGENTIAL) && asked(Outputs::NORMAL_VELOCITIES))
+        {
+            rows.push((
+                format!("v{}x [m/s]", i + 1),
+                each(&|m| m.contacts[i].components[0].text()),
+            ));
+        }
+        for i in (0..n).filter(|_| asked(Outputs::TANGENTIAL)) {
             for (k, a) in axes.iter().enumerate() {
                 rows.push((
                     format!("v{}{a} [m/s]", i + 1),
@@ -216,7 +232,7 @@ impl Report {
                 }),
             ));
         }
-        if let Some(c) = &self.constraints {
+        if let (Some(c), true) = (&self.constraints, asked(Outputs::CONSTRAINT_IMPULSES)) {
             for a in 0..c.blocked.len() {
                 rows.push((
                     format!("q{} [N s]", a + 1),
@@ -224,8 +240,10 @@ impl Report {
                 ));
             }
         }
-        rows.push(("E_p [J]".into(), each(&|m| m.lost_velocity_energy.text())));
-        rows.push(("ΔE_c [J]".into(), each(&|m| m.kinetic_energy_loss.text())));
+        if asked(Outputs::ENERGIES) {
+            rows.push(("E_p [J]".into(), each(&|m| m.lost_velocity_energy.text())));
+            rows.push(("ΔE_c [J]".into(), each(&|m| m.kinetic_energy_loss.text())));
+        }
         rows
     }
 }

@@ -65,6 +65,7 @@ use std::fmt;
 use toml_edit::DocumentMut;
 
 use crate::impact::friction::Restitution;
+use crate::impact::outputs::Outputs;
 use crate::impact::problem::{InvalidProblem, Problem, Reason};
 use crate::impact::restitution::Model;
 use crate::impact::unilateral::Law;
@@ -143,6 +144,10 @@ pub struct Scene {
     /// `[solve] restitution`: one restitution law for the frictional integration
     /// ([`crate::impact::friction`]), `"newton"`, `"poisson"` or `"energetic"`.
     pub restitution: Option<Restitution>,
+    /// `[solve] outputs`: the outputs the report prints ([`Outputs::ALL`] unless listed); the
+    /// solve computes those and what its checks read (impulses, velocities along the
+    /// normals, energies), not the tangential ones or the constraint impulses unless asked.
+    pub outputs: Outputs,
     /// The `[constraints]` effect, if declared.
     pub constraints: Option<ConstraintsSpec>,
     /// The `[surface]` effect, if declared.

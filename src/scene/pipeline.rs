@@ -13,6 +13,7 @@
 
 use crate::impact::admissibility::{Inadmissible, energy_gain, verdicts};
 use crate::impact::friction::{FrictionError, solve_frictional};
+use crate::impact::outputs::Outputs;
 use crate::impact::problem::{Problem, Reason};
 use crate::impact::restitution::Model;
 use crate::impact::solve::{Impact, Outcome, SolveError};
@@ -152,8 +153,10 @@ fn run_prepared_with<T: Scalar>(
         return run_frictional(scene, problem, models);
     }
     let models = models.unwrap_or(&scene.models);
+    // The outputs printed, and what the checks read (admissibility, the energy identity).
+    let checked = Outputs::IMPULSES | Outputs::NORMAL_VELOCITIES | Outputs::ENERGIES;
     let mut a = Assembled {
-        impact: Impact::assemble(problem)?,
+        impact: Impact::assemble_for(problem, scene.outputs | checked)?,
     };
     let models: &[Model] = if a.singular() && allow_singular && scene.law == Law::Simultaneous {
         &[]
@@ -175,6 +178,7 @@ fn run_prepared_with<T: Scalar>(
         })
         .collect();
     let mut report = a.report(scene, &outcomes);
+    report.outputs = scene.outputs;
     for (r, s) in report.models.iter_mut().zip(&solves) {
         r.law = scene.law;
         r.inadmissible.clone_from(&s.inadmissible);

@@ -45,7 +45,7 @@ pub(super) fn scene(
     // The paper's body first, as it was always read (messages name its keys first).
     let classic = if modelled { None } else { Some(r.body(root)?) };
     let mut contacts = r.contacts(root)?;
-    let (models, law, restitution) = r.solve(root)?;
+    let (models, law, restitution, outputs) = r.solve(root)?;
     let rough = contacts
         .iter()
         .position(|c| !matches!(&c.mu.exact, Ok(q) if num_traits::Zero::is_zero(q)));
@@ -84,6 +84,7 @@ pub(super) fn scene(
         models,
         law,
         restitution,
+        outputs,
         constraints,
         surface,
         params: r.params.specs(),

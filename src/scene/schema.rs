@@ -7,6 +7,7 @@ use toml_edit::{Item, Table};
 
 use super::SceneError;
 use super::read::{Reader, short};
+use crate::impact::outputs::Outputs;
 use crate::impact::restitution::Model;
 use crate::impact::unilateral::Law;
 use crate::mechanics::surface::Surface;
@@ -241,19 +242,23 @@ impl Reader<'_> {
         Ok((diagonal, (!vanish).then_some(products)))
     }
 
-    /// The `[solve]` table: the models asked for (all of them when absent) and the impact law
-    /// (the paper's simultaneous one when absent).
+    /// The `[solve]` table: the models asked for (all of them when absent), the impact law
+    /// (the paper's simultaneous one when absent) and the outputs reported (all when absent).
     pub(super) fn solve(
         &self,
         root: &Table,
-    ) -> Result<(Vec<Model>, Law, Option<Restitution>), SceneError> {
+    ) -> Result<(Vec<Model>, Law, Option<Restitution>, Outputs), SceneError> {
         Ok(match root.get("solve") {
-            None => (Model::ALL.to_vec(), Law::default(), None),
+            None => (Model::ALL.to_vec(), Law::default(), None, Outputs::ALL),
             Some(item) => {
                 let t = item.as_table().ok_or_else(|| {
                     self.err("solve", Some(short(item)), "must be a table: [solve]")
                 })?;
-                self.only_keys(t, "solve", &["models", "law", "restitution", "axes"])?;
+                self.only_keys(
+                    t,
+                    "solve",
+                    &["models", "law", "restitution", "axes", "outputs"],
+                )?;
                 let restitution = match t.get("restitution") {
                     None => None,
                     Some(r) => Some(r.as_str().and_then(Restitution::from_name).ok_or_else(
@@ -280,7 +285,11 @@ impl Reader<'_> {
                         )
                     })?,
                 };
-                (models, law, restitution)
+                let outputs = match t.get("outputs") {
+                    None => Outputs::ALL,
+                    Some(o) => self.outputs(o, "solve.outputs")?,
+                };
+                (models, law, restitution, outputs)
             }
         })
     }
@@ -526,6 +535,28 @@ impl Reader<'_> {
             vectors.push(v);
         }
         Ok(JointSpec { kind, vectors })
+    }
+
+    /// The outputs listed in `[solve] outputs` ([`Outputs::NAMED`], or `"all"`).
+    fn outputs(&self, item: &Item, key: &str) -> Result<Outputs, SceneError> {
+        let arr = item.as_array().ok_or_else(|| {
+            self.err(
+                key,
+                Some(short(item)),
+                "must be an array such as [\"impulses\", \"twist\"]",
+            )
+        })?;
+        let mut outputs = Outputs::NONE;
+        for v in arr.iter() {
+            let shown = v.to_string().trim().to_string();
+            let name = v.as_str().unwrap_or(&shown);
+            outputs |= Outputs::parse([name])
+                .map_err(|e| self.err(key, Some(shown.clone()), e.to_string()))?;
+        }
+        if outputs.is_empty() {
+            return Err(self.err(key, Some("[]".into()), "list at least one output"));
+        }
+        Ok(outputs)
     }
 
     /// The models listed in `[solve] models`, each once.

@@ -35,6 +35,7 @@ use serde_json::{Value as Json, json};
 
 use crate::analysis::accuracy::Output;
 use crate::analysis::analyze;
+use crate::impact::outputs::Outputs as Asked;
 use crate::impact::problem::Problem;
 use crate::impact::restitution::Model;
 use crate::impact::solve::{Impact, Outcome};
@@ -370,8 +371,15 @@ fn solve_new<T: Scalar>(p: &Problem<T>, outs: &mut [Outcome<T>; 2]) -> Option<Im
 /// Median wall time of one solve of `p` (ns), repeating until each of three samples takes
 /// at least `budget`.
 fn time_solve<T: Scalar>(p: &Problem<T>, budget: Duration) -> Option<f64> {
+    time_solve_for(p, budget, Asked::ALL)
+}
+
+/// [`time_solve`] computing only `asked` ([`crate::impact::outputs`]).
+fn time_solve_for<T: Scalar>(p: &Problem<T>, budget: Duration, asked: Asked) -> Option<f64> {
     let mut outs = [Outcome::default(), Outcome::default()];
-    let mut impact = solve_new(p, &mut outs)?;
+    let mut impact = Impact::assemble_for(p, asked).ok()?;
+    impact.solve(Model::Newton, &mut outs[0]).ok()?;
+    impact.solve(Model::Poisson, &mut outs[1]).ok()?;
     let mut samples = Vec::with_capacity(3);
     for _ in 0..3 {
         let (mut reps, start) = (0u64, Instant::now());
@@ -627,10 +635,18 @@ fn with_problem<T: Scalar>(scene: &Scene, f: impl FnOnce(&Problem<T>) -> Timing)
     scene.problem::<T>().map_or(Timing::Singular, |p| f(&p))
 }
 
-/// Time one scene in every scalar type (ns per solve; `None` when singular in that type).
+/// Time one scene in every scalar type (ns per solve; `None` when singular in that type),
+/// and in f64 the cheapest public path, impulses and twist only (`f64/impulses,twist`).
 pub fn time_scene(scene: &Scene, quick: bool) -> Vec<(&'static str, Option<f64>)> {
     let budget = Duration::from_millis(if quick { 20 } else { 200 });
     vec![
+        (
+            "f64/impulses,twist",
+            scene
+                .problem::<f64>()
+                .ok()
+                .and_then(|p| time_solve_for(&p, budget, Asked::IMPULSES | Asked::TWIST)),
+        ),
         (
             "f32",
             scene
