@@ -548,6 +548,18 @@ fn fail(path: &std::path::Path, error: RunError) -> ExitCode {
             eprintln!("error: {e}");
             ExitCode::from(2)
         }
+        RunError::Solve(e @ SolveError::Singular { rounded: true, .. }) => {
+            eprintln!(
+                "error: {}: {e}.\n  A pivot of G fell within the rounding tolerance: G is singular, or \
+                 so ill-conditioned that this precision cannot split the impulses between the \
+                 contacts.\n  Run `inertance solve {} --exact` to decide exactly, or `inertance \
+                 analyze {}` for the conditioning and the family of solutions.",
+                path.display(),
+                path.display(),
+                path.display()
+            );
+            ExitCode::from(3)
+        }
         RunError::Solve(e @ SolveError::Singular { .. }) => {
             eprintln!(
                 "error: {}: {e}.\n  The simultaneous-collision hypothesis does not fix the impulses here \

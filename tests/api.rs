@@ -315,7 +315,8 @@ fn a_singular_problem_is_an_error_not_a_number() {
         e,
         inertance::SolveError::Singular {
             rank: 1,
-            contacts: 2
+            contacts: 2,
+            rounded: true
         }
     );
 }

@@ -308,7 +308,8 @@ fn singular_g_is_detected_exactly() {
         impact.solve(Model::Newton, &mut out),
         Err(SolveError::Singular {
             rank: 1,
-            contacts: 2
+            contacts: 2,
+            rounded: false
         })
     );
 }

@@ -61,13 +61,17 @@ def _scene(scene: SceneLike, symbols: Optional[Sequence[str]] = None) -> Scene:
 
 
 def solve(scene: SceneLike, model: Union[str, Sequence[str], None] = None,
-          law: Optional[str] = None, exact: bool = False) -> Solution:
+          law: Optional[str] = None, exact: bool = False,
+          outputs: Union[str, Sequence[str], None] = None) -> Solution:
     """Solve the collision of ``scene`` (as ``inertance solve --json``).
 
     ``model``: ``"newton"`` (eq. 14–20), ``"poisson"`` (eq. 21–23), ``"both"`` or ``None``
     (the scene's ``[solve] models``); ``law``: ``"simultaneous"`` (the paper's, eq. 15,
     21–23) or ``"unilateral"`` (complementarity); ``None``: the scene's. ``exact``: in
     rationals, or exact radicals when the scene has ``"2/sqrt(5)"``-like numbers.
+    ``outputs``: a name or a list of ``"impulses"``, ``"twist"``, ``"normal-velocities"``,
+    ``"tangential"``, ``"energies"``, ``"constraint-impulses"`` (or ``"all"``): only those are
+    computed and reported (``[solve] outputs``); an output not asked for reads ``None``.
 
     The result's attributes are the JSON report's keys: ``inertance`` (G, eq. 12), ``det``
     (Δ), ``frames``, and per model (``.newton``, ``.poisson``, ``.models``) ``impulses``
@@ -81,7 +85,7 @@ def solve(scene: SceneLike, model: Union[str, Sequence[str], None] = None,
     """
     if type(scene) is not Scene:
         scene = _scene(scene)
-    return _native.solve(scene, model, law, exact)
+    return _native.solve(scene, model, law, exact, outputs)
 
 
 def solve_batch(scene: SceneLike, vary: Mapping[str, Any], law: Optional[str] = None) -> dict:

@@ -8,6 +8,7 @@
 //! given as Python values becomes a TOML document, numbers kept exact (`Fraction` → `"p/q"`);
 //! model and law names become [`Model`] and [`Law`].
 
+use inertance::impact::outputs::Outputs;
 use numpy::{PyArray1, PyArray2, PyArrayMethods};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
@@ -213,6 +214,23 @@ pub fn law(law: Option<&str>) -> PyResult<Option<Law>> {
             "law {other:?}: expected \"simultaneous\" or \"unilateral\""
         ))),
     }
+}
+
+/// `outputs=`: a name or a list of names of [`Outputs::NAMED`] (or `"all"`); `None` keeps the
+/// scene's `[solve] outputs`.
+pub fn outputs(outputs: Option<&Bound<'_, PyAny>>) -> PyResult<Option<Outputs>> {
+    let Some(o) = outputs else {
+        return Ok(None);
+    };
+    let names: Vec<String> = match o.extract::<String>() {
+        Ok(one) => vec![one],
+        Err(_) => o
+            .extract::<Vec<String>>()
+            .map_err(|_| PyValueError::new_err("outputs: expected a name or a list of names"))?,
+    };
+    Outputs::parse(names.iter().map(String::as_str))
+        .map(Some)
+        .map_err(|e| PyValueError::new_err(format!("outputs: {e}")))
 }
 
 /// A number given from Python as the text a scene reads exactly: an int as itself, a float

@@ -17,6 +17,7 @@ use serde_json::Value as Json;
 use toml_edit::DocumentMut;
 
 use inertance::Problem;
+use inertance::impact::outputs::Outputs;
 use inertance::report::Report;
 use inertance::scalar::Exact;
 use inertance::scalar::symbolic::RatFun;
@@ -347,6 +348,12 @@ impl ModelSolution {
         &self.report.models[self.index]
     }
 
+    /// Whether the solve computed `x` (`[solve] outputs`, `outputs=`): an output not asked
+    /// for reads as `None`, never as the zero its empty slot would give.
+    fn asked(&self, x: Outputs) -> bool {
+        self.report.outputs.contains(x)
+    }
+
     /// A key of this model's JSON, converted (`None` when absent).
     fn key<'py>(&self, py: Python<'py>, key: &str) -> PyResult<Bound<'py, PyAny>> {
         match self.json().get(key) {
@@ -392,31 +399,49 @@ impl ModelSolution {
     /// P_i, N s (eq. 20, 23).
     #[getter]
     fn impulses<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        if !self.asked(Outputs::IMPULSES) {
+            return Ok(py.None().into_bound(py));
+        }
         convert::values(py, &self.report().impulses, self.mode)
     }
     /// v_C after impact (eq. 24).
     #[getter]
     fn velocity<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        if !self.asked(Outputs::TWIST) {
+            return Ok(py.None().into_bound(py));
+        }
         convert::values(py, &self.report().velocity, self.mode)
     }
     /// ω after impact (eq. 24).
     #[getter]
     fn angular_velocity<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        if !self.asked(Outputs::TWIST) {
+            return Ok(py.None().into_bound(py));
+        }
         convert::values(py, &self.report().angular_velocity, self.mode)
     }
     /// E_p, the energy of lost velocities (eq. 28).
     #[getter]
     fn lost_velocity_energy<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        if !self.asked(Outputs::ENERGIES) {
+            return Ok(py.None().into_bound(py));
+        }
         convert::value(py, &self.report().lost_velocity_energy, self.mode)
     }
     /// ΔE_c, the loss of kinetic energy (eq. 32).
     #[getter]
     fn kinetic_energy_loss<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        if !self.asked(Outputs::ENERGIES) {
+            return Ok(py.None().into_bound(py));
+        }
         convert::value(py, &self.report().kinetic_energy_loss, self.mode)
     }
     /// P̂_i = P_i / |n_i|: the impulse as a multiple of the normal as written.
     #[getter]
     fn impulses_per_normal<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        if !self.asked(Outputs::IMPULSES) {
+            return Ok(py.None().into_bound(py));
+        }
         match convert::direct_values(py, &self.report().impulse_multiples, self.mode)? {
             Some(v) => Ok(v),
             None => self.key(py, "impulses_per_normal"),
@@ -425,6 +450,9 @@ impl ModelSolution {
     /// P_i^c, Poisson only (eq. 22); `None` for Newton.
     #[getter]
     fn compression_impulses<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        if !self.asked(Outputs::IMPULSES) {
+            return Ok(py.None().into_bound(py));
+        }
         let direct = match &self.report().compression_impulses {
             Some(c) => convert::direct_values(py, c, self.mode)?,
             None => None,
@@ -464,17 +492,20 @@ fn run_scene(
     scene: &Scene,
     models: Option<Vec<inertance::Model>>,
     law: Option<inertance::impact::unilateral::Law>,
+    outputs: Option<Outputs>,
     exact: bool,
 ) -> Result<Report, RunError> {
-    let relawed;
-    let s = match law {
-        Some(l) if l != scene.scene.law => {
-            let mut c = scene.scene.clone();
-            c.law = l;
-            relawed = c;
-            &relawed
-        }
-        _ => &scene.scene,
+    let changed;
+    let law_changes = law.is_some_and(|l| l != scene.scene.law);
+    let outputs_change = outputs.is_some_and(|o| o != scene.scene.outputs);
+    let s = if law_changes || outputs_change {
+        let mut c = scene.scene.clone();
+        c.law = law.unwrap_or(c.law);
+        c.outputs = outputs.unwrap_or(c.outputs);
+        changed = c;
+        &changed
+    } else {
+        &scene.scene
     };
     let models = models.as_deref();
     if !exact {
@@ -495,17 +526,20 @@ fn run_scene(
 }
 
 #[pyfunction]
-#[pyo3(signature = (scene, model = None, law = None, exact = false))]
+#[pyo3(signature = (scene, model = None, law = None, exact = false, outputs = None))]
 fn solve(
     py: Python<'_>,
     scene: &Scene,
     model: Option<&Bound<'_, PyAny>>,
     law: Option<&str>,
     exact: bool,
+    outputs: Option<&Bound<'_, PyAny>>,
 ) -> PyResult<Solution> {
     let models = convert::models(model)?;
     let law = convert::law(law)?;
-    let report = run_scene(py, scene, models, law, exact).map_err(|e| errors::run_error(py, &e))?;
+    let outputs = convert::outputs(outputs)?;
+    let report =
+        run_scene(py, scene, models, law, outputs, exact).map_err(|e| errors::run_error(py, &e))?;
     Ok(Solution {
         report: Arc::new(report),
         mode: if exact { Mode::Exact } else { Mode::F64 },

@@ -162,3 +162,28 @@ def test_friction_readout_per_law(tmp_path):
     path = tmp_path / "rough.toml"
     path.write_text(ROUGH)
     assert r.to_json()["friction"] == cli_json("solve", path, "--exact")["friction"]
+
+
+@pytest.mark.parametrize("exact", [False, True])
+def test_outputs_asked_for_equal_the_full_solve_and_the_rest_read_none(bar, exact):
+    full = inertance.solve(bar, exact=exact)
+    part = inertance.solve(bar, exact=exact, outputs=["impulses", "twist"])
+    assert part.to_json()["outputs"] == "impulses,twist"
+    for m in ("newton", "poisson"):
+        a, b = getattr(full, m), getattr(part, m)
+        assert list(b.impulses) == list(a.impulses)
+        assert list(b.velocity) == list(a.velocity)
+        assert list(b.angular_velocity) == list(a.angular_velocity)
+        # Not asked for: None, never the zero of an empty slot.
+        assert b.lost_velocity_energy is None and b.kinetic_energy_loss is None
+    only = inertance.solve(bar, exact=exact, outputs="energies")
+    assert only.newton.impulses is None and only.newton.velocity is None
+    assert only.newton.kinetic_energy_loss == full.newton.kinetic_energy_loss
+    assert only.poisson.compression_impulses is None
+
+
+def test_outputs_names_are_checked(bar):
+    with pytest.raises(ValueError, match="outputs"):
+        inertance.solve(bar, outputs=["impulses", "velocity"])
+    with pytest.raises(ValueError, match="outputs"):
+        inertance.solve(bar, outputs=3)

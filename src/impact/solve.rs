@@ -53,19 +53,36 @@ use crate::mechanics::contact::{ContactFrame, TangentNotPerpendicular};
 use crate::mechanics::screw::Screw;
 use crate::scalar::Scalar;
 
+/// [`SolveError::Singular`]'s message.
+fn singular_text(rank: usize, contacts: usize, rounded: bool) -> String {
+    if rounded {
+        format!(
+            "the inertance matrix G is singular to working precision (rank {rank} of {contacts} \
+             at the rounding tolerance; cond G beyond 1/ε, or Δ = 0 — `--exact` decides): the \
+             impulses are not determined uniquely in this precision"
+        )
+    } else {
+        format!(
+            "the inertance matrix G is singular (Δ = 0; rank {rank} of {contacts}): the impulses \
+             are not determined uniquely"
+        )
+    }
+}
+
 /// Why a collision could not be solved.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum SolveError {
-    /// Δ = det G = 0: the system for the impulses has no unique solution (§8).
-    #[error(
-        "the inertance matrix G is singular (Δ = 0; rank {rank} of {contacts}): the impulses are \
-         not determined uniquely"
-    )]
+    /// Δ = det G = 0: the system for the impulses has no unique solution (§8) — exactly, or
+    /// to working precision in a float type (`rounded`).
+    #[error("{}", singular_text(*rank, *contacts, *rounded))]
     Singular {
         /// rank G.
         rank: usize,
         /// N.
         contacts: usize,
+        /// Decided in floating point: a pivot within the rounding tolerance of zero, so G may
+        /// be merely ill-conditioned beyond the type's precision (an exact run decides).
+        rounded: bool,
     },
     /// A contact frame could not be built (not reached for a validated [`Problem`], whose
     /// tangents were checked by the same test).
@@ -379,6 +396,7 @@ impl<T: Scalar> Impact<T> {
             return Err(SolveError::Singular {
                 rank: self.rank,
                 contacts: n,
+                rounded: !T::IS_EXACT,
             });
         }
         if self.route == Route::OrthogonalWrenches {
@@ -442,6 +460,7 @@ impl<T: Scalar> Impact<T> {
             return Err(SolveError::Singular {
                 rank: self.rank.min(self.basis.len()),
                 contacts: n,
+                rounded: !T::IS_EXACT,
             });
         }
         self.basis_built = true;

@@ -172,10 +172,40 @@ pub struct Constrained<T: Scalar> {
     pub blocked: Vec<Screw<T>>,
     /// Whether U was derived rather than given.
     pub derived_blocked: bool,
+    /// D's columns equilibrated: D_a · 2^(k_a), with 2^(k_a) bringing their diagonal entry of
+    /// M_red near 1 (floats; k_a = 0 in exact types). W = D M_red⁻¹ Dᵀ η is the same for every
+    /// scaling of D's columns, so the solve uses these; the zero tests of rank then compare each
+    /// screw with its own size, whatever the units (a body of 10⁻³⁰⁰ kg and 3.3 kg·m² on a
+    /// revolute and a prismatic joint has M_red = diag(3.3, 10⁻³⁰⁰), which the unscaled test,
+    /// relative to the largest entry, took for rank 1).
+    basis: Vec<Screw<T>>,
+    /// U's columns equilibrated the same way in Uᵀ η M⁻¹ U, with their powers of two: q is
+    /// reported per column of U as given, q_a = 2^(k_a) q′_a.
+    blocked_basis: Vec<(Screw<T>, T)>,
     m_red: SVector<T, 36>,
     m_red_perm: [usize; 6],
     u_gram: SVector<T, 36>,
     u_gram_perm: [usize; 6],
+}
+
+/// 2^k, the power of two nearest 1/√g for a positive float g (1 in exact types, and for g = 0
+/// or a non-finite g): a screw times it has a Gram entry g·4^k within [½, 2).
+fn equilibrator<T: Scalar>(g: &T) -> T {
+    let x = g.to_f64();
+    if T::IS_EXACT || !(x.is_finite() && x > 0.0) {
+        return T::one();
+    }
+    let k = -(x.log2() / 2.0).round();
+    T::from_f64(k.exp2())
+        .filter(|s| s.to_f64().is_normal())
+        .unwrap_or_else(T::one)
+}
+
+/// The screw s times the scalar c.
+fn times<T: Scalar>(s: &Screw<T>, c: &T) -> Screw<T> {
+    let mut out = Screw::zero();
+    out.add_scaled(c, s);
+    out
 }
 
 impl<T: Scalar> Constrained<T> {
@@ -193,12 +223,17 @@ impl<T: Scalar> Constrained<T> {
         if d > 6 {
             return Err(ConstraintError::DependentFree { index: 6 });
         }
-        // M_red = Dᵀ η M D (eq. 83): a Gram matrix, so rank-deficient iff D is.
+        // M_red = Dᵀ η M D (eq. 83): a Gram matrix, so rank-deficient iff D is; formed on
+        // the equilibrated columns (see `basis`).
+        let basis: Vec<Screw<T>> = free
+            .iter()
+            .map(|s| times(s, &equilibrator(&s.reciprocal(&body.momentum(s)))))
+            .collect();
         let mut m_red = SVector::<T, 36>::zeros();
-        let momenta: Vec<Screw<T>> = free.iter().map(|s| body.momentum(s)).collect();
+        let momenta: Vec<Screw<T>> = basis.iter().map(|s| body.momentum(s)).collect();
         for a in 0..d {
             for b in 0..d {
-                m_red[a * d + b] = free[a].reciprocal(&momenta[b]);
+                m_red[a * d + b] = basis[a].reciprocal(&momenta[b]);
             }
         }
         if let Some(index) = first_dependent(&m_red.as_slice()[..d * d], d) {
@@ -247,11 +282,18 @@ impl<T: Scalar> Constrained<T> {
                 blocked: u,
             });
         }
+        let blocked_basis: Vec<(Screw<T>, T)> = blocked
+            .iter()
+            .map(|s| {
+                let k = equilibrator(&s.reciprocal(&body.response(s)));
+                (times(s, &k), k)
+            })
+            .collect();
         let mut u_gram = SVector::<T, 36>::zeros();
         for a in 0..u {
-            let r = body.response(&blocked[a]);
+            let r = body.response(&blocked_basis[a].0);
             for b in 0..u {
-                u_gram[b * u + a] = blocked[b].reciprocal(&r);
+                u_gram[b * u + a] = blocked_basis[b].0.reciprocal(&r);
             }
         }
         if let Some(index) = first_dependent(&u_gram.as_slice()[..u * u], u) {
@@ -269,6 +311,8 @@ impl<T: Scalar> Constrained<T> {
             free,
             blocked,
             derived_blocked,
+            basis,
+            blocked_basis,
             m_red,
             m_red_perm,
             u_gram,
@@ -294,13 +338,14 @@ impl<T: Scalar> Constrained<T> {
     }
 
     /// ξ with D ξ the η-M-orthogonal projection of `v` on the span of D:
-    /// M_red ξ = Dᵀ η M {v} (exactly ξ⁰ of eq. 79 when {v} is allowed).
+    /// M_red ξ = Dᵀ η M {v} (exactly ξ⁰ of eq. 79 when {v} is allowed), for D's equilibrated
+    /// columns (`basis`).
     fn coordinates(&self, v: &Screw<T>) -> SVector<T, 6> {
         let d = self.dof();
         let p = self.body.momentum(v);
         let mut xi = SVector::<T, 6>::zeros();
         for a in 0..d {
-            xi[a] = self.free[a].reciprocal(&p);
+            xi[a] = self.basis[a].reciprocal(&p);
         }
         let mut work = SVector::<T, 6>::zeros();
         linalg::solve_factored(
@@ -317,7 +362,7 @@ impl<T: Scalar> Constrained<T> {
     pub fn check_allowed(&self, v0: &Screw<T>) -> Result<(), ConstraintError> {
         let xi = self.coordinates(v0);
         let mut r = v0.clone();
-        for (a, s) in self.free.iter().enumerate() {
+        for (a, s) in self.basis.iter().enumerate() {
             r.add_scaled(&-xi[a].clone(), s);
         }
         let (res, scale) = (screw_norm2(&r), screw_norm2(v0));
@@ -350,7 +395,7 @@ impl<T: Scalar> Constrained<T> {
         }
         let w = self.body.response(&r);
         q.clear();
-        for ua in &self.blocked {
+        for (ua, _) in &self.blocked_basis {
             q.push(ua.reciprocal(&w));
         }
         let mut work = SVector::<T, 6>::zeros();
@@ -361,6 +406,10 @@ impl<T: Scalar> Constrained<T> {
             q,
             &mut work.as_mut_slice()[..u],
         );
+        // q′ multiplies the equilibrated columns U_a·2^(k_a): q_a = 2^(k_a) q′_a.
+        for (qa, (_, k)) in q.iter_mut().zip(&self.blocked_basis) {
+            *qa *= k;
+        }
     }
 }
 
@@ -370,7 +419,7 @@ impl<T: Scalar> Mobility<T> for Constrained<T> {
         let d = self.dof();
         let mut y = SVector::<T, 6>::zeros();
         for a in 0..d {
-            y[a] = self.free[a].reciprocal(e);
+            y[a] = self.basis[a].reciprocal(e);
         }
         let mut work = SVector::<T, 6>::zeros();
         linalg::solve_factored(
@@ -382,7 +431,7 @@ impl<T: Scalar> Mobility<T> for Constrained<T> {
         );
         let mut out = Screw::zero();
         for a in 0..d {
-            out.add_scaled(&y[a], &self.free[a]);
+            out.add_scaled(&y[a], &self.basis[a]);
         }
         out
     }

@@ -190,6 +190,7 @@ fn singular_family(a: &mut Assembled<RatFun>, models: &[Model]) -> Result<Singul
                 .ok_or(RunError::Solve(SolveError::Singular {
                     rank: a.impact.rank(),
                     contacts: n,
+                    rounded: false,
                 }))?;
             // Impulses are c_i x_i, c_i = 1 (Newton) or 1 + k_i^P (Poisson, eq. 23): so are
             // the family's directions in impulse space.
