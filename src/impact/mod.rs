@@ -14,8 +14,10 @@
 //! exactly, event by event, for planar scenes; adaptively in floats for spatial ones.
 
 pub mod admissibility;
+pub mod batch;
 pub mod friction;
 pub mod gram_schmidt;
+pub mod lean;
 pub mod problem;
 pub mod restitution;
 pub mod solution;
