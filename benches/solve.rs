@@ -439,8 +439,7 @@ fn benches(c: &mut Criterion) {
     let (mut newton, mut poisson) = (Outcomes::default(), Outcomes::default());
     c.bench_function("batch-256/soa-lanes-f64", |b| {
         b.iter(|| {
-            batch::solve(black_box(&scenes), Model::Newton, &mut newton).unwrap();
-            batch::solve(black_box(&scenes), Model::Poisson, &mut poisson).unwrap();
+            batch::solve_both(black_box(&scenes), &mut newton, &mut poisson).unwrap();
         })
     });
 }

@@ -337,7 +337,11 @@ pub(crate) fn route_test<const N: usize>(
             }
             let spread = (N - 1) as f64 * s / g(i, i);
             if !(spread <= RADIUS2) {
-                worst = if spread.is_nan() { f64::INFINITY } else { spread };
+                worst = if spread.is_nan() {
+                    f64::INFINITY
+                } else {
+                    spread
+                };
             }
         }
         if worst > 0.0 {
@@ -453,7 +457,8 @@ impl<T: Scalar, const N: usize> Lean<T, N> {
     pub fn solve(&self, model: Model) -> Result<LeanOutcome<T, N>, LeanError> {
         let (impulses_hat, velocity) = self.factored.solve(model);
         if !T::IS_EXACT
-            && !(impulses_hat.iter().all(Scalar::is_finite) && velocity.iter().all(Scalar::is_finite))
+            && !(impulses_hat.iter().all(Scalar::is_finite)
+                && velocity.iter().all(Scalar::is_finite))
         {
             return Err(LeanError::NotFinite);
         }

@@ -15,7 +15,6 @@ use num_traits::{One, Zero};
 
 /// L f64 lanes (module docs).
 #[derive(Clone, Copy, Debug, PartialEq)]
-#[repr(align(32))]
 pub struct Lanes<const L: usize>(pub [f64; L]);
 
 impl<const L: usize> Lanes<L> {

@@ -8,8 +8,8 @@
 //! it. Each lane computes what [`crate::impact::lean::Lean`] computes for that scene alone,
 //! bit for bit (tested). A scene the lean route refuses — too nearly dependent contacts for
 //! the normal equations (the accuracy contract), or invalid input — is solved by the generic
-//! path ([`crate::impact::solve::Impact`]) instead, and [`Outcomes::answers`] says which
-//! route answered, or why none did.
+//! path ([`crate::impact::solve::Impact`]) instead, and [`Outcomes::routes`] says which
+//! route answered, [`Outcomes::reasons`] why the others did not take the lean one.
 
 pub mod lanes;
 
@@ -25,9 +25,11 @@ use crate::mechanics::screw::{Screw, Vec3};
 
 use lanes::Lanes;
 
-/// Scenes per vector step: four f64 lanes (two SSE2 or one AVX register per operation);
-/// measured no slower than two or eight on the default target.
-pub const LANES: usize = 4;
+/// Scenes per vector step: two f64 lanes, one SSE2 register per operation. Measured on the
+/// default x86-64 target (criterion, `batch-256/soa-lanes-f64`): 24.6 µs per 256 scenes with
+/// two lanes, 36.5 µs with four, 36.7 µs with eight — wider lanes made the inliner give up on
+/// the field-generic code.
+pub const LANES: usize = 2;
 
 /// Free bodies in central principal axes, each hit at N contacts, as structure of arrays:
 /// scene s is index s of every vector (all of one length).
@@ -67,21 +69,30 @@ pub enum BatchError {
     NotBatchable(usize),
 }
 
-/// Which route answered a scene, or why none could.
-#[derive(Clone, Debug, PartialEq)]
-pub enum Answer {
+/// Which route answered a scene.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Route {
     /// The lean route, in lanes.
     Lean,
-    /// The generic route, after the lean one refused the scene (its reason).
-    Generic(LeanError),
+    /// The generic route, after the lean one refused the scene.
+    Generic,
+    /// No answer: the scene is invalid, or G singular (zeros in the outputs).
+    Refused,
+}
+
+/// Why a scene did not take the lean route.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Reason {
+    /// The lean route refused it (then the generic route answered).
+    Lean(LeanError),
     /// The scene is not a valid problem.
     Invalid(InvalidProblem),
     /// G is singular: no simultaneous answer (see [`crate::analysis`]).
     Unsolvable(SolveError),
 }
 
-/// The impulses and twists of a batch, as structure of arrays like [`Scenes`]. A scene
-/// without an answer ([`Answer::Invalid`], [`Answer::Unsolvable`]) has zeros there.
+/// The impulses and twists of a batch for one model, as structure of arrays like [`Scenes`].
+/// A scene without an answer ([`Route::Refused`]) has zeros there.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Outcomes<const N: usize> {
     /// P̂_j = P_j / |n_j| per contact.
@@ -89,7 +100,9 @@ pub struct Outcomes<const N: usize> {
     /// {v} = [ω; v_C] after impact.
     pub velocity: [Vec<f64>; 6],
     /// Which route answered each scene.
-    pub answers: Vec<Answer>,
+    pub routes: Vec<Route>,
+    /// For each scene off the lean route (in order), its index and why.
+    pub reasons: Vec<(usize, Reason)>,
 }
 
 /// N empty vectors.
@@ -116,8 +129,22 @@ impl<const N: usize> Default for Outcomes<N> {
         Outcomes {
             impulses_hat: empty(Vec::new),
             velocity: empty(Vec::new),
-            answers: Vec::new(),
+            routes: Vec::new(),
+            reasons: Vec::new(),
         }
+    }
+}
+
+impl<const N: usize> Outcomes<N> {
+    /// Empty the vectors and size them for `n` scenes, keeping their capacity.
+    fn reset(&mut self, n: usize) {
+        for v in self.impulses_hat.iter_mut().chain(&mut self.velocity) {
+            v.clear();
+            v.resize(n, 0.0);
+        }
+        self.routes.clear();
+        self.routes.resize(n, Route::Lean);
+        self.reasons.clear();
     }
 }
 
@@ -162,25 +189,33 @@ impl<const N: usize> Scenes<N> {
         Ok(())
     }
 
-    /// Every array with its name, for the length check.
-    fn arrays(&self) -> impl Iterator<Item = (String, &Vec<f64>)> {
+    /// The first array whose length differs from `mass`'s, named.
+    fn mismatch(&self) -> Option<(String, usize)> {
+        let n = self.len();
+        let bad = |v: &Vec<f64>| v.len() != n;
         let xyz = ["x", "y", "z"];
-        let mut all: Vec<(String, &Vec<f64>)> = Vec::new();
-        for k in 0..3 {
-            all.push((format!("inertia[{k}]"), &self.inertia[k]));
+        if let Some(k) = self.inertia.iter().position(bad) {
+            return Some((format!("inertia[{k}]"), self.inertia[k].len()));
         }
-        for k in 0..6 {
-            all.push((format!("velocity[{k}]"), &self.velocity[k]));
+        if let Some(k) = self.velocity.iter().position(bad) {
+            return Some((format!("velocity[{k}]"), self.velocity[k].len()));
         }
         for i in 0..N {
-            for (k, c) in xyz.iter().enumerate() {
-                all.push((format!("points[{i}].{c}"), &self.points[i][k]));
-                all.push((format!("normals[{i}].{c}"), &self.normals[i][k]));
+            for (name, a) in [("points", &self.points[i]), ("normals", &self.normals[i])] {
+                if let Some(k) = a.iter().position(bad) {
+                    return Some((format!("{name}[{i}].{}", xyz[k]), a[k].len()));
+                }
             }
-            all.push((format!("k_newton[{i}]"), &self.k_newton[i]));
-            all.push((format!("k_poisson[{i}]"), &self.k_poisson[i]));
+            for (name, v) in [
+                ("k_newton", &self.k_newton[i]),
+                ("k_poisson", &self.k_poisson[i]),
+            ] {
+                if bad(v) {
+                    return Some((format!("{name}[{i}]"), v.len()));
+                }
+            }
         }
-        all.into_iter()
+        None
     }
 
     /// Scene `s` as a [`Problem`] (validated), for the generic route.
@@ -194,48 +229,91 @@ impl<const N: usize> Scenes<N> {
         );
         let contacts = (0..N)
             .map(|i| {
-                Contact::new(v3(&self.points[i]), v3(&self.normals[i]), self.k_newton[i][s])
-                    .with_coefficients(self.k_newton[i][s], self.k_poisson[i][s])
+                Contact::new(
+                    v3(&self.points[i]),
+                    v3(&self.normals[i]),
+                    self.k_newton[i][s],
+                )
+                .with_coefficients(self.k_newton[i][s], self.k_poisson[i][s])
             })
             .collect();
         Problem::new(body, velocity, contacts)
     }
 
-    /// Whether scene `s` passes [`Problem::new`]'s checks, decided without building it: m,
-    /// J_k > 0, every number finite, normals nonzero, k ∈ [0, 1].
-    #[inline]
-    fn valid(&self, s: usize) -> bool {
-        let positive = |x: f64| x > 0.0 && x.is_finite();
-        let k = |x: f64| (0.0..=1.0).contains(&x);
-        positive(self.mass[s])
-            && self.inertia.iter().all(|j| positive(j[s]))
-            && self.velocity.iter().all(|v| v[s].is_finite())
-            && (0..N).all(|i| {
-                let n = &self.normals[i];
-                self.points[i].iter().all(|p| p[s].is_finite())
-                    && n.iter().all(|x| x[s].is_finite())
-                    && n.iter().any(|x| x[s] != 0.0)
-                    && k(self.k_newton[i][s])
-                    && k(self.k_poisson[i][s])
-            })
-    }
-
     /// Scenes `start ..` `start + LANES` as lanes; past the end, lanes repeat the last scene.
     #[inline(always)]
     fn lanes(&self, start: usize) -> Data<Lanes<LANES>, N> {
-        let last = self.len() - 1;
-        let at = |v: &Vec<f64>| Lanes(array::from_fn(|i| v[(start + i).min(last)]));
-        let three = |a: &[Vec<f64>; 3]| [at(&a[0]), at(&a[1]), at(&a[2])];
+        let three = |a: &[Vec<f64>; 3]| [at(&a[0], start), at(&a[1], start), at(&a[2], start)];
         Data {
-            mass: at(&self.mass),
+            mass: at(&self.mass, start),
             inertia: InverseInertia::Principal(three(&self.inertia)),
-            velocity: array::from_fn(|k| at(&self.velocity[k])),
+            velocity: array::from_fn(|k| at(&self.velocity[k], start)),
             points: array::from_fn(|i| three(&self.points[i])),
             normals: array::from_fn(|i| three(&self.normals[i])),
-            k_newton: array::from_fn(|i| at(&self.k_newton[i])),
-            k_poisson: array::from_fn(|i| at(&self.k_poisson[i])),
+            k_newton: array::from_fn(|i| at(&self.k_newton[i], start)),
+            k_poisson: array::from_fn(|i| at(&self.k_poisson[i], start)),
         }
     }
+}
+
+/// `v[start .. start + LANES]` as lanes; past the end, the last entry repeated.
+#[inline(always)]
+fn at(v: &[f64], start: usize) -> Lanes<LANES> {
+    match v.get(start..start + LANES) {
+        Some(x) => Lanes(array::from_fn(|i| x[i])),
+        None => {
+            let last = v.len() - 1;
+            Lanes(array::from_fn(|i| v[(start + i).min(last)]))
+        }
+    }
+}
+
+/// Lane by lane, whether `x` lies in `lo ..= hi` (`false` for NaN).
+#[inline(always)]
+fn within(ok: &mut [bool; LANES], x: &Lanes<LANES>, lo: f64, hi: f64) {
+    for (o, x) in ok.iter_mut().zip(x.0) {
+        *o &= x >= lo && x <= hi;
+    }
+}
+
+/// Lane by lane, whether every value of `xs` is finite: Σ 0·x is 0 then, NaN otherwise.
+#[inline(always)]
+fn finite<'a>(ok: &mut [bool; LANES], xs: impl IntoIterator<Item = &'a Lanes<LANES>>) {
+    let mut sum = Lanes::<LANES>::splat(0.0);
+    for x in xs {
+        for (s, x) in sum.0.iter_mut().zip(x.0) {
+            *s += 0.0 * x;
+        }
+    }
+    for (o, s) in ok.iter_mut().zip(sum.0) {
+        *o &= s == 0.0;
+    }
+}
+
+/// Which lanes of `data` pass [`Problem::new`]'s checks: m, J_k > 0, every number finite,
+/// normals nonzero, k ∈ [0, 1] (decided lane by lane, without building a problem).
+#[inline(always)]
+fn valid<const N: usize>(data: &Data<Lanes<LANES>, N>) -> [bool; LANES] {
+    let mut ok = [true; LANES];
+    let InverseInertia::Principal(j) = &data.inertia else {
+        return [false; LANES];
+    };
+    let tiny = f64::MIN_POSITIVE * f64::EPSILON; // the least positive f64
+    within(&mut ok, &data.mass, tiny, f64::MAX);
+    for j in j {
+        within(&mut ok, j, tiny, f64::MAX);
+    }
+    finite(&mut ok, &data.velocity);
+    for i in 0..N {
+        finite(&mut ok, data.points[i].iter().chain(&data.normals[i]));
+        within(&mut ok, &data.k_newton[i], 0.0, 1.0);
+        within(&mut ok, &data.k_poisson[i], 0.0, 1.0);
+        let n = &data.normals[i];
+        for (l, o) in ok.iter_mut().enumerate() {
+            *o &= n[0].0[l] != 0.0 || n[1].0[l] != 0.0 || n[2].0[l] != 0.0;
+        }
+    }
+    ok
 }
 
 /// Solve every scene of `scenes` under `model` into `out` (its vectors are reused).
@@ -247,47 +325,82 @@ pub fn solve<const N: usize>(
     model: Model,
     out: &mut Outcomes<N>,
 ) -> Result<(), BatchError> {
+    solve_models(scenes, &mut [(model, out)])
+}
+
+/// Both models at once, sharing each scene's factorization: Newton into `newton`, Poisson
+/// into `poisson`.
+///
+/// # Errors
+/// [`BatchError::Lengths`] when the arrays of `scenes` differ in length.
+pub fn solve_both<const N: usize>(
+    scenes: &Scenes<N>,
+    newton: &mut Outcomes<N>,
+    poisson: &mut Outcomes<N>,
+) -> Result<(), BatchError> {
+    solve_models(
+        scenes,
+        &mut [(Model::Newton, newton), (Model::Poisson, poisson)],
+    )
+}
+
+/// Every model of `outs` into its outcomes.
+fn solve_models<const N: usize>(
+    scenes: &Scenes<N>,
+    outs: &mut [(Model, &mut Outcomes<N>)],
+) -> Result<(), BatchError> {
     let n = scenes.len();
-    if let Some((what, v)) = scenes.arrays().find(|(_, v)| v.len() != n) {
+    if let Some((what, found)) = scenes.mismatch() {
         return Err(BatchError::Lengths {
             what,
-            found: v.len(),
+            found,
             expected: n,
         });
     }
-    for v in out.impulses_hat.iter_mut().chain(&mut out.velocity) {
-        v.clear();
-        v.resize(n, 0.0);
+    for (_, out) in outs.iter_mut() {
+        out.reset(n);
     }
-    out.answers.clear();
     let mut generic = None;
     for start in (0..n).step_by(LANES) {
-        let factored = scenes.lanes(start).factor();
-        let (p, v) = factored.solve(model);
+        let data = scenes.lanes(start);
+        let valid = valid(&data);
+        let factored = data.factor();
         let (g, d) = (factored.inertances(), factored.pivots());
-        for lane in 0..LANES.min(n - start) {
-            let s = start + lane;
-            let lean = if scenes.valid(s) {
-                route_test::<N>(|i, j| g[i][j].0[lane], |j| d[j].0[lane]).and_then(|()| {
-                    let finite = p.iter().chain(&v).all(|x| x.0[lane].is_finite());
-                    finite.then_some(()).ok_or(LeanError::NotFinite)
-                })
-            } else {
-                Err(LeanError::NotFinite)
-            };
-            match lean {
-                Ok(()) => {
-                    for (o, x) in out.impulses_hat.iter_mut().zip(&p) {
-                        o[s] = x.0[lane];
-                    }
-                    for (o, x) in out.velocity.iter_mut().zip(&v) {
-                        o[s] = x.0[lane];
-                    }
-                    out.answers.push(Answer::Lean);
+        let count = LANES.min(n - start);
+        for (model, out) in outs.iter_mut() {
+            let (p, v) = factored.solve(*model);
+            let mut ok = valid;
+            finite(&mut ok, p.iter().chain(&v));
+            // The common case, every lane valid and accepted: whole lanes out at once.
+            if count == LANES
+                && ok.iter().all(|o| *o)
+                && (0..LANES).all(|l| route_test::<N>(|i, j| g[i][j].0[l], |j| d[j].0[l]).is_ok())
+            {
+                let range = start..start + LANES;
+                for (o, x) in out.impulses_hat.iter_mut().zip(&p) {
+                    o[range.clone()].copy_from_slice(&x.0);
                 }
-                Err(why) => {
-                    let answer = solve_generic(scenes, s, model, why, out, &mut generic);
-                    out.answers.push(answer);
+                for (o, x) in out.velocity.iter_mut().zip(&v) {
+                    o[range.clone()].copy_from_slice(&x.0);
+                }
+                continue;
+            }
+            for (l, ok) in ok.into_iter().enumerate().take(count) {
+                let s = start + l;
+                let route = match ok {
+                    true => route_test::<N>(|i, j| g[i][j].0[l], |j| d[j].0[l]),
+                    false => Err(LeanError::NotFinite),
+                };
+                match route {
+                    Ok(()) => {
+                        for (o, x) in out.impulses_hat.iter_mut().zip(&p) {
+                            o[s] = x.0[l];
+                        }
+                        for (o, x) in out.velocity.iter_mut().zip(&v) {
+                            o[s] = x.0[l];
+                        }
+                    }
+                    Err(why) => solve_generic(scenes, s, *model, why, out, &mut generic),
                 }
             }
         }
@@ -304,31 +417,42 @@ fn solve_generic<const N: usize>(
     why: LeanError,
     out: &mut Outcomes<N>,
     work: &mut Option<(Impact<f64>, Outcome<f64>)>,
-) -> Answer {
-    let problem = match scenes.problem(s) {
-        Ok(p) => p,
-        Err(e) => return Answer::Invalid(e),
-    };
-    let assembled = match work.take() {
-        Some((mut impact, o)) => impact.reassemble(&problem).map(|()| (impact, o)),
-        None => Impact::assemble(&problem).map(|i| (i, Outcome::default())),
-    };
-    let (mut impact, mut o) = match assembled {
-        Ok(x) => x,
-        Err(e) => return Answer::Unsolvable(e),
-    };
-    let answer = match impact.solve(model, &mut o) {
-        Ok(()) => {
+) {
+    let (route, reason) = match generic(scenes, s, model, work) {
+        Ok(o) => {
             for (j, p) in o.impulses_hat.iter().enumerate() {
                 out.impulses_hat[j][s] = *p;
             }
             for (k, x) in o.velocity.as_slice().iter().enumerate() {
                 out.velocity[k][s] = *x;
             }
-            Answer::Generic(why)
+            (Route::Generic, Reason::Lean(why))
         }
-        Err(e) => Answer::Unsolvable(e),
+        Err(reason) => (Route::Refused, reason),
     };
-    *work = Some((impact, o));
-    answer
+    out.routes[s] = route;
+    out.reasons.push((s, reason));
+}
+
+/// The generic solve of scene `s`, reusing `work`.
+fn generic<'w, const N: usize>(
+    scenes: &Scenes<N>,
+    s: usize,
+    model: Model,
+    work: &'w mut Option<(Impact<f64>, Outcome<f64>)>,
+) -> Result<&'w Outcome<f64>, Reason> {
+    let problem = scenes.problem(s).map_err(Reason::Invalid)?;
+    let (impact, o) = match work {
+        Some((impact, o)) => {
+            impact.reassemble(&problem).map_err(Reason::Unsolvable)?;
+            (impact, o)
+        }
+        None => {
+            let impact = Impact::assemble(&problem).map_err(Reason::Unsolvable)?;
+            let w = work.insert((impact, Outcome::default()));
+            (&mut w.0, &mut w.1)
+        }
+    };
+    impact.solve(model, o).map_err(Reason::Unsolvable)?;
+    Ok(o)
 }
