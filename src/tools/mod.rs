@@ -10,4 +10,5 @@ pub mod bench;
 pub mod check;
 pub mod derive;
 pub mod friction_bench;
+pub mod lean_bench;
 pub mod sweep;
