@@ -157,8 +157,6 @@ pub(crate) struct Factored<F, const N: usize> {
     responses: [[F; 6]; N],
     /// v̂_jx⁰.
     before: [F; N],
-    /// The lower triangle of Ĝ (g_ij for i ≥ j).
-    g: [[F; N]; N],
     /// L (strictly below the diagonal).
     l: [[F; N]; N],
     /// D: the pivots d_j.
@@ -190,9 +188,10 @@ fn reciprocal<F: Field>(a: &[F; 6], b: &[F; 6]) -> F {
 }
 
 impl<F: Field, const N: usize> Data<F, N> {
-    /// Axis screws, responses, v̂_x⁰, Ĝ and its L D Lᵀ (module docs; eq. 3–4, 8, 11, 12).
+    /// Axis screws, responses, v̂_x⁰, Ĝ (its lower triangle, returned beside the rest for the
+    /// route test) and its L D Lᵀ (module docs; eq. 3–4, 8, 11, 12).
     #[inline(always)]
-    pub(crate) fn factor(&self) -> Factored<F, N> {
+    pub(crate) fn factor(&self) -> (Factored<F, N>, [[F; N]; N]) {
         let axes: [[F; 6]; N] = array::from_fn(|j| {
             let n = &self.normals[j];
             let mu = cross(&self.points[j], n);
@@ -243,16 +242,16 @@ impl<F: Field, const N: usize> Data<F, N> {
             }
             d[j] = dj;
         }
-        Factored {
+        let factored = Factored {
             velocity: self.velocity.clone(),
             responses,
             before,
-            g,
             l,
             d,
             k_newton: self.k_newton.clone(),
             k_poisson: self.k_poisson.clone(),
-        }
+        };
+        (factored, g)
     }
 }
 
@@ -300,11 +299,6 @@ impl<F: Field, const N: usize> Factored<F, N> {
     /// The pivots d_j.
     pub(crate) fn pivots(&self) -> &[F; N] {
         &self.d
-    }
-
-    /// The lower triangle of Ĝ.
-    pub(crate) fn inertances(&self) -> &[[F; N]; N] {
-        &self.g
     }
 }
 
@@ -393,6 +387,7 @@ impl<T: Scalar, const N: usize> Lean<T, N> {
     /// constrained body, [`LeanError::Singular`] for a singular G, and in float types
     /// [`LeanError::IllConditioned`] when the route test refuses G (module docs) — in all
     /// three the generic [`crate::impact::solve::Impact`] is the path to take.
+    #[inline]
     pub fn new(problem: &Problem<T>) -> Result<Self, LeanError> {
         let contacts = problem.contacts();
         if contacts.len() != N {
@@ -437,14 +432,15 @@ impl<T: Scalar, const N: usize> Lean<T, N> {
     }
 
     /// [`Lean::new`] on plain arrays (validated by the caller).
+    #[inline]
     pub(crate) fn from_data(data: &Data<T, N>) -> Result<Self, LeanError> {
-        let factored = data.factor();
+        let (factored, g) = data.factor();
         if T::IS_EXACT {
             if let Some(pivot) = factored.d.iter().position(|d| d.signum_i8() <= 0) {
                 return Err(LeanError::Singular { pivot });
             }
         } else {
-            let (g, d) = (&factored.g, &factored.d);
+            let d = &factored.d;
             route_test::<N>(|i, j| g[i][j].to_f64(), |j| d[j].to_f64())?;
         }
         Ok(Lean { factored })
@@ -471,10 +467,5 @@ impl<T: Scalar, const N: usize> Lean<T, N> {
     /// Ĝ's pivots d_j (Δ̂ = Π d_j).
     pub fn pivots(&self) -> &[T; N] {
         self.factored.pivots()
-    }
-
-    /// The lower triangle of Ĝ = \[ĝ_ij\] (i ≥ j; the rest is zero).
-    pub fn inertances(&self) -> &[[T; N]; N] {
-        self.factored.inertances()
     }
 }

@@ -365,8 +365,8 @@ fn solve_models<const N: usize>(
     for start in (0..n).step_by(LANES) {
         let data = scenes.lanes(start);
         let valid = valid(&data);
-        let factored = data.factor();
-        let (g, d) = (factored.inertances(), factored.pivots());
+        let (factored, g) = data.factor();
+        let d = factored.pivots();
         let count = LANES.min(n - start);
         for (model, out) in outs.iter_mut() {
             let (p, v) = factored.solve(*model);
