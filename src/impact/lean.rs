@@ -303,8 +303,10 @@ impl<F: Field, const N: usize> Factored<F, N> {
 }
 
 /// The route test of the module docs on f64 values of Ĝ's lower triangle and the pivots:
-/// `Err` when a pivot is not positive or G is too far from diagonal. NaN is refused.
+/// `Err` when a pivot is not positive or G is too far from diagonal. NaN is refused (hence
+/// the negated comparisons).
 #[inline]
+#[allow(clippy::neg_cmp_op_on_partial_ord)]
 pub(crate) fn route_test<const N: usize>(
     g: impl Fn(usize, usize) -> f64,
     d: impl Fn(usize) -> f64,
@@ -450,13 +452,21 @@ impl<T: Scalar, const N: usize> Lean<T, N> {
     ///
     /// # Errors
     /// [`LeanError::NotFinite`] when an output overflowed (never for exact types).
+    #[inline]
     pub fn solve(&self, model: Model) -> Result<LeanOutcome<T, N>, LeanError> {
         let (impulses_hat, velocity) = self.factored.solve(model);
-        if !T::IS_EXACT
-            && !(impulses_hat.iter().all(Scalar::is_finite)
-                && velocity.iter().all(Scalar::is_finite))
-        {
-            return Err(LeanError::NotFinite);
+        if !T::IS_EXACT {
+            // Σ 0·x is 0 when every x is finite, NaN otherwise: one test for all.
+            let mut zero = T::zero();
+            for x in &impulses_hat {
+                zero += T::zero() * x;
+            }
+            for x in &velocity {
+                zero += T::zero() * x;
+            }
+            if !(zero.is_finite() && zero.signum_i8() == 0) {
+                return Err(LeanError::NotFinite);
+            }
         }
         Ok(LeanOutcome {
             impulses_hat,

@@ -30,11 +30,8 @@ macro_rules! lanewise {
         impl<const L: usize> $op for Lanes<L> {
             type Output = Self;
             #[inline(always)]
-            fn $f(mut self, o: Self) -> Self {
-                for (a, b) in self.0.iter_mut().zip(o.0) {
-                    *a = *a $sym b;
-                }
-                self
+            fn $f(self, o: Self) -> Self {
+                Lanes(std::array::from_fn(|i| self.0[i] $sym o.0[i]))
             }
         }
         impl<'a, const L: usize> $op<&'a Lanes<L>> for Lanes<L> {
