@@ -16,8 +16,10 @@
 //! exactly, event by event, for planar scenes; adaptively in floats for spatial ones.
 
 pub mod admissibility;
+pub mod batch;
 pub mod friction;
 pub mod gram_schmidt;
+pub mod lean;
 pub mod outputs;
 pub mod problem;
 pub mod restitution;

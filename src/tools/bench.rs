@@ -140,6 +140,8 @@ pub struct BenchReport {
     /// The accuracy contract measured per output, f32, f64 and double-double
     /// ([`crate::tools::accuracy`]), and how many scenes spanning ratios of 10^±12 it included.
     pub contract: (Vec<ContractRow>, usize),
+    /// The lean path and the batch beside the generic solve ([`crate::tools::lean_bench`]).
+    pub lean: crate::tools::lean_bench::LeanBench,
 }
 
 /// A small deterministic generator (SplitMix64), so the corpus is the same on every machine.
@@ -627,6 +629,7 @@ pub fn run(opts: &BenchOptions) -> BenchReport {
         unilateral_differs,
         friction: crate::tools::friction_bench::run(opts.quick),
         contract,
+        lean: crate::tools::lean_bench::run(opts.quick),
     }
 }
 
@@ -829,6 +832,7 @@ impl BenchReport {
             );
         }
         s += &self.contract_text();
+        s += &self.lean.to_text();
         s + &self.friction.to_text()
     }
 
@@ -873,6 +877,7 @@ impl BenchReport {
             "unilateral_differs": self.unilateral_differs,
             "contract": self.contract_json(),
             "friction": self.friction.to_json(),
+            "lean": self.lean.to_json(),
             "scaling": self.scaling.iter().map(|g| json!({
                 "contacts": g.contacts,
                 "ns_per_assemble_and_analyze": self.rows.iter().zip(&g.analyze).map(|(r, x)| (r.name.to_string(), x.map(num).unwrap_or(Json::Null))).collect::<serde_json::Map<_, _>>(),
