@@ -732,7 +732,8 @@ PY_METHODS = [
 ]
 # the four references a time is divided by: inertance f64 / exact in Rust (`inertance bench`,
 # in-process) and from Python (`inertance.solve` on a prebuilt Scene)
-REFS = [("f64", "÷ Rust f64"), ("exact", "÷ Rust exact"), ("py_f64", "÷ Py f64"), ("py_exact", "÷ Py exact")]
+REFS = [("f64/lean", "÷ Rust lean"), ("f64", "÷ Rust f64"), ("exact", "÷ Rust exact"), ("py_f64", "÷ Py f64"),
+        ("py_exact", "÷ Py exact")]
 REF_W = 13
 
 
@@ -920,7 +921,7 @@ def main() -> int:
     all_methods = PY_METHODS + METHODS
     ratios = {key: {k: [] for k, _ in REFS} for key, _ in all_methods}
     times = {key: [] for key, _ in all_methods}
-    inert_times = {"f64": [], "exact": []}
+    inert_times = {"f64/lean": [], "f64/impulses,twist": [], "f64": [], "exact": []}
 
     for s in scenes:
         path = outdir / f"{s.name}.toml"
@@ -982,12 +983,12 @@ def main() -> int:
 
         # -- timing -----------------------------------------------------------------------------
         ref = {}
-        if ns and ns.get("f64") is not None:
-            ref["f64"] = ns["f64"] * 1e-9
-            inert_times["f64"].append(ref["f64"])
-        if ns and ns.get("exact") is not None:
-            ref["exact"] = ns["exact"] * 1e-9
-            inert_times["exact"].append(ref["exact"])
+        # the lean path (impact::lean, impulses and twist; null where its route refuses the
+        # scene), the cheapest generic path (impulses and twist asked for), every output
+        for key in ("f64/lean", "f64/impulses,twist", "f64", "exact"):
+            if ns and ns.get(key) is not None:
+                ref[key] = ns[key] * 1e-9
+                inert_times[key].append(ref[key])
         measured = {}
         for key in ("py_f64", "py_exact"):  # the Python references first
             if key in runners:
@@ -1004,7 +1005,7 @@ def main() -> int:
         print(hdr)
         print("   " + "─" * (len(hdr) - 3))
         if ns:
-            for key in ("f32", "f64", "double-double", "exact"):
+            for key in ("f64/lean", "f64/impulses,twist", "f32", "f64", "double-double", "exact"):
                 if key in ns and ns[key] is not None:
                     t = ns[key] * 1e-9
                     print(f"   {'inertance ' + key + ' (Rust, bench)':<40} {fmt_time(t):>11} "
@@ -1045,7 +1046,7 @@ def main() -> int:
            + " ".join(f"{h:>{REF_W}}" for _, h in REFS))
     print(hdr)
     print("   " + "─" * (len(hdr) - 3))
-    for key in ("f64", "exact"):
+    for key in ("f64/lean", "f64/impulses,twist", "f64", "exact"):
         if inert_times[key]:
             print(f"   {'inertance ' + key + ' (Rust, bench)':<40} {len(inert_times[key]):>6} "
                   f"{fmt_time(gmean(inert_times[key])):>11}")

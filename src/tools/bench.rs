@@ -395,6 +395,39 @@ fn time_solve_for<T: Scalar>(p: &Problem<T>, budget: Duration, asked: Asked) -> 
     Some(samples[1])
 }
 
+/// ns per lean solve (`impact::lean`: assemble + Newton + Poisson, impulses and twist) of a
+/// free body with 2 to 4 contacts, built from the problem each time like [`time_solve_for`];
+/// `None` where the lean route refuses it (another N, a tensor, an ill-conditioned G).
+fn time_lean(p: &Problem<f64>, budget: Duration) -> Option<f64> {
+    fn time<const N: usize>(p: &Problem<f64>, budget: Duration) -> Option<f64> {
+        use crate::impact::lean::Lean;
+        let run = |p: &Problem<f64>| -> Option<()> {
+            let lean = Lean::<f64, N>::new(p).ok()?;
+            std::hint::black_box(lean.solve(Model::Newton).ok()?);
+            std::hint::black_box(lean.solve(Model::Poisson).ok()?);
+            Some(())
+        };
+        run(p)?;
+        let mut samples = Vec::with_capacity(3);
+        for _ in 0..3 {
+            let (mut reps, start) = (0u64, Instant::now());
+            while start.elapsed() < budget || reps == 0 {
+                run(std::hint::black_box(p))?;
+                reps += 1;
+            }
+            samples.push(start.elapsed().as_nanos() as f64 / reps as f64);
+        }
+        samples.sort_by(f64::total_cmp);
+        Some(samples[1])
+    }
+    match p.contacts().len() {
+        2 => time::<2>(p, budget),
+        3 => time::<3>(p, budget),
+        4 => time::<4>(p, budget),
+        _ => None,
+    }
+}
+
 fn median(mut v: Vec<f64>) -> f64 {
     if v.is_empty() {
         return f64::NAN;
@@ -649,6 +682,13 @@ pub fn time_scene(scene: &Scene, quick: bool) -> Vec<(&'static str, Option<f64>)
                 .problem::<f64>()
                 .ok()
                 .and_then(|p| time_solve_for(&p, budget, Asked::IMPULSES | Asked::TWIST)),
+        ),
+        (
+            "f64/lean",
+            scene
+                .problem::<f64>()
+                .ok()
+                .and_then(|p| time_lean(&p, budget)),
         ),
         (
             "f32",
