@@ -152,6 +152,14 @@ fn run_prepared_with<T: Scalar>(
         return run_frictional(scene, problem, models);
     }
     let models = models.unwrap_or(&scene.models);
+    let (contacts, limit) = (
+        problem.contacts().len(),
+        crate::impact::unilateral::max_unilateral_contacts::<T>(),
+    );
+    if scene.law == Law::Unilateral && contacts > limit {
+        // Refused before G (N×N) is assembled.
+        return Err(UnilateralError::TooManyContacts { contacts, limit }.into());
+    }
     let mut a = Assembled {
         impact: Impact::assemble(problem)?,
     };
