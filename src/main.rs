@@ -545,6 +545,13 @@ fn fail(path: &std::path::Path, error: RunError) -> ExitCode {
             eprintln!("error: {}: {e}", path.display());
             ExitCode::from(3)
         }
+        RunError::Unilateral(
+            e @ inertance::impact::unilateral::UnilateralError::TooManyContacts { .. },
+        ) => {
+            // A limit, refused before any work: as the other limits, status 2.
+            eprintln!("error: {}: {e}", path.display());
+            ExitCode::from(2)
+        }
         RunError::Unilateral(e) => {
             eprintln!(
                 "error: {}: {e}.\n  No impulses P ≥ 0 satisfy the law: the contacts hold the body \

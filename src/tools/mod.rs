@@ -11,4 +11,5 @@ pub mod check;
 pub mod corpus;
 pub mod derive;
 pub mod friction_bench;
+pub mod n_curve;
 pub mod sweep;
