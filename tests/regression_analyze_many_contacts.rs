@@ -65,7 +65,7 @@ fn exact_analysis_of_220_contacts_answers() {
     let json: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     assert_eq!(json["contacts"], 220);
     assert_eq!(json["rank"], 6);
-    assert_eq!(json["det"], 0);
+    assert_eq!(json["det"], "0");
     for (_, m) in json["models"].as_object().unwrap() {
         let why = m["unilateral"]["reason"].as_str().unwrap_or_default();
         assert!(
