@@ -22,7 +22,6 @@ use inertance::mechanics::body::RigidBody;
 use inertance::mechanics::contact::Contact;
 use inertance::mechanics::screw::{Screw, Vec3};
 use inertance::scalar::{Exact, int};
-use num_bigint::BigInt;
 use num_traits::Zero;
 use proptest::prelude::*;
 
@@ -90,7 +89,14 @@ fn scene(max: usize) -> impl Strategy<Value = Problem<Exact>> {
         })
 }
 
-fn both(p: &Problem<Exact>) -> (Analysis<Exact>, Analysis<Exact>, Impact<Exact>, WrenchSpace<Exact>) {
+fn both(
+    p: &Problem<Exact>,
+) -> (
+    Analysis<Exact>,
+    Analysis<Exact>,
+    Impact<Exact>,
+    WrenchSpace<Exact>,
+) {
     let mut impact = Impact::assemble(p).expect("assembled");
     let dense = analyze(&mut impact, &MODELS);
     let space = WrenchSpace::build(p).expect("built");
@@ -156,7 +162,10 @@ fn the_scenes_cover_every_classification() {
 fn table(n: usize) -> Problem<f64> {
     let contacts = (0..n)
         .map(|i| {
-            let (x, y) = ((i % 300) as f64 / 100.0 - 1.5, (i / 300) as f64 / 1000.0 - 0.2);
+            let (x, y) = (
+                (i % 300) as f64 / 100.0 - 1.5,
+                (i / 300) as f64 / 1000.0 - 0.2,
+            );
             Contact::new(Vec3::new(x, y, -1.0), Vec3::new(0.0, 0.0, -1.0), 0.5)
         })
         .collect();

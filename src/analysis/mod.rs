@@ -139,7 +139,10 @@ pub fn analyze<T: Scalar>(impact: &mut Impact<T>, models: &[Model]) -> Analysis<
     });
     let newton_equals_poisson = newton_equals_poisson(impact.problem(), &out_models, diagonal);
     let coincident = coincident(impact.problem(), all_pairs(n), |i| {
-        (impact.g_hat()[i * n + i].clone(), impact.before_hat()[i][0].clone())
+        (
+            impact.g_hat()[i * n + i].clone(),
+            impact.before_hat()[i][0].clone(),
+        )
     });
     Analysis {
         rank: impact.rank(),
@@ -162,7 +165,10 @@ pub fn analyze_reduced<T: Scalar>(
     let newton_equals_poisson =
         newton_equals_poisson(space.problem(), &out_models, space.g_diagonal());
     let coincident = coincident(space.problem(), near_pairs(space.problem()), |i| {
-        (space.diagonal()[i].clone(), space.before_hat()[i][0].clone())
+        (
+            space.diagonal()[i].clone(),
+            space.before_hat()[i][0].clone(),
+        )
     });
     Analysis {
         rank: space.rank(),
@@ -407,7 +413,13 @@ fn near_pairs<T: Scalar>(problem: &Problem<T>) -> Vec<(usize, usize)> {
     let points: Vec<[f64; 3]> = problem
         .contacts()
         .iter()
-        .map(|c| [c.point[0].to_f64(), c.point[1].to_f64(), c.point[2].to_f64()])
+        .map(|c| {
+            [
+                c.point[0].to_f64(),
+                c.point[1].to_f64(),
+                c.point[2].to_f64(),
+            ]
+        })
         .collect();
     let extent = points
         .iter()

@@ -249,7 +249,11 @@ impl<T: Scalar> WrenchSpace<T> {
         match gpp.cholesky() {
             Some(ch) => {
                 let l = ch.l();
-                (l.transpose() * k * l).symmetric_eigenvalues().iter().copied().collect()
+                (l.transpose() * k * l)
+                    .symmetric_eigenvalues()
+                    .iter()
+                    .copied()
+                    .collect()
             }
             None => vec![0.0; r],
         }

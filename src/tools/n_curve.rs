@@ -97,10 +97,7 @@ pub fn run(quick: bool) -> Vec<NCurve> {
     let (f, e): (&[usize], &[usize]) = if quick {
         (&[10, 100, 1000, 10_000], &[10, 30, 100])
     } else {
-        (
-            &[10, 100, 1000, 10_000, 100_000],
-            &[10, 30, 100, 300, 1000],
-        )
+        (&[10, 100, 1000, 10_000, 100_000], &[10, 30, 100, 300, 1000])
     };
     let curve = |scalar, points: Vec<(usize, f64)>| NCurve {
         scalar,
@@ -108,7 +105,10 @@ pub fn run(quick: bool) -> Vec<NCurve> {
         points,
     };
     vec![
-        curve("f64", f.iter().map(|&n| (n, time::<f64>(n, budget))).collect()),
+        curve(
+            "f64",
+            f.iter().map(|&n| (n, time::<f64>(n, budget))).collect(),
+        ),
         curve(
             "exact",
             e.iter().map(|&n| (n, time::<Exact>(n, budget))).collect(),
