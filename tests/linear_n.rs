@@ -202,3 +202,47 @@ fn ten_thousand_contacts_without_an_n_squared_allocation() {
         "largest allocation {largest} bytes for {n} contacts"
     );
 }
+
+/// The same comparison on every scene of `tests/hard_cases/`, `tests/modelled/` and `examples/` that reads in exact
+/// rationals — constrained bodies among them (a semidefinite metric ηW: rank ≤ dof).
+#[test]
+fn reduced_analysis_equals_the_dense_one_on_the_scene_files() {
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut compared = (0, 0);
+    for dir in ["tests/hard_cases", "tests/modelled", "examples"] {
+        let Ok(entries) = std::fs::read_dir(root.join(dir)) else {
+            continue;
+        };
+        for path in entries.flatten().map(|e| e.path()) {
+            if path.extension().is_none_or(|e| e != "toml") {
+                continue;
+            }
+            let Ok(scene) = inertance::scene::Scene::load(&path) else {
+                continue;
+            };
+            let Ok(p) = inertance::scene::pipeline::prepare::<Exact>(&scene) else {
+                continue;
+            };
+            let (dense, reduced, impact, space) = both(&p);
+            let name = path.display();
+            assert_eq!(dense.rank, reduced.rank, "{name}");
+            assert_eq!(impact.det_hat(), &space.det_hat(), "{name}");
+            assert_eq!(
+                dense.newton_equals_poisson, reduced.newton_equals_poisson,
+                "{name}"
+            );
+            assert_eq!(dense.coincident, reduced.coincident, "{name}");
+            for (a, b) in dense.models.iter().zip(&reduced.models) {
+                assert_eq!(a.classification, b.classification, "{name}");
+                assert_eq!(a.augmented_rank, b.augmented_rank, "{name}");
+                assert_eq!(a.nullity, b.nullity, "{name}");
+                assert_eq!(a.twist_fixed, b.twist_fixed, "{name}");
+                assert_eq!(a.admissible, b.admissible, "{name}");
+                assert_eq!(a.outcome, b.outcome, "{name}");
+            }
+            compared.0 += 1;
+            compared.1 += usize::from(p.constraints().is_some());
+        }
+    }
+    assert!(compared.0 >= 10 && compared.1 >= 2, "{compared:?}");
+}
