@@ -104,7 +104,7 @@ pub struct UnilateralReport {
 /// its report lists a basis of the family of solutions and the unilateral law's answer. Beyond
 /// it the analysis runs in the space of the contact wrenches
 /// ([`crate::analysis::wrench_space`], cost linear in N): the family is given by its dimension
-/// (`null_space_dimension`; `null_space` is `null`), Δ = 0 and cond₂ G = ∞ whenever N > rank G.
+/// (`null_space_dimension`; `null_space` is absent), Δ = 0 and cond₂ G = ∞ whenever N > rank G.
 pub const DENSE_CONTACTS: usize = 24;
 
 /// The most contacts `analyze` takes in exact arithmetic (rationals or symbols). The analysis
@@ -562,17 +562,21 @@ impl AnalysisReport {
                 m.impulses.as_ref().map_or(Json::Null, |p| vec(p)),
             );
             if m.classification == Classification::SingularCompatible {
-                o.insert(
-                    "family".into(),
-                    json!({
-                        "particular": m.impulses.as_ref().map(|p| vec(p)),
-                        "null_space": (m.family.len() == m.nullity).then(|| m.family.iter().map(|z| vec(z)).collect::<Vec<_>>()),
-                        "null_space_dimension": m.nullity,
-                        "velocities_fixed": m.twist_fixed,
-                        "energies_fixed": m.twist_fixed,
-                        "impulses_fixed": m.admissible.iter().map(|a| !a.2).collect::<Vec<_>>(),
-                    }),
-                );
+                let mut family = json!({
+                    "particular": m.impulses.as_ref().map(|p| vec(p)),
+                    "null_space_dimension": m.nullity,
+                    "velocities_fixed": m.twist_fixed,
+                    "energies_fixed": m.twist_fixed,
+                    "impulses_fixed": m.admissible.iter().map(|a| !a.2).collect::<Vec<_>>(),
+                });
+                // The basis, when materialised (up to DENSE_CONTACTS): absent beyond.
+                if let (Some(f), true) = (family.as_object_mut(), m.family.len() == m.nullity) {
+                    f.insert(
+                        "null_space".into(),
+                        Json::Array(m.family.iter().map(|z| vec(z)).collect()),
+                    );
+                }
+                o.insert("family".into(), family);
             }
             o.insert(
                 "twist_after".into(),
