@@ -16,7 +16,8 @@
 use std::hint::black_box;
 
 use criterion::Criterion;
-use inertance::analysis::analyze;
+use inertance::analysis::wrench_space::WrenchSpace;
+use inertance::analysis::{analyze, analyze_reduced};
 use inertance::impact::batch::{self, Outcomes, Scenes};
 use inertance::impact::lean::Lean;
 use inertance::impact::outputs::Outputs;
@@ -357,6 +358,23 @@ fn bench_contacts<T: Scalar>(c: &mut Criterion, n: usize) {
     }
 }
 
+/// `analyze` on the linear-cost route against N (issue 15): a group per scalar, one point per
+/// N, so criterion's report shows the curve ([`inertance::tools::n_curve`] fits its exponent).
+fn bench_n_curve<T: Scalar>(c: &mut Criterion, sizes: &[usize]) {
+    let mut group = c.benchmark_group(format!("analyze-linear/{}", T::NAME));
+    group.sample_size(10);
+    for &n in sizes {
+        let p = inertance::tools::n_curve::landing::<T>(0x11_4ea2, n);
+        group.bench_function(format!("{n}"), |b| {
+            b.iter(|| {
+                let space = WrenchSpace::build(black_box(&p)).unwrap();
+                black_box(analyze_reduced(&space, &Model::ALL))
+            })
+        });
+    }
+    group.finish();
+}
+
 fn bench_constrained<T: Scalar>(c: &mut Criterion) {
     let scene = Scene::parse(EXAMPLE_6, "example 6").unwrap();
     let p = inertance::scene::pipeline::prepare::<T>(&scene).unwrap();
@@ -391,6 +409,8 @@ fn benches(c: &mut Criterion) {
     bench_outputs(c, &scene, Outputs::ALL);
     bench_scalar::<DoubleDouble>(c, &scene);
     bench_scalar::<Exact>(c, &scene);
+    bench_n_curve::<f64>(c, &[100, 1000, 10_000, 100_000]);
+    bench_n_curve::<Exact>(c, &[10, 100, 1000]);
     bench_unilateral::<f64>(c, "example3", &scene);
     bench_unilateral::<Exact>(c, "example3", &scene);
     c.bench_function("example3/parse-scene", |b| {

@@ -552,8 +552,11 @@ fn fail(path: &std::path::Path, error: RunError) -> ExitCode {
             eprintln!(
                 "error: {}: {e}.\n  A pivot of G fell within the rounding tolerance: G is singular, or \
                  so ill-conditioned that this precision cannot split the impulses between the \
-                 contacts.\n  Run `inertance solve {} --exact` to decide exactly, or `inertance \
-                 analyze {}` for the conditioning and the family of solutions.",
+                 contacts.\n  Run `inertance solve {} --exact` to decide exactly, `inertance \
+                 analyze {}` for the conditioning and the family of solutions, or `inertance \
+                 solve {} --law unilateral` for the velocities after impact, which the \
+                 complementarity law fixes.",
+                path.display(),
                 path.display(),
                 path.display(),
                 path.display()
@@ -576,6 +579,13 @@ fn fail(path: &std::path::Path, error: RunError) -> ExitCode {
         RunError::Solve(e) => {
             eprintln!("error: {}: {e}", path.display());
             ExitCode::from(3)
+        }
+        RunError::Unilateral(
+            e @ inertance::impact::unilateral::UnilateralError::TooManyContacts { .. },
+        ) => {
+            // A limit, refused before any work: as the other limits, status 2.
+            eprintln!("error: {}: {e}", path.display());
+            ExitCode::from(2)
         }
         RunError::Unilateral(e) => {
             eprintln!(

@@ -460,9 +460,10 @@ impl Drop for Scratch {
 // Runs.
 
 /// `analyze` on more than this many contacts is left to release builds (the long run): in a
-/// debug build its f64 Lemke pivots take 11 s at 220 contacts (0.3 s in release). Beyond
-/// `tools::analyze::MAX_EXACT_CONTACTS` (exact) and `MAX_FLOAT_CONTACTS` it refuses at once
-/// (tests/regression_analyze_many_contacts.rs). `INERTANCE_FUZZ_ALL` runs it in debug too.
+/// debug build its f64 Lemke pivots (the unilateral part of the report) take 11 s at 220
+/// contacts (0.3 s in release). Beyond `tools::analyze::MAX_EXACT_CONTACTS` (exact) and
+/// `MAX_FLOAT_CONTACTS` it refuses at once (tests/regression_analyze_many_contacts.rs).
+/// `INERTANCE_FUZZ_ALL` runs it in debug too.
 const ANALYZE_MAX_CONTACTS: usize = 64;
 
 fn skip_analyze(contacts: usize) -> bool {

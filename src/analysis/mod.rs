@@ -23,6 +23,7 @@
 //! it is ≤ N·ε·max g_ii — the tolerance is reported.
 
 pub mod accuracy;
+pub mod wrench_space;
 
 use crate::impact::problem::Problem;
 use crate::impact::restitution::Model;
@@ -75,8 +76,11 @@ pub struct ModelAnalysis<T: Scalar> {
     /// The impulses (hatted, see [`crate::mechanics::contact`]) and everything after impact: the unique
     /// solution, or the family's least-norm member; `None` when incompatible.
     pub outcome: Option<Outcome<T>>,
-    /// A basis of the impulse family's directions (hatted), empty unless singular-compatible.
+    /// A basis of the impulse family's directions (hatted), empty unless singular-compatible;
+    /// also empty from the linear-cost route ([`wrench_space`]), which gives only its dimension.
     pub family: Vec<Vec<T>>,
+    /// N − rank G for a singular-compatible system: the dimension of the family (else 0).
+    pub nullity: usize,
     /// Whether the twist after impact is the same for every member of the family.
     pub twist_fixed: bool,
     /// Per contact.
@@ -127,11 +131,48 @@ pub fn analyze<T: Scalar>(impact: &mut Impact<T>, models: &[Model]) -> Analysis<
     for &model in models {
         out_models.push(analyze_model(impact, model));
     }
-    let newton_equals_poisson = newton_equals_poisson(impact, &out_models);
-    let coincident = coincident(impact);
+    let n = impact.contacts();
+    let diagonal = (0..n).all(|i| {
+        (0..n).all(|j| {
+            i == j || impact.g_hat()[i * n + j].is_negligible(&impact.g_hat()[i * n + i], 16 * n)
+        })
+    });
+    let newton_equals_poisson = newton_equals_poisson(impact.problem(), &out_models, diagonal);
+    let coincident = coincident(impact.problem(), all_pairs(n), |i| {
+        (
+            impact.g_hat()[i * n + i].clone(),
+            impact.before_hat()[i][0].clone(),
+        )
+    });
     Analysis {
         rank: impact.rank(),
         tolerance,
+        models: out_models,
+        newton_equals_poisson,
+        coincident,
+    }
+}
+
+/// [`analyze`] at a cost linear in N, from the contact wrenches ([`wrench_space`]): the
+/// same rank, classification, least-norm impulses, twist, energies and admissibility, with
+/// the family given by its dimension (`nullity`) and no basis.
+pub fn analyze_reduced<T: Scalar>(
+    space: &wrench_space::WrenchSpace<T>,
+    models: &[Model],
+) -> Analysis<T> {
+    let out_models: Vec<ModelAnalysis<T>> =
+        models.iter().map(|&m| space.analyze_model(m)).collect();
+    let newton_equals_poisson =
+        newton_equals_poisson(space.problem(), &out_models, space.g_diagonal());
+    let coincident = coincident(space.problem(), near_pairs(space.problem()), |i| {
+        (
+            space.diagonal()[i].clone(),
+            space.before_hat()[i][0].clone(),
+        )
+    });
+    Analysis {
+        rank: space.rank(),
+        tolerance: space.tolerance(),
         models: out_models,
         newton_equals_poisson,
         coincident,
@@ -171,6 +212,7 @@ fn analyze_model<T: Scalar>(impact: &mut Impact<T>, model: Model) -> ModelAnalys
             classification: Classification::Unique,
             outcome: ok.then_some(out),
             family: Vec::new(),
+            nullity: 0,
             twist_fixed: true,
             admissible,
             energy_gain: gain,
@@ -186,6 +228,7 @@ fn analyze_model<T: Scalar>(impact: &mut Impact<T>, model: Model) -> ModelAnalys
             classification: Classification::SingularIncompatible,
             outcome: None,
             family: Vec::new(),
+            nullity: 0,
             twist_fixed: false,
             admissible: approaching
                 .iter()
@@ -244,6 +287,7 @@ fn analyze_model<T: Scalar>(impact: &mut Impact<T>, model: Model) -> ModelAnalys
         augmented_rank: impact.rank(),
         classification: Classification::SingularCompatible,
         outcome: Some(out),
+        nullity: family.len(),
         family,
         twist_fixed,
         admissible,
@@ -318,12 +362,13 @@ fn least_norm<T: Scalar>(p: &mut [T], basis: &[Vec<T>], impact: &Impact<T>) {
 
 /// eq. 50–55: equal impulses, and why.
 fn newton_equals_poisson<T: Scalar>(
-    impact: &Impact<T>,
+    problem: &Problem<T>,
     models: &[ModelAnalysis<T>],
+    diagonal: bool,
 ) -> Option<(bool, String)> {
     let newton = models.iter().find(|m| m.model == Model::Newton)?;
     let poisson = models.iter().find(|m| m.model == Model::Poisson)?;
-    let n = impact.contacts();
+    let n = problem.contacts().len();
     let equal = match (&newton.outcome, &poisson.outcome) {
         (Some(a), Some(b)) => {
             (0..n).all(|i| {
@@ -334,20 +379,15 @@ fn newton_equals_poisson<T: Scalar>(
                     b.impulses_hat[i].clone()
                 };
                 d.is_negligible(&reference, 16 * n)
-            }) && newton.family.len() == poisson.family.len()
+            }) && newton.nullity == poisson.nullity
         }
         (None, None) => newton.classification == poisson.classification,
         _ => false,
     };
-    let cs = impact.problem().contacts();
+    let cs = problem.contacts();
     let same_k = cs
         .iter()
         .all(|c| c.k_newton == c.k_poisson && c.k_newton == cs[0].k_newton);
-    let diagonal = (0..n).all(|i| {
-        (0..n).all(|j| {
-            i == j || impact.g_hat()[i * n + j].is_negligible(&impact.g_hat()[i * n + i], 16 * n)
-        })
-    });
     let reason = match (equal, same_k, diagonal) {
         (true, true, _) => "equal coefficients at every contact (k_i^N = k_i^P = k): eq. 55, first possibility".to_string(),
         (true, false, true) => "g_ij = 0 for i ≠ j: every contact answers only its own impulse (eq. 55, second possibility; eq. 59–60)".to_string(),
@@ -358,12 +398,79 @@ fn newton_equals_poisson<T: Scalar>(
 }
 
 /// Pairs of contacts at the same point (A_i ≡ A_j, §8), with the single-impulse reduction.
-fn coincident<T: Scalar>(impact: &Impact<T>) -> Vec<Coincidence<T>> {
-    let n = impact.contacts();
-    let problem: &Problem<T> = impact.problem();
+/// Every pair i < j of N contacts, in order (the N×N route).
+fn all_pairs(n: usize) -> impl Iterator<Item = (usize, usize)> {
+    (0..n).flat_map(move |i| (i + 1..n).map(move |j| (i, j)))
+}
+
+/// The pairs i < j of contacts that may share a point, in order, in O(N) expected time: the
+/// points are hashed on a grid of cells 10⁻⁶·max |A_i| wide (in f64), and each point is
+/// compared with those of its own and the 26 neighbouring cells. Two points the test of
+/// [`coincident`] calls equal are within √(6ε)·max |A_i| ≈ 4·10⁻⁸·max |A_i| of each other
+/// in floats, and round to the same f64 in exact types, so they are neighbours on the grid.
+fn near_pairs<T: Scalar>(problem: &Problem<T>) -> Vec<(usize, usize)> {
+    use std::collections::HashMap;
+    let points: Vec<[f64; 3]> = problem
+        .contacts()
+        .iter()
+        .map(|c| {
+            [
+                c.point[0].to_f64(),
+                c.point[1].to_f64(),
+                c.point[2].to_f64(),
+            ]
+        })
+        .collect();
+    let extent = points
+        .iter()
+        .flatten()
+        .map(|x| x.abs())
+        .filter(|x| x.is_finite())
+        .fold(0.0, f64::max);
+    let h = if extent > 0.0 { 1e-6 * extent } else { 1.0 };
+    let cell = |p: &[f64; 3]| {
+        p.map(|x| {
+            let c = (x / h).floor();
+            if c.is_finite() { c as i64 } else { i64::MAX }
+        })
+    };
+    let mut grid: HashMap<[i64; 3], Vec<usize>> = HashMap::new();
+    for (i, p) in points.iter().enumerate() {
+        grid.entry(cell(p)).or_default().push(i);
+    }
+    let mut pairs = Vec::new();
+    for (i, p) in points.iter().enumerate() {
+        let c = cell(p);
+        for dx in -1..=1i64 {
+            for dy in -1..=1i64 {
+                for dz in -1..=1i64 {
+                    let key = [
+                        c[0].saturating_add(dx),
+                        c[1].saturating_add(dy),
+                        c[2].saturating_add(dz),
+                    ];
+                    if let Some(list) = grid.get(&key) {
+                        pairs.extend(list.iter().filter(|&&j| j > i).map(|&j| (i, j)));
+                    }
+                }
+            }
+        }
+    }
+    pairs.sort_unstable();
+    pairs.dedup();
+    pairs
+}
+
+/// Of the candidate `pairs` (i < j, in order), those at the same point, with the
+/// single-impulse reduction from `own(i)` = (ĝ_ii, v̂_ix⁰).
+fn coincident<T: Scalar>(
+    problem: &Problem<T>,
+    pairs: impl IntoIterator<Item = (usize, usize)>,
+    own: impl Fn(usize) -> (T, T),
+) -> Vec<Coincidence<T>> {
     let mut out = Vec::new();
-    for i in 0..n {
-        for j in i + 1..n {
+    for (i, j) in pairs {
+        {
             let (pi, pj) = (&problem.contacts()[i].point, &problem.contacts()[j].point);
             let d = pi - pj;
             let reference = crate::mechanics::screw::norm2(pi) + crate::mechanics::screw::norm2(pj);
@@ -377,8 +484,7 @@ fn coincident<T: Scalar>(impact: &Impact<T>) -> Vec<Coincidence<T>> {
                 3,
             ) && crate::mechanics::screw::dot(ni, nj).signum_i8() > 0;
             let c = &problem.contacts()[i];
-            let gii = impact.g_hat()[i * n + i].clone();
-            let v0 = impact.before_hat()[i][0].clone();
+            let (gii, v0) = own(i);
             let single = [
                 (T::one() + &c.k_newton) * &v0 / gii.clone(), // eq. 70
                 (T::one() + &c.k_poisson) * &v0 / gii,        // eq. 72

@@ -168,6 +168,26 @@ pub enum UnilateralError {
     /// The assembled impact could not be solved.
     #[error(transparent)]
     Solve(#[from] SolveError),
+    /// More contacts than Lemke's method on the N×N tableau takes in this scalar type
+    /// ([`max_unilateral_contacts`]), refused before any work.
+    #[error(
+        "the unilateral law is solved for at most {limit} contacts in this arithmetic ({contacts} \
+         given): Lemke's method works on the N×N matrix G, its pivots costing O(N²) each"
+    )]
+    TooManyContacts {
+        /// N.
+        contacts: usize,
+        /// The limit.
+        limit: usize,
+    },
+}
+
+/// The most contacts the unilateral law is solved for: Lemke's method pivots on the N×N
+/// tableau, O(N²) per pivot and up to O(N) pivots. In f64, 1000 contacts on a plane take
+/// about a second (release build); in exact arithmetic the rationals grow with every pivot,
+/// and 48 contacts take about a second.
+pub fn max_unilateral_contacts<T: Scalar>() -> usize {
+    if T::IS_EXACT { 48 } else { 1000 }
 }
 
 impl<T: Scalar> Impact<T> {
@@ -182,6 +202,10 @@ impl<T: Scalar> Impact<T> {
         model: Model,
         out: &mut Outcome<T>,
     ) -> Result<Activity, UnilateralError> {
+        let (contacts, limit) = (self.contacts(), max_unilateral_contacts::<T>());
+        if contacts > limit {
+            return Err(UnilateralError::TooManyContacts { contacts, limit });
+        }
         let mut work = std::mem::take(&mut self.unilateral);
         let result = self.solve_unilateral_in(&mut work, model, out);
         self.unilateral = work;

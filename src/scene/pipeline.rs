@@ -155,6 +155,14 @@ fn run_prepared_with<T: Scalar>(
     let models = models.unwrap_or(&scene.models);
     // The outputs printed, and what the checks read (admissibility, the energy identity).
     let checked = Outputs::IMPULSES | Outputs::NORMAL_VELOCITIES | Outputs::ENERGIES;
+    let (contacts, limit) = (
+        problem.contacts().len(),
+        crate::impact::unilateral::max_unilateral_contacts::<T>(),
+    );
+    if scene.law == Law::Unilateral && contacts > limit {
+        // Refused before G (N×N) is assembled.
+        return Err(UnilateralError::TooManyContacts { contacts, limit }.into());
+    }
     let mut a = Assembled {
         impact: Impact::assemble_for(problem, scene.outputs | checked)?,
     };

@@ -3,7 +3,10 @@
 
 use serde_json::{Map, Value as Json, json};
 
-use crate::analysis::{Analysis, Classification, analyze, condition_number, largest_eigenvalue};
+use crate::analysis::wrench_space::WrenchSpace;
+use crate::analysis::{
+    Analysis, Classification, analyze, analyze_reduced, condition_number, largest_eigenvalue,
+};
 use crate::impact::problem::Problem;
 use crate::impact::restitution::Model;
 use crate::impact::solve::Impact;
@@ -55,8 +58,11 @@ pub struct ModelReport {
     pub classification: Classification,
     /// The impulses: unique, or the family's least-norm member.
     pub impulses: Option<Vec<Value>>,
-    /// The family's directions (impulse space), empty unless singular-compatible.
+    /// The family's directions (impulse space), empty unless singular-compatible; empty too
+    /// beyond [`DENSE_CONTACTS`], where only `nullity` is reported.
     pub family: Vec<Vec<Value>>,
+    /// N − rank G: the dimension of the family (0 unless singular-compatible).
+    pub nullity: usize,
     /// Whether the velocities after impact are the same across the family.
     pub twist_fixed: bool,
     /// (approaching, compressive, varies along the family).
@@ -94,15 +100,27 @@ pub struct UnilateralReport {
     pub outcome_decided: bool,
 }
 
-/// The most contacts `analyze` takes in exact arithmetic (rationals or symbols). Its work
-/// grows like N³ in numbers that grow too — the inertances, the family of solutions and
-/// Lemke's method for the unilateral law: on a fuzzed scene with small decimals, 24 contacts
-/// take 0.5 s, 48 take 1.3 s and 220 took 100 s (release build).
-pub const MAX_EXACT_CONTACTS: usize = 48;
+/// Up to this many contacts `analyze` works on the N×N matrix G ([`crate::analysis::analyze`]):
+/// its report lists a basis of the family of solutions and the unilateral law's answer. Beyond
+/// it the analysis runs in the space of the contact wrenches
+/// ([`crate::analysis::wrench_space`], cost linear in N): the family is given by its dimension
+/// (`null_space_dimension`; `null_space` is absent), Δ = 0 and cond₂ G = ∞ whenever N > rank G.
+pub const DENSE_CONTACTS: usize = 24;
 
-/// The most contacts `analyze` takes in floats: 1000 take 0.7 s, 2000 over two minutes
-/// (Lemke's method on an N-contact tableau and the eigenvalues of G; release build).
-pub const MAX_FLOAT_CONTACTS: usize = 1000;
+/// The most contacts `analyze` takes in exact arithmetic (rationals or symbols). The analysis
+/// costs O(N) rational operations; what remains is the size of the numbers and of the report
+/// (1000 contacts of a fuzzed scene in about a second, release build).
+pub const MAX_EXACT_CONTACTS: usize = 1000;
+
+/// The most contacts `analyze` takes in floats: the analysis is linear in N (10⁵ contacts in
+/// a fraction of a second); the limit bounds the report (a few hundred bytes per contact).
+pub const MAX_FLOAT_CONTACTS: usize = 1_000_000;
+
+/// The most contacts for which `analyze` reports the unilateral law (Lemke's method on the N×N
+/// tableau of G, [`crate::impact::unilateral`]): beyond, the report says why it is missing.
+pub fn max_unilateral_contacts<T: Scalar>() -> usize {
+    crate::impact::unilateral::max_unilateral_contacts::<T>()
+}
 
 /// Analyse `scene` in the scalar type `T`.
 ///
@@ -129,15 +147,80 @@ pub fn analyze_scene<T: Scalar>(
             key: "contact".into(),
             value: Some(format!("{n} contacts")),
             message: format!(
-                "`{command}` takes at most {limit} contacts: its work grows like N³ and would \
-                 run for minutes{instead}"
+                "`{command}` takes at most {limit} contacts: its work is linear in N but the \
+                 numbers and the report grow with it{instead}"
             ),
         }));
     }
     let models = models.unwrap_or(&scene.models);
     let problem = prepare::<T>(scene)?;
-    let mut impact = Impact::assemble(&problem)?;
-    let analysis: Analysis<T> = analyze(&mut impact, models);
+    if n <= DENSE_CONTACTS {
+        let mut impact = Impact::assemble(&problem)?;
+        let analysis: Analysis<T> = analyze(&mut impact, models);
+        let (det, cond) = dense_det_cond(&mut impact);
+        let norm2: Vec<T> = impact.frames().iter().map(|f| f.norm2[0].clone()).collect();
+        let unilateral: Vec<Result<UnilateralReport, String>> = analysis
+            .models
+            .iter()
+            .map(|m| unilateral_report(&mut impact, m.model, &norm2))
+            .collect();
+        let parts = Parts {
+            before_x: impact.before_hat().iter().map(|v| v[0].clone()).collect(),
+            norm2,
+            kinetic_before: impact.kinetic_before().clone(),
+            det,
+            cond,
+            unilateral,
+        };
+        return finish(scene, impact.problem(), analysis, parts);
+    }
+    let space = WrenchSpace::build(&problem)?;
+    let analysis = analyze_reduced(&space, models);
+    let norm2: Vec<T> = space.frames().iter().map(|f| f.norm2[0].clone()).collect();
+    let mut norms = T::one();
+    for w in &norm2 {
+        norms *= w;
+    }
+    let unilateral = if n <= max_unilateral_contacts::<T>() {
+        let mut impact = Impact::assemble(&problem)?;
+        analysis
+            .models
+            .iter()
+            .map(|m| unilateral_report(&mut impact, m.model, &norm2))
+            .collect()
+    } else {
+        let why = crate::impact::unilateral::UnilateralError::TooManyContacts {
+            contacts: n,
+            limit: max_unilateral_contacts::<T>(),
+        }
+        .to_string();
+        vec![Err(why); analysis.models.len()]
+    };
+    let parts = Parts {
+        before_x: space.before_hat().iter().map(|v| v[0].clone()).collect(),
+        kinetic_before: space.kinetic_before().clone(),
+        det: Value::of(&(space.det_hat() / &norms)),
+        cond: space.condition_number(),
+        norm2,
+        unilateral,
+    };
+    finish(scene, space.problem(), analysis, parts)
+}
+
+/// What the report needs besides the analysis, from either route.
+struct Parts<T: Scalar> {
+    /// v̂_ix⁰ per contact.
+    before_x: Vec<T>,
+    /// |x̂_i|² per contact.
+    norm2: Vec<T>,
+    kinetic_before: T,
+    det: Value,
+    cond: f64,
+    unilateral: Vec<Result<UnilateralReport, String>>,
+}
+
+/// Δ and cond₂ G from the N×N matrix.
+fn dense_det_cond<T: Scalar>(impact: &mut Impact<T>) -> (Value, f64) {
     let n = impact.contacts();
     let norm2: Vec<T> = impact.frames().iter().map(|f| f.norm2[0].clone()).collect();
     let mut norms = T::one();
@@ -170,12 +253,26 @@ pub fn analyze_scene<T: Scalar>(
     } else {
         condition_number(&g, n)
     };
+    (det, cond)
+}
+
+/// The readable report of `analysis` of `scene` (assembled as `problem`).
+fn finish<T: Scalar>(
+    scene: &Scene,
+    problem: &Problem<T>,
+    analysis: Analysis<T>,
+    parts: Parts<T>,
+) -> Result<AnalysisReport, RunError> {
+    let n = problem.contacts().len();
+    let Parts {
+        before_x,
+        norm2,
+        kinetic_before,
+        det,
+        cond,
+        mut unilateral,
+    } = parts;
     let impulse = |p: &T, i: usize| -> Value { Value::surd(&Surd::times_norm(p, &norm2[i])) };
-    let mut unilateral: Vec<Result<UnilateralReport, String>> = analysis
-        .models
-        .iter()
-        .map(|m| unilateral_report(&mut impact, m.model, &norm2))
-        .collect();
     let model_reports = analysis
         .models
         .iter()
@@ -188,7 +285,7 @@ pub fn analyze_scene<T: Scalar>(
                 Classification::Unique => {}
                 Classification::SingularCompatible => verdicts.push(format!(
                     "Δ = 0 but the system is compatible: a {}-parameter family of impulses satisfies the law; {}",
-                    m.family.len(),
+                    m.nullity,
                     if m.twist_fixed {
                         "the velocities after impact and both energies are the same for every member — only the impulses are undetermined"
                     } else {
@@ -200,7 +297,7 @@ pub fn analyze_scene<T: Scalar>(
                 ),
             }
             for (i, (approaching, compressive, varies)) in admissible.iter().enumerate() {
-                let v0 = Value::surd(&Surd::over_norm(&impact.before_hat()[i][0], &norm2[i]));
+                let v0 = Value::surd(&Surd::over_norm(&before_x[i], &norm2[i]));
                 if !approaching {
                     verdicts.push(format!(
                         "contact A{} is not approaching (v_{}x⁰ = {} ≤ 0, eq. 74): on its own it would not collide, yet the simultaneous-collision hypothesis stops it",
@@ -236,6 +333,7 @@ pub fn analyze_scene<T: Scalar>(
                 classification: m.classification,
                 impulses,
                 family: m.family.iter().map(|z| z.iter().enumerate().map(|(i, p)| impulse(p, i)).collect()).collect(),
+                nullity: m.nullity,
                 twist_fixed: m.twist_fixed,
                 admissible,
                 energy_gain: m.energy_gain,
@@ -269,13 +367,13 @@ pub fn analyze_scene<T: Scalar>(
         rank: analysis.rank,
         condition_number: cond,
         tolerance: analysis.tolerance,
-        kinetic_energy_before: Value::of(impact.kinetic_before()),
+        kinetic_energy_before: Value::of(&kinetic_before),
         models: model_reports,
         newton_equals_poisson: analysis.newton_equals_poisson,
         coincident,
         friction: scene
             .frictional()
-            .then(|| friction_analysis(scene, impact.problem())),
+            .then(|| friction_analysis(scene, problem)),
     };
     if !report.finite() {
         // Never an ∞ or NaN where a number belongs: the scene spans more than T holds.
@@ -464,16 +562,21 @@ impl AnalysisReport {
                 m.impulses.as_ref().map_or(Json::Null, |p| vec(p)),
             );
             if m.classification == Classification::SingularCompatible {
-                o.insert(
-                    "family".into(),
-                    json!({
-                        "particular": m.impulses.as_ref().map(|p| vec(p)),
-                        "null_space": m.family.iter().map(|z| vec(z)).collect::<Vec<_>>(),
-                        "velocities_fixed": m.twist_fixed,
-                        "energies_fixed": m.twist_fixed,
-                        "impulses_fixed": m.admissible.iter().map(|a| !a.2).collect::<Vec<_>>(),
-                    }),
-                );
+                let mut family = json!({
+                    "particular": m.impulses.as_ref().map(|p| vec(p)),
+                    "null_space_dimension": m.nullity,
+                    "velocities_fixed": m.twist_fixed,
+                    "energies_fixed": m.twist_fixed,
+                    "impulses_fixed": m.admissible.iter().map(|a| !a.2).collect::<Vec<_>>(),
+                });
+                // The basis, when materialised (up to DENSE_CONTACTS): absent beyond.
+                if let (Some(f), true) = (family.as_object_mut(), m.family.len() == m.nullity) {
+                    f.insert(
+                        "null_space".into(),
+                        Json::Array(m.family.iter().map(|z| vec(z)).collect()),
+                    );
+                }
+                o.insert("family".into(), family);
             }
             o.insert(
                 "twist_after".into(),
@@ -615,7 +718,13 @@ impl AnalysisReport {
                     z.iter().map(Value::text).collect::<Vec<_>>().join(", ")
                 );
             }
-            if let (Some(t), false) = (&m.twist, m.family.is_empty()) {
+            if m.family.len() < m.nullity {
+                s += &format!(
+                    "  + a {}-parameter family (its basis is listed up to {DENSE_CONTACTS} contacts)\n",
+                    m.nullity
+                );
+            }
+            if let (Some(t), false) = (&m.twist, m.nullity == 0) {
                 if m.twist_fixed {
                     s += &format!(
                         "  velocities after impact (the same for the whole family): {}\n",
@@ -633,7 +742,7 @@ impl AnalysisReport {
                     "  E_p = {}, ΔE_c = {}{}\n",
                     ep.text(),
                     de.text(),
-                    if m.family.is_empty() || !m.twist_fixed {
+                    if m.nullity == 0 || !m.twist_fixed {
                         ""
                     } else {
                         " (the same for the whole family)"

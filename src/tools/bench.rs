@@ -142,6 +142,9 @@ pub struct BenchReport {
     pub contract: (Vec<ContractRow>, usize),
     /// The lean path and the batch beside the generic solve ([`crate::tools::lean_bench`]).
     pub lean: crate::tools::lean_bench::LeanBench,
+    /// The cost of `analyze` against N on the linear-cost route, f64 to 10⁵ contacts and
+    /// exact to 10³, with the fitted exponent ([`crate::tools::n_curve`]).
+    pub n_curve: Vec<crate::tools::n_curve::NCurve>,
 }
 
 /// A small deterministic generator (SplitMix64), so the corpus is the same on every machine.
@@ -663,6 +666,7 @@ pub fn run(opts: &BenchOptions) -> BenchReport {
         friction: crate::tools::friction_bench::run(opts.quick),
         contract,
         lean: crate::tools::lean_bench::run(opts.quick),
+        n_curve: crate::tools::n_curve::run(opts.quick),
     }
 }
 
@@ -873,6 +877,19 @@ impl BenchReport {
         }
         s += &self.contract_text();
         s += &self.lean.to_text();
+        s += "\nCost of `analyze` against N (linear-cost route: the contact wrenches' Gram–Schmidt, both models; fit t ∝ N^p over N ≥ 100):\n\n| scalar | N: time | p |\n|---|---|---|\n";
+        for c in &self.n_curve {
+            s += &format!(
+                "| {} | {} | {} |\n",
+                c.scalar,
+                c.points
+                    .iter()
+                    .map(|(n, t)| format!("{n}: {}", fmt_ns(*t)))
+                    .collect::<Vec<_>>()
+                    .join(", "),
+                c.exponent.map_or("—".into(), |p| format!("{p:.2}"))
+            );
+        }
         s + &self.friction.to_text()
     }
 
@@ -918,6 +935,11 @@ impl BenchReport {
             "contract": self.contract_json(),
             "friction": self.friction.to_json(),
             "lean": self.lean.to_json(),
+            "n_curve": self.n_curve.iter().map(|c| json!({
+                "scalar": c.scalar,
+                "points": c.points.iter().map(|(n, t)| json!({"contacts": n, "ns_per_analyze": num(*t)})).collect::<Vec<_>>(),
+                "exponent": c.exponent.map(num),
+            })).collect::<Vec<_>>(),
             "scaling": self.scaling.iter().map(|g| json!({
                 "contacts": g.contacts,
                 "ns_per_assemble_and_analyze": self.rows.iter().zip(&g.analyze).map(|(r, x)| (r.name.to_string(), x.map(num).unwrap_or(Json::Null))).collect::<serde_json::Map<_, _>>(),

@@ -12,4 +12,5 @@ pub mod corpus;
 pub mod derive;
 pub mod friction_bench;
 pub mod lean_bench;
+pub mod n_curve;
 pub mod sweep;
