@@ -89,6 +89,31 @@ pub struct ModelAnalysis<T: Scalar> {
     pub energy_gain: Option<bool>,
 }
 
+impl<T: Scalar> ModelAnalysis<T> {
+    /// rank [G | b] > rank G (`augmented_rank`): no impulses satisfy the law; only whether
+    /// each contact is approaching is known.
+    pub(crate) fn incompatible(model: Model, augmented_rank: usize, approaching: &[bool]) -> Self {
+        ModelAnalysis {
+            model,
+            augmented_rank,
+            classification: Classification::SingularIncompatible,
+            outcome: None,
+            family: Vec::new(),
+            nullity: 0,
+            twist_fixed: false,
+            admissible: approaching
+                .iter()
+                .map(|&a| Admissibility {
+                    approaching: a,
+                    compressive: None,
+                    varies: false,
+                })
+                .collect(),
+            energy_gain: None,
+        }
+    }
+}
+
 /// A pair of contacts at the same point.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Coincidence<T: Scalar> {
@@ -222,24 +247,7 @@ fn analyze_model<T: Scalar>(impact: &mut Impact<T>, model: Model) -> ModelAnalys
     impact.rhs(model, &mut b);
     let mut x = Vec::new();
     if impact.solve_singular(&b, &mut x).is_none() {
-        return ModelAnalysis {
-            model,
-            augmented_rank: impact.rank() + 1,
-            classification: Classification::SingularIncompatible,
-            outcome: None,
-            family: Vec::new(),
-            nullity: 0,
-            twist_fixed: false,
-            admissible: approaching
-                .iter()
-                .map(|&a| Admissibility {
-                    approaching: a,
-                    compressive: None,
-                    varies: false,
-                })
-                .collect(),
-            energy_gain: None,
-        };
+        return ModelAnalysis::incompatible(model, impact.rank() + 1, &approaching);
     }
     // The impulses: x (Newton) or (1 + k_i^P) x_i (Poisson), and the same map on the basis.
     let mut impulses: Vec<T> = (0..n).map(|i| scale(i, model) * &x[i]).collect();

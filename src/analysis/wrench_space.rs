@@ -343,24 +343,7 @@ impl<T: Scalar> WrenchSpace<T> {
             .map(|v| v[0].signum_i8() > 0)
             .collect();
         let Some(alpha) = self.alpha(model) else {
-            return ModelAnalysis {
-                model,
-                augmented_rank: r + 1,
-                classification: Classification::SingularIncompatible,
-                outcome: None,
-                family: Vec::new(),
-                nullity: 0,
-                twist_fixed: false,
-                admissible: approaching
-                    .iter()
-                    .map(|&a| Admissibility {
-                        approaching: a,
-                        compressive: None,
-                        varies: false,
-                    })
-                    .collect(),
-                energy_gain: None,
-            };
+            return ModelAnalysis::incompatible(model, r + 1, &approaching);
         };
         // (Σ a_i a_iᵀ / |x̂_i|²) λ = α, a_i = c_i / s_i.
         let s: Vec<T> = (0..n).map(|i| self.scale(model, i)).collect();
