@@ -6,7 +6,7 @@
 mod common;
 
 use common::*;
-use inertance::analysis::accuracy::{Conditioning, speeds};
+use inertance::analysis::accuracy::{Bounds, Conditioning};
 use inertance::impact::batch::{self, BatchError, Outcomes, Reason, Route, Scenes};
 use inertance::impact::lean::{Lean, LeanError, LeanOutcome};
 use inertance::impact::problem::Problem;
@@ -77,42 +77,22 @@ fn contract<const N: usize>(
 ) -> [(f64, f64); 2] {
     let (mut impact, out) = generic(exact, model).expect("nonsingular");
     let cond = Conditioning::of(&mut impact).expect("nonsingular");
-    let eps = f64::EPSILON;
-    let (v0, dv) = speeds(&impact, &out);
-    let speed = v0 + dv;
-    let spread = match model {
-        Model::Newton => 0.0,
-        Model::Poisson => {
-            let k: Vec<f64> = exact
-                .contacts()
-                .iter()
-                .map(|c| c.k_poisson.to_f64())
-                .collect();
-            let (lo, hi) = k
-                .iter()
-                .fold((f64::MAX, f64::MIN), |(a, b), x| (a.min(*x), b.max(*x)));
-            (hi - lo) / 2.0
-        }
-    };
-    let c = cond.constant();
-    let b_v = c * eps * (cond.cond.sqrt() * speed + 4.0 * spread * cond.cond * v0);
-    let (mut diff2, mut size2) = (Exact::zero(), Exact::zero());
+    let bounds = Bounds::of(&impact, &cond, model, &out, f64::EPSILON);
+    let mut diff2 = Exact::zero();
     for (i, contact) in exact.contacts().iter().enumerate() {
         let n2: Exact = contact.normal.iter().map(|x| x * x).sum();
         let d = Exact::from(o.impulses_hat[i].exact_value().unwrap()) - &out.impulses_hat[i];
         diff2 += &d * &d * &n2;
-        size2 += &out.impulses_hat[i] * &out.impulses_hat[i] * &n2;
     }
-    let b_p = 4.0
-        * c
-        * eps
-        * (cond.cond.sqrt() * size2.to_f64().sqrt() + cond.cond * speed / cond.lambda_max.sqrt());
     let mut dvel = Screw::<Exact>::zero();
     for k in 0..6 {
         dvel.0[k] = Exact::from(o.velocity[k].exact_value().unwrap()) - &out.velocity.0[k];
     }
     let twist = (2.0 * exact.body().kinetic_energy(&dvel).to_f64()).sqrt();
-    [(diff2.to_f64().sqrt(), b_p), (twist, b_v)]
+    [
+        (diff2.to_f64().sqrt(), bounds.impulses),
+        (twist, bounds.twist),
+    ]
 }
 
 /// Lean in f64 against the exact solve of the same (rounded) problem: when it accepts the

@@ -315,6 +315,62 @@ fn exact_screw<T: Scalar>(v: &Screw<T>) -> Option<Screw<Exact>> {
     Some(out)
 }
 
+/// The contract's bounds on the impulses and the twist of a float solve of `model` with unit
+/// roundoff `eps` (module docs), from the exact solve, with the speeds they are built from.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Bounds {
+    /// B_P, on ‖δP‖₂ of the physical impulses P_i = P̂_i |n_i|.
+    pub impulses: f64,
+    /// B_v, on ‖δv‖_M of the twist after impact.
+    pub twist: f64,
+    /// ‖v⁰‖_M ([`speeds`]).
+    pub v0: f64,
+    /// ‖Δv‖_M ([`speeds`]).
+    pub dv: f64,
+}
+
+impl Bounds {
+    /// The bounds for `exact` solved into `exact_out`, conditioned as `cond`.
+    pub fn of(
+        exact: &Impact<Exact>,
+        cond: &Conditioning,
+        model: Model,
+        exact_out: &Outcome<Exact>,
+        eps: f64,
+    ) -> Bounds {
+        let (v0, dv) = speeds(exact, exact_out);
+        let speed = v0 + dv;
+        // Poisson with unequal k: half the spread of the k_i (module docs).
+        let spread = match model {
+            Model::Newton => 0.0,
+            Model::Poisson => {
+                let (lo, hi) = exact
+                    .problem()
+                    .contacts()
+                    .iter()
+                    .map(|c| to_f64(&c.k_poisson))
+                    .fold((f64::MAX, f64::MIN), |(a, b), x| (a.min(x), b.max(x)));
+                (hi - lo) / 2.0
+            }
+        };
+        let c = cond.constant();
+        let mut size2 = Exact::zero();
+        for (i, f) in exact.frames().iter().enumerate() {
+            size2 += &exact_out.impulses_hat[i] * &exact_out.impulses_hat[i] * &f.norm2[0];
+        }
+        Bounds {
+            impulses: 4.0
+                * c
+                * eps
+                * (cond.cond.sqrt() * to_f64(&size2).sqrt()
+                    + cond.cond * speed / cond.lambda_max.sqrt()),
+            twist: c * eps * (cond.cond.sqrt() * speed + 4.0 * spread * cond.cond * v0),
+            v0,
+            dv,
+        }
+    }
+}
+
 /// Measure `out`, a float solve of `model` (on `float`, the same problem rounded into `T`),
 /// against `exact_out` (on `exact`, with conditioning `cond`): one [`Check`] per [`Output`],
 /// in [`Output::ALL`] order. `None` when a float output is not finite.
@@ -330,39 +386,18 @@ pub fn measure<T: Scalar>(
     let problem = exact.problem();
     let body = problem.body();
     let n = exact.contacts();
-    let (norm_v0, norm_dv) = speeds(exact, exact_out);
-    let speed = norm_v0 + norm_dv;
-    let spread = match model {
-        Model::Newton => 0.0,
-        Model::Poisson => {
-            let k: Vec<f64> = problem
-                .contacts()
-                .iter()
-                .map(|c| to_f64(&c.k_poisson))
-                .collect();
-            let (lo, hi) = k
-                .iter()
-                .fold((f64::MAX, f64::MIN), |(a, b), x| (a.min(*x), b.max(*x)));
-            (hi - lo) / 2.0
-        }
-    };
-    let c = cond.constant();
-    let b_v = c * eps * (cond.cond.sqrt() * speed + 4.0 * spread * cond.cond * norm_v0);
+    let bounds = Bounds::of(exact, cond, model, exact_out, eps);
+    let (norm_dv, speed, b_v) = (bounds.dv, bounds.v0 + bounds.dv, bounds.twist);
 
     // Impulses, physical: P_i = P̂_i |n_i|.
-    let (mut diff2, mut size2) = (Exact::zero(), Exact::zero());
+    let mut diff2 = Exact::zero();
     for (i, f) in exact.frames().iter().enumerate() {
         let d = Exact::from(out.impulses_hat[i].exact_value()?) - &exact_out.impulses_hat[i];
         diff2 += &d * &d * &f.norm2[0];
-        size2 += &exact_out.impulses_hat[i] * &exact_out.impulses_hat[i] * &f.norm2[0];
     }
     let impulses = Check {
         error: to_f64(&diff2).sqrt(),
-        bound: 4.0
-            * c
-            * eps
-            * (cond.cond.sqrt() * to_f64(&size2).sqrt()
-                + cond.cond * speed / cond.lambda_max.sqrt()),
+        bound: bounds.impulses,
     };
 
     let velocity = exact_screw(&out.velocity)?;
