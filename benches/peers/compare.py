@@ -31,6 +31,7 @@ import math
 import os
 import platform
 import random
+import shutil
 import statistics
 import subprocess
 import sys
@@ -491,6 +492,88 @@ class PinScene:
 
 
 # ----------------------------------------------------------------------------------------------
+# Peer 3b: Pinocchio's impulseDynamics called from C++ (pinocchio_call.cpp), so that no Python
+# sits between the clock and the call.  Built with g++ against the headers and libraries the
+# `pin` wheel installs (its cmeel prefix) and Eigen's headers (`cmeel-eigen`), with the compile
+# definitions Pinocchio's CMake package exports.
+# ----------------------------------------------------------------------------------------------
+
+PIN_DEFINES = ["-DBOOST_MPL_LIMIT_LIST_SIZE=30", "-DBOOST_MPL_LIMIT_VECTOR_SIZE=30",
+               "-DBOOST_MPL_CFG_NO_PREPROCESSED_HEADERS", "-DBOOST_FUSION_INVOKE_MAX_ARITY=12",
+               "-DPINOCCHIO_ENABLE_TEMPLATE_INSTANTIATION"]
+
+
+def cmeel_prefix() -> Path | None:
+    for entry in sys.path:
+        prefix = Path(entry) / "cmeel.prefix"
+        if (prefix / "include" / "pinocchio").is_dir():
+            return prefix
+    return None
+
+
+def pinocchio_cpp_binary(cache: Path):
+    """The compiled pinocchio_call, or (None, reason).  Rebuilt when the source is newer."""
+    src = Path(__file__).with_name("pinocchio_call.cpp")
+    out = cache / "pinocchio_call"
+    prefix = cmeel_prefix()
+    if prefix is None:
+        return None, "no cmeel prefix with Pinocchio's headers on sys.path (pip install pin)"
+    if not (prefix / "include" / "eigen3" / "Eigen").is_dir():
+        return None, "no Eigen headers in the cmeel prefix (pip install cmeel-eigen)"
+    if shutil.which("g++") is None:
+        return None, "no g++ on PATH"
+    if out.exists() and out.stat().st_mtime >= src.stat().st_mtime:
+        return out, None
+    cache.mkdir(parents=True, exist_ok=True)
+    cmd = ["g++", "-O3", "-DNDEBUG", "-std=c++17", *PIN_DEFINES, f"-I{prefix / 'include'}",
+           f"-I{prefix / 'include' / 'eigen3'}", str(src), f"-L{prefix / 'lib'}", "-lpinocchio_default",
+           f"-Wl,-rpath,{prefix / 'lib'}", "-o", str(out)]
+    print(f"  building {out.name} (g++ against Pinocchio's headers; about a minute) ...", flush=True)
+    p = subprocess.run(cmd, capture_output=True, text=True)
+    if p.returncode != 0:
+        errs = [l for l in p.stderr.splitlines() if "error" in l]
+        return None, f"g++ failed: {errs[0] if errs else p.stderr[-300:]}"
+    return out, None
+
+
+def pinocchio_cpp(binary: Path, scenes: list) -> dict:
+    """Run pinocchio_call on the scenes with one coefficient (impulseDynamics has Newton's law
+    only): name -> {"ns": ns per call, "impulse": [...], "v_after": [...]}."""
+    eligible = [s for s in scenes if s.equal_k]
+    lines = [str(len(eligible))]
+    for s in eligible:
+        x = NumpyInputs(s)
+        N = x.Nraw / np.sqrt((x.Nraw * x.Nraw).sum(axis=1))[:, None]
+        vals = [x.m, *x.J, *x.vC, *x.w, float(s.k), len(x.R)]
+        for r, n in zip(x.R, N):
+            vals += [*r, *n]
+        lines.append(" ".join(repr(float(v)) if not isinstance(v, int) else str(v) for v in vals))
+    p = subprocess.run([str(binary)], input="\n".join(lines) + "\n", capture_output=True, text=True)
+    if p.returncode != 0:
+        raise RuntimeError(f"pinocchio_call failed (exit {p.returncode}): {p.stderr[-300:]}")
+    out = {}
+    for s, line in zip(eligible, p.stdout.splitlines()):
+        j = json.loads(line)
+        out[s.name] = {"ns": j["ns_per_call"], "impulse": np.array(j["impulse"]),
+                       "v_after": np.array(j["v_after"])}
+    return out
+
+
+def pinocchio_cpp_outputs(s: Scene, r: dict) -> dict:
+    """The C++ call's results as compare_f64 reads them (M = diag(m, m, m, J) in Pinocchio's
+    [v; omega] order: the CoM at the joint origin, principal axes)."""
+    x = NumpyInputs(s)
+    M = np.diag([x.m, x.m, x.m, *x.J])
+    v0 = np.concatenate([x.vC, x.w])
+    v = r["v_after"]
+    dv = v - v0
+    out = {"impulses": -r["impulse"], "velocity": v[:3], "angular_velocity": v[3:],
+           "lost_velocity_energy": 0.5 * dv @ M @ dv,
+           "kinetic_energy_loss": 0.5 * (v0 @ M @ v0 - v @ M @ v)}
+    return {"newton": out, "poisson": out}
+
+
+# ----------------------------------------------------------------------------------------------
 # inertance from Python: the package built from python/ (PyO3), imported in this process
 # ----------------------------------------------------------------------------------------------
 
@@ -719,6 +802,7 @@ METHODS = [
     ("numpy", "numpy closed form (eq. 57, 20, 24)"),
     ("pin_id", "pinocchio impulseDynamics, normal J"),
     ("pin_id_call", "  … the impulseDynamics call alone"),
+    ("pin_cpp", "  … the same call from C++ (no Python)"),
     ("pin_alg", "pinocchio crba+Jacobians, numpy solve"),
     ("pin_3d", "pinocchio impulseDynamics, CONTACT_3D"),
     ("sympy", "sympy exact (Rational, LUsolve)"),
@@ -732,7 +816,7 @@ PY_METHODS = [
 ]
 # the four references a time is divided by: inertance f64 / exact in Rust (`inertance bench`,
 # in-process) and from Python (`inertance.solve` on a prebuilt Scene)
-REFS = [("f64/lean", "÷ Rust lean"), ("f64", "÷ Rust f64"), ("exact", "÷ Rust exact"), ("py_f64", "÷ Py f64"),
+REFS = [("f64/lean-newton", "÷ lean Newton"), ("f64/lean", "÷ Rust lean"), ("f64", "÷ Rust f64"), ("exact", "÷ Rust exact"), ("py_f64", "÷ Py f64"),
         ("py_exact", "÷ Py exact")]
 REF_W = 13
 
@@ -921,7 +1005,9 @@ def main() -> int:
     all_methods = PY_METHODS + METHODS
     ratios = {key: {k: [] for k, _ in REFS} for key, _ in all_methods}
     times = {key: [] for key, _ in all_methods}
-    inert_times = {"f64/lean": [], "f64/impulses,twist": [], "f64": [], "exact": []}
+    inert_times = {"f64/lean-newton": [], "f64/lean": [], "f64/impulses,twist": [], "f64": [], "exact": []}
+    cpp_bin, cpp_why = pinocchio_cpp_binary(Path(os.environ.get("CARGO_TARGET_DIR", "target")) / "peers")
+    cpp = pinocchio_cpp(cpp_bin, scenes) if cpp_bin else {}
 
     for s in scenes:
         path = outdir / f"{s.name}.toml"
@@ -965,6 +1051,10 @@ def main() -> int:
             Jn = ps.normal_jacobian()
             agree["pin_id_call"] = "(same)"
             runners["pin_id_call"] = lambda ps=ps, Jn=Jn: ps.impulse_dynamics_call(Jn)
+        if s.name in cpp:
+            d = compare_f64(pinocchio_cpp_outputs(s, cpp[s.name]), ref64, T0, with_G=False)
+            agree["pin_cpp"] = f"{d:.1e}"
+            runners["pin_cpp"] = None  # timed in C++ (pinocchio_call.cpp)
         if no_slip:
             r3 = ps.contact3d()
             d = compare_f64(r3, ref64, T0, with_G=False)
@@ -985,11 +1075,13 @@ def main() -> int:
         ref = {}
         # the lean path (impact::lean, impulses and twist; null where its route refuses the
         # scene), the cheapest generic path (impulses and twist asked for), every output
-        for key in ("f64/lean", "f64/impulses,twist", "f64", "exact"):
+        for key in ("f64/lean-newton", "f64/lean", "f64/impulses,twist", "f64", "exact"):
             if ns and ns.get(key) is not None:
                 ref[key] = ns[key] * 1e-9
                 inert_times[key].append(ref[key])
         measured = {}
+        if s.name in cpp:
+            measured["pin_cpp"] = cpp[s.name]["ns"] * 1e-9
         for key in ("py_f64", "py_exact"):  # the Python references first
             if key in runners:
                 measured[key] = time_per_call(runners[key], args.repeat, args.min_time)
@@ -1005,7 +1097,8 @@ def main() -> int:
         print(hdr)
         print("   " + "─" * (len(hdr) - 3))
         if ns:
-            for key in ("f64/lean", "f64/impulses,twist", "f32", "f64", "double-double", "exact"):
+            for key in ("f64/lean-newton", "f64/lean", "f64/impulses,twist", "f32", "f64", "double-double",
+                        "exact"):
                 if key in ns and ns[key] is not None:
                     t = ns[key] * 1e-9
                     print(f"   {'inertance ' + key + ' (Rust, bench)':<40} {fmt_time(t):>11} "
@@ -1020,6 +1113,7 @@ def main() -> int:
                     continue
                 why_na = {"pin_id": "n/a: one r_coeff only, k differ",
                           "pin_id_call": "n/a",
+                          "pin_cpp": "n/a" if s.equal_k else "n/a: one r_coeff only",
                           "pin_3d": "n/a: 3-D contacts would also stop sliding"}[key]
                 print(f"   {label:<40} {'—':>11} " + " ".join(f"{'—':>{REF_W}}" for _ in REFS)
                       + f"  {why_na}")
@@ -1046,7 +1140,7 @@ def main() -> int:
            + " ".join(f"{h:>{REF_W}}" for _, h in REFS))
     print(hdr)
     print("   " + "─" * (len(hdr) - 3))
-    for key in ("f64/lean", "f64/impulses,twist", "f64", "exact"):
+    for key in ("f64/lean-newton", "f64/lean", "f64/impulses,twist", "f64", "exact"):
         if inert_times[key]:
             print(f"   {'inertance ' + key + ' (Rust, bench)':<40} {len(inert_times[key]):>6} "
                   f"{fmt_time(gmean(inert_times[key])):>11}")
@@ -1056,6 +1150,8 @@ def main() -> int:
         cols = " ".join(f"{fmt_ratio(gmean(ratios[key][k])):>{REF_W}}" for k, _ in REFS)
         print(f"   {label:<40} {len(times[key]):>6} {fmt_time(gmean(times[key])):>11} {cols}")
     print()
+    if not cpp_bin:
+        print(f"Pinocchio from C++ unavailable: {cpp_why}.")
     if bench_reason:
         print(f"inertance timing unavailable: {bench_reason}; the Rust ratios were not computed.")
     if not py:

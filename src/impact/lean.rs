@@ -163,6 +163,8 @@ pub(crate) struct Factored<F, const N: usize> {
     l: [[F; N]; N],
     /// D: the pivots d_j.
     d: [F; N],
+    /// 1/d_j (0 for a zero pivot, which the route test or the exact pivot test refuses).
+    d_inv: [F; N],
     k_newton: [F; N],
     k_poisson: [F; N],
 }
@@ -206,18 +208,27 @@ impl<F: Field, const N: usize> Data<F, N> {
                 mu[2].clone(),
             ]
         });
+        // 1/m and 1/J_k once, then products: four divisions instead of six per contact (a
+        // division costs several multiplications' throughput).
+        let inv_mass = F::one() / &self.mass;
+        let inv_moments: Option<[F; 3]> = match &self.inertia {
+            InverseInertia::Principal(j) => Some(array::from_fn(|k| F::one() / &j[k])),
+            InverseInertia::Inverse(_) => None,
+        };
         let responses: [[F; 6]; N] = array::from_fn(|j| {
             let e = &axes[j];
-            let w = self
-                .inertia
-                .apply(&[e[3].clone(), e[4].clone(), e[5].clone()]);
+            let mu = [e[3].clone(), e[4].clone(), e[5].clone()];
+            let w = match &inv_moments {
+                Some(inv) => array::from_fn(|k| mu[k].clone() * &inv[k]),
+                None => self.inertia.apply(&mu),
+            };
             [
                 w[0].clone(),
                 w[1].clone(),
                 w[2].clone(),
-                e[0].clone() / &self.mass,
-                e[1].clone() / &self.mass,
-                e[2].clone() / &self.mass,
+                e[0].clone() * &inv_mass,
+                e[1].clone() * &inv_mass,
+                e[2].clone() * &inv_mass,
             ]
         });
         let before: [F; N] = array::from_fn(|j| reciprocal(&axes[j], &self.velocity));
@@ -230,19 +241,28 @@ impl<F: Field, const N: usize> Data<F, N> {
         // Ĝ = L D Lᵀ, column by column (Cholesky's order, without its square roots).
         let mut l: [[F; N]; N] = array::from_fn(|_| array::from_fn(|_| F::zero()));
         let mut d: [F; N] = array::from_fn(|_| F::zero());
+        let mut d_inv: [F; N] = array::from_fn(|_| F::zero());
         for j in 0..N {
             let mut dj = g[j][j].clone();
             for k in 0..j {
                 dj -= l[j][k].clone() * &l[j][k] * &d[k];
             }
+            // 1/d_j once (a zero pivot gives ∞ or NaN in floats, refused by the route test;
+            // exact types test the pivots before solving).
+            let inv = if dj.is_zero() {
+                F::zero()
+            } else {
+                F::one() / &dj
+            };
             for i in j + 1..N {
                 let mut s = g[i][j].clone();
                 for k in 0..j {
                     s -= l[i][k].clone() * &l[j][k] * &d[k];
                 }
-                l[i][j] = s / &dj;
+                l[i][j] = s * &inv;
             }
             d[j] = dj;
+            d_inv[j] = inv;
         }
         let factored = Factored {
             velocity: self.velocity.clone(),
@@ -250,6 +270,7 @@ impl<F: Field, const N: usize> Data<F, N> {
             before,
             l,
             d,
+            d_inv,
             k_newton: self.k_newton.clone(),
             k_poisson: self.k_poisson.clone(),
         };
@@ -274,7 +295,7 @@ impl<F: Field, const N: usize> Factored<F, N> {
             }
         }
         for i in 0..N {
-            x[i] /= &self.d[i];
+            x[i] *= &self.d_inv[i];
         }
         for i in (0..N).rev() {
             for k in i + 1..N {

@@ -51,11 +51,23 @@ impl<T: Scalar> Clone for Problem<T> {
 
     /// Field by field, so that [`crate::impact::solve::Impact::reassemble`] reuses the
     /// contact buffer (the derived `clone_from` would allocate a new one).
+    ///
+    /// A free body's `None` and a principal-axes body's moments are copied in place: the
+    /// derived `clone_from` of an enum or an `Option` writes the whole value, hundreds of
+    /// bytes for the tensor and constrained variants, even when both sides hold the small one.
     fn clone_from(&mut self, source: &Self) {
-        self.body.clone_from(&source.body);
+        self.body.mass.clone_from(&source.body.mass);
+        match (&mut self.body.inertia, &source.body.inertia) {
+            (Inertia::Principal(to), Inertia::Principal(from)) => to.clone_from(from),
+            (to, from) => *to = from.clone(),
+        }
         self.velocity.clone_from(&source.velocity);
         self.contacts.clone_from(&source.contacts);
-        self.constraints.clone_from(&source.constraints);
+        match (&mut self.constraints, &source.constraints) {
+            (None, None) => {}
+            (Some(to), Some(from)) => to.clone_from(from),
+            (to, from) => *to = from.clone(),
+        }
     }
 }
 

@@ -53,6 +53,8 @@ use crate::mechanics::contact::{ContactFrame, TangentNotPerpendicular};
 use crate::mechanics::screw::Screw;
 use crate::scalar::Scalar;
 
+mod lane;
+
 /// [`SolveError::Singular`]'s message.
 fn singular_text(rank: usize, contacts: usize, rounded: bool) -> String {
     if rounded {
@@ -141,6 +143,8 @@ pub struct Impact<T: Scalar> {
     outputs: Outputs,
     /// The buffers of [`Impact::solve_unilateral`].
     pub(crate) unilateral: UnilateralWork<T>,
+    /// N when the problem was built by the small-N float lane ([`lane`]), 0 otherwise.
+    lane: usize,
 }
 
 /// The result of one restitution model, in hatted form (see [`Impact`]); the paper's units
@@ -217,9 +221,29 @@ impl<T: Scalar> Impact<T> {
             sized: 0,
             outputs,
             unilateral: UnilateralWork::default(),
+            lane: 0,
         };
         impact.build()?;
         Ok(impact)
+    }
+
+    /// [`Impact::assemble`] through the small-N lane ([`lane`]) in any scalar type — exact
+    /// ones included, which otherwise take the general code — or `None` when the problem is
+    /// outside the lane (constrained, a full inertia tensor, N outside 2..=4, a singular or,
+    /// in floats, ill-conditioned G). For tests: in exact types the lane must give every
+    /// output of the general code exactly.
+    #[doc(hidden)]
+    pub fn assemble_in_lane(problem: &Problem<T>) -> Option<Self> {
+        let mut impact = Impact::assemble(problem).ok()?;
+        impact.lane = 0;
+        (impact.build_lane_any().ok()? && impact.lane != 0).then_some(impact)
+    }
+
+    /// N when this problem was built by the small-N float lane ([`lane`]: a free body in
+    /// principal axes hit at 2 to 4 contacts whose G the route test gives to the normal
+    /// equations), `None` when by the general code.
+    pub fn lane(&self) -> Option<usize> {
+        (self.lane != 0).then_some(self.lane)
     }
 
     /// [`Impact::assemble`] for another problem, reusing this impact's buffers (repeated f64
@@ -329,6 +353,10 @@ impl<T: Scalar> Impact<T> {
             self.basis.reserve(n);
             self.sized = n;
         }
+        self.lane = 0;
+        if self.build_lane()? {
+            return Ok(());
+        }
         let tangential = self.tangential();
         let problem = &self.problem;
         self.before_hat.clear();
@@ -399,7 +427,9 @@ impl<T: Scalar> Impact<T> {
                 rounded: !T::IS_EXACT,
             });
         }
-        if self.route == Route::OrthogonalWrenches {
+        if self.lane != 0 {
+            self.solve_lane(model, out);
+        } else if self.route == Route::OrthogonalWrenches {
             self.solve_in_basis(model, out);
         } else {
             self.solve_normal_equations(model, out);

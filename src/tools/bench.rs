@@ -326,19 +326,33 @@ fn unilateral_outputs<T: Scalar>(p: &Problem<T>) -> Option<(Outputs, [Vec<bool>;
     Some((outputs(&impact, &outs)?, active))
 }
 
-/// Median wall time (ns) of `f`, repeating until each of three samples takes at least
-/// `budget`; `Err` when `f` fails.
+/// Median wall time (ns) of one call of `f` over three runs of at least `budget` each; `Err`
+/// when `f` fails.
+///
+/// The clock is read once per run, not once per call: the number of calls per run is found
+/// first by doubling until a run takes `budget`, so a call of a few nanoseconds is not
+/// measured together with the ~20 ns of reading the clock.
 pub(crate) fn time_three<E>(
     budget: Duration,
     mut f: impl FnMut() -> Result<(), E>,
 ) -> Result<f64, E> {
     f()?;
+    let mut reps = 1u64;
+    loop {
+        let start = Instant::now();
+        for _ in 0..reps {
+            f()?;
+        }
+        if start.elapsed() >= budget || reps >= 1 << 40 {
+            break;
+        }
+        reps *= 2;
+    }
     let mut samples = Vec::with_capacity(3);
     for _ in 0..3 {
-        let (mut reps, start) = (0u64, Instant::now());
-        while start.elapsed() < budget || reps == 0 {
+        let start = Instant::now();
+        for _ in 0..reps {
             f()?;
-            reps += 1;
         }
         samples.push(start.elapsed().as_nanos() as f64 / reps as f64);
     }
@@ -383,50 +397,31 @@ fn time_solve<T: Scalar>(p: &Problem<T>, budget: Duration) -> Option<f64> {
 fn time_solve_for<T: Scalar>(p: &Problem<T>, budget: Duration, asked: Asked) -> Option<f64> {
     let mut outs = [Outcome::default(), Outcome::default()];
     let mut impact = Impact::assemble_for(p, asked).ok()?;
-    impact.solve(Model::Newton, &mut outs[0]).ok()?;
-    impact.solve(Model::Poisson, &mut outs[1]).ok()?;
-    let mut samples = Vec::with_capacity(3);
-    for _ in 0..3 {
-        let (mut reps, start) = (0u64, Instant::now());
-        while start.elapsed() < budget || reps == 0 {
-            solve_all(std::hint::black_box(p), &mut impact, &mut outs)?;
-            reps += 1;
-        }
-        samples.push(start.elapsed().as_nanos() as f64 / reps as f64);
-    }
-    samples.sort_by(f64::total_cmp);
-    Some(samples[1])
+    time_three(budget, || {
+        solve_all(std::hint::black_box(p), &mut impact, &mut outs).ok_or(())
+    })
+    .ok()
 }
 
-/// ns per lean solve (`impact::lean`: assemble + Newton + Poisson, impulses and twist) of a
+/// ns per lean solve (`impact::lean`: assemble + each of `models`, impulses and twist) of a
 /// free body with 2 to 4 contacts, built from the problem each time like [`time_solve_for`];
 /// `None` where the lean route refuses it (another N, a tensor, an ill-conditioned G).
-fn time_lean(p: &Problem<f64>, budget: Duration) -> Option<f64> {
-    fn time<const N: usize>(p: &Problem<f64>, budget: Duration) -> Option<f64> {
+fn time_lean(p: &Problem<f64>, budget: Duration, models: &[Model]) -> Option<f64> {
+    fn time<const N: usize>(p: &Problem<f64>, budget: Duration, models: &[Model]) -> Option<f64> {
         use crate::impact::lean::Lean;
-        let run = |p: &Problem<f64>| -> Option<()> {
-            let lean = Lean::<f64, N>::new(p).ok()?;
-            std::hint::black_box(lean.solve(Model::Newton).ok()?);
-            std::hint::black_box(lean.solve(Model::Poisson).ok()?);
-            Some(())
-        };
-        run(p)?;
-        let mut samples = Vec::with_capacity(3);
-        for _ in 0..3 {
-            let (mut reps, start) = (0u64, Instant::now());
-            while start.elapsed() < budget || reps == 0 {
-                run(std::hint::black_box(p))?;
-                reps += 1;
+        time_three(budget, || -> Result<(), ()> {
+            let lean = Lean::<f64, N>::new(std::hint::black_box(p)).map_err(|_| ())?;
+            for &model in models {
+                std::hint::black_box(lean.solve(model).map_err(|_| ())?);
             }
-            samples.push(start.elapsed().as_nanos() as f64 / reps as f64);
-        }
-        samples.sort_by(f64::total_cmp);
-        Some(samples[1])
+            Ok(())
+        })
+        .ok()
     }
     match p.contacts().len() {
-        2 => time::<2>(p, budget),
-        3 => time::<3>(p, budget),
-        4 => time::<4>(p, budget),
+        2 => time::<2>(p, budget, models),
+        3 => time::<3>(p, budget, models),
+        4 => time::<4>(p, budget, models),
         _ => None,
     }
 }
@@ -676,7 +671,9 @@ fn with_problem<T: Scalar>(scene: &Scene, f: impl FnOnce(&Problem<T>) -> Timing)
 }
 
 /// Time one scene in every scalar type (ns per solve; `None` when singular in that type),
-/// and in f64 the cheapest public path, impulses and twist only (`f64/impulses,twist`).
+/// and in f64 the cheapest public path, impulses and twist only (`f64/impulses,twist`), the
+/// lean path for both models (`f64/lean`) and for Newton's alone (`f64/lean-newton`: the work
+/// of one `impulseDynamics` call, which has Newton's law only).
 pub fn time_scene(scene: &Scene, quick: bool) -> Vec<(&'static str, Option<f64>)> {
     let budget = Duration::from_millis(if quick { 20 } else { 200 });
     vec![
@@ -692,7 +689,14 @@ pub fn time_scene(scene: &Scene, quick: bool) -> Vec<(&'static str, Option<f64>)
             scene
                 .problem::<f64>()
                 .ok()
-                .and_then(|p| time_lean(&p, budget)),
+                .and_then(|p| time_lean(&p, budget, &[Model::Newton, Model::Poisson])),
+        ),
+        (
+            "f64/lean-newton",
+            scene
+                .problem::<f64>()
+                .ok()
+                .and_then(|p| time_lean(&p, budget, &[Model::Newton])),
         ),
         (
             "f32",
