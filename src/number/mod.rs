@@ -124,8 +124,54 @@ pub fn parse_number(text: &str) -> Result<Number, NumberError> {
 /// As [`parse_number`].
 pub fn parse_number_with(text: &str, symbols: &[String]) -> Result<Number, NumberError> {
     let src = text.trim();
+    if let Some(n) = plain_decimal(src) {
+        return Ok(n);
+    }
     let root = parse_checked(src, symbols)?;
     evaluate(src, &root)
+}
+
+/// The number a plain decimal `[-]digits[.digits]` of at most 18 digits writes, nonzero — most
+/// of a large scene's numbers — read without the expression parser: m / 10^k exactly (reduced),
+/// and its f64 by Rust's correctly rounded parser, which is the correctly rounded value of
+/// that rational, as the general path gives it (tested to be the same [`Number`]). `None` for
+/// anything else, which the general path reads.
+fn plain_decimal(src: &str) -> Option<Number> {
+    let digits = src.strip_prefix('-').unwrap_or(src);
+    let (int, frac) = digits.split_once('.').unwrap_or((digits, ""));
+    let ok = |d: &str| d.bytes().all(|b| b.is_ascii_digit());
+    if int.is_empty() || (digits.contains('.') && frac.is_empty()) || !ok(int) || !ok(frac) {
+        return None;
+    }
+    if int.len() + frac.len() > 18 {
+        return None;
+    }
+    let mut m: i64 = 0;
+    for b in int.bytes().chain(frac.bytes()) {
+        m = m * 10 + i64::from(b - b'0');
+    }
+    if m == 0 {
+        return None; // ±0: the general path decides the sign of zero
+    }
+    if src.starts_with('-') {
+        m = -m;
+    }
+    // Reduced in machine words (|m| < 10^18, 10^k ≤ 10^17): num's BigInt gcd costs more
+    // than the rest of the read.
+    let (mut a, mut b) = (m.unsigned_abs(), 10u64.pow(frac.len() as u32));
+    let den = b;
+    while b != 0 {
+        (a, b) = (b, a % b);
+    }
+    let exact = BigRational::new_raw(BigInt::from(m / a as i64), BigInt::from(den / a));
+    Some(Number {
+        text: src.to_string(),
+        approx: src.parse::<f64>().ok()?,
+        exact: Ok(exact),
+        symbols: Vec::new(),
+        tangent: 0.0,
+        source: None,
+    })
 }
 
 /// Parse `src` (trimmed) and check that every name in it is declared in `symbols`: the syntax
@@ -585,6 +631,43 @@ fn trig_at_degrees(func: Func, degrees: &BigRational) -> Trig {
 
 #[cfg(test)]
 mod tests {
+    /// The plain-decimal shortcut gives the very number the expression parser does.
+    #[test]
+    fn plain_decimals_read_as_the_general_path_reads_them() {
+        let mut seed = 0x5eed_u64;
+        let mut next = |k: u64| {
+            seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            (seed >> 33) % k
+        };
+        let mut texts: Vec<String> = ["1", "-2", "0.5", "-0.25", "12.000", "007.10", "-0.000001"]
+            .map(String::from)
+            .to_vec();
+        for _ in 0..4000 {
+            let int: String = (0..1 + next(9)).map(|_| char::from(b'0' + next(10) as u8)).collect();
+            let frac: String = (0..next(10)).map(|_| char::from(b'0' + next(10) as u8)).collect();
+            let sign = if next(2) == 0 { "-" } else { "" };
+            texts.push(match frac.is_empty() {
+                true => format!("{sign}{int}"),
+                false => format!("{sign}{int}.{frac}"),
+            });
+        }
+        let mut fast = 0;
+        for t in &texts {
+            let general = evaluate(t, &parse_checked(t, &[]).unwrap()).unwrap();
+            if let Some(n) = plain_decimal(t) {
+                fast += 1;
+                assert_eq!(n, general, "{t}");
+                assert_eq!(n.approx.to_bits(), general.approx.to_bits(), "{t}");
+                let (q, r) = (n.exact.as_ref().unwrap(), general.exact.as_ref().unwrap());
+                assert_eq!((q.numer(), q.denom()), (r.numer(), r.denom()), "{t}: in lowest terms");
+            }
+        }
+        assert!(fast > 3000, "the shortcut took {fast} of {}", texts.len());
+        for t in ["1e3", "1.", ".5", "1/3", "0", "-0.0", "1234567890123456789", "+1", "1_0"] {
+            assert!(plain_decimal(t).is_none(), "{t}");
+        }
+    }
+
     use super::*;
 
     fn q(n: i64, d: i64) -> BigRational {

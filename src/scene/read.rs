@@ -323,20 +323,27 @@ impl Reader<'_> {
 
     /// A number: a TOML integer or float, or a string with a fraction or an expression.
     pub(super) fn number_value(&self, v: &Value, key: &str) -> Result<Number, SceneError> {
+        self.number_at(v, &|| key.to_string())
+    }
+
+    /// [`Reader::number_value`] with the key formed only for an error: a scene of 10⁵
+    /// contacts reads 10⁶ numbers, and formatting each one's key and value text up front
+    /// cost about as much as reading it.
+    fn number_at(&self, v: &Value, key: &dyn Fn() -> String) -> Result<Number, SceneError> {
         let text: String = match v {
             Value::Integer(f) => f.display_repr().into_owned(),
             Value::Float(f) => f.display_repr().into_owned(),
             Value::String(s) => s.value().clone(),
             other => {
                 return Err(self.err(
-                    key,
+                    &key(),
                     Some(other.to_string().trim().to_string()),
                     "must be a number (or a string such as \"1/3\")",
                 ));
             }
         };
-        let shown = v.to_string().trim().to_string();
         self.params.number(&text).map_err(|e| {
+            let shown = v.to_string().trim().to_string();
             let mut message = e.to_string();
             if self.symbols.is_empty() && message.contains("unknown name") {
                 message += "; a symbolic scene is for `inertance derive SCENE --symbols NAME,…`";
@@ -344,7 +351,7 @@ impl Reader<'_> {
             if let Some(hint) = degree_hint(&text) {
                 message += &hint;
             }
-            self.err(key, Some(shown), message)
+            self.err(&key(), Some(shown), message)
         })
     }
 
@@ -367,7 +374,7 @@ impl Reader<'_> {
         })?;
         let mut out = Vec::with_capacity(3);
         for (i, v) in arr.iter().enumerate() {
-            out.push(self.number_value(v, &format!("{key}[{i}]"))?);
+            out.push(self.number_at(v, &|| format!("{key}[{i}]"))?);
         }
         let [a, b, c]: [Number; 3] = out
             .try_into()
