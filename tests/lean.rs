@@ -44,30 +44,6 @@ fn exact_agrees<const N: usize>(p: &Problem<Exact>) {
     }
 }
 
-/// The exact problem the f64 problem `p` is (its inputs' binary values).
-fn exact_of(p: &Problem<f64>) -> Problem<Exact> {
-    let e = |x: &f64| Exact::from(x.exact_value().expect("finite"));
-    let v = |x: &Vec3<f64>| Vec3::new(e(&x[0]), e(&x[1]), e(&x[2]));
-    let inertance::mechanics::body::Inertia::Principal(j) = &p.body().inertia else {
-        unreachable!("principal bodies here")
-    };
-    let contacts = p
-        .contacts()
-        .iter()
-        .map(|c| {
-            Contact::new(v(&c.point), v(&c.normal), e(&c.k_newton))
-                .with_coefficients(e(&c.k_newton), e(&c.k_poisson))
-        })
-        .collect();
-    let w = p.velocity();
-    Problem::new(
-        RigidBody::principal(e(&p.body().mass), v(j)),
-        Screw::new(v(&w.top()), v(&w.bottom())),
-        contacts,
-    )
-    .expect("the binary values of a valid problem")
-}
-
 /// The contract's impulse and twist bounds (`analysis::accuracy`) for a float solve with
 /// epsilon `eps` of `model`, and the measured errors of `o`: (error, bound) for each.
 fn contract<const N: usize>(

@@ -636,15 +636,21 @@ mod tests {
     fn plain_decimals_read_as_the_general_path_reads_them() {
         let mut seed = 0x5eed_u64;
         let mut next = |k: u64| {
-            seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
             (seed >> 33) % k
         };
         let mut texts: Vec<String> = ["1", "-2", "0.5", "-0.25", "12.000", "007.10", "-0.000001"]
             .map(String::from)
             .to_vec();
         for _ in 0..4000 {
-            let int: String = (0..1 + next(9)).map(|_| char::from(b'0' + next(10) as u8)).collect();
-            let frac: String = (0..next(10)).map(|_| char::from(b'0' + next(10) as u8)).collect();
+            let int: String = (0..1 + next(9))
+                .map(|_| char::from(b'0' + next(10) as u8))
+                .collect();
+            let frac: String = (0..next(10))
+                .map(|_| char::from(b'0' + next(10) as u8))
+                .collect();
             let sign = if next(2) == 0 { "-" } else { "" };
             texts.push(match frac.is_empty() {
                 true => format!("{sign}{int}"),
@@ -659,11 +665,25 @@ mod tests {
                 assert_eq!(n, general, "{t}");
                 assert_eq!(n.approx.to_bits(), general.approx.to_bits(), "{t}");
                 let (q, r) = (n.exact.as_ref().unwrap(), general.exact.as_ref().unwrap());
-                assert_eq!((q.numer(), q.denom()), (r.numer(), r.denom()), "{t}: in lowest terms");
+                assert_eq!(
+                    (q.numer(), q.denom()),
+                    (r.numer(), r.denom()),
+                    "{t}: in lowest terms"
+                );
             }
         }
         assert!(fast > 3000, "the shortcut took {fast} of {}", texts.len());
-        for t in ["1e3", "1.", ".5", "1/3", "0", "-0.0", "1234567890123456789", "+1", "1_0"] {
+        for t in [
+            "1e3",
+            "1.",
+            ".5",
+            "1/3",
+            "0",
+            "-0.0",
+            "1234567890123456789",
+            "+1",
+            "1_0",
+        ] {
             assert!(plain_decimal(t).is_none(), "{t}");
         }
     }

@@ -249,3 +249,29 @@ impl Drop for SceneFile {
         let _ = std::fs::remove_dir_all(&self.dir);
     }
 }
+
+/// The exact problem an f64 problem is (its inputs' binary values; principal axes).
+pub fn exact_of(p: &Problem<f64>) -> Problem<Exact> {
+    let e = |x: &f64| Exact::from(x.exact_value().expect("finite"));
+    let v = |x: &Vec3<f64>| Vec3::new(e(&x[0]), e(&x[1]), e(&x[2]));
+    let Inertia::Principal(j) = &p.body().inertia else {
+        unreachable!("principal bodies here")
+    };
+    let contacts = p
+        .contacts()
+        .iter()
+        .map(|c| {
+            let mut k = Contact::new(v(&c.point), v(&c.normal), e(&c.k_newton))
+                .with_coefficients(e(&c.k_newton), e(&c.k_poisson));
+            k.tangent = c.tangent.as_ref().map(v);
+            k
+        })
+        .collect();
+    let w = p.velocity();
+    Problem::new(
+        RigidBody::principal(e(&p.body().mass), v(j)),
+        Screw::new(v(&w.top()), v(&w.bottom())),
+        contacts,
+    )
+    .expect("the binary values of a valid problem")
+}
