@@ -379,22 +379,7 @@ impl<T: Scalar> Constrained<T> {
                 }
                 (u, false)
             }
-            None => {
-                // x ∈ U ⇔ D_aᵀ η x = 0 for every a: rows [D_a bottom; D_a top]. The metric
-                // plays no part here, so the pivoted elimination on D's own coordinates is
-                // as accurate for any mass and moments.
-                let mut rows = Vec::with_capacity(6 * d);
-                for s in &free {
-                    rows.extend(s.bottom().iter().cloned());
-                    rows.extend(s.top().iter().cloned());
-                }
-                let (_, basis) = null_space(&rows, d, 6);
-                let u = basis
-                    .into_iter()
-                    .map(|x| Screw(SVector::<T, 6>::from_iterator(x)))
-                    .collect();
-                (u, true)
-            }
+            None => (complement(&free), true),
         };
         let u = blocked.len();
         if d + u != 6 {
@@ -499,6 +484,24 @@ impl<T: Scalar> Mobility<T> for Constrained<T> {
         }
         out
     }
+}
+
+/// The blocked screws U derived from the free ones: a basis of the η-orthogonal complement
+/// {x : D_aᵀ η x = 0 for every a} (eq. 82), from the rows [D_a bottom; D_a top] by reduced row
+/// echelon form, one screw per free column with a 1 there ([`null_space`]). The metric plays
+/// no part, so the pivoted elimination on D's own coordinates is as accurate for any mass and
+/// moments.
+pub fn complement<T: Scalar>(free: &[Screw<T>]) -> Vec<Screw<T>> {
+    let mut rows = Vec::with_capacity(6 * free.len());
+    for s in free {
+        rows.extend(s.bottom().iter().cloned());
+        rows.extend(s.top().iter().cloned());
+    }
+    let (_, basis) = null_space(&rows, free.len(), 6);
+    basis
+        .into_iter()
+        .map(|x| Screw(SVector::<T, 6>::from_iterator(x)))
+        .collect()
 }
 
 /// The Euclidean |s|² of a screw's six coordinates (a scale for zero tests only).
