@@ -42,8 +42,9 @@ const EPS: f64 = f64::EPSILON;
 
 /// A ```scene NAME block of a derivation.
 fn derivation_scene(file: &str, name: &str) -> String {
-    let text = std::fs::read_to_string(format!("{}/derivations/{file}", env!("CARGO_MANIFEST_DIR")))
-        .unwrap();
+    let text =
+        std::fs::read_to_string(format!("{}/derivations/{file}", env!("CARGO_MANIFEST_DIR")))
+            .unwrap();
     let start = text
         .find(&format!("```scene {name}\n"))
         .unwrap_or_else(|| panic!("{file}: no scene {name}"));
@@ -158,7 +159,13 @@ fn values(v: &[inertance::report::Value]) -> Vec<f64> {
 fn compare(case: &str, body: &Body, float: &ModelReport, exact: &ModelReport, bound: f64) {
     let p = values(&exact.impulses);
     let largest_p = p.iter().fold(0f64, |s, v| s.max(v.abs()));
-    group(&format!("{case} P"), &values(&float.impulses), &p, 0.0, bound);
+    group(
+        &format!("{case} P"),
+        &values(&float.impulses),
+        &p,
+        0.0,
+        bound,
+    );
     // The twist in the kinetic-energy norm, against V = ‖v⁰‖_M + ‖Δv‖_M (the contract's).
     let twist = |r: &ModelReport| -> [f64; 6] {
         let (w, v) = (values(&r.angular_velocity), values(&r.velocity));
@@ -217,7 +224,11 @@ impl Body {
         let v = scene.velocity.each_ref().map(x);
         Body {
             mass: x(&scene.mass),
-            moments: [x(&scene.inertia[0]), x(&scene.inertia[1]), x(&scene.inertia[2])],
+            moments: [
+                x(&scene.inertia[0]),
+                x(&scene.inertia[1]),
+                x(&scene.inertia[2]),
+            ],
             before: [w[0], w[1], w[2], v[0], v[1], v[2]],
         }
     }
@@ -340,19 +351,38 @@ fn a_constrained_body_of_tiny_mass_and_moments_is_scaled_and_solves() {
     ] {
         let text = moments(&mass(&text, m), j);
         let scene = Scene::parse(&text, "tiny.toml").unwrap();
-        let (_, units) = inertance::scene::scale::scale(&scene).expect("a constrained scene is scaled");
+        let (_, units) =
+            inertance::scene::scale::scale(&scene).expect("a constrained scene is scaled");
         assert!(units.mass < -450, "mass unit 2^{}", units.mass);
         assert!(check("tiny body", &text));
         // The constraints' readout is scaled back: D, U and M_red as the exact solve's.
-        let float = run::<f64>(&scene, None).unwrap().report.constraints.unwrap();
-        let exact = run::<Exact>(&scene, None).unwrap().report.constraints.unwrap();
+        let float = run::<f64>(&scene, None)
+            .unwrap()
+            .report
+            .constraints
+            .unwrap();
+        let exact = run::<Exact>(&scene, None)
+            .unwrap()
+            .report
+            .constraints
+            .unwrap();
         let close = |a: f64, b: f64| (a - b).abs() <= 4.0 * EPS * b.abs();
-        for (f, x) in float.free.iter().zip(&exact.free).chain(float.blocked.iter().zip(&exact.blocked)) {
+        for (f, x) in float
+            .free
+            .iter()
+            .zip(&exact.free)
+            .chain(float.blocked.iter().zip(&exact.blocked))
+        {
             for (a, b) in f.iter().zip(x) {
                 assert!(close(a.f64, b.f64), "screw {a:?} vs {b:?}");
             }
         }
-        for (f, x) in float.reduced_mass.iter().flatten().zip(exact.reduced_mass.iter().flatten()) {
+        for (f, x) in float
+            .reduced_mass
+            .iter()
+            .flatten()
+            .zip(exact.reduced_mass.iter().flatten())
+        {
             assert!(close(f.f64, x.f64), "M_red {} vs {}", f.f64, x.f64);
         }
     }

@@ -54,9 +54,9 @@ use num_traits::{Signed, Zero};
 use super::{ConstraintsSpec, Scene};
 use crate::mechanics::constraint::complement;
 use crate::mechanics::screw::Screw;
-use crate::scalar::{Exact, Scalar};
 use crate::number::{Number, format_rational, rational_to_f64};
 use crate::report::{PointVelocity, Report, Value};
+use crate::scalar::{Exact, Scalar};
 
 /// The powers of two of a scaled scene: mass 2^a, length 2^b, time 2^c, and each contact's
 /// normal and tangent scale.
@@ -228,11 +228,7 @@ fn scale_constraints(s: &mut Scene, b: i64) {
 /// units: scaling the coordinates of a wrench by powers of two changes no rank), must be
 /// related by D′_a = [ω; v/2^b]/2^(f_a), U′_a = [F; M/2^b]/2^(g_a). `Err` if they are not
 /// (then the scene runs as written).
-fn constraint_exponents(
-    scene: &Scene,
-    scaled: &Scene,
-    b: i64,
-) -> Result<(Vec<i64>, Vec<i64>), ()> {
+fn constraint_exponents(scene: &Scene, scaled: &Scene, b: i64) -> Result<(Vec<i64>, Vec<i64>), ()> {
     let screws = |s: &Scene| match s.constraint_screws::<Exact>() {
         Ok(Some((d, u, _))) => {
             let u = u.unwrap_or_else(|| complement(&d));
