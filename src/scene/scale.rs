@@ -92,11 +92,14 @@ fn largest<'a>(numbers: impl IntoIterator<Item = &'a Number>) -> Option<i64> {
         .max()
 }
 
-/// q · 2^k, exactly.
+/// q · 2^k, exactly: a shift of the numerator or of the denominator (then reduced).
 fn shifted(q: &BigRational, k: i64) -> BigRational {
-    let two = BigRational::from_integer(2.into());
-    let factor = num_traits::pow(two, k.unsigned_abs() as usize);
-    if k >= 0 { q * factor } else { q / factor }
+    let bits = k.unsigned_abs() as usize;
+    if k >= 0 {
+        BigRational::new(q.numer() << bits, q.denom().clone())
+    } else {
+        BigRational::new(q.numer().clone(), q.denom() << bits)
+    }
 }
 
 /// The number `n` times 2^k, as a number (its text the exact scaled value); its derivative
