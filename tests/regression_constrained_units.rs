@@ -3,13 +3,14 @@
 //! (Example 6's joints), was refused in f64 with "this joint's freedom is already given by the
 //! joints before it": M_red = diag(3.3 + …, 10⁻³⁰⁰), and the rank test, relative to the largest
 //! entry, took the prismatic joint's 10⁻³⁰⁰ for zero. The free and blocked screws are now
-//! equilibrated by powers of two before their Gram matrices are formed (W = D M_red⁻¹ Dᵀ η does
-//! not depend on the scaling of D's columns), so each screw is compared with its own size.
+//! orthogonalised in the body's metric, and a screw is dependent only when each of its
+//! coordinates is within the rounding of its orthogonalisation (W = D M_red⁻¹ Dᵀ η does not
+//! depend on the basis of span D), so each screw is compared with its own size.
 //!
-//! Not covered (open, issue 16): the opposite extreme, a heavy body with small moments on these
-//! joints (m·l²/J beyond about 10¹⁰), makes M_red itself ill-conditioned in the basis the joints
-//! give (the revolute and prismatic screws differ by a pure rotation worth J beside m·l²), and
-//! f64 refuses it as dependent or as a velocity the joints forbid; `--exact` solves it.
+//! The opposite extreme, a heavy body with small moments (m·l²/J beyond about 10¹⁰, where the
+//! Gram matrix M_red itself is ill-conditioned in the joints' basis), is solved too, since the
+//! screws are orthogonalised rather than their Gram matrix formed
+//! (tests/regression_constrained_heavy_body.rs).
 
 use inertance::scalar::Exact;
 use inertance::scene::Scene;
@@ -44,7 +45,7 @@ models = ["newton", "poisson"]
 
 #[test]
 fn a_light_body_on_joints_is_not_refused_as_dependent_and_matches_exact() {
-    // Light bodies: the equilibrated M_red is within a factor m·l²/J + 1 (about 4) of diagonal.
+    // Light bodies: the orthogonalised screws are the joints' own up to a relative m·l²/J.
     for m in ["1e-300", "1e-100", "1e-20", "1e-5", "10"] {
         let s = scene(m);
         let float = run::<f64>(&s, None).unwrap_or_else(|e| panic!("mass {m}: {e}"));
@@ -52,7 +53,7 @@ fn a_light_body_on_joints_is_not_refused_as_dependent_and_matches_exact() {
         for (f, x) in float.report.models.iter().zip(&exact.report.models) {
             // One contact: P = (1 + k) v⁰/g, a handful of roundings; the twist and q likewise.
             // 64ε relative to each value's own size (the inputs 0.3, 3.3 are rounded in f64,
-            // by ε/2 each, and W's solve on an equilibrated M_red adds a few ε).
+            // by ε/2 each, and W applied over the orthogonalised screws adds a few ε).
             let close = |a: f64, b: f64, what: &str| {
                 assert!(
                     (a - b).abs() <= 64.0 * f64::EPSILON * b.abs().max(f64::MIN_POSITIVE),

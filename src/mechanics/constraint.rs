@@ -27,10 +27,54 @@
 //! (Uᵀ η M⁻¹ U) q = Σ P_i Uᵀ η M⁻¹ {E_ix}. The solution satisfies U q = r exactly (r lies in
 //! the span of U because Dᵀ η r = 0 by eq. 85), which the tests check in exact arithmetic.
 //! q_a is the multiplier of the screw U_a as written.
+//!
+//! **Orthogonal screws, not Gram matrices.** M_red and Uᵀ η M⁻¹ U are Gram matrices, and
+//! forming them squares the conditioning of the screws in the body's metric: a body of mass m
+//! and moment J on a revolute joint about z through (0, −l, 0) and a prismatic one along x has
+//! M_red = [[J + m l², −m l], [−m l, m]], of condition about m l²/J, while its motion space
+//! is as well conditioned as the body (a rotation about C and a translation, kinetic energies
+//! J and m). So D is orthogonalised in ⟨a, b⟩ = {a}ᵀ η M {b} = ω_a·J ω_b + m v_a·v_b
+//! (eq. 32; [`RigidBody::momentum`], [`Screw::reciprocal`]) by modified Gram–Schmidt on the
+//! screws themselves, without normalising (field operations only, as
+//! [`crate::impact::gram_schmidt`] does for the contact wrenches):
+//!
+//! ```text
+//! D_k = b_k + Σ_{i<k} r_ik b_i,   ⟨b_i, b_k⟩ = d_k δ_ik,   W = Σ_a b_a b_aᵀ η / d_a
+//! ```
+//!
+//! (M_red = Rᵀ diag(d) R, and W = D M_red⁻¹ Dᵀ η does not depend on the basis of span D), and
+//! {v⁰} is checked by removing its components along the b_a from {v⁰} itself. U is
+//! orthogonalised the same way in ⟨a, b⟩ = {a}ᵀ η M⁻¹ {b} ([`Mobility::response`] of the
+//! body), U = C R, and q solves R q = y with y_a = ⟨r, c_a⟩/e_a. Exact types compute the
+//! same W, the same q and the same first dependent screw as the Gram matrices did (a screw is
+//! dependent iff its orthogonalised q_k is 0).
+//!
+//! *Passes.* A pass that removes more than half of the squared norm is repeated (Kahan and
+//! Parlett's test; "twice is enough", Giraud, Langou and Rozložník 2005, when the metric is
+//! well scaled). In a badly scaled metric (m l² ≫ J) the first pass leaves rounding of order
+//! ε in the heavy coordinates v, worth m ε² against the d_k ≈ J that is sought; each repeat
+//! removes that rounding's component along the earlier b_i, down by a factor of order ε, so
+//! the loop goes on while it matters and stops when a pass removes at most half (the computed
+//! b_k is then orthogonal to working precision in this metric) or leaves only rounding (a
+//! screw in the span: dependent, or {v⁰} allowed). Measured: two passes for the joints above
+//! at every m/J from 10⁻³⁰⁰ to 10³⁰⁰, also where the coordinates round (a revolute through
+//! (−0.3, 0.7, 0) with the prismatic along (0.7, 0.3, 0)), and the f64 solves then agree with
+//! the exact ones to a few ε (tests/regression_constrained_heavy_body.rs).
+//!
+//! *Dependence.* A screw is dependent when every coordinate of its orthogonalised q_k is
+//! within the rounding bound of its own computation: the coordinate j is x_j − Σ_t c_t b_tj
+//! over the p·k subtractions of p passes, within γ_(pk+1) (|x_j| + Σ_t |c_t| |b_tj|) of its
+//! exact value for the computed c_t (Higham, *Accuracy and Stability of Numerical
+//! Algorithms*, Lemma 3.1, γ_n ≈ n ε/2), and the test is [`Scalar::is_negligible`] with
+//! n = p·k + 1 against that sum of magnitudes, twice γ to cover the rounding of the c_t. The
+//! test is componentwise, so it does not depend on the units or on the metric: the M-norm of
+//! q_k relative to that of D_k would call the prismatic joint above dependent once
+//! J/(m l²) < ε² (its orthogonalised screw is the rotation about C, of kinetic energy J beside
+//! the translation's m), though its coordinates are those of a unit rotation, far from zero.
 
 use nalgebra::SVector;
 
-use crate::linalg::{self, factor_psd, null_space};
+use crate::linalg::null_space;
 use crate::mechanics::body::{Mobility, RigidBody};
 use crate::mechanics::screw::{Screw, Vec3, norm2};
 use crate::scalar::Scalar;
@@ -162,7 +206,8 @@ pub enum ConstraintError {
 }
 
 /// A body with ideal constraints: the [`Mobility`] W = D M_red⁻¹ Dᵀ η, and what is needed for
-/// the constraint impulses. Small fixed-size buffers: no allocation per response.
+/// the constraint impulses, both from the screws orthogonalised in the body's metric (module
+/// docs). Small fixed-size buffers: no allocation per response.
 #[derive(Clone, Debug)]
 pub struct Constrained<T: Scalar> {
     body: RigidBody<T>,
@@ -172,45 +217,158 @@ pub struct Constrained<T: Scalar> {
     pub blocked: Vec<Screw<T>>,
     /// Whether U was derived rather than given.
     pub derived_blocked: bool,
-    /// D's columns equilibrated: D_a · 2^(k_a), with 2^(k_a) bringing their diagonal entry of
-    /// M_red near 1 (floats; k_a = 0 in exact types). W = D M_red⁻¹ Dᵀ η is the same for every
-    /// scaling of D's columns, so the solve uses these; the zero tests of rank then compare each
-    /// screw with its own size, whatever the units (a body of 10⁻³⁰⁰ kg and 3.3 kg·m² on a
-    /// revolute and a prismatic joint has M_red = diag(3.3, 10⁻³⁰⁰), which the unscaled test,
-    /// relative to the largest entry, took for rank 1).
-    basis: Vec<Screw<T>>,
-    /// U's columns equilibrated the same way in Uᵀ η M⁻¹ U, with their powers of two: q is
-    /// reported per column of U as given, q_a = 2^(k_a) q′_a.
-    blocked_basis: Vec<(Screw<T>, T)>,
-    m_red: SVector<T, 36>,
-    m_red_perm: [usize; 6],
-    u_gram: SVector<T, 36>,
-    u_gram_perm: [usize; 6],
+    /// D orthogonalised in ⟨a, b⟩ = {a}ᵀ η M {b}: M_red is diagonal in this basis.
+    free_basis: Orthogonal<T>,
+    /// U orthogonalised in ⟨a, b⟩ = {a}ᵀ η M⁻¹ {b}: so is Uᵀ η M⁻¹ U.
+    blocked_basis: Orthogonal<T>,
 }
 
-/// 2^k, the power of two nearest 1/√g for a positive float g (1 in exact types, and for g = 0
-/// or a non-finite g): a screw times it has a Gram entry g·4^k within [½, 2).
-fn equilibrator<T: Scalar>(g: &T) -> T {
-    let x = g.to_f64();
-    if T::IS_EXACT || !(x.is_finite() && x > 0.0) {
-        return T::one();
+/// At most this many passes of Gram–Schmidt per screw. A pass is repeated only while it
+/// removes more than half of the squared norm and leaves more than rounding, and each
+/// repetition shrinks the rounding left along the earlier screws by about the working
+/// precision (module docs): measured, two passes for the joints of the module docs at every
+/// m/J from 10⁻³⁰⁰ to 10³⁰⁰ and for joints whose coordinates round (0.3, 0.7), one for
+/// well-conditioned screws; the cap only bounds a loop no scene has needed.
+const MAX_PASSES: usize = 64;
+
+/// Screws orthogonalised by modified Gram–Schmidt, without normalising, in a metric
+/// ⟨a, b⟩ = {a}ᵀ η G {b} with η G symmetric positive definite (G = M for twists, M⁻¹ for
+/// wrenches): s_k = b_k + Σ_{i<k} r_ik b_i, ⟨b_i, b_k⟩ = d_k δ_ik.
+#[derive(Clone, Debug)]
+struct Orthogonal<T: Scalar> {
+    /// b_k.
+    vectors: Vec<Screw<T>>,
+    /// G b_k, so that ⟨x, b_k⟩ = {x}ᵀ η (G b_k) costs six products.
+    images: Vec<Screw<T>>,
+    /// d_k = ⟨b_k, b_k⟩ > 0.
+    norms2: Vec<T>,
+    /// r_ik, n×n row-major above the diagonal (unit diagonal and zeros below, not used).
+    r: Vec<T>,
+}
+
+/// Whether every coordinate of q, the result of `terms` − 1 subtractions x_j − Σ_t c_t b_tj,
+/// is within the rounding bound of that computation: γ_terms times `noise` = |x| + Σ_t |c_t| |b_t|
+/// (Higham, Lemma 3.1, one product and one subtraction per term), doubled to cover the
+/// rounding of the c_t: [`Scalar::is_negligible`] with n = `terms`, n ε ≈ 2 γ_n.
+fn within<T: Scalar>(q: &Screw<T>, noise: &Screw<T>, terms: usize) -> bool {
+    (0..6).all(|j| q.0[j].is_negligible(&noise.0[j], terms))
+}
+
+/// |s|, componentwise.
+fn magnitude<T: Scalar>(s: &Screw<T>) -> Screw<T> {
+    Screw(s.0.map(|x| if x.signum_i8() < 0 { -x } else { x }))
+}
+
+impl<T: Scalar> Orthogonal<T> {
+    /// Orthogonalise `screws` in turn in the metric `g` (x ↦ G x); `Err(k)` for the first
+    /// screw that is a combination of the ones before it, to working precision: every
+    /// coordinate of its orthogonalised q_k within the rounding bound of its own computation
+    /// (module docs; exactly q_k = 0 in exact types).
+    fn new(screws: &[Screw<T>], g: &impl Fn(&Screw<T>) -> Screw<T>) -> Result<Self, usize> {
+        let n = screws.len();
+        let mut basis = Orthogonal {
+            vectors: Vec::with_capacity(n),
+            images: Vec::with_capacity(n),
+            norms2: Vec::with_capacity(n),
+            r: vec![T::zero(); n * n],
+        };
+        let mut coefficients = vec![T::zero(); n];
+        for (k, s) in screws.iter().enumerate() {
+            let mut q = s.clone();
+            let mut noise = (!T::IS_EXACT).then(|| magnitude(s));
+            coefficients.iter_mut().for_each(|c| *c = T::zero());
+            let (image, d, passes) =
+                basis.orthogonalise(&mut q, g, &mut coefficients[..k], noise.as_mut());
+            let negligible = match &noise {
+                Some(noise) => within(&q, noise, passes * k + 1),
+                None => q.0.iter().all(|x| x.is_negligible(&T::zero(), 1)),
+            };
+            if negligible || d.signum_i8() <= 0 {
+                return Err(k);
+            }
+            for (i, c) in coefficients[..k].iter().enumerate() {
+                basis.r[i * n + k] = c.clone();
+            }
+            basis.vectors.push(q);
+            basis.images.push(image);
+            basis.norms2.push(d);
+        }
+        Ok(basis)
     }
-    let k = -(x.log2() / 2.0).round();
-    T::from_f64(k.exp2())
-        .filter(|s| s.to_f64().is_normal())
-        .unwrap_or_else(T::one)
-}
 
-/// The screw s times the scalar c.
-fn times<T: Scalar>(s: &Screw<T>, c: &T) -> Screw<T> {
-    let mut out = Screw::zero();
-    out.add_scaled(c, s);
-    out
+    /// Number of screws.
+    fn len(&self) -> usize {
+        self.norms2.len()
+    }
+
+    /// One pass of modified Gram–Schmidt: q ← q − c_i b_i for each i in turn, with
+    /// c_i = ⟨q, b_i⟩/d_i of the current q; adds c_i to `coefficients[i]` and |c_i| |b_i| to
+    /// `noise`, and returns Σ c_i² d_i, the squared norm removed (Pythagoras).
+    fn pass(
+        &self,
+        q: &mut Screw<T>,
+        coefficients: &mut [T],
+        mut noise: Option<&mut Screw<T>>,
+    ) -> T {
+        let mut removed = T::zero();
+        for (i, c_total) in coefficients.iter_mut().enumerate() {
+            let c = q.reciprocal(&self.images[i]) / &self.norms2[i];
+            q.add_scaled(&-c.clone(), &self.vectors[i]);
+            if let Some(noise) = noise.as_deref_mut() {
+                let size = if c.signum_i8() < 0 {
+                    -c.clone()
+                } else {
+                    c.clone()
+                };
+                noise.add_scaled(&size, &magnitude(&self.vectors[i]));
+            }
+            removed += c.clone() * &c * &self.norms2[i];
+            *c_total += c;
+        }
+        removed
+    }
+
+    /// q orthogonalised against the first `coefficients.len()` screws, in place: passes are
+    /// repeated while one removes more than half of q's squared norm (Kahan and Parlett's
+    /// test, as in [`crate::impact::gram_schmidt`]; module docs), unless q is already zero to
+    /// working precision (with `noise`: then what a pass removes is rounding, and repeating
+    /// would chase it). Returns G q, ⟨q, q⟩ and the passes made (one in exact types, where a
+    /// second would remove nothing).
+    fn orthogonalise(
+        &self,
+        q: &mut Screw<T>,
+        g: &impl Fn(&Screw<T>) -> Screw<T>,
+        coefficients: &mut [T],
+        mut noise: Option<&mut Screw<T>>,
+    ) -> (Screw<T>, T, usize) {
+        let mut image = g(q);
+        let mut norm2 = q.reciprocal(&image);
+        if coefficients.is_empty() {
+            return (image, norm2, 0);
+        }
+        let two = T::one() + T::one();
+        let mut passes = 0;
+        while passes < MAX_PASSES {
+            let removed = self.pass(q, coefficients, noise.as_deref_mut());
+            passes += 1;
+            image = g(q);
+            let before = std::mem::replace(&mut norm2, q.reciprocal(&image));
+            if T::IS_EXACT
+                || !(removed * &two).abs_gt(&before)
+                || noise
+                    .as_deref()
+                    .is_some_and(|n| within(q, n, passes * coefficients.len() + 1))
+            {
+                break;
+            }
+        }
+        (image, norm2, passes)
+    }
 }
 
 impl<T: Scalar> Constrained<T> {
-    /// Validate D (and U, if given; otherwise derive it) for `body`, and factor M_red and
-    /// Uᵀ η M⁻¹ U.
+    /// Validate D (and U, if given; otherwise derive it) for `body`, and orthogonalise D in
+    /// η M and U in η M⁻¹ (module docs).
     pub fn new(
         body: &RigidBody<T>,
         free: Vec<Screw<T>>,
@@ -223,25 +381,10 @@ impl<T: Scalar> Constrained<T> {
         if d > 6 {
             return Err(ConstraintError::DependentFree { index: 6 });
         }
-        // M_red = Dᵀ η M D (eq. 83): a Gram matrix, so rank-deficient iff D is; formed on
-        // the equilibrated columns (see `basis`).
-        let basis: Vec<Screw<T>> = free
-            .iter()
-            .map(|s| times(s, &equilibrator(&s.reciprocal(&body.momentum(s)))))
-            .collect();
-        let mut m_red = SVector::<T, 36>::zeros();
-        let momenta: Vec<Screw<T>> = basis.iter().map(|s| body.momentum(s)).collect();
-        for a in 0..d {
-            for b in 0..d {
-                m_red[a * d + b] = basis[a].reciprocal(&momenta[b]);
-            }
-        }
-        if let Some(index) = first_dependent(&m_red.as_slice()[..d * d], d) {
-            return Err(ConstraintError::DependentFree { index });
-        }
-        let mut m_red_perm = [0; 6];
-        factor_psd(&mut m_red.as_mut_slice()[..d * d], d, &mut m_red_perm[..d])
-            .map_err(|e| ConstraintError::DependentFree { index: e.index })?;
+        // M_red = Dᵀ η M D (eq. 83) is the Gram matrix of D in η M: diagonal in this basis,
+        // and D is of full column rank iff no orthogonalised screw vanishes.
+        let free_basis = Orthogonal::new(&free, &|s: &Screw<T>| body.momentum(s))
+            .map_err(|index| ConstraintError::DependentFree { index })?;
 
         let (blocked, derived_blocked) = match blocked {
             Some(u) => {
@@ -260,20 +403,7 @@ impl<T: Scalar> Constrained<T> {
                 }
                 (u, false)
             }
-            None => {
-                // x ∈ U ⇔ D_aᵀ η x = 0 for every a: rows [D_a bottom; D_a top].
-                let mut rows = Vec::with_capacity(6 * d);
-                for s in &free {
-                    rows.extend(s.bottom().iter().cloned());
-                    rows.extend(s.top().iter().cloned());
-                }
-                let (_, basis) = null_space(&rows, d, 6);
-                let u = basis
-                    .into_iter()
-                    .map(|x| Screw(SVector::<T, 6>::from_iterator(x)))
-                    .collect();
-                (u, true)
-            }
+            None => (complement(&free), true),
         };
         let u = blocked.len();
         if d + u != 6 {
@@ -282,41 +412,15 @@ impl<T: Scalar> Constrained<T> {
                 blocked: u,
             });
         }
-        let blocked_basis: Vec<(Screw<T>, T)> = blocked
-            .iter()
-            .map(|s| {
-                let k = equilibrator(&s.reciprocal(&body.response(s)));
-                (times(s, &k), k)
-            })
-            .collect();
-        let mut u_gram = SVector::<T, 36>::zeros();
-        for a in 0..u {
-            let r = body.response(&blocked_basis[a].0);
-            for b in 0..u {
-                u_gram[b * u + a] = blocked_basis[b].0.reciprocal(&r);
-            }
-        }
-        if let Some(index) = first_dependent(&u_gram.as_slice()[..u * u], u) {
-            return Err(ConstraintError::DependentBlocked { index });
-        }
-        let mut u_gram_perm = [0; 6];
-        factor_psd(
-            &mut u_gram.as_mut_slice()[..u * u],
-            u,
-            &mut u_gram_perm[..u],
-        )
-        .map_err(|e| ConstraintError::DependentBlocked { index: e.index })?;
+        let blocked_basis = Orthogonal::new(&blocked, &|s: &Screw<T>| body.response(s))
+            .map_err(|index| ConstraintError::DependentBlocked { index })?;
         Ok(Constrained {
             body: body.clone(),
             free,
             blocked,
             derived_blocked,
-            basis,
+            free_basis,
             blocked_basis,
-            m_red,
-            m_red_perm,
-            u_gram,
-            u_gram_perm,
         })
     }
 
@@ -337,34 +441,19 @@ impl<T: Scalar> Constrained<T> {
         m
     }
 
-    /// ξ with D ξ the η-M-orthogonal projection of `v` on the span of D:
-    /// M_red ξ = Dᵀ η M {v} (exactly ξ⁰ of eq. 79 when {v} is allowed), for D's equilibrated
-    /// columns (`basis`).
-    fn coordinates(&self, v: &Screw<T>) -> SVector<T, 6> {
-        let d = self.dof();
-        let p = self.body.momentum(v);
-        let mut xi = SVector::<T, 6>::zeros();
-        for a in 0..d {
-            xi[a] = self.basis[a].reciprocal(&p);
-        }
-        let mut work = SVector::<T, 6>::zeros();
-        linalg::solve_factored(
-            &self.m_red.as_slice()[..d * d],
-            d,
-            &self.m_red_perm[..d],
-            &mut xi.as_mut_slice()[..d],
-            &mut work.as_mut_slice()[..d],
-        );
-        xi
-    }
-
-    /// Check that {v⁰} is a twist the constraints allow: {v⁰} = D ξ⁰ (eq. 79).
+    /// Check that {v⁰} is a twist the constraints allow: {v⁰} = D ξ⁰ (eq. 79). Its η-M
+    /// orthogonal projection on the span of D is removed screw by screw from {v⁰} itself
+    /// (Gram–Schmidt against the orthogonalised D), and what is left must be negligible.
     pub fn check_allowed(&self, v0: &Screw<T>) -> Result<(), ConstraintError> {
-        let xi = self.coordinates(v0);
         let mut r = v0.clone();
-        for (a, s) in self.basis.iter().enumerate() {
-            r.add_scaled(&-xi[a].clone(), s);
-        }
+        let mut coefficients = [(); 6].map(|_| T::zero());
+        let mut noise = (!T::IS_EXACT).then(|| magnitude(v0));
+        self.free_basis.orthogonalise(
+            &mut r,
+            &|s: &Screw<T>| self.body.momentum(s),
+            &mut coefficients[..self.dof()],
+            noise.as_mut(),
+        );
         let (res, scale) = (screw_norm2(&r), screw_norm2(v0));
         if res.is_negligible(&scale, 36) {
             Ok(())
@@ -393,65 +482,51 @@ impl<T: Scalar> Constrained<T> {
         for (p, e) in impulses {
             r.add_scaled(p, e);
         }
-        let w = self.body.response(&r);
+        // r = Σ_a y_a c_a over the orthogonalised U (one pass: r lies in their span), and
+        // U = C R with R unit upper triangular, so R q = y.
         q.clear();
-        for (ua, _) in &self.blocked_basis {
-            q.push(ua.reciprocal(&w));
-        }
-        let mut work = SVector::<T, 6>::zeros();
-        linalg::solve_factored(
-            &self.u_gram.as_slice()[..u * u],
-            u,
-            &self.u_gram_perm[..u],
-            q,
-            &mut work.as_mut_slice()[..u],
-        );
-        // q′ multiplies the equilibrated columns U_a·2^(k_a): q_a = 2^(k_a) q′_a.
-        for (qa, (_, k)) in q.iter_mut().zip(&self.blocked_basis) {
-            *qa *= k;
+        q.resize(u, T::zero());
+        self.blocked_basis.pass(&mut r, q, None);
+        let rr = &self.blocked_basis.r;
+        for i in (0..u).rev() {
+            for k in i + 1..u {
+                let t = rr[i * u + k].clone() * &q[k];
+                q[i] -= t;
+            }
         }
     }
 }
 
 impl<T: Scalar> Mobility<T> for Constrained<T> {
-    /// W{E} = D M_red⁻¹ Dᵀ η {E} (eq. 85).
+    /// W{E} = D M_red⁻¹ Dᵀ η {E} = Σ_a b_a ({b_a}ᵀ η {E}) / d_a (eq. 85) over D orthogonalised
+    /// in η M, in which M_red = diag(d_a).
     fn response(&self, e: &Screw<T>) -> Screw<T> {
-        let d = self.dof();
-        let mut y = SVector::<T, 6>::zeros();
-        for a in 0..d {
-            y[a] = self.basis[a].reciprocal(e);
-        }
-        let mut work = SVector::<T, 6>::zeros();
-        linalg::solve_factored(
-            &self.m_red.as_slice()[..d * d],
-            d,
-            &self.m_red_perm[..d],
-            &mut y.as_mut_slice()[..d],
-            &mut work.as_mut_slice()[..d],
-        );
+        let basis = &self.free_basis;
         let mut out = Screw::zero();
-        for a in 0..d {
-            out.add_scaled(&y[a], &self.basis[a]);
+        for a in 0..basis.len() {
+            let y = basis.vectors[a].reciprocal(e) / &basis.norms2[a];
+            out.add_scaled(&y, &basis.vectors[a]);
         }
         out
     }
 }
 
-/// The first k whose screw is a combination of screws 0..k, from their Gram matrix `g`
-/// (n×n): the leading k+1 block is then singular. n ≤ 6, so factoring each block is cheap.
-fn first_dependent<T: Scalar>(g: &[T], n: usize) -> Option<usize> {
-    (0..n).find(|&k| {
-        let m = k + 1;
-        let mut block: SVector<T, 36> = SVector::zeros();
-        for i in 0..m {
-            for j in 0..m {
-                block[i * m + j] = g[i * n + j].clone();
-            }
-        }
-        let mut perm = [0; 6];
-        factor_psd(&mut block.as_mut_slice()[..m * m], m, &mut perm[..m])
-            .map_or(true, |f| f.rank < m)
-    })
+/// The blocked screws U derived from the free ones: a basis of the η-orthogonal complement
+/// {x : D_aᵀ η x = 0 for every a} (eq. 82), from the rows [D_a bottom; D_a top] by reduced row
+/// echelon form, one screw per free column with a 1 there ([`null_space`]). The metric plays
+/// no part, so the pivoted elimination on D's own coordinates is as accurate for any mass and
+/// moments.
+pub fn complement<T: Scalar>(free: &[Screw<T>]) -> Vec<Screw<T>> {
+    let mut rows = Vec::with_capacity(6 * free.len());
+    for s in free {
+        rows.extend(s.bottom().iter().cloned());
+        rows.extend(s.top().iter().cloned());
+    }
+    let (_, basis) = null_space(&rows, free.len(), 6);
+    basis
+        .into_iter()
+        .map(|x| Screw(SVector::<T, 6>::from_iterator(x)))
+        .collect()
 }
 
 /// The Euclidean |s|² of a screw's six coordinates (a scale for zero tests only).

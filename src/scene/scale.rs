@@ -19,8 +19,28 @@
 //! So any scene whose results are representable is solved in f32, f64 and double-double; what
 //! is not representable is refused by the caller, never reported as NaN or ∞.
 //!
-//! Free bodies without a `[surface]` are scaled; constraint screws and surface equations mix
-//! units in ways this does not follow, so those scenes run as written.
+//! **Constraints.** A joint's point is a length, p′ = p/2^b, and its axis a direction. A free
+//! screw is a twist per unit of its coordinate ξ_a (eq. 79), a blocked one a wrench per unit
+//! of its multiplier q_a (eq. 75); their columns may be rescaled at will, so each written screw
+//! is put in the new units and then divided by its own power of two:
+//!
+//! ```text
+//! D_a = [ω; v]  →  D′_a = [ω; v/2^b]/2^(f_a),     U_a = [F; M]  →  U′_a = [F; M/2^b]/2^(g_a)
+//! ```
+//!
+//! (a twist's v/ω and a wrench's M/F are lengths; joints' screws come out with f_a = 0 or −b,
+//! derived ones with g_a = 0 or −b, read off by comparing the exact screws in both units). The
+//! reaction U q = r = M Δv + Σ P_i E_i is a wrench [impulse; impulse·length]: in the scaled units
+//! U′_a q′_a is the wrench [F; M]·q′_a·2^(a+b−c−g_a), so
+//!
+//! ```text
+//! q_a = q′_a · 2^(a+b−c−g_a),      (M_red)_ab = (M′_red)_ab · 2^(a+2b+f_a+f_b)
+//! ```
+//!
+//! the second because M_red = Dᵀ η M D is a kinetic energy (M·L²/T²) per ξ_a ξ_b, with
+//! ξ′_a = ξ_a·2^(f_a)… per unit twist: D′_a is the scaled image of the twist D_a·2^(−c−f_a).
+//! The reported D and U are scaled back too. Scenes with a `[surface]` (whose equation mixes
+//! units in ways this does not follow) run as written.
 //!
 //! **Sensitivities.** In a dual-number run ([`crate::scalar::dual`]) a seeded input's tangent
 //! is scaled with its value and each output's derivative is scaled back like the output: with
@@ -31,9 +51,12 @@
 use num_rational::BigRational;
 use num_traits::{Signed, Zero};
 
-use super::Scene;
+use super::{ConstraintsSpec, Scene};
+use crate::mechanics::constraint::complement;
+use crate::mechanics::screw::Screw;
 use crate::number::{Number, format_rational, rational_to_f64};
 use crate::report::{PointVelocity, Report, Value};
+use crate::scalar::{Exact, Scalar};
 
 /// The powers of two of a scaled scene: mass 2^a, length 2^b, time 2^c, and each contact's
 /// normal and tangent scale.
@@ -47,6 +70,10 @@ pub struct Units {
     pub time: i64,
     /// e_i: the normal of contact i was divided by 2^(e_i).
     pub normals: Vec<i64>,
+    /// f_a: the free screw D_a = [ω; v] became [ω; v/2^b]/2^(f_a) (empty for a free body).
+    pub free: Vec<i64>,
+    /// g_a: the blocked screw U_a = [F; M] became [F; M/2^b]/2^(g_a).
+    pub blocked: Vec<i64>,
 }
 
 /// ⌊log₂|q|⌋ within one: the bit lengths of numerator and denominator; `None` for zero.
@@ -65,11 +92,14 @@ fn largest<'a>(numbers: impl IntoIterator<Item = &'a Number>) -> Option<i64> {
         .max()
 }
 
-/// q · 2^k, exactly.
+/// q · 2^k, exactly: a shift of the numerator or of the denominator (then reduced).
 fn shifted(q: &BigRational, k: i64) -> BigRational {
-    let two = BigRational::from_integer(2.into());
-    let factor = num_traits::pow(two, k.unsigned_abs() as usize);
-    if k >= 0 { q * factor } else { q / factor }
+    let bits = k.unsigned_abs() as usize;
+    if k >= 0 {
+        BigRational::new(q.numer() << bits, q.denom().clone())
+    } else {
+        BigRational::new(q.numer().clone(), q.denom() << bits)
+    }
 }
 
 /// The number `n` times 2^k, as a number (its text the exact scaled value); its derivative
@@ -92,7 +122,7 @@ fn scale_number(n: &mut Number, k: i64) {
 /// `scene` in units chosen from its own numbers, or `None` when it is not scaled (constraints,
 /// a surface, an irrational or symbolic number, or units of 1 already).
 pub fn scale(scene: &Scene) -> Option<(Scene, Units)> {
-    if scene.constraints.is_some() || scene.surface.is_some() || !scene.is_rational() {
+    if scene.surface.is_some() || !scene.is_rational() {
         return None;
     }
     if scene.numbers().any(|(_, n)| !n.symbols.is_empty()) {
@@ -146,17 +176,96 @@ pub fn scale(scene: &Scene) -> Option<(Scene, Units)> {
             }
         }
     }
+    scale_constraints(&mut s, b);
+    let (free, blocked) = match constraint_exponents(scene, &s, b) {
+        Ok(x) => x,
+        Err(()) => return None,
+    };
     let units = Units {
         mass: a,
         length: b,
         time: c,
         normals,
+        free,
+        blocked,
     };
     (units.mass != 0
         || units.length != 0
         || units.time != 0
-        || units.normals.iter().any(|&e| e != 0))
+        || units.normals.iter().any(|&e| e != 0)
+        || units.free.iter().chain(&units.blocked).any(|&e| e != 0))
     .then_some((s, units))
+}
+
+/// The constraints in units of length 2^b: a joint's point divided by 2^b (its axis is a
+/// direction, kept); a screw written out, [ω; v] or [F; M], becomes [ω; v/2^b] or
+/// [F; M/2^b], divided by the power of two of its largest coordinate so that it is of order 1.
+fn scale_constraints(s: &mut Scene, b: i64) {
+    match &mut s.constraints {
+        None => {}
+        Some(ConstraintsSpec::Joints(joints)) => {
+            for joint in joints {
+                let keys = joint.kind.keys();
+                for (name, v) in keys.iter().zip(joint.vectors.iter_mut()) {
+                    if *name == "point" {
+                        v.iter_mut().for_each(|x| scale_number(x, -b));
+                    }
+                }
+            }
+        }
+        Some(ConstraintsSpec::Screws { free, blocked }) => {
+            for screw in free.iter_mut().chain(blocked.iter_mut().flatten()) {
+                for x in &mut screw[3..] {
+                    scale_number(x, -b);
+                }
+                let own = largest(screw.iter()).unwrap_or(0);
+                screw.iter_mut().for_each(|x| scale_number(x, -own));
+            }
+        }
+    }
+}
+
+/// f_a and g_a of [`Units`], read off the screws themselves: the exact free screws of the
+/// scene as written and as scaled, and their blocked screws (given, or derived as
+/// [`complement`] does, which picks the same free columns of the same echelon form in either
+/// units: scaling the coordinates of a wrench by powers of two changes no rank), must be
+/// related by D′_a = [ω; v/2^b]/2^(f_a), U′_a = [F; M/2^b]/2^(g_a). `Err` if they are not
+/// (then the scene runs as written).
+fn constraint_exponents(scene: &Scene, scaled: &Scene, b: i64) -> Result<(Vec<i64>, Vec<i64>), ()> {
+    let screws = |s: &Scene| match s.constraint_screws::<Exact>() {
+        Ok(Some((d, u, _))) => {
+            let u = u.unwrap_or_else(|| complement(&d));
+            Ok(Some((d, u)))
+        }
+        Ok(None) => Ok(None),
+        Err(_) => Err(()),
+    };
+    let (Some((d, u)), Some((d2, u2))) = (screws(scene)?, screws(scaled)?) else {
+        return Ok((Vec::new(), Vec::new()));
+    };
+    if d.len() != d2.len() || u.len() != u2.len() {
+        return Err(());
+    }
+    let exponents = |x: &[Screw<Exact>], y: &[Screw<Exact>]| -> Result<Vec<i64>, ()> {
+        x.iter().zip(y).map(|(x, y)| power(x, y, b)).collect()
+    };
+    Ok((exponents(&d, &d2)?, exponents(&u, &u2)?))
+}
+
+/// The k with y = [x_top; x_bottom/2^b]/2^k, if there is one.
+fn power(x: &Screw<Exact>, y: &Screw<Exact>, b: i64) -> Result<i64, ()> {
+    let value = |v: &Exact| v.to_rational().ok_or(());
+    let mut x2 = Vec::with_capacity(6);
+    let mut y2 = Vec::with_capacity(6);
+    for j in 0..6 {
+        let v = value(&x.0[j])?;
+        x2.push(if j < 3 { v } else { shifted(&v, -b) });
+        y2.push(value(&y.0[j])?);
+    }
+    let j = x2.iter().position(|v| !v.is_zero()).ok_or(())?;
+    let k = -exponent(&(&y2[j] / &x2[j])).ok_or(())?;
+    let same = (0..6).all(|i| shifted(&x2[i], -k) == y2[i]);
+    same.then_some(k).ok_or(())
 }
 
 /// x · 2^k in f64, exactly unless the result leaves the range (then ±∞ or 0).
@@ -207,7 +316,27 @@ pub fn unscale(report: &mut Report, u: &Units) {
     for p in &mut report.contacts_before {
         point(p, b - c);
     }
+    if let Some(c) = &mut report.constraints {
+        // D_a = [ω′; v′·2^b]·2^(f_a), U_a = [F′; M′·2^b]·2^(g_a), and M_red = Dᵀ η M D has
+        // the dimension of an energy per unit of each screw's own scale.
+        for (screws, exps) in [(&mut c.free, &u.free), (&mut c.blocked, &u.blocked)] {
+            for (screw, &f) in screws.iter_mut().zip(exps) {
+                for (k, x) in screw.iter_mut().enumerate() {
+                    times(x, if k < 3 { f } else { f + b });
+                }
+            }
+        }
+        for (row, &fa) in c.reduced_mass.iter_mut().zip(&u.free) {
+            for (x, &fb) in row.iter_mut().zip(&u.free) {
+                times(x, a + 2 * b + fa + fb);
+            }
+        }
+    }
     for m in &mut report.models {
+        // U q = r: [F′; M′] q′ in the scaled units is the wrench [F′; M′·2^b]·q′·2^(a+b−c).
+        for (q, &g) in m.constraint_impulses.iter_mut().zip(&u.blocked) {
+            times(q, a + b - c - g);
+        }
         for p in &mut m.impulses {
             times(p, a + b - c);
         }
