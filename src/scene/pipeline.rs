@@ -22,7 +22,7 @@ use crate::mechanics::constraint::{Constrained, ConstraintError};
 use crate::report::{FrictionReport, Report, Value};
 use crate::scalar::symbolic::RatFun;
 use crate::scalar::{Exact, Scalar};
-use crate::scene::scale::{finite, scale, unrepresentable, unscale};
+use crate::scene::scale::{out_of_range, output_beyond, scale, unrepresentable, unscale};
 use crate::scene::{OUT_OF_RANGE, Scene, SceneError};
 
 /// Why a scene could not be solved.
@@ -89,7 +89,7 @@ pub fn run_with<T: Scalar>(
             ", even in units of mass, length and time scaled to the scene",
         ))
     };
-    let out_of_range =
+    let input_out_of_range =
         |e: &RunError| matches!(e, RunError::Scene(s) if s.message.ends_with(OUT_OF_RANGE));
     let mut solved = match scale(scene) {
         Some((scaled, units)) => match run_as_written::<T>(&scaled, models, allow_singular) {
@@ -97,13 +97,18 @@ pub fn run_with<T: Scalar>(
                 unscale(&mut solved.report, &units);
                 solved
             }
-            Err(e) if out_of_range(&e) => return Err(unrepresentable()),
+            Err(e) if input_out_of_range(&e) => return Err(unrepresentable()),
             Err(e) => return Err(e),
         },
         None => run_as_written::<T>(scene, models, allow_singular)?,
     };
-    if !finite(&solved.report) {
-        return Err(unrepresentable());
+    if let Some(output) = out_of_range(&solved.report) {
+        return Err(RunError::Scene(output_beyond(
+            scene,
+            T::NAME,
+            output,
+            ", even in units of mass, length and time scaled to the scene",
+        )));
     }
     solved.report.scene.clone_from(&scene.name);
     Ok(solved)
@@ -133,10 +138,11 @@ pub fn run_prepared<T: Scalar>(
     models: Option<&[Model]>,
 ) -> Result<Solved, RunError> {
     let solved = run_prepared_with(scene, problem, models, false)?;
-    if !T::IS_EXACT && !finite(&solved.report) {
-        return Err(RunError::Scene(unrepresentable(
+    if let (false, Some(output)) = (T::IS_EXACT, out_of_range(&solved.report)) {
+        return Err(RunError::Scene(output_beyond(
             scene,
             T::NAME,
+            output,
             " in the scene's units (`run_with` scales them)",
         )));
     }

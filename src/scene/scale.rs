@@ -33,7 +33,7 @@ use num_traits::{Signed, Zero};
 
 use super::Scene;
 use crate::number::{Number, format_rational, rational_to_f64};
-use crate::report::{PointVelocity, Report, Value};
+use crate::report::{PointVelocity, Report, Value, Wide};
 
 /// The powers of two of a scaled scene: mass 2^a, length 2^b, time 2^c, and each contact's
 /// normal and tangent scale.
@@ -160,7 +160,7 @@ pub fn scale(scene: &Scene) -> Option<(Scene, Units)> {
 }
 
 /// x · 2^k in f64, exactly unless the result leaves the range (then ±∞ or 0).
-fn ldexp(x: f64, k: i64) -> f64 {
+pub(crate) fn ldexp(x: f64, k: i64) -> f64 {
     let mut y = x;
     let mut k = k;
     while k != 0 {
@@ -178,6 +178,17 @@ fn times(v: &mut Value, k: i64) {
     v.f64 = ldexp(v.f64, k);
     if let Some(d) = &mut v.derivative {
         d.f64 = ldexp(d.f64, k);
+    }
+}
+
+/// As [`times`], for an output that is a pure power of the units and no physical quantity
+/// (Δ, an inertance): where the product leaves f64 the value keeps its scaled value and power
+/// of two ([`Wide`]), and its derivative likewise.
+fn times_wide(v: &mut Value, k: i64) {
+    v.wide = Wide::of(v.f64, k);
+    v.f64 = ldexp(v.f64, k);
+    if let Some(d) = &mut v.derivative {
+        times_wide(d, k);
     }
 }
 
@@ -199,11 +210,11 @@ pub fn unscale(report: &mut Report, u: &Units) {
     ] {
         for row in m.iter_mut() {
             for g in row.iter_mut() {
-                times(g, -a);
+                times_wide(g, -a);
             }
         }
     }
-    times(&mut report.det, -a * n);
+    times_wide(&mut report.det, -a * n);
     for p in &mut report.contacts_before {
         point(p, b - c);
     }
@@ -267,50 +278,84 @@ pub fn unscale(report: &mut Report, u: &Units) {
     }
 }
 
-/// Whether every number of a report is finite (angles aside: they are bounded by construction).
-pub fn finite(report: &Report) -> bool {
+/// The first output of `report` that f64 does not hold, by name (`None`: all are finite).
+/// Δ and the inertances are pure powers of the units and no physical quantity: beyond f64 they
+/// are reported from their scaled value ([`Value::wide`]), so they count as held then.
+pub fn out_of_range(report: &Report) -> Option<&'static str> {
     let ok = |v: &Value| v.f64.is_finite();
+    let held = |v: &Value| ok(v) || v.wide.is_some();
     let point = |p: &PointVelocity| p.components.iter().all(ok);
-    report
-        .inertance
-        .iter()
-        .chain(&report.inertance_yx)
-        .chain(&report.inertance_zx)
-        .flatten()
-        .all(ok)
-        && ok(&report.det)
-        && report.contacts_before.iter().all(point)
-        && report.models.iter().all(|m| {
-            m.impulses.iter().chain(&m.impulse_multiples).all(ok)
-                && m.compression_impulses.iter().flatten().all(ok)
-                && m.angular_velocity.iter().chain(&m.velocity).all(ok)
-                && m.contacts.iter().all(point)
-                && ok(&m.lost_velocity_energy)
-                && ok(&m.kinetic_energy_loss)
-                && m.constraint_impulses.iter().all(ok)
-        })
-        && report.friction.iter().all(|f| {
-            f.contacts.iter().all(|p| {
-                [
-                    &p.normal_impulse,
-                    &p.compression_impulse,
-                    &p.normal_velocity,
-                ]
-                .into_iter()
-                .chain(&p.tangential_impulse)
-                .chain(&p.velocity)
-                .all(ok)
-            }) && f
-                .angular_velocity
+    let mut checks: Vec<(&'static str, bool)> = vec![
+        (
+            "inertances G",
+            report
+                .inertance
                 .iter()
-                .chain(&f.velocity)
-                .chain([
+                .chain(&report.inertance_yx)
+                .chain(&report.inertance_zx)
+                .flatten()
+                .all(held),
+        ),
+        ("Δ = det G", held(&report.det)),
+        (
+            "contact velocities before impact",
+            report.contacts_before.iter().all(point),
+        ),
+    ];
+    for m in &report.models {
+        checks.extend([
+            (
+                "impulses",
+                m.impulses.iter().chain(&m.impulse_multiples).all(ok)
+                    && m.compression_impulses.iter().flatten().all(ok),
+            ),
+            (
+                "velocities after impact",
+                m.angular_velocity.iter().chain(&m.velocity).all(ok)
+                    && m.contacts.iter().all(point),
+            ),
+            (
+                "energies",
+                ok(&m.lost_velocity_energy) && ok(&m.kinetic_energy_loss),
+            ),
+            ("constraint impulses", m.constraint_impulses.iter().all(ok)),
+        ]);
+    }
+    for f in &report.friction {
+        checks.extend([
+            (
+                "impulses",
+                f.contacts.iter().all(|p| {
+                    [&p.normal_impulse, &p.compression_impulse]
+                        .into_iter()
+                        .chain(&p.tangential_impulse)
+                        .all(ok)
+                }),
+            ),
+            (
+                "velocities after impact",
+                f.contacts.iter().all(|p| {
+                    std::iter::once(&p.normal_velocity)
+                        .chain(&p.velocity)
+                        .all(ok)
+                }) && f.angular_velocity.iter().chain(&f.velocity).all(ok),
+            ),
+            (
+                "energies",
+                [
                     &f.lost_velocity_energy,
                     &f.kinetic_energy_loss,
                     &f.friction_dissipation,
-                ])
-                .all(ok)
-        })
+                ]
+                .into_iter()
+                .all(ok),
+            ),
+        ]);
+    }
+    checks
+        .into_iter()
+        .find(|(_, held)| !held)
+        .map(|(name, _)| name)
 }
 
 /// The key of the scene's number farthest from 1 in magnitude (the likeliest culprit when a
@@ -326,6 +371,23 @@ pub fn most_extreme(scene: &Scene) -> Option<(String, String)> {
         })
         .max_by_key(|(e, _, _)| *e)
         .map(|(_, k, t)| (k, t))
+}
+
+/// The refusal of a physical `output` (impulses, velocities, energies) that the float type
+/// `name` does not hold even in units scaled to the scene (`how`): names the output and the
+/// input farthest from 1, which sets the extreme scale.
+pub fn output_beyond(scene: &Scene, name: &str, output: &str, how: &str) -> super::SceneError {
+    let (key, value) = most_extreme(scene).unwrap_or_default();
+    super::SceneError {
+        file: scene.file.clone(),
+        key,
+        value: Some(value),
+        message: format!(
+            "the {output} are beyond the range of {name}{how}; this number sets the extreme \
+             scale — {}",
+            super::OUT_OF_RANGE
+        ),
+    }
 }
 
 /// The refusal of a float result that is not representable: the scene's numbers span more than
