@@ -19,8 +19,17 @@
 //! So any scene whose results are representable is solved in f32, f64 and double-double; what
 //! is not representable is refused by the caller, never reported as NaN or ∞.
 //!
-//! Free bodies without a `[surface]` are scaled; constraint screws and surface equations mix
-//! units in ways this does not follow, so those scenes run as written.
+//! Free bodies are scaled, with or without a `[surface]`: in the length unit 2^b the surface
+//! f(x, y, z) = 0 becomes f(2^b x′, 2^b y′, 2^b z′) = 0 ([`scaled_surface`]). A number given
+//! as an irrational expression is scaled as an expression: its text times 2^k, whose f64
+//! value is its own f64 evaluation times 2^k, exactly. Constraint screws mix units in ways
+//! this does not follow, so constrained scenes run as written; symbolic scenes are exact
+//! and not scaled.
+//!
+//! What f64 cannot hold after scaling back is either a pure power of the units that is no
+//! physical quantity — Δ and the inertances, reported from their scaled value and power of two
+//! ([`crate::report::Wide`]) — or a physical output (impulses, velocities, energies), which is
+//! refused, naming it and the input that sets the extreme scale.
 //!
 //! **Sensitivities.** In a dual-number run ([`crate::scalar::dual`]) a seeded input's tangent
 //! is scaled with its value and each output's derivative is scaled back like the output: with
@@ -31,7 +40,8 @@
 use num_rational::BigRational;
 use num_traits::{Signed, Zero};
 
-use super::Scene;
+use super::{Scene, SurfaceSpec};
+use crate::mechanics::surface::Surface;
 use crate::number::{Number, format_rational, rational_to_f64};
 use crate::report::{PointVelocity, Report, Value, Wide};
 
@@ -57,12 +67,18 @@ fn exponent(q: &BigRational) -> Option<i64> {
     Some(q.numer().bits() as i64 - q.denom().bits() as i64)
 }
 
-/// The largest exponent among `numbers` (rational ones; `None` if all are zero).
+/// ⌊log₂|n|⌋ within one: from the exact value, or from the f64 evaluation of an irrational
+/// expression; `None` for zero.
+fn number_exponent(n: &Number) -> Option<i64> {
+    match &n.exact {
+        Ok(q) => exponent(q),
+        Err(_) => (n.approx != 0.0 && n.approx.is_finite()).then(|| n.approx.abs().log2() as i64),
+    }
+}
+
+/// The largest exponent among `numbers` (`None` if all are zero).
 fn largest<'a>(numbers: impl IntoIterator<Item = &'a Number>) -> Option<i64> {
-    numbers
-        .into_iter()
-        .filter_map(|n| n.exact.as_ref().ok().and_then(exponent))
-        .max()
+    numbers.into_iter().filter_map(number_exponent).max()
 }
 
 /// q · 2^k, exactly.
@@ -80,19 +96,27 @@ fn scale_number(n: &mut Number, k: i64) {
     if k == 0 {
         return;
     }
-    if let Ok(q) = &n.exact {
-        let q = shifted(q, k);
-        n.text = format_rational(&q);
-        n.approx = rational_to_f64(&q);
-        n.exact = Ok(q);
-        n.tangent = ldexp(n.tangent, k);
+    match &n.exact {
+        Ok(q) => {
+            let q = shifted(q, k);
+            n.text = format_rational(&q);
+            n.approx = rational_to_f64(&q);
+            n.exact = Ok(q);
+        }
+        // An expression: its text times 2^k, whose f64 evaluation is the f64 evaluation of
+        // the text times 2^k — exact, the text's own rounding kept.
+        Err(_) => {
+            n.text = format!("({})*2^({k})", n.text);
+            n.approx = ldexp(n.approx, k);
+        }
     }
+    n.tangent = ldexp(n.tangent, k);
 }
 
 /// `scene` in units chosen from its own numbers, or `None` when it is not scaled (constraints,
-/// a surface, an irrational or symbolic number, or units of 1 already).
+/// a symbolic number, or units of 1 already).
 pub fn scale(scene: &Scene) -> Option<(Scene, Units)> {
-    if scene.constraints.is_some() || scene.surface.is_some() || !scene.is_rational() {
+    if scene.constraints.is_some() {
         return None;
     }
     if scene.numbers().any(|(_, n)| !n.symbols.is_empty()) {
@@ -146,6 +170,9 @@ pub fn scale(scene: &Scene) -> Option<(Scene, Units)> {
             }
         }
     }
+    if let Some(surface) = &mut s.surface {
+        surface.surface = scaled_surface(surface, b)?;
+    }
     let units = Units {
         mass: a,
         length: b,
@@ -157,6 +184,19 @@ pub fn scale(scene: &Scene) -> Option<(Scene, Units)> {
         || units.time != 0
         || units.normals.iter().any(|&e| e != 0))
     .then_some((s, units))
+}
+
+/// The `[surface]` f(x, y, z) = 0 in the length unit 2^b: f(2^b x′, 2^b y′, 2^b z′) = 0
+/// ([`crate::mechanics::surface::Surface::scaled`]). Its gradient keeps its direction (the
+/// normals are directions), f′ at a scaled contact point equals f at the point exactly, and the
+/// float on-surface test |f|/|∇f| ≤ 10⁻⁹·max(|p|, 1) then reads max(|p|, 1) in the scene's own
+/// length unit: it is relative to the scene's size, not to the metre. `None` (the scene is not
+/// scaled) when the scaled derivatives exceed the size limit.
+fn scaled_surface(surface: &SurfaceSpec, b: i64) -> Option<Surface> {
+    if b == 0 {
+        return Some(surface.surface.clone());
+    }
+    surface.surface.scaled(b).ok()
 }
 
 /// x · 2^k in f64, exactly unless the result leaves the range (then ±∞ or 0).
