@@ -72,8 +72,15 @@ fn exponent(q: &BigRational) -> Option<i64> {
 fn number_exponent(n: &Number) -> Option<i64> {
     match &n.exact {
         Ok(q) => exponent(q),
-        Err(_) => (n.approx != 0.0 && n.approx.is_finite()).then(|| n.approx.abs().log2() as i64),
+        Err(_) => float_exponent(n.approx),
     }
+}
+
+/// ⌊log₂|x|⌋ of a normal f64, read from its bits (so that x·2^k has exactly k more);
+/// `None` for zero, subnormals and non-finite values.
+fn float_exponent(x: f64) -> Option<i64> {
+    let biased = ((x.to_bits() >> 52) & 0x7ff) as i64;
+    (biased != 0 && biased != 0x7ff).then_some(biased - 1023)
 }
 
 /// The largest exponent among `numbers` (`None` if all are zero).
