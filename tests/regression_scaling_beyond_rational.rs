@@ -58,7 +58,7 @@ fn exact(v: &Value) -> BigRational {
 }
 
 fn f(q: &BigRational) -> f64 {
-    q.to_f64().unwrap()
+    ToPrimitive::to_f64(q).unwrap()
 }
 
 /// ‖a − b‖₂ of two lists of reported values, exactly then rounded.
@@ -332,7 +332,8 @@ fn a_surface_scene_scales_by_powers_of_two_exactly() {
     // whose surface's coefficients (2^∓2000) no f64 holds in metres.
     for (a, b) in [(-1000, 0), (1000, 0), (-1000, 1000), (1000, -1000)] {
         let scaled = ellipsoid(a, b);
-        scales_exactly::<f32>(&one, &scaled, a, b);
+        // Not f32: its rounding of 2/√5 misses the surface by more than the on-surface test's
+        // 10⁻⁹ (as at scale 1).
         scales_exactly::<f64>(&one, &scaled, a, b);
         scales_exactly::<DoubleDouble>(&one, &scaled, a, b);
     }
