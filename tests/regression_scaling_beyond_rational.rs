@@ -161,15 +161,21 @@ fn delta_beyond_f64_is_printed_from_its_scaled_value() {
     let bound = n.powf(1.5) * cond.cond * cond.constant() * f64::EPSILON + 2.0 * n * f64::EPSILON;
     // The JSON's 17 significant digits add at most 5·10⁻¹⁷ relative.
     let json = float.to_json();
-    let text = json["det"].as_str().expect("a string: no JSON number holds 10⁶⁰⁰");
+    let text = json["det"]
+        .as_str()
+        .expect("a string: no JSON number holds 10⁶⁰⁰");
     assert_eq!(text, w.decimal(17));
-    let printed = inertance::number::parse_number(text).unwrap().exact.unwrap();
+    let printed = inertance::number::parse_number(text)
+        .unwrap()
+        .exact
+        .unwrap();
     let relative = f(&((printed - &exact_det) / &exact_det).abs());
     assert!(relative <= bound + 5e-17, "{relative:e} > {bound:e}");
     // Example 3's Δ = 3 kg⁻² with m = 1 kg; with m = 10⁻³⁰⁰ kg, G = G₁·10³⁰⁰: Δ = 3·10⁶⁰⁰.
     assert_eq!(
         exact_det,
-        BigRational::from_integer(3.into()) * num_traits::pow(BigRational::from_integer(10.into()), 600)
+        BigRational::from_integer(3.into())
+            * num_traits::pow(BigRational::from_integer(10.into()), 600)
     );
     assert!(float.to_table().contains("Δ = det G = 3.000000e600\n"));
 }
@@ -178,18 +184,32 @@ fn delta_beyond_f64_is_printed_from_its_scaled_value() {
 fn the_cli_reports_delta_as_a_string_and_refuses_only_physical_outputs() {
     let text = example_3("1e-300", ["12e-300", "1.6e-300", "12e-300"], "-2");
     let out = SceneFile::new("tiny-mass", &text).run(&["solve", "--json"]);
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     let stdout = String::from_utf8(out.stdout).unwrap();
     let json: serde_json::Value = serde_json::from_str(&stdout).unwrap();
     assert!(json["det"].as_str().is_some_and(|s| s.ends_with("e600")));
     for bad in ["null", "NaN", "Infinity", "\"inf\""] {
         assert!(!stdout.contains(bad), "{bad} in {stdout}");
     }
-    assert!(json["inertance"][0][0].is_number(), "1.3·10³⁰⁰ kg⁻¹ is an f64");
+    assert!(
+        json["inertance"][0][0].is_number(),
+        "1.3·10³⁰⁰ kg⁻¹ is an f64"
+    );
     // The same body moving at 10³⁰⁰ m/s: its energies (10³⁰⁰ J) are held, Δ is not.
-    let fast = text.replace("velocity = [3, 2, 0]", "velocity = [\"3e300\", \"2e300\", 0]");
+    let fast = text.replace(
+        "velocity = [3, 2, 0]",
+        "velocity = [\"3e300\", \"2e300\", 0]",
+    );
     let out = SceneFile::new("tiny-mass-fast", &fast).run(&["solve"]);
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     // A body of 1 kg at 10³⁰⁰ m/s: its energies (10⁶⁰⁰ J) are not: refused, by name.
     let heavy = fast.replace("\"1e-300\"", "1").replace("e-300", "");
     let out = SceneFile::new("heavy-fast", &heavy).run(&["solve"]);
@@ -224,7 +244,10 @@ fn scales_exactly<T: Scalar>(one: &str, scaled: &str, a: i64, b: i64) {
         }
         // m2·2^e2 = m1·2^(e1 + k), compared as exact rationals.
         let q = |(m, e): (f64, i64)| {
-            let p = num_traits::pow(BigRational::from_integer(2.into()), e.unsigned_abs() as usize);
+            let p = num_traits::pow(
+                BigRational::from_integer(2.into()),
+                e.unsigned_abs() as usize,
+            );
             let m = BigRational::from_float(m).unwrap();
             if e >= 0 { m * p } else { m / p }
         };
@@ -233,7 +256,12 @@ fn scales_exactly<T: Scalar>(one: &str, scaled: &str, a: i64, b: i64) {
     };
     let n = r1.inertance.len() as i64;
     times(&r1.det, -a * n, &r2.det);
-    for (x, y) in r1.inertance.iter().flatten().zip(r2.inertance.iter().flatten()) {
+    for (x, y) in r1
+        .inertance
+        .iter()
+        .flatten()
+        .zip(r2.inertance.iter().flatten())
+    {
         times(x, -a, y);
     }
     for (m1, m2) in r1.models.iter().zip(&r2.models) {
@@ -246,7 +274,11 @@ fn scales_exactly<T: Scalar>(one: &str, scaled: &str, a: i64, b: i64) {
         for (x, y) in m1.angular_velocity.iter().zip(&m2.angular_velocity) {
             times(x, 0, y);
         }
-        times(&m1.lost_velocity_energy, a + 2 * b, &m2.lost_velocity_energy);
+        times(
+            &m1.lost_velocity_energy,
+            a + 2 * b,
+            &m2.lost_velocity_energy,
+        );
         times(&m1.kinetic_energy_loss, a + 2 * b, &m2.kinetic_energy_loss);
     }
 }
@@ -346,5 +378,8 @@ fn a_point_off_a_scaled_surface_is_refused_as_written() {
     let out = SceneFile::new("off-surface", &text).run(&["solve"]);
     let err = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(2), "{err}");
-    assert!(err.contains("contact[0].point` = [1, 1, 0]: not on the surface"), "{err}");
+    assert!(
+        err.contains("contact[0].point` = [1, 1, 0]: not on the surface"),
+        "{err}"
+    );
 }

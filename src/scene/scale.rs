@@ -20,7 +20,7 @@
 //! is not representable is refused by the caller, never reported as NaN or ∞.
 //!
 //! Free bodies are scaled, with or without a `[surface]`: in the length unit 2^b the surface
-//! f(x, y, z) = 0 becomes f(2^b x′, 2^b y′, 2^b z′) = 0 ([`scaled_surface`]). A number given
+//! f(x, y, z) = 0 becomes f(2^b x′, 2^b y′, 2^b z′) = 0 ([`Surface::scaled`]). A number given
 //! as an irrational expression is scaled as an expression: its text times 2^k, whose f64
 //! value is its own f64 evaluation times 2^k, exactly. Constraint screws mix units in ways
 //! this does not follow, so constrained scenes run as written; symbolic scenes are exact
