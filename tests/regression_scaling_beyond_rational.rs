@@ -199,6 +199,11 @@ fn the_cli_reports_delta_as_a_string_and_refuses_only_physical_outputs() {
         json["inertance"][0][0].is_number(),
         "1.3·10³⁰⁰ kg⁻¹ is an f64"
     );
+    // `analyze` (in the scene's units) takes Δ from the scaled scene.
+    let out = SceneFile::new("tiny-mass-analyze", &text).run(&["analyze", "--json"]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let json: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(json["det"], serde_json::json!("2.9999999999999996e600"));
     // The same body moving at 10³⁰⁰ m/s: its energies (10³⁰⁰ J) are held, Δ is not.
     let fast = text.replace(
         "velocity = [3, 2, 0]",
