@@ -2,7 +2,8 @@
 //!
 //! Out of the library: a report's JSON (the CLI's contract, README "JSON report") becomes
 //! Python values with the same keys — in f64 mode numbers become `float` and arrays of numbers
-//! numpy arrays; in exact mode `"p/q"` becomes `fractions.Fraction` and an exact radical
+//! numpy arrays, a value beyond f64 (a JSON string `"1.2e600"`, Δ of a tiny mass) a
+//! `decimal.Decimal`; in exact mode `"p/q"` becomes `fractions.Fraction` and an exact radical
 //! (`"12/17*sqrt(17)"`) stays a string `sympy.sympify` reads; in symbolic mode (derive) every
 //! expression becomes a SymPy expression when SymPy is installed. Into the library: a scene
 //! given as Python values becomes a TOML document, numbers kept exact (`Fraction` → `"p/q"`);
@@ -57,6 +58,29 @@ static FRACTION: GILOnceCell<Py<PyAny>> = GILOnceCell::new();
 /// `fractions.Fraction`.
 fn fraction(py: Python<'_>) -> PyResult<&Bound<'_, PyAny>> {
     FRACTION.import(py, "fractions", "Fraction")
+}
+
+static DECIMAL: GILOnceCell<Py<PyAny>> = GILOnceCell::new();
+
+/// `decimal.Decimal`.
+fn decimal(py: Python<'_>) -> PyResult<&Bound<'_, PyAny>> {
+    DECIMAL.import(py, "decimal", "Decimal")
+}
+
+/// A float value beyond f64 as the JSON report writes it (`"1.2345678901234567e600"`: an
+/// optional sign, a digit, optional decimals, an exponent): given to Python as a
+/// `decimal.Decimal`, which holds it exactly.
+fn is_wide_text(s: &str) -> bool {
+    let s = s.strip_prefix('-').unwrap_or(s);
+    let Some((m, e)) = s.split_once('e') else {
+        return false;
+    };
+    let (head, tail) = m.split_once('.').unwrap_or((m, "0"));
+    let e = e.strip_prefix('-').unwrap_or(e);
+    head.len() == 1
+        && [head, tail, e]
+            .iter()
+            .all(|p| !p.is_empty() && p.bytes().all(|b| b.is_ascii_digit()))
 }
 
 /// `p/q` or `p` (an optional sign, digits, an optional `/digits`).
@@ -122,6 +146,7 @@ fn convert<'py>(
         },
         Json::String(s) if text => PyString::new(py, s).into_any(),
         Json::String(s) => match mode {
+            Mode::F64 if is_wide_text(s) => decimal(py)?.call1((s,))?,
             Mode::F64 => PyString::new(py, s).into_any(),
             Mode::Exact => exact_text(py, s)?,
             Mode::Symbolic => sympy_expr(py, s, symbols)?,
@@ -444,7 +469,8 @@ pub fn direct_values<'py>(
     mode: Mode,
 ) -> PyResult<Option<Bound<'py, PyAny>>> {
     if mode == Mode::Symbolic
-        || (mode == Mode::F64 && (vs.is_empty() || vs.iter().any(|v| !v.f64.is_finite())))
+        || (mode == Mode::F64
+            && (vs.is_empty() || vs.iter().any(|v| !v.f64.is_finite() || v.wide.is_some())))
     {
         return Ok(None);
     }
@@ -457,7 +483,7 @@ pub fn direct_value<'py>(
     v: &inertance::report::Value,
     mode: Mode,
 ) -> PyResult<Option<Bound<'py, PyAny>>> {
-    if mode == Mode::Symbolic || (mode == Mode::F64 && !v.f64.is_finite()) {
+    if mode == Mode::Symbolic || (mode == Mode::F64 && (!v.f64.is_finite() || v.wide.is_some())) {
         return Ok(None);
     }
     value(py, v, mode).map(Some)
@@ -476,7 +502,9 @@ pub fn direct_matrix<'py>(
     if mode == Mode::F64 {
         let ok = !rows.is_empty()
             && rows.iter().all(|r| {
-                r.len() == rows[0].len() && !r.is_empty() && r.iter().all(|v| v.f64.is_finite())
+                r.len() == rows[0].len()
+                    && !r.is_empty()
+                    && r.iter().all(|v| v.f64.is_finite() && v.wide.is_none())
             });
         if !ok {
             return Ok(None);

@@ -16,12 +16,11 @@ use pyo3::types::{PyDict, PyList};
 use serde_json::Value as Json;
 use toml_edit::DocumentMut;
 
-use inertance::Problem;
 use inertance::impact::outputs::Outputs;
 use inertance::report::Report;
 use inertance::scalar::Exact;
 use inertance::scalar::symbolic::RatFun;
-use inertance::scene::pipeline::{RunError, prepare, run, run_prepared};
+use inertance::scene::pipeline::{Prepared, RunError, prepare_scaled, run, run_prepared_scaled};
 use inertance::scene::{Scene as LibScene, parse_document, set_value};
 use inertance::tools::{
     analyze as lib_analyze, check as lib_check, derive as lib_derive, sweep as lib_sweep,
@@ -38,9 +37,9 @@ struct Scene {
     /// The file it was read from, when unchanged since.
     path: Option<PathBuf>,
     symbols: Vec<String>,
-    /// The problem in f64, prepared once (None when the scene has symbols or is invalid in
-    /// f64: a solve then reports why).
-    f64: Option<Problem<f64>>,
+    /// The problem in f64, prepared once in the units the CLI solves it in (None when the
+    /// scene has symbols or is invalid in f64: a solve then reports why).
+    f64: Option<Prepared<f64>>,
 }
 
 impl Scene {
@@ -54,7 +53,7 @@ impl Scene {
         let doc = parse_document(&text, file).map_err(|e| errors::scene_error(py, &e))?;
         let scene = LibScene::from_document_with(&doc, file, &symbols)
             .map_err(|e| errors::scene_error(py, &e))?;
-        let f64 = prepare::<f64>(&scene).ok();
+        let f64 = prepare_scaled::<f64>(&scene).ok();
         Ok(Scene {
             scene,
             doc,
@@ -510,7 +509,7 @@ fn run_scene(
     let models = models.as_deref();
     if !exact {
         return match &scene.f64 {
-            Some(p) => run_prepared(s, p, models),
+            Some(p) => run_prepared_scaled(s, p, models),
             None => run::<f64>(s, models),
         }
         .map(|r| r.report);

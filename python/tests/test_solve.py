@@ -187,3 +187,37 @@ def test_outputs_names_are_checked(bar):
         inertance.solve(bar, outputs=["impulses", "velocity"])
     with pytest.raises(ValueError, match="outputs"):
         inertance.solve(bar, outputs=3)
+
+
+TINY = """
+[body]
+mass = "1e-300"
+inertia = ["12e-300", "1.6e-300", "12e-300"]
+velocity = [3, 2, 0]
+angular_velocity = [0, 0, 0.4]
+[[contact]]
+point = [0, -2, 0]
+normal = [1, 0, 0]
+k = 0.3
+[[contact]]
+point = [0, 4, 0]
+normal = [1, 0, 0]
+k = 0.2
+"""
+
+
+def test_delta_beyond_f64_is_a_decimal(tmp_path):
+    """Example 3 with a body of 1e-300 kg: Δ = 3e600 kg⁻² is no float; the impulses are."""
+    from decimal import Decimal
+
+    scene = inertance.Scene.from_toml(TINY, file="tiny.toml")
+    r = inertance.solve(scene)
+    assert isinstance(r.det, Decimal)
+    assert abs(r.det / Decimal("3e600") - 1) < Decimal("1e-14")
+    np.testing.assert_allclose(r.newton.impulses, [3.655556e-300, 1.977778e-301], rtol=1e-6)
+    assert r.inertance.shape == (2, 2)  # 1.3e300 kg⁻¹: floats
+    # The CLI's JSON, read by Python's json module: Δ a string, nothing null or infinite.
+    path = tmp_path / "tiny.toml"
+    path.write_text(TINY)
+    j = cli_json("solve", path)
+    assert Decimal(j["det"]) == r.det

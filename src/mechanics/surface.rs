@@ -118,6 +118,11 @@ impl Surface {
             ));
         }
         let f = Builder { src: text }.build(&root).map_err(fail)?;
+        Surface::with_gradient(trimmed.to_string(), f).map_err(fail)
+    }
+
+    /// f and its symbolic gradient.
+    fn with_gradient(text: String, f: Expr) -> Result<Surface, String> {
         let mut gradient = [zero(), zero(), zero()];
         for (var, slot) in gradient.iter_mut().enumerate() {
             let mut deriver = Deriver {
@@ -125,17 +130,33 @@ impl Surface {
                 budget: MAX_DERIVATIVE_NODES,
             };
             *slot = deriver.derive(&f).map_err(|()| {
-                fail(format!(
+                format!(
                     "∂f/∂{} has more than {MAX_DERIVATIVE_NODES} nodes; simplify the expression",
                     VARIABLES[var]
-                ))
+                )
             })?;
         }
-        Ok(Surface {
-            text: trimmed.to_string(),
-            f,
-            gradient,
-        })
+        Ok(Surface { text, f, gradient })
+    }
+
+    /// The surface in a length unit of 2^b: f′(x′, y′, z′) = f(2^b x′, 2^b y′, 2^b z′), so that
+    /// f′(p/2^b) = f(p) exactly and ∇f′ = 2^b ∇f (the same direction). The powers of two are
+    /// folded into the rational coefficients wherever a product or a power allows
+    /// (`x^2/10^600` becomes `2^(2b)/10^600 · x^2`, exactly), so that a surface whose
+    /// coefficients f64 cannot hold in metres is evaluated in a unit where it can. Its text
+    /// stays as written.
+    ///
+    /// # Errors
+    /// When a derivative of f′ exceeds the size limit of [`Surface::parse`].
+    pub fn scaled(&self, b: i64) -> Result<Surface, SurfaceError> {
+        let two = BigRational::from_integer(BigInt::from(2));
+        let factor = if b >= 0 {
+            num_traits::pow(two, b.unsigned_abs() as usize)
+        } else {
+            num_traits::pow(two, b.unsigned_abs() as usize).recip()
+        };
+        Surface::with_gradient(self.text.clone(), rescaled(&self.f, &factor))
+            .map_err(SurfaceError::new)
     }
 
     /// The source text.
@@ -312,6 +333,27 @@ fn power(base: Expr, n: i64) -> Expr {
             Expr::Rational(q.pow(n as i32))
         }
         (base, n) => Expr::Pow(Box::new(base), n),
+    }
+}
+
+/// e with every variable v replaced by `factor`·v, the factor folded through products and
+/// integer powers into the rational coefficients ((c·v)^n = c^n·v^n).
+fn rescaled(e: &Expr, factor: &BigRational) -> Expr {
+    match e {
+        Expr::Rational(_) | Expr::Irrational(_) => e.clone(),
+        Expr::Var(_) => product(factor.clone(), vec![e.clone()]),
+        Expr::Sum(terms) => sum(terms.iter().map(|t| rescaled(t, factor)).collect()),
+        Expr::Product(c, factors) => product(
+            c.clone(),
+            factors.iter().map(|f| rescaled(f, factor)).collect(),
+        ),
+        Expr::Pow(base, n) => match (rescaled(base, factor), i32::try_from(*n)) {
+            (Expr::Product(c, factors), Ok(k)) => product(
+                c.pow(k),
+                vec![power(product(BigRational::one(), factors), *n)],
+            ),
+            (b, _) => power(b, *n),
+        },
     }
 }
 

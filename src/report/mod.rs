@@ -16,8 +16,10 @@
 mod friction;
 mod json;
 mod table;
+mod wide;
 
 pub use friction::{FrictionContact, FrictionReport};
+pub use wide::Wide;
 
 use serde_json::Value as Json;
 
@@ -43,6 +45,11 @@ pub struct Value {
     /// d(value)/d(seeded input), in a dual-number run (its `exact` text in `Dual<Exact>`; a
     /// `f64` of NaN where the value has no derivative); `None` in every other run.
     pub derivative: Option<Box<Value>>,
+    /// A float result beyond the range of f64 (Δ or an inertance of a scene solved in scaled
+    /// units, [`crate::scene::scale`]): its exact value as mantissa and power of two, with
+    /// [`Value::f64`] what f64 holds of it (±∞, 0 or subnormal). Printed and written as decimal
+    /// text from the pair ([`Value::text`], [`Value::json`]); `None` for every value f64 holds.
+    pub wide: Option<Wide>,
 }
 
 impl Value {
@@ -65,6 +72,7 @@ impl Value {
             exact: x.exact_text(),
             latex: x.latex_text(),
             derivative: None,
+            wide: None,
         }
     }
 
@@ -76,6 +84,7 @@ impl Value {
             exact: s.exact_text(),
             latex: s.latex_text(),
             derivative: None,
+            wide: None,
         };
         let derivative = s.coeff.dual_parts().map(|_| {
             Box::new(match s.derivative() {
@@ -96,14 +105,18 @@ impl Value {
             exact: None,
             latex: None,
             derivative: None,
+            wide: None,
         }
     }
 
-    /// The JSON value: the exact string in exact mode, a number otherwise.
+    /// The JSON value: the exact string in exact mode, a number otherwise; a value beyond
+    /// f64 ([`Value::wide`]) as a string in decimal scientific notation with 17 significant
+    /// digits (`"1.2345678901234567e600"`: enough to give back its f64 mantissa), never `null`.
     pub fn json(&self) -> Json {
-        match &self.exact {
-            Some(t) => Json::String(t.clone()),
-            None => json_f64(self.f64),
+        match (&self.exact, &self.wide) {
+            (Some(t), _) => Json::String(t.clone()),
+            (None, Some(w)) => Json::String(w.decimal(17)),
+            (None, None) => json_f64(self.f64),
         }
     }
 
@@ -112,6 +125,9 @@ impl Value {
     /// An exact value beyond the range of f64 (or too small for it) gets its decimals from the
     /// exact text, never `≈ inf` or `≈ 0`.
     pub fn text(&self) -> String {
+        if let (None, Some(w)) = (&self.exact, &self.wide) {
+            return w.decimal(7);
+        }
         match &self.exact {
             Some(t) if self.f64.is_nan() => t.clone(),
             Some(t) if !self.f64.is_finite() || (self.f64 == 0.0 && t != "0") => {

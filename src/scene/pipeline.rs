@@ -22,7 +22,7 @@ use crate::mechanics::constraint::{Constrained, ConstraintError};
 use crate::report::{FrictionReport, Report, Value};
 use crate::scalar::symbolic::RatFun;
 use crate::scalar::{Exact, Scalar};
-use crate::scene::scale::{finite, scale, unrepresentable, unscale};
+use crate::scene::scale::{Units, out_of_range, output_beyond, scale, unrepresentable, unscale};
 use crate::scene::{OUT_OF_RANGE, Scene, SceneError};
 
 /// Why a scene could not be solved.
@@ -89,23 +89,81 @@ pub fn run_with<T: Scalar>(
             ", even in units of mass, length and time scaled to the scene",
         ))
     };
-    let out_of_range =
+    let input_out_of_range =
         |e: &RunError| matches!(e, RunError::Scene(s) if s.message.ends_with(OUT_OF_RANGE));
-    let mut solved = match scale(scene) {
-        Some((scaled, units)) => match run_as_written::<T>(&scaled, models, allow_singular) {
-            Ok(mut solved) => {
-                unscale(&mut solved.report, &units);
-                solved
-            }
-            Err(e) if out_of_range(&e) => return Err(unrepresentable()),
-            Err(e) => return Err(e),
-        },
-        None => run_as_written::<T>(scene, models, allow_singular)?,
+    let prepared = match prepare_scaled::<T>(scene) {
+        Err(e) if input_out_of_range(&e) => return Err(unrepresentable()),
+        prepared => prepared?,
     };
-    if !finite(&solved.report) {
-        return Err(unrepresentable());
+    let mut solved = run_prepared_with(scene, &prepared.problem, models, allow_singular)?;
+    if let Some(units) = &prepared.units {
+        unscale(&mut solved.report, units);
+    }
+    if let Some(output) = out_of_range(&solved.report) {
+        return Err(RunError::Scene(output_beyond(
+            scene,
+            T::NAME,
+            output,
+            ", even in units of mass, length and time scaled to the scene",
+        )));
     }
     solved.report.scene.clone_from(&scene.name);
+    Ok(solved)
+}
+
+/// A scene's problem prepared in the float units [`super::scale`] picks for it: solved by
+/// [`run_prepared_scaled`] and scaled back, as [`run_with`] does.
+#[derive(Clone, Debug)]
+pub struct Prepared<T: Scalar> {
+    /// The problem, in the scaled units.
+    pub problem: Problem<T>,
+    /// The units, `None` when the scene is not scaled.
+    pub units: Option<Units>,
+}
+
+/// Prepare `scene` in `T` in the units [`super::scale`] picks. The scaled scene serves only its
+/// numbers: the report is read with the scene itself (its name, effects, surface as written).
+/// A scaled scene that does not prepare for a reason other than the range (a point off the
+/// surface, an invalid tangent) gives the unscaled scene's error, whose values are as written.
+pub fn prepare_scaled<T: Scalar>(scene: &Scene) -> Result<Prepared<T>, RunError> {
+    let Some((scaled, units)) = scale(scene) else {
+        return Ok(Prepared {
+            problem: prepare::<T>(scene)?,
+            units: None,
+        });
+    };
+    match prepare::<T>(&scaled) {
+        Ok(problem) => Ok(Prepared {
+            problem,
+            units: Some(units),
+        }),
+        Err(RunError::Scene(s)) if !s.message.ends_with(OUT_OF_RANGE) => {
+            prepare::<T>(scene)?;
+            Err(RunError::Scene(s))
+        }
+        Err(e) => Err(e),
+    }
+}
+
+/// As [`run_prepared`], for a problem prepared by [`prepare_scaled`]: the report scaled back,
+/// and refused as in [`run_with`] when a physical output is beyond `T`.
+pub fn run_prepared_scaled<T: Scalar>(
+    scene: &Scene,
+    prepared: &Prepared<T>,
+    models: Option<&[Model]>,
+) -> Result<Solved, RunError> {
+    let mut solved = run_prepared_with(scene, &prepared.problem, models, false)?;
+    if let Some(units) = &prepared.units {
+        unscale(&mut solved.report, units);
+    }
+    if let (false, Some(output)) = (T::IS_EXACT, out_of_range(&solved.report)) {
+        return Err(RunError::Scene(output_beyond(
+            scene,
+            T::NAME,
+            output,
+            ", even in units of mass, length and time scaled to the scene",
+        )));
+    }
     Ok(solved)
 }
 
@@ -133,10 +191,11 @@ pub fn run_prepared<T: Scalar>(
     models: Option<&[Model]>,
 ) -> Result<Solved, RunError> {
     let solved = run_prepared_with(scene, problem, models, false)?;
-    if !T::IS_EXACT && !finite(&solved.report) {
-        return Err(RunError::Scene(unrepresentable(
+    if let (false, Some(output)) = (T::IS_EXACT, out_of_range(&solved.report)) {
+        return Err(RunError::Scene(output_beyond(
             scene,
             T::NAME,
+            output,
             " in the scene's units (`run_with` scales them)",
         )));
     }

@@ -39,8 +39,18 @@
 //!
 //! the second because M_red = Dᵀ η M D is a kinetic energy (M·L²/T²) per ξ_a ξ_b, with
 //! ξ′_a = ξ_a·2^(f_a)… per unit twist: D′_a is the scaled image of the twist D_a·2^(−c−f_a).
-//! The reported D and U are scaled back too. Scenes with a `[surface]` (whose equation mixes
-//! units in ways this does not follow) run as written.
+//! The reported D and U are scaled back too.
+//!
+//! **Surfaces and irrational numbers.** Scenes are scaled with or without a `[surface]`: in
+//! the length unit 2^b the surface
+//! f(x, y, z) = 0 becomes f(2^b x′, 2^b y′, 2^b z′) = 0 ([`Surface::scaled`]). A number given
+//! as an irrational expression is scaled as an expression: its text times 2^k, whose f64
+//! value is its own f64 evaluation times 2^k, exactly. Symbolic scenes are exact and not scaled.
+//!
+//! What f64 cannot hold after scaling back is either a pure power of the units that is no
+//! physical quantity — Δ and the inertances, reported from their scaled value and power of two
+//! ([`crate::report::Wide`]) — or a physical output (impulses, velocities, energies), which is
+//! refused, naming it and the input that sets the extreme scale.
 //!
 //! **Sensitivities.** In a dual-number run ([`crate::scalar::dual`]) a seeded input's tangent
 //! is scaled with its value and each output's derivative is scaled back like the output: with
@@ -51,11 +61,12 @@
 use num_rational::BigRational;
 use num_traits::{Signed, Zero};
 
-use super::{ConstraintsSpec, Scene};
+use super::{ConstraintsSpec, Scene, SurfaceSpec};
 use crate::mechanics::constraint::complement;
 use crate::mechanics::screw::Screw;
+use crate::mechanics::surface::Surface;
 use crate::number::{Number, format_rational, rational_to_f64};
-use crate::report::{PointVelocity, Report, Value};
+use crate::report::{PointVelocity, Report, Value, Wide};
 use crate::scalar::{Exact, Scalar};
 
 /// The powers of two of a scaled scene: mass 2^a, length 2^b, time 2^c, and each contact's
@@ -84,12 +95,25 @@ fn exponent(q: &BigRational) -> Option<i64> {
     Some(q.numer().bits() as i64 - q.denom().bits() as i64)
 }
 
-/// The largest exponent among `numbers` (rational ones; `None` if all are zero).
+/// ⌊log₂|n|⌋ within one: from the exact value, or from the f64 evaluation of an irrational
+/// expression; `None` for zero.
+fn number_exponent(n: &Number) -> Option<i64> {
+    match &n.exact {
+        Ok(q) => exponent(q),
+        Err(_) => float_exponent(n.approx),
+    }
+}
+
+/// ⌊log₂|x|⌋ of a normal f64, read from its bits (so that x·2^k has exactly k more);
+/// `None` for zero, subnormals and non-finite values.
+fn float_exponent(x: f64) -> Option<i64> {
+    let biased = ((x.to_bits() >> 52) & 0x7ff) as i64;
+    (biased != 0 && biased != 0x7ff).then_some(biased - 1023)
+}
+
+/// The largest exponent among `numbers` (`None` if all are zero).
 fn largest<'a>(numbers: impl IntoIterator<Item = &'a Number>) -> Option<i64> {
-    numbers
-        .into_iter()
-        .filter_map(|n| n.exact.as_ref().ok().and_then(exponent))
-        .max()
+    numbers.into_iter().filter_map(number_exponent).max()
 }
 
 /// q · 2^k, exactly: a shift of the numerator or of the denominator (then reduced).
@@ -110,21 +134,26 @@ fn scale_number(n: &mut Number, k: i64) {
     if k == 0 {
         return;
     }
-    if let Ok(q) = &n.exact {
-        let q = shifted(q, k);
-        n.text = format_rational(&q);
-        n.approx = rational_to_f64(&q);
-        n.exact = Ok(q);
-        n.tangent = ldexp(n.tangent, k);
+    match &n.exact {
+        Ok(q) => {
+            let q = shifted(q, k);
+            n.text = format_rational(&q);
+            n.approx = rational_to_f64(&q);
+            n.exact = Ok(q);
+        }
+        // An expression: its text times 2^k, whose f64 evaluation is the f64 evaluation of
+        // the text times 2^k — exact, the text's own rounding kept.
+        Err(_) => {
+            n.text = format!("({})*2^({k})", n.text);
+            n.approx = ldexp(n.approx, k);
+        }
     }
+    n.tangent = ldexp(n.tangent, k);
 }
 
-/// `scene` in units chosen from its own numbers, or `None` when it is not scaled (constraints,
-/// a surface, an irrational or symbolic number, or units of 1 already).
+/// `scene` in units chosen from its own numbers, or `None` when it is not scaled (a symbolic
+/// number, constraint screws whose scaling cannot be read off exactly, or units of 1 already).
 pub fn scale(scene: &Scene) -> Option<(Scene, Units)> {
-    if scene.surface.is_some() || !scene.is_rational() {
-        return None;
-    }
     if scene.numbers().any(|(_, n)| !n.symbols.is_empty()) {
         return None;
     }
@@ -175,6 +204,9 @@ pub fn scale(scene: &Scene) -> Option<(Scene, Units)> {
                 scale_number(x, -f);
             }
         }
+    }
+    if let Some(surface) = &mut s.surface {
+        surface.surface = scaled_surface(surface, b)?;
     }
     scale_constraints(&mut s, b);
     let (free, blocked) = match constraint_exponents(scene, &s, b) {
@@ -268,8 +300,21 @@ fn power(x: &Screw<Exact>, y: &Screw<Exact>, b: i64) -> Result<i64, ()> {
     same.then_some(k).ok_or(())
 }
 
+/// The `[surface]` f(x, y, z) = 0 in the length unit 2^b: f(2^b x′, 2^b y′, 2^b z′) = 0
+/// ([`crate::mechanics::surface::Surface::scaled`]). Its gradient keeps its direction (the
+/// normals are directions), f′ at a scaled contact point equals f at the point exactly, and the
+/// float on-surface test |f|/|∇f| ≤ 10⁻⁹·max(|p|, 1) then reads max(|p|, 1) in the scene's own
+/// length unit: it is relative to the scene's size, not to the metre. `None` (the scene is not
+/// scaled) when the scaled derivatives exceed the size limit.
+fn scaled_surface(surface: &SurfaceSpec, b: i64) -> Option<Surface> {
+    if b == 0 {
+        return Some(surface.surface.clone());
+    }
+    surface.surface.scaled(b).ok()
+}
+
 /// x · 2^k in f64, exactly unless the result leaves the range (then ±∞ or 0).
-fn ldexp(x: f64, k: i64) -> f64 {
+pub(crate) fn ldexp(x: f64, k: i64) -> f64 {
     let mut y = x;
     let mut k = k;
     while k != 0 {
@@ -287,6 +332,17 @@ fn times(v: &mut Value, k: i64) {
     v.f64 = ldexp(v.f64, k);
     if let Some(d) = &mut v.derivative {
         d.f64 = ldexp(d.f64, k);
+    }
+}
+
+/// As [`times`], for an output that is a pure power of the units and no physical quantity
+/// (Δ, an inertance): where the product leaves f64 the value keeps its scaled value and power
+/// of two ([`Wide`]), and its derivative likewise.
+fn times_wide(v: &mut Value, k: i64) {
+    v.wide = Wide::of(v.f64, k);
+    v.f64 = ldexp(v.f64, k);
+    if let Some(d) = &mut v.derivative {
+        times_wide(d, k);
     }
 }
 
@@ -308,11 +364,11 @@ pub fn unscale(report: &mut Report, u: &Units) {
     ] {
         for row in m.iter_mut() {
             for g in row.iter_mut() {
-                times(g, -a);
+                times_wide(g, -a);
             }
         }
     }
-    times(&mut report.det, -a * n);
+    times_wide(&mut report.det, -a * n);
     for p in &mut report.contacts_before {
         point(p, b - c);
     }
@@ -396,50 +452,84 @@ pub fn unscale(report: &mut Report, u: &Units) {
     }
 }
 
-/// Whether every number of a report is finite (angles aside: they are bounded by construction).
-pub fn finite(report: &Report) -> bool {
+/// The first output of `report` that f64 does not hold, by name (`None`: all are finite).
+/// Δ and the inertances are pure powers of the units and no physical quantity: beyond f64 they
+/// are reported from their scaled value ([`Value::wide`]), so they count as held then.
+pub fn out_of_range(report: &Report) -> Option<&'static str> {
     let ok = |v: &Value| v.f64.is_finite();
+    let held = |v: &Value| ok(v) || v.wide.is_some();
     let point = |p: &PointVelocity| p.components.iter().all(ok);
-    report
-        .inertance
-        .iter()
-        .chain(&report.inertance_yx)
-        .chain(&report.inertance_zx)
-        .flatten()
-        .all(ok)
-        && ok(&report.det)
-        && report.contacts_before.iter().all(point)
-        && report.models.iter().all(|m| {
-            m.impulses.iter().chain(&m.impulse_multiples).all(ok)
-                && m.compression_impulses.iter().flatten().all(ok)
-                && m.angular_velocity.iter().chain(&m.velocity).all(ok)
-                && m.contacts.iter().all(point)
-                && ok(&m.lost_velocity_energy)
-                && ok(&m.kinetic_energy_loss)
-                && m.constraint_impulses.iter().all(ok)
-        })
-        && report.friction.iter().all(|f| {
-            f.contacts.iter().all(|p| {
-                [
-                    &p.normal_impulse,
-                    &p.compression_impulse,
-                    &p.normal_velocity,
-                ]
-                .into_iter()
-                .chain(&p.tangential_impulse)
-                .chain(&p.velocity)
-                .all(ok)
-            }) && f
-                .angular_velocity
+    let mut checks: Vec<(&'static str, bool)> = vec![
+        (
+            "inertances G",
+            report
+                .inertance
                 .iter()
-                .chain(&f.velocity)
-                .chain([
+                .chain(&report.inertance_yx)
+                .chain(&report.inertance_zx)
+                .flatten()
+                .all(held),
+        ),
+        ("Δ = det G", held(&report.det)),
+        (
+            "contact velocities before impact",
+            report.contacts_before.iter().all(point),
+        ),
+    ];
+    for m in &report.models {
+        checks.extend([
+            (
+                "impulses",
+                m.impulses.iter().chain(&m.impulse_multiples).all(ok)
+                    && m.compression_impulses.iter().flatten().all(ok),
+            ),
+            (
+                "velocities after impact",
+                m.angular_velocity.iter().chain(&m.velocity).all(ok)
+                    && m.contacts.iter().all(point),
+            ),
+            (
+                "energies",
+                ok(&m.lost_velocity_energy) && ok(&m.kinetic_energy_loss),
+            ),
+            ("constraint impulses", m.constraint_impulses.iter().all(ok)),
+        ]);
+    }
+    for f in &report.friction {
+        checks.extend([
+            (
+                "impulses",
+                f.contacts.iter().all(|p| {
+                    [&p.normal_impulse, &p.compression_impulse]
+                        .into_iter()
+                        .chain(&p.tangential_impulse)
+                        .all(ok)
+                }),
+            ),
+            (
+                "velocities after impact",
+                f.contacts.iter().all(|p| {
+                    std::iter::once(&p.normal_velocity)
+                        .chain(&p.velocity)
+                        .all(ok)
+                }) && f.angular_velocity.iter().chain(&f.velocity).all(ok),
+            ),
+            (
+                "energies",
+                [
                     &f.lost_velocity_energy,
                     &f.kinetic_energy_loss,
                     &f.friction_dissipation,
-                ])
-                .all(ok)
-        })
+                ]
+                .into_iter()
+                .all(ok),
+            ),
+        ]);
+    }
+    checks
+        .into_iter()
+        .find(|(_, held)| !held)
+        .map(|(name, _)| name)
 }
 
 /// The key of the scene's number farthest from 1 in magnitude (the likeliest culprit when a
@@ -455,6 +545,23 @@ pub fn most_extreme(scene: &Scene) -> Option<(String, String)> {
         })
         .max_by_key(|(e, _, _)| *e)
         .map(|(_, k, t)| (k, t))
+}
+
+/// The refusal of a physical `output` (impulses, velocities, energies) that the float type
+/// `name` does not hold even in units scaled to the scene (`how`): names the output and the
+/// input farthest from 1, which sets the extreme scale.
+pub fn output_beyond(scene: &Scene, name: &str, output: &str, how: &str) -> super::SceneError {
+    let (key, value) = most_extreme(scene).unwrap_or_default();
+    super::SceneError {
+        file: scene.file.clone(),
+        key,
+        value: Some(value),
+        message: format!(
+            "the {output} are beyond the range of {name}{how}; this number sets the extreme \
+             scale — {}",
+            super::OUT_OF_RANGE
+        ),
+    }
 }
 
 /// The refusal of a float result that is not representable: the scene's numbers span more than

@@ -11,7 +11,7 @@ use crate::impact::problem::Problem;
 use crate::impact::restitution::Model;
 use crate::impact::solve::Impact;
 use crate::mechanics::contact::Surd;
-use crate::report::Value;
+use crate::report::{Value, Wide};
 use crate::scalar::Scalar;
 use crate::scene::Scene;
 use crate::scene::pipeline::{RunError, prepare};
@@ -359,7 +359,7 @@ fn finish<T: Scalar>(
             )
         })
         .collect();
-    let report = AnalysisReport {
+    let mut report = AnalysisReport {
         scene: scene.name.clone(),
         scalar: T::NAME,
         contacts: n,
@@ -375,6 +375,12 @@ fn finish<T: Scalar>(
             .frictional()
             .then(|| friction_analysis(scene, problem)),
     };
+    if !T::IS_EXACT && report.rank == n && !report.det.f64.is_normal() {
+        // Δ ~ M⁻ᴺ left f64 in the scene's units (a body of 10⁻³⁰⁰ kg): from the scaled scene.
+        if let Some(det) = scaled_det::<T>(scene) {
+            report.det = det;
+        }
+    }
     if !report.finite() {
         // Never an ∞ or NaN where a number belongs: the scene spans more than T holds.
         return Err(RunError::Scene(crate::scene::scale::unrepresentable(
@@ -470,12 +476,31 @@ fn friction_analysis<T: Scalar>(scene: &Scene, problem: &Problem<T>) -> Friction
     }
 }
 
+/// Δ = det G of a float solve in the units [`crate::scene::scale`] picks, scaled back by
+/// 2^(−aN) and held beyond f64 as a [`Wide`]; `None` when the scene is not scaled or the scaled
+/// one does not assemble.
+fn scaled_det<T: Scalar>(scene: &Scene) -> Option<Value> {
+    let (scaled, units) = crate::scene::scale::scale(scene)?;
+    let impact = Impact::assemble(&prepare::<T>(&scaled).ok()?).ok()?;
+    let mut norms = T::one();
+    for f in impact.frames() {
+        norms *= &f.norm2[0];
+    }
+    let det = (impact.det_hat().clone() / &norms).to_f64();
+    let k = -units.mass * impact.contacts() as i64;
+    Some(Value {
+        wide: Wide::of(det, k),
+        ..Value::float(crate::scene::scale::ldexp(det, k))
+    })
+}
+
 impl AnalysisReport {
-    /// Whether every reported number is finite (the condition number may be ∞: G singular).
+    /// Whether every reported number is finite (the condition number may be ∞: G singular);
+    /// Δ beyond f64 counts when held as a [`Wide`].
     fn finite(&self) -> bool {
         let ok = |v: &Value| v.f64.is_finite();
         let all = |v: &[Value]| v.iter().all(ok);
-        ok(&self.det)
+        (ok(&self.det) || self.det.wide.is_some())
             && ok(&self.kinetic_energy_before)
             && self.tolerance.is_none_or(f64::is_finite)
             && self.models.iter().all(|m| {

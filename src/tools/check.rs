@@ -691,6 +691,7 @@ fn compatibility(
             exact: Some(c.to_text()),
             latex: Some(c.to_latex()),
             derivative: None,
+            wide: None,
         })
         .collect())
 }
@@ -1012,6 +1013,7 @@ fn angle_value(
             exact: Some("undefined (no tangential velocity)".into()),
             latex: None,
             derivative: None,
+            wide: None,
         },
         (0, Some(a)) => a.cos.clone(),
         (1, Some(a)) => a.sin.clone(),
