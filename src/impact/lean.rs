@@ -412,7 +412,7 @@ impl<T: Scalar, const N: usize> Lean<T, N> {
     /// constrained body, [`LeanError::Singular`] for a singular G, and in float types
     /// [`LeanError::IllConditioned`] when the route test refuses G (module docs) — in all
     /// three the generic [`crate::impact::solve::Impact`] is the path to take.
-    #[inline]
+    #[inline(always)]
     pub fn new(problem: &Problem<T>) -> Result<Self, LeanError> {
         let contacts = problem.contacts();
         if contacts.len() != N {
@@ -457,7 +457,7 @@ impl<T: Scalar, const N: usize> Lean<T, N> {
     }
 
     /// [`Lean::new`] on plain arrays (validated by the caller).
-    #[inline]
+    #[inline(always)]
     pub(crate) fn from_data(data: &Data<T, N>) -> Result<Self, LeanError> {
         let (factored, g) = data.factor();
         if T::IS_EXACT {
