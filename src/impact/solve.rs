@@ -143,7 +143,7 @@ pub struct Impact<T: Scalar> {
     outputs: Outputs,
     /// The buffers of [`Impact::solve_unilateral`].
     pub(crate) unilateral: UnilateralWork<T>,
-    /// N when the problem was built by the small-N float lane ([`lane`]), 0 otherwise.
+    /// N when the problem was built by the small-N float lane (module `lane`), 0 otherwise.
     lane: usize,
 }
 
@@ -227,7 +227,7 @@ impl<T: Scalar> Impact<T> {
         Ok(impact)
     }
 
-    /// [`Impact::assemble`] through the small-N lane ([`lane`]) in any scalar type — exact
+    /// [`Impact::assemble`] through the small-N lane (module `lane`) in any scalar type — exact
     /// ones included, which otherwise take the general code — or `None` when the problem is
     /// outside the lane (constrained, a full inertia tensor, N outside 2..=4, a singular or,
     /// in floats, ill-conditioned G). For tests: in exact types the lane must give every
@@ -239,7 +239,7 @@ impl<T: Scalar> Impact<T> {
         (impact.build_lane_any().ok()? && impact.lane != 0).then_some(impact)
     }
 
-    /// N when this problem was built by the small-N float lane ([`lane`]: a free body in
+    /// N when this problem was built by the small-N float lane (module `lane`: a free body in
     /// principal axes hit at 2 to 4 contacts whose G the route test gives to the normal
     /// equations), `None` when by the general code.
     pub fn lane(&self) -> Option<usize> {
