@@ -238,32 +238,7 @@ impl<F: Field, const N: usize> Data<F, N> {
                 g[i][j] = reciprocal(&axes[i], &responses[j]);
             }
         }
-        // Ĝ = L D Lᵀ, column by column (Cholesky's order, without its square roots).
-        let mut l: [[F; N]; N] = array::from_fn(|_| array::from_fn(|_| F::zero()));
-        let mut d: [F; N] = array::from_fn(|_| F::zero());
-        let mut d_inv: [F; N] = array::from_fn(|_| F::zero());
-        for j in 0..N {
-            let mut dj = g[j][j].clone();
-            for k in 0..j {
-                dj -= l[j][k].clone() * &l[j][k] * &d[k];
-            }
-            // 1/d_j once (a zero pivot gives ∞ or NaN in floats, refused by the route test;
-            // exact types test the pivots before solving).
-            let inv = if dj.is_zero() {
-                F::zero()
-            } else {
-                F::one() / &dj
-            };
-            for i in j + 1..N {
-                let mut s = g[i][j].clone();
-                for k in 0..j {
-                    s -= l[i][k].clone() * &l[j][k] * &d[k];
-                }
-                l[i][j] = s * &inv;
-            }
-            d[j] = dj;
-            d_inv[j] = inv;
-        }
+        let (l, d, d_inv) = ldl(&g);
         let factored = Factored {
             velocity: self.velocity.clone(),
             responses,
@@ -276,6 +251,39 @@ impl<F: Field, const N: usize> Data<F, N> {
         };
         (factored, g)
     }
+}
+
+/// Ĝ = L D Lᵀ from Ĝ's lower triangle `g`, column by column (Cholesky's order, without its
+/// square roots, no pivoting): L strictly below the diagonal, the pivots d_j, and 1/d_j taken
+/// once (0 for a zero pivot — ∞ or NaN in floats then, which the route test refuses; exact
+/// callers test the pivots before solving). Shared by the lean path and `Impact`'s small-N lane.
+#[inline(always)]
+#[allow(clippy::type_complexity)] // L, D and D⁻¹, as the factorization names them
+pub(crate) fn ldl<F: Field, const N: usize>(g: &[[F; N]; N]) -> ([[F; N]; N], [F; N], [F; N]) {
+    let mut l: [[F; N]; N] = array::from_fn(|_| array::from_fn(|_| F::zero()));
+    let mut d: [F; N] = array::from_fn(|_| F::zero());
+    let mut d_inv: [F; N] = array::from_fn(|_| F::zero());
+    for j in 0..N {
+        let mut dj = g[j][j].clone();
+        for k in 0..j {
+            dj -= l[j][k].clone() * &l[j][k] * &d[k];
+        }
+        let inv = if dj.is_zero() {
+            F::zero()
+        } else {
+            F::one() / &dj
+        };
+        for i in j + 1..N {
+            let mut s = g[i][j].clone();
+            for k in 0..j {
+                s -= l[i][k].clone() * &l[j][k] * &d[k];
+            }
+            l[i][j] = s * &inv;
+        }
+        d[j] = dj;
+        d_inv[j] = inv;
+    }
+    (l, d, d_inv)
 }
 
 impl<F: Field, const N: usize> Factored<F, N> {

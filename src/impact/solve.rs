@@ -647,16 +647,7 @@ impl<T: Scalar> Impact<T> {
             return;
         }
         out.lost_velocity_energy = problem.body().kinetic_energy(&dv);
-        let mut loss = T::zero();
-        for ((p, b), a) in out
-            .impulses_hat
-            .iter()
-            .zip(&self.before_hat)
-            .zip(&out.after_hat)
-        {
-            loss += p.clone() * &(b[0].clone() + &a[0]);
-        }
-        out.kinetic_energy_loss = loss / (T::one() + T::one());
+        out.kinetic_energy_loss = energy_loss(&out.impulses_hat, &self.before_hat, &out.after_hat);
         if needs.contains(Outputs::CONSTRAINT_IMPULSES) {
             self.constraint_impulses(&dv, out);
         } else {
@@ -771,6 +762,16 @@ impl<T: Scalar> Impact<T> {
         }
         s
     }
+}
+
+/// ΔE_c = ½ Σ_i P̂_i (v̂_ix⁰ + v̂_ix), from the momentum balance (module docs): free of the
+/// cancellation in T⁰ − T.
+fn energy_loss<T: Scalar>(impulses: &[T], before: &[[T; 3]], after: &[[T; 3]]) -> T {
+    let mut loss = T::zero();
+    for ((p, b), a) in impulses.iter().zip(before).zip(after) {
+        loss += p.clone() * &(b[0].clone() + &a[0]);
+    }
+    loss / (T::one() + T::one())
 }
 
 /// Resize to `n` zeros without reallocating when the capacity suffices.

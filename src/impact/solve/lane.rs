@@ -25,8 +25,8 @@
 
 use std::array;
 
-use super::{Impact, Outcome, SolveError};
-use crate::impact::lean::route_test;
+use super::{Impact, Outcome, SolveError, energy_loss};
+use crate::impact::lean::{ldl, route_test};
 use crate::impact::outputs::Outputs;
 use crate::impact::restitution::Model;
 use crate::impact::route::Route;
@@ -112,24 +112,9 @@ impl<T: Scalar> Impact<T> {
         }
         // Ĝ = L D Lᵀ without pivoting (the route test below needs its pivots, and proves G
         // well conditioned, where pivoting is not needed for stability).
-        let mut l: [[T; N]; N] = array::from_fn(|_| array::from_fn(|_| T::zero()));
-        let mut d: [T; N] = array::from_fn(|_| T::zero());
-        for k in 0..N {
-            let mut dk = g[k][k].clone();
-            for m in 0..k {
-                dk -= l[k][m].clone() * &l[k][m] * &d[m];
-            }
-            if T::IS_EXACT && dk.signum_i8() <= 0 {
-                return Ok(false); // singular (exactly): the general code says so
-            }
-            for i in k + 1..N {
-                let mut s = g[i][k].clone();
-                for m in 0..k {
-                    s -= l[i][m].clone() * &l[k][m] * &d[m];
-                }
-                l[i][k] = s / &dk;
-            }
-            d[k] = dk;
+        let (l, d, _) = ldl(&g);
+        if T::IS_EXACT && d.iter().any(|dk| dk.signum_i8() <= 0) {
+            return Ok(false); // singular (exactly): the general code says so
         }
         // The normal equations' route, by the lean path's sufficient test of
         // [`crate::impact::route`]'s bound ((N − 1) Σ_j c_ij² ≤ s*² implies Σ_j |c_ij| ≤ s*;
@@ -278,11 +263,7 @@ impl<T: Scalar> Impact<T> {
             // `solve`), free of the cancellation in T⁰ − T.
             let dv = Screw(out.velocity.0.clone() - v0.0.clone());
             out.lost_velocity_energy = problem.body().kinetic_energy(&dv);
-            let mut loss = T::zero();
-            for (p, (b, a)) in x.iter().zip(self.before_hat.iter().zip(&out.after_hat)) {
-                loss += p.clone() * &(b[0].clone() + &a[0]);
-            }
-            out.kinetic_energy_loss = loss / (T::one() + T::one());
+            out.kinetic_energy_loss = energy_loss(&x, &self.before_hat, &out.after_hat);
         }
         out.constraint_impulses.clear();
         if !asked.intersects(Outputs::NORMAL_VELOCITIES | Outputs::TANGENTIAL) {
