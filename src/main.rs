@@ -364,8 +364,11 @@ fn solve(
         Ok(s) => s,
         Err(code) => return code,
     };
-    if let Some(law) = law {
-        scene.law = law.law();
+    if let Some(law) = law
+        && let Err(e) = scene.set_law(law.law(), &format!("`--law {}`", law.law()))
+    {
+        eprintln!("error: {e}");
+        return ExitCode::from(2);
     }
     if let Some(names) = outputs {
         match inertance::Outputs::parse(names.iter().map(String::as_str)) {
@@ -392,7 +395,13 @@ fn solve(
     match solved {
         Ok(s) => {
             warn(&path, &s.report);
-            emit(json, || s.report.to_json(), || s.report.to_table())
+            let code = emit(json, || s.report.to_json(), || s.report.to_table());
+            if s.report.partial() {
+                // Some model or law has no answer; the others were printed.
+                ExitCode::from(4)
+            } else {
+                code
+            }
         }
         Err(e) => fail(&path, e),
     }
@@ -421,6 +430,12 @@ fn warn(path: &std::path::Path, report: &inertance::report::Report) {
     for (law, message, _) in &report.friction_failures {
         eprintln!(
             "warning: {}: {law} with friction has no answer: {message}",
+            path.display()
+        );
+    }
+    for (model, message, _) in &report.model_failures {
+        eprintln!(
+            "warning: {}: {model} under the unilateral law has no answer: {message}",
             path.display()
         );
     }

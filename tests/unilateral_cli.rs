@@ -138,8 +138,15 @@ fn the_unilateral_law_gives_the_physical_answer() {
 fn a_jammed_body_is_a_verdict_not_a_number() {
     let s = Scene::new("unilateral-jammed", JAMMED);
     for args in [
-        &["solve", "--law", "unilateral"][..],
-        &["solve", "--law", "unilateral", "--exact"],
+        &["solve", "--law", "unilateral", "--model", "newton"][..],
+        &[
+            "solve",
+            "--law",
+            "unilateral",
+            "--model",
+            "newton",
+            "--exact",
+        ],
     ] {
         let out = s.run(args);
         let err = String::from_utf8_lossy(&out.stderr);
@@ -150,6 +157,11 @@ fn a_jammed_body_is_a_verdict_not_a_number() {
             "{err}"
         );
     }
+    // With both models, Poisson (never jammed) answers and Newton's jam is named beside it:
+    // status 4 (tests/regression_jam_hides_other_model.rs).
+    let out = s.run(&["solve", "--law", "unilateral"]);
+    assert_eq!(out.status.code(), Some(4));
+    assert!(String::from_utf8_lossy(&out.stdout).contains("newton: no answer"));
     // Simultaneously it is singular (coincident points, opposite normals): exit 3 pointing to
     // analyze and to the unilateral law.
     let out = s.run(&["solve"]);

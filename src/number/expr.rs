@@ -3,13 +3,21 @@
 //!
 //! ```text
 //! expr    := term (('+' | '-') term)*          flat chains, left-associative
-//! term    := unary (('*' | '/') unary)*
+//! term    := product ('deg' (('*' | '/') unary)*)?
+//! product := unary (('*' | '/') unary)*
 //! unary   := ('-' | '+') unary | power
-//! power   := postfix ('^' unary)?              right-associative: 2^3^2 = 2^9
-//! postfix := atom 'deg'?                       degrees: 30 deg = pi/6
+//! power   := atom ('^' unary)?                 right-associative: 2^3^2 = 2^9
 //! atom    := literal | 'pi' | name | func '(' expr ')' | '(' expr ')'
 //! func    := 'sqrt' | 'sin' | 'cos' | 'tan'
 //! ```
+//!
+//! **`deg` is a unit, and binds loosest of the products**: it multiplies the whole product or
+//! quotient before it by π/180, so `80/3 deg` is (80/3)·π/180 — as a reader means it, never
+//! 80/(3 deg) — `-45 deg` is −π/4, `2*15 deg` is π/6 and `2^3 deg` is 8°. A product may go on
+//! after it (`30 deg / 2` is 15°); since `deg` is a factor, where it stands in a product does not
+//! change the value. It takes one unit per product (`30 deg * 2 deg` is refused, with the fix:
+//! parentheses) and binds tighter than `+` and `-`: `30 deg + 1` is π/6 + 1 (radians). Table of
+//! precedence, loosest first: `+ -`; `deg`; `* /`; unary `- +`; `^`; calls and parentheses.
 //!
 //! Literals are TOML numbers (`0.1`, `1_000.5`, `-3e-2`, `0x10`, `0o17`, `0b101`), read
 //! exactly. `nan`, `inf` and `infinity` (any case) are names that are never finite. Any other
@@ -471,9 +479,54 @@ impl Parser<'_> {
         self.chain(&[(b'+', Op::Add), (b'-', Op::Sub)], Self::term)
     }
 
-    /// term := unary (('*' | '/') unary)*
+    /// term := product ('deg' (('*' | '/') unary)*)?
+    ///
+    /// `deg` applies to the whole product before it: `80/3 deg` = (80/3) deg. The product may
+    /// go on after it, with that degree value as its first factor.
     fn term(&mut self) -> Result<Node, String> {
-        self.chain(&[(b'*', Op::Mul), (b'/', Op::Div)], Self::unary)
+        const MUL_DIV: [(u8, Op); 2] = [(b'*', Op::Mul), (b'/', Op::Div)];
+        let product = self.chain(&MUL_DIV, Self::unary)?;
+        if self.ident() != Some("deg") {
+            return Ok(product);
+        }
+        let end = self.advance().1;
+        let degrees = Node {
+            start: product.start,
+            end,
+            has_name: product.has_name,
+            kind: Kind::Deg(Box::new(product)),
+        };
+        let mut rest = Vec::new();
+        while let Some(op) = self
+            .sym()
+            .and_then(|c| MUL_DIV.iter().find(|(s, _)| *s == c).map(|(_, op)| *op))
+        {
+            self.advance();
+            rest.push((op, self.unary()?));
+        }
+        if self.sym() == Some(b'^') {
+            return Err(format!(
+                "'^' after 'deg' at position {}: 'deg' applies to the whole product before it; \
+                 to raise an angle to a power, put it in parentheses, e.g. (30 deg)^2",
+                char_pos(self.src, self.peek().start)
+            ));
+        }
+        if self.ident() == Some("deg") {
+            return Err(format!(
+                "a second 'deg' in one product at position {}: 'deg' applies to the whole \
+                 product before it; put each angle in parentheses, e.g. (30 deg)*(2 deg)",
+                char_pos(self.src, self.peek().start)
+            ));
+        }
+        Ok(match rest.last() {
+            None => degrees,
+            Some((_, last)) => Node {
+                start: degrees.start,
+                end: last.end,
+                has_name: degrees.has_name || rest.iter().any(|(_, n)| n.has_name),
+                kind: Kind::Chain(Box::new(degrees), rest),
+            },
+        })
     }
 
     /// Left-associative chain of `operand`s joined by `ops`, kept flat.
@@ -541,9 +594,9 @@ impl Parser<'_> {
         )
     }
 
-    /// power := postfix ('^' unary)?  (right-associative through unary)
+    /// power := atom ('^' unary)?  (right-associative through unary)
     fn power(&mut self) -> Result<Node, String> {
-        self.postfix().and_then(|base| {
+        self.atom().and_then(|base| {
             if self.sym() != Some(b'^') {
                 return Ok(base);
             }
@@ -554,22 +607,6 @@ impl Parser<'_> {
                 has_name: base.has_name || exp.has_name,
                 kind: Kind::Pow(Box::new(base), Box::new(exp)),
             })
-        })
-    }
-
-    /// postfix := atom ('deg')?
-    fn postfix(&mut self) -> Result<Node, String> {
-        self.atom().map(|atom| {
-            if self.ident() != Some("deg") {
-                return atom;
-            }
-            let end = self.advance().1;
-            Node {
-                start: atom.start,
-                end,
-                has_name: atom.has_name,
-                kind: Kind::Deg(Box::new(atom)),
-            }
         })
     }
 
@@ -716,7 +753,25 @@ mod tests {
         assert_eq!(parsed("2^-1"), "(^ 2 (neg 1))");
         assert_eq!(parsed("+7"), "+7"); // the sign stays in the span
         assert_eq!(parsed("cos(30 deg)"), "(cos (deg 30))");
-        assert_eq!(parsed("-45 deg"), "(neg (deg 45))");
+        assert_eq!(parsed("-45 deg"), "(deg (neg 45))");
+        // `deg` takes the whole product or quotient before it (issue 28: `80/3 deg` was read
+        // as 80/(3 deg)).
+        assert_eq!(parsed("80/3 deg"), "(deg (chain 80 / 3))");
+        assert_eq!(parsed("-80/3 deg"), "(deg (chain (neg 80) / 3))");
+        assert_eq!(parsed("2*theta deg"), "(deg (chain 2 * $theta))");
+        assert_eq!(parsed("2^3 deg"), "(deg (^ 2 3))");
+        assert_eq!(parsed("30 deg / 2"), "(chain (deg 30) / 2)");
+        assert_eq!(
+            parsed("1/2 deg * 3/4"),
+            "(chain (deg (chain 1 / 2)) * 3 / 4)"
+        );
+        assert_eq!(parsed("30 deg + 1/2"), "(chain (deg 30) + (chain 1 / 2))");
+        assert_eq!(
+            parsed("90 deg - 1/3 deg"),
+            "(chain (deg 90) - (deg (chain 1 / 3)))"
+        );
+        assert_eq!(parsed("cos(80/3 deg)"), "(cos (deg (chain 80 / 3)))");
+        assert_eq!(parsed("2^(30 deg)"), "(^ 2 (deg 30))");
         assert_eq!(parsed("sqrt(2)/pi"), "(chain (sqrt 2) / pi)");
         assert_eq!(parsed("NaN + inf"), "(chain NaN + inf)");
         assert_eq!(
@@ -777,6 +832,14 @@ mod tests {
         assert_eq!(error("é + x"), "unexpected character 'é' at position 1");
         assert_eq!(error("x + é"), "unexpected character 'é' at position 5");
         assert!(error("deg").contains("'deg' at position 1"));
+        assert!(error("1/deg").contains("'deg' at position 3"));
+        assert_eq!(
+            error("30 deg * 2 deg"),
+            "a second 'deg' in one product at position 12: 'deg' applies to the whole product \
+             before it; put each angle in parentheses, e.g. (30 deg)*(2 deg)"
+        );
+        assert!(error("30 deg^2").contains("e.g. (30 deg)^2"));
+        assert!(error("30 deg deg").contains("a second 'deg'"));
         assert!(error("sqrt 4").contains("'(' after 'sqrt'"));
         assert!(error("(1").contains("')'"));
         assert!(error("1.5.").contains("'.' after a number"));

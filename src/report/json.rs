@@ -37,6 +37,12 @@ impl Report {
         for r in &self.models {
             models.insert(r.model.name().into(), self.model_json(r));
         }
+        for (model, message, status) in &self.model_failures {
+            models.insert(
+                model.name().into(),
+                json!({ "error": message, "status": status }),
+            );
+        }
         let mut top = json!({
             "scene": self.scene,
             "scalar": self.scalar,

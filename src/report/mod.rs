@@ -329,6 +329,9 @@ pub struct Report {
     /// The frictional laws that have no answer for this scene: the law, why, and the short
     /// status (`no-continuation`, `undetermined`, `never-ends`).
     pub friction_failures: Vec<(crate::impact::friction::Restitution, String, &'static str)>,
+    /// The models that have no answer under the scene's law while others do (a body jammed
+    /// under Newton's unilateral law, say): the model, why, and the short status (`jammed`).
+    pub model_failures: Vec<(Model, String, &'static str)>,
     /// The axes of a modelled scene's vectors (`"world"` or `"body"`, origin at the centre of
     /// mass); `None` for the paper's body-axes scenes.
     pub axes: Option<&'static str>,
@@ -377,7 +380,13 @@ impl Report {
             surface: None,
             friction: Vec::new(),
             friction_failures: Vec::new(),
+            model_failures: Vec::new(),
         }
+    }
+
+    /// Whether some model or frictional law has no answer while others are reported.
+    pub fn partial(&self) -> bool {
+        !self.model_failures.is_empty() || !self.friction_failures.is_empty()
     }
 
     /// The report of one model, if it was solved.

@@ -88,6 +88,9 @@ impl Report {
                 _ => {}
             }
         }
+        for (model, message, _) in &self.model_failures {
+            out += &format!("{model}: no answer: {message}\n");
+        }
         out
     }
 

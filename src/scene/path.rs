@@ -3,6 +3,8 @@
 
 use toml_edit::{DocumentMut, Item, TableLike, Value};
 
+use super::model::params::in_unit_of;
+
 /// Override one value of a scene document: `path` like `body.mass`, `contact[1].k`,
 /// `body.velocity[0]`; `value` is TOML text (`0.5`, `"1/3"`, `[1, 0, 0]`). Used by
 /// derivations (`set` lines) and parameter sweeps.
@@ -10,11 +12,29 @@ use toml_edit::{DocumentMut, Item, TableLike, Value};
 /// A 3×3 `inertia` is addressed by the keys [`crate::scene::Scene::numbers`] lists: its
 /// diagonal entry J_kk as `body.inertia[k]`, an entry off the diagonal as
 /// `body.inertia[i][k]`, which sets its mirror `[k][i]` too (the tensor stays symmetric).
+///
+/// A parameter (`params.NAME`) keeps its unit: a bare number given to a parameter written in
+/// degrees is a number of degrees ([`in_unit_of`]), whichever entry point sets it.
 pub fn set_value(doc: &mut DocumentMut, path: &str, value: &str) -> Result<(), String> {
-    let new: Value = value
+    let mut new: Value = value
         .trim()
         .parse::<Value>()
         .map_err(|e| format!("`{value}` is not a TOML value: {}", e.to_string().trim()))?;
+    if let Some(name) = path.strip_prefix("params.") {
+        let params = doc.get("params").and_then(Item::as_table_like);
+        let text_of = |name: &str| {
+            params
+                .and_then(|t| t.get(name))
+                .and_then(Item::as_value)
+                .and_then(number_text)
+        };
+        if let (Some(old), Some(text)) = (text_of(name), number_text(&new))
+            && let Some(with_unit) =
+                in_unit_of(&old, &text, &text_of).map_err(|e| format!("`{path}`: {e}"))?
+        {
+            new = Value::from(with_unit);
+        }
+    }
     let segments: Vec<&str> = path.split('.').collect();
     let mut table: &mut dyn TableLike = doc.as_table_mut();
     for (depth, seg) in segments.iter().enumerate() {
@@ -105,6 +125,16 @@ fn set_tensor_entry(
         *slot = new.clone();
     }
     Ok(())
+}
+
+/// The expression a TOML number or string holds, as written.
+fn number_text(v: &Value) -> Option<String> {
+    match v {
+        Value::String(s) => Some(s.value().clone()),
+        Value::Integer(i) => Some(i.display_repr().into_owned()),
+        Value::Float(f) => Some(f.display_repr().into_owned()),
+        _ => None,
+    }
 }
 
 /// When `k` is replaced by one of `k_newton`/`k_poisson`, keep the other at the old `k`.

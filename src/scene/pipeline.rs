@@ -208,6 +208,7 @@ fn run_prepared_with<T: Scalar>(
     models: Option<&[Model]>,
     allow_singular: bool,
 ) -> Result<Solved, RunError> {
+    scene.law_applies()?;
     if scene.frictional() {
         return run_frictional(scene, problem, models);
     }
@@ -232,10 +233,24 @@ fn run_prepared_with<T: Scalar>(
     };
     let mut outcomes = Vec::with_capacity(models.len());
     let mut solves = Vec::with_capacity(models.len());
+    // A model without an answer (a jam under the unilateral law) does not hide the others.
+    let mut failures = Vec::new();
+    let mut first_failure = None;
     for &m in models {
-        let s = a.solve_law(m, scene.law)?;
-        outcomes.push((m, s.outcome.clone()));
-        solves.push(s);
+        match a.solve_law(m, scene.law) {
+            Ok(s) => {
+                outcomes.push((m, s.outcome.clone()));
+                solves.push(s);
+            }
+            Err(RunError::Unilateral(e @ UnilateralError::Jammed { .. })) => {
+                failures.push((m, e.to_string(), "jammed"));
+                first_failure.get_or_insert(e);
+            }
+            Err(e) => return Err(e),
+        }
+    }
+    if let (true, Some(e)) = (outcomes.is_empty(), first_failure) {
+        return Err(e.into());
     }
     let ranges: Vec<Option<[(Value, Value); 6]>> = solves
         .iter()
@@ -246,6 +261,7 @@ fn run_prepared_with<T: Scalar>(
         .collect();
     let mut report = a.report(scene, &outcomes);
     report.outputs = scene.outputs;
+    report.model_failures = failures;
     for (r, s) in report.models.iter_mut().zip(&solves) {
         r.law = scene.law;
         r.inadmissible.clone_from(&s.inadmissible);

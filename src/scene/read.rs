@@ -46,16 +46,13 @@ pub(super) fn scene(
     let classic = if modelled { None } else { Some(r.body(root)?) };
     let mut contacts = r.contacts(root)?;
     let (models, law, restitution, outputs) = r.solve(root)?;
-    let rough = contacts
-        .iter()
-        .position(|c| !matches!(&c.mu.exact, Ok(q) if num_traits::Zero::is_zero(q)));
-    if let (Law::Unilateral, Some(i)) = (law, rough) {
-        return Err(r.err(
-            &format!("contact[{i}].mu"),
-            Some(contacts[i].mu.text.clone()),
-            "friction is integrated under the simultaneous hypothesis (§14); it cannot be combined \
-             with `[solve] law = \"unilateral\"`",
-        ));
+    if law == Law::Unilateral {
+        super::law::unilateral_allowed(
+            file,
+            &contacts,
+            restitution,
+            "`[solve] law = \"unilateral\"`",
+        )?;
     }
     let mut constraints = match root.get("constraints") {
         None => None,

@@ -577,6 +577,7 @@ impl Reader<'_> {
             return Ok(());
         };
         let mut heights: Vec<Option<(usize, usize, Term)>> = Vec::new();
+        let mut named: Vec<(usize, usize, Vec3)> = Vec::new();
         for (i, (t, spec)) in tables.iter().zip(contacts.iter_mut()).enumerate() {
             let at = format!("contact[{i}]");
             let given: Vec<&str> = ["point", "body_point", "corner"]
@@ -656,6 +657,7 @@ impl Reader<'_> {
                         &at,
                     )?;
                     heights.push(Some((i, o, h)));
+                    named.push((i, o, world_point.clone()));
                 }
                 None => {
                     if let Some(n) = &spec.normal {
@@ -695,6 +697,106 @@ impl Reader<'_> {
                     }
                 }
             }
+        }
+        if let Some(Shape::Box(dims)) = shape {
+            self.every_touching_corner_named(&named, obstacles, frame, dims)?;
+        }
+        Ok(())
+    }
+
+    /// A box that touches an obstacle along an edge or a face must have a contact at each
+    /// touching corner: with only some named, the solve would let the others pass through the
+    /// plane (a box lying flat with two of its four corners named spins into the floor). The
+    /// obstacle's `partial = true` says the omission is deliberate. `named` holds each contact
+    /// that names an obstacle: its index, the obstacle's and its world point.
+    fn every_touching_corner_named(
+        &self,
+        named: &[(usize, usize, Vec3)],
+        obstacles: &[Obstacle],
+        frame: &Frame,
+        dims: &Vec3,
+    ) -> Result<(), SceneError> {
+        for (o, ob) in obstacles.iter().enumerate() {
+            let on: Vec<&(usize, usize, Vec3)> = named.iter().filter(|c| c.1 == o).collect();
+            let Some(&&(first, _, ref plane)) = on.first() else {
+                continue;
+            };
+            if ob.partial {
+                continue;
+            }
+            let at = format!("contact[{first}]");
+            let Some(lowest) = self.touching(dims, frame, &ob.normal, &at)? else {
+                continue;
+            };
+            // The lowest corners touch when they lie on the plane (through the contacts).
+            let plane = ob.point.as_ref().unwrap_or(plane);
+            let mut touching = Vec::new();
+            let mut corners = Vec::new();
+            for s in &lowest {
+                let corner = world(&frame.position, &frame.r, &Shape::corner(dims, *s));
+                let scale = corner
+                    .iter()
+                    .chain(plane.iter())
+                    .map(|x| self.magnitude(x))
+                    .fold(0.0, f64::max)
+                    .max(1e-300)
+                    * ob.normal
+                        .iter()
+                        .map(|x| self.magnitude(x))
+                        .fold(0.0, f64::max);
+                let height = dot(&sub(&corner, plane), &ob.normal);
+                if self.sign_at(&height, scale, &at)? == Some(0) {
+                    touching.push(*s);
+                    corners.push(corner);
+                }
+            }
+            if touching.len() < 2 {
+                continue;
+            }
+            let mut missing = Vec::new();
+            for (s, corner) in touching.iter().zip(&corners) {
+                let scale = corner
+                    .iter()
+                    .map(|x| self.magnitude(x))
+                    .fold(0.0, f64::max)
+                    .max(1e-300);
+                let mut found = false;
+                for (_, _, p) in &on {
+                    let mut same = true;
+                    for (a, b) in p.iter().zip(corner) {
+                        same &= self.sign_at(&(a - b), scale, &at)? == Some(0);
+                    }
+                    found |= same;
+                }
+                if !found {
+                    missing.push(*s);
+                }
+            }
+            if missing.is_empty() {
+                continue;
+            }
+            let list = |corners: &[[i64; 3]]| {
+                corners
+                    .iter()
+                    .map(|s| format!("{s:?}"))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            };
+            return Err(self.err(
+                &format!("obstacle[{o}]"),
+                None,
+                format!(
+                    "the box touches {} at {} corners in this pose ({}), but the contacts name \
+                     {} of them: the others would pass through the plane. Add a contact for each \
+                     missing corner (`corner = {}`), or set `partial = true` on the obstacle if \
+                     leaving them out is deliberate",
+                    ob.label(o),
+                    touching.len(),
+                    list(&touching),
+                    touching.len() - missing.len(),
+                    list(&missing).replace("], [", "]`, `corner = ["),
+                ),
+            ));
         }
         Ok(())
     }
@@ -862,7 +964,25 @@ impl Reader<'_> {
                     let down = n.each_ref().map(|x| -x);
                     let highest = self.touching(dims, frame, &down, at)?.unwrap_or_default();
                     if highest.iter().any(|s| Shape::corner(dims, *s) == *bp) {
-                        return Err(flip(&above));
+                        // A top corner: either it cannot touch, or the normal points into the
+                        // obstacle. Say both, the corners that can touch first.
+                        return Err(self.err(
+                            &format!("{at}.obstacle"),
+                            None,
+                            format!(
+                                "this point is the box's highest along {label}'s normal, so it \
+                                 cannot touch {label}: the corners that can touch it in this pose \
+                                 are {} (the lowest along the normal). If this point is right, \
+                                 the obstacle's normal points into the obstacle ((C − A)·N = {}): \
+                                 flip its sign",
+                                lowest
+                                    .iter()
+                                    .map(|s| format!("{s:?}"))
+                                    .collect::<Vec<_>>()
+                                    .join(", "),
+                                self.approx(&above)
+                            ),
+                        ));
                     }
                     return Err(self.err(
                         at,

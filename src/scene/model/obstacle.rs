@@ -23,6 +23,8 @@ pub(crate) struct Obstacle {
     pub(crate) normal: Vec3,
     /// A point P on the plane (world), if given.
     pub(crate) point: Option<Vec3>,
+    /// `partial = true`: the contacts may name only some of the corners that touch it.
+    pub(crate) partial: bool,
 }
 
 impl Obstacle {
@@ -45,14 +47,25 @@ impl Reader<'_> {
                 return Err(self.err(
                     "obstacle",
                     Some(short(other)),
-                    "must be [[obstacle]] tables (name, normal, point)",
+                    "must be [[obstacle]] tables (name, normal, point, partial)",
                 ));
             }
         };
         let mut out: Vec<Obstacle> = Vec::with_capacity(arr.len());
         for (i, t) in arr.iter().enumerate() {
             let at = format!("obstacle[{i}]");
-            self.only_keys(t, &at, &["name", "normal", "point"])?;
+            self.only_keys(t, &at, &["name", "normal", "point", "partial"])?;
+            let partial = match t.get("partial") {
+                None => false,
+                Some(item) => item.as_bool().ok_or_else(|| {
+                    self.err(
+                        &format!("{at}.partial"),
+                        Some(short(item)),
+                        "must be true or false: whether the contacts may name only some of the \
+                         corners that touch this obstacle",
+                    )
+                })?,
+            };
             let name = match t.get("name") {
                 None => None,
                 Some(n) => {
@@ -82,6 +95,7 @@ impl Reader<'_> {
                 name,
                 normal: normal.each_ref().map(Term::of),
                 point,
+                partial,
             });
         }
         Ok(out)

@@ -162,9 +162,145 @@ impl Params {
     }
 }
 
+/// How deep a parameter may refer to others when its unit is decided ([`written_in_degrees`]).
+const UNIT_DEPTH: usize = 32;
+
+/// Whether a parameter's value, as written, is an angle given in degrees: a `deg` stands outside
+/// every function call in it (`"20 deg"`, `"-(80/3) deg"`, `"90 deg - alpha"`), or it names,
+/// outside a call, a parameter that is (`"2*alpha"` with `alpha = "10 deg"`; `lookup` gives a
+/// parameter's text by name). A number computed from an angle (`"cos(20 deg)"`) is not.
+pub fn written_in_degrees(text: &str, lookup: &dyn Fn(&str) -> Option<String>) -> bool {
+    degrees_at(text, lookup, UNIT_DEPTH)
+}
+
+fn degrees_at(text: &str, lookup: &dyn Fn(&str) -> Option<String>, depth: usize) -> bool {
+    fn walk(n: &Node, lookup: &dyn Fn(&str) -> Option<String>, depth: usize) -> bool {
+        match &n.kind {
+            Kind::Deg(_) => true,
+            Kind::Name(name) => lookup(name).is_some_and(|t| degrees_at(&t, lookup, depth - 1)),
+            Kind::Neg(e) => walk(e, lookup, depth),
+            Kind::Chain(first, rest) => {
+                walk(first, lookup, depth) || rest.iter().any(|(_, e)| walk(e, lookup, depth))
+            }
+            Kind::Pow(base, _) => walk(base, lookup, depth),
+            Kind::Lit(_) | Kind::Pi | Kind::NonFinite | Kind::Call(..) => false,
+        }
+    }
+    depth > 0
+        && expr::parse(
+            text,
+            &crate::number::expr::Wording {
+                input: "value",
+                operand: "a number",
+            },
+        )
+        .is_ok_and(|root| walk(&root, lookup, depth))
+}
+
+/// The value `new` (an expression, as written by a user or a sweep) given to a parameter whose
+/// value as written is `old`: one rule for every entry point (`--param`, `sweep --vary`,
+/// Python's `Scene.with_values` and `solve_batch`). When the parameter is written in degrees
+/// ([`written_in_degrees`]), a bare number is a number of degrees: `45` becomes `(45) deg` —
+/// never 45 radians. A value that carries its own unit (`45 deg`) or names other parameters is
+/// taken as written; one that mentions `pi` (radians) is refused with the fix. `Ok(None)`: take
+/// `new` as written.
+///
+/// # Errors
+/// The message for a value in radians given to a parameter in degrees.
+pub fn in_unit_of(
+    old: &str,
+    new: &str,
+    lookup: &dyn Fn(&str) -> Option<String>,
+) -> Result<Option<String>, String> {
+    if !written_in_degrees(old, lookup) {
+        return Ok(None);
+    }
+    let wording = crate::number::expr::Wording {
+        input: "value",
+        operand: "a number",
+    };
+    let Ok(root) = expr::parse(new, &wording) else {
+        // A syntax error is reported where the value is read, with its key.
+        return Ok(None);
+    };
+    fn mentions(n: &Node, what: &dyn Fn(&Kind) -> bool) -> bool {
+        what(&n.kind)
+            || match &n.kind {
+                Kind::Neg(e) | Kind::Deg(e) | Kind::Call(_, e) => mentions(e, what),
+                Kind::Chain(first, rest) => {
+                    mentions(first, what) || rest.iter().any(|(_, e)| mentions(e, what))
+                }
+                Kind::Pow(b, e) => mentions(b, what) || mentions(e, what),
+                Kind::Lit(_) | Kind::Pi | Kind::NonFinite | Kind::Name(_) => false,
+            }
+    }
+    if root.has_name || mentions(&root, &|k| matches!(k, Kind::Deg(_))) {
+        return Ok(None);
+    }
+    if mentions(&root, &|k| matches!(k, Kind::Pi)) {
+        return Err(format!(
+            "`{}` is in radians, but this parameter is written in degrees (`{}`): give a number \
+             of degrees (`45`) or the value with its unit (`45 deg`)",
+            new.trim(),
+            old.trim()
+        ));
+    }
+    Ok(Some(format!("({}) deg", new.trim())))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    fn none(_: &str) -> Option<String> {
+        None
+    }
+
+    #[test]
+    fn the_unit_of_a_parameter_is_read_from_its_tree() {
+        for text in [
+            "20 deg",
+            "-20 deg",
+            "(80/3) deg",
+            "80/3 deg",
+            "90 deg - 1",
+            "2*(3 deg)",
+        ] {
+            assert!(written_in_degrees(text, &none), "{text}");
+        }
+        for text in [
+            "20",
+            "pi/9",
+            "cos(20 deg)",
+            "2*sin(30 deg)",
+            "alpha",
+            "1/deg",
+        ] {
+            assert!(!written_in_degrees(text, &none), "{text}");
+        }
+        let lookup = |n: &str| (n == "alpha").then(|| "10 deg".to_string());
+        assert!(written_in_degrees("2*alpha", &lookup));
+        assert!(!written_in_degrees("cos(alpha)", &lookup));
+        // A parameter that names itself (refused when the scene is read) ends the walk.
+        let me = |n: &str| (n == "a").then(|| "2*a".to_string());
+        assert!(!written_in_degrees("a", &me));
+    }
+
+    #[test]
+    fn a_bare_number_given_to_a_parameter_in_degrees_is_degrees() {
+        let unit = |old: &str, new: &str| in_unit_of(old, new, &none);
+        assert_eq!(unit("20 deg", "45"), Ok(Some("(45) deg".into())));
+        assert_eq!(unit("20 deg", " 80/3 "), Ok(Some("(80/3) deg".into())));
+        assert_eq!(unit("20 deg", "-1.5e1"), Ok(Some("(-1.5e1) deg".into())));
+        assert_eq!(unit("20 deg", "45 deg"), Ok(None));
+        assert_eq!(unit("20 deg", "2*beta"), Ok(None));
+        assert_eq!(unit("0.3", "45"), Ok(None));
+        assert_eq!(unit("pi/9", "1"), Ok(None));
+        assert!(
+            unit("20 deg", "pi/4")
+                .is_err_and(|e| e.contains("in radians") && e.contains("`45 deg`"))
+        );
+    }
 
     #[test]
     fn parameters_substitute_exactly_and_chain() {

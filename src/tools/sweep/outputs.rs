@@ -451,6 +451,7 @@ pub(super) fn status(report: &crate::report::Report) -> String {
         "no-continuation",
         "undetermined",
         "never-ends",
+        "jammed",
     ];
     let found: Vec<&str> = names
         .into_iter()
@@ -461,6 +462,7 @@ pub(super) fn status(report: &crate::report::Report) -> String {
                 .any(|m| m.inadmissible.iter().any(|v| v.name() == *n))
                 || report.friction.iter().any(|f| f.verdict_names.contains(n))
                 || report.friction_failures.iter().any(|(_, _, s)| s == n)
+                || report.model_failures.iter().any(|(_, _, s)| s == n)
         })
         .collect();
     if found.is_empty() {

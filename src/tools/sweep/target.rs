@@ -6,6 +6,7 @@ use num_rational::BigRational;
 use toml_edit::DocumentMut;
 
 use super::text::{text, toml_text};
+use crate::scene::model::params::written_in_degrees;
 use crate::scene::{Scene, set_value};
 
 /// Where a varied value is written: a key path of the document, or a parameter of `[params]`
@@ -28,7 +29,12 @@ impl Target {
         match base.params.iter().find(|p| p.name == name) {
             Some(p) => Target {
                 path: format!("params.{name}"),
-                degrees: p.text.trim_end().ends_with("deg"),
+                degrees: written_in_degrees(&p.text, &|n| {
+                    base.params
+                        .iter()
+                        .find(|q| q.name == n)
+                        .map(|q| q.text.clone())
+                }),
                 param: true,
             },
             None => Target {
@@ -60,13 +66,10 @@ impl Target {
         keys
     }
 
-    /// The TOML text of the value q at this target.
+    /// The TOML text of the value q at this target (a parameter in degrees takes it as degrees:
+    /// [`set_value`] gives it the unit, as for every entry point).
     pub(super) fn text(&self, q: &BigRational) -> String {
-        if self.degrees {
-            toml_edit::Value::from(format!("{} deg", text(q))).to_string()
-        } else {
-            toml_text(q)
-        }
+        toml_text(q)
     }
 
     /// `doc` with this target set to q.
