@@ -340,7 +340,7 @@ fn load_with(
         );
     }
     let scene = Scene::from_document_with(&doc, &file, symbols).map_err(|e| fail(e.to_string()))?;
-    if let Some(note) = scene.radian_note() {
+    for note in scene.notes() {
         eprintln!("{note}");
     }
     Ok(scene)
@@ -612,6 +612,17 @@ fn fail(path: &std::path::Path, error: RunError) -> ExitCode {
         }
         RunError::Friction(e @ FrictionError::NotPlanar) => {
             eprintln!("error: {}: {e} (drop --exact)", path.display());
+            ExitCode::from(2)
+        }
+        RunError::Friction(e @ inertance::impact::friction::FrictionError::NeedsRadical { .. }) => {
+            // A limit of the number type, not of the physics: bad input for this scalar.
+            eprintln!(
+                "error: {}: {e}: the stop lies at the root of a quadratic whose discriminant is \
+                 itself irrational (a nested square root), which the exact radical field does not \
+                 hold.\n  Solve in floating point (drop `--exact`), or give the scene rational \
+                 inputs (a rational rotation, rational normals) so that one square root suffices.",
+                path.display()
+            );
             ExitCode::from(2)
         }
         RunError::Friction(e) => {

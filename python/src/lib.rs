@@ -168,6 +168,14 @@ impl Scene {
         self.symbols.clone()
     }
 
+    /// Notes on likely slips (`note: …` lines, as the CLI prints them on stderr): angles in
+    /// radians beside degrees, a density that suggests millimetres or grams. The scene is
+    /// solved as written.
+    #[getter]
+    fn notes(&self) -> Vec<String> {
+        self.scene.notes()
+    }
+
     /// Number of contacts N.
     #[getter]
     fn contacts(&self) -> usize {

@@ -51,3 +51,10 @@ def test_a_value_in_radians_for_a_parameter_in_degrees_is_refused():
     with pytest.raises(inertance.SceneError) as e:
         tilted.with_values({"params.theta": "pi/4"})
     assert "45 deg" in str(e.value) and "radians" in str(e.value)
+
+
+def test_notes_on_likely_slips_reach_python():
+    text = TILTED.read_text().replace("box = [0.4, 0.2, 0.1]", "box = [200, 100, 50]")
+    notes = inertance.Scene.from_toml(text).notes
+    assert len(notes) == 1 and "millimetres" in notes[0]
+    assert inertance.Scene.load(TILTED).notes == []

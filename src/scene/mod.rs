@@ -46,8 +46,10 @@
 //! [`set_value`]; [`pipeline`] runs a scene from assembly to report; [`seed`] marks the input
 //! a sensitivity run differentiates with respect to.
 
+mod exact;
 mod law;
 pub mod model;
+mod notes;
 mod path;
 pub mod pipeline;
 mod read;
@@ -158,6 +160,12 @@ pub struct Scene {
     /// The axes of a modelled scene (world frame, pose, shape, obstacles: [`model`]); `None`
     /// for a scene written in the paper's body axes.
     pub axes: Option<Axes>,
+    /// The angles of a modelled scene's pose, each with its key as written
+    /// (`body.pose.angle`, `body.pose[1].angle`): the notes and the exact solver's refusals
+    /// name them rather than the numbers computed from them.
+    pub angles: Vec<(String, Number)>,
+    /// The density m / V (kg/m³) of a shape given its mass, for the units note.
+    pub density: Option<f64>,
 }
 
 impl Scene {
@@ -213,35 +221,6 @@ impl Scene {
         seed: &str,
     ) -> Result<Scene, SceneError> {
         read::scene(doc, file, symbols, Some(seed))
-    }
-
-    /// A note when the scene writes angles both ways: some value uses `deg` while another
-    /// applies sin, cos or tan to a bare number (read as radians) — `sin(3)` beside `30 deg`
-    /// is likely a slip. Names the key and value.
-    pub fn radian_note(&self) -> Option<String> {
-        let numbers: Vec<(String, &Number)> = self.numbers().collect();
-        if !numbers.iter().any(|(_, n)| n.text.contains("deg")) {
-            return None;
-        }
-        numbers.iter().find_map(|(key, n)| {
-            let t = &n.text;
-            ["sin(", "cos(", "tan("].iter().find_map(|f| {
-                let at = t.find(f)? + f.len();
-                let inner = t[at..].split(')').next()?.trim();
-                let bare = !inner.is_empty()
-                    && inner
-                        .chars()
-                        .all(|c| c.is_ascii_digit() || c == '.' || c == '-' || c == '/');
-                bare.then(|| {
-                    format!(
-                        "note: {}: `{key}` = \"{t}\" takes {} of {inner} radians, while the scene writes \
-                         other angles in `deg`; write `{inner} deg` if degrees were meant",
-                        self.file,
-                        &f[..3]
-                    )
-                })
-            })
-        })
     }
 
     /// Whether the impact is integrated in impulse space ([`crate::impact::friction`]): some

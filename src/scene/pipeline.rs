@@ -467,7 +467,14 @@ impl<T: Scalar> Assembled<T> {
 /// The validated problem in `T`: for a constrained scene, with its constraints (the initial
 /// twist checked against them).
 pub fn prepare<T: Scalar>(scene: &Scene) -> Result<Problem<T>, RunError> {
-    let problem = scene.problem::<T>()?;
+    // A pose the exact solver cannot hold is named by its angle, not by a computed entry.
+    let problem =
+        scene
+            .problem::<T>()
+            .map_err(|e| match scene.inexact_angle().filter(|_| T::IS_EXACT) {
+                Some(angle) => angle,
+                None => e,
+            })?;
     match scene.constraint_screws::<T>()? {
         None => Ok(problem),
         Some((free, blocked, keys)) => {

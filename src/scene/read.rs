@@ -34,6 +34,7 @@ pub(super) fn scene(
         file,
         symbols,
         params: Params::new(symbols, seed),
+        observed: Default::default(),
     };
     r.only_keys(root, "", TOP_KEYS)?;
     let r = Reader {
@@ -86,6 +87,8 @@ pub(super) fn scene(
         surface,
         params: r.params.specs(),
         axes,
+        angles: r.observed.borrow().angles.clone(),
+        density: r.observed.borrow().density.clone(),
     })
 }
 
@@ -222,6 +225,19 @@ pub(super) struct Reader<'a> {
     pub(super) symbols: &'a [String],
     /// The scene's `[params]`, substituted into every value.
     pub(super) params: Params,
+    /// What the reading saw that the scene keeps for its notes and messages.
+    pub(super) observed: std::cell::RefCell<Observed>,
+}
+
+/// What reading a scene saw besides its values: the pose angles (for the radian note and the
+/// exact solver's refusals, which name them) and the density a shape and a mass give (for the
+/// units note).
+#[derive(Default)]
+pub(super) struct Observed {
+    /// Each pose angle: its key and its value as read.
+    pub(super) angles: Vec<(String, Number)>,
+    /// The density m / V of a shape given its mass, in kg/m³, as a number.
+    pub(super) density: Option<f64>,
 }
 
 impl Reader<'_> {

@@ -476,6 +476,8 @@ impl Reader<'_> {
                     (Some(m), None) => {
                         let m = self.number(m, "body.mass")?;
                         self.positive(&m, "body.mass", "a mass must be positive")?;
+                        let density = shape.volume().map(|v| m.approx / v.approx());
+                        self.observed.borrow_mut().density = density.filter(|d| d.is_finite());
                         Term::of(&m)
                     }
                     (None, Some(rho)) => {

@@ -75,6 +75,10 @@ impl Reader<'_> {
         let a = self.triple(self.get(t, "axis", key)?, &axis_key)?;
         self.nonzero(&a, &axis_key, "a rotation axis")?;
         let angle = self.number(self.get(t, "angle", key)?, &format!("{key}.angle"))?;
+        self.observed
+            .borrow_mut()
+            .angles
+            .push((format!("{key}.angle"), angle.clone()));
         let a: Vec3 = a.each_ref().map(Term::of);
         let theta = Term::of(&angle);
         let (c, s) = (theta.call("cos"), theta.call("sin"));
