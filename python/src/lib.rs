@@ -312,6 +312,31 @@ impl Solution {
             })
             .collect()
     }
+    /// The models (and frictional laws) without an answer while others have one, by name:
+    /// `{"newton": {"error": "no admissible impulses: …", "status": "jammed"}}` (the CLI
+    /// exits 4 then). Empty when every model answered.
+    #[getter]
+    fn failures<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let out = PyDict::new(py);
+        let failures = self
+            .report
+            .model_failures
+            .iter()
+            .map(|(m, e, s)| (m.name(), e, s))
+            .chain(
+                self.report
+                    .friction_failures
+                    .iter()
+                    .map(|(l, e, s)| (l.name(), e, s)),
+            );
+        for (name, error, status) in failures {
+            let d = PyDict::new(py);
+            d.set_item("error", error)?;
+            d.set_item("status", *status)?;
+            out.set_item(name, d)?;
+        }
+        Ok(out)
+    }
     /// Newton's law (eq. 14–20), if solved.
     #[getter]
     fn newton(&self) -> Option<ModelSolution> {

@@ -58,3 +58,29 @@ def test_notes_on_likely_slips_reach_python():
     notes = inertance.Scene.from_toml(text).notes
     assert len(notes) == 1 and "millimetres" in notes[0]
     assert inertance.Scene.load(TILTED).notes == []
+
+
+def test_a_jammed_model_does_not_hide_the_other():
+    # Issue 28, item 10 (tests/regression_jam_hides_other_model.rs): a rod between two walls.
+    jam = """
+[body]
+mass = 1
+inertia = [1, 1, 1]
+velocity = [-2, 0, 0]
+angular_velocity = [0, 0, 0]
+[[contact]]
+point = [-1, 0, 0]
+normal = [-1, 0, 0]
+k = 0.5
+[[contact]]
+point = [1, 0, 0]
+normal = [1, 0, 0]
+k = 0.5
+[solve]
+law = "unilateral"
+"""
+    r = inertance.solve(jam, exact=True)
+    assert r.newton is None
+    assert r.failures["newton"]["status"] == "jammed"
+    assert r.poisson.impulses == [3, 1]
+    assert inertance.solve(inertance.Scene.load(BAR)).failures == {}
