@@ -25,11 +25,14 @@ use inertance::mechanics::contact::Contact;
 use inertance::mechanics::reaction::Wrench;
 use inertance::mechanics::screw::{Screw, Vec3, dot};
 use inertance::scalar::dd::DoubleDouble;
+use inertance::scalar::symbolic::symbolic;
 use inertance::scalar::{Exact, Scalar, int};
-use inertance::scene::Scene;
 use inertance::scene::pipeline::{prepare, run};
 use inertance::scene::scale::scale;
+use inertance::scene::{Scene, parse_document};
 use inertance::solve;
+use inertance::tools::check::lookup;
+use inertance::tools::derive::derive;
 use num_traits::{One, Zero};
 use proptest::prelude::*;
 
@@ -253,6 +256,60 @@ proptest! {
             prop_assert_eq!(uq, s.constraint_wrench.clone());
         }
     }
+}
+
+/// The pinned rod with every datum a symbol: `derive` gives the hinge's reaction as a closed
+/// form (named `newton.J1.F`, `newton.J1.M` as `check` reads them), equal as a rational
+/// function to the hand-solved one above, F_x = P (1 − m l²/(2 J_O)) with
+/// P = (1 + k) w J_O / l and J_O = j + m l²/4, and M_C = (0, 0, l F_x/2).
+#[test]
+fn derive_gives_the_hinge_reaction_as_a_closed_form() {
+    let text = r#"
+[params]
+m = 3
+l = 2
+j = 1
+w = 1
+k = 0.5
+[body]
+mass = "m"
+inertia = ["j", "1/100", "j"]
+velocity = ["w*l/2", 0, 0]
+angular_velocity = [0, 0, "-w"]
+[[contact]]
+point = [0, "l/2", 0]
+normal = [1, 0, 0]
+k = "k"
+[[constraints.joint]]
+kind = "revolute"
+point = [0, "-l/2", 0]
+axis = [0, 0, 1]
+"#;
+    let symbols: Vec<String> = ["m", "l", "j", "w", "k"].map(String::from).to_vec();
+    let scene =
+        Scene::from_document_with(&parse_document(text, "rod").unwrap(), "rod", &symbols).unwrap();
+    let d = derive(&scene, &symbols, None).unwrap();
+    let expr = |t: &str| symbolic(t, &symbols).unwrap_or_else(|e| panic!("{t}: {e}"));
+    let derived = |q: &str| {
+        let v = lookup(&d.report, q).unwrap();
+        expr(v[0].exact.as_deref().expect("an exact text"))
+    };
+    let f = "(1 + k)*w*(j + m*l^2/4)/l * (1 - m*l^2/(2*(j + m*l^2/4)))";
+    for model in ["newton", "poisson"] {
+        assert_eq!(derived(&format!("{model}.J1.F[0]")), expr(f));
+        assert_eq!(
+            derived(&format!("{model}.MC[2]")),
+            expr(&format!("l*({f})/2"))
+        );
+        for k in 0..3 {
+            assert_eq!(derived(&format!("{model}.J1.M[{k}]")), expr("0"));
+        }
+        for k in 1..3 {
+            assert_eq!(derived(&format!("{model}.J1.F[{k}]")), expr("0"));
+        }
+    }
+    assert!(d.to_text(false).contains("newton.J1.F[0] = "));
+    assert!(d.to_text(true).contains("F_{J1,x}^{N}"));
 }
 
 /// The pinned rod of the hand-solved test at m = 3, l = 2, j = 1, w = 1, k = 1/2: P = 3 N s,
