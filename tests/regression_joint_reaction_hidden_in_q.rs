@@ -402,6 +402,49 @@ models = ["newton"]
     );
 }
 
+/// Float solves run in units chosen from the scene (`scene::scale`) and scale the report back:
+/// the reaction's point is a length, its force an impulse, its moment an impulse times a
+/// length. The pinned rod with mass 3·10^a kg and lengths 10^b times the hand-solved one's
+/// (J = 10^(a+2b), v_C⁰ = 10^b m/s, ω⁰ = −1 rad/s) has F = (−3/2, 0, 0)·10^(a+b) N s,
+/// M_O = 0 and the anchor (0, −10^b, 0) m. Each value is a handful of roundings of inputs
+/// rounded once (ε/2 each): within 64ε of its own scale — |F| for the force, |F|·10^b for
+/// the moment (M_O = M_C − p × F cancels two such terms), 10^b for the point.
+#[test]
+fn the_reaction_is_scaled_back_with_the_scenes_units() {
+    for (a, b) in [(-300, 0), (300, -100), (-200, 100), (0, 0)] {
+        let text = ROD
+            .replace("mass = 3", &format!("mass = 3e{a}"))
+            .replace("inertia = [1, \"1/100\", 1]", &format!("inertia = [1e{0}, 1e{0}, 1e{0}]", a + 2 * b))
+            .replace("velocity = [1, 0, 0]", &format!("velocity = [1e{b}, 0, 0]"))
+            .replace("point = [0, 1, 0]", &format!("point = [0, 1e{b}, 0]"))
+            .replace("point = [0, -1, 0]", &format!("point = [0, -1e{b}, 0]"));
+        let scene = Scene::parse(&text, "scaled-rod.toml").unwrap();
+        let report = run::<f64>(&scene, None).unwrap().report;
+        let (force, length) = (1.5 * 10f64.powi(a + b), 10f64.powi(b));
+        let near = |x: &inertance::report::Value, want: f64, scale: f64, what: &str| {
+            assert!(
+                (x.f64 - want).abs() <= 64.0 * f64::EPSILON * scale,
+                "10^{a} kg, 10^{b} m, {what}: {} against {want:e}",
+                x.f64
+            );
+        };
+        for m in &report.models {
+            let r = &m.joint_reactions[0];
+            near(&r.point[1], -length, length, "anchor");
+            near(&r.force[0], -force, force, "F_x");
+            for k in 0..3 {
+                near(&r.moment[k], 0.0, force * length, "M_O");
+                near(&r.point[k], [0.0, -length, 0.0][k], length, "anchor");
+            }
+            for k in 1..3 {
+                near(&r.force[k], 0.0, force, "F");
+            }
+            let c = m.constraint_wrench.as_ref().unwrap();
+            near(&c.moment[2], -force * length, force * length, "M_C");
+        }
+    }
+}
+
 /// R of the unit quaternion (1, 2, 3, 4)/√30, body → world: rational.
 fn rotation() -> [[Exact; 3]; 3] {
     let (w, x, y, z) = (1, 2, 3, 4);
