@@ -414,7 +414,10 @@ fn the_reaction_is_scaled_back_with_the_scenes_units() {
     for (a, b) in [(-300, 0), (300, -100), (-200, 100), (0, 0)] {
         let text = ROD
             .replace("mass = 3", &format!("mass = 3e{a}"))
-            .replace("inertia = [1, \"1/100\", 1]", &format!("inertia = [1e{0}, 1e{0}, 1e{0}]", a + 2 * b))
+            .replace(
+                "inertia = [1, \"1/100\", 1]",
+                &format!("inertia = [1e{0}, 1e{0}, 1e{0}]", a + 2 * b),
+            )
             .replace("velocity = [1, 0, 0]", &format!("velocity = [1e{b}, 0, 0]"))
             .replace("point = [0, 1, 0]", &format!("point = [0, 1e{b}, 0]"))
             .replace("point = [0, -1, 0]", &format!("point = [0, -1e{b}, 0]"));

@@ -87,6 +87,21 @@ pub struct Family {
     pub twist_change: Vec<Vec<RatFun>>,
 }
 
+/// The symbols `derive` takes when none are named (`inertance derive` without `--symbols`,
+/// Python's `derive(scene)`): the parameters of the scene's `[params]`, each a symbol, in
+/// order — except those in `set`, which were given a value (`--param NAME=…`).
+pub fn default_symbols(doc: &toml_edit::DocumentMut, set: &[&str]) -> Vec<String> {
+    doc.get("params")
+        .and_then(toml_edit::Item::as_table_like)
+        .map(|t| {
+            t.iter()
+                .map(|(k, _)| k.to_string())
+                .filter(|k| !set.contains(&k.as_str()))
+                .collect()
+        })
+        .unwrap_or_default()
+}
+
 /// Derive `scene` symbolically for `models` (the scene's own when `None`).
 ///
 /// # Errors
