@@ -81,9 +81,8 @@ proptest! {
     /// ```
     ///
     /// with p = O = (0, −l/2, 0) (the rod turns about z only, so the hinge needs no moment
-    /// about x or y either). For a thin rod, J_O = m l²/3 and
-    /// F_x = −P/2: the hinge pulls back with half the blow. Exact, for every rational m, l, j,
-    /// w, k.
+    /// about x or y either). For a thin rod, J_O = m l²/3 and F_x = −P/2: the hinge pulls back
+    /// with half the blow. Exact, for every rational m, l, j, w, k.
     #[test]
     fn a_rod_pinned_at_one_end_and_struck_at_the_other_has_the_hand_solved_hinge_reaction(
         m in positive(20, 3), l in positive(9, 2), j in positive(20, 3), jy in positive(20, 3),
@@ -354,7 +353,7 @@ fn the_report_gives_each_joints_force_and_moment() {
         assert_eq!(m["impulses"], serde_json::json!(["3"]));
     }
     let table = run::<f64>(&scene, None).unwrap().report.to_table();
-    assert!(table.contains("J1 revolute at [0, -1, 0]"), "{table}");
+    assert!(table.contains("J1 revolute at [0, -1, 0] m"), "{table}");
     let row = |label: &str| {
         table
             .lines()

@@ -303,7 +303,7 @@ pub struct WrenchReport {
 
 impl WrenchReport {
     fn of<T: Scalar>(w: &Wrench<T>) -> Self {
-        let each = |v: &crate::mechanics::screw::Vec3<T>| [0, 1, 2].map(|k| Value::of(&v[k]));
+        let each = |v: &Vec3<T>| [0, 1, 2].map(|k| Value::of(&v[k]));
         WrenchReport {
             point: each(&w.point),
             force: each(&w.force),

@@ -137,7 +137,7 @@ impl Report {
                     .zip(&model.joint_reactions)
                     .enumerate()
                     .map(|(j, (joint, w))| match joint.has_point {
-                        true => format!("J{} {} at {}", j + 1, joint.kind, bracketed(&w.point)),
+                        true => format!("J{} {} at {} m", j + 1, joint.kind, bracketed(&w.point)),
                         false => format!("J{} {} at C (it has no point)", j + 1, joint.kind),
                     })
                     .collect();
