@@ -90,6 +90,10 @@ pub mod scalar;
 pub mod scene;
 pub mod tools;
 
+/// The crate's version (the workspace's, in Cargo.toml): `inertance --version` and Python's
+/// `inertance.__version__` print it.
+pub const VERSION: &str = env!("CARGO_PKG_VERSION");
+
 pub use impact::outputs::Outputs;
 pub use impact::problem::{Field, InvalidProblem, Problem, Reason};
 pub use impact::restitution::Model;

@@ -304,31 +304,37 @@ fn load_with(
     opts: &SceneOpts,
     symbols: &[String],
 ) -> Result<Scene, ExitCode> {
-    let fail = |message: String| {
-        eprintln!("error: {message}");
-        ExitCode::from(2)
-    };
+    let (doc, file) = read_document(path, opts)?;
+    scene_of(&doc, &file, symbols)
+}
+
+/// The scene document at `path` (`-`: standard input) and its name for messages, with the
+/// overrides `opts` applied; status 2 when it cannot be read.
+fn read_document(
+    path: &std::path::Path,
+    opts: &SceneOpts,
+) -> Result<(toml_edit::DocumentMut, String), ExitCode> {
     let (text, file) = if path.as_os_str() == "-" {
         let mut text = String::new();
         std::io::Read::read_to_string(&mut std::io::stdin(), &mut text)
-            .map_err(|e| fail(format!("<stdin>: cannot read the scene: {e}")))?;
+            .map_err(|e| fail_input(format!("<stdin>: cannot read the scene: {e}")))?;
         (text, "<stdin>".to_string())
     } else {
         let file = path.display().to_string();
         let text = std::fs::read_to_string(path)
-            .map_err(|e| fail(format!("{file}: cannot read the file: {e}")))?;
+            .map_err(|e| fail_input(format!("{file}: cannot read the file: {e}")))?;
         (text, file)
     };
     let mut doc =
-        inertance::scene::parse_document(&text, &file).map_err(|e| fail(e.to_string()))?;
+        inertance::scene::parse_document(&text, &file).map_err(|e| fail_input(e.to_string()))?;
     for p in &opts.params {
         let (name, value) = p.split_once('=').ok_or_else(|| {
-            fail(format!(
+            fail_input(format!(
                 "--param {p}: expected NAME=VALUE, e.g. theta=\"10 deg\""
             ))
         })?;
         inertance::scene::set_param(&mut doc, name.trim(), value)
-            .map_err(|e| fail(format!("{file}: {e}")))?;
+            .map_err(|e| fail_input(format!("{file}: {e}")))?;
     }
     if let Some(axes) = opts.axes {
         inertance::scene::set_axes(
@@ -339,11 +345,27 @@ fn load_with(
             },
         );
     }
-    let scene = Scene::from_document_with(&doc, &file, symbols).map_err(|e| fail(e.to_string()))?;
+    Ok((doc, file))
+}
+
+/// The scene of a document read by [`read_document`], its values naming `symbols`.
+fn scene_of(
+    doc: &toml_edit::DocumentMut,
+    file: &str,
+    symbols: &[String],
+) -> Result<Scene, ExitCode> {
+    let scene =
+        Scene::from_document_with(doc, file, symbols).map_err(|e| fail_input(e.to_string()))?;
     for note in scene.notes() {
         eprintln!("{note}");
     }
     Ok(scene)
+}
+
+/// An input error: the message on stderr, status 2.
+fn fail_input(message: String) -> ExitCode {
+    eprintln!("error: {message}");
+    ExitCode::from(2)
 }
 
 /// Read a scene, or report why not (status 2).
@@ -483,32 +505,23 @@ fn run_derive(
     json: bool,
     opts: &SceneOpts,
 ) -> ExitCode {
+    let (doc, file) = match read_document(&path, opts) {
+        Ok(read) => read,
+        Err(code) => return code,
+    };
     let mut symbols: Vec<String> = symbols.iter().map(|s| s.trim().to_string()).collect();
     if symbols.is_empty() {
         // Default: every parameter of the scene is a symbol (those set by --param excepted).
-        let names = std::fs::read_to_string(&path)
-            .ok()
-            .and_then(|t| t.parse::<toml_edit::DocumentMut>().ok())
-            .and_then(|d| {
-                d.get("params")
-                    .and_then(toml_edit::Item::as_table_like)
-                    .map(|t| t.iter().map(|(k, _)| k.to_string()).collect::<Vec<_>>())
-            })
-            .unwrap_or_default();
-        symbols = names
-            .into_iter()
-            .filter(|n| {
-                !opts
-                    .params
-                    .iter()
-                    .any(|p| p.split('=').next().map(str::trim) == Some(n))
-            })
+        let set: Vec<&str> = opts
+            .params
+            .iter()
+            .filter_map(|p| p.split('=').next().map(str::trim))
             .collect();
+        symbols = inertance::tools::derive::default_symbols(&doc, &set);
         if symbols.is_empty() {
             eprintln!(
-                "error: {}: give --symbols NAME,… (the names the scene's values use as symbols), or \
-                 declare [params], which derive takes as symbols",
-                path.display()
+                "error: {file}: give --symbols NAME,… (the names the scene's values use as symbols), or \
+                 declare [params], which derive takes as symbols"
             );
             return ExitCode::from(2);
         }
@@ -523,7 +536,7 @@ fn run_derive(
         );
         return ExitCode::from(2);
     }
-    let scene = match load_with(&path, opts, &symbols) {
+    let scene = match scene_of(&doc, &file, &symbols) {
         Ok(s) => s,
         Err(code) => return code,
     };

@@ -15,16 +15,6 @@ use inertance::scalar::{Exact, int};
 use num_traits::{One, Zero};
 use proptest::prelude::*;
 
-fn joint() -> impl Strategy<Value = Joint<Exact>> {
-    prop_oneof![
-        (vec3(4, 2), direction()).prop_map(|(point, axis)| Joint::Revolute { point, axis }),
-        direction().prop_map(|axis| Joint::Prismatic { axis }),
-        (vec3(4, 2), direction()).prop_map(|(point, axis)| Joint::Cylindrical { point, axis }),
-        vec3(4, 2).prop_map(|point| Joint::Spherical { point }),
-        direction().prop_map(|normal| Joint::Planar { normal }),
-    ]
-}
-
 /// A body with 1–2 joints (kept when their free screws are independent), an allowed twist
 /// v⁰ = D ξ⁰, and 1–3 contacts.
 fn constrained_problem() -> impl Strategy<Value = (Problem<Exact>, Vec<Screw<Exact>>)> {

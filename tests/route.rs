@@ -109,14 +109,17 @@ fn in_solver_units(scene: &Scene) -> Scene {
 fn exact_outcome<T: Scalar>(o: &Outcome<T>) -> Outcome<Exact> {
     let x = |x: &T| -> Exact { x.exact_value().unwrap().into() };
     let all = |v: &[T]| -> Vec<Exact> { v.iter().map(x).collect() };
-    let mut velocity = Screw::zero();
-    for k in 0..6 {
-        velocity.0[k] = x(&o.velocity.0[k]);
-    }
+    let screw = |s: &Screw<T>| {
+        let mut e = Screw::zero();
+        for k in 0..6 {
+            e.0[k] = x(&s.0[k]);
+        }
+        e
+    };
     Outcome {
         impulses_hat: all(&o.impulses_hat),
         compression_hat: all(&o.compression_hat),
-        velocity,
+        velocity: screw(&o.velocity),
         after_hat: o
             .after_hat
             .iter()
@@ -125,6 +128,7 @@ fn exact_outcome<T: Scalar>(o: &Outcome<T>) -> Outcome<Exact> {
         lost_velocity_energy: x(&o.lost_velocity_energy),
         kinetic_energy_loss: x(&o.kinetic_energy_loss),
         constraint_impulses: all(&o.constraint_impulses),
+        constraint_wrench: screw(&o.constraint_wrench),
     }
 }
 

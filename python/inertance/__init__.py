@@ -23,6 +23,7 @@ from typing import Any, Mapping, Optional, Sequence, Union
 
 from . import _inertance as _native
 from ._inertance import (
+    __version__,
     FormatError,
     InertanceError,
     ModelSolution,
@@ -34,7 +35,7 @@ from ._inertance import (
 )
 
 __all__ = [
-    "Scene", "Solution", "ModelSolution", "Derivation", "CheckResult",
+    "__version__", "Scene", "Solution", "ModelSolution", "Derivation", "CheckResult",
     "solve", "solve_batch", "sweep", "analyze", "derive", "check",
     "InertanceError", "SceneError", "SolveError", "SweepError", "FormatError",
 ]
@@ -176,7 +177,9 @@ class Derivation:
 def derive(scene: SceneLike, symbols: Optional[Sequence[str]] = None,
            model: Union[str, Sequence[str], None] = None) -> Derivation:
     """Derive closed forms over ``symbols`` (``inertance derive --symbols …``): the same
-    solver over rational functions; values may name the symbols (``mass = "m"``)."""
+    solver over rational functions; values may name the symbols (``mass = "m"``). Without
+    ``symbols`` (and a :class:`Scene` built without them), the scene's ``[params]`` are the
+    symbols, as for ``inertance derive``; a scene with neither raises :class:`SceneError`."""
     return Derivation(*_native.derive(_scene(scene, symbols), model))
 
 

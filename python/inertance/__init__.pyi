@@ -3,6 +3,7 @@ from dataclasses import dataclass
 from typing import Any, Mapping, Optional, Sequence, Union
 
 from ._inertance import (
+    __version__ as __version__,
     FormatError as FormatError,
     InertanceError as InertanceError,
     ModelSolution as ModelSolution,

@@ -3,6 +3,9 @@
 from os import PathLike
 from typing import Any, Optional, Sequence, Union
 
+__version__: str
+"""The crate's version, the one of ``inertance --version``."""
+
 class InertanceError(Exception): ...
 
 class SceneError(InertanceError):
@@ -77,6 +80,10 @@ class ModelSolution:
     def kinetic_energy_loss(self) -> Number: ...
     @property
     def constraint_impulses(self) -> Optional[Vector]: ...
+    @property
+    def constraint_wrench(self) -> Optional[dict[str, Vector]]: ...
+    @property
+    def joint_reactions(self) -> Optional[list[dict[str, Any]]]: ...
     @property
     def law(self) -> str: ...
     @property

@@ -51,6 +51,8 @@ const TEXT_KEYS: &[&str] = &[
     "gradient",
     "name",
     "status",
+    "kind",
+    "about",
 ];
 
 static FRACTION: GILOnceCell<Py<PyAny>> = GILOnceCell::new();

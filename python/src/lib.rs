@@ -499,8 +499,12 @@ impl ModelSolution {
 model_keys!(
     /// Per contact: velocity before and after in its frame, angles (eq. 8, 25–27).
     contacts,
-    /// {q}, constrained bodies (eq. 90–93).
+    /// {q}, constrained bodies (eq. 90–93), in the basis of the blocked screws.
     constraint_impulses,
+    /// U q as `force` (N s) and `moment` about C (N m s), constrained bodies.
+    constraint_wrench,
+    /// Per joint: `kind`, `about`, `point` (from C), `force`, `moment` about that point.
+    joint_reactions,
     /// `"simultaneous"` or `"unilateral"`.
     law,
     /// False when the simultaneous answer is not physical.
@@ -647,13 +651,37 @@ fn derive<'py>(
     model: Option<&Bound<'_, PyAny>>,
 ) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyAny>, String, String)> {
     let models = convert::models(model)?;
-    let (s, symbols) = (&scene.scene, &scene.symbols);
+    // No symbols named: the scene's [params], as `inertance derive` takes them.
+    let defaulted;
+    let (s, symbols) = match scene.symbols.is_empty() {
+        false => (&scene.scene, scene.symbols.clone()),
+        true => {
+            let symbols = lib_derive::default_symbols(&scene.doc, &[]);
+            if symbols.is_empty() {
+                return Err(errors::scene_error(
+                    py,
+                    &inertance::scene::SceneError {
+                        file: scene.scene.file.clone(),
+                        key: "params".into(),
+                        value: None,
+                        message: "derive needs symbols: give symbols=[…] (the names the scene's \
+                                  values use as symbols), or declare [params], which derive takes \
+                                  as symbols"
+                            .into(),
+                    },
+                ));
+            }
+            defaulted = LibScene::from_document_with(&scene.doc, &scene.scene.file, &symbols)
+                .map_err(|e| errors::scene_error(py, &e))?;
+            (&defaulted, symbols)
+        }
+    };
     let d = py
-        .allow_threads(|| lib_derive::derive(s, symbols, models.as_deref()))
+        .allow_threads(|| lib_derive::derive(s, &symbols, models.as_deref()))
         .map_err(|e| errors::run_error(py, &e))?;
     let json = d.to_json();
     Ok((
-        json_to_py(py, &json, Mode::Symbolic, symbols)?,
+        json_to_py(py, &json, Mode::Symbolic, &symbols)?,
         plain(py, &json)?,
         d.to_text(false),
         d.to_text(true),
@@ -760,6 +788,7 @@ fn solve_batch<'py>(
 
 #[pymodule]
 fn _inertance(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add("__version__", inertance::VERSION)?;
     m.add_class::<Scene>()?;
     m.add_class::<Solution>()?;
     m.add_class::<ModelSolution>()?;

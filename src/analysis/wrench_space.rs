@@ -461,13 +461,13 @@ impl<T: Scalar> WrenchSpace<T> {
         match problem.constraints() {
             Some(c) => {
                 let axes = self.frames.iter().map(|f| &f.axes[0]);
-                c.impulses_into(
+                out.constraint_wrench = c.impulses_into(
                     &dv,
                     out.impulses_hat.iter().zip(axes),
                     &mut out.constraint_impulses,
                 );
             }
-            None => out.constraint_impulses.clear(),
+            None => out.clear_constraint_impulses(),
         }
     }
 

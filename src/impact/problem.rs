@@ -389,8 +389,9 @@ impl<T: Scalar> Problem<T> {
     /// # Errors
     /// As [`Problem::with_constraints`].
     pub fn with_joints(self, joints: &[Joint<T>]) -> Result<Self, InvalidProblem> {
-        let free = joints.iter().flat_map(Joint::free_screws).collect();
-        self.with_constraints(free, None)
+        let c = Constrained::from_joints(&self.body, joints.to_vec())
+            .map_err(|e| invalid(Field::Constraints, Reason::Constraint(e)))?;
+        self.with_constrained(c)
     }
 
     /// The same body held by constraints already validated for it.

@@ -11,7 +11,8 @@
 //! A quantity that carries a norm is a [`Surd`] q·√r: exact in exact types even when |n_i| is
 //! irrational (n = (1, 1, 0) gives P = P̂·√2), one number through [`Surd::value`] whenever √r
 //! is (always in floats, for perfect squares in rationals). The twist after impact, Δ, both
-//! energies and the constraint impulses carry no norm and are plain values.
+//! energies and the constraint impulses (q, and the wrench U q) carry no norm and are plain
+//! values.
 
 use crate::impact::outputs::Outputs;
 use crate::impact::problem::Problem;
@@ -19,6 +20,7 @@ use crate::impact::restitution::Model;
 use crate::impact::solve::{Impact, Outcome, SolveError};
 use crate::impact::unilateral::UnilateralError;
 use crate::mechanics::contact::Surd;
+use crate::mechanics::reaction::{Wrench, joint_reactions};
 use crate::mechanics::screw::Screw;
 use crate::scalar::Scalar;
 
@@ -49,6 +51,12 @@ pub struct Solution<T: Scalar> {
     /// q, the constraint impulses (eq. 90–93), one per constraint screw; empty for a free
     /// body.
     pub constraint_impulses: Vec<T>,
+    /// U q = [F; M_C]: the impulsive force the constraints apply (N s) and its moment about C
+    /// (N m s), whatever basis U is in; zero for a free body ([`crate::mechanics::reaction`]).
+    pub constraint_wrench: Screw<T>,
+    /// For a body held by joints, each joint's reaction: that wrench reduced to the joint's
+    /// anchor (its point, or C for a prismatic or planar joint); empty otherwise.
+    pub joint_reactions: Vec<Wrench<T>>,
 }
 
 /// Solve `problem` under the restitution `model`: the impulses, the motion after impact and the
@@ -180,7 +188,14 @@ impl<T: Scalar> Solution<T> {
             contact_velocities: velocities(&out.after_hat),
             lost_velocity_energy: out.lost_velocity_energy,
             kinetic_energy_loss: out.kinetic_energy_loss,
+            joint_reactions: match impact.problem().constraints() {
+                Some(c) if impact.outputs().contains(Outputs::CONSTRAINT_IMPULSES) => {
+                    joint_reactions(&out.constraint_wrench, &c.joints)
+                }
+                _ => Vec::new(),
+            },
             constraint_impulses: out.constraint_impulses,
+            constraint_wrench: out.constraint_wrench,
         }
     }
 }

@@ -165,6 +165,9 @@ pub struct Outcome<T: Scalar> {
     pub kinetic_energy_loss: T,
     /// The constraint impulses {q} (eq. 90–93; empty for a free body).
     pub constraint_impulses: Vec<T>,
+    /// U q = [F; M_C], the constraint impulse as a wrench (zero for a free body;
+    /// [`crate::mechanics::reaction`]).
+    pub constraint_wrench: Screw<T>,
 }
 
 impl<T: Scalar> Default for Outcome<T> {
@@ -177,7 +180,16 @@ impl<T: Scalar> Default for Outcome<T> {
             lost_velocity_energy: T::zero(),
             kinetic_energy_loss: T::zero(),
             constraint_impulses: Vec::new(),
+            constraint_wrench: Screw::zero(),
         }
+    }
+}
+
+impl<T: Scalar> Outcome<T> {
+    /// No constraint impulse: q empty and U q zero (a free body, or not asked for).
+    pub(crate) fn clear_constraint_impulses(&mut self) {
+        self.constraint_impulses.clear();
+        self.constraint_wrench = Screw::zero();
     }
 }
 
@@ -561,7 +573,7 @@ impl<T: Scalar> Impact<T> {
         if needs.contains(Outputs::CONSTRAINT_IMPULSES) {
             self.constraint_impulses(&b.twist_change, out);
         } else {
-            out.constraint_impulses.clear();
+            out.clear_constraint_impulses();
         }
     }
 
@@ -636,7 +648,7 @@ impl<T: Scalar> Impact<T> {
             }
         }
         if !needs.intersects(Outputs::ENERGIES | Outputs::CONSTRAINT_IMPULSES) {
-            out.constraint_impulses.clear();
+            out.clear_constraint_impulses();
             return;
         }
         // eq. 28 from the velocity change; ΔE_c from the momentum balance, ½ Σ P̂_i (v̂_ix⁰ + v̂_ix)
@@ -651,7 +663,7 @@ impl<T: Scalar> Impact<T> {
         if needs.contains(Outputs::CONSTRAINT_IMPULSES) {
             self.constraint_impulses(&dv, out);
         } else {
-            out.constraint_impulses.clear();
+            out.clear_constraint_impulses();
         }
     }
 
@@ -661,13 +673,13 @@ impl<T: Scalar> Impact<T> {
         match self.problem.constraints() {
             Some(c) => {
                 let axes = self.frames.iter().map(|f| &f.axes[0]);
-                c.impulses_into(
+                out.constraint_wrench = c.impulses_into(
                     dv,
                     out.impulses_hat.iter().zip(axes),
                     &mut out.constraint_impulses,
                 );
             }
-            None => out.constraint_impulses.clear(),
+            None => out.clear_constraint_impulses(),
         }
     }
 

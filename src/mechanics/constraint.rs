@@ -114,6 +114,28 @@ pub enum Joint<T: Scalar> {
 }
 
 impl<T: Scalar> Joint<T> {
+    /// Its kind, as named in scene files (`revolute`, …).
+    pub fn name(&self) -> &'static str {
+        match self {
+            Joint::Revolute { .. } => "revolute",
+            Joint::Prismatic { .. } => "prismatic",
+            Joint::Cylindrical { .. } => "cylindrical",
+            Joint::Spherical { .. } => "spherical",
+            Joint::Planar { .. } => "planar",
+        }
+    }
+
+    /// The point its reaction is reduced to ([`crate::mechanics::reaction`]): its `point`;
+    /// `None` for a prismatic or planar joint, which has none.
+    pub fn anchor(&self) -> Option<&Vec3<T>> {
+        match self {
+            Joint::Revolute { point, .. }
+            | Joint::Cylindrical { point, .. }
+            | Joint::Spherical { point } => Some(point),
+            Joint::Prismatic { .. } | Joint::Planar { .. } => None,
+        }
+    }
+
     /// The free screws (twists [ω; v_C]) this joint allows.
     pub fn free_screws(&self) -> Vec<Screw<T>> {
         let revolute = |p: &Vec3<T>, a: &Vec3<T>| Screw::new(a.clone(), p.cross(a));
@@ -217,6 +239,9 @@ pub struct Constrained<T: Scalar> {
     pub blocked: Vec<Screw<T>>,
     /// Whether U was derived rather than given.
     pub derived_blocked: bool,
+    /// The joints D was built from (empty for the paper's form): their anchors are where
+    /// the reactions are reported ([`crate::mechanics::reaction`]).
+    pub joints: Vec<Joint<T>>,
     /// D orthogonalised in ⟨a, b⟩ = {a}ᵀ η M {b}: M_red is diagonal in this basis.
     free_basis: Orthogonal<T>,
     /// U orthogonalised in ⟨a, b⟩ = {a}ᵀ η M⁻¹ {b}: so is Uᵀ η M⁻¹ U.
@@ -419,8 +444,21 @@ impl<T: Scalar> Constrained<T> {
             free,
             blocked,
             derived_blocked,
+            joints: Vec::new(),
             free_basis,
             blocked_basis,
+        })
+    }
+
+    /// The body held by `joints`: D the union of their free screws, U derived.
+    pub fn from_joints(
+        body: &RigidBody<T>,
+        joints: Vec<Joint<T>>,
+    ) -> Result<Self, ConstraintError> {
+        let free = joints.iter().flat_map(Joint::free_screws).collect();
+        Ok(Constrained {
+            joints,
+            ..Constrained::new(body, free, None)?
         })
     }
 
@@ -468,13 +506,16 @@ impl<T: Scalar> Constrained<T> {
     }
 
     /// The constraint impulses q, U q = M({v} − {v⁰}) + Σ P̂_i {Ê_ix} (see the module docs),
-    /// written into `q` (length 6 − d).
+    /// written into `q` (length 6 − d); returns the wrench U q = [F; M_C]
+    /// ([`crate::mechanics::reaction`]) as that right-hand side: U plays no part in it, so it
+    /// does not depend on the basis U is written in (in floats either).
     pub fn impulses_into<'a>(
         &self,
         dv: &Screw<T>,
         impulses: impl IntoIterator<Item = (&'a T, &'a Screw<T>)>,
         q: &mut Vec<T>,
-    ) where
+    ) -> Screw<T>
+    where
         T: 'a,
     {
         let u = self.blocked.len();
@@ -486,6 +527,7 @@ impl<T: Scalar> Constrained<T> {
         // U = C R with R unit upper triangular, so R q = y.
         q.clear();
         q.resize(u, T::zero());
+        let wrench = r.clone();
         self.blocked_basis.pass(&mut r, q, None);
         let rr = &self.blocked_basis.r;
         for i in (0..u).rev() {
@@ -494,6 +536,7 @@ impl<T: Scalar> Constrained<T> {
                 q[i] -= t;
             }
         }
+        wrench
     }
 }
 

@@ -137,8 +137,26 @@ impl Report {
             o.insert("lost_velocity_energy".into(), r.lost_velocity_energy.json());
             o.insert("kinetic_energy_loss".into(), r.kinetic_energy_loss.json());
         }
-        if self.constraints.is_some() && asked(Outputs::CONSTRAINT_IMPULSES) {
+        if let (Some(c), true) = (&self.constraints, asked(Outputs::CONSTRAINT_IMPULSES)) {
             o.insert("constraint_impulses".into(), vec(&r.constraint_impulses));
+            if let Some(w) = &r.constraint_wrench {
+                o.insert(
+                    "constraint_wrench".into(),
+                    json!({ "force": vec(&w.force), "moment": vec(&w.moment) }),
+                );
+            }
+            if !c.joints.is_empty() {
+                let joints = c.joints.iter().zip(&r.joint_reactions).map(|(j, w)| {
+                    json!({
+                        "kind": j.kind,
+                        "about": if j.has_point { "point" } else { "centre-of-mass" },
+                        "point": vec(&w.point),
+                        "force": vec(&w.force),
+                        "moment": vec(&w.moment),
+                    })
+                });
+                o.insert("joint_reactions".into(), Json::Array(joints.collect()));
+            }
         }
         o.insert("law".into(), r.law.name().into());
         o.insert("admissible".into(), r.inadmissible.is_empty().into());

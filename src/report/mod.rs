@@ -30,6 +30,8 @@ use crate::impact::solve::{Impact, Outcome};
 use crate::impact::unilateral::{Activity, Law};
 use crate::mechanics::constraint::Constrained;
 use crate::mechanics::contact::{ContactFrame, Surd, TangentRule};
+use crate::mechanics::reaction::{Wrench, joint_reactions};
+use crate::mechanics::screw::Vec3;
 use crate::scalar::Scalar;
 
 /// One reported number: f64 always, exact text in exact mode; in a dual-number run (a
@@ -269,6 +271,11 @@ pub struct ModelReport {
     pub kinetic_energy_loss: Value,
     /// {q}, the constraint impulses (empty for a free body).
     pub constraint_impulses: Vec<Value>,
+    /// U q = [F; M_C], about the centre of mass C (constrained bodies, when the constraint
+    /// impulses are asked for).
+    pub constraint_wrench: Option<WrenchReport>,
+    /// Per joint, its reaction about its anchor (bodies held by joints; as `constraint_wrench`).
+    pub joint_reactions: Vec<WrenchReport>,
     /// The impact law the outcome obeys.
     pub law: Law,
     /// Why a simultaneous outcome is not physical; empty when it is admissible.
@@ -283,6 +290,37 @@ pub struct ModelReport {
     pub outcome_range: Option<[(Value, Value); 6]>,
 }
 
+/// An impulsive wrench reduced to a point ([`crate::mechanics::reaction::Wrench`]).
+#[derive(Clone, Debug, PartialEq)]
+pub struct WrenchReport {
+    /// The point the moment is taken about, from C.
+    pub point: [Value; 3],
+    /// The force, N s.
+    pub force: [Value; 3],
+    /// The moment about `point`, N m s.
+    pub moment: [Value; 3],
+}
+
+impl WrenchReport {
+    fn of<T: Scalar>(w: &Wrench<T>) -> Self {
+        let each = |v: &Vec3<T>| [0, 1, 2].map(|k| Value::of(&v[k]));
+        WrenchReport {
+            point: each(&w.point),
+            force: each(&w.force),
+            moment: each(&w.moment),
+        }
+    }
+}
+
+/// A joint of a constrained body: its kind and where its reaction is reduced to.
+#[derive(Clone, Debug, PartialEq)]
+pub struct JointReport {
+    /// `"revolute"`, `"prismatic"`, …
+    pub kind: &'static str,
+    /// Whether its reaction is about its own point (else about C: prismatic, planar).
+    pub has_point: bool,
+}
+
 /// The constraints of a constrained body, as used.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ConstraintsReport {
@@ -294,6 +332,8 @@ pub struct ConstraintsReport {
     pub blocked_derived: bool,
     /// M_red = Dᵀ η M D (eq. 83), row by row.
     pub reduced_mass: Vec<Vec<Value>>,
+    /// The joints D was built from, in order (empty for the paper's form).
+    pub joints: Vec<JointReport>,
 }
 
 /// The readout of a solve.
@@ -354,6 +394,7 @@ impl Report {
         let frames = impact.frames();
         let tangential = impact.outputs().needs().contains(Outputs::TANGENTIAL);
         let velocities = |hats: &[[T; 3]]| point_velocities(hats, frames, tangential);
+        let constrained = impact.outputs().contains(Outputs::CONSTRAINT_IMPULSES);
         Report {
             axes: None,
             outputs: impact.outputs(),
@@ -374,7 +415,20 @@ impl Report {
             contacts_before: velocities(impact.before_hat()),
             models: outcomes
                 .iter()
-                .map(|(m, o)| ModelReport::new(*m, o, frames, &velocities))
+                .map(|(m, o)| {
+                    let mut r = ModelReport::new(*m, o, frames, &velocities);
+                    if let (Some(c), true) = (constraints, constrained) {
+                        r.constraint_wrench = Some(WrenchReport::of(&Wrench::about(
+                            &o.constraint_wrench,
+                            Vec3::zeros(),
+                        )));
+                        r.joint_reactions = joint_reactions(&o.constraint_wrench, &c.joints)
+                            .iter()
+                            .map(WrenchReport::of)
+                            .collect();
+                    }
+                    r
+                })
                 .collect(),
             constraints: constraints.map(ConstraintsReport::new),
             surface: None,
@@ -496,6 +550,8 @@ impl ModelReport {
             lost_velocity_energy: Value::of(&o.lost_velocity_energy),
             kinetic_energy_loss: Value::of(&o.kinetic_energy_loss),
             constraint_impulses: o.constraint_impulses.iter().map(Value::of).collect(),
+            constraint_wrench: None,
+            joint_reactions: Vec::new(),
             law: Law::Simultaneous,
             inadmissible: Vec::new(),
             activity: None,
@@ -519,6 +575,14 @@ impl ConstraintsReport {
             blocked_derived: c.derived_blocked,
             reduced_mass: (0..d)
                 .map(|a| (0..d).map(|b| Value::of(&m[a * d + b])).collect())
+                .collect(),
+            joints: c
+                .joints
+                .iter()
+                .map(|j| JointReport {
+                    kind: j.name(),
+                    has_point: j.anchor().is_some(),
+                })
                 .collect(),
         }
     }

@@ -1,7 +1,7 @@
 //! The text table: what was assembled (G, Δ, the surface, the constraints), the contact
 //! velocities before impact, then the models side by side after impact, in SI units.
 
-use super::{FrictionReport, ModelReport, Report, Value, fmt_f64};
+use super::{FrictionReport, ModelReport, Report, Value, WrenchReport, fmt_f64};
 use crate::impact::outputs::Outputs;
 
 /// A row of the after-impact table: its label, and one cell per model.
@@ -132,6 +132,25 @@ impl Report {
                 .collect::<Vec<_>>()
                 .join(" ");
             out += &format!("  M_red = Dᵀ η M D = {m}\n");
+            if let (false, Some(model)) = (c.joints.is_empty(), self.models.first()) {
+                // The anchors are the same for every model.
+                let anchors: Vec<String> = c
+                    .joints
+                    .iter()
+                    .zip(&model.joint_reactions)
+                    .enumerate()
+                    .map(|(j, (joint, w))| match joint.has_point {
+                        true => format!("J{} {} at {} m", j + 1, joint.kind, bracketed(&w.point)),
+                        false => format!("J{} {} at C (it has no point)", j + 1, joint.kind),
+                    })
+                    .collect();
+                if !anchors.is_empty() {
+                    out += &format!(
+                        "  Joint reactions on the body, about each anchor: {}\n",
+                        anchors.join("; ")
+                    );
+                }
+            }
         }
         out
     }
@@ -241,6 +260,32 @@ impl Report {
                     format!("q{} [N s]", a + 1),
                     each(&|m| m.constraint_impulses[a].text()),
                 ));
+            }
+            // U q as a force and a moment: per joint about its anchor, or about C.
+            let named: Vec<(String, &str)> = match c.joints.len() {
+                0 => vec![(String::new(), "MC")],
+                n => (1..=n).map(|j| (format!("J{j} "), "M")).collect(),
+            };
+            for (j, (label, moment)) in named.iter().enumerate() {
+                let cell = |m: &ModelReport, f: &dyn Fn(&WrenchReport) -> String| {
+                    let wrench = match c.joints.is_empty() {
+                        true => m.constraint_wrench.as_ref(),
+                        false => m.joint_reactions.get(j),
+                    };
+                    wrench.map_or("—".into(), f)
+                };
+                for (k, a) in axes.iter().enumerate() {
+                    rows.push((
+                        format!("{label}F{a} [N s]"),
+                        each(&|m| cell(m, &|w| w.force[k].text())),
+                    ));
+                }
+                for (k, a) in axes.iter().enumerate() {
+                    rows.push((
+                        format!("{label}{moment}{a} [N m s]"),
+                        each(&|m| cell(m, &|w| w.moment[k].text())),
+                    ));
+                }
             }
         }
         if asked(Outputs::ENERGIES) {

@@ -570,9 +570,18 @@ impl Scene {
     }
 }
 
-/// The free screws, the blocked screws if given, and for each free screw the key that
-/// declared it (for messages), in the scalar type `T`.
-pub type ConstraintScrews<T> = (Vec<Screw<T>>, Option<Vec<Screw<T>>>, Vec<String>);
+/// A scene's constraints in the scalar type `T`.
+#[derive(Clone, Debug)]
+pub struct ConstraintScrews<T: Scalar> {
+    /// The free screws D.
+    pub free: Vec<Screw<T>>,
+    /// The blocked screws U, if given.
+    pub blocked: Option<Vec<Screw<T>>>,
+    /// For each free screw, the key that declared it (for messages).
+    pub keys: Vec<String>,
+    /// The joints D comes from (empty for the paper's form).
+    pub joints: Vec<Joint<T>>,
+}
 
 impl Scene {
     /// The declared constraints in the scalar type `T` (`None` for a free body).
@@ -607,10 +616,15 @@ impl Scene {
                             .collect::<Result<Vec<_>, _>>()?,
                     ),
                 };
-                Ok(Some((d, u, keys)))
+                Ok(Some(ConstraintScrews {
+                    free: d,
+                    blocked: u,
+                    keys,
+                    joints: Vec::new(),
+                }))
             }
             Some(ConstraintsSpec::Joints(joints)) => {
-                let (mut d, mut keys) = (Vec::new(), Vec::new());
+                let (mut d, mut keys, mut held) = (Vec::new(), Vec::new(), Vec::new());
                 for (j, joint) in joints.iter().enumerate() {
                     let key = format!("constraints.joint[{j}]");
                     let mut vecs = Vec::with_capacity(2);
@@ -644,8 +658,14 @@ impl Scene {
                         d.push(s);
                         keys.push(key.clone());
                     }
+                    held.push(joint_t);
                 }
-                Ok(Some((d, None, keys)))
+                Ok(Some(ConstraintScrews {
+                    free: d,
+                    blocked: None,
+                    keys,
+                    joints: held,
+                }))
             }
         }
     }

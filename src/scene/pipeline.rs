@@ -477,9 +477,11 @@ pub fn prepare<T: Scalar>(scene: &Scene) -> Result<Problem<T>, RunError> {
             })?;
     match scene.constraint_screws::<T>()? {
         None => Ok(problem),
-        Some((free, blocked, keys)) => {
-            let c = Constrained::new(problem.body(), free, blocked)
+        Some(screws) => {
+            let keys = screws.keys;
+            let mut c = Constrained::new(problem.body(), screws.free, screws.blocked)
                 .map_err(|e| constraint_error(scene, &keys, e))?;
+            c.joints = screws.joints;
             problem.with_constrained(c).map_err(|e| match e.reason {
                 Reason::Constraint(c) => constraint_error(scene, &keys, c),
                 _ => RunError::Scene(SceneError {

@@ -265,9 +265,9 @@ fn scale_constraints(s: &mut Scene, b: i64) {
 /// (then the scene runs as written).
 fn constraint_exponents(scene: &Scene, scaled: &Scene, b: i64) -> Result<(Vec<i64>, Vec<i64>), ()> {
     let screws = |s: &Scene| match s.constraint_screws::<Exact>() {
-        Ok(Some((d, u, _))) => {
-            let u = u.unwrap_or_else(|| complement(&d));
-            Ok(Some((d, u)))
+        Ok(Some(c)) => {
+            let u = c.blocked.unwrap_or_else(|| complement(&c.free));
+            Ok(Some((c.free, u)))
         }
         Ok(None) => Ok(None),
         Err(_) => Err(()),
@@ -393,6 +393,14 @@ pub fn unscale(report: &mut Report, u: &Units) {
         for (q, &g) in m.constraint_impulses.iter_mut().zip(&u.blocked) {
             times(q, a + b - c - g);
         }
+        // The wrench U q itself: a force (impulse) about a point (length).
+        for w in m.constraint_wrench.iter_mut().chain(&mut m.joint_reactions) {
+            for k in 0..3 {
+                times(&mut w.point[k], b);
+                times(&mut w.force[k], a + b - c);
+                times(&mut w.moment[k], a + 2 * b - c);
+            }
+        }
         for p in &mut m.impulses {
             times(p, a + b - c);
         }
@@ -493,6 +501,13 @@ pub fn out_of_range(report: &Report) -> Option<&'static str> {
                 ok(&m.lost_velocity_energy) && ok(&m.kinetic_energy_loss),
             ),
             ("constraint impulses", m.constraint_impulses.iter().all(ok)),
+            (
+                "constraint wrench",
+                m.constraint_wrench
+                    .iter()
+                    .chain(&m.joint_reactions)
+                    .all(|w| w.point.iter().chain(&w.force).chain(&w.moment).all(ok)),
+            ),
         ]);
     }
     for f in &report.friction {

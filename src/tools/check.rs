@@ -934,12 +934,34 @@ pub fn lookup(r: &Report, q: &str) -> Result<Vec<Value>, String> {
             let mr = r
                 .model(m)
                 .ok_or_else(|| format!("`{q}`: the {m} model was not solved"))?;
+            // Joint j's reaction about its anchor: `J{j}.F`, `J{j}.M`.
+            if let Some((j, part)) = name.strip_prefix('J').and_then(|n| n.split_once('.')) {
+                let w = j
+                    .parse::<usize>()
+                    .ok()
+                    .and_then(|j| mr.joint_reactions.get(j.checked_sub(1)?))
+                    .ok_or_else(|| format!("`{q}`: no joint {j}"))?;
+                match part {
+                    "F" => return Ok(w.force.to_vec()),
+                    "M" => return Ok(w.moment.to_vec()),
+                    _ => return Err(unknown()),
+                }
+            }
             match name {
                 "Ep" => return Ok(vec![mr.lost_velocity_energy.clone()]),
                 "dEc" => return Ok(vec![mr.kinetic_energy_loss.clone()]),
                 "omega" => return Ok(mr.angular_velocity.to_vec()),
                 "vC" => return Ok(mr.velocity.to_vec()),
                 "q" if r.constraints.is_some() => return Ok(mr.constraint_impulses.clone()),
+                "F" | "MC" => {
+                    let w = mr.constraint_wrench.as_ref().ok_or_else(|| {
+                        format!("`{q}`: the scene has no constraints (or they were not solved)")
+                    })?;
+                    return Ok(match name {
+                        "F" => w.force.to_vec(),
+                        _ => w.moment.to_vec(),
+                    });
+                }
                 "admissible" => return Ok(vec![flag(mr.inadmissible.is_empty())]),
                 "unique" => {
                     return Ok(vec![flag(

@@ -27,7 +27,7 @@ use serde_json::{Value as Json, json};
 use crate::impact::restitution::Model;
 use crate::impact::solve::{Outcome, SolveError};
 use crate::mechanics::screw::Screw;
-use crate::report::{Report, Value};
+use crate::report::{Report, Value, WrenchReport};
 use crate::scalar::Scalar;
 use crate::scalar::symbolic::{
     Assumption, AssumptionKind, Factored, RatFun, factor, take_assumptions,
@@ -85,6 +85,21 @@ pub struct Family {
     /// −Σ_j c_j z_kj W{E_jx} with c_j = 1 (Newton) or 1 + k_j^P (Poisson). Zero for Newton
     /// (G z = 0 ⇒ W E z = 0, eq. 57–58); for Poisson zero only when the c_j agree along z.
     pub twist_change: Vec<Vec<RatFun>>,
+}
+
+/// The symbols `derive` takes when none are named (`inertance derive` without `--symbols`,
+/// Python's `derive(scene)`): the parameters of the scene's `[params]`, each a symbol, in
+/// order — except those in `set`, which were given a value (`--param NAME=…`).
+pub fn default_symbols(doc: &toml_edit::DocumentMut, set: &[&str]) -> Vec<String> {
+    doc.get("params")
+        .and_then(toml_edit::Item::as_table_like)
+        .map(|t| {
+            t.iter()
+                .map(|(k, _)| k.to_string())
+                .filter(|k| !set.contains(&k.as_str()))
+                .collect()
+        })
+        .unwrap_or_default()
 }
 
 /// Derive `scene` symbolically for `models` (the scene's own when `None`).
@@ -302,6 +317,26 @@ fn quantities(r: &Report) -> Vec<(String, Vec<(String, Value)>)> {
         for (k, q) in mr.constraint_impulses.iter().enumerate() {
             v.push((format!("{m}.q[{k}]"), q.clone()));
         }
+        // U q as a force and a moment: about each joint's anchor, or about C.
+        let joints = r.constraints.as_ref().map_or(0, |c| c.joints.len());
+        let wrenches: Vec<(String, &str, &WrenchReport)> = match joints {
+            0 => mr
+                .constraint_wrench
+                .iter()
+                .map(|w| (String::new(), "MC", w))
+                .collect(),
+            _ => (mr.joint_reactions.iter().enumerate())
+                .map(|(j, w)| (format!("J{}.", j + 1), "M", w))
+                .collect(),
+        };
+        for (at, moment, w) in wrenches {
+            for (k, f) in w.force.iter().enumerate() {
+                v.push((format!("{m}.{at}F[{k}]"), f.clone()));
+            }
+            for (k, x) in w.moment.iter().enumerate() {
+                v.push((format!("{m}.{at}{moment}[{k}]"), x.clone()));
+            }
+        }
         sections.push((format!("{m} (after impact)"), v));
     }
     sections
@@ -341,7 +376,13 @@ fn latex_name(name: &str) -> String {
                     .map_or(k.clone(), |i| (i + 1).to_string())
             ),
             "Mred" => format!("M_{{\\mathrm{{red}},{k}}}"),
-            _ => format!("\\mathrm{{{q}}}"),
+            "F" => format!("F_{{{}}}", axis(&k)),
+            "MC" => format!("M_{{C{}}}", axis(&k)),
+            joint => match joint.strip_prefix('J').and_then(|j| j.split_once('.')) {
+                Some((j, "F")) => format!("F_{{J{j},{}}}", axis(&k)),
+                Some((j, "M")) => format!("M_{{J{j},{}}}", axis(&k)),
+                _ => format!("\\mathrm{{{q}}}"),
+            },
         }
     } else if let Some(rest) = q.strip_prefix('g') {
         format!("g_{{{rest}}}")

@@ -9,6 +9,7 @@ use inertance::impact::problem::Problem;
 use inertance::impact::restitution::Model;
 use inertance::impact::solve::{Impact, Outcome, SolveError};
 use inertance::mechanics::body::{Inertia, RigidBody};
+use inertance::mechanics::constraint::Joint;
 use inertance::mechanics::contact::Contact;
 use inertance::mechanics::screw::{Screw, Vec3};
 use inertance::scalar::{Exact, Scalar, int};
@@ -41,6 +42,17 @@ pub fn direction() -> impl Strategy<Value = Vec3<Exact>> {
     (-4i64..=4, -4i64..=4, -4i64..=4)
         .prop_filter("nonzero", |(x, y, z)| (*x, *y, *z) != (0, 0, 0))
         .prop_map(|(x, y, z)| Vec3::new(int::<Exact>(x), int(y), int(z)))
+}
+
+/// A joint of any kind, its point near C and its axis a small integer direction.
+pub fn joint() -> impl Strategy<Value = Joint<Exact>> {
+    prop_oneof![
+        (vec3(4, 2), direction()).prop_map(|(point, axis)| Joint::Revolute { point, axis }),
+        direction().prop_map(|axis| Joint::Prismatic { axis }),
+        (vec3(4, 2), direction()).prop_map(|(point, axis)| Joint::Cylindrical { point, axis }),
+        vec3(4, 2).prop_map(|point| Joint::Spherical { point }),
+        direction().prop_map(|normal| Joint::Planar { normal }),
+    ]
 }
 
 pub fn body() -> impl Strategy<Value = RigidBody<Exact>> {

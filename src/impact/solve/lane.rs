@@ -265,7 +265,7 @@ impl<T: Scalar> Impact<T> {
             out.lost_velocity_energy = problem.body().kinetic_energy(&dv);
             out.kinetic_energy_loss = energy_loss(&x, &self.before_hat, &out.after_hat);
         }
-        out.constraint_impulses.clear();
+        out.clear_constraint_impulses();
         if !asked.intersects(Outputs::NORMAL_VELOCITIES | Outputs::TANGENTIAL) {
             out.after_hat.clear();
         }
