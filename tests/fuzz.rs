@@ -343,7 +343,9 @@ fn contract(args: &[&str], r: &Ran, json: bool) -> Option<String> {
         return Some(format!("`{what}`: status {code}; stderr: {}", r.stderr));
     }
     if code == 4 && r.stderr.trim().is_empty() {
-        return Some(format!("`{what}`: status 4 without naming what has no answer"));
+        return Some(format!(
+            "`{what}`: status 4 without naming what has no answer"
+        ));
     }
     if matches!(code, 2 | 3) {
         if !r.stdout.is_empty() {
