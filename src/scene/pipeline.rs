@@ -301,10 +301,7 @@ fn run_frictional<T: Scalar>(
                 None => return Err(e.into()),
             },
         };
-        energy_identity.push(
-            f.energy_residual
-                .is_negligible(&kinetic, 16 * problem.contacts().len()),
-        );
+        energy_identity.push(f.energy_balance_holds(&kinetic));
         report.friction.push(FrictionReport::new(&f));
     }
     if let (true, Some(e)) = (report.friction.is_empty(), first_failure) {

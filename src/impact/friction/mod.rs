@@ -44,6 +44,7 @@
 //! an adaptive embedded Runge–Kutta pair and event location, with an error estimate.
 
 pub mod blocks;
+pub mod departure;
 pub mod modes;
 pub mod planar;
 pub mod rates;
@@ -491,6 +492,25 @@ impl<T: Scalar> Frictional<T> {
             tangential -= dir(off + 1 + a);
         }
         (normal, tangential)
+    }
+
+    /// Whether the energy balance ΔE_c = Σ∫ v·dΛ = T⁰ − T holds, T⁰ = `kinetic_before`:
+    /// exactly in exact types; to 16·N·ε·T⁰ (N contacts) for a planar float solve; for a
+    /// spatial integration, whose residual carries the local errors it accepted, to the power
+    /// an impulse error of the estimate can carry, estimate × max|v⁰| × 2 × axes, plus that
+    /// rounding.
+    pub fn energy_balance_holds(&self, kinetic_before: &T) -> bool {
+        let n = self.blocks.contacts();
+        match self.error_estimate {
+            None => self.energy_residual.is_negligible(kinetic_before, 16 * n),
+            Some(est) => {
+                let speed = rates::max_abs(&self.blocks.v0).to_f64();
+                let axes = self.blocks.len() as f64;
+                let bound = est * speed * 2.0 * axes
+                    + 16.0 * n as f64 * T::epsilon_f64() * kinetic_before.to_f64().abs();
+                self.energy_residual.to_f64().abs() <= bound
+            }
+        }
     }
 
     /// The mode history of contact i: the label of each segment, repeats merged.
