@@ -261,10 +261,11 @@ fn the_rod_sticks_or_reverses_as_the_exact_solver_says() {
     assert!(h.contains(&ModeLabel::Stick), "{h:?}");
     let (reversed, _) = spatial(&rod::<f64>(3, 10), Restitution::Poisson, 1e-10).unwrap();
     assert_eq!(reversed.history(0), vec![ModeLabel::Slide]);
+    // Exactly: along y, which §12 points along the slip before impact (−x), then back.
     let exact = solve_frictional(&rod::<RatFun>(3, 10), Restitution::Poisson, 0.0).unwrap();
     assert_eq!(
         exact.history(0),
-        vec![ModeLabel::SlideMinus, ModeLabel::SlidePlus]
+        vec![ModeLabel::SlidePlus, ModeLabel::SlideMinus]
     );
     // The slip reversed: the tangential velocity after has the opposite sign to before.
     let off = reversed.blocks.offset[0] + 1;

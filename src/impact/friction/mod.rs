@@ -131,13 +131,14 @@ impl fmt::Display for Phase {
 /// A contact's mode over a segment, for reports.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum ModeLabel {
-    /// No tangential impulse (μ = 0, or no normal impulse rate).
+    /// No tangential impulse (μ = 0, or no normal impulse rate: an energetic contact whose
+    /// restitution has ended).
     Free,
     /// No slip.
     Stick,
-    /// Slip along +t_i (planar).
+    /// Slip along +y_i, the contact's tangent as given or as §12 chooses it (planar).
     SlidePlus,
-    /// Slip along −t_i (planar).
+    /// Slip along −y_i (planar).
     SlideMinus,
     /// Slip in a direction of the tangent plane (spatial).
     Slide,
