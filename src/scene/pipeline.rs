@@ -289,7 +289,8 @@ fn run_frictional<T: Scalar>(
     let kinetic = problem.body().kinetic_energy(problem.velocity());
     let mut first_failure = None;
     for law in laws {
-        let f = match solve_frictional(problem, law, friction_tolerance::<T>()) {
+        let tolerance = scene.tolerance.unwrap_or_else(friction_tolerance::<T>);
+        let f = match solve_frictional(problem, law, tolerance) {
             Ok(f) => f,
             Err(e) => match e.status() {
                 // A verdict of the physics for this law: the others still answer.

@@ -183,6 +183,21 @@ pub struct Segment<T: Scalar> {
     pub rates: Vec<T>,
 }
 
+/// One point of an impact's path: the parameter s, the phase, the impulses Λ along every axis
+/// and each contact's mode there (at an event, the segment ending there; the next sample, at
+/// the same s, carries the modes that follow).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Sample<T: Scalar> {
+    /// s.
+    pub s: T,
+    /// Its phase.
+    pub phase: Phase,
+    /// Λ.
+    pub impulses: Vec<T>,
+    /// The mode of every contact.
+    pub modes: Vec<ModeLabel>,
+}
+
 /// What a frictional result says about its own physics. None of these stops the solve: the
 /// law is followed as stated and the answer is flagged.
 #[derive(Clone, Debug, PartialEq)]
@@ -397,6 +412,12 @@ pub struct Frictional<T: Scalar> {
     /// The estimated error of the impulses and velocities (spatial integration), in their
     /// units; `None` for planar scenes (exact up to the scalar's rounding).
     pub error_estimate: Option<f64>,
+    /// The relative tolerance of the spatial integration (the one asked for, raised to 4ε of
+    /// the scalar at least); `None` for planar scenes.
+    pub tolerance: Option<f64>,
+    /// The path: a planar scene's at the ends of its segments (Λ is linear between them); a
+    /// spatial one's at every accepted step and on both sides of every event.
+    pub samples: Vec<Sample<T>>,
 }
 
 impl<T: Scalar> Frictional<T> {
@@ -455,6 +476,7 @@ impl<T: Scalar> Frictional<T> {
         ) {
             verdicts.push(Verdict::EnergyGain);
         }
+        let samples = linear_samples(&segments, blocks.len());
         Frictional {
             law,
             blocks,
@@ -472,6 +494,8 @@ impl<T: Scalar> Frictional<T> {
             verdicts,
             end,
             error_estimate: None,
+            tolerance: None,
+            samples,
         }
     }
 
@@ -524,6 +548,32 @@ impl<T: Scalar> Frictional<T> {
         }
         h
     }
+}
+
+/// The path of an impact whose rates are constant over each segment (a planar scene): Λ at
+/// both ends of every segment, from Λ = 0 at its start.
+fn linear_samples<T: Scalar>(segments: &[Segment<T>], len: usize) -> Vec<Sample<T>> {
+    let mut out = Vec::with_capacity(2 * segments.len());
+    let mut at = vec![T::zero(); len];
+    for seg in segments {
+        out.push(Sample {
+            s: seg.from.clone(),
+            phase: seg.phase,
+            impulses: at.clone(),
+            modes: seg.modes.clone(),
+        });
+        let ds = seg.to.clone() - &seg.from;
+        for (x, r) in at.iter_mut().zip(&seg.rates) {
+            *x += r.clone() * &ds;
+        }
+        out.push(Sample {
+            s: seg.to.clone(),
+            phase: seg.phase,
+            impulses: at.clone(),
+            modes: seg.modes.clone(),
+        });
+    }
+    out
 }
 
 /// Solve the frictional impact of `problem` under `law`: event by event, exactly, when the

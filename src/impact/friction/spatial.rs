@@ -59,7 +59,7 @@ use crate::impact::friction::rates::{
     Mode, Normal, RateFailure, Rates, max_abs, normal_rules, rates,
 };
 use crate::impact::friction::{
-    FrictionError, Frictional, Phase, Restitution, Segment, Verdict, label,
+    FrictionError, Frictional, Phase, Restitution, Sample, Segment, Verdict, label,
 };
 use crate::impact::problem::Problem;
 use crate::scalar::{Scalar, ratio};
@@ -570,6 +570,7 @@ pub fn integrate<T: Scalar>(
     let mut k0 = run.slope(&st, &normals, &st.y)?;
     let mut seg_start = st.s.clone();
     let mut seg_modes = st.modes.clone();
+    let mut samples = vec![sample(&st, &seg_modes, len)];
     let mut seg_rates = k0.rates.lambda.clone();
     loop {
         if stats.steps() + stats.events + stats.stops > MAX_STEPS {
@@ -657,6 +658,7 @@ pub fn integrate<T: Scalar>(
             }
             st.s += &ds;
             close_segment(&mut segments, &seg_start, &st, &seg_modes, &seg_rates);
+            samples.push(sample(&st, &seg_modes, len));
             // A slip that stops with its phase (Example 8's corner: A₁'s slip vanishes exactly
             // at the end of compression) is resolved in the next phase.
             if phase_end {
@@ -671,6 +673,7 @@ pub fn integrate<T: Scalar>(
 
             seg_start = st.s.clone();
             seg_modes = st.modes.clone();
+            samples.push(sample(&st, &seg_modes, len));
             seg_rates = k0.rates.lambda.clone();
             continue;
         }
@@ -755,11 +758,13 @@ pub fn integrate<T: Scalar>(
                 }
             }
             close_segment(&mut segments, &seg_start, &st, &seg_modes, &seg_rates);
+            samples.push(sample(&st, &seg_modes, len));
             normals = run.normals(&st);
             resolve(&run, &mut st, &leaving, &[], &mut verdicts)?;
             k0 = run.slope(&st, &normals, &st.y)?;
             seg_start = st.s.clone();
             seg_modes = st.modes.clone();
+            samples.push(sample(&st, &seg_modes, len));
             seg_rates = k0.rates.lambda.clone();
             h = (h * grow).max(hi.to_f64());
         } else {
@@ -805,6 +810,7 @@ pub fn integrate<T: Scalar>(
                 }
             }
             h = hh.to_f64() * grow;
+            samples.push(sample(&st, &seg_modes, len));
             if hit_end {
                 close_segment(&mut segments, &seg_start, &st, &seg_modes, &seg_rates);
                 if st.phase == Phase::Restitution {
@@ -816,6 +822,7 @@ pub fn integrate<T: Scalar>(
                 k0 = run.slope(&st, &normals, &st.y)?;
                 seg_start = st.s.clone();
                 seg_modes = st.modes.clone();
+                samples.push(sample(&st, &seg_modes, len));
                 seg_rates = k0.rates.lambda.clone();
             }
         }
@@ -848,6 +855,8 @@ pub fn integrate<T: Scalar>(
         end,
     );
     out.error_estimate = Some(error * response.max(1.0));
+    out.tolerance = Some(tol);
+    out.samples = samples;
     Ok((out, stats))
 }
 
@@ -863,6 +872,16 @@ fn begin_restitution<T: Scalar>(run: &Run<'_, T>, st: &mut State<T>) {
             let left = k.clone() * k * &st.y[len + i];
             st.stopped[i] = st.compression[i].is_zero() || left.signum_i8() <= 0;
         }
+    }
+}
+
+/// The path's sample at the current state, with the modes of the segment it belongs to.
+fn sample<T: Scalar>(st: &State<T>, modes: &[Mode<T>], len: usize) -> Sample<T> {
+    Sample {
+        s: st.s.clone(),
+        phase: st.phase,
+        impulses: st.y[..len].to_vec(),
+        modes: modes.iter().map(label).collect(),
     }
 }
 
