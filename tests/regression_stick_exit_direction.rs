@@ -287,6 +287,36 @@ fn outcome(out: &Frictional<f64>) -> reference::Outcome {
     }
 }
 
+/// The crate's solve at its default tolerance (the CLI's, ε^(2/3)).
+fn crate_solve(
+    m: f64,
+    r: f64,
+    planes: &[Plane],
+    law: Law,
+    v0: [f64; 3],
+    w0: [f64; 3],
+) -> Frictional<f64> {
+    let restitution = match law {
+        Law::Newton => Restitution::Newton,
+        Law::Poisson => Restitution::Poisson,
+    };
+    let tol = f64::EPSILON.powf(2.0 / 3.0);
+    solve_frictional(&problem(m, r, planes, v0, w0), restitution, tol).unwrap()
+}
+
+/// [`crate_solve`]'s outcome as the reference's, and its error estimate.
+fn crate_outcome(
+    m: f64,
+    r: f64,
+    planes: &[Plane],
+    law: Law,
+    v0: [f64; 3],
+    w0: [f64; 3],
+) -> (reference::Outcome, f64) {
+    let out = crate_solve(m, r, planes, law, v0, w0);
+    (outcome(&out), out.error_estimate.unwrap())
+}
+
 /// Whether some contact sticks and then slides again: a stick exit.
 fn exits_a_stick(out: &Frictional<f64>) -> bool {
     (0..out.blocks.contacts()).any(|i| {
@@ -308,12 +338,7 @@ fn agrees(
     v0: [f64; 3],
     w0: [f64; 3],
 ) -> reference::Outcome {
-    let restitution = match law {
-        Law::Newton => Restitution::Newton,
-        Law::Poisson => Restitution::Poisson,
-    };
-    let tol = f64::EPSILON.powf(2.0 / 3.0);
-    let out = solve_frictional(&problem(m, r, planes, v0, w0), restitution, tol).unwrap();
+    let out = crate_solve(m, r, planes, law, v0, w0);
     assert!(exits_a_stick(&out), "{what}: no stick exit to test");
     assert!(
         !out.verdicts
@@ -353,6 +378,55 @@ fn the_issues_corner_restarts_its_slip_along_the_attracting_direction() {
         assert!(
             (g - want).abs() <= 5e-5,
             "P: {g} against the issue's {want}"
+        );
+    }
+}
+
+/// Smooth in the spin, as the issue's integration is: ω⁰_x moved by 10⁻⁶ and 10⁻³ still agrees
+/// with the reference, and the crate's outcome moves by 10⁻⁶ times the reference's slope (from
+/// the 10⁻³ step, with both references' bounds) plus both runs' estimates — where the old
+/// verdict claimed that neighbouring spins end far apart.
+#[test]
+fn the_outcome_is_smooth_in_the_initial_spin() {
+    let planes = corner(0.3, 0.6);
+    let v0 = [2.0, 1.0, -3.0];
+    let spin = |dw: f64| [3.0 + dw, -4.0, 10.0];
+    let (base, est0) = crate_outcome(0.5, 0.1, &planes, Law::Newton, v0, spin(0.0));
+    let (near, est1) = crate_outcome(0.5, 0.1, &planes, Law::Newton, v0, spin(1e-6));
+    agrees(
+        "ω⁰_x + 1e-6",
+        0.5,
+        0.1,
+        &planes,
+        Law::Newton,
+        v0,
+        spin(1e-6),
+    );
+    agrees(
+        "ω⁰_x + 1e-3",
+        0.5,
+        0.1,
+        &planes,
+        Law::Newton,
+        v0,
+        spin(1e-3),
+    );
+    let (r0, b0) = reference::extrapolated(0.5, 0.1, &planes, Law::Newton, v0, spin(0.0), 4000);
+    let (r1, b1) = reference::extrapolated(0.5, 0.1, &planes, Law::Newton, v0, spin(1e-3), 4000);
+    for (k, (((x, y), a), c)) in base
+        .flat()
+        .iter()
+        .zip(near.flat())
+        .zip(r0.flat())
+        .zip(r1.flat())
+        .enumerate()
+    {
+        let slope = ((c - a).abs() + b0 + b1) / 1e-3;
+        let bound = slope * 1e-6 + est0 + est1;
+        assert!(
+            (x - y).abs() <= bound,
+            "component {k}: moved {:e} for 1e-6, bound {bound:e}",
+            (x - y).abs()
         );
     }
 }

@@ -349,3 +349,91 @@ pub fn invariant_directions<T: Scalar>(
         })
         .collect())
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::impact::problem::Problem;
+    use crate::mechanics::body::RigidBody;
+    use crate::mechanics::contact::{Contact, ContactFrame};
+    use crate::mechanics::screw::{Screw, Vec3};
+
+    /// A box corner (half sides 1/2, 3/10, 1/5, unit mass) striking the ground, μ = 1, in
+    /// compression (`tests/friction_spatial.rs`, whose slip stops and leaves again): its
+    /// tangential block is anisotropic and coupled to the normal one.
+    fn corner() -> (Blocks<f64>, Vec<Normal<f64>>) {
+        let (a, b, c) = (0.5, 0.3, 0.2);
+        let j = |p: f64, q: f64| (p * p + q * q) / 3.0;
+        let problem = Problem::new(
+            RigidBody::principal(1.0, Vec3::new(j(b, c), j(a, c), j(a, b))),
+            Screw::new(Vec3::zeros(), Vec3::new(-0.1, -0.1, -1.0)),
+            vec![
+                Contact::new(Vec3::new(a, b, -c), Vec3::new(0.0, 0.0, -1.0), 0.5)
+                    .with_friction(1.0),
+            ],
+        )
+        .unwrap();
+        let frames: Vec<ContactFrame<f64>> = problem
+            .contacts()
+            .iter()
+            .enumerate()
+            .map(|(i, c)| ContactFrame::new(i, c, problem.velocity()).unwrap())
+            .collect();
+        let blocks = Blocks::spatial(&problem, &frames);
+        let normals = vec![Normal::Driven(blocks.v0[0])];
+        (blocks, normals)
+    }
+
+    /// Every invariant direction found is one (g = 0, λ > 0); turned from it by 0.2 rad either
+    /// way, `track` comes back to it; and κ is the slope of g there (g ≈ −κ δθ).
+    #[test]
+    fn a_turned_direction_is_tracked_back_to_its_invariant_direction() {
+        let (b, normals) = corner();
+        let mut modes = vec![Mode::Slide(vec![1.0, 0.0])];
+        let roots = invariant_directions(&b, &normals, &mut modes, 0).unwrap();
+        assert!(!roots.is_empty());
+        for r in &roots {
+            let (g, lambda, f) = slip_rate(&b, &normals, &mut modes, 0, &r.u).unwrap();
+            assert!(
+                g.abs() <= 1e-12 * norm(&f) && lambda > 0.0,
+                "g = {g}, λ = {lambda}"
+            );
+            for t in [0.2f64, -0.2] {
+                modes[0] = Mode::Slide(turned(&r.u, &t.tan()));
+                assert!(track(&b, &normals, &mut modes, 0, 1e-13, 0.3));
+                let Mode::Slide(u) = &modes[0] else {
+                    panic!("a slide")
+                };
+                let diff = (u[0] - r.u[0]).abs().max((u[1] - r.u[1]).abs());
+                assert!(diff <= 1e-10, "{u:?} against {:?}", r.u);
+            }
+            let d: f64 = 1e-4;
+            let (gd, _, _) =
+                slip_rate(&b, &normals, &mut modes, 0, &turned(&r.u, &d.tan())).unwrap();
+            assert!(
+                (gd + r.kappa * d).abs() <= 1e-3 * (r.kappa * d).abs(),
+                "g = {gd}, κ δθ = {}",
+                r.kappa * d
+            );
+        }
+    }
+
+    /// A direction further than `reach` from every invariant one is not tracked: the held
+    /// direction is kept.
+    #[test]
+    fn a_direction_beyond_reach_is_kept() {
+        let (b, normals) = corner();
+        let mut modes = vec![Mode::Slide(vec![1.0, 0.0])];
+        let roots = invariant_directions(&b, &normals, &mut modes, 0).unwrap();
+        let u = &roots[0].u;
+        let away = turned(u, &1.0f64.tan());
+        modes[0] = Mode::Slide(away.clone());
+        let nearest = roots
+            .iter()
+            .map(|r| dot(&r.u, &away).clamp(-1.0, 1.0).acos())
+            .fold(f64::INFINITY, f64::min);
+        assert!(nearest > 0.3);
+        assert!(!track(&b, &normals, &mut modes, 0, 1e-13, 0.3_f64.tan()));
+        assert_eq!(modes[0], Mode::Slide(away));
+    }
+}
