@@ -73,6 +73,14 @@ enum Command {
         /// `[solve] outputs`.
         #[arg(long, value_delimiter = ',', value_name = "NAMES")]
         outputs: Option<Vec<String>>,
+        /// The relative tolerance of a spatial frictional integration, between 0 and 1;
+        /// default: the scene's `[solve] tolerance`, else ε^(2/3) (3.7e-11 in f64).
+        #[arg(long, value_name = "TOL")]
+        tolerance: Option<String>,
+        /// Write the path of a frictional impact to FILE.csv or FILE.json: per sample s, the
+        /// phase and, per contact, P_i, the tangential impulse, the slip velocity and the mode.
+        #[arg(long, value_name = "FILE")]
+        trajectory: Option<PathBuf>,
         #[command(flatten)]
         opts: SceneOpts,
     },
@@ -259,8 +267,22 @@ fn main() -> ExitCode {
             law,
             json,
             outputs,
+            tolerance,
+            trajectory,
             opts,
-        } => solve(scene, exact, model, law, json, outputs, &opts),
+        } => solve(
+            scene,
+            Flags {
+                exact,
+                model,
+                law,
+                json,
+                outputs,
+                tolerance,
+                trajectory,
+            },
+            &opts,
+        ),
         Command::Analyze {
             scene,
             exact,
@@ -373,26 +395,29 @@ fn load(path: &std::path::Path) -> Result<Scene, ExitCode> {
     load_with(path, &SceneOpts::default(), &[])
 }
 
-fn solve(
-    path: PathBuf,
+/// `solve`'s flags.
+struct Flags {
     exact: bool,
     model: Option<ModelArg>,
     law: Option<LawArg>,
     json: bool,
     outputs: Option<Vec<String>>,
-    opts: &SceneOpts,
-) -> ExitCode {
+    tolerance: Option<String>,
+    trajectory: Option<PathBuf>,
+}
+
+fn solve(path: PathBuf, flags: Flags, opts: &SceneOpts) -> ExitCode {
     let mut scene = match load_with(&path, opts, &[]) {
         Ok(s) => s,
         Err(code) => return code,
     };
-    if let Some(law) = law
+    if let Some(law) = flags.law
         && let Err(e) = scene.set_law(law.law(), &format!("`--law {}`", law.law()))
     {
         eprintln!("error: {e}");
         return ExitCode::from(2);
     }
-    if let Some(names) = outputs {
+    if let Some(names) = flags.outputs {
         match inertance::Outputs::parse(names.iter().map(String::as_str)) {
             Ok(set) if !set.is_empty() => scene.outputs = set,
             Ok(_) => {
@@ -405,19 +430,44 @@ fn solve(
             }
         }
     }
-    let models = model.map(ModelArg::models);
-    let solved = if exact && !scene.is_rational() {
+    if let Some(text) = &flags.tolerance {
+        match text.trim().parse::<f64>() {
+            Ok(x) if inertance::scene::valid_tolerance(x) => scene.tolerance = Some(x),
+            _ => {
+                eprintln!(
+                    "error: --tolerance = {text}: {}",
+                    inertance::scene::TOLERANCE_RULE
+                );
+                return ExitCode::from(2);
+            }
+        }
+    }
+    let format = match &flags.trajectory {
+        None => None,
+        Some(file) => match trajectory_format(&path, &scene, file) {
+            Ok(f) => Some(f),
+            Err(code) => return code,
+        },
+    };
+    let models = flags.model.map(ModelArg::models);
+    let solved = if flags.exact && !scene.is_rational() {
         // Radicals ("2/sqrt(5)", "cos(30 deg)") run exactly in the symbolic field.
         run::<RatFun>(&scene, models.as_deref())
-    } else if exact {
+    } else if flags.exact {
         run::<Exact>(&scene, models.as_deref())
     } else {
         run::<f64>(&scene, models.as_deref())
     };
     match solved {
         Ok(s) => {
+            if let (Some(file), Some(format)) = (&flags.trajectory, format)
+                && let Err(code) = write_trajectory(file, format, &s.report)
+            {
+                return code;
+            }
             warn(&path, &s.report);
-            let code = emit(json, || s.report.to_json(), || s.report.to_table());
+            tolerance_floor(&path, scene.tolerance, &s.report);
+            let code = emit(flags.json, || s.report.to_json(), || s.report.to_table());
             if s.report.partial() {
                 // Some model or law has no answer; the others were printed.
                 ExitCode::from(4)
@@ -426,6 +476,95 @@ fn solve(
             }
         }
         Err(e) => fail(&path, e),
+    }
+}
+
+/// How `--trajectory` writes.
+#[derive(Clone, Copy)]
+enum PathFormat {
+    Csv,
+    Json,
+}
+
+/// `--trajectory FILE`'s format from its extension; refused (status 2) for another extension
+/// or a scene without friction, whose impact has no path.
+fn trajectory_format(
+    path: &std::path::Path,
+    scene: &Scene,
+    file: &std::path::Path,
+) -> Result<PathFormat, ExitCode> {
+    if !scene.frictional() {
+        eprintln!(
+            "error: --trajectory {}: {} has no friction to integrate (no contact with `mu` > 0, \
+             no `[solve] restitution`): a frictionless impact is solved in one step and has no path",
+            file.display(),
+            path.display()
+        );
+        return Err(ExitCode::from(2));
+    }
+    let ext = file
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase);
+    match ext.as_deref() {
+        Some("csv") => Ok(PathFormat::Csv),
+        Some("json") => Ok(PathFormat::Json),
+        _ => {
+            eprintln!(
+                "error: --trajectory {}: the file must end in .csv or .json",
+                file.display()
+            );
+            Err(ExitCode::from(2))
+        }
+    }
+}
+
+/// Write the frictional paths of `report` to `file`, whole or not at all: into a temporary
+/// file beside it, renamed over it once written (status 2 when it cannot be written).
+fn write_trajectory(
+    file: &std::path::Path,
+    format: PathFormat,
+    report: &inertance::report::Report,
+) -> Result<(), ExitCode> {
+    use inertance::report::trajectory;
+    let text = match format {
+        PathFormat::Csv => trajectory::to_csv(&report.friction),
+        PathFormat::Json => {
+            let mut t = serde_json::to_string_pretty(&trajectory::to_json(&report.friction))
+                .unwrap_or_default();
+            t.push('\n');
+            t
+        }
+    };
+    let name = file
+        .file_name()
+        .map_or_else(|| "trajectory".into(), |n| n.to_string_lossy().into_owned());
+    let temp = file.with_file_name(format!(".{name}.{}.tmp", std::process::id()));
+    let written = std::fs::write(&temp, text).and_then(|()| std::fs::rename(&temp, file));
+    if let Err(e) = written {
+        let _ = std::fs::remove_file(&temp);
+        eprintln!(
+            "error: --trajectory {}: cannot write it: {e}",
+            file.display()
+        );
+        return Err(ExitCode::from(2));
+    }
+    Ok(())
+}
+
+/// A tolerance below what the scalar resolves is raised to 4ε by the integrator: say so.
+fn tolerance_floor(path: &std::path::Path, asked: Option<f64>, report: &inertance::report::Report) {
+    let Some(asked) = asked else { return };
+    for f in &report.friction {
+        if let Some(used) = f.tolerance.filter(|&used| used > asked) {
+            eprintln!(
+                "warning: {}: {} with friction: the tolerance {asked:e} is below what {} \
+                 resolves; integrated to {used:e}",
+                path.display(),
+                f.law,
+                report.scalar
+            );
+        }
     }
 }
 

@@ -63,7 +63,8 @@ def _scene(scene: SceneLike, symbols: Optional[Sequence[str]] = None) -> Scene:
 
 def solve(scene: SceneLike, model: Union[str, Sequence[str], None] = None,
           law: Optional[str] = None, exact: bool = False,
-          outputs: Union[str, Sequence[str], None] = None) -> Solution:
+          outputs: Union[str, Sequence[str], None] = None,
+          tolerance: Optional[float] = None) -> Solution:
     """Solve the collision of ``scene`` (as ``inertance solve --json``).
 
     ``model``: ``"newton"`` (eq. 14–20), ``"poisson"`` (eq. 21–23), ``"both"`` or ``None``
@@ -73,6 +74,8 @@ def solve(scene: SceneLike, model: Union[str, Sequence[str], None] = None,
     ``outputs``: a name or a list of ``"impulses"``, ``"twist"``, ``"normal-velocities"``,
     ``"tangential"``, ``"energies"``, ``"constraint-impulses"`` (or ``"all"``): only those are
     computed and reported (``[solve] outputs``); an output not asked for reads ``None``.
+    ``tolerance``: the relative tolerance of a spatial frictional integration, between 0 and
+    1 (``[solve] tolerance``, ``--tolerance``); ``None``: the scene's, else 3.7e-11 in f64.
 
     The result's attributes are the JSON report's keys: ``inertance`` (G, eq. 12), ``det``
     (Δ), ``frames``, and per model (``.newton``, ``.poisson``, ``.models``) ``impulses``
@@ -86,7 +89,7 @@ def solve(scene: SceneLike, model: Union[str, Sequence[str], None] = None,
     """
     if type(scene) is not Scene:
         scene = _scene(scene)
-    return _native.solve(scene, model, law, exact, outputs)
+    return _native.solve(scene, model, law, exact, outputs, tolerance)
 
 
 def solve_batch(scene: SceneLike, vary: Mapping[str, Any], law: Optional[str] = None) -> dict:

@@ -243,6 +243,18 @@ pub fn law(law: Option<&str>) -> PyResult<Option<Law>> {
     }
 }
 
+/// `tolerance=`: the relative tolerance of a spatial frictional integration, in (0, 1);
+/// `None` keeps the scene's `[solve] tolerance`.
+pub fn tolerance(tolerance: Option<f64>) -> PyResult<Option<f64>> {
+    match tolerance {
+        Some(x) if !inertance::scene::valid_tolerance(x) => Err(PyValueError::new_err(format!(
+            "tolerance {x}: {}",
+            inertance::scene::TOLERANCE_RULE
+        ))),
+        t => Ok(t),
+    }
+}
+
 /// `outputs=`: a name or a list of names of [`Outputs::NAMED`] (or `"all"`); `None` keeps the
 /// scene's `[solve] outputs`.
 pub fn outputs(outputs: Option<&Bound<'_, PyAny>>) -> PyResult<Option<Outputs>> {

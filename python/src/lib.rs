@@ -522,22 +522,24 @@ model_keys!(
 );
 
 /// Solve in f64, exactly (rationals, or exact radicals when the scene has them) — as
-/// `inertance solve`.
+/// `inertance solve` (`tolerance` as `--tolerance`).
 fn run_scene(
     py: Python<'_>,
     scene: &Scene,
     models: Option<Vec<inertance::Model>>,
     law: Option<inertance::impact::unilateral::Law>,
     outputs: Option<Outputs>,
+    tolerance: Option<f64>,
     exact: bool,
 ) -> Result<Report, RunError> {
     let changed;
     let law_changes = law.is_some_and(|l| l != scene.scene.law);
     let outputs_change = outputs.is_some_and(|o| o != scene.scene.outputs);
-    let s = if law_changes || outputs_change {
+    let s = if law_changes || outputs_change || tolerance.is_some() {
         let mut c = scene.scene.clone();
         c.law = law.unwrap_or(c.law);
         c.outputs = outputs.unwrap_or(c.outputs);
+        c.tolerance = tolerance.or(c.tolerance);
         changed = c;
         &changed
     } else {
@@ -562,7 +564,7 @@ fn run_scene(
 }
 
 #[pyfunction]
-#[pyo3(signature = (scene, model = None, law = None, exact = false, outputs = None))]
+#[pyo3(signature = (scene, model = None, law = None, exact = false, outputs = None, tolerance = None))]
 fn solve(
     py: Python<'_>,
     scene: &Scene,
@@ -570,12 +572,14 @@ fn solve(
     law: Option<&str>,
     exact: bool,
     outputs: Option<&Bound<'_, PyAny>>,
+    tolerance: Option<f64>,
 ) -> PyResult<Solution> {
     let models = convert::models(model)?;
     let law = convert::law(law)?;
     let outputs = convert::outputs(outputs)?;
-    let report =
-        run_scene(py, scene, models, law, outputs, exact).map_err(|e| errors::run_error(py, &e))?;
+    let tolerance = convert::tolerance(tolerance)?;
+    let report = run_scene(py, scene, models, law, outputs, tolerance, exact)
+        .map_err(|e| errors::run_error(py, &e))?;
     Ok(Solution {
         report: Arc::new(report),
         mode: if exact { Mode::Exact } else { Mode::F64 },

@@ -164,6 +164,52 @@ def test_friction_readout_per_law(tmp_path):
     assert r.to_json()["friction"] == cli_json("solve", path, "--exact")["friction"]
 
 
+CORNER = """
+name = "ball in the corner (issue 28)"
+[body]
+shape = { sphere = 0.1 }
+mass = 0.5
+velocity = [2, 1, -3]
+angular_velocity = [3, -4, 10]
+[[obstacle]]
+name = "floor"
+normal = [0, 0, 1]
+[[obstacle]]
+name = "wall"
+normal = [-1, 0, 0]
+[[contact]]
+obstacle = "floor"
+k = 0.6
+mu = 0.3
+[[contact]]
+obstacle = "wall"
+k = 0.6
+mu = 0.3
+[solve]
+models = ["newton"]
+"""
+
+
+def test_friction_tolerance_as_the_cli(tmp_path):
+    # A spatial scene: tolerance= is --tolerance; the tighter run agrees with the default one
+    # within the default one's estimate; a tolerance outside (0, 1) is refused.
+    path = tmp_path / "corner.toml"
+    path.write_text(CORNER)
+    tight = inertance.solve(CORNER, tolerance=1e-12).to_json()["friction"]["newton"]
+    assert tight["tolerance"] == 1e-12
+    assert tight == cli_json("solve", path, "--tolerance", "1e-12")["friction"]["newton"]
+    loose = inertance.solve(CORNER).to_json()["friction"]["newton"]
+    assert loose["tolerance"] > tight["tolerance"]
+    assert abs(loose["contacts"][0]["normal_impulse"] - tight["contacts"][0]["normal_impulse"]) \
+        <= loose["error_estimate"]
+    with pytest.raises(ValueError, match="between 0 and 1"):
+        inertance.solve(CORNER, tolerance=0.0)
+    with pytest.raises(inertance.SceneError) as e:
+        inertance.solve(CORNER.replace('models = ["newton"]', "tolerance = 2"))
+    assert e.value.key == "solve.tolerance"
+    assert e.value.value == "2"
+
+
 @pytest.mark.parametrize("exact", [False, True])
 def test_outputs_asked_for_equal_the_full_solve_and_the_rest_read_none(bar, exact):
     full = inertance.solve(bar, exact=exact)

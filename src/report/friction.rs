@@ -1,12 +1,13 @@
 //! The readout of a frictional impact ([`crate::impact::friction`]): per contact the normal
 //! impulse (N s), the tangential impulse vector the obstacle applies (body axes), the contact
 //! point's velocity after impact and its mode history; the twist after, E_p, ΔE_c, the energy
-//! dissipated by friction, the events and the verdicts.
+//! dissipated by friction, the events, the verdicts and the path.
 
 use crate::impact::friction::{Frictional, ModeLabel, Restitution};
 use crate::mechanics::contact::Surd;
 use crate::mechanics::screw::{Vec3, norm2};
 use crate::report::Value;
+use crate::report::trajectory::{TrajectoryPoint, trajectory};
 use crate::scalar::Scalar;
 
 /// One contact of a frictional readout.
@@ -58,6 +59,10 @@ pub struct FrictionReport {
     pub verdict_names: Vec<&'static str>,
     /// The estimated error of impulses (N s), for the spatial integration.
     pub error_estimate: Option<f64>,
+    /// The relative tolerance the spatial integration was run to.
+    pub tolerance: Option<f64>,
+    /// The path ([`super::trajectory`]).
+    pub trajectory: Vec<TrajectoryPoint>,
 }
 
 fn vector<T: Scalar>(v: &Vec3<T>) -> [Value; 3] {
@@ -113,6 +118,8 @@ impl FrictionReport {
             verdicts: f.verdicts.iter().map(|v| v.to_string()).collect(),
             verdict_names: f.verdicts.iter().map(|v| v.name()).collect(),
             error_estimate: f.error_estimate,
+            tolerance: f.tolerance,
+            trajectory: trajectory(f),
         }
     }
 }

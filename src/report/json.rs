@@ -223,5 +223,6 @@ fn friction_json(f: &FrictionReport) -> Json {
         "end": f.end.json(),
         "verdicts": f.verdicts,
         "error_estimate": f.error_estimate.map(json_f64),
+        "tolerance": f.tolerance.map(json_f64),
     })
 }

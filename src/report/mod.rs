@@ -16,9 +16,11 @@
 mod friction;
 mod json;
 mod table;
+pub mod trajectory;
 mod wide;
 
 pub use friction::{FrictionContact, FrictionReport};
+pub use trajectory::{TrajectoryContact, TrajectoryPoint};
 pub use wide::Wide;
 
 use serde_json::Value as Json;
@@ -208,7 +210,7 @@ fn approx_exact(text: &str) -> Option<String> {
 }
 
 /// An f64 as JSON: a number, or `null` when it is not finite.
-fn json_f64(x: f64) -> Json {
+pub(crate) fn json_f64(x: f64) -> Json {
     serde_json::Number::from_f64(x)
         .map(Json::Number)
         .unwrap_or(Json::Null)

@@ -374,7 +374,11 @@ fn friction_table(f: &FrictionReport) -> String {
         );
     }
     if let Some(e) = f.error_estimate {
-        out += &format!("  estimated error of the impulses: {} N s\n", fmt_f64(e));
+        out += &format!("  estimated error of the impulses: {} N s", fmt_f64(e));
+        if let Some(t) = f.tolerance {
+            out += &format!(" (relative tolerance {})", fmt_f64(t));
+        }
+        out.push('\n');
     }
     for v in &f.verdicts {
         out += &format!("  verdict: {v}\n");

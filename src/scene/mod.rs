@@ -24,7 +24,8 @@
 //! **Friction.** `mu = 0.5` on a contact (default 0) and, optionally, `[solve] restitution =
 //! "newton" | "poisson" | "energetic"` (with `k_energetic` per contact, default `k_poisson`)
 //! integrate the impact in impulse space ([`crate::impact::friction`]) instead of solving the
-//! paper's algebraic system.
+//! paper's algebraic system; `[solve] tolerance = 1e-12` sets the relative tolerance of a
+//! spatial scene's integration.
 //!
 //! Every number may be a TOML integer or float, or a string holding a fraction or an
 //! expression (`"1/3"`, `"2/sqrt(5)"`, `"cos(30 deg)"`, see [`crate::number`]). The raw text
@@ -91,6 +92,16 @@ pub const PRODUCT_KEYS: [&str; 3] = [
 /// The end of the message for a number a float type cannot hold (the pipeline recognises it).
 pub const OUT_OF_RANGE: &str = "`--exact` solves the scene exactly";
 
+/// What a tolerance of the spatial frictional integration must be (`[solve] tolerance`,
+/// `--tolerance`): the rule, for messages.
+pub const TOLERANCE_RULE: &str = "must be a number between 0 and 1 (exclusive): the relative \
+                                  tolerance of the spatial frictional integration, e.g. 1e-10";
+
+/// Whether `x` is a tolerance of the spatial frictional integration: 0 < x < 1.
+pub fn valid_tolerance(x: f64) -> bool {
+    x > 0.0 && x < 1.0
+}
+
 /// A scene that failed to read: which file, which key, which value, what is wrong.
 #[derive(Clone, Debug, PartialEq)]
 pub struct SceneError {
@@ -151,6 +162,11 @@ pub struct Scene {
     /// solve computes those and what its checks read (impulses, velocities along the
     /// normals, energies), not the tangential ones or the constraint impulses unless asked.
     pub outputs: Outputs,
+    /// `[solve] tolerance`: the relative tolerance of the spatial frictional integration
+    /// ([`crate::impact::friction::spatial`]), in (0, 1); `None`: the scalar's default
+    /// ([`crate::scene::pipeline::friction_tolerance`]). Planar scenes are solved event by
+    /// event and do not read it.
+    pub tolerance: Option<f64>,
     /// The `[constraints]` effect, if declared.
     pub constraints: Option<ConstraintsSpec>,
     /// The `[surface]` effect, if declared.

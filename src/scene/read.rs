@@ -46,7 +46,9 @@ pub(super) fn scene(
     // The paper's body first, as it was always read (messages name its keys first).
     let classic = if modelled { None } else { Some(r.body(root)?) };
     let mut contacts = r.contacts(root)?;
-    let (models, law, restitution, outputs) = r.solve(root)?;
+    let solve = r.solve(root)?;
+    let (models, law, restitution, outputs) =
+        (solve.models, solve.law, solve.restitution, solve.outputs);
     if law == Law::Unilateral {
         super::law::unilateral_allowed(
             file,
@@ -83,6 +85,7 @@ pub(super) fn scene(
         law,
         restitution,
         outputs,
+        tolerance: solve.tolerance,
         constraints,
         surface,
         params: r.params.specs(),

@@ -457,6 +457,17 @@ pub fn unscale(report: &mut Report, u: &Units) {
         if let Some(e) = &mut f.error_estimate {
             *e *= 2f64.powi((a + b - c) as i32);
         }
+        for point in &mut f.trajectory {
+            for p in &mut point.contacts {
+                p.normal_impulse = ldexp(p.normal_impulse, a + b - c);
+                for t in p.tangential_impulse.iter_mut() {
+                    *t = ldexp(*t, a + b - c);
+                }
+                for v in p.slip.iter_mut() {
+                    *v = ldexp(*v, b - c);
+                }
+            }
+        }
     }
 }
 

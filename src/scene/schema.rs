@@ -28,6 +28,20 @@ pub(crate) struct BodyTable {
     pub(super) angular_velocity: [Number; 3],
 }
 
+/// The `[solve]` table, read.
+pub(crate) struct SolveTable {
+    /// `models`.
+    pub(super) models: Vec<Model>,
+    /// `law`.
+    pub(super) law: Law,
+    /// `restitution`.
+    pub(super) restitution: Option<Restitution>,
+    /// `outputs`.
+    pub(super) outputs: Outputs,
+    /// `tolerance`.
+    pub(super) tolerance: Option<f64>,
+}
+
 /// One contact of a scene, numbers as written.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ContactSpec {
@@ -243,55 +257,84 @@ impl Reader<'_> {
     }
 
     /// The `[solve]` table: the models asked for (all of them when absent), the impact law
-    /// (the paper's simultaneous one when absent) and the outputs reported (all when absent).
-    pub(super) fn solve(
-        &self,
-        root: &Table,
-    ) -> Result<(Vec<Model>, Law, Option<Restitution>, Outputs), SceneError> {
-        Ok(match root.get("solve") {
-            None => (Model::ALL.to_vec(), Law::default(), None, Outputs::ALL),
-            Some(item) => {
-                let t = item.as_table().ok_or_else(|| {
-                    self.err("solve", Some(short(item)), "must be a table: [solve]")
-                })?;
-                self.only_keys(
-                    t,
-                    "solve",
-                    &["models", "law", "restitution", "axes", "outputs"],
-                )?;
-                let restitution = match t.get("restitution") {
-                    None => None,
-                    Some(r) => Some(r.as_str().and_then(Restitution::from_name).ok_or_else(
-                        || {
-                            self.err(
-                                "solve.restitution",
-                                Some(short(r)),
-                                "unknown restitution law; expected \"newton\", \"poisson\" or \"energetic\"",
-                            )
-                        },
-                    )?),
-                };
-                let models = match t.get("models") {
-                    None => Model::ALL.to_vec(),
-                    Some(m) => self.models(m, "solve.models")?,
-                };
-                let law = match t.get("law") {
-                    None => Law::default(),
-                    Some(l) => l.as_str().and_then(Law::from_name).ok_or_else(|| {
-                        self.err(
-                            "solve.law",
-                            Some(short(l)),
-                            "unknown law; expected \"simultaneous\" (the paper's) or \"unilateral\"",
-                        )
-                    })?,
-                };
-                let outputs = match t.get("outputs") {
-                    None => Outputs::ALL,
-                    Some(o) => self.outputs(o, "solve.outputs")?,
-                };
-                (models, law, restitution, outputs)
-            }
+    /// (the paper's simultaneous one when absent), the outputs reported (all when absent) and
+    /// the spatial frictional integration's tolerance.
+    pub(super) fn solve(&self, root: &Table) -> Result<SolveTable, SceneError> {
+        let Some(item) = root.get("solve") else {
+            return Ok(SolveTable {
+                models: Model::ALL.to_vec(),
+                law: Law::default(),
+                restitution: None,
+                outputs: Outputs::ALL,
+                tolerance: None,
+            });
+        };
+        let t = item
+            .as_table()
+            .ok_or_else(|| self.err("solve", Some(short(item)), "must be a table: [solve]"))?;
+        self.only_keys(
+            t,
+            "solve",
+            &[
+                "models",
+                "law",
+                "restitution",
+                "axes",
+                "outputs",
+                "tolerance",
+            ],
+        )?;
+        let restitution = match t.get("restitution") {
+            None => None,
+            Some(r) => Some(r.as_str().and_then(Restitution::from_name).ok_or_else(|| {
+                self.err(
+                    "solve.restitution",
+                    Some(short(r)),
+                    "unknown restitution law; expected \"newton\", \"poisson\" or \"energetic\"",
+                )
+            })?),
+        };
+        let models = match t.get("models") {
+            None => Model::ALL.to_vec(),
+            Some(m) => self.models(m, "solve.models")?,
+        };
+        let law = match t.get("law") {
+            None => Law::default(),
+            Some(l) => l.as_str().and_then(Law::from_name).ok_or_else(|| {
+                self.err(
+                    "solve.law",
+                    Some(short(l)),
+                    "unknown law; expected \"simultaneous\" (the paper's) or \"unilateral\"",
+                )
+            })?,
+        };
+        let outputs = match t.get("outputs") {
+            None => Outputs::ALL,
+            Some(o) => self.outputs(o, "solve.outputs")?,
+        };
+        let tolerance = match t.get("tolerance") {
+            None => None,
+            Some(item) => Some(self.tolerance(item, "solve.tolerance")?),
+        };
+        Ok(SolveTable {
+            models,
+            law,
+            restitution,
+            outputs,
+            tolerance,
         })
+    }
+
+    /// `[solve] tolerance`: a number strictly between 0 and 1 ([`super::valid_tolerance`]).
+    fn tolerance(&self, item: &Item, key: &str) -> Result<f64, SceneError> {
+        let n = self
+            .number(item, key)
+            .map_err(|_| self.err(key, Some(short(item)), super::TOLERANCE_RULE))?;
+        if n.symbols.is_empty() && super::valid_tolerance(n.approx) {
+            Ok(n.approx)
+        } else {
+            Err(self.err(key, Some(n.text), super::TOLERANCE_RULE))
+        }
     }
 
     /// A `[[contact]]` table: its point, normal, tangent and coefficients.

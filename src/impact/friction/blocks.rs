@@ -11,7 +11,9 @@
 //! ```
 //!
 //! **Planar scenes, exactly.** In a plane with unit normal e, a contact's in-plane tangent is
-//! t_i = e × n_i: it has the length of n_i, so with the hatted (unnormalised) axes of
+//! t_i = ±e × n_i (in the sense of the contact's tangent y_i, given or chosen by §12, when y_i
+//! lies in the plane: slide+ is slip along +y_i): it has the length of n_i, so with the hatted
+//! (unnormalised) axes of
 //! [`crate::mechanics::contact`] the Coulomb cone |τ_i| ≤ μ_i P_i reads |τ̂_i| ≤ μ_i p̂_i with
 //! no square root, and every quantity stays in the scalar's field — as long as e itself is in
 //! the field. The planes tried are the coordinate planes of the body axes (z, y, x: every
@@ -84,7 +86,7 @@ impl<T: Scalar> Blocks<T> {
         &self.k[q * self.len() + r]
     }
 
-    /// The planar blocks of `problem`, exact: tangents e × n_i in the first plane that passes
+    /// The planar blocks of `problem`, exact: tangents ±e × n_i in the first plane that passes
     /// the planarity test — a coordinate plane (z, y, x), then in exact types a plane of
     /// rational unit normal found from the scene's vectors (see the module docs); `None` when
     /// none does.
@@ -108,7 +110,7 @@ impl<T: Scalar> Blocks<T> {
         let mut dims = Vec::new();
         let mut out_of_plane = Vec::new();
         let velocity = problem.velocity();
-        for c in problem.contacts() {
+        for (i, c) in problem.contacts().iter().enumerate() {
             axes.push(Screw::axis(&c.point, &c.normal));
             if c.mu.is_zero() {
                 dims.push(0);
@@ -121,7 +123,15 @@ impl<T: Scalar> Blocks<T> {
             if !z.reciprocal(velocity).is_zero() {
                 return None;
             }
-            axes.push(Screw::axis(&c.point, &unit.cross(&c.normal)));
+            // slide+ is slip along +y_i, the tangent as given or as §12 chooses it (the frame
+            // the report prints), so t_i takes the sense of y_i when y_i lies in the plane.
+            let t = unit.cross(&c.normal);
+            let y = ContactFrame::new(i, c, velocity).map(|f| f.axes[1].top());
+            let t = match y {
+                Ok(y) if dot(&y, &t).signum_i8() < 0 => -t,
+                _ => t,
+            };
+            axes.push(Screw::axis(&c.point, &t));
             out_of_plane.push(z);
             dims.push(1);
         }

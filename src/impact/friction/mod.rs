@@ -44,6 +44,7 @@
 //! an adaptive embedded Runge–Kutta pair and event location, with an error estimate.
 
 pub mod blocks;
+pub mod departure;
 pub mod modes;
 pub mod planar;
 pub mod rates;
@@ -130,13 +131,14 @@ impl fmt::Display for Phase {
 /// A contact's mode over a segment, for reports.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum ModeLabel {
-    /// No tangential impulse (μ = 0, or no normal impulse rate).
+    /// No tangential impulse (μ = 0, or no normal impulse rate: an energetic contact whose
+    /// restitution has ended).
     Free,
     /// No slip.
     Stick,
-    /// Slip along +t_i (planar).
+    /// Slip along +y_i, the contact's tangent as given or as §12 chooses it (planar).
     SlidePlus,
-    /// Slip along −t_i (planar).
+    /// Slip along −y_i (planar).
     SlideMinus,
     /// Slip in a direction of the tangent plane (spatial).
     Slide,
@@ -179,6 +181,21 @@ pub struct Segment<T: Scalar> {
     pub modes: Vec<ModeLabel>,
     /// dΛ/ds over the segment (constant in a planar scene; at its start in a spatial one).
     pub rates: Vec<T>,
+}
+
+/// One point of an impact's path: the parameter s, the phase, the impulses Λ along every axis
+/// and each contact's mode there (at an event, the segment ending there; the next sample, at
+/// the same s, carries the modes that follow).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Sample<T: Scalar> {
+    /// s.
+    pub s: T,
+    /// Its phase.
+    pub phase: Phase,
+    /// Λ.
+    pub impulses: Vec<T>,
+    /// The mode of every contact.
+    pub modes: Vec<ModeLabel>,
 }
 
 /// What a frictional result says about its own physics. None of these stops the solve: the
@@ -395,6 +412,12 @@ pub struct Frictional<T: Scalar> {
     /// The estimated error of the impulses and velocities (spatial integration), in their
     /// units; `None` for planar scenes (exact up to the scalar's rounding).
     pub error_estimate: Option<f64>,
+    /// The relative tolerance of the spatial integration (the one asked for, raised to 4ε of
+    /// the scalar at least); `None` for planar scenes.
+    pub tolerance: Option<f64>,
+    /// The path: a planar scene's at the ends of its segments (Λ is linear between them); a
+    /// spatial one's at every accepted step and on both sides of every event.
+    pub samples: Vec<Sample<T>>,
 }
 
 impl<T: Scalar> Frictional<T> {
@@ -453,6 +476,7 @@ impl<T: Scalar> Frictional<T> {
         ) {
             verdicts.push(Verdict::EnergyGain);
         }
+        let samples = linear_samples(&segments, blocks.len());
         Frictional {
             law,
             blocks,
@@ -470,6 +494,8 @@ impl<T: Scalar> Frictional<T> {
             verdicts,
             end,
             error_estimate: None,
+            tolerance: None,
+            samples,
         }
     }
 
@@ -493,6 +519,25 @@ impl<T: Scalar> Frictional<T> {
         (normal, tangential)
     }
 
+    /// Whether the energy balance ΔE_c = Σ∫ v·dΛ = T⁰ − T holds, T⁰ = `kinetic_before`:
+    /// exactly in exact types; to 16·N·ε·T⁰ (N contacts) for a planar float solve; for a
+    /// spatial integration, whose residual carries the local errors it accepted, to the power
+    /// an impulse error of the estimate can carry, estimate × max|v⁰| × 2 × axes, plus that
+    /// rounding.
+    pub fn energy_balance_holds(&self, kinetic_before: &T) -> bool {
+        let n = self.blocks.contacts();
+        match self.error_estimate {
+            None => self.energy_residual.is_negligible(kinetic_before, 16 * n),
+            Some(est) => {
+                let speed = rates::max_abs(&self.blocks.v0).to_f64();
+                let axes = self.blocks.len() as f64;
+                let bound = est * speed * 2.0 * axes
+                    + 16.0 * n as f64 * T::epsilon_f64() * kinetic_before.to_f64().abs();
+                self.energy_residual.to_f64().abs() <= bound
+            }
+        }
+    }
+
     /// The mode history of contact i: the label of each segment, repeats merged.
     pub fn history(&self, i: usize) -> Vec<ModeLabel> {
         let mut h: Vec<ModeLabel> = Vec::new();
@@ -503,6 +548,32 @@ impl<T: Scalar> Frictional<T> {
         }
         h
     }
+}
+
+/// The path of an impact whose rates are constant over each segment (a planar scene): Λ at
+/// both ends of every segment, from Λ = 0 at its start.
+fn linear_samples<T: Scalar>(segments: &[Segment<T>], len: usize) -> Vec<Sample<T>> {
+    let mut out = Vec::with_capacity(2 * segments.len());
+    let mut at = vec![T::zero(); len];
+    for seg in segments {
+        out.push(Sample {
+            s: seg.from.clone(),
+            phase: seg.phase,
+            impulses: at.clone(),
+            modes: seg.modes.clone(),
+        });
+        let ds = seg.to.clone() - &seg.from;
+        for (x, r) in at.iter_mut().zip(&seg.rates) {
+            *x += r.clone() * &ds;
+        }
+        out.push(Sample {
+            s: seg.to.clone(),
+            phase: seg.phase,
+            impulses: at.clone(),
+            modes: seg.modes.clone(),
+        });
+    }
+    out
 }
 
 /// Solve the frictional impact of `problem` under `law`: event by event, exactly, when the

@@ -18,9 +18,10 @@
 //! exactly at s = 1). At zero slip the modes of every contact there are chosen jointly: all
 //! stick if their cones allow it; else the fewest that must slide do, each along an invariant
 //! direction u of its tangential block, dv_it/ds = λ u with λ > 0 and a nonnegative normal
-//! rate — for one contact by fixed-point iteration from the direction of the required
-//! sticking impulse or, when that does not settle, by a scan of the circle refined by
-//! bisection; for several by a joint fixed-point iteration from every combination of senses.
+//! rate ([`super::departure`]) — for one contact by fixed-point iteration from the direction of
+//! the required sticking impulse or, when that does not settle, by a scan of the circle refined
+//! by bisection, a direction that attracts the slips around it preferred; for several by a
+//! joint fixed-point iteration from every combination of senses.
 //!
 //! **Bhatt and Koechling's singular point.** Near zero slip, the slip direction u = v_t/|v_t|
 //! turns at |dv_t⊥/ds| / |v_t|, ever faster — a stiff flow. A step turns the direction by at
@@ -28,36 +29,47 @@
 //! slip, |v_t| / (−d|v_t|/ds), so |v_t| falls geometrically; below 16 δ (δ = tol · max|v⁰|)
 //! the direction is held (there the slip's direction is integration noise) and one Euler step
 //! of the predicted length finishes the slip, whose residual is set aside (the slip is measured
-//! from it afterwards). A slip that leaves zero slip is held at its invariant direction,
-//! re-found at every evaluation, while the step would not resolve the turn (κ h > ρ, with κ
-//! the pull per unit angle): the slip that leaves zero is the one trajectory that stays with
-//! the invariant direction, which an explicit step would lose — and when that direction repels
-//! the slips around it (κ < 0) the impact is sensitive, a verdict (`unstable-slip`). The steps
-//! near the singular point grow like log(1/tol), not like 1/tol; [`integrate`] reports them
-//! ([`Stats`]).
+//! from it afterwards). A slip that leaves zero slip is **held** on its invariant direction,
+//! tracked at every evaluation as the root nearest the direction held ([`departure::track`],
+//! within a quarter radian per step; a step that loses it is retried shorter, and a slip whose
+//! direction no longer leaves zero — a phase's end changed its rates — is released to its own
+//! direction), while the step would not resolve the turn (κ h > ρ, with κ the pull per unit
+//! angle): the slip that leaves zero is the one trajectory that stays with the invariant
+//! direction, which an explicit step would lose — and when that direction repels the slips
+//! around it (κ < 0) the impact is sensitive, a verdict (`unstable-slip`). Holding lags the
+//! slip's own direction by (ρ/κ) dθ*/ds; a step whose lag moves more impulse than the tolerance
+//! allows is refused, as a local error is. The steps near an ordinary singular point grow like
+//! log(1/tol), not like 1/tol; after a stick that ends at its cone's edge the slip restarts
+//! with λ = 0 and ρ ∝ (s − s*)², the pull is stiffer by 1/(s − s*) and they grow like
+//! tol^(−1/4) (10 times over four decades); [`integrate`] reports them ([`Stats`]).
 //!
 //! **Error estimate.** The sum over accepted steps of the embedded local error estimate of the
 //! impulses and a rounding term, plus, per zero-slip stop, twice the largest rate times the
 //! predicted time to zero slip, per event the rate times the bisection width, and per held
-//! step the held direction's lag μ p' (ρ/|κ|) |Δu|; multiplied by max(1, Σ_q ‖W{E_q}‖∞) so
+//! step the held direction's lag μ p′ |Δu| min(ρ/|κ|, h); multiplied by max(1, Σ_q ‖W{E_q}‖∞) so
 //! that it bounds the twist as well as the impulses (unit axes). It is tested against planar
-//! scenes solved exactly and against runs 10⁴–10⁶ times tighter (`tests/friction_spatial.rs`).
-//! A sensitive impact at a loose tolerance can take another sequence of stops and end beyond
-//! its estimate (Example 8, μ = 1/5, energetic, at 10⁻⁶).
+//! scenes solved exactly, against runs 10⁴–10⁶ times tighter (`tests/friction_spatial.rs`) and
+//! against an independent integration of a ball in a corner through stick exits
+//! (`tests/regression_stick_exit_direction.rs`).
 
 use crate::impact::friction::blocks::Blocks;
+use crate::impact::friction::departure::{self, dot, norm, of, unit};
 use crate::impact::friction::modes::nonnegative;
 use crate::impact::friction::rates::{
     Mode, Normal, RateFailure, Rates, max_abs, normal_rules, rates,
 };
 use crate::impact::friction::{
-    FrictionError, Frictional, Phase, Restitution, Segment, Verdict, label,
+    FrictionError, Frictional, Phase, Restitution, Sample, Segment, Verdict, label,
 };
 use crate::impact::problem::Problem;
 use crate::scalar::{Scalar, ratio};
 
 /// The most accepted and rejected steps before the integration is declared runaway.
 const MAX_STEPS: usize = 200_000;
+
+/// tan(1/4): a held slip's direction is tracked within a quarter radian per step, as a free
+/// slip's direction turns by at most that much per step.
+const QUARTER: f64 = 0.255_341_921_221_036_3;
 
 /// The Dormand–Prince RK5(4) tableau as fractions (p, q), built in the scalar type so that a
 /// double-double run does not inherit the f64 rounding of 3/40 or 19372/6561: rows of A (the
@@ -167,6 +179,21 @@ struct State<T: Scalar> {
     locked: Vec<bool>,
 }
 
+/// A slip held on its invariant direction at the end of a step ([`Run::held`]).
+struct Held<T: Scalar> {
+    contact: usize,
+    /// The invariant direction tracked there.
+    u: Vec<T>,
+    /// Its pull κ.
+    kappa: f64,
+    /// The slip's speed.
+    rho: f64,
+    /// The impulse error of holding it over the step.
+    lag: f64,
+    /// No invariant direction within a quarter radian of the one held before the step.
+    lost: bool,
+}
+
 /// The right-hand side at one point: dy/ds and the rates it came from.
 #[derive(Clone)]
 struct Slope<T: Scalar> {
@@ -184,29 +211,6 @@ struct Trial<T: Scalar> {
     scaled: f64,
     /// The largest absolute local error of an impulse.
     impulse: f64,
-}
-
-fn norm<T: Scalar>(x: &[T]) -> T {
-    let mut s = T::zero();
-    for v in x {
-        s += v.clone() * v;
-    }
-    s.sqrt_value().expect("a float scalar has square roots")
-}
-
-fn dot<T: Scalar>(x: &[T], y: &[T]) -> T {
-    x.iter()
-        .zip(y)
-        .fold(T::zero(), |acc, (a, b)| acc + a.clone() * b)
-}
-
-fn unit<T: Scalar>(x: &[T]) -> Vec<T> {
-    let r = norm(x);
-    x.iter().map(|a| a.clone() / r.clone()).collect()
-}
-
-fn of<T: Scalar>(x: f64) -> T {
-    T::from_f64(x).expect("a float scalar takes an f64")
 }
 
 impl<T: Scalar> Run<'_, T> {
@@ -322,62 +326,75 @@ impl<T: Scalar> Run<'_, T> {
     }
 
     /// A locked slip's direction at the current state (see `State::locked`): the invariant
-    /// direction u = dv_t(u)/|dv_t(u)| by fixed-point iteration from the direction held in
-    /// `modes`, which is kept when the iteration does not settle.
-    fn settle(&self, modes: &mut [Mode<T>], normals: &[Normal<T>], i: usize) {
-        let Mode::Slide(held) = modes[i].clone() else {
-            return;
-        };
-        let off = self.b.offset[i] + 1;
-        let settled = self.tol.max(64.0 * T::epsilon_f64());
-        let mut u = held.clone();
-        for _ in 0..50 {
-            modes[i] = Mode::Slide(u.clone());
-            let Ok(r) = rates(self.b, normals, modes) else {
-                break;
-            };
-            let dv = &r.velocity[off..off + 2];
-            if dot(&u, dv).signum_i8() <= 0 {
-                break;
-            }
-            let next = unit(dv);
-            let diff = next
-                .iter()
-                .zip(&u)
-                .map(|(a, c)| (a.clone() - c).to_f64().abs())
-                .fold(0.0, f64::max);
-            u = next;
-            if diff <= settled {
-                modes[i] = Mode::Slide(u);
-                return;
-            }
-        }
-        modes[i] = Mode::Slide(held);
+    /// direction nearest the one held in `modes`, tracked by [`departure::track`] (kept when
+    /// none is found).
+    fn settle(&self, modes: &mut [Mode<T>], normals: &[Normal<T>], i: usize) -> bool {
+        departure::track(self.b, normals, modes, i, self.settled(), QUARTER)
     }
 
-    /// κ: how fast a slip of contact i along a direction turned from `u` by a small angle θ is
-    /// pulled back, −∂(u⊥ · dv_t)/∂θ — the direction flow turns back at κ/ρ; κ ≤ 0 when the
-    /// direction is pushed away (an unstable invariant direction).
-    fn pull(&self, modes: &mut [Mode<T>], normals: &[Normal<T>], i: usize, u: &[T]) -> f64 {
-        let eps: f64 = 1e-6;
-        let (c, s): (T, T) = (of(eps.cos()), of(eps.sin()));
-        let w = vec![
-            u[0].clone() * &c - u[1].clone() * &s,
-            u[0].clone() * &s + u[1].clone() * &c,
-        ];
-        let held = modes[i].clone();
-        modes[i] = Mode::Slide(w.clone());
-        let off = self.b.offset[i] + 1;
-        let k = match rates(self.b, normals, modes) {
-            Ok(r) => {
-                let dv = &r.velocity[off..off + 2];
-                let perp = -w[1].clone() * &dv[0] + w[0].clone() * &dv[1];
-                -perp.to_f64() / eps
+    /// The slips held on their invariant direction at the end `y` (slope `k`) of a step of
+    /// length `h` from `st`: each one's direction tracked there, its pull κ, its speed ρ and the
+    /// lag of holding it — the slip's own direction trails the invariant one by the angle
+    /// (ρ/κ) dθ*/ds, where it relaxes at κ/ρ (by at most the turn over the step, when that
+    /// relaxation is slower than the step), which moves μ p′ times that angle of impulse
+    /// per unit s: μ p′ |Δu| min(ρ/|κ|, h).
+    fn held(
+        &self,
+        st: &State<T>,
+        normals: &[Normal<T>],
+        y: &[T],
+        k: &Slope<T>,
+        h: f64,
+    ) -> Vec<Held<T>> {
+        let v = self.velocities(y);
+        let mut modes = self.modes_at(&v, st);
+        let mut out = Vec::new();
+        for i in 0..self.n() {
+            let Mode::Slide(old) = modes[i].clone() else {
+                continue;
+            };
+            if !st.locked[i] {
+                continue;
             }
-            Err(_) => f64::INFINITY,
-        };
-        modes[i] = held;
-        k
+            let (_, rho) = self.slip(&v, &st.origin, i);
+            if !self.settle(&mut modes, normals, i) {
+                out.push(Held {
+                    contact: i,
+                    u: old,
+                    kappa: f64::NAN,
+                    rho,
+                    lag: 0.0,
+                    lost: true,
+                });
+                continue;
+            }
+            let Mode::Slide(u) = modes[i].clone() else {
+                continue;
+            };
+            let kappa =
+                departure::pull(self.b, normals, &mut modes, i, &u).unwrap_or(f64::INFINITY);
+            let change = u
+                .iter()
+                .zip(&old)
+                .map(|(a, c)| (a.clone() - c).to_f64().abs())
+                .fold(0.0, f64::max);
+            let p = k.rates.lambda[self.b.offset[i]].to_f64().abs();
+            let lag = self.b.mu[i].to_f64() * p * change * (rho / kappa.abs()).min(h);
+            out.push(Held {
+                contact: i,
+                u,
+                kappa,
+                rho,
+                lag,
+                lost: false,
+            });
+        }
+        out
+    }
+
+    /// How closely directions are settled: the tolerance, above rounding.
+    fn settled(&self) -> f64 {
+        self.tol.max(64.0 * T::epsilon_f64())
     }
 
     /// One Dormand–Prince step of length h from st.y, whose slope is `k0`.
@@ -553,6 +570,7 @@ pub fn integrate<T: Scalar>(
     let mut k0 = run.slope(&st, &normals, &st.y)?;
     let mut seg_start = st.s.clone();
     let mut seg_modes = st.modes.clone();
+    let mut samples = vec![sample(&st, &seg_modes, len)];
     let mut seg_rates = k0.rates.lambda.clone();
     loop {
         if stats.steps() + stats.events + stats.stops > MAX_STEPS {
@@ -640,6 +658,7 @@ pub fn integrate<T: Scalar>(
             }
             st.s += &ds;
             close_segment(&mut segments, &seg_start, &st, &seg_modes, &seg_rates);
+            samples.push(sample(&st, &seg_modes, len));
             // A slip that stops with its phase (Example 8's corner: A₁'s slip vanishes exactly
             // at the end of compression) is resolved in the next phase.
             if phase_end {
@@ -654,6 +673,7 @@ pub fn integrate<T: Scalar>(
 
             seg_start = st.s.clone();
             seg_modes = st.modes.clone();
+            samples.push(sample(&st, &seg_modes, len));
             seg_rates = k0.rates.lambda.clone();
             continue;
         }
@@ -679,6 +699,24 @@ pub fn integrate<T: Scalar>(
         if trial.scaled.is_nan() || trial.scaled > 1.0 {
             stats.rejected += 1;
             h *= (0.9 * trial.scaled.powf(-0.2)).clamp(0.1, 0.9);
+            continue;
+        }
+        // A held slip's direction lags behind the invariant one it is held on: a step whose lag
+        // exceeds the tolerance is refused as the local error is.
+        let held = run.held(&st, &normals, &trial.y, &trial.slope, hh.to_f64());
+        let allowed = tol * (run.lambda_scale + max_abs(&trial.y[..len]).to_f64());
+        let lag = held.iter().map(|x| x.lag).fold(0.0, f64::max);
+        // A held direction that moved more than a quarter radian, or vanished: a shorter step,
+        // until the step is as short as the tolerance — then the slip is released to its own
+        // direction (its invariant direction no longer leaves zero slip).
+        if held.iter().any(|x| x.lost) && hh.to_f64() > run.settled() {
+            stats.rejected += 1;
+            h = hh.to_f64() / 4.0;
+            continue;
+        }
+        if lag > allowed {
+            stats.rejected += 1;
+            h = hh.to_f64() * (0.9 * allowed / lag).clamp(0.1, 0.9);
             continue;
         }
         stats.accepted += 1;
@@ -720,11 +758,13 @@ pub fn integrate<T: Scalar>(
                 }
             }
             close_segment(&mut segments, &seg_start, &st, &seg_modes, &seg_rates);
+            samples.push(sample(&st, &seg_modes, len));
             normals = run.normals(&st);
             resolve(&run, &mut st, &leaving, &[], &mut verdicts)?;
             k0 = run.slope(&st, &normals, &st.y)?;
             seg_start = st.s.clone();
             seg_modes = st.modes.clone();
+            samples.push(sample(&st, &seg_modes, len));
             seg_rates = k0.rates.lambda.clone();
             h = (h * grow).max(hi.to_f64());
         } else {
@@ -736,43 +776,24 @@ pub fn integrate<T: Scalar>(
             };
             k0 = trial.slope;
             st.modes = run.modes_at(&run.velocities(&st.y), &st);
-            // Locked slips: hold the direction settled at the new state; add the lag of the
-            // quasi-static direction, μ p' (ρ/κ) |Δu| (κ the rate at which the slip's direction
-            // is pulled back per unit angle, times ρ), to the estimate; release once the next
-            // step resolves that pull, κ h ≤ ρ.
-            let v = run.velocities(&st.y);
-            let mut settled_modes = st.modes.clone();
+            // Locked slips: hold the direction tracked at the new state, add its lag to the
+            // estimate, and release once the next step resolves the pull, κ h ≤ ρ.
             let next_h = hh.to_f64() * grow;
-            for i in 0..n {
-                let Mode::Slide(old) = st.modes[i].clone() else {
+            for x in held {
+                let i = x.contact;
+                if x.lost {
                     st.locked[i] = false;
-                    continue;
-                };
-                if !st.locked[i] {
                     continue;
                 }
-                run.settle(&mut settled_modes, &normals, i);
-                let Mode::Slide(u) = settled_modes[i].clone() else {
-                    continue;
-                };
-                let (_, rho) = run.slip(&v, &st.origin, i);
-                let off = b.offset[i];
-                let kappa = run.pull(&mut settled_modes, &normals, i, &u);
-                let change = u
-                    .iter()
-                    .zip(&old)
-                    .map(|(a, c)| (a.clone() - c).to_f64().abs())
-                    .fold(0.0, f64::max);
-                let p = k0.rates.lambda[off].to_f64().abs();
-                error += b.mu[i].to_f64() * p * change * rho / kappa.abs().max(f64::MIN_POSITIVE);
-                st.modes[i] = Mode::Slide(u);
-                // Released when the step resolves the turn. A direction pushed away from the
-                // invariant one (κ < 0) is held all the same: the slip that leaves zero slip is
-                // the one trajectory that stays with the invariant direction, and an explicit
-                // step would leave it (the neighbouring slips diverge from it: a verdict).
-                if kappa.abs() * next_h <= rho {
+                error += x.lag;
+                st.modes[i] = Mode::Slide(x.u);
+                // A direction pushed away from the invariant one (κ < 0) is held all the same:
+                // the slip that leaves zero slip is the one trajectory that stays with the
+                // invariant direction, and an explicit step would leave it (the neighbouring
+                // slips diverge from it: a verdict).
+                if x.kappa.abs() * next_h <= x.rho {
                     st.locked[i] = false;
-                } else if kappa < 0.0
+                } else if x.kappa < 0.0
                     && !verdicts.iter().any(
                         |v| matches!(v, Verdict::UnstableSlip { contact, .. } if *contact == i),
                     )
@@ -783,7 +804,13 @@ pub fn integrate<T: Scalar>(
                     });
                 }
             }
+            for i in 0..n {
+                if !matches!(st.modes[i], Mode::Slide(_)) {
+                    st.locked[i] = false;
+                }
+            }
             h = hh.to_f64() * grow;
+            samples.push(sample(&st, &seg_modes, len));
             if hit_end {
                 close_segment(&mut segments, &seg_start, &st, &seg_modes, &seg_rates);
                 if st.phase == Phase::Restitution {
@@ -795,6 +822,7 @@ pub fn integrate<T: Scalar>(
                 k0 = run.slope(&st, &normals, &st.y)?;
                 seg_start = st.s.clone();
                 seg_modes = st.modes.clone();
+                samples.push(sample(&st, &seg_modes, len));
                 seg_rates = k0.rates.lambda.clone();
             }
         }
@@ -827,6 +855,8 @@ pub fn integrate<T: Scalar>(
         end,
     );
     out.error_estimate = Some(error * response.max(1.0));
+    out.tolerance = Some(tol);
+    out.samples = samples;
     Ok((out, stats))
 }
 
@@ -842,6 +872,16 @@ fn begin_restitution<T: Scalar>(run: &Run<'_, T>, st: &mut State<T>) {
             let left = k.clone() * k * &st.y[len + i];
             st.stopped[i] = st.compression[i].is_zero() || left.signum_i8() <= 0;
         }
+    }
+}
+
+/// The path's sample at the current state, with the modes of the segment it belongs to.
+fn sample<T: Scalar>(st: &State<T>, modes: &[Mode<T>], len: usize) -> Sample<T> {
+    Sample {
+        s: st.s.clone(),
+        phase: st.phase,
+        impulses: st.y[..len].to_vec(),
+        modes: modes.iter().map(label).collect(),
     }
 }
 
@@ -894,7 +934,16 @@ fn resolve<T: Scalar>(
         // A contact just declared at zero slip is at zero slip, whatever the turn of its
         // direction left over the last (Euler) stretch.
         if rho > run.delta && !resting.contains(&i) {
-            if !(st.locked[i] && matches!(st.modes[i], Mode::Slide(_))) {
+            // A held slip stays held while its invariant direction under the rules from here
+            // on is where it was (an event elsewhere); a phase's end that moves or removes it
+            // releases the slip to its own direction.
+            let mut tracked = st.modes.clone();
+            let holds = st.locked[i]
+                && matches!(st.modes[i], Mode::Slide(_))
+                && run.settle(&mut tracked, &normals, i);
+            if holds {
+                st.modes[i] = tracked[i].clone();
+            } else {
                 st.modes[i] = Mode::Slide(unit(&vt));
                 st.locked[i] = false;
             }
@@ -1077,36 +1126,13 @@ fn joint_directions<T: Scalar>(
     false
 }
 
-/// u × (dv_t/ds), λ = u · (dv_t/ds) and dv_t/ds for contact i sliding along u from zero
-/// slip (λ = 0 when its normal impulse rate is negative).
-fn turn<T: Scalar>(
-    run: &Run<'_, T>,
-    st: &mut State<T>,
-    normals: &[Normal<T>],
-    i: usize,
-    u: &[T],
-) -> Result<(T, T, Vec<T>), RateFailure> {
-    st.modes[i] = Mode::Slide(u.to_vec());
-    let r = rates(run.b, normals, &st.modes)?;
-    let off = run.b.offset[i];
-    let dv = r.velocity[off + 1..off + 3].to_vec();
-    let cross = u[0].clone() * &dv[1] - u[1].clone() * &dv[0];
-    // A contact whose normal impulse rate is negative would push its friction along the slip:
-    // not a slide (λ is reported as 0).
-    let lambda = if nonnegative(&r.lambda[off], &max_abs(&r.lambda), run.len()) {
-        dot(u, &dv)
-    } else {
-        T::zero()
-    };
-    Ok((cross, lambda, dv))
-}
-
-/// An invariant direction of contact i's slip at zero slip: a unit u with dv_t/ds = λ u and
-/// λ > 0 when the contact slides along u (Bhatt and Koechling). Fixed-point iteration
-/// u ← dv_t(u)/|dv_t(u)| from `guess`; when it does not settle, a scan of the circle for the
-/// zeros of u × dv_t(u), refined by bisection along the chord, those with λ > 0 kept (λ may
-/// be small: a stick just outside its cone slips away slowly), taking the one
-/// nearest `guess` (a verdict when there are several).
+/// The direction along which contact i leaves zero slip (Bhatt and Koechling): a unit u with
+/// dv_t/ds = λ u and λ > 0 when the contact slides along u. Fixed-point iteration
+/// u ← dv_t(u)/|dv_t(u)| from `guess` (it settles only on a direction that attracts with
+/// κ < 2λ: [`departure`]); otherwise every invariant direction of the circle
+/// ([`departure::invariant_directions`]), those that attract the slips around them preferred
+/// (a slip restarting at a cone's edge, λ → 0⁺, must take the one that grows out of the edge's
+/// direction, which attracts), then the nearest `guess` — a verdict when there are several.
 fn invariant_direction<T: Scalar>(
     run: &Run<'_, T>,
     st: &mut State<T>,
@@ -1115,13 +1141,13 @@ fn invariant_direction<T: Scalar>(
     guess: Vec<T>,
     verdicts: &mut Vec<Verdict>,
 ) -> Result<Vec<T>, FrictionError> {
-    let fail = |e: RateFailure, st: &State<T>| run.fail(e, st);
-    let settled = run.tol.max(64.0 * T::epsilon_f64());
+    let b = run.b;
+    let settled = run.settled();
     let mut u = guess.clone();
     for _ in 0..100 {
-        let (_, lambda, dv) = turn(run, st, normals, i, &u).map_err(|e| fail(e, st))?;
-        let dn = norm(&dv);
-        if dn.is_zero() {
+        let (_, lambda, dv) =
+            departure::slip_rate(b, normals, &mut st.modes, i, &u).map_err(|e| run.fail(e, st))?;
+        if norm(&dv).is_zero() {
             break;
         }
         let next = unit(&dv);
@@ -1135,65 +1161,18 @@ fn invariant_direction<T: Scalar>(
             return Ok(u);
         }
     }
-    // The scan: 72 directions, sign changes of the cross product where λ > 0.
-    const SAMPLES: usize = 72;
-    let mut samples = Vec::with_capacity(SAMPLES);
-    for k in 0..SAMPLES {
-        let th = std::f64::consts::TAU * k as f64 / SAMPLES as f64;
-        let w: Vec<T> = vec![of(th.cos()), of(th.sin())];
-        samples.push(match turn(run, st, normals, i, &w) {
-            Ok((c, l, _)) => Some((w, c, l)),
-            Err(_) => None,
-        });
-    }
-    let mut roots: Vec<Vec<T>> = Vec::new();
-    for k in 0..SAMPLES {
-        let (Some(a), Some(c)) = (&samples[k], &samples[(k + 1) % SAMPLES]) else {
-            continue;
-        };
-        let (sa, sc) = (a.1.signum_i8(), c.1.signum_i8());
-        if sa == 0 {
-            if a.2.signum_i8() > 0 {
-                roots.push(a.0.clone());
-            }
-            continue;
-        }
-        if sa * sc > 0 || sc == 0 {
-            continue;
-        }
-        // Bisection along the chord from a to c, normalised.
-        let (mut lo, mut hi) = (T::zero(), T::one());
-        let two = T::one() + T::one();
-        let at = |t: &T| -> Vec<T> {
-            let w: Vec<T> =
-                a.0.iter()
-                    .zip(&c.0)
-                    .map(|(x, y)| x.clone() + (y.clone() - x) * t)
-                    .collect();
-            unit(&w)
-        };
-        for _ in 0..120 {
-            let mid = (lo.clone() + &hi) / two.clone();
-            if (hi.clone() - &lo).to_f64() <= T::epsilon_f64() {
-                break;
-            }
-            let (cm, _, _) = turn(run, st, normals, i, &at(&mid)).map_err(|e| fail(e, st))?;
-            if cm.signum_i8() == sa {
-                lo = mid;
-            } else {
-                hi = mid;
-            }
-        }
-        let root = at(&((lo + hi) / two));
-        let (_, lambda, _) = turn(run, st, normals, i, &root).map_err(|e| fail(e, st))?;
-        if lambda.signum_i8() > 0 {
-            roots.push(root);
-        }
-    }
+    let roots = departure::invariant_directions(b, normals, &mut st.modes, i)
+        .map_err(|e| run.fail(e, st))?;
     let best = roots
         .iter()
-        .max_by(|x, y| dot(x, &guess).to_f64().total_cmp(&dot(y, &guess).to_f64()))
-        .cloned()
+        .max_by(|x, y| {
+            (x.kappa > 0.0).cmp(&(y.kappa > 0.0)).then(
+                dot(&x.u, &guess)
+                    .to_f64()
+                    .total_cmp(&dot(&y.u, &guess).to_f64()),
+            )
+        })
+        .map(|r| r.u.clone())
         .ok_or(FrictionError::NoConsistentModes {
             s: st.s.to_f64(),
             phase: st.phase,
