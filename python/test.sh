@@ -19,6 +19,10 @@ PATH="$venv/bin:$PATH" CARGO_TARGET_DIR="$target" "$venv/bin/python" -m pip inst
 cd "$here/tests"
 status=0
 "$venv/bin/pytest" -q -p no:cacheprovider || status=$?
+# The guide's Python page runs too: its `>>>` examples are doctests, from the workspace root
+# (their paths are the repository's).
+cd "$here/.."
+"$venv/bin/pytest" -q -p no:cacheprovider --doctest-glob='python.md' guide/python.md || status=$?
 # pytest exits 5 when it collected no tests: a failure here, not a pass.
 if [ "$status" -ne 0 ]; then
     echo "python tests failed (pytest exit status $status)" >&2

@@ -90,6 +90,11 @@ pub mod scalar;
 pub mod scene;
 pub mod tools;
 
+/// The guide's Rust examples, compiled and run by `cargo test --doc` so that they cannot go stale.
+#[cfg(doctest)]
+#[doc = include_str!("../guide/library.md")]
+mod guide_library {}
+
 /// The crate's version (the workspace's, in Cargo.toml): `inertance --version` and Python's
 /// `inertance.__version__` print it.
 pub const VERSION: &str = env!("CARGO_PKG_VERSION");

@@ -61,7 +61,7 @@ fn seed() -> u64 {
 // ---------------------------------------------------------------------------------------------
 // The contract on outputs.
 
-/// Keys whose value may be `null` (README, JSON sections).
+/// Keys whose value may be `null` (guide/solving.md and guide/degenerate-cases.md, JSON sections).
 const NULLABLE: &[&str] = &[
     "angle_before_deg",
     "angle_after_deg",

@@ -1,4 +1,4 @@
-//! Regression: `derive` takes a scene's `[params]` as its symbols when none are named (README:
+//! Regression: `derive` takes a scene's `[params]` as its symbols when none are named (guide/solving.md:
 //! "default symbols: the scene's [params]"), but only the CLI did, and by reading the scene
 //! file a second time: a scene piped to `inertance derive -` was refused ("give --symbols"),
 //! and Python's `derive(scene)` evaluated the parameters and silently returned numbers

@@ -7,7 +7,7 @@
 //! its own, as the frictional solve does for its laws: the answering model is printed, the
 //! other is named with its reason on stderr, in the table and in the JSON
 //! (`models.newton = {"error", "status": "jammed"}`), and the exit status is 4 (some model has
-//! no answer; README "Exit status"). With one model, or when no model answers, it stays 3.
+//! no answer; guide/solving.md, "Exit status"). With one model, or when no model answers, it stays 3.
 //!
 //! Poisson's answer by hand (m = 1, v⁰ = 2 into wall 1, k = 1/2): compression stops the rod,
 //! P1c = m v⁰ = 2, P2c = 0; expansion gives k P1c = 1 at wall 1, which drives the rod into

@@ -331,7 +331,7 @@ axis = [0, 0, 1]
 "#;
 
 /// The report's JSON and table carry the reaction: per joint `kind`, `about`, `point`,
-/// `force`, `moment`, and `constraint_wrench` about C (README, "JSON report"); a prismatic
+/// `force`, `moment`, and `constraint_wrench` about C (guide/solving.md, "JSON report"); a prismatic
 /// joint, which has no point, is reduced to C and says so.
 #[test]
 fn the_report_gives_each_joints_force_and_moment() {

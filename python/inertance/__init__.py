@@ -4,7 +4,7 @@ Python bindings of the Rust library ``inertance``, after Dragna, Pandrea and St�
 *Simultaneous Collision of the Rigid Body at Two Points* (Symmetry 13 (2021) 1924).
 Every call converts its arguments, runs the validated Rust library and converts the result:
 
-* :class:`Scene` — a scene (README "Scene files") from a TOML file or string or from Python
+* :class:`Scene` — a scene (guide/scenes.md) from a TOML file or string or from Python
   values, read once and reused across calls;
 * :func:`solve` — impulses (eq. 20, 23), velocities after impact (eq. 24), E_p (eq. 28) and
   ΔE_c (eq. 32), per restitution model; numpy arrays in f64, ``Fraction`` exactly;

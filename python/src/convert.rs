@@ -1,6 +1,6 @@
 //! Every conversion between Python values and the library's, in one place.
 //!
-//! Out of the library: a report's JSON (the CLI's contract, README "JSON report") becomes
+//! Out of the library: a report's JSON (the CLI's contract, guide/solving.md, "JSON report") becomes
 //! Python values with the same keys — in f64 mode numbers become `float` and arrays of numbers
 //! numpy arrays, a value beyond f64 (a JSON string `"1.2e600"`, Δ of a tiny mass) a
 //! `decimal.Decimal`; in exact mode `"p/q"` becomes `fractions.Fraction` and an exact radical

@@ -28,7 +28,7 @@ use inertance::tools::{
 
 use convert::{Mode, json_to_py};
 
-/// A validated scene (README "Scene files"), read once and reused across calls.
+/// A validated scene (guide/scenes.md), read once and reused across calls.
 #[pyclass(frozen, module = "inertance")]
 struct Scene {
     scene: LibScene,
@@ -199,7 +199,7 @@ impl Scene {
     }
 }
 
-/// The result of `solve`: the JSON report's keys as attributes (README "JSON report").
+/// The result of `solve`: the JSON report's keys as attributes (guide/solving.md, "JSON report").
 #[pyclass(frozen, module = "inertance")]
 struct Solution {
     report: Arc<Report>,

@@ -1,5 +1,5 @@
-//! The JSON report: its keys are a public contract (README, "JSON report"), so they change
-//! only with the README.
+//! The JSON report: its keys are a public contract (guide/solving.md, "JSON report"), so they change
+//! only with that page.
 
 use serde_json::{Map, Value as Json, json};
 
@@ -31,7 +31,7 @@ fn tangent_rule(rule: &TangentRule) -> String {
 }
 
 impl Report {
-    /// The JSON report (keys documented in the README).
+    /// The JSON report (keys documented in guide/solving.md).
     pub fn to_json(&self) -> Json {
         let mut models = Map::new();
         for r in &self.models {
@@ -196,7 +196,7 @@ fn contact_json(b: &PointVelocity, a: &PointVelocity) -> Json {
 }
 
 impl FrictionReport {
-    /// One frictional law's object under the report's `friction` (keys in the README).
+    /// One frictional law's object under the report's `friction` (keys in guide/friction.md).
     pub fn to_json(&self) -> Json {
         friction_json(self)
     }

@@ -7,7 +7,7 @@
 //! exception: α = atan2(v_z, v_y) is transcendental, so it is a number in both modes (its
 //! cosine and sine are exact surds).
 //!
-//! The JSON keys are a public contract (README, "JSON report").
+//! The JSON keys are a public contract (guide/solving.md, "JSON report").
 //!
 //! Here: the readout itself ([`Report`], [`Value`]) and how it is read out of a solve, undoing
 //! the normalisation of the solver's axes; `table` renders it for people ([`Report::to_table`]),

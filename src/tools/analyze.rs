@@ -1,5 +1,5 @@
-//! `inertance analyze`: the analysis of a scene as a table or JSON (keys documented in the
-//! README, "analyze").
+//! `inertance analyze`: the analysis of a scene as a table or JSON (keys documented in
+//! guide/degenerate-cases.md).
 
 use serde_json::{Map, Value as Json, json};
 

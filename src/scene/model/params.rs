@@ -200,7 +200,7 @@ fn degrees_at(text: &str, lookup: &dyn Fn(&str) -> Option<String>, depth: usize)
 /// The value `new` (an expression, as written by a user or a sweep) given to a parameter whose
 /// value as written is `old`: one rule for every entry point (`--param`, `sweep --vary`,
 /// Python's `Scene.with_values` and `solve_batch`). When the parameter is written in degrees
-/// ([`written_in_degrees`]), a bare number is a number of degrees: `45` becomes `(45) deg` —
+/// ([`written_in_degrees`]), a bare number is a number of degrees: `45` becomes `45 deg`, `80/3` `(80/3) deg` —
 /// never 45 radians. A value that carries its own unit (`45 deg`) or names other parameters is
 /// taken as written; one that mentions `pi` (radians) is refused with the fix. `Ok(None)`: take
 /// `new` as written.
@@ -245,7 +245,18 @@ pub fn in_unit_of(
             old.trim()
         ));
     }
-    Ok(Some(format!("({}) deg", new.trim())))
+    // A lone number takes the unit as is; anything longer is parenthesised, so that the unit
+    // applies to all of it whatever the grammar's precedence.
+    let lone = match &root.kind {
+        Kind::Lit(_) => true,
+        Kind::Neg(e) => matches!(e.kind, Kind::Lit(_)),
+        _ => false,
+    };
+    Ok(Some(if lone {
+        format!("{} deg", new.trim())
+    } else {
+        format!("({}) deg", new.trim())
+    }))
 }
 
 #[cfg(test)]
@@ -289,9 +300,10 @@ mod tests {
     #[test]
     fn a_bare_number_given_to_a_parameter_in_degrees_is_degrees() {
         let unit = |old: &str, new: &str| in_unit_of(old, new, &none);
-        assert_eq!(unit("20 deg", "45"), Ok(Some("(45) deg".into())));
+        assert_eq!(unit("20 deg", "45"), Ok(Some("45 deg".into())));
         assert_eq!(unit("20 deg", " 80/3 "), Ok(Some("(80/3) deg".into())));
-        assert_eq!(unit("20 deg", "-1.5e1"), Ok(Some("(-1.5e1) deg".into())));
+        assert_eq!(unit("20 deg", "-1.5e1"), Ok(Some("-1.5e1 deg".into())));
+        assert_eq!(unit("20 deg", "2^3"), Ok(Some("(2^3) deg".into())));
         assert_eq!(unit("20 deg", "45 deg"), Ok(None));
         assert_eq!(unit("20 deg", "2*beta"), Ok(None));
         assert_eq!(unit("0.3", "45"), Ok(None));
