@@ -18,7 +18,8 @@ def cli_json(*args):
         ["cargo", "run", "--quiet", "--bin", "inertance", "--", *map(str, args), "--json"],
         cwd=ROOT, capture_output=True, text=True, env=os.environ,
     )
-    assert out.returncode == 0, out.stderr
+    # 4: some model has no answer, the others are printed (guide/solving.md, "Exit status").
+    assert out.returncode in (0, 4), out.stderr
     return json.loads(out.stdout)
 
 
