@@ -160,33 +160,18 @@ fn a_quotient_in_degrees_is_exact_in_radicals() {
 #[test]
 fn a_sweep_in_degrees_writes_its_fractional_points_as_angles() {
     let s = SceneFile::new("angle-sweep", ROD);
-    let csv = s.dir().join("sweep.csv");
-    let out = s.run(&[
-        "sweep",
-        "--vary",
-        "theta=1:60:7",
-        "--out",
-        csv.to_str().expect("utf-8"),
-    ]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let text = std::fs::read_to_string(&csv).expect("written");
-    let rows: Vec<Vec<&str>> = text.lines().map(|l| l.split(',').collect()).collect();
-    let col = |name: &str| rows[0].iter().position(|h| *h == name).expect(name);
+    let csv = s.sweep(&["--vary", "theta=1:60:7"]);
     // Points 1 + 59k/6 degrees: most are fractions.
     let mut fractions = 0;
-    for r in &rows[1..] {
-        let degrees: f64 = r[col("theta")].parse().expect("a number");
+    for r in 0..csv.rows.len() {
+        let degrees: f64 = csv.cell(r, "theta").parse().expect("a number");
         fractions += usize::from(degrees.fract() != 0.0);
-        let p: f64 = r[col("newton_P1")].parse().expect("a number");
+        let p: f64 = csv.cell(r, "newton_P1").parse().expect("a number");
         let expected = rod_impulse(degrees);
         assert!(
             (p - expected).abs() <= 1e-14 * expected,
             "θ = {degrees}°: {p} vs {expected}"
         );
     }
-    assert!(fractions >= 4, "{text}");
+    assert!(fractions >= 4, "{:?}", csv.rows);
 }

@@ -112,26 +112,10 @@ fn one_model_or_none_answering_is_still_status_3() {
 #[test]
 fn a_sweep_fills_the_answering_model_and_marks_the_jammed_one() {
     let s = SceneFile::new("jam-sweep", RODS_BETWEEN_WALLS);
-    let csv = s.dir().join("sweep.csv");
-    let out = s.run(&[
-        "sweep",
-        "--vary",
-        "contact[0].k=0:0.5:2",
-        "--out",
-        csv.to_str().expect("utf-8"),
-    ]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let text = std::fs::read_to_string(&csv).expect("written");
-    let rows: Vec<Vec<&str>> = text.lines().map(|l| l.split(',').collect()).collect();
-    let col = |name: &str| rows[0].iter().position(|h| *h == name).expect(name);
+    let csv = s.sweep(&["--vary", "contact[0].k=0:0.5:2"]);
     // k₁ = 1/2: Newton jams, Poisson stops the rod with (3, 1).
-    let r = &rows[2];
-    assert_eq!(r[col("status")], "jammed");
-    assert!(r[col("newton_P1")].is_empty());
-    assert_eq!(r[col("poisson_P1")].parse::<f64>().ok(), Some(3.0));
-    assert_eq!(r[col("poisson_P2")].parse::<f64>().ok(), Some(1.0));
+    assert_eq!(csv.cell(1, "status"), "jammed");
+    assert!(csv.cell(1, "newton_P1").is_empty());
+    assert_eq!(csv.cell(1, "poisson_P1").parse::<f64>().ok(), Some(3.0));
+    assert_eq!(csv.cell(1, "poisson_P2").parse::<f64>().ok(), Some(1.0));
 }

@@ -59,26 +59,8 @@ fn a_bare_number_given_to_a_parameter_in_degrees_is_degrees_in_the_cli() {
 #[test]
 fn sweep_and_param_read_the_same_degrees() {
     let s = SceneFile::new("units-sweep", TILTED);
-    let csv = s.dir().join("sweep.csv");
-    let out = s.run(&[
-        "sweep",
-        "--vary",
-        "theta=45:46:2",
-        "--out",
-        csv.to_str().expect("utf-8"),
-    ]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let text = std::fs::read_to_string(&csv).expect("written");
-    let rows: Vec<Vec<&str>> = text.lines().map(|l| l.split(',').collect()).collect();
-    let col = rows[0]
-        .iter()
-        .position(|h| *h == "newton_P1")
-        .expect("column");
-    for (row, degrees) in rows[1..].iter().zip(["45", "46"]) {
+    let csv = s.sweep(&["--vary", "theta=45:46:2"]);
+    for (r, degrees) in ["45", "46"].into_iter().enumerate() {
         let j: serde_json::Value = serde_json::from_str(&stdout(&s.run(&[
             "solve",
             "--json",
@@ -89,7 +71,7 @@ fn sweep_and_param_read_the_same_degrees() {
         let solve = j["models"]["newton"]["impulses"][0]
             .as_f64()
             .expect("number");
-        let swept: f64 = row[col].parse().expect("number");
+        let swept: f64 = csv.cell(r, "newton_P1").parse().expect("number");
         assert_eq!(swept, solve, "θ = {degrees}");
         let expected = p1(degrees.parse::<f64>().expect("number").to_radians());
         assert!(

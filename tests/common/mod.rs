@@ -256,6 +256,52 @@ impl SceneFile {
     }
 }
 
+impl SceneFile {
+    /// `inertance sweep FILE args… --out DIR/sweep.csv`, which must succeed: its CSV.
+    pub fn sweep(&self, args: &[&str]) -> Csv {
+        let csv = self.dir.join("sweep.csv");
+        let mut all = vec!["sweep"];
+        all.extend(args);
+        all.extend(["--out", csv.to_str().unwrap()]);
+        let out = self.run(&all);
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        Csv::parse(&std::fs::read_to_string(&csv).unwrap())
+    }
+}
+
+/// A sweep's CSV, its cells by row and column name.
+pub struct Csv {
+    header: Vec<String>,
+    /// The rows after the header.
+    pub rows: Vec<Vec<String>>,
+}
+
+impl Csv {
+    fn parse(text: &str) -> Csv {
+        let mut lines = text
+            .lines()
+            .map(|l| l.split(',').map(str::to_string).collect());
+        Csv {
+            header: lines.next().unwrap_or_default(),
+            rows: lines.collect(),
+        }
+    }
+
+    /// The cell of row `r` (0: the first after the header) in column `name`.
+    pub fn cell(&self, r: usize, name: &str) -> &str {
+        let c = self
+            .header
+            .iter()
+            .position(|h| h == name)
+            .unwrap_or_else(|| panic!("no column {name} in {:?}", self.header));
+        &self.rows[r][c]
+    }
+}
+
 impl Drop for SceneFile {
     fn drop(&mut self) {
         let _ = std::fs::remove_dir_all(&self.dir);
