@@ -16,29 +16,7 @@ use common::SceneFile;
 use serde_json::Value;
 
 /// The ball in the corner of issue 28 (derivations/friction-stick-exit.md), Newton, spatial.
-const CORNER: &str = r#"name = "ball in the corner"
-[body]
-shape = { sphere = 0.1 }
-mass = 0.5
-velocity = [2, 1, -3]
-angular_velocity = [3, -4, 10]
-[[obstacle]]
-name = "floor"
-normal = [0, 0, 1]
-[[obstacle]]
-name = "wall"
-normal = [-1, 0, 0]
-[[contact]]
-obstacle = "floor"
-k = 0.6
-mu = 0.3
-[[contact]]
-obstacle = "wall"
-k = 0.6
-mu = 0.3
-[solve]
-models = ["newton"]
-"#;
+const CORNER: &str = include_str!("../examples/ball-in-corner.toml");
 
 /// Example 8 with μ = 1/5 and ω⁰ = (0, 0, 4): planar, exact (derivations/friction-example-8.md).
 const CORNER_ROUGH: &str = r#"name = "Example 8 with friction"

@@ -18,24 +18,7 @@ mod common;
 
 use common::SceneFile;
 
-const RODS_BETWEEN_WALLS: &str = r#"
-name = "rod between two walls"
-[body]
-mass = 1
-inertia = [1, 1, 1]
-velocity = [-2, 0, 0]
-angular_velocity = [0, 0, 0]
-[[contact]]
-point = [-1, 0, 0]
-normal = [-1, 0, 0]
-k = 0.5
-[[contact]]
-point = [1, 0, 0]
-normal = [1, 0, 0]
-k = 0.5
-[solve]
-law = "unilateral"
-"#;
+const RODS_BETWEEN_WALLS: &str = include_str!("../examples/rod-between-walls.toml");
 
 #[test]
 fn poisson_answers_while_newton_is_jammed() {

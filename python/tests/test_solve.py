@@ -164,30 +164,7 @@ def test_friction_readout_per_law(tmp_path):
     assert r.to_json()["friction"] == cli_json("solve", path, "--exact")["friction"]
 
 
-CORNER = """
-name = "ball in the corner (issue 28)"
-[body]
-shape = { sphere = 0.1 }
-mass = 0.5
-velocity = [2, 1, -3]
-angular_velocity = [3, -4, 10]
-[[obstacle]]
-name = "floor"
-normal = [0, 0, 1]
-[[obstacle]]
-name = "wall"
-normal = [-1, 0, 0]
-[[contact]]
-obstacle = "floor"
-k = 0.6
-mu = 0.3
-[[contact]]
-obstacle = "wall"
-k = 0.6
-mu = 0.3
-[solve]
-models = ["newton"]
-"""
+CORNER = (BAR.parent / "ball-in-corner.toml").read_text()
 
 
 def test_friction_tolerance_as_the_cli(tmp_path):

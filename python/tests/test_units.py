@@ -62,23 +62,7 @@ def test_notes_on_likely_slips_reach_python():
 
 def test_a_jammed_model_does_not_hide_the_other():
     # Issue 28, item 10 (tests/regression_jam_hides_other_model.rs): a rod between two walls.
-    jam = """
-[body]
-mass = 1
-inertia = [1, 1, 1]
-velocity = [-2, 0, 0]
-angular_velocity = [0, 0, 0]
-[[contact]]
-point = [-1, 0, 0]
-normal = [-1, 0, 0]
-k = 0.5
-[[contact]]
-point = [1, 0, 0]
-normal = [1, 0, 0]
-k = 0.5
-[solve]
-law = "unilateral"
-"""
+    jam = BAR.parent / "rod-between-walls.toml"
     r = inertance.solve(jam, exact=True)
     assert r.newton is None
     assert r.failures["newton"]["status"] == "jammed"
