@@ -46,6 +46,7 @@
 //! [`set_value`]; [`pipeline`] runs a scene from assembly to report; [`seed`] marks the input
 //! a sensitivity run differentiates with respect to.
 
+pub mod limits;
 pub mod model;
 mod path;
 pub mod pipeline;

@@ -14,6 +14,7 @@ use crate::mechanics::contact::Surd;
 use crate::report::{Value, Wide};
 use crate::scalar::Scalar;
 use crate::scene::Scene;
+use crate::scene::limits::{friction_limit, too_many};
 use crate::scene::pipeline::{RunError, prepare};
 
 /// The readout of an analysis, scalar-free.
@@ -107,10 +108,9 @@ pub struct UnilateralReport {
 /// (`null_space_dimension`; `null_space` is absent), Δ = 0 and cond₂ G = ∞ whenever N > rank G.
 pub const DENSE_CONTACTS: usize = 24;
 
-/// The most contacts `analyze` takes in exact arithmetic (rationals or symbols). The analysis
-/// costs O(N) rational operations; what remains is the size of the numbers and of the report
-/// (1000 contacts of a fuzzed scene in about a second, release build).
-pub const MAX_EXACT_CONTACTS: usize = 1000;
+/// The most contacts `analyze` (as `solve`) takes in exact arithmetic
+/// ([`crate::scene::limits`]).
+pub use crate::scene::limits::MAX_EXACT_CONTACTS;
 
 /// The most contacts `analyze` takes in floats: the analysis is linear in N (10⁵ contacts in
 /// a fraction of a second); the limit bounds the report (a few hundred bytes per contact).
@@ -142,15 +142,13 @@ pub fn analyze_scene<T: Scalar>(
         (MAX_FLOAT_CONTACTS, "analyze", String::new())
     };
     if n > limit {
-        return Err(RunError::Scene(crate::scene::SceneError {
-            file: scene.file.clone(),
-            key: "contact".into(),
-            value: Some(format!("{n} contacts")),
-            message: format!(
-                "`{command}` takes at most {limit} contacts: its work is linear in N but the \
-                 numbers and the report grow with it{instead}"
-            ),
-        }));
+        return Err(RunError::Scene(too_many(
+            scene,
+            limit,
+            &format!("`{command}`"),
+            "its work is linear in N but the numbers and the report grow with it",
+            &instead,
+        )));
     }
     let models = models.unwrap_or(&scene.models);
     let problem = prepare::<T>(scene)?;
@@ -411,6 +409,14 @@ pub struct FrictionAnalysis {
 /// The friction part of the analysis of `scene` in `T`.
 fn friction_analysis<T: Scalar>(scene: &Scene, problem: &Problem<T>) -> FrictionAnalysis {
     use crate::impact::friction::Blocks;
+    if let Some(refusal) = friction_limit(scene) {
+        // The thresholds and the integration both work on the 3N×3N blocks.
+        return FrictionAnalysis {
+            stick_thresholds: vec![None; problem.contacts().len()],
+            readouts: Vec::new(),
+            failures: vec![refusal.to_string()],
+        };
+    }
     let planar = Blocks::planar(problem);
     let spatial = if planar.is_none() && !T::IS_EXACT {
         let frames: Option<Vec<_>> = problem

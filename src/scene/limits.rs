@@ -1,0 +1,65 @@
+//! The sizes beyond which a scene is refused at once, rather than worked on for minutes or
+//! allocated beyond memory: each limit names what grows faster than the scene.
+//!
+//! - **Exact arithmetic**, [`MAX_EXACT_CONTACTS`]: `solve` and `analyze` take O(N) rational
+//!   operations (the contact wrenches reduced to rank G ≤ 6 independent ones,
+//!   [`crate::analysis::wrench_space`]), but the numbers and the report grow with N.
+//! - **Friction**, [`MAX_FRICTION_CONTACTS`]: the integration in impulse space works on the
+//!   3N×3N matrix of the contacts' inertances ([`crate::impact::friction`]), O(N²) memory —
+//!   2000 contacts took 1.5 GB, 60,000 would take 1.4 TB.
+//!
+//! The simultaneous law itself needs no limit: beyond rank G contacts, G is singular whatever
+//! the numbers, and `solve` says so from the wrenches in O(N) ([`super::pipeline`]). The
+//! unilateral law's limit is Lemke's (N×N tableau), [`crate::impact::unilateral`]; `analyze`'s
+//! in floats bounds its report ([`crate::tools::analyze`]).
+
+use super::{Scene, SceneError};
+
+/// The most contacts a scene may have in exact arithmetic (rationals or symbols), for `solve`,
+/// `analyze` and `sweep` alike: 1000 contacts of a fuzzed scene take about a second (release
+/// build).
+pub const MAX_EXACT_CONTACTS: usize = 1000;
+
+/// The most contacts with friction (or an energetic law) the integration in impulse space
+/// takes, in any arithmetic: about 100 MB of matrices at the limit.
+pub const MAX_FRICTION_CONTACTS: usize = 500;
+
+/// The refusal of `scene`, whose contacts number more than `limit` for `what` (e.g.
+/// "`solve --exact`"); `instead` says what to do (e.g. "; `solve` without --exact takes any
+/// number"). Key `contact`, the count as the value.
+pub fn too_many(scene: &Scene, limit: usize, what: &str, why: &str, instead: &str) -> SceneError {
+    SceneError {
+        file: scene.file.clone(),
+        key: "contact".into(),
+        value: Some(format!("{} contacts", scene.contacts.len())),
+        message: format!("{what} takes at most {limit} contacts: {why}{instead}"),
+    }
+}
+
+/// The refusal of a frictional `scene` with more than [`MAX_FRICTION_CONTACTS`] contacts;
+/// `None` within the limit.
+pub fn friction_limit(scene: &Scene) -> Option<SceneError> {
+    (scene.contacts.len() > MAX_FRICTION_CONTACTS).then(|| {
+        too_many(
+            scene,
+            MAX_FRICTION_CONTACTS,
+            "the integration with friction",
+            "it works on the 3N×3N matrix of the contacts' inertances",
+            "; without `mu` (and `[solve] restitution`) the simultaneous law takes any number",
+        )
+    })
+}
+
+/// The refusal of `scene` in exact arithmetic beyond [`MAX_EXACT_CONTACTS`] for `command`
+/// (`solve`, `analyze`, `sweep`); `None` within the limit.
+pub fn exact_limit(scene: &Scene, command: &str) -> Option<SceneError> {
+    (scene.contacts.len() > MAX_EXACT_CONTACTS).then(|| {
+        too_many(
+            scene,
+            MAX_EXACT_CONTACTS,
+            &format!("`{command} --exact`"),
+            "its work is linear in N but the numbers and the report grow with it",
+            &format!("; `{command}` without --exact takes more"),
+        )
+    })
+}
