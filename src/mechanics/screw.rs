@@ -91,6 +91,31 @@ pub fn norm2<T: Scalar>(u: &Vec3<T>) -> T {
     dot(u, u)
 }
 
+/// `u` times a power of two that brings its largest component near 1, in float types: a
+/// direction, which any length serves, whose squared norm then neither overflows nor
+/// underflows (the velocity of a point of a body spinning at 10³⁰⁸ rad/s squares to ∞ in f64,
+/// and a contact frame built on it fell back to a coordinate axis). The scaling is exact, so
+/// every quantity normalised by |u| comes out bit for bit as from `u`. Exact types, which
+/// cannot overflow, return `u` as it is.
+pub fn rescaled<T: Scalar>(u: &Vec3<T>) -> Vec3<T> {
+    if T::IS_EXACT {
+        return u.clone();
+    }
+    let largest = u
+        .iter()
+        .map(|x| x.to_f64().abs())
+        .filter(|x| x.is_finite())
+        .fold(0.0, f64::max);
+    if largest == 0.0 {
+        return u.clone();
+    }
+    let k = largest.log2().floor().clamp(-1000.0, 1000.0) as i32;
+    match T::from_f64(2f64.powi(-k)) {
+        Some(f) if k != 0 => u.map(|x| x * &f),
+        _ => u.clone(),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -25,7 +25,8 @@ use crate::scalar::symbolic::RatFun;
 use crate::scalar::{Exact, Scalar};
 use crate::scene::limits::{exact_limit, friction_limit};
 use crate::scene::scale::{Units, out_of_range, output_beyond, scale, unrepresentable, unscale};
-use crate::scene::{OUT_OF_RANGE, Scene, SceneError};
+use crate::scene::{ConstraintsSpec, OUT_OF_RANGE, Scene, SceneError};
+use num_traits::Zero;
 
 /// Why a scene could not be solved.
 #[derive(Debug, thiserror::Error)]
@@ -98,19 +99,64 @@ pub fn run_with<T: Scalar>(
         prepared => prepared?,
     };
     let mut solved = run_prepared_with(scene, &prepared.problem, models, allow_singular)?;
-    if let Some(units) = &prepared.units {
-        unscale(&mut solved.report, units);
-    }
-    if let Some(output) = out_of_range(&solved.report) {
-        return Err(RunError::Scene(output_beyond(
-            scene,
-            T::NAME,
-            output,
-            ", even in units of mass, length and time scaled to the scene",
-        )));
-    }
+    finish_float::<T>(scene, &mut solved, prepared.units.as_ref(), SCALED)?;
     solved.report.scene.clone_from(&scene.name);
     Ok(solved)
+}
+
+/// How a float solve in units scaled to the scene was tried, for refusals.
+const SCALED: &str = ", even in units of mass, length and time scaled to the scene";
+
+/// A float report put back into the scene's units (`units`, when it was solved in scaled
+/// ones), its written constraint screws echoed as written, and refused when a physical output
+/// is still beyond `T` (`how`: in which units it was solved). Exact reports are left as they
+/// are.
+fn finish_float<T: Scalar>(
+    scene: &Scene,
+    solved: &mut Solved,
+    units: Option<&Units>,
+    how: &str,
+) -> Result<(), RunError> {
+    if let Some(units) = units {
+        unscale(&mut solved.report, units);
+    }
+    if T::IS_EXACT {
+        return Ok(());
+    }
+    echo_written_screws(&mut solved.report, scene);
+    match out_of_range(&solved.report) {
+        Some(output) => Err(RunError::Scene(output_beyond(scene, T::NAME, output, how))),
+        None => Ok(()),
+    }
+}
+
+/// The constraint screws a scene writes out (`free`, and `blocked` when given) are inputs: a
+/// number of theirs that f64 does not hold (a blocked screw written `"10^400"`, which came out
+/// as `inf` in the table and `null` in the JSON) is reported as written, its text.
+fn echo_written_screws(report: &mut Report, scene: &Scene) {
+    let (Some(c), Some(ConstraintsSpec::Screws { free, blocked })) =
+        (&mut report.constraints, &scene.constraints)
+    else {
+        return;
+    };
+    let written = blocked.as_ref().filter(|_| !c.blocked_derived);
+    let pairs = c
+        .free
+        .iter_mut()
+        .zip(free)
+        .chain(c.blocked.iter_mut().zip(written.into_iter().flatten()));
+    for (values, numbers) in pairs {
+        for (v, n) in values.iter_mut().zip(numbers) {
+            let zero = matches!(&n.exact, Ok(q) if q.is_zero());
+            if !n.approx.is_finite() || (n.approx == 0.0 && !zero) {
+                *v = Value {
+                    exact: Some(n.text.clone()),
+                    wide: None,
+                    ..v.clone()
+                };
+            }
+        }
+    }
 }
 
 /// A scene's problem prepared in the float units [`super::scale`] picks for it: solved by
@@ -155,17 +201,7 @@ pub fn run_prepared_scaled<T: Scalar>(
     models: Option<&[Model]>,
 ) -> Result<Solved, RunError> {
     let mut solved = run_prepared_with(scene, &prepared.problem, models, false)?;
-    if let Some(units) = &prepared.units {
-        unscale(&mut solved.report, units);
-    }
-    if let (false, Some(output)) = (T::IS_EXACT, out_of_range(&solved.report)) {
-        return Err(RunError::Scene(output_beyond(
-            scene,
-            T::NAME,
-            output,
-            ", even in units of mass, length and time scaled to the scene",
-        )));
-    }
+    finish_float::<T>(scene, &mut solved, prepared.units.as_ref(), SCALED)?;
     Ok(solved)
 }
 
@@ -192,15 +228,13 @@ pub fn run_prepared<T: Scalar>(
     problem: &Problem<T>,
     models: Option<&[Model]>,
 ) -> Result<Solved, RunError> {
-    let solved = run_prepared_with(scene, problem, models, false)?;
-    if let (false, Some(output)) = (T::IS_EXACT, out_of_range(&solved.report)) {
-        return Err(RunError::Scene(output_beyond(
-            scene,
-            T::NAME,
-            output,
-            " in the scene's units (`run_with` scales them)",
-        )));
-    }
+    let mut solved = run_prepared_with(scene, problem, models, false)?;
+    finish_float::<T>(
+        scene,
+        &mut solved,
+        None,
+        " in the scene's units (`run_with` scales them)",
+    )?;
     Ok(solved)
 }
 

@@ -165,7 +165,10 @@ pub fn scale(scene: &Scene) -> Option<(Scene, Units)> {
         (Some(x), Some(y)) => Some(x.max(y)),
         (x, y) => x.or(y),
     };
-    let c = speed.map_or(0, |s| b - s);
+    let c = speed.map_or(0, |s| {
+        let approach = approach_exponent(scene).unwrap_or(s);
+        b - approach.clamp(s - HEADROOM, s)
+    });
     let mut s = scene.clone();
     scale_number(&mut s.mass, -a);
     // The products of inertia have the moments' dimension, M·L².
@@ -227,6 +230,45 @@ pub fn scale(scene: &Scene) -> Option<(Scene, Units)> {
         || units.normals.iter().any(|&e| e != 0)
         || units.free.iter().chain(&units.blocked).any(|&e| e != 0))
     .then_some((s, units))
+}
+
+/// How far above 1 the largest velocity may be put, as a power of two, for the velocities
+/// along the normals to come out near 1: the largest velocity, a contact point's (|r′| < 2√3)
+/// and its components along the axes then stay below 2^970, well inside f64.
+const HEADROOM: i64 = 960;
+
+/// ⌊log₂⌋ within two of the largest speed of approach |v_ix⁰| = |n_i·v_C + ω·(r_i × n_i)|/|n_i|
+/// (m/s), computed exactly; `None` when every one is zero, or one cannot be computed exactly
+/// (an irrational number, or a normal from the `[surface]`).
+///
+/// Impulses and energies scale with these speeds, not with the largest velocity: a unit sphere
+/// spinning at ω = 10³⁰⁸ rad/s that hits a floor at 1 m/s, put in a time unit that makes
+/// ω about 1, had v_C = 2⁻¹⁰²³ (subnormal) and both energies, of order 2⁻²⁰⁴⁶ in those units,
+/// flushed to zero (they are 9/8 J and 3/8 J). The time unit is therefore chosen to make the
+/// speeds of approach about 1, as far as [`HEADROOM`] allows the other velocities to grow.
+fn approach_exponent(scene: &Scene) -> Option<i64> {
+    fn triple(x: &[Number; 3]) -> Option<[&BigRational; 3]> {
+        let exact = |k: usize| x[k].exact.as_ref().ok();
+        Some([exact(0)?, exact(1)?, exact(2)?])
+    }
+    let v = triple(&scene.velocity)?;
+    let w = triple(&scene.angular_velocity)?;
+    let mut most: Option<i64> = None;
+    for contact in &scene.contacts {
+        let normal = contact.normal.as_ref()?;
+        let (r, n) = (triple(&contact.point)?, triple(normal)?);
+        let mut speed = BigRational::zero();
+        for k in 0..3 {
+            let (i, j) = ((k + 1) % 3, (k + 2) % 3);
+            let moment = r[i] * n[j] - r[j] * n[i];
+            speed += v[k] * n[k] + w[k] * moment;
+        }
+        let size = largest(normal.iter())?;
+        if let Some(e) = exponent(&speed) {
+            most = Some(most.map_or(e - size, |m| m.max(e - size)));
+        }
+    }
+    most
 }
 
 /// The constraints in units of length 2^b: a joint's point divided by 2^b (its axis is a
@@ -374,24 +416,26 @@ pub fn unscale(report: &mut Report, u: &Units) {
     }
     if let Some(c) = &mut report.constraints {
         // D_a = [ω′; v′·2^b]·2^(f_a), U_a = [F′; M′·2^b]·2^(g_a), and M_red = Dᵀ η M D has
-        // the dimension of an energy per unit of each screw's own scale.
+        // the dimension of an energy per unit of each screw's own scale. A screw's scale is
+        // the user's (a blocked screw written "10^400"), so these may leave f64: held wide.
         for (screws, exps) in [(&mut c.free, &u.free), (&mut c.blocked, &u.blocked)] {
             for (screw, &f) in screws.iter_mut().zip(exps) {
                 for (k, x) in screw.iter_mut().enumerate() {
-                    times(x, if k < 3 { f } else { f + b });
+                    times_wide(x, if k < 3 { f } else { f + b });
                 }
             }
         }
         for (row, &fa) in c.reduced_mass.iter_mut().zip(&u.free) {
             for (x, &fb) in row.iter_mut().zip(&u.free) {
-                times(x, a + 2 * b + fa + fb);
+                times_wide(x, a + 2 * b + fa + fb);
             }
         }
     }
     for m in &mut report.models {
-        // U q = r: [F′; M′] q′ in the scaled units is the wrench [F′; M′·2^b]·q′·2^(a+b−c).
+        // U q = r: [F′; M′] q′ in the scaled units is the wrench [F′; M′·2^b]·q′·2^(a+b−c);
+        // q_a is per unit of U_a as written, so it is as wide as U_a's scale is.
         for (q, &g) in m.constraint_impulses.iter_mut().zip(&u.blocked) {
-            times(q, a + b - c - g);
+            times_wide(q, a + b - c - g);
         }
         for p in &mut m.impulses {
             times(p, a + b - c);
@@ -453,11 +497,12 @@ pub fn unscale(report: &mut Report, u: &Units) {
 }
 
 /// The first output of `report` that f64 does not hold, by name (`None`: all are finite).
-/// Δ and the inertances are pure powers of the units and no physical quantity: beyond f64 they
-/// are reported from their scaled value ([`Value::wide`]), so they count as held then.
+/// Δ, the inertances, the constraints' screws, M_red and the constraint impulses depend on
+/// the units or on the scale the user gave a screw: beyond f64 they are reported from their
+/// scaled value ([`Value::wide`]), or a written screw as written (its text), and count as held.
 pub fn out_of_range(report: &Report) -> Option<&'static str> {
     let ok = |v: &Value| v.f64.is_finite();
-    let held = |v: &Value| ok(v) || v.wide.is_some();
+    let held = |v: &Value| ok(v) || v.wide.is_some() || v.exact.is_some();
     let point = |p: &PointVelocity| p.components.iter().all(ok);
     let mut checks: Vec<(&'static str, bool)> = vec![
         (
@@ -474,6 +519,13 @@ pub fn out_of_range(report: &Report) -> Option<&'static str> {
         (
             "contact velocities before impact",
             report.contacts_before.iter().all(point),
+        ),
+        (
+            "constraints",
+            report.constraints.as_ref().is_none_or(|c| {
+                c.free.iter().chain(&c.blocked).flatten().all(held)
+                    && c.reduced_mass.iter().flatten().all(held)
+            }),
         ),
     ];
     for m in &report.models {
@@ -492,7 +544,10 @@ pub fn out_of_range(report: &Report) -> Option<&'static str> {
                 "energies",
                 ok(&m.lost_velocity_energy) && ok(&m.kinetic_energy_loss),
             ),
-            ("constraint impulses", m.constraint_impulses.iter().all(ok)),
+            (
+                "constraint impulses",
+                m.constraint_impulses.iter().all(held),
+            ),
         ]);
     }
     for f in &report.friction {
