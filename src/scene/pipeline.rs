@@ -24,7 +24,10 @@ use crate::report::{FrictionReport, Report, Value};
 use crate::scalar::symbolic::RatFun;
 use crate::scalar::{Exact, Scalar};
 use crate::scene::limits::{exact_limit, friction_limit};
-use crate::scene::scale::{Units, out_of_range, output_beyond, scale, unrepresentable, unscale};
+use crate::scene::scale::{
+    Units, out_of_range, output_below, output_beyond, precision_lost, scale, unrepresentable,
+    unscale,
+};
 use crate::scene::{ConstraintsSpec, OUT_OF_RANGE, Scene, SceneError};
 use num_traits::Zero;
 
@@ -117,6 +120,11 @@ fn finish_float<T: Scalar>(
     units: Option<&Units>,
     how: &str,
 ) -> Result<(), RunError> {
+    if !T::IS_EXACT {
+        if let Some(output) = precision_lost(&solved.report) {
+            return Err(RunError::Scene(output_below(scene, T::NAME, output, how)));
+        }
+    }
     if let Some(units) = units {
         unscale(&mut solved.report, units);
     }

@@ -587,6 +587,76 @@ pub fn out_of_range(report: &Report) -> Option<&'static str> {
         .map(|(name, _)| name)
 }
 
+/// The least work P_i v_ix⁰ (the largest impulse times the largest speed of approach) whose
+/// energies keep f64's precision: a term of their sums below 2⁻¹⁰²² is subnormal, off by up
+/// to 2⁻¹⁰⁷⁵, and at most 300 terms (the unilateral law's limit) stay within ε of the energy
+/// when it is at least 300·2⁻¹⁰⁷⁵/2⁻⁵³ < 2⁻¹⁰¹².
+const LEAST_WORK: f64 = f64::MIN_POSITIVE * 1024.0;
+
+/// The first physical output of `report`, computed in whatever units it was solved in, whose
+/// computation left f64's full precision (`None`: none did). Per group — the impulses, the
+/// velocities after impact — the largest magnitude must be 0 or a normal number (≥ 2⁻¹⁰²²);
+/// the energies are checked on their terms, which must reach [`LEAST_WORK`], since a flushed
+/// energy is simply 0. A group's small members are not checked: a component 10⁻³¹⁰ of the
+/// largest one meets the contract, whose bounds are norms.
+///
+/// So a solve that flushed a result is refused rather than printed: before the time unit was
+/// chosen from the speeds of approach, a sphere spinning at 10³⁰⁸ rad/s gave E_p = ΔE_c = 0.
+pub fn precision_lost(report: &Report) -> Option<&'static str> {
+    let largest =
+        |values: &mut dyn Iterator<Item = &Value>| values.map(|v| v.f64.abs()).fold(0.0, f64::max);
+    let lost = |m: f64| m > 0.0 && m < f64::MIN_POSITIVE;
+    let approach = largest(&mut report.contacts_before.iter().map(|p| &p.components[0]));
+    for m in &report.models {
+        let impulses = largest(
+            &mut m
+                .impulses
+                .iter()
+                .chain(m.compression_impulses.iter().flatten()),
+        );
+        let velocities = largest(
+            &mut m
+                .angular_velocity
+                .iter()
+                .chain(&m.velocity)
+                .chain(m.contacts.iter().flat_map(|p| &p.components)),
+        );
+        let work = impulses.log2() + approach.log2();
+        let energies_lost = impulses > 0.0 && approach > 0.0 && work < LEAST_WORK.log2();
+        for (name, gone) in [
+            ("impulses", lost(impulses)),
+            ("velocities after impact", lost(velocities)),
+            ("energies", energies_lost),
+        ] {
+            if gone {
+                return Some(name);
+            }
+        }
+    }
+    for f in &report.friction {
+        let impulses = largest(&mut f.contacts.iter().map(|p| &p.normal_impulse));
+        let velocities = largest(&mut f.angular_velocity.iter().chain(&f.velocity));
+        let energies = largest(
+            &mut [
+                &f.lost_velocity_energy,
+                &f.kinetic_energy_loss,
+                &f.friction_dissipation,
+            ]
+            .into_iter(),
+        );
+        for (name, m) in [
+            ("impulses", impulses),
+            ("velocities after impact", velocities),
+            ("energies", energies),
+        ] {
+            if lost(m) {
+                return Some(name);
+            }
+        }
+    }
+    None
+}
+
 /// The key of the scene's number farthest from 1 in magnitude (the likeliest culprit when a
 /// result is out of range), with its text.
 pub fn most_extreme(scene: &Scene) -> Option<(String, String)> {
@@ -614,6 +684,23 @@ pub fn output_beyond(scene: &Scene, name: &str, output: &str, how: &str) -> supe
         message: format!(
             "the {output} are beyond the range of {name}{how}; this number sets the extreme \
              scale — {}",
+            super::OUT_OF_RANGE
+        ),
+    }
+}
+
+/// The refusal of a physical `output` whose computation in the float type `name` lost its
+/// precision to underflow ([`precision_lost`]) even in units scaled to the scene (`how`):
+/// names the output and the input farthest from 1.
+pub fn output_below(scene: &Scene, name: &str, output: &str, how: &str) -> super::SceneError {
+    let (key, value) = most_extreme(scene).unwrap_or_default();
+    super::SceneError {
+        file: scene.file.clone(),
+        key,
+        value: Some(value),
+        message: format!(
+            "the {output} fall below the range where {name} keeps its precision{how}, so they \
+             would be printed wrong; this number sets the extreme scale — {}",
             super::OUT_OF_RANGE
         ),
     }
