@@ -502,9 +502,11 @@ fn scaled_det<T: Scalar>(scene: &Scene) -> Option<Value> {
 
 impl AnalysisReport {
     /// Whether every reported number is finite (the condition number may be ∞: G singular);
-    /// Δ beyond f64 counts when held as a [`Wide`].
+    /// Δ beyond f64 counts when held as a [`Wide`], and an exact value by its text (a sphere
+    /// spinning at 10³⁰⁸ rad/s has T⁰ = 2·10⁶¹⁵ J, which `analyze --exact` refused as beyond
+    /// what "exact can hold").
     fn finite(&self) -> bool {
-        let ok = |v: &Value| v.f64.is_finite();
+        let ok = |v: &Value| v.f64.is_finite() || v.exact.is_some();
         let all = |v: &[Value]| v.iter().all(ok);
         (ok(&self.det) || self.det.wide.is_some())
             && ok(&self.kinetic_energy_before)
