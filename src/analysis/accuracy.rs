@@ -291,7 +291,7 @@ fn to_f64(x: &Exact) -> f64 {
 }
 
 /// ‖v‖_M = (2 T(v))^½ of an exact twist.
-fn energy_norm(body: &RigidBody<Exact>, v: &Screw<Exact>) -> f64 {
+pub fn energy_norm(body: &RigidBody<Exact>, v: &Screw<Exact>) -> f64 {
     (2.0 * to_f64(&body.kinetic_energy(v))).sqrt()
 }
 
@@ -315,14 +315,19 @@ fn exact_screw<T: Scalar>(v: &Screw<T>) -> Option<Screw<Exact>> {
     Some(out)
 }
 
-/// The contract's bounds on the impulses and the twist of a float solve of `model` with unit
-/// roundoff `eps` (module docs), from the exact solve, with the speeds they are built from.
+/// The contract's bounds on the impulses, the twist and the energies of a float solve of
+/// `model` with unit roundoff `eps` (module docs), from the exact solve, with the speeds they
+/// are built from. (The contact velocities' bounds are per axis: [`measure`].)
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Bounds {
     /// B_P, on ‖δP‖₂ of the physical impulses P_i = P̂_i |n_i|.
     pub impulses: f64,
     /// B_v, on ‖δv‖_M of the twist after impact.
     pub twist: f64,
+    /// On |δE_p|: ‖Δv‖_M B_v + N ε E_p.
+    pub lost_velocity_energy: f64,
+    /// On |δΔE_c|: 3 V B_v + N ε V².
+    pub kinetic_energy_loss: f64,
     /// ‖v⁰‖_M ([`speeds`]).
     pub v0: f64,
     /// ‖Δv‖_M ([`speeds`]).
@@ -358,13 +363,17 @@ impl Bounds {
         for (i, f) in exact.frames().iter().enumerate() {
             size2 += &exact_out.impulses_hat[i] * &exact_out.impulses_hat[i] * &f.norm2[0];
         }
+        let twist = c * eps * (cond.cond.sqrt() * speed + 4.0 * spread * cond.cond * v0);
+        let n = exact.contacts() as f64;
         Bounds {
             impulses: 4.0
                 * c
                 * eps
                 * (cond.cond.sqrt() * to_f64(&size2).sqrt()
                     + cond.cond * speed / cond.lambda_max.sqrt()),
-            twist: c * eps * (cond.cond.sqrt() * speed + 4.0 * spread * cond.cond * v0),
+            twist,
+            lost_velocity_energy: dv * twist + n * eps * to_f64(&exact_out.lost_velocity_energy),
+            kinetic_energy_loss: 3.0 * speed * twist + n * eps * speed * speed,
             v0,
             dv,
         }
@@ -385,9 +394,8 @@ pub fn measure<T: Scalar>(
     let eps = T::epsilon_f64();
     let problem = exact.problem();
     let body = problem.body();
-    let n = exact.contacts();
     let bounds = Bounds::of(exact, cond, model, exact_out, eps);
-    let (norm_dv, speed, b_v) = (bounds.dv, bounds.v0 + bounds.dv, bounds.twist);
+    let (speed, b_v) = (bounds.v0 + bounds.dv, bounds.twist);
 
     // Impulses, physical: P_i = P̂_i |n_i|.
     let mut diff2 = Exact::zero();
@@ -433,17 +441,16 @@ pub fn measure<T: Scalar>(
         }
     }
 
-    let e_p = to_f64(&exact_out.lost_velocity_energy);
     let err = |x: &T, e: &Exact| -> Option<f64> {
         Some(to_f64(&(Exact::from(x.exact_value()?) - e).abs()))
     };
     let lost = Check {
         error: err(&out.lost_velocity_energy, &exact_out.lost_velocity_energy)?,
-        bound: norm_dv * b_v + n as f64 * eps * e_p,
+        bound: bounds.lost_velocity_energy,
     };
     let loss = Check {
         error: err(&out.kinetic_energy_loss, &exact_out.kinetic_energy_loss)?,
-        bound: 3.0 * speed * b_v + n as f64 * eps * speed * speed,
+        bound: bounds.kinetic_energy_loss,
     };
     Some([impulses, twist, contact, lost, loss])
 }
