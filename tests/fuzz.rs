@@ -634,8 +634,8 @@ impl Drop for Scratch {
 // Runs.
 
 /// `analyze` on more than this many contacts is left to release builds (the long run): in a
-/// debug build its f64 Lemke pivots (the unilateral part of the report) take 11 s at 220
-/// contacts (0.3 s in release). Beyond `tools::analyze::MAX_EXACT_CONTACTS` (exact) and
+/// debug build its f64 Lemke pivots (the unilateral part of the report) take up to 30 s at
+/// 200 contacts (0.3 s in release). Beyond `tools::analyze::MAX_EXACT_CONTACTS` (exact) and
 /// `MAX_FLOAT_CONTACTS` it refuses at once (tests/regression_analyze_many_contacts.rs).
 /// `INERTANCE_FUZZ_ALL` runs it in debug too.
 const ANALYZE_MAX_CONTACTS: usize = 64;
@@ -811,7 +811,9 @@ fn corpus_files_keep_the_contract() {
 
 /// `tests/fuzz_corpus/large/`: findings too large for the every-command pass above (hundreds
 /// to a thousand contacts), each through the binary with `solve` (f64, `--exact`, the
-/// unilateral law) and `analyze`, under the same contract.
+/// unilateral law) and `analyze` (left to release builds beyond 64 contacts, as in the random
+/// run: its f64 Lemke path takes 30 s at 200 contacts in a debug build, 0.3 s in release),
+/// under the same contract.
 #[test]
 fn large_corpus_files_keep_the_contract() {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fuzz_corpus/large");
@@ -838,7 +840,11 @@ fn large_corpus_files_keep_the_contract() {
         let d = scratch.0.join(f.file_stem().unwrap());
         std::fs::create_dir_all(&d).unwrap();
         std::fs::copy(f, d.join("scene.toml")).unwrap();
+        let contacts = Scene::load(f).map_or(0, |s| s.contacts.len());
         for (args, json) in runs {
+            if args[0] == "analyze" && skip_analyze(contacts) {
+                continue;
+            }
             if let Some(fault) = contract(args, &exe(args, &d), json) {
                 failures.push(format!("{}: {fault}", f.display()));
             }

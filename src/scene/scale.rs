@@ -11,8 +11,10 @@
 //! n_i′ = n_i/2^(e_i),  y_i′ = y_i/2^(f_i)    (an axis is a direction: any length serves)
 //! ```
 //!
-//! with a, b from the mass and the largest contact coordinate, c making the largest velocity
-//! (|v_C| or |ω|·L) about 1, and e_i, f_i the axes' own scales; J′ scales every entry of the
+//! with a, b from the mass and the largest contact coordinate, c making the largest speed of
+//! approach |v_ix⁰| about 1 — impulses and energies scale with it — as far as the largest
+//! velocity (|v_C| or |ω|·L) may grow, to 2⁹⁶⁰ ([`HEADROOM`]; the largest velocity about 1
+//! when the speeds of approach are not computed exactly), and e_i, f_i the axes' own scales; J′ scales every entry of the
 //! inertia tensor (a full tensor's entries off the diagonal as well). The laws are invariant
 //! under this change of units (k and μ are dimensionless), and every output is scaled back by its
 //! dimension: impulses M·L/T, velocities L/T, ω 1/T, energies M·L²/T², inertances 1/M, Δ 1/M^N.
@@ -47,10 +49,13 @@
 //! as an irrational expression is scaled as an expression: its text times 2^k, whose f64
 //! value is its own f64 evaluation times 2^k, exactly. Symbolic scenes are exact and not scaled.
 //!
-//! What f64 cannot hold after scaling back is either a pure power of the units that is no
-//! physical quantity — Δ and the inertances, reported from their scaled value and power of two
+//! What f64 cannot hold after scaling back is either a quantity whose size the units or the
+//! user's own scale of a screw set — Δ, the inertances, the constraint screws, M_red and the
+//! constraint impulses, reported from their scaled value and power of two
 //! ([`crate::report::Wide`]) — or a physical output (impulses, velocities, energies), which is
-//! refused, naming it and the input that sets the extreme scale.
+//! refused, naming it and the input that sets the extreme scale. So is a physical output that
+//! lost its precision to underflow in the scaled units themselves ([`precision_lost`]): when
+//! the speeds span more than the units can hold, a flushed energy is refused, not printed.
 //!
 //! **Sensitivities.** In a dual-number run ([`crate::scalar::dual`]) a seeded input's tangent
 //! is scaled with its value and each output's derivative is scaled back like the output: with
