@@ -11,6 +11,8 @@
 //! to the radical field is not taken (that field carries no derivative), and the spatial
 //! frictional integrator refuses it.
 
+use num_traits::Zero;
+
 use crate::analysis::wrench_space::WrenchSpace;
 use crate::impact::admissibility::{Inadmissible, energy_gain, verdicts};
 use crate::impact::friction::{FrictionError, solve_frictional};
@@ -29,7 +31,6 @@ use crate::scene::scale::{
     unscale,
 };
 use crate::scene::{ConstraintsSpec, OUT_OF_RANGE, Scene, SceneError};
-use num_traits::Zero;
 
 /// Why a scene could not be solved.
 #[derive(Debug, thiserror::Error)]
@@ -110,10 +111,11 @@ pub fn run_with<T: Scalar>(
 /// How a float solve in units scaled to the scene was tried, for refusals.
 const SCALED: &str = ", even in units of mass, length and time scaled to the scene";
 
-/// A float report put back into the scene's units (`units`, when it was solved in scaled
-/// ones), its written constraint screws echoed as written, and refused when a physical output
-/// is still beyond `T` (`how`: in which units it was solved). Exact reports are left as they
-/// are.
+/// A float report refused when a physical output lost its precision in the units it was
+/// solved in ([`precision_lost`]), else put back into the scene's units (`units`, when it was
+/// solved in scaled ones), its written constraint screws echoed as written, and refused when
+/// a physical output is beyond `T` there (`how`: in which units it was solved). Exact reports
+/// are only scaled back.
 fn finish_float<T: Scalar>(
     scene: &Scene,
     solved: &mut Solved,
