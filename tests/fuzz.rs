@@ -35,12 +35,14 @@ use std::time::{Duration, Instant};
 use inertance::analysis::accuracy::{Bounds, Conditioning, energy_norm};
 use inertance::impact::solve::{Impact, Outcome, SolveError};
 use inertance::impact::unilateral::Law;
+use inertance::mechanics::contact::Surd;
 use inertance::mechanics::screw::{Screw, Vec3};
 use inertance::report::Report;
 use inertance::scalar::symbolic::RatFun;
 use inertance::scalar::{Exact, Scalar};
 use inertance::scene::Scene;
 use inertance::scene::pipeline::{RunError, prepare, run};
+use inertance::scene::scale::{Units, scale};
 use inertance::tools::analyze::analyze_scene;
 use serde_json::Value as Json;
 
@@ -174,19 +176,26 @@ fn cheap(scene: &Scene) -> bool {
 /// f64 against exact on `scene` where it is [`cheap`]: `Ok(true)` when compared, `Ok(false)`
 /// when not cheap or the exact solve has nothing to compare; `Err` names a contradiction.
 ///
-/// The f64 side is `run::<f64>`, the report `solve` prints (solved in the scaled units and
-/// scaled back); the exact side and the bounds are the exact solve of the scene as written
-/// ([`Bounds::of`], unit-free). Each error is also allowed ε times its reference, the rounding
-/// of the exact values the comparison reads in f64. A bound beyond f64 (V² overflows: a body
-/// spinning at 10³⁰⁸ rad/s) makes no claim, and that output is not compared. A refusal (status
-/// 2 or 3) is not compared either — except a float "singular to working precision", which the
-/// contract allows only where cond₂ G · ε ≥ 10⁻³ — and an answer where G is exactly singular
-/// is a contradiction.
+/// The f64 side is `run::<f64>`, the report `solve` prints. The exact side and the bounds
+/// ([`Bounds::of`], unit-free) come from the exact solve of the scene in the units float
+/// solves use (`scene::scale`, as `tools::accuracy` measures the contract): in the scene's own
+/// units G or its inverse may leave f64, and the conditioning read from them in f64 with it
+/// (the fuzz met cond₂ G = −∞). The f64 report is put into those units by its outputs'
+/// dimensions, a power of two each, exactly. Each error is also allowed ε times its
+/// reference, the rounding of the exact values read in f64. A bound beyond f64 (V² overflows:
+/// a body spinning at 10³⁰⁸ rad/s) makes no claim, and that output is not compared. A refusal
+/// (status 2 or 3) is not compared either — except a float "singular to working precision",
+/// which the contract allows only where cond₂ G · ε ≥ 10⁻³ — and an answer where G is exactly
+/// singular is a contradiction.
 fn oracle(scene: &Scene) -> Result<bool, String> {
     if !cheap(scene) {
         return Ok(false);
     }
-    let Ok(problem) = prepare::<Exact>(scene) else {
+    let (reference, units) = match scale(scene) {
+        Some((s, u)) => (s, Some(u)),
+        None => (scene.clone(), None),
+    };
+    let Ok(problem) = prepare::<Exact>(&reference) else {
         return Ok(false);
     };
     let Ok(mut impact) = Impact::assemble(&problem) else {
@@ -199,65 +208,87 @@ fn oracle(scene: &Scene) -> Result<bool, String> {
             Err(_) => Ok(true),
         };
     };
-    let float = match float {
-        Ok(s) => s.report,
-        Err(RunError::Solve(SolveError::Singular { rounded: true, .. })) => {
-            return if cond.cond * f64::EPSILON < 1e-3 {
-                Err(format!(
-                    "f64 declared G singular at cond₂ G = {:.3e}",
-                    cond.cond
-                ))
-            } else {
-                Ok(true)
-            };
+    if !(cond.cond >= 1.0) {
+        // Not read in f64 even in the scaled units (NaN): nothing to compare with.
+        return Ok(false);
+    }
+    match float {
+        Ok(s) => disagreement(&s.report, units.as_ref(), &mut impact, &cond).map_or(Ok(true), Err),
+        Err(RunError::Solve(SolveError::Singular { rounded: true, .. }))
+            if cond.cond * f64::EPSILON < 1e-3 =>
+        {
+            Err(format!(
+                "f64 declared G singular at cond₂ G = {:.3e}",
+                cond.cond
+            ))
         }
-        Err(_) => return Ok(true),
-    };
-    let exact = match run::<Exact>(scene, None) {
-        Ok(s) => s.report,
-        Err(e) => return Err(format!("f64 answered, exact did not: {e}")),
-    };
-    disagreement(&float, &exact, &mut impact, &cond).map_or(Ok(true), Err)
+        Err(_) => Ok(true),
+    }
 }
 
-/// The first output of the f64 report `float` beyond the contract's bound from the exact
-/// report `exact` of the same scene, assembled exactly as `impact` and conditioned as `cond`
-/// ([`oracle`]); `None` when every output keeps it.
+/// x·2^k, exactly unless it leaves f64.
+fn times_two_to(x: f64, k: i64) -> f64 {
+    let mut y = x;
+    let mut k = k;
+    while k != 0 {
+        let step = k.clamp(-1000, 1000);
+        y *= 2f64.powi(step as i32);
+        k -= step;
+    }
+    y
+}
+
+/// The first output of the f64 report `float` (in the scene's units) beyond the contract's
+/// bound from the exact solve of the same scene in the units `units` (none: as written),
+/// assembled as `impact` and conditioned as `cond` ([`oracle`]); `None` when every output
+/// keeps it.
 fn disagreement(
     float: &Report,
-    exact: &Report,
+    units: Option<&Units>,
     impact: &mut Impact<Exact>,
     cond: &Conditioning,
 ) -> Option<String> {
     let eps = f64::EPSILON;
+    // The powers of two of mass, length and time, and so of each output's dimension.
+    let (a, b, c) = units.map_or((0, 0, 0), |u| (u.mass, u.length, u.time));
+    let (impulse, omega, speed, energy) = (a + b - c, -c, b - c, a + 2 * b - 2 * c);
+    let scaled = |x: f64, k: i64| times_two_to(x, -k);
     let body = impact.problem().body().clone();
+    let norms: Vec<Exact> = impact.frames().iter().map(|f| f.norm2[0].clone()).collect();
     let to_exact = |x: f64| x.exact_value().map(Exact::from);
-    for (f, x) in float.models.iter().zip(&exact.models) {
+    for f in &float.models {
         let mut out = Outcome::default();
-        if let Err(e) = impact.solve(x.model, &mut out) {
-            return Some(format!("exact: {e}"));
+        if let Err(e) = impact.solve(f.model, &mut out) {
+            return Some(format!("f64 answered, exact did not: {e}"));
         }
-        let b = Bounds::of(impact, cond, x.model, &out, eps);
+        let bounds = Bounds::of(impact, cond, f.model, &out, eps);
         let fail = |what: &str, error: f64, bound: f64, reference: f64| {
             (bound.is_finite() && !(error <= bound + eps * reference)).then(|| {
                 format!(
                     "{:?} {what}: f64 is {error:.3e} from exact, beyond the contract's {bound:.3e} \
-                     (cond₂ G = {:.3e})",
-                    x.model, cond.cond
+                     (cond₂ G = {:.3e}, in units 2^({a}, {b}, {c}) of kg, m, s)",
+                    f.model, cond.cond
                 )
             })
         };
         let (mut d2, mut p2) = (0.0, 0.0);
-        for (p, q) in f.impulses.iter().zip(&x.impulses) {
-            d2 += (p.f64 - q.f64).powi(2);
-            p2 += q.f64 * q.f64;
+        for ((p, hat), norm) in f.impulses.iter().zip(&out.impulses_hat).zip(&norms) {
+            let q = Surd::times_norm(hat, norm).to_f64();
+            d2 += (scaled(p.f64, impulse) - q).powi(2);
+            p2 += q * q;
         }
-        let mut faults = vec![fail("impulses ‖δP‖₂", d2.sqrt(), b.impulses, p2.sqrt())];
+        let mut faults = vec![fail(
+            "impulses ‖δP‖₂",
+            d2.sqrt(),
+            bounds.impulses,
+            p2.sqrt(),
+        )];
         let parts: Option<Vec<Exact>> = f
             .angular_velocity
             .iter()
-            .chain(&f.velocity)
-            .map(|v| to_exact(v.f64))
+            .map(|v| scaled(v.f64, omega))
+            .chain(f.velocity.iter().map(|v| scaled(v.f64, speed)))
+            .map(to_exact)
             .collect();
         if let Some(parts) = parts {
             let top = Vec3::new(parts[0].clone(), parts[1].clone(), parts[2].clone());
@@ -268,7 +299,7 @@ fn disagreement(
             faults.push(fail(
                 "twist ‖δv‖_M",
                 energy_norm(&body, &delta),
-                b.twist,
+                bounds.twist,
                 size,
             ));
         }
@@ -277,16 +308,16 @@ fn disagreement(
                 "E_p",
                 &f.lost_velocity_energy,
                 &out.lost_velocity_energy,
-                b.lost_velocity_energy,
+                bounds.lost_velocity_energy,
             ),
             (
                 "ΔE_c",
                 &f.kinetic_energy_loss,
                 &out.kinetic_energy_loss,
-                b.kinetic_energy_loss,
+                bounds.kinetic_energy_loss,
             ),
         ] {
-            if let Some(v) = to_exact(value.f64) {
+            if let Some(v) = to_exact(scaled(value.f64, energy)) {
                 let error = (v - reference).abs().to_f64();
                 faults.push(fail(what, error, bound, reference.to_f64().abs()));
             }
@@ -878,18 +909,19 @@ fn the_oracle_catches_a_wrong_number() {
     let scene = Scene::load(&path).unwrap();
     assert!(cheap(&scene));
     assert_eq!(oracle(&scene), Ok(true));
-    let mut impact = Impact::assemble(&prepare::<Exact>(&scene).unwrap()).unwrap();
+    let (reference, units) = scale(&scene).expect("scaled: a length unit of 4 m");
+    let mut impact = Impact::assemble(&prepare::<Exact>(&reference).unwrap()).unwrap();
     let cond = Conditioning::of(&mut impact).unwrap();
-    let exact = run::<Exact>(&scene, None).unwrap().report;
     let float = run::<f64>(&scene, None).unwrap().report;
-    assert_eq!(disagreement(&float, &exact, &mut impact, &cond), None);
+    let check = |r: &Report, i: &mut Impact<Exact>| disagreement(r, Some(&units), i, &cond);
+    assert_eq!(check(&float, &mut impact), None);
     let mut moved = float.clone();
     moved.models[0].lost_velocity_energy.f64 *= 1.0 + 1e-9;
-    let found = disagreement(&moved, &exact, &mut impact, &cond).unwrap_or_default();
+    let found = check(&moved, &mut impact).unwrap_or_default();
     assert!(found.contains("E_p"), "{found}");
     let mut moved = float;
     moved.models[1].angular_velocity[2].f64 *= 1.0 + 1e-9;
-    let found = disagreement(&moved, &exact, &mut impact, &cond).unwrap_or_default();
+    let found = check(&moved, &mut impact).unwrap_or_default();
     assert!(found.contains("twist"), "{found}");
 }
 

@@ -11,7 +11,8 @@
 //! n_i′ = n_i/2^(e_i),  y_i′ = y_i/2^(f_i)    (an axis is a direction: any length serves)
 //! ```
 //!
-//! with a, b from the mass and the largest contact coordinate, c making the largest speed of
+//! with b from the largest contact coordinate, a midway between the mass and the moments
+//! over L² ([`mass_exponent`]), c making the largest speed of
 //! approach |v_ix⁰| about 1 — impulses and energies scale with it — as far as the largest
 //! velocity (|v_C| or |ω|·L) may grow, to 2⁹⁶⁰ ([`HEADROOM`]; the largest velocity about 1
 //! when the speeds of approach are not computed exactly), and e_i, f_i the axes' own scales; J′ scales every entry of the
@@ -162,8 +163,8 @@ pub fn scale(scene: &Scene) -> Option<(Scene, Units)> {
     if scene.numbers().any(|(_, n)| !n.symbols.is_empty()) {
         return None;
     }
-    let a = largest([&scene.mass]).unwrap_or(0);
     let b = largest(scene.contacts.iter().flat_map(|c| c.point.iter())).unwrap_or(0);
+    let a = mass_exponent(scene, b);
     let v = largest(scene.velocity.iter());
     let w = largest(scene.angular_velocity.iter()).map(|e| e + b);
     let speed = match (v, w) {
@@ -235,6 +236,22 @@ pub fn scale(scene: &Scene) -> Option<(Scene, Units)> {
         || units.normals.iter().any(|&e| e != 0)
         || units.free.iter().chain(&units.blocked).any(|&e| e != 0))
     .then_some((s, units))
+}
+
+/// a, the unit of mass 2^a kg: midway, in the exponent, between the mass m and the smallest
+/// moment over the length unit squared, J/L² (also a mass), so that both terms of an
+/// inertance, 1/m′ and r′²/J′, are within range. From the mass alone, a body of 2^1024 kg
+/// with moments of 12 kg m² had J′ ≈ 2^−1022 (subnormal) and f64 called its G, of cond₂ 1,
+/// singular; so did 10³⁰⁸ kg with moments of 1 kg m² (cond₂ G = 63).
+fn mass_exponent(scene: &Scene, b: i64) -> i64 {
+    let m = largest([&scene.mass]).unwrap_or(0);
+    let moments = scene
+        .inertia
+        .iter()
+        .filter_map(number_exponent)
+        .min()
+        .map(|j| j - 2 * b);
+    moments.map_or(m, |j| (m + j).div_euclid(2))
 }
 
 /// How far above 1 the largest velocity may be put, as a power of two, for the velocities
