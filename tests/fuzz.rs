@@ -81,6 +81,8 @@ const NULLABLE: &[&str] = &[
     // `derive --json`: no locus of Δ = 0, not a singular family.
     "det_locus",
     "singular",
+    // `analyze --json`: coincident points whose normal's impulse the constraints absorb.
+    "single_impulse",
 ];
 
 /// Keys that are `null` when the system has no solution (see `json_faults`).

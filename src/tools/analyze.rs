@@ -41,8 +41,11 @@ pub struct AnalysisReport {
     /// (equal, reason).
     pub newton_equals_poisson: Option<(bool, String)>,
     /// Coincident contact pairs (1-based in text), whether the axes coincide, and the
-    /// single-impulse reduction (Newton, Poisson).
-    pub coincident: Vec<((usize, usize), bool, [Value; 2])>,
+    /// single-impulse reduction (Newton, Poisson; `None` where constraints absorb the
+    /// normal's impulse) — at most [`crate::analysis::MAX_COINCIDENT`] pairs.
+    pub coincident: Vec<((usize, usize), bool, Option<[Value; 2]>)>,
+    /// Whether more pairs may be coincident than are listed.
+    pub coincident_truncated: bool,
     /// For a scene with friction (`mu`, `[solve] restitution`): each frictional contact's
     /// sticking threshold and the frictional integration of each law.
     pub friction: Option<FrictionAnalysis>,
@@ -350,10 +353,9 @@ fn finish<T: Scalar>(
             (
                 c.pair,
                 c.same_axis,
-                [
-                    impulse(&c.single_impulse[0], i),
-                    impulse(&c.single_impulse[1], i),
-                ],
+                c.single_impulse
+                    .as_ref()
+                    .map(|p| [impulse(&p[0], i), impulse(&p[1], i)]),
             )
         })
         .collect();
@@ -369,6 +371,7 @@ fn finish<T: Scalar>(
         models: model_reports,
         newton_equals_poisson: analysis.newton_equals_poisson,
         coincident,
+        coincident_truncated: analysis.coincident_truncated,
         friction: scene
             .frictional()
             .then(|| friction_analysis(scene, problem)),
@@ -651,8 +654,9 @@ impl AnalysisReport {
             "coincident": self.coincident.iter().map(|((i, j), same, single)| json!({
                 "contacts": [i + 1, j + 1],
                 "same_axis": same,
-                "single_impulse": {"newton": Value::json(&single[0]), "poisson": Value::json(&single[1])},
+                "single_impulse": single.as_ref().map(|p| json!({"newton": p[0].json(), "poisson": p[1].json()})),
             })).collect::<Vec<_>>(),
+            "coincident_truncated": self.coincident_truncated,
         });
         if let Some(obj) = top.as_object_mut() {
             if let Some((equal, reason)) = &self.newton_equals_poisson {
@@ -714,8 +718,21 @@ impl AnalysisReport {
         }
         s += "\n";
         for ((i, j), same, single) in &self.coincident {
+            let reduction = match single {
+                Some(p) => format!(
+                    "single-impulse reduction (eq. 69–72): P = {} (Newton), {} (Poisson)",
+                    p[0].text(),
+                    p[1].text()
+                ),
+                None => format!(
+                    "no single-impulse reduction: the constraints absorb any impulse along n{} (g{}{} = 0)",
+                    i + 1,
+                    i + 1,
+                    i + 1
+                ),
+            };
             s += &format!(
-                "A{} ≡ A{}: coincident points{} — single-impulse reduction (eq. 69–72): P = {} (Newton), {} (Poisson)\n",
+                "A{} ≡ A{}: coincident points{} — {reduction}\n",
                 i + 1,
                 j + 1,
                 if *same {
@@ -723,8 +740,13 @@ impl AnalysisReport {
                 } else {
                     " with different normals"
                 },
-                single[0].text(),
-                single[1].text()
+            );
+        }
+        if self.coincident_truncated {
+            s += &format!(
+                "… more coincident pairs than listed (at most {} are, of at most {} candidates)\n",
+                crate::analysis::MAX_COINCIDENT,
+                crate::analysis::MAX_COINCIDENT_CANDIDATES
             );
         }
         for m in &self.models {
