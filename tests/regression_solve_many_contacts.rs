@@ -203,9 +203,9 @@ fn exact_solves_beyond_the_limit_are_refused_at_once() {
     assert!(
         err.contains("key `contact` = 2000 contacts")
             && err.contains(&format!(
-                "`solve --exact` takes at most {MAX_EXACT_CONTACTS} contacts"
+                "exact arithmetic (`--exact`) takes at most {MAX_EXACT_CONTACTS} contacts"
             ))
-            && err.contains("`solve` without --exact"),
+            && err.contains("without --exact, `solve` and `sweep` take any number"),
         "{err}"
     );
     // Without --exact the same scene is answered: singular, rank 6.

@@ -7,7 +7,6 @@
 //! - **Friction**, [`MAX_FRICTION_CONTACTS`]: the integration in impulse space works on the
 //!   3N×3N matrix of the contacts' inertances ([`crate::impact::friction`]), O(N²) memory —
 //!   2000 contacts took 1.5 GB, 60,000 would take 1.4 TB.
-//!
 //! - **Closed forms**, [`MAX_DERIVE_CONTACTS`]: `derive` prints the N² inertances and factors
 //!   G over rational functions in the symbols: 60 contacts took 0.4 s, 300 took 11 s.
 //!
@@ -31,8 +30,8 @@ pub const MAX_FRICTION_CONTACTS: usize = 500;
 pub const MAX_DERIVE_CONTACTS: usize = 64;
 
 /// The refusal of `scene`, whose contacts number more than `limit` for `what` (e.g.
-/// "`solve --exact`"); `instead` says what to do (e.g. "; `solve` without --exact takes any
-/// number"). Key `contact`, the count as the value.
+/// "`analyze --exact`"), because `why`; `instead` says what to do (e.g. "; `analyze` without
+/// --exact takes up to 1000000"). Key `contact`, the count as the value.
 pub fn too_many(scene: &Scene, limit: usize, what: &str, why: &str, instead: &str) -> SceneError {
     SceneError {
         file: scene.file.clone(),
@@ -56,16 +55,16 @@ pub fn friction_limit(scene: &Scene) -> Option<SceneError> {
     })
 }
 
-/// The refusal of `scene` in exact arithmetic beyond [`MAX_EXACT_CONTACTS`] for `command`
-/// (`solve`, `analyze`, `sweep`); `None` within the limit.
-pub fn exact_limit(scene: &Scene, command: &str) -> Option<SceneError> {
+/// The refusal of a solve of `scene` in exact arithmetic (`solve`, `sweep` or the Python
+/// `solve` with `--exact`) beyond [`MAX_EXACT_CONTACTS`]; `None` within the limit.
+pub fn exact_limit(scene: &Scene) -> Option<SceneError> {
     (scene.contacts.len() > MAX_EXACT_CONTACTS).then(|| {
         too_many(
             scene,
             MAX_EXACT_CONTACTS,
-            &format!("`{command} --exact`"),
+            "exact arithmetic (`--exact`)",
             "its work is linear in N but the numbers and the report grow with it",
-            &format!("; `{command}` without --exact takes more"),
+            "; without --exact, `solve` and `sweep` take any number",
         )
     })
 }

@@ -255,7 +255,7 @@ fn run_prepared_with<T: Scalar>(
     allow_singular: bool,
 ) -> Result<Solved, RunError> {
     if let Some(refusal) = T::IS_EXACT
-        .then(|| exact_limit(scene, "solve"))
+        .then(|| exact_limit(scene))
         .flatten()
         .or_else(|| scene.frictional().then(|| friction_limit(scene)).flatten())
     {
