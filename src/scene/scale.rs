@@ -12,10 +12,10 @@
 //! ```
 //!
 //! with b from the largest contact coordinate, a midway between the mass and the moments
-//! over L² ([`mass_exponent`]), c making the largest speed of
-//! approach |v_ix⁰| about 1 — impulses and energies scale with it — as far as the largest
-//! velocity (|v_C| or |ω|·L) may grow, to 2⁹⁶⁰ ([`HEADROOM`]; the largest velocity about 1
-//! when the speeds of approach are not computed exactly), and e_i, f_i the axes' own scales; J′ scales every entry of the
+//! over L² ([`mass_exponent`]), c making the largest speed of approach |v_ix⁰| about 1 —
+//! impulses and energies scale with it — as far as the largest velocity (|v_C| or |ω|·L) may
+//! grow, to 2⁹⁶⁰ ([`HEADROOM`]; the largest velocity about 1 when the speeds of approach are
+//! not computed exactly), and e_i, f_i the axes' own scales; J′ scales every entry of the
 //! inertia tensor (a full tensor's entries off the diagonal as well). The laws are invariant
 //! under this change of units (k and μ are dimensionless), and every output is scaled back by its
 //! dimension: impulses M·L/T, velocities L/T, ω 1/T, energies M·L²/T², inertances 1/M, Δ 1/M^N.

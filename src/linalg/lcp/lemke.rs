@@ -13,11 +13,11 @@
 //! positive when it exceeds 4n·ε times the column's largest entry — the rounding error of the
 //! O(n) operations that produced it — and ratios within 4n·ε of each other are ties.
 //!
-//! **A bounded budget.** Each pivot costs O(n²), and the path is at most [`PIVOTS_PER_ROW`]·(n + 1)
-//! pivots long: the work is O(n³) whatever the data. Exact paths on the inertance matrices of
-//! random bodies take at most about 2.5 n pivots (n = 10–40, rank 6); in floats, rounding can
-//! make a lexicographic path on a singular G cycle, and the budget is then what ends it —
-//! quadratic in n before, it let one 200-contact `analyze` run for minutes.
+//! **A bounded budget.** Each pivot costs O(n²), and the path is at most
+//! [`PIVOTS_PER_ROW`]·(n + 1) pivots long: the work is O(n³) whatever the data. Exact paths on
+//! the inertance matrices of random bodies take at most about 2.5 n pivots (n = 10–40, rank 6);
+//! in floats, rounding can make a lexicographic path on a singular G cycle, and the budget is
+//! then what ends it — quadratic in n before, it let one 200-contact `analyze` run for minutes.
 
 use super::{Lcp, LcpError, LcpSolution};
 use crate::scalar::Scalar;
