@@ -155,6 +155,20 @@ pub fn analyze_scene<T: Scalar>(
     }
     let models = models.unwrap_or(&scene.models);
     let problem = prepare::<T>(scene)?;
+    let space = WrenchSpace::build(&problem)?;
+    let finite = |x: &T| x.to_f64().is_finite();
+    if !T::IS_EXACT
+        && !(space.diagonal().iter().all(finite)
+            && space.frames().iter().all(|f| f.norm2.iter().all(finite)))
+    {
+        // An axis or an inertance beyond f64 (a normal of length 10³⁰⁸: G was "not positive
+        // semidefinite", or a verdict read "v_x⁰ = NaN"); `analyze` in floats is not scaled.
+        return Err(RunError::Scene(crate::scene::scale::unrepresentable(
+            scene,
+            T::NAME,
+            "",
+        )));
+    }
     if n <= DENSE_CONTACTS {
         let mut impact = Impact::assemble(&problem)?;
         let analysis: Analysis<T> = analyze(&mut impact, models);
@@ -175,7 +189,6 @@ pub fn analyze_scene<T: Scalar>(
         };
         return finish(scene, impact.problem(), analysis, parts);
     }
-    let space = WrenchSpace::build(&problem)?;
     let analysis = analyze_reduced(&space, models);
     let norm2: Vec<T> = space.frames().iter().map(|f| f.norm2[0].clone()).collect();
     let mut norms = T::one();
@@ -274,6 +287,16 @@ fn finish<T: Scalar>(
         mut unilateral,
     } = parts;
     let impulse = |p: &T, i: usize| -> Value { Value::surd(&Surd::times_norm(p, &norm2[i])) };
+    // The speeds of approach are written into the verdicts: a normal of length 10³⁰⁸ squares
+    // beyond f64, and "v_4x⁰ = NaN" was printed (`analyze` in floats is not scaled).
+    let held = |v: &Value| v.f64.is_finite() || v.exact.is_some();
+    if (0..n).any(|i| !held(&Value::surd(&Surd::over_norm(&before_x[i], &norm2[i])))) {
+        return Err(RunError::Scene(crate::scene::scale::unrepresentable(
+            scene,
+            T::NAME,
+            "",
+        )));
+    }
     let model_reports = analysis
         .models
         .iter()
