@@ -754,12 +754,18 @@ fn fail(path: &std::path::Path, error: RunError) -> ExitCode {
             eprintln!("error: {}: {e}", path.display());
             ExitCode::from(2)
         }
-        RunError::Unilateral(e) => {
+        RunError::Unilateral(
+            e @ inertance::impact::unilateral::UnilateralError::Jammed { rounded: false, .. },
+        ) => {
             eprintln!(
                 "error: {}: {e}.\n  No impulses P ≥ 0 satisfy the law: the contacts hold the body \
                  so that it cannot leave them as the law demands (a verdict, not a number).",
                 path.display()
             );
+            ExitCode::from(3)
+        }
+        RunError::Unilateral(e) => {
+            eprintln!("error: {}: {e}", path.display());
             ExitCode::from(3)
         }
         RunError::Friction(e @ FrictionError::NotPlanar) => {

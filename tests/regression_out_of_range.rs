@@ -111,14 +111,17 @@ fn scenes_at_extreme_scales_are_solved_in_f64_as_exactly() {
 
 #[test]
 fn what_no_float_can_hold_is_refused_naming_the_key() {
-    // 1/m = 10⁴⁰⁰ kg⁻¹ is an inertance: no unit choice brings both it and J into range.
+    // 1/m = 10⁴⁰⁰ kg⁻¹ beside lever terms y_i y_j/J_z ≈ 1 kg⁻¹: cond₂ G ≈ 10⁴⁰⁰. The units
+    // (a mass unit midway between m and J/L²) hold both terms, and f64 finds G singular to its
+    // working precision, as it is (status 3, `--exact` decides); with the mass unit from m
+    // alone J′ left f64 and the scene was refused as out of range (status 2).
     let text = example_3(0, 0, 0, 0).replace("mass = \"1e0\"", "mass = \"1e-400\"");
     let (out, json) = solve(&text, "tiny-mass", false);
     let err = String::from_utf8_lossy(&out.stderr);
-    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert_eq!(out.status.code(), Some(3), "{err}");
     assert!(json.is_none() && out.stdout.is_empty());
     assert!(
-        err.contains("body.mass") && err.contains("1e-400") && err.contains("--exact"),
+        err.contains("singular to working precision") && err.contains("--exact"),
         "{err}"
     );
     // Exactly it is solved.

@@ -122,9 +122,20 @@ pub struct Coincidence<T: Scalar> {
     /// Whether their normals are parallel too ({E_ix} ∥ {E_jx}, so Δ = 0).
     pub same_axis: bool,
     /// The single-impulse reduction (eq. 69–72), hatted: (1 + k_i) v̂_ix⁰ / ĝ_ii for Newton
-    /// and for Poisson, the total impulse of the merged contact.
-    pub single_impulse: [T; 2],
+    /// and for Poisson, the total impulse of the merged contact; `None` when ĝ_ii = 0 (to the
+    /// rank tolerance in floats): constraints absorb any impulse along this normal, and the
+    /// reduction 0·P = 0 fixes none (it divided by zero: a panic in exact arithmetic).
+    pub single_impulse: Option<[T; 2]>,
 }
+
+/// At most this many coincident pairs are listed ([`Analysis::coincident_truncated`] says
+/// when there are more): 3000 contacts at one point made 4.5 million pairs — 97 s, 10 GB and
+/// 900 MB of JSON for `analyze`.
+pub const MAX_COINCIDENT: usize = 1000;
+
+/// At most this many candidate pairs are examined for coincidence (the dense route's all
+/// pairs, or the wrench route's neighbours on a grid, which a cluster of near points fills).
+pub const MAX_COINCIDENT_CANDIDATES: usize = 1_000_000;
 
 /// The analysis of a scene.
 #[derive(Clone, Debug)]
@@ -137,8 +148,11 @@ pub struct Analysis<T: Scalar> {
     pub models: Vec<ModelAnalysis<T>>,
     /// Whether Newton and Poisson give the same impulses, and why.
     pub newton_equals_poisson: Option<(bool, String)>,
-    /// Contacts at the same point.
+    /// Contacts at the same point: at most [`MAX_COINCIDENT`] pairs, in order.
     pub coincident: Vec<Coincidence<T>>,
+    /// Whether more pairs may be coincident than are listed (the list reached
+    /// [`MAX_COINCIDENT`], or [`MAX_COINCIDENT_CANDIDATES`] candidates were examined).
+    pub coincident_truncated: bool,
 }
 
 /// Analyse the assembled `impact` for `models`.
@@ -163,18 +177,24 @@ pub fn analyze<T: Scalar>(impact: &mut Impact<T>, models: &[Model]) -> Analysis<
         })
     });
     let newton_equals_poisson = newton_equals_poisson(impact.problem(), &out_models, diagonal);
-    let coincident = coincident(impact.problem(), all_pairs(n), |i| {
-        (
-            impact.g_hat()[i * n + i].clone(),
-            impact.before_hat()[i][0].clone(),
-        )
-    });
+    let (coincident, coincident_truncated) = coincident(
+        impact.problem(),
+        all_pairs(n),
+        |i| {
+            (
+                impact.g_hat()[i * n + i].clone(),
+                impact.before_hat()[i][0].clone(),
+            )
+        },
+        tolerance,
+    );
     Analysis {
         rank: impact.rank(),
         tolerance,
         models: out_models,
         newton_equals_poisson,
         coincident,
+        coincident_truncated,
     }
 }
 
@@ -189,18 +209,24 @@ pub fn analyze_reduced<T: Scalar>(
         models.iter().map(|&m| space.analyze_model(m)).collect();
     let newton_equals_poisson =
         newton_equals_poisson(space.problem(), &out_models, space.g_diagonal());
-    let coincident = coincident(space.problem(), near_pairs(space.problem()), |i| {
-        (
-            space.diagonal()[i].clone(),
-            space.before_hat()[i][0].clone(),
-        )
-    });
+    let (coincident, coincident_truncated) = coincident(
+        space.problem(),
+        near_pairs(space.problem()),
+        |i| {
+            (
+                space.diagonal()[i].clone(),
+                space.before_hat()[i][0].clone(),
+            )
+        },
+        space.tolerance(),
+    );
     Analysis {
         rank: space.rank(),
         tolerance: space.tolerance(),
         models: out_models,
         newton_equals_poisson,
         coincident,
+        coincident_truncated,
     }
 }
 
@@ -411,12 +437,14 @@ fn all_pairs(n: usize) -> impl Iterator<Item = (usize, usize)> {
     (0..n).flat_map(move |i| (i + 1..n).map(move |j| (i, j)))
 }
 
-/// The pairs i < j of contacts that may share a point, in order, in O(N) expected time: the
-/// points are hashed on a grid of cells 10⁻⁶·max |A_i| wide (in f64), and each point is
-/// compared with those of its own and the 26 neighbouring cells. Two points the test of
-/// [`coincident`] calls equal are within √(6ε)·max |A_i| ≈ 4·10⁻⁸·max |A_i| of each other
-/// in floats, and round to the same f64 in exact types, so they are neighbours on the grid.
-fn near_pairs<T: Scalar>(problem: &Problem<T>) -> Vec<(usize, usize)> {
+/// The pairs i < j of contacts that may share a point, in order, lazily: the points are
+/// hashed on a grid of cells 10⁻⁶·max |A_i| wide (in f64), and each point is paired with
+/// those of its own and the 26 neighbouring cells — O(N) expected work for scattered points,
+/// as much as the caller draws for a cluster ([`MAX_COINCIDENT_CANDIDATES`]). Two points the
+/// test of [`coincident`] calls equal are within √(6ε)·max |A_i| ≈ 4·10⁻⁸·max |A_i| of each
+/// other in floats, and round to the same f64 in exact types, so they are neighbours on the
+/// grid.
+fn near_pairs<T: Scalar>(problem: &Problem<T>) -> impl Iterator<Item = (usize, usize)> {
     use std::collections::HashMap;
     let points: Vec<[f64; 3]> = problem
         .contacts()
@@ -436,7 +464,7 @@ fn near_pairs<T: Scalar>(problem: &Problem<T>) -> Vec<(usize, usize)> {
         .filter(|x| x.is_finite())
         .fold(0.0, f64::max);
     let h = if extent > 0.0 { 1e-6 * extent } else { 1.0 };
-    let cell = |p: &[f64; 3]| {
+    let cell = move |p: &[f64; 3]| {
         p.map(|x| {
             let c = (x / h).floor();
             if c.is_finite() { c as i64 } else { i64::MAX }
@@ -446,9 +474,9 @@ fn near_pairs<T: Scalar>(problem: &Problem<T>) -> Vec<(usize, usize)> {
     for (i, p) in points.iter().enumerate() {
         grid.entry(cell(p)).or_default().push(i);
     }
-    let mut pairs = Vec::new();
-    for (i, p) in points.iter().enumerate() {
-        let c = cell(p);
+    (0..points.len()).flat_map(move |i| {
+        let c = cell(&points[i]);
+        let mut near = Vec::new();
         for dx in -1..=1i64 {
             for dy in -1..=1i64 {
                 for dz in -1..=1i64 {
@@ -458,53 +486,63 @@ fn near_pairs<T: Scalar>(problem: &Problem<T>) -> Vec<(usize, usize)> {
                         c[2].saturating_add(dz),
                     ];
                     if let Some(list) = grid.get(&key) {
-                        pairs.extend(list.iter().filter(|&&j| j > i).map(|&j| (i, j)));
+                        near.extend(list.iter().filter(|&&j| j > i));
                     }
                 }
             }
         }
-    }
-    pairs.sort_unstable();
-    pairs.dedup();
-    pairs
+        near.sort_unstable();
+        near.dedup();
+        near.into_iter().map(move |j| (i, j))
+    })
 }
 
 /// Of the candidate `pairs` (i < j, in order), those at the same point, with the
-/// single-impulse reduction from `own(i)` = (ĝ_ii, v̂_ix⁰).
+/// single-impulse reduction from `own(i)` = (ĝ_ii, v̂_ix⁰) — none where ĝ_ii is zero, to
+/// `tolerance` in floats — and whether the list stopped short: at [`MAX_COINCIDENT`] pairs,
+/// or after [`MAX_COINCIDENT_CANDIDATES`] candidates.
 fn coincident<T: Scalar>(
     problem: &Problem<T>,
     pairs: impl IntoIterator<Item = (usize, usize)>,
     own: impl Fn(usize) -> (T, T),
-) -> Vec<Coincidence<T>> {
+    tolerance: Option<f64>,
+) -> (Vec<Coincidence<T>>, bool) {
+    use crate::mechanics::screw::{dot, norm2};
     let mut out = Vec::new();
-    for (i, j) in pairs {
-        {
-            let (pi, pj) = (&problem.contacts()[i].point, &problem.contacts()[j].point);
-            let d = pi - pj;
-            let reference = crate::mechanics::screw::norm2(pi) + crate::mechanics::screw::norm2(pj);
-            if !crate::mechanics::screw::norm2(&d).is_negligible(&reference, 3) {
-                continue;
-            }
-            let (ni, nj) = (&problem.contacts()[i].normal, &problem.contacts()[j].normal);
-            let cross = ni.cross(nj);
-            let same_axis = crate::mechanics::screw::norm2(&cross).is_negligible(
-                &(crate::mechanics::screw::norm2(ni) * crate::mechanics::screw::norm2(nj)),
-                3,
-            ) && crate::mechanics::screw::dot(ni, nj).signum_i8() > 0;
-            let c = &problem.contacts()[i];
-            let (gii, v0) = own(i);
-            let single = [
+    for (examined, (i, j)) in pairs.into_iter().enumerate() {
+        if examined == MAX_COINCIDENT_CANDIDATES {
+            return (out, true);
+        }
+        let (pi, pj) = (&problem.contacts()[i].point, &problem.contacts()[j].point);
+        let d = pi - pj;
+        if !norm2(&d).is_negligible(&(norm2(pi) + norm2(pj)), 3) {
+            continue;
+        }
+        if out.len() == MAX_COINCIDENT {
+            return (out, true);
+        }
+        let (ni, nj) = (&problem.contacts()[i].normal, &problem.contacts()[j].normal);
+        let same_axis = norm2(&ni.cross(nj)).is_negligible(&(norm2(ni) * norm2(nj)), 3)
+            && dot(ni, nj).signum_i8() > 0;
+        let c = &problem.contacts()[i];
+        let (gii, v0) = own(i);
+        let zero = match tolerance {
+            Some(t) => gii.to_f64() <= t,
+            None => gii.signum_i8() <= 0,
+        };
+        let single_impulse = (!zero).then(|| {
+            [
                 (T::one() + &c.k_newton) * &v0 / gii.clone(), // eq. 70
                 (T::one() + &c.k_poisson) * &v0 / gii,        // eq. 72
-            ];
-            out.push(Coincidence {
-                pair: (i, j),
-                same_axis,
-                single_impulse: single,
-            });
-        }
+            ]
+        });
+        out.push(Coincidence {
+            pair: (i, j),
+            same_axis,
+            single_impulse,
+        });
     }
-    out
+    (out, false)
 }
 
 /// The 2-norm condition number of a symmetric positive semidefinite matrix (row-major, n×n),

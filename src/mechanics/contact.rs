@@ -20,7 +20,7 @@
 //! velocity is zero (n_i × v_A = 0), the fallback is deterministic: ẑ_i = n_i × e_k, where e_k
 //! is the coordinate axis least aligned with n_i (smallest |n_k|, lowest k on ties).
 
-use crate::mechanics::screw::{Screw, Vec3, dot, norm2};
+use crate::mechanics::screw::{Screw, Vec3, dot, norm2, rescaled};
 use crate::scalar::Scalar;
 
 /// One contact as given: the point A_i, the outward normal n_i (axis A_i x_i; need not be a
@@ -140,8 +140,9 @@ impl<T: Scalar> ContactFrame<T> {
                 (t.clone(), TangentRule::Given)
             }
             None => {
-                // eq. 112: velocity of A_i; eq. 113: n × v_A.
-                let va = v0.bottom() + v0.top().cross(&contact.point);
+                // eq. 112: velocity of A_i (a direction here, kept within range: `rescaled`);
+                // eq. 113: n × v_A.
+                let va = rescaled(&(v0.bottom() + v0.top().cross(&contact.point)));
                 let z = x.cross(&va);
                 let reference = nx2.clone() * norm2(&va);
                 if norm2(&z).is_negligible(&reference, 3) {

@@ -91,6 +91,41 @@ pub fn norm2<T: Scalar>(u: &Vec3<T>) -> T {
     dot(u, u)
 }
 
+/// `u` times a power of two that brings its largest component near 1, in float types: a
+/// direction, which any length serves, whose squared norm then neither overflows nor
+/// underflows (the velocity of a point of a body spinning at 10³⁰⁸ rad/s squares to ∞ in f64,
+/// and a contact frame built on it fell back to a coordinate axis). The scaling is exact, so
+/// every quantity normalised by |u| comes out bit for bit as from `u`. Exact types, which
+/// cannot overflow, return `u` as it is.
+pub fn rescaled<T: Scalar>(u: &Vec3<T>) -> Vec3<T> {
+    if T::IS_EXACT {
+        return u.clone();
+    }
+    let largest = u
+        .iter()
+        .map(|x| x.to_f64().abs())
+        .filter(|x| x.is_finite())
+        .fold(0.0, f64::max);
+    if largest == 0.0 {
+        return u.clone();
+    }
+    let k = largest.log2().floor() as i32;
+    if k == 0 {
+        return u.clone();
+    }
+    // In two halves, each a power of two f64 holds (2^1074 is not one); and only factors the
+    // type holds exactly.
+    let mut out = u.clone();
+    for half in [k / 2, k - k / 2] {
+        let power = 2f64.powi(-half);
+        match T::from_f64(power) {
+            Some(f) if f.to_f64() == power => out = out.map(|x| x * &f),
+            _ => return u.clone(),
+        }
+    }
+    out
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -117,5 +152,31 @@ mod tests {
         let twist = Screw::new(w.clone(), vc.clone());
         assert_eq!(e.reciprocal(&twist), dot(&u, &(vc + w.cross(&r))));
         assert_eq!(e.reciprocal(&twist), twist.reciprocal(&e));
+    }
+
+    #[test]
+    fn rescaled_keeps_the_direction_exactly_and_the_square_in_range() {
+        // Scaled by a power of two: every ratio of components is kept bit for bit.
+        for u in [
+            Vec3::<f64>::new(1e308, -3e307, 0.0),
+            Vec3::new(3e-320, 1e-321, -2e-322),
+            Vec3::new(0.3, 0.0, 7.0),
+        ] {
+            let r = rescaled(&u);
+            for i in 0..3 {
+                for j in 0..3 {
+                    if u[j] != 0.0 {
+                        assert_eq!(r[i] / r[j], u[i] / u[j], "{u:?}");
+                    }
+                }
+            }
+            let square = norm2(&r);
+            assert!(square.is_normal() && (1.0..64.0).contains(&square), "{u:?}");
+        }
+        // f32's least subnormal, 2^−149, in two factors f32 holds (2^74, 2^75).
+        let tiny = Vec3::new(1e-45f32, 0.0, 0.0);
+        assert_eq!(rescaled(&tiny), Vec3::new(1.0, 0.0, 0.0));
+        // Exact types cannot overflow: unchanged.
+        assert_eq!(rescaled(&v(4, -8, 2)), v(4, -8, 2));
     }
 }

@@ -33,7 +33,7 @@ use crate::impact::unilateral::{Activity, Law};
 use crate::mechanics::constraint::Constrained;
 use crate::mechanics::contact::{ContactFrame, Surd, TangentRule};
 use crate::mechanics::reaction::{Wrench, joint_reactions};
-use crate::mechanics::screw::Vec3;
+use crate::mechanics::screw::{Vec3, rescaled};
 use crate::scalar::Scalar;
 
 /// One reported number: f64 always, exact text in exact mode; in a dual-number run (a
@@ -593,19 +593,25 @@ impl ConstraintsReport {
 /// Velocity components in the unit frame, and the tangential angle (eq. 8, 27).
 fn point_velocity<T: Scalar>(hat: &[T; 3], frame: &ContactFrame<T>) -> PointVelocity {
     let s: [Surd<T>; 3] = [0, 1, 2].map(|k| Surd::over_norm(&hat[k], &frame.norm2[k]));
-    // v_y = a√r, v_z = b√s ⇒ |v_t|² = a²r + b²s = Q, cos α = a√(r/Q), sin α = b√(s/Q).
-    let q = s[1].coeff.clone() * &s[1].coeff * &s[1].radicand
-        + s[2].coeff.clone() * &s[2].coeff * &s[2].radicand;
+    // v_y = a√r, v_z = b√s ⇒ |v_t|² = a²r + b²s = Q, cos α = a√(r/Q), sin α = b√(s/Q): the
+    // same for a and b times one power of two, which in floats keeps Q within range (a
+    // tangential velocity of 10³⁰⁸ m/s gave Q = ∞ and α = 0 whatever its direction).
+    let ab = rescaled(&Vec3::new(
+        s[1].coeff.clone(),
+        s[2].coeff.clone(),
+        T::zero(),
+    ));
+    let q = ab[0].clone() * &ab[0] * &s[1].radicand + ab[1].clone() * &ab[1] * &s[2].radicand;
     let zero_tangential = q.is_negligible(&T::zero(), 1);
     let angle = if zero_tangential {
         None
     } else {
         let cos = Surd {
-            coeff: s[1].coeff.clone(),
+            coeff: ab[0].clone(),
             radicand: s[1].radicand.clone() / &q,
         };
         let sin = Surd {
-            coeff: s[2].coeff.clone(),
+            coeff: ab[1].clone(),
             radicand: s[2].radicand.clone() / &q,
         };
         let (c, si) = (cos.to_f64(), sin.to_f64());

@@ -44,11 +44,13 @@
 //! Here: [`Scene`] and its conversion to a [`Problem`] in a scalar type. `read` walks a
 //! document and holds the reader's primitives, `schema` the tables a scene may have
 //! ([`ContactSpec`], [`ConstraintsSpec`], …) and how each is read, `path` the key paths and
-//! [`set_value`]; [`pipeline`] runs a scene from assembly to report; [`seed`] marks the input
-//! a sensitivity run differentiates with respect to.
+//! [`set_value`]; [`pipeline`] runs a scene from assembly to report; [`limits`] names the
+//! sizes refused at once; [`seed`] marks the input a sensitivity run differentiates with
+//! respect to.
 
 mod exact;
 mod law;
+pub mod limits;
 pub mod model;
 mod notes;
 mod path;

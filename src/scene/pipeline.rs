@@ -11,6 +11,9 @@
 //! to the radical field is not taken (that field carries no derivative), and the spatial
 //! frictional integrator refuses it.
 
+use num_traits::Zero;
+
+use crate::analysis::wrench_space::WrenchSpace;
 use crate::impact::admissibility::{Inadmissible, energy_gain, verdicts};
 use crate::impact::friction::{FrictionError, solve_frictional};
 use crate::impact::outputs::Outputs;
@@ -22,8 +25,12 @@ use crate::mechanics::constraint::{Constrained, ConstraintError};
 use crate::report::{FrictionReport, Report, Value};
 use crate::scalar::symbolic::RatFun;
 use crate::scalar::{Exact, Scalar};
-use crate::scene::scale::{Units, out_of_range, output_beyond, scale, unrepresentable, unscale};
-use crate::scene::{OUT_OF_RANGE, Scene, SceneError};
+use crate::scene::limits::{exact_limit, friction_limit};
+use crate::scene::scale::{
+    Units, out_of_range, output_below, output_beyond, precision_lost, scale, unrepresentable,
+    unscale,
+};
+use crate::scene::{ConstraintsSpec, OUT_OF_RANGE, Scene, SceneError};
 
 /// Why a scene could not be solved.
 #[derive(Debug, thiserror::Error)]
@@ -96,19 +103,70 @@ pub fn run_with<T: Scalar>(
         prepared => prepared?,
     };
     let mut solved = run_prepared_with(scene, &prepared.problem, models, allow_singular)?;
-    if let Some(units) = &prepared.units {
-        unscale(&mut solved.report, units);
-    }
-    if let Some(output) = out_of_range(&solved.report) {
-        return Err(RunError::Scene(output_beyond(
-            scene,
-            T::NAME,
-            output,
-            ", even in units of mass, length and time scaled to the scene",
-        )));
-    }
+    finish_float::<T>(scene, &mut solved, prepared.units.as_ref(), SCALED)?;
     solved.report.scene.clone_from(&scene.name);
     Ok(solved)
+}
+
+/// How a float solve in units scaled to the scene was tried, for refusals.
+const SCALED: &str = ", even in units of mass, length and time scaled to the scene";
+
+/// A float report refused when a physical output lost its precision in the units it was
+/// solved in ([`precision_lost`]), else put back into the scene's units (`units`, when it was
+/// solved in scaled ones), its written constraint screws echoed as written, and refused when
+/// a physical output is beyond `T` there (`how`: in which units it was solved). Exact reports
+/// are only scaled back.
+fn finish_float<T: Scalar>(
+    scene: &Scene,
+    solved: &mut Solved,
+    units: Option<&Units>,
+    how: &str,
+) -> Result<(), RunError> {
+    if !T::IS_EXACT {
+        if let Some(output) = precision_lost(&solved.report) {
+            return Err(RunError::Scene(output_below(scene, T::NAME, output, how)));
+        }
+    }
+    if let Some(units) = units {
+        unscale(&mut solved.report, units);
+    }
+    if T::IS_EXACT {
+        return Ok(());
+    }
+    echo_written_screws(&mut solved.report, scene);
+    match out_of_range(&solved.report) {
+        Some(output) => Err(RunError::Scene(output_beyond(scene, T::NAME, output, how))),
+        None => Ok(()),
+    }
+}
+
+/// The constraint screws a scene writes out (`free`, and `blocked` when given) are inputs: a
+/// number of theirs that f64 does not hold (a blocked screw written `"10^400"`, which came out
+/// as `inf` in the table and `null` in the JSON) is reported as written, its text.
+fn echo_written_screws(report: &mut Report, scene: &Scene) {
+    let (Some(c), Some(ConstraintsSpec::Screws { free, blocked })) =
+        (&mut report.constraints, &scene.constraints)
+    else {
+        return;
+    };
+    let written = blocked.as_ref().filter(|_| !c.blocked_derived);
+    let pairs = c
+        .free
+        .iter_mut()
+        .zip(free)
+        .chain(c.blocked.iter_mut().zip(written.into_iter().flatten()));
+    for (values, numbers) in pairs {
+        for (v, n) in values.iter_mut().zip(numbers) {
+            let zero = matches!(&n.exact, Ok(q) if q.is_zero());
+            if !n.approx.is_finite() || (n.approx == 0.0 && !zero) {
+                *v = Value {
+                    exact: Some(n.text.clone()),
+                    wide: None,
+                    ..v.clone()
+                };
+            }
+        }
+    }
 }
 
 /// A scene's problem prepared in the float units [`super::scale`] picks for it: solved by
@@ -153,17 +211,7 @@ pub fn run_prepared_scaled<T: Scalar>(
     models: Option<&[Model]>,
 ) -> Result<Solved, RunError> {
     let mut solved = run_prepared_with(scene, &prepared.problem, models, false)?;
-    if let Some(units) = &prepared.units {
-        unscale(&mut solved.report, units);
-    }
-    if let (false, Some(output)) = (T::IS_EXACT, out_of_range(&solved.report)) {
-        return Err(RunError::Scene(output_beyond(
-            scene,
-            T::NAME,
-            output,
-            ", even in units of mass, length and time scaled to the scene",
-        )));
-    }
+    finish_float::<T>(scene, &mut solved, prepared.units.as_ref(), SCALED)?;
     Ok(solved)
 }
 
@@ -190,15 +238,13 @@ pub fn run_prepared<T: Scalar>(
     problem: &Problem<T>,
     models: Option<&[Model]>,
 ) -> Result<Solved, RunError> {
-    let solved = run_prepared_with(scene, problem, models, false)?;
-    if let (false, Some(output)) = (T::IS_EXACT, out_of_range(&solved.report)) {
-        return Err(RunError::Scene(output_beyond(
-            scene,
-            T::NAME,
-            output,
-            " in the scene's units (`run_with` scales them)",
-        )));
-    }
+    let mut solved = run_prepared_with(scene, problem, models, false)?;
+    finish_float::<T>(
+        scene,
+        &mut solved,
+        None,
+        " in the scene's units (`run_with` scales them)",
+    )?;
     Ok(solved)
 }
 
@@ -209,6 +255,13 @@ fn run_prepared_with<T: Scalar>(
     allow_singular: bool,
 ) -> Result<Solved, RunError> {
     scene.law_applies()?;
+    if let Some(refusal) = T::IS_EXACT
+        .then(|| exact_limit(scene))
+        .flatten()
+        .or_else(|| scene.frictional().then(|| friction_limit(scene)).flatten())
+    {
+        return Err(refusal.into());
+    }
     if scene.frictional() {
         return run_frictional(scene, problem, models);
     }
@@ -222,6 +275,9 @@ fn run_prepared_with<T: Scalar>(
     if scene.law == Law::Unilateral && contacts > limit {
         // Refused before G (N×N) is assembled.
         return Err(UnilateralError::TooManyContacts { contacts, limit }.into());
+    }
+    if scene.law == Law::Simultaneous && !allow_singular {
+        surely_singular(problem)?;
     }
     let mut a = Assembled {
         impact: Impact::assemble_for(problem, scene.outputs | checked)?,
@@ -276,6 +332,24 @@ fn run_prepared_with<T: Scalar>(
     Ok(Solved {
         report,
         energy_identity: solves.iter().map(|s| s.energy_identity).collect(),
+    })
+}
+
+/// G = Eᵀ η W E has rank at most the body's degrees of freedom (6 when free): with more
+/// contacts than that it is singular whatever the numbers, and the simultaneous law has no
+/// unique answer. Decided before G (N×N) is formed, with rank G from the contact wrenches in
+/// O(N) work and memory ([`WrenchSpace`]) — `solve` on 60,000 contacts allocated 28.8 GB for G
+/// and aborted; `--exact` on 2000 factored G for two minutes.
+fn surely_singular<T: Scalar>(problem: &Problem<T>) -> Result<(), SolveError> {
+    let contacts = problem.contacts().len();
+    let dof = problem.constraints().map_or(6, |c| c.dof());
+    if contacts <= dof {
+        return Ok(());
+    }
+    Err(SolveError::Singular {
+        rank: WrenchSpace::build(problem)?.rank(),
+        contacts,
+        rounded: false,
     })
 }
 

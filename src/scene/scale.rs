@@ -11,8 +11,11 @@
 //! n_i′ = n_i/2^(e_i),  y_i′ = y_i/2^(f_i)    (an axis is a direction: any length serves)
 //! ```
 //!
-//! with a, b from the mass and the largest contact coordinate, c making the largest velocity
-//! (|v_C| or |ω|·L) about 1, and e_i, f_i the axes' own scales; J′ scales every entry of the
+//! with b from the largest contact coordinate, a midway between the mass and the moments
+//! over L² ([`mass_exponent`]), c making the largest speed of approach |v_ix⁰| about 1 —
+//! impulses and energies scale with it — as far as the largest velocity (|v_C| or |ω|·L) may
+//! grow, to 2⁹⁶⁰ ([`HEADROOM`]; the largest velocity about 1 when the speeds of approach are
+//! not computed exactly), and e_i, f_i the axes' own scales; J′ scales every entry of the
 //! inertia tensor (a full tensor's entries off the diagonal as well). The laws are invariant
 //! under this change of units (k and μ are dimensionless), and every output is scaled back by its
 //! dimension: impulses M·L/T, velocities L/T, ω 1/T, energies M·L²/T², inertances 1/M, Δ 1/M^N.
@@ -47,10 +50,13 @@
 //! as an irrational expression is scaled as an expression: its text times 2^k, whose f64
 //! value is its own f64 evaluation times 2^k, exactly. Symbolic scenes are exact and not scaled.
 //!
-//! What f64 cannot hold after scaling back is either a pure power of the units that is no
-//! physical quantity — Δ and the inertances, reported from their scaled value and power of two
+//! What f64 cannot hold after scaling back is either a quantity whose size the units or the
+//! user's own scale of a screw set — Δ, the inertances, the constraint screws, M_red and the
+//! constraint impulses, reported from their scaled value and power of two
 //! ([`crate::report::Wide`]) — or a physical output (impulses, velocities, energies), which is
-//! refused, naming it and the input that sets the extreme scale.
+//! refused, naming it and the input that sets the extreme scale. So is a physical output that
+//! lost its precision to underflow in the scaled units themselves ([`precision_lost`]): when
+//! the speeds span more than the units can hold, a flushed energy is refused, not printed.
 //!
 //! **Sensitivities.** In a dual-number run ([`crate::scalar::dual`]) a seeded input's tangent
 //! is scaled with its value and each output's derivative is scaled back like the output: with
@@ -157,15 +163,18 @@ pub fn scale(scene: &Scene) -> Option<(Scene, Units)> {
     if scene.numbers().any(|(_, n)| !n.symbols.is_empty()) {
         return None;
     }
-    let a = largest([&scene.mass]).unwrap_or(0);
     let b = largest(scene.contacts.iter().flat_map(|c| c.point.iter())).unwrap_or(0);
+    let a = mass_exponent(scene, b);
     let v = largest(scene.velocity.iter());
     let w = largest(scene.angular_velocity.iter()).map(|e| e + b);
     let speed = match (v, w) {
         (Some(x), Some(y)) => Some(x.max(y)),
         (x, y) => x.or(y),
     };
-    let c = speed.map_or(0, |s| b - s);
+    let c = speed.map_or(0, |s| {
+        let approach = approach_exponent(scene).unwrap_or(s);
+        b - approach.clamp(s - HEADROOM, s)
+    });
     let mut s = scene.clone();
     scale_number(&mut s.mass, -a);
     // The products of inertia have the moments' dimension, M·L².
@@ -227,6 +236,61 @@ pub fn scale(scene: &Scene) -> Option<(Scene, Units)> {
         || units.normals.iter().any(|&e| e != 0)
         || units.free.iter().chain(&units.blocked).any(|&e| e != 0))
     .then_some((s, units))
+}
+
+/// a, the unit of mass 2^a kg: midway, in the exponent, between the mass m and the smallest
+/// moment over the length unit squared, J/L² (also a mass), so that both terms of an
+/// inertance, 1/m′ and r′²/J′, are within range. From the mass alone, a body of 2^1024 kg
+/// with moments of 12 kg m² had J′ ≈ 2^−1022 (subnormal) and f64 called its G, of cond₂ 1,
+/// singular; so did 10³⁰⁸ kg with moments of 1 kg m² (cond₂ G = 63).
+fn mass_exponent(scene: &Scene, b: i64) -> i64 {
+    let m = largest([&scene.mass]).unwrap_or(0);
+    let moments = scene
+        .inertia
+        .iter()
+        .filter_map(number_exponent)
+        .min()
+        .map(|j| j - 2 * b);
+    moments.map_or(m, |j| (m + j).div_euclid(2))
+}
+
+/// How far above 1 the largest velocity may be put, as a power of two, for the velocities
+/// along the normals to come out near 1: the largest velocity, a contact point's (|r′| < 2√3)
+/// and its components along the axes then stay below 2^970, well inside f64.
+const HEADROOM: i64 = 960;
+
+/// ⌊log₂⌋ within two of the largest speed of approach |v_ix⁰| = |n_i·v_C + ω·(r_i × n_i)|/|n_i|
+/// (m/s), computed exactly; `None` when every one is zero, or one cannot be computed exactly
+/// (an irrational number, or a normal from the `[surface]`).
+///
+/// Impulses and energies scale with these speeds, not with the largest velocity: a unit sphere
+/// spinning at ω = 10³⁰⁸ rad/s that hits a floor at 1 m/s, put in a time unit that makes
+/// ω about 1, had v_C = 2⁻¹⁰²³ (subnormal) and both energies, of order 2⁻²⁰⁴⁶ in those units,
+/// flushed to zero (they are 9/8 J and 3/8 J). The time unit is therefore chosen to make the
+/// speeds of approach about 1, as far as [`HEADROOM`] allows the other velocities to grow.
+fn approach_exponent(scene: &Scene) -> Option<i64> {
+    fn triple(x: &[Number; 3]) -> Option<[&BigRational; 3]> {
+        let exact = |k: usize| x[k].exact.as_ref().ok();
+        Some([exact(0)?, exact(1)?, exact(2)?])
+    }
+    let v = triple(&scene.velocity)?;
+    let w = triple(&scene.angular_velocity)?;
+    let mut most: Option<i64> = None;
+    for contact in &scene.contacts {
+        let normal = contact.normal.as_ref()?;
+        let (r, n) = (triple(&contact.point)?, triple(normal)?);
+        let mut speed = BigRational::zero();
+        for k in 0..3 {
+            let (i, j) = ((k + 1) % 3, (k + 2) % 3);
+            let moment = r[i] * n[j] - r[j] * n[i];
+            speed += v[k] * n[k] + w[k] * moment;
+        }
+        let size = largest(normal.iter())?;
+        if let Some(e) = exponent(&speed) {
+            most = Some(most.map_or(e - size, |m| m.max(e - size)));
+        }
+    }
+    most
 }
 
 /// The constraints in units of length 2^b: a joint's point divided by 2^b (its axis is a
@@ -374,24 +438,26 @@ pub fn unscale(report: &mut Report, u: &Units) {
     }
     if let Some(c) = &mut report.constraints {
         // D_a = [ω′; v′·2^b]·2^(f_a), U_a = [F′; M′·2^b]·2^(g_a), and M_red = Dᵀ η M D has
-        // the dimension of an energy per unit of each screw's own scale.
+        // the dimension of an energy per unit of each screw's own scale. A screw's scale is
+        // the user's (a blocked screw written "10^400"), so these may leave f64: held wide.
         for (screws, exps) in [(&mut c.free, &u.free), (&mut c.blocked, &u.blocked)] {
             for (screw, &f) in screws.iter_mut().zip(exps) {
                 for (k, x) in screw.iter_mut().enumerate() {
-                    times(x, if k < 3 { f } else { f + b });
+                    times_wide(x, if k < 3 { f } else { f + b });
                 }
             }
         }
         for (row, &fa) in c.reduced_mass.iter_mut().zip(&u.free) {
             for (x, &fb) in row.iter_mut().zip(&u.free) {
-                times(x, a + 2 * b + fa + fb);
+                times_wide(x, a + 2 * b + fa + fb);
             }
         }
     }
     for m in &mut report.models {
-        // U q = r: [F′; M′] q′ in the scaled units is the wrench [F′; M′·2^b]·q′·2^(a+b−c).
+        // U q = r: [F′; M′] q′ in the scaled units is the wrench [F′; M′·2^b]·q′·2^(a+b−c);
+        // q_a is per unit of U_a as written, so it is as wide as U_a's scale is.
         for (q, &g) in m.constraint_impulses.iter_mut().zip(&u.blocked) {
-            times(q, a + b - c - g);
+            times_wide(q, a + b - c - g);
         }
         // The wrench U q itself: a force (impulse) about a point (length).
         for w in m.constraint_wrench.iter_mut().chain(&mut m.joint_reactions) {
@@ -472,11 +538,12 @@ pub fn unscale(report: &mut Report, u: &Units) {
 }
 
 /// The first output of `report` that f64 does not hold, by name (`None`: all are finite).
-/// Δ and the inertances are pure powers of the units and no physical quantity: beyond f64 they
-/// are reported from their scaled value ([`Value::wide`]), so they count as held then.
+/// Δ, the inertances, the constraints' screws, M_red and the constraint impulses depend on
+/// the units or on the scale the user gave a screw: beyond f64 they are reported from their
+/// scaled value ([`Value::wide`]), or a written screw as written (its text), and count as held.
 pub fn out_of_range(report: &Report) -> Option<&'static str> {
     let ok = |v: &Value| v.f64.is_finite();
-    let held = |v: &Value| ok(v) || v.wide.is_some();
+    let held = |v: &Value| ok(v) || v.wide.is_some() || v.exact.is_some();
     let point = |p: &PointVelocity| p.components.iter().all(ok);
     let mut checks: Vec<(&'static str, bool)> = vec![
         (
@@ -493,6 +560,13 @@ pub fn out_of_range(report: &Report) -> Option<&'static str> {
         (
             "contact velocities before impact",
             report.contacts_before.iter().all(point),
+        ),
+        (
+            "constraints",
+            report.constraints.as_ref().is_none_or(|c| {
+                c.free.iter().chain(&c.blocked).flatten().all(held)
+                    && c.reduced_mass.iter().flatten().all(held)
+            }),
         ),
     ];
     for m in &report.models {
@@ -511,7 +585,10 @@ pub fn out_of_range(report: &Report) -> Option<&'static str> {
                 "energies",
                 ok(&m.lost_velocity_energy) && ok(&m.kinetic_energy_loss),
             ),
-            ("constraint impulses", m.constraint_impulses.iter().all(ok)),
+            (
+                "constraint impulses",
+                m.constraint_impulses.iter().all(held),
+            ),
             (
                 "constraint wrench",
                 m.constraint_wrench
@@ -558,6 +635,76 @@ pub fn out_of_range(report: &Report) -> Option<&'static str> {
         .map(|(name, _)| name)
 }
 
+/// The least work P_i v_ix⁰ (the largest impulse times the largest speed of approach) whose
+/// energies keep f64's precision: a term of their sums below 2⁻¹⁰²² is subnormal, off by up
+/// to 2⁻¹⁰⁷⁵, and at most 300 terms (the unilateral law's limit) stay within ε of the energy
+/// when it is at least 300·2⁻¹⁰⁷⁵/2⁻⁵³ < 2⁻¹⁰¹².
+const LEAST_WORK: f64 = f64::MIN_POSITIVE * 1024.0;
+
+/// The first physical output of `report`, computed in whatever units it was solved in, whose
+/// computation left f64's full precision (`None`: none did). Per group — the impulses, the
+/// velocities after impact — the largest magnitude must be 0 or a normal number (≥ 2⁻¹⁰²²);
+/// the energies are checked on their terms, which must reach [`LEAST_WORK`], since a flushed
+/// energy is simply 0. A group's small members are not checked: a component 10⁻³¹⁰ of the
+/// largest one meets the contract, whose bounds are norms.
+///
+/// So a solve that flushed a result is refused rather than printed: before the time unit was
+/// chosen from the speeds of approach, a sphere spinning at 10³⁰⁸ rad/s gave E_p = ΔE_c = 0.
+pub fn precision_lost(report: &Report) -> Option<&'static str> {
+    let largest =
+        |values: &mut dyn Iterator<Item = &Value>| values.map(|v| v.f64.abs()).fold(0.0, f64::max);
+    let lost = |m: f64| m > 0.0 && m < f64::MIN_POSITIVE;
+    let approach = largest(&mut report.contacts_before.iter().map(|p| &p.components[0]));
+    for m in &report.models {
+        let impulses = largest(
+            &mut m
+                .impulses
+                .iter()
+                .chain(m.compression_impulses.iter().flatten()),
+        );
+        let velocities = largest(
+            &mut m
+                .angular_velocity
+                .iter()
+                .chain(&m.velocity)
+                .chain(m.contacts.iter().flat_map(|p| &p.components)),
+        );
+        let work = impulses.log2() + approach.log2();
+        let energies_lost = impulses > 0.0 && approach > 0.0 && work < LEAST_WORK.log2();
+        for (name, gone) in [
+            ("impulses", lost(impulses)),
+            ("velocities after impact", lost(velocities)),
+            ("energies", energies_lost),
+        ] {
+            if gone {
+                return Some(name);
+            }
+        }
+    }
+    for f in &report.friction {
+        let impulses = largest(&mut f.contacts.iter().map(|p| &p.normal_impulse));
+        let velocities = largest(&mut f.angular_velocity.iter().chain(&f.velocity));
+        let energies = largest(
+            &mut [
+                &f.lost_velocity_energy,
+                &f.kinetic_energy_loss,
+                &f.friction_dissipation,
+            ]
+            .into_iter(),
+        );
+        for (name, m) in [
+            ("impulses", impulses),
+            ("velocities after impact", velocities),
+            ("energies", energies),
+        ] {
+            if lost(m) {
+                return Some(name);
+            }
+        }
+    }
+    None
+}
+
 /// The key of the scene's number farthest from 1 in magnitude (the likeliest culprit when a
 /// result is out of range), with its text.
 pub fn most_extreme(scene: &Scene) -> Option<(String, String)> {
@@ -585,6 +732,23 @@ pub fn output_beyond(scene: &Scene, name: &str, output: &str, how: &str) -> supe
         message: format!(
             "the {output} are beyond the range of {name}{how}; this number sets the extreme \
              scale — {}",
+            super::OUT_OF_RANGE
+        ),
+    }
+}
+
+/// The refusal of a physical `output` whose computation in the float type `name` lost its
+/// precision to underflow ([`precision_lost`]) even in units scaled to the scene (`how`):
+/// names the output and the input farthest from 1.
+pub fn output_below(scene: &Scene, name: &str, output: &str, how: &str) -> super::SceneError {
+    let (key, value) = most_extreme(scene).unwrap_or_default();
+    super::SceneError {
+        file: scene.file.clone(),
+        key,
+        value: Some(value),
+        message: format!(
+            "the {output} fall below the range where {name} keeps its precision{how}, so they \
+             would be printed wrong; this number sets the extreme scale — {}",
             super::OUT_OF_RANGE
         ),
     }

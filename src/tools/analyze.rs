@@ -14,6 +14,7 @@ use crate::mechanics::contact::Surd;
 use crate::report::{Value, Wide};
 use crate::scalar::Scalar;
 use crate::scene::Scene;
+use crate::scene::limits::{friction_limit, too_many};
 use crate::scene::pipeline::{RunError, prepare};
 
 /// The readout of an analysis, scalar-free.
@@ -40,8 +41,11 @@ pub struct AnalysisReport {
     /// (equal, reason).
     pub newton_equals_poisson: Option<(bool, String)>,
     /// Coincident contact pairs (1-based in text), whether the axes coincide, and the
-    /// single-impulse reduction (Newton, Poisson).
-    pub coincident: Vec<((usize, usize), bool, [Value; 2])>,
+    /// single-impulse reduction (Newton, Poisson; `None` where constraints absorb the
+    /// normal's impulse) — at most [`crate::analysis::MAX_COINCIDENT`] pairs.
+    pub coincident: Vec<((usize, usize), bool, Option<[Value; 2]>)>,
+    /// Whether more pairs may be coincident than are listed.
+    pub coincident_truncated: bool,
     /// For a scene with friction (`mu`, `[solve] restitution`): each frictional contact's
     /// sticking threshold and the frictional integration of each law.
     pub friction: Option<FrictionAnalysis>,
@@ -107,10 +111,9 @@ pub struct UnilateralReport {
 /// (`null_space_dimension`; `null_space` is absent), Δ = 0 and cond₂ G = ∞ whenever N > rank G.
 pub const DENSE_CONTACTS: usize = 24;
 
-/// The most contacts `analyze` takes in exact arithmetic (rationals or symbols). The analysis
-/// costs O(N) rational operations; what remains is the size of the numbers and of the report
-/// (1000 contacts of a fuzzed scene in about a second, release build).
-pub const MAX_EXACT_CONTACTS: usize = 1000;
+/// The most contacts `analyze` (as `solve`) takes in exact arithmetic
+/// ([`crate::scene::limits`]).
+pub use crate::scene::limits::MAX_EXACT_CONTACTS;
 
 /// The most contacts `analyze` takes in floats: the analysis is linear in N (10⁵ contacts in
 /// a fraction of a second); the limit bounds the report (a few hundred bytes per contact).
@@ -142,18 +145,30 @@ pub fn analyze_scene<T: Scalar>(
         (MAX_FLOAT_CONTACTS, "analyze", String::new())
     };
     if n > limit {
-        return Err(RunError::Scene(crate::scene::SceneError {
-            file: scene.file.clone(),
-            key: "contact".into(),
-            value: Some(format!("{n} contacts")),
-            message: format!(
-                "`{command}` takes at most {limit} contacts: its work is linear in N but the \
-                 numbers and the report grow with it{instead}"
-            ),
-        }));
+        return Err(RunError::Scene(too_many(
+            scene,
+            limit,
+            &format!("`{command}`"),
+            "its work is linear in N but the numbers and the report grow with it",
+            &instead,
+        )));
     }
     let models = models.unwrap_or(&scene.models);
     let problem = prepare::<T>(scene)?;
+    let space = WrenchSpace::build(&problem)?;
+    let finite = |x: &T| x.to_f64().is_finite();
+    if !T::IS_EXACT
+        && !(space.diagonal().iter().all(finite)
+            && space.frames().iter().all(|f| f.norm2.iter().all(finite)))
+    {
+        // An axis or an inertance beyond f64 (a normal of length 10³⁰⁸: G was "not positive
+        // semidefinite", or a verdict read "v_x⁰ = NaN"); `analyze` in floats is not scaled.
+        return Err(RunError::Scene(crate::scene::scale::unrepresentable(
+            scene,
+            T::NAME,
+            "",
+        )));
+    }
     if n <= DENSE_CONTACTS {
         let mut impact = Impact::assemble(&problem)?;
         let analysis: Analysis<T> = analyze(&mut impact, models);
@@ -174,7 +189,6 @@ pub fn analyze_scene<T: Scalar>(
         };
         return finish(scene, impact.problem(), analysis, parts);
     }
-    let space = WrenchSpace::build(&problem)?;
     let analysis = analyze_reduced(&space, models);
     let norm2: Vec<T> = space.frames().iter().map(|f| f.norm2[0].clone()).collect();
     let mut norms = T::one();
@@ -273,6 +287,16 @@ fn finish<T: Scalar>(
         mut unilateral,
     } = parts;
     let impulse = |p: &T, i: usize| -> Value { Value::surd(&Surd::times_norm(p, &norm2[i])) };
+    // The speeds of approach are written into the verdicts: a normal of length 10³⁰⁸ squares
+    // beyond f64, and "v_4x⁰ = NaN" was printed (`analyze` in floats is not scaled).
+    let held = |v: &Value| v.f64.is_finite() || v.exact.is_some();
+    if (0..n).any(|i| !held(&Value::surd(&Surd::over_norm(&before_x[i], &norm2[i])))) {
+        return Err(RunError::Scene(crate::scene::scale::unrepresentable(
+            scene,
+            T::NAME,
+            "",
+        )));
+    }
     let model_reports = analysis
         .models
         .iter()
@@ -352,10 +376,9 @@ fn finish<T: Scalar>(
             (
                 c.pair,
                 c.same_axis,
-                [
-                    impulse(&c.single_impulse[0], i),
-                    impulse(&c.single_impulse[1], i),
-                ],
+                c.single_impulse
+                    .as_ref()
+                    .map(|p| [impulse(&p[0], i), impulse(&p[1], i)]),
             )
         })
         .collect();
@@ -371,6 +394,7 @@ fn finish<T: Scalar>(
         models: model_reports,
         newton_equals_poisson: analysis.newton_equals_poisson,
         coincident,
+        coincident_truncated: analysis.coincident_truncated,
         friction: scene
             .frictional()
             .then(|| friction_analysis(scene, problem)),
@@ -411,6 +435,14 @@ pub struct FrictionAnalysis {
 /// The friction part of the analysis of `scene` in `T`.
 fn friction_analysis<T: Scalar>(scene: &Scene, problem: &Problem<T>) -> FrictionAnalysis {
     use crate::impact::friction::Blocks;
+    if let Some(refusal) = friction_limit(scene) {
+        // The thresholds and the integration both work on the 3N×3N blocks.
+        return FrictionAnalysis {
+            stick_thresholds: vec![None; problem.contacts().len()],
+            readouts: Vec::new(),
+            failures: vec![refusal.to_string()],
+        };
+    }
     let planar = Blocks::planar(problem);
     let spatial = if planar.is_none() && !T::IS_EXACT {
         let frames: Option<Vec<_>> = problem
@@ -496,9 +528,11 @@ fn scaled_det<T: Scalar>(scene: &Scene) -> Option<Value> {
 
 impl AnalysisReport {
     /// Whether every reported number is finite (the condition number may be ∞: G singular);
-    /// Δ beyond f64 counts when held as a [`Wide`].
+    /// Δ beyond f64 counts when held as a [`Wide`], and an exact value by its text (a sphere
+    /// spinning at 10³⁰⁸ rad/s has T⁰ = 2·10⁶¹⁵ J, which `analyze --exact` refused as beyond
+    /// what "exact can hold").
     fn finite(&self) -> bool {
-        let ok = |v: &Value| v.f64.is_finite();
+        let ok = |v: &Value| v.f64.is_finite() || v.exact.is_some();
         let all = |v: &[Value]| v.iter().all(ok);
         (ok(&self.det) || self.det.wide.is_some())
             && ok(&self.kinetic_energy_before)
@@ -643,8 +677,9 @@ impl AnalysisReport {
             "coincident": self.coincident.iter().map(|((i, j), same, single)| json!({
                 "contacts": [i + 1, j + 1],
                 "same_axis": same,
-                "single_impulse": {"newton": Value::json(&single[0]), "poisson": Value::json(&single[1])},
+                "single_impulse": single.as_ref().map(|p| json!({"newton": p[0].json(), "poisson": p[1].json()})),
             })).collect::<Vec<_>>(),
+            "coincident_truncated": self.coincident_truncated,
         });
         if let Some(obj) = top.as_object_mut() {
             if let Some((equal, reason)) = &self.newton_equals_poisson {
@@ -706,8 +741,21 @@ impl AnalysisReport {
         }
         s += "\n";
         for ((i, j), same, single) in &self.coincident {
+            let reduction = match single {
+                Some(p) => format!(
+                    "single-impulse reduction (eq. 69–72): P = {} (Newton), {} (Poisson)",
+                    p[0].text(),
+                    p[1].text()
+                ),
+                None => format!(
+                    "no single-impulse reduction: the constraints absorb any impulse along n{} (g{}{} = 0)",
+                    i + 1,
+                    i + 1,
+                    i + 1
+                ),
+            };
             s += &format!(
-                "A{} ≡ A{}: coincident points{} — single-impulse reduction (eq. 69–72): P = {} (Newton), {} (Poisson)\n",
+                "A{} ≡ A{}: coincident points{} — {reduction}\n",
                 i + 1,
                 j + 1,
                 if *same {
@@ -715,8 +763,13 @@ impl AnalysisReport {
                 } else {
                     " with different normals"
                 },
-                single[0].text(),
-                single[1].text()
+            );
+        }
+        if self.coincident_truncated {
+            s += &format!(
+                "… more coincident pairs than listed (at most {} are, of at most {} candidates)\n",
+                crate::analysis::MAX_COINCIDENT,
+                crate::analysis::MAX_COINCIDENT_CANDIDATES
             );
         }
         for m in &self.models {

@@ -105,13 +105,17 @@ pub fn default_symbols(doc: &toml_edit::DocumentMut, set: &[&str]) -> Vec<String
 /// Derive `scene` symbolically for `models` (the scene's own when `None`).
 ///
 /// # Errors
-/// Bad input ([`RunError::Scene`]) and frames that cannot be built; a singular G is not an
-/// error (see [`Derived::singular`]).
+/// Bad input ([`RunError::Scene`]), more contacts than
+/// [`crate::scene::limits::MAX_DERIVE_CONTACTS`], and frames that cannot be built; a singular
+/// G is not an error (see [`Derived::singular`]).
 pub fn derive(
     scene: &Scene,
     symbols: &[String],
     models: Option<&[Model]>,
 ) -> Result<Derived, RunError> {
+    if let Some(refusal) = crate::scene::limits::derive_limit(scene) {
+        return Err(refusal.into());
+    }
     let models = models.unwrap_or(&scene.models).to_vec();
     take_assumptions();
     let mut a = assemble::<RatFun>(scene)?;

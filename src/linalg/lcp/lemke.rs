@@ -12,9 +12,19 @@
 //! Exact types decide every sign exactly. In floats an entry of the entering column counts as
 //! positive when it exceeds 4n·ε times the column's largest entry — the rounding error of the
 //! O(n) operations that produced it — and ratios within 4n·ε of each other are ties.
+//!
+//! **A bounded budget.** Each pivot costs O(n²), and the path is at most
+//! [`PIVOTS_PER_ROW`]·(n + 1) pivots long: the work is O(n³) whatever the data. Exact paths on
+//! the inertance matrices of random bodies take at most about 2.5 n pivots (n = 10–40, rank 6);
+//! in floats, rounding can make a lexicographic path on a singular G cycle, and the budget is
+//! then what ends it — quadratic in n before, it let one 200-contact `analyze` run for minutes.
 
 use super::{Lcp, LcpError, LcpSolution};
 use crate::scalar::Scalar;
+
+/// The pivot budget of an n-dimensional problem is this many pivots per row, plus one row:
+/// four times the longest exact path measured (module docs).
+pub const PIVOTS_PER_ROW: usize = 10;
 
 /// Solve LCP(M, q) (see [`super`]).
 ///
@@ -79,7 +89,7 @@ pub fn lemke_in<T: Scalar>(work: &mut LcpWork<T>, lcp: Lcp<'_, T>) -> Result<usi
         }
     }
     let mut entering = t.z0;
-    let budget = 64 * (n + 1) * (n + 1);
+    let budget = PIVOTS_PER_ROW * (n + 1);
     for pivots in 0..budget {
         let leaving = t.pivot(r, entering);
         if leaving == t.z0 {

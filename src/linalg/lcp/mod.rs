@@ -24,7 +24,7 @@
 
 mod lemke;
 
-pub use lemke::{LcpWork, lemke, lemke_in};
+pub use lemke::{LcpWork, PIVOTS_PER_ROW, lemke, lemke_in};
 
 /// A linear complementarity problem LCP(M, q), M n×n row-major.
 #[derive(Debug)]
