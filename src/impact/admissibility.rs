@@ -15,6 +15,7 @@
 //! error of the solve: 16·N·ε times its scale (the largest impulse, the largest normal velocity,
 //! T⁰), the bound the energy identity is checked to.
 
+use crate::impact::mechanism::Mechanism;
 use crate::impact::restitution::Model;
 use crate::impact::solve::{Impact, Outcome};
 use crate::scalar::Scalar;
@@ -95,7 +96,10 @@ impl std::fmt::Display for Inadmissible {
 /// ΔE_c < 0 beyond rounding: the one verdict that also applies to a unilateral outcome
 /// (complementarity holds there by construction, but Moreau's Newton law can create energy
 /// when a contact that was not approaching takes an impulse: see `crate::impact::unilateral`).
-pub fn energy_gain<T: Scalar>(impact: &Impact<T>, out: &Outcome<T>) -> Option<Inadmissible> {
+pub fn energy_gain<T: Scalar, M: Mechanism<T>>(
+    impact: &Impact<T, M>,
+    out: &Outcome<T, M::Screw>,
+) -> Option<Inadmissible> {
     let scale = impact.kinetic_before().clone() + &out.lost_velocity_energy;
     let x = &out.kinetic_energy_loss;
     (x.signum_i8() < 0 && !x.is_negligible(&scale, 16 * impact.contacts().max(1)))
@@ -104,10 +108,10 @@ pub fn energy_gain<T: Scalar>(impact: &Impact<T>, out: &Outcome<T>) -> Option<In
 
 /// The verdicts on the simultaneous `out` of `model` solved on `impact`; empty when it is
 /// admissible.
-pub fn verdicts<T: Scalar>(
-    impact: &Impact<T>,
+pub fn verdicts<T: Scalar, M: Mechanism<T>>(
+    impact: &Impact<T, M>,
     model: Model,
-    out: &Outcome<T>,
+    out: &Outcome<T, M::Screw>,
 ) -> Vec<Inadmissible> {
     let n = impact.contacts();
     let tol = 16 * n.max(1);

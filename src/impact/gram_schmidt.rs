@@ -55,17 +55,17 @@ use crate::impact::outputs::Outputs;
 use crate::impact::restitution::Model;
 use crate::mechanics::body::Mobility;
 use crate::mechanics::contact::Contact;
-use crate::mechanics::screw::Screw;
+use crate::mechanics::screw::{Screw, Screws};
 use crate::scalar::Scalar;
 
 /// The contact normals' axis screws orthogonalised in ⟨a, b⟩ = {a}ᵀ η W {b} (module docs),
 /// with the buffers of the solve (reused: repeated f64 solves allocate nothing).
 #[derive(Clone, Debug)]
-pub struct WrenchBasis<T: Scalar> {
+pub struct WrenchBasis<T: Scalar, S: Screws<T> = Screw<T>> {
     /// q̂_k.
-    wrenches: Vec<Screw<T>>,
+    wrenches: Vec<S>,
     /// W q̂_k.
-    responses: Vec<Screw<T>>,
+    responses: Vec<S>,
     /// d_k = ⟨q̂_k, q̂_k⟩ > 0.
     norms2: Vec<T>,
     /// U, N×N row-major: u_ik for i < k above the diagonal (1 on it, 0 below, not stored).
@@ -80,7 +80,7 @@ pub struct WrenchBasis<T: Scalar> {
     work: Vec<T>,
 }
 
-impl<T: Scalar> Default for WrenchBasis<T> {
+impl<T: Scalar, S: Screws<T>> Default for WrenchBasis<T, S> {
     fn default() -> Self {
         WrenchBasis {
             wrenches: Vec::new(),
@@ -97,16 +97,16 @@ impl<T: Scalar> Default for WrenchBasis<T> {
 
 /// What one model gives in the orthogonal basis (see the module docs).
 #[derive(Clone, Debug, PartialEq)]
-pub struct BasisOutcome<T: Scalar> {
+pub struct BasisOutcome<T: Scalar, S: Screws<T> = Screw<T>> {
     /// {v} − {v⁰}.
-    pub twist_change: Screw<T>,
+    pub twist_change: S,
     /// E_p.
     pub lost_velocity_energy: T,
     /// ΔE_c.
     pub kinetic_energy_loss: T,
 }
 
-impl<T: Scalar> WrenchBasis<T> {
+impl<T: Scalar, S: Screws<T>> WrenchBasis<T, S> {
     /// Orthogonalise the axis screws in the metric of `mobility`: `axes` yields, in order,
     /// each axis screw Ê_k with its response W Ê_k (already computed for G). `false` when some
     /// d_k is not positive (G singular, or so nearly that rounding decided it): the basis is
@@ -119,9 +119,12 @@ impl<T: Scalar> WrenchBasis<T> {
     /// the second pass would change nothing.
     pub fn build<'a>(
         &mut self,
-        axes: impl ExactSizeIterator<Item = (&'a Screw<T>, &'a Screw<T>)>,
-        mobility: &impl Mobility<T>,
-    ) -> bool {
+        axes: impl ExactSizeIterator<Item = (&'a S, &'a S)>,
+        mobility: &impl Mobility<T, S>,
+    ) -> bool
+    where
+        S: 'a,
+    {
         let n = axes.len();
         self.wrenches.clear();
         self.responses.clear();
@@ -204,11 +207,11 @@ impl<T: Scalar> WrenchBasis<T> {
     pub fn solve(
         &mut self,
         model: Model,
-        velocity: &Screw<T>,
+        velocity: &S,
         contacts: &[Contact<T>],
         before: &[[T; 3]],
         needs: Outputs,
-    ) -> BasisOutcome<T> {
+    ) -> BasisOutcome<T, S> {
         let n = self.len();
         debug_assert_eq!(contacts.len(), n, "one contact per wrench");
         let k = |i: usize| match model {
@@ -267,7 +270,7 @@ impl<T: Scalar> WrenchBasis<T> {
             self.plus.push(one_plus.clone() * a + delta);
             self.minus.push(one_minus.clone() * a - delta);
         }
-        let mut twist_change = Screw::zero();
+        let mut twist_change = velocity.zero_like();
         let (mut lost, mut loss) = (T::zero(), T::zero());
         let (twist, energies) = (
             needs.contains(Outputs::TWIST),

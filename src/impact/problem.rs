@@ -22,9 +22,13 @@
 
 use std::fmt;
 
+use crate::impact::mechanism::Mechanism;
+use crate::impact::restitution::Model;
+use crate::impact::route::{self, Route};
+use crate::impact::solve::{Impact, Outcome, SolveError};
 use crate::mechanics::body::{Inertia, Mobility, RigidBody};
 use crate::mechanics::constraint::{Constrained, ConstraintError, Joint};
-use crate::mechanics::contact::Contact;
+use crate::mechanics::contact::{Contact, ContactFrame, TangentNotPerpendicular};
 use crate::mechanics::inertia::InertiaTensor;
 use crate::mechanics::screw::{Screw, Vec3, dot, norm2};
 use crate::scalar::Scalar;
@@ -440,6 +444,67 @@ impl<T: Scalar> Mobility<T> for Problem<T> {
             Some(c) => c.response(e),
             None => self.body.response(e),
         }
+    }
+}
+
+/// The paper's mechanism: one body, free or held by ideal constraints (§9–11), its contacts'
+/// axes about its centre of mass.
+impl<T: Scalar> Mechanism<T> for Problem<T> {
+    type Screw = Screw<T>;
+
+    fn contacts(&self) -> &[Contact<T>] {
+        &self.contacts
+    }
+
+    fn velocity(&self) -> &Screw<T> {
+        &self.velocity
+    }
+
+    fn frame(
+        &self,
+        i: usize,
+        tangential: bool,
+    ) -> Result<ContactFrame<T>, TangentNotPerpendicular> {
+        let c = &self.contacts[i];
+        if tangential {
+            ContactFrame::new(i, c, &self.velocity)
+        } else {
+            Ok(ContactFrame::normal(c))
+        }
+    }
+
+    fn kinetic_energy(&self, v: &Screw<T>) -> T {
+        self.body.kinetic_energy(v)
+    }
+
+    fn route(&self, g_hat: &[T], n: usize) -> Route {
+        route::route(self, g_hat, n)
+    }
+
+    fn constraint_impulses(&self, dv: &Screw<T>, frames: &[ContactFrame<T>], out: &mut Outcome<T>) {
+        match &self.constraints {
+            Some(c) => {
+                let axes = frames.iter().map(|f| &f.axes[0]);
+                out.constraint_wrench = c.impulses_into(
+                    dv,
+                    out.impulses_hat.iter().zip(axes),
+                    &mut out.constraint_impulses,
+                );
+            }
+            None => out.clear_constraint_impulses(),
+        }
+    }
+
+    fn assemble_fast(impact: &mut Impact<T>) -> Result<bool, SolveError> {
+        impact.build_lane()
+    }
+
+    fn solve_fast(impact: &mut Impact<T>, model: Model, out: &mut Outcome<T>) -> bool {
+        if impact.lane == 0 {
+            return false;
+        }
+        impact.solve_lane(model, out);
+        true
     }
 }
 

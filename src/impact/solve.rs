@@ -42,15 +42,15 @@
 //! every output on Example 3.
 
 use crate::impact::gram_schmidt::WrenchBasis;
+use crate::impact::mechanism::Mechanism;
 use crate::impact::outputs::Outputs;
 use crate::impact::problem::Problem;
 use crate::impact::restitution::Model;
-use crate::impact::route::{self, Route};
+use crate::impact::route::Route;
 use crate::impact::unilateral::UnilateralWork;
 use crate::linalg::{self, NotSemidefinite};
-use crate::mechanics::body::Mobility;
 use crate::mechanics::contact::{ContactFrame, TangentNotPerpendicular};
-use crate::mechanics::screw::Screw;
+use crate::mechanics::screw::{Screw, Screws};
 use crate::scalar::Scalar;
 
 mod lane;
@@ -106,14 +106,14 @@ pub enum SolveError {
 /// g_ij = ĝ_ij / (|n_i| |n_j|), Δ = Δ̂ / Π|n_i|². The values in the paper's units are
 /// [`crate::impact::solution::Solution`]'s. Matrices are N×N, row-major.
 #[derive(Clone, Debug)]
-pub struct Impact<T: Scalar> {
-    problem: Problem<T>,
+pub struct Impact<T: Scalar, M: Mechanism<T> = Problem<T>> {
+    problem: M,
     /// The contact frames.
-    frames: Vec<ContactFrame<T>>,
+    frames: Vec<ContactFrame<T, M::Screw>>,
     /// (v̂_ix⁰, v̂_iy⁰, v̂_iz⁰) per contact (eq. 8).
     before_hat: Vec<[T; 3]>,
     /// W{Ê_jx}: the twist per unit hatted impulse at contact j.
-    responses: Vec<Screw<T>>,
+    responses: Vec<M::Screw>,
     /// Ĝ = [ĝ_ij,xx].
     g_hat: Vec<T>,
     /// [ĝ_ij,yx] (eq. 127).
@@ -131,7 +131,7 @@ pub struct Impact<T: Scalar> {
     work: Vec<T>,
     /// The normals' axis screws orthogonalised in the metric ηW ([`crate::impact::gram_schmidt`]):
     /// float types solve from it where [`crate::impact::route`] says so.
-    basis: WrenchBasis<T>,
+    basis: WrenchBasis<T, M::Screw>,
     /// Whether `basis` holds the current problem's basis.
     basis_built: bool,
     /// The route [`Impact::solve`] takes for this problem.
@@ -144,19 +144,19 @@ pub struct Impact<T: Scalar> {
     /// The buffers of [`Impact::solve_unilateral`].
     pub(crate) unilateral: UnilateralWork<T>,
     /// N when the problem was built by the small-N float lane (module `lane`), 0 otherwise.
-    lane: usize,
+    pub(crate) lane: usize,
 }
 
 /// The result of one restitution model, in hatted form (see [`Impact`]); the paper's units
 /// are [`crate::impact::solution::Solution`]'s.
 #[derive(Clone, Debug, PartialEq)]
-pub struct Outcome<T: Scalar> {
+pub struct Outcome<T: Scalar, S: Screws<T> = Screw<T>> {
     /// P̂_i = P_i / |x̂_i|.
     pub impulses_hat: Vec<T>,
     /// P̂_i^c (Poisson only; empty for Newton).
     pub compression_hat: Vec<T>,
-    /// {v} = [ω; v_C] after impact.
-    pub velocity: Screw<T>,
+    /// {v} = [ω; v_C] after impact (a system: every body's).
+    pub velocity: S,
     /// (v̂_ix, v̂_iy, v̂_iz) after impact, per contact (eq. 13, 25, 26).
     pub after_hat: Vec<[T; 3]>,
     /// E_p (eq. 28).
@@ -170,12 +170,12 @@ pub struct Outcome<T: Scalar> {
     pub constraint_wrench: Screw<T>,
 }
 
-impl<T: Scalar> Default for Outcome<T> {
+impl<T: Scalar, S: Screws<T>> Default for Outcome<T, S> {
     fn default() -> Self {
         Outcome {
             impulses_hat: Vec::new(),
             compression_hat: Vec::new(),
-            velocity: Screw::zero(),
+            velocity: S::default(),
             after_hat: Vec::new(),
             lost_velocity_energy: T::zero(),
             kinetic_energy_loss: T::zero(),
@@ -185,7 +185,7 @@ impl<T: Scalar> Default for Outcome<T> {
     }
 }
 
-impl<T: Scalar> Outcome<T> {
+impl<T: Scalar, S: Screws<T>> Outcome<T, S> {
     /// No constraint impulse: q empty and U q zero (a free body, or not asked for).
     pub(crate) fn clear_constraint_impulses(&mut self) {
         self.constraint_impulses.clear();
@@ -193,14 +193,15 @@ impl<T: Scalar> Outcome<T> {
     }
 }
 
-impl<T: Scalar> Impact<T> {
-    /// Build frames, inertances and the factorization of G for `problem`, the body answering
-    /// impulses through its mobility (free, or constrained). A singular G is not an error
-    /// here: `rank` and `det_hat` say so, and [`Impact::solve`] refuses.
+impl<T: Scalar, M: Mechanism<T>> Impact<T, M> {
+    /// Build frames, inertances and the factorization of G for `problem`, the mechanism
+    /// answering impulses through its mobility (a free or constrained body, a system). A
+    /// singular G is not an error here: `rank` and `det_hat` say so, and [`Impact::solve`]
+    /// refuses.
     ///
     /// # Errors
     /// [`SolveError::NotSemidefinite`] if rounding made G indefinite (floats only).
-    pub fn assemble(problem: &Problem<T>) -> Result<Self, SolveError> {
+    pub fn assemble(problem: &M) -> Result<Self, SolveError> {
         Impact::assemble_for(problem, Outputs::ALL)
     }
 
@@ -212,7 +213,7 @@ impl<T: Scalar> Impact<T> {
     ///
     /// # Errors
     /// As [`Impact::assemble`].
-    pub fn assemble_for(problem: &Problem<T>, outputs: Outputs) -> Result<Self, SolveError> {
+    pub fn assemble_for(problem: &M, outputs: Outputs) -> Result<Self, SolveError> {
         let mut impact = Impact {
             problem: problem.clone(),
             frames: Vec::new(),
@@ -239,37 +240,18 @@ impl<T: Scalar> Impact<T> {
         Ok(impact)
     }
 
-    /// [`Impact::assemble`] through the small-N lane (module `lane`) in any scalar type — exact
-    /// ones included, which otherwise take the general code — or `None` when the problem is
-    /// outside the lane (constrained, a full inertia tensor, N outside 2..=4, a singular or,
-    /// in floats, ill-conditioned G). For tests: in exact types the lane must give every
-    /// output of the general code exactly.
-    #[doc(hidden)]
-    pub fn assemble_in_lane(problem: &Problem<T>) -> Option<Self> {
-        let mut impact = Impact::assemble(problem).ok()?;
-        impact.lane = 0;
-        (impact.build_lane_any().ok()? && impact.lane != 0).then_some(impact)
-    }
-
-    /// N when this problem was built by the small-N float lane (module `lane`: a free body in
-    /// principal axes hit at 2 to 4 contacts whose G the route test gives to the normal
-    /// equations), `None` when by the general code.
-    pub fn lane(&self) -> Option<usize> {
-        (self.lane != 0).then_some(self.lane)
-    }
-
     /// [`Impact::assemble`] for another problem, reusing this impact's buffers (repeated f64
     /// solves of free bodies allocate nothing), for the same outputs.
     ///
     /// # Errors
     /// As [`Impact::assemble`].
-    pub fn reassemble(&mut self, problem: &Problem<T>) -> Result<(), SolveError> {
+    pub fn reassemble(&mut self, problem: &M) -> Result<(), SolveError> {
         self.problem.clone_from(problem);
         self.build()
     }
 
     /// The problem assembled.
-    pub fn problem(&self) -> &Problem<T> {
+    pub fn problem(&self) -> &M {
         &self.problem
     }
 
@@ -296,7 +278,7 @@ impl<T: Scalar> Impact<T> {
 
     /// The contact frames; without [`Outputs::TANGENTIAL`] only their normals x̂ (the
     /// tangent axes and their norms are zero, [`ContactFrame::normal`]).
-    pub fn frames(&self) -> &[ContactFrame<T>] {
+    pub fn frames(&self) -> &[ContactFrame<T, M::Screw>] {
         &self.frames
     }
 
@@ -307,7 +289,7 @@ impl<T: Scalar> Impact<T> {
     }
 
     /// W{Ê_jx}: the twist per unit hatted impulse at contact j.
-    pub fn responses(&self) -> &[Screw<T>] {
+    pub fn responses(&self) -> &[M::Screw] {
         &self.responses
     }
 
@@ -366,7 +348,7 @@ impl<T: Scalar> Impact<T> {
             self.sized = n;
         }
         self.lane = 0;
-        if self.build_lane()? {
+        if M::assemble_fast(self)? {
             return Ok(());
         }
         let tangential = self.tangential();
@@ -374,13 +356,12 @@ impl<T: Scalar> Impact<T> {
         self.before_hat.clear();
         self.responses.clear();
         self.frames.clear();
-        for (i, c) in problem.contacts().iter().enumerate() {
-            let v0 = problem.velocity();
+        let v0 = problem.velocity();
+        for i in 0..problem.contacts().len() {
+            self.frames.push(problem.frame(i, tangential)?);
             if tangential {
-                self.frames.push(ContactFrame::new(i, c, v0)?);
                 self.before_hat.push(self.frames[i].velocity(v0));
             } else {
-                self.frames.push(ContactFrame::normal(c));
                 let x = self.frames[i].axes[0].reciprocal(v0);
                 self.before_hat.push([x, T::zero(), T::zero()]);
             }
@@ -405,7 +386,7 @@ impl<T: Scalar> Impact<T> {
         self.rank = fac.rank;
         self.det_hat = linalg::determinant(&self.factor, n);
         self.kinetic_before = if self.outputs.contains(Outputs::ENERGIES) {
-            problem.body().kinetic_energy(problem.velocity())
+            problem.kinetic_energy(problem.velocity())
         } else {
             T::zero()
         };
@@ -413,7 +394,7 @@ impl<T: Scalar> Impact<T> {
         // and so do floats whose G is well conditioned. A singular G is refused whatever the
         // route; should the basis fail to build for a regular one (rounding made some
         // d_k ≤ 0), the normal equations answer.
-        let orthogonal = route::route(&self.problem, &self.g_hat, n) == Route::OrthogonalWrenches;
+        let orthogonal = self.problem.route(&self.g_hat, n) == Route::OrthogonalWrenches;
         self.basis_built = orthogonal && self.rank == n && self.build_basis();
         self.route = if orthogonal && (self.basis_built || self.rank < n) {
             Route::OrthogonalWrenches
@@ -430,7 +411,11 @@ impl<T: Scalar> Impact<T> {
     ///
     /// # Errors
     /// [`SolveError::Singular`] when G is singular (Δ = 0): see [`crate::analysis`].
-    pub fn solve(&mut self, model: Model, out: &mut Outcome<T>) -> Result<(), SolveError> {
+    pub fn solve(
+        &mut self,
+        model: Model,
+        out: &mut Outcome<T, M::Screw>,
+    ) -> Result<(), SolveError> {
         let n = self.contacts();
         if self.rank < n {
             return Err(SolveError::Singular {
@@ -439,8 +424,7 @@ impl<T: Scalar> Impact<T> {
                 rounded: !T::IS_EXACT,
             });
         }
-        if self.lane != 0 {
-            self.solve_lane(model, out);
+        if M::solve_fast(self, model, out) {
         } else if self.route == Route::OrthogonalWrenches {
             self.solve_in_basis(model, out);
         } else {
@@ -460,7 +444,7 @@ impl<T: Scalar> Impact<T> {
     }
 
     /// The impulses from G x = b, every other output asked for from them.
-    fn solve_normal_equations(&mut self, model: Model, out: &mut Outcome<T>) {
+    fn solve_normal_equations(&mut self, model: Model, out: &mut Outcome<T, M::Screw>) {
         let n = self.contacts();
         // Scratch for the general solve; it writes every entry before reading it.
         self.work.resize(n, T::zero());
@@ -495,7 +479,7 @@ impl<T: Scalar> Impact<T> {
     pub fn solve_orthogonal(
         &mut self,
         model: Model,
-        out: &mut Outcome<T>,
+        out: &mut Outcome<T, M::Screw>,
     ) -> Result<(), SolveError> {
         let n = self.contacts();
         if self.rank < n || !(self.basis_built || self.build_basis()) {
@@ -522,7 +506,7 @@ impl<T: Scalar> Impact<T> {
     /// twist, velocities along the normals and both energies, so that they keep the accuracy
     /// the wrenches determine when G is nearly singular. The tangential velocities follow
     /// from the twist change (eq. 25–26: v̂_ia = v̂_ia⁰ + {Ê_ia}ᵀ η ({v} − {v⁰})).
-    fn solve_in_basis(&mut self, model: Model, out: &mut Outcome<T>) {
+    fn solve_in_basis(&mut self, model: Model, out: &mut Outcome<T, M::Screw>) {
         let (asked, needs) = (self.outputs, self.outputs.needs());
         let problem = &self.problem;
         let b = self.basis.solve(
@@ -595,7 +579,7 @@ impl<T: Scalar> Impact<T> {
     /// a constrained body, the constraint impulses (eq. 90–93).
     ///
     /// Only the outputs asked for ([`Impact::outputs`]) and what they are formed from.
-    pub(crate) fn complete(&self, out: &mut Outcome<T>) {
+    pub(crate) fn complete(&self, out: &mut Outcome<T, M::Screw>) {
         let n = self.contacts();
         debug_assert_eq!(out.impulses_hat.len(), n, "one impulse per contact");
         let needs = self.outputs.needs();
@@ -653,12 +637,12 @@ impl<T: Scalar> Impact<T> {
         }
         // eq. 28 from the velocity change; ΔE_c from the momentum balance, ½ Σ P̂_i (v̂_ix⁰ + v̂_ix)
         // (module docs), free of the cancellation in T⁰ − T.
-        let dv = Screw(out.velocity.0.clone() - problem.velocity().0.clone());
+        let dv = out.velocity.minus(problem.velocity());
         if !needs.contains(Outputs::ENERGIES) {
             self.constraint_impulses(&dv, out);
             return;
         }
-        out.lost_velocity_energy = problem.body().kinetic_energy(&dv);
+        out.lost_velocity_energy = problem.kinetic_energy(&dv);
         out.kinetic_energy_loss = energy_loss(&out.impulses_hat, &self.before_hat, &out.after_hat);
         if needs.contains(Outputs::CONSTRAINT_IMPULSES) {
             self.constraint_impulses(&dv, out);
@@ -669,18 +653,8 @@ impl<T: Scalar> Impact<T> {
 
     /// The constraint impulses q for the twist change `dv` and the impulses of `out` (eq.
     /// 90–93; none for a free body).
-    fn constraint_impulses(&self, dv: &Screw<T>, out: &mut Outcome<T>) {
-        match self.problem.constraints() {
-            Some(c) => {
-                let axes = self.frames.iter().map(|f| &f.axes[0]);
-                out.constraint_wrench = c.impulses_into(
-                    dv,
-                    out.impulses_hat.iter().zip(axes),
-                    &mut out.constraint_impulses,
-                );
-            }
-            None => out.clear_constraint_impulses(),
-        }
+    fn constraint_impulses(&self, dv: &M::Screw, out: &mut Outcome<T, M::Screw>) {
+        self.problem.constraint_impulses(dv, &self.frames, out);
     }
 
     /// Solve G x = b in place for a nonsingular G (b becomes x); `false` when G is singular.
@@ -767,7 +741,7 @@ impl<T: Scalar> Impact<T> {
     }
 
     /// Σ_i P̂_i v̂_ix⁰ = Σ_i P_i v_ix⁰: the right-hand side of the energy identity (eq. 34).
-    pub fn impulse_work(&self, out: &Outcome<T>) -> T {
+    pub fn impulse_work(&self, out: &Outcome<T, M::Screw>) -> T {
         let mut s = T::zero();
         for (p, v) in out.impulses_hat.iter().zip(&self.before_hat) {
             s += p.clone() * &v[0];
@@ -790,4 +764,25 @@ fn energy_loss<T: Scalar>(impulses: &[T], before: &[[T; 3]], after: &[[T; 3]]) -
 fn resize<T: Scalar>(v: &mut Vec<T>, n: usize) {
     v.clear();
     v.resize(n, T::zero());
+}
+
+impl<T: Scalar> Impact<T> {
+    /// [`Impact::assemble`] through the small-N lane (module `lane`) in any scalar type — exact
+    /// ones included, which otherwise take the general code — or `None` when the problem is
+    /// outside the lane (constrained, a full inertia tensor, N outside 2..=4, a singular or,
+    /// in floats, ill-conditioned G). For tests: in exact types the lane must give every
+    /// output of the general code exactly.
+    #[doc(hidden)]
+    pub fn assemble_in_lane(problem: &Problem<T>) -> Option<Self> {
+        let mut impact = Impact::assemble(problem).ok()?;
+        impact.lane = 0;
+        (impact.build_lane_any().ok()? && impact.lane != 0).then_some(impact)
+    }
+
+    /// N when this problem was built by the small-N float lane (module `lane`: a free body in
+    /// principal axes hit at 2 to 4 contacts whose G the route test gives to the normal
+    /// equations), `None` when by the general code.
+    pub fn lane(&self) -> Option<usize> {
+        (self.lane != 0).then_some(self.lane)
+    }
 }

@@ -52,9 +52,11 @@
 //! regular G it is their only solution: the two laws agree exactly. Otherwise the simultaneous
 //! answer is not physical and this is the one to report.
 
+use crate::impact::mechanism::Mechanism;
 use crate::impact::restitution::Model;
 use crate::impact::solve::{Impact, Outcome, SolveError};
 use crate::linalg::lcp::{Lcp, LcpError, LcpWork, lemke, lemke_in};
+use crate::mechanics::screw::Screws;
 use crate::scalar::Scalar;
 
 /// Which impact law closes the impulse–velocity relation.
@@ -114,7 +116,7 @@ pub struct Activity {
 }
 
 /// Per contact: whether it takes an impulse (P_i > 0); the others separate.
-pub fn active<T: Scalar>(out: &Outcome<T>) -> Vec<bool> {
+pub fn active<T: Scalar, S: Screws<T>>(out: &Outcome<T, S>) -> Vec<bool> {
     out.impulses_hat.iter().map(|p| p.signum_i8() > 0).collect()
 }
 
@@ -207,7 +209,7 @@ pub fn max_unilateral_contacts<T: Scalar>() -> usize {
     if T::IS_EXACT { 48 } else { 300 }
 }
 
-impl<T: Scalar> Impact<T> {
+impl<T: Scalar, M: Mechanism<T>> Impact<T, M> {
     /// Solve `model` in inequality form (see the module docs) into `out`, in hatted form like
     /// [`Impact::solve`]: the impulses, the twist and contact velocities after impact, both
     /// energies and the constraint impulses.
@@ -217,7 +219,7 @@ impl<T: Scalar> Impact<T> {
     pub fn solve_unilateral(
         &mut self,
         model: Model,
-        out: &mut Outcome<T>,
+        out: &mut Outcome<T, M::Screw>,
     ) -> Result<Activity, UnilateralError> {
         let (contacts, limit) = (self.contacts(), max_unilateral_contacts::<T>());
         if contacts > limit {
@@ -242,7 +244,7 @@ impl<T: Scalar> Impact<T> {
         &self,
         work: &mut UnilateralWork<T>,
         model: Model,
-        out: &mut Outcome<T>,
+        out: &mut Outcome<T, M::Screw>,
     ) -> Result<(usize, bool, bool), UnilateralError> {
         let n = self.contacts();
         let g = self.g_hat();
@@ -445,7 +447,7 @@ fn run<T: Scalar>(
 /// for [`Impact::poisson_vertex_outcomes`] (2^12 supports).
 pub const MAX_ENUMERATED: usize = 12;
 
-impl<T: Scalar> Impact<T> {
+impl<T: Scalar, M: Mechanism<T>> Impact<T, M> {
     /// When Poisson's law does not decide the outcome (compression impulses that form a set,
     /// unequal k_i), the outcomes obtained from each **vertex of the set of compression
     /// impulses**: every Pᶜ ≥ 0 with G Pᶜ = G Pᶜ* that vanishes off A = {i : w_i = 0} and has a
@@ -455,7 +457,9 @@ impl<T: Scalar> Impact<T> {
     ///
     /// # Errors
     /// As [`Impact::solve_unilateral`].
-    pub fn poisson_vertex_outcomes(&mut self) -> Result<Option<Vec<Outcome<T>>>, UnilateralError> {
+    pub fn poisson_vertex_outcomes(
+        &mut self,
+    ) -> Result<Option<Vec<Outcome<T, M::Screw>>>, UnilateralError> {
         let n = self.contacts();
         let mut first = Outcome::default();
         self.solve_unilateral(Model::Poisson, &mut first)?;
@@ -520,7 +524,7 @@ impl<T: Scalar> Impact<T> {
     }
 
     /// Poisson's expansion phase from the compression impulses `pc`, completed.
-    fn expand_from(&mut self, pc: &[T]) -> Result<Outcome<T>, UnilateralError> {
+    fn expand_from(&mut self, pc: &[T]) -> Result<Outcome<T, M::Screw>, UnilateralError> {
         let n = self.contacts();
         let g = self.g_hat();
         let contacts = self.problem().contacts();

@@ -49,9 +49,12 @@ impl<T: Scalar> Clone for RigidBody<T> {
 /// How the body's velocity answers an impulse: the twist change per unit impulse along an
 /// axis screw. A free body answers with \[M\]⁻¹ (eq. 11); a constrained one with
 /// \[D\]\[M_red\]⁻¹\[D\]ᵀ\[η\] (eq. 85). The solve is written once against this trait.
-pub trait Mobility<T: Scalar> {
+///
+/// A system of bodies answers in the stack of its bodies' screws
+/// ([`crate::mechanics::system::SystemScrew`]): `S` is the screw space.
+pub trait Mobility<T: Scalar, S = Screw<T>> {
     /// W{E}: the twist produced by a unit impulse along the axis screw {E}.
-    fn response(&self, e: &Screw<T>) -> Screw<T>;
+    fn response(&self, e: &S) -> S;
 }
 
 impl<T: Scalar> RigidBody<T> {

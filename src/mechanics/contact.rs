@@ -20,7 +20,7 @@
 //! velocity is zero (n_i × v_A = 0), the fallback is deterministic: ẑ_i = n_i × e_k, where e_k
 //! is the coordinate axis least aligned with n_i (smallest |n_k|, lowest k on ties).
 
-use crate::mechanics::screw::{Screw, Vec3, dot, norm2, rescaled};
+use crate::mechanics::screw::{Screw, Screws, Vec3, dot, norm2, rescaled};
 use crate::scalar::Scalar;
 
 /// One contact as given: the point A_i, the outward normal n_i (axis A_i x_i; need not be a
@@ -96,11 +96,17 @@ pub enum TangentRule {
     Fallback(usize),
 }
 
-/// A contact's frame as three unnormalised axis screws and their squared norms.
+/// A contact's frame: three unnormalised axes, their screws and their squared norms.
+///
+/// The screws live in the mechanism's space `S`: a body's [`Screw`] about its centre of mass,
+/// or for a contact between two bodies of a system the axis's screw on the first minus its
+/// screw on the second ([`crate::mechanics::system`]).
 #[derive(Clone, Debug, PartialEq)]
-pub struct ContactFrame<T: Scalar> {
+pub struct ContactFrame<T: Scalar, S: Screws<T> = Screw<T>> {
     /// {Ê_x}, {Ê_y}, {Ê_z}: screws of the unnormalised axes x̂, ŷ, ẑ through A_i.
-    pub axes: [Screw<T>; 3],
+    pub axes: [S; 3],
+    /// x̂, ŷ, ẑ: the axes' directions (the report's unit axes are these over their norms).
+    pub directions: [Vec3<T>; 3],
     /// |x̂|², |ŷ|², |ẑ|².
     pub norm2: [T; 3],
     /// How ŷ was chosen.
@@ -125,6 +131,32 @@ impl<T: Scalar> ContactFrame<T> {
         contact: &Contact<T>,
         v0: &Screw<T>,
     ) -> Result<Self, TangentNotPerpendicular> {
+        // eq. 112: the velocity of A_i.
+        let point_velocity = || v0.bottom() + v0.top().cross(&contact.point);
+        ContactFrame::with_axes(index, contact, point_velocity, |u| {
+            Screw::axis(&contact.point, u)
+        })
+    }
+
+    /// The frame of `contact` reduced to its normal: x̂ = n_i and |x̂|², the tangent axes and
+    /// their norms zero (for a solve that reports nothing tangential,
+    /// [`crate::impact::outputs::Outputs::TANGENTIAL`]).
+    pub fn normal(contact: &Contact<T>) -> Self {
+        ContactFrame::normal_with(contact, |u| Screw::axis(&contact.point, u))
+    }
+}
+
+impl<T: Scalar, S: Screws<T>> ContactFrame<T, S> {
+    /// Build the frame of `contact` (number `index`) whose point moves at `point_velocity`
+    /// before impact (relative to the other body, for a contact between two), the screw of
+    /// each axis given by `axis` from its direction. The tangent is the contact's, or follows
+    /// §12 (eq. 112–123): ẑ = n × v_A, ŷ = ẑ × n.
+    pub fn with_axes(
+        index: usize,
+        contact: &Contact<T>,
+        point_velocity: impl FnOnce() -> Vec3<T>,
+        axis: impl Fn(&Vec3<T>) -> S,
+    ) -> Result<Self, TangentNotPerpendicular> {
         let x = contact.normal.clone();
         let nx2 = norm2(&x);
         let (y, rule) = match &contact.tangent {
@@ -142,7 +174,7 @@ impl<T: Scalar> ContactFrame<T> {
             None => {
                 // eq. 112: velocity of A_i (a direction here, kept within range: `rescaled`);
                 // eq. 113: n × v_A.
-                let va = rescaled(&(v0.bottom() + v0.top().cross(&contact.point)));
+                let va = rescaled(&point_velocity());
                 let z = x.cross(&va);
                 let reference = nx2.clone() * norm2(&va);
                 if norm2(&z).is_negligible(&reference, 3) {
@@ -157,28 +189,28 @@ impl<T: Scalar> ContactFrame<T> {
         };
         let z = x.cross(&y);
         let norm2 = [nx2, norm2(&y), norm2(&z)];
-        let axes = [
-            Screw::axis(&contact.point, &x),
-            Screw::axis(&contact.point, &y),
-            Screw::axis(&contact.point, &z),
-        ];
-        Ok(ContactFrame { axes, norm2, rule })
+        let axes = [axis(&x), axis(&y), axis(&z)];
+        Ok(ContactFrame {
+            axes,
+            directions: [x, y, z],
+            norm2,
+            rule,
+        })
     }
 
-    /// The frame of `contact` reduced to its normal: x̂ = n_i and |x̂|², the tangent axes and
-    /// their norms zero (for a solve that reports nothing tangential,
-    /// [`crate::impact::outputs::Outputs::TANGENTIAL`]).
-    pub fn normal(contact: &Contact<T>) -> Self {
-        let zero = || Screw::axis(&contact.point, &Vec3::zeros());
+    /// The frame of `contact` reduced to its normal, the screw of an axis given by `axis`.
+    pub fn normal_with(contact: &Contact<T>, axis: impl Fn(&Vec3<T>) -> S) -> Self {
+        let zero = Vec3::zeros();
         ContactFrame {
-            axes: [Screw::axis(&contact.point, &contact.normal), zero(), zero()],
+            axes: [axis(&contact.normal), axis(&zero), axis(&zero)],
+            directions: [contact.normal.clone(), zero.clone(), zero],
             norm2: [norm2(&contact.normal), T::zero(), T::zero()],
             rule: TangentRule::Given,
         }
     }
 
     /// The hatted velocity components (Ê_x, Ê_y, Ê_z)·{v} of the contact point (eq. 8).
-    pub fn velocity(&self, v: &Screw<T>) -> [T; 3] {
+    pub fn velocity(&self, v: &S) -> [T; 3] {
         [
             self.axes[0].reciprocal(v),
             self.axes[1].reciprocal(v),

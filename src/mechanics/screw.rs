@@ -81,6 +81,49 @@ impl<T: Scalar> Screw<T> {
     }
 }
 
+/// The screws a mechanism's twists and contact axes live in, paired by η (eq. 6): one body's
+/// [`Screw`], or the stack of a system's, one screw per body
+/// ([`crate::mechanics::system::SystemScrew`]). The impact is solved once against this trait
+/// ([`crate::impact::mechanism::Mechanism`]).
+pub trait Screws<T: Scalar>: Clone + std::fmt::Debug + PartialEq + Default {
+    /// {self}ᵀ η {other}: the velocity along an axis, the power of a wrench on a twist.
+    fn reciprocal(&self, other: &Self) -> T;
+    /// `self + c · other`, in place.
+    fn add_scaled(&mut self, c: &T, other: &Self);
+    /// `self − other`.
+    fn minus(&self, other: &Self) -> Self;
+    /// The zero of `self`'s space.
+    fn zero_like(&self) -> Self;
+}
+
+impl<T: Scalar> Default for Screw<T> {
+    fn default() -> Self {
+        Screw::zero()
+    }
+}
+
+impl<T: Scalar> Screws<T> for Screw<T> {
+    #[inline]
+    fn reciprocal(&self, other: &Self) -> T {
+        Screw::reciprocal(self, other)
+    }
+
+    #[inline]
+    fn add_scaled(&mut self, c: &T, other: &Self) {
+        Screw::add_scaled(self, c, other);
+    }
+
+    #[inline]
+    fn minus(&self, other: &Self) -> Self {
+        Screw(self.0.clone() - other.0.clone())
+    }
+
+    #[inline]
+    fn zero_like(&self) -> Self {
+        Screw::zero()
+    }
+}
+
 /// u · w, field-only.
 pub fn dot<T: Scalar>(u: &Vec3<T>, w: &Vec3<T>) -> T {
     u[0].clone() * &w[0] + u[1].clone() * &w[1] + u[2].clone() * &w[2]

@@ -40,7 +40,7 @@ impl<T: Scalar> Impact<T> {
     /// Build `self.problem` through the lane when it applies; `Ok(false)` leaves it to the
     /// general build (exact types, constraints, a full inertia tensor, N outside 2..=4, or a
     /// G the route test does not give to the normal equations).
-    pub(super) fn build_lane(&mut self) -> Result<bool, SolveError> {
+    pub(crate) fn build_lane(&mut self) -> Result<bool, SolveError> {
         if T::IS_EXACT {
             return Ok(false);
         }
@@ -164,7 +164,7 @@ impl<T: Scalar> Impact<T> {
     }
 
     /// Solve `model` through the lane built by [`Impact::build_lane`] (`self.lane` contacts).
-    pub(super) fn solve_lane(&mut self, model: Model, out: &mut Outcome<T>) {
+    pub(crate) fn solve_lane(&mut self, model: Model, out: &mut Outcome<T>) {
         match self.lane {
             2 => self.solve_n::<2>(model, out),
             3 => self.solve_n::<3>(model, out),
