@@ -27,4 +27,5 @@ pub mod restitution;
 pub mod route;
 pub mod solution;
 pub mod solve;
+pub mod system;
 pub mod unilateral;

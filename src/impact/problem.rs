@@ -328,39 +328,12 @@ impl<T: Scalar> Problem<T> {
         velocity: Screw<T>,
         contacts: Vec<Contact<T>>,
     ) -> Result<Self, InvalidProblem> {
-        positive(&body.mass, Field::Mass)?;
-        match &body.inertia {
-            Inertia::Principal(j) => {
-                for k in 0..3 {
-                    positive(&j[k], Field::Inertia(k))?;
-                }
-            }
-            Inertia::Tensor(t) => tensor(t)?,
-        }
-        finite_vector(&velocity.top(), Field::AngularVelocity)?;
-        finite_vector(&velocity.bottom(), Field::Velocity)?;
+        validate_body(&body, &velocity)?;
         if contacts.is_empty() {
             return Err(invalid(Field::Contacts, Reason::NoContacts));
         }
         for (i, c) in contacts.iter().enumerate() {
-            finite_vector(&c.point, |_| Field::Point(i))?;
-            axis(&c.normal, Field::Normal(i))?;
-            if let Some(t) = &c.tangent {
-                axis(t, Field::Tangent(i))?;
-                perpendicular(&c.normal, t).map_err(|d| {
-                    invalid(
-                        Field::Tangent(i),
-                        Reason::NotPerpendicular { dot: d.to_f64() },
-                    )
-                })?;
-            }
-            coefficient(&c.k_newton, Field::KNewton(i))?;
-            coefficient(&c.k_poisson, Field::KPoisson(i))?;
-            coefficient(&c.k_energetic, Field::KEnergetic(i))?;
-            finite(&c.mu, Field::Mu(i))?;
-            if c.mu.known_sign() == Some(-1) {
-                return Err(invalid(Field::Mu(i), Reason::Negative));
-            }
+            validate_contact(i, c)?;
         }
         Ok(Problem {
             body,
@@ -445,6 +418,55 @@ impl<T: Scalar> Mobility<T> for Problem<T> {
             None => self.body.response(e),
         }
     }
+}
+
+/// A body and its twist as [`Problem::new`] checks them (a system checks each of its bodies
+/// so): m > 0, J positive definite, the twist finite.
+///
+/// # Errors
+/// The first field that fails, named as for a single body.
+pub(crate) fn validate_body<T: Scalar>(
+    body: &RigidBody<T>,
+    velocity: &Screw<T>,
+) -> Result<(), InvalidProblem> {
+    positive(&body.mass, Field::Mass)?;
+    match &body.inertia {
+        Inertia::Principal(j) => {
+            for k in 0..3 {
+                positive(&j[k], Field::Inertia(k))?;
+            }
+        }
+        Inertia::Tensor(t) => tensor(t)?,
+    }
+    finite_vector(&velocity.top(), Field::AngularVelocity)?;
+    finite_vector(&velocity.bottom(), Field::Velocity)
+}
+
+/// Contact `i` as [`Problem::new`] checks it: a finite point, nonzero normal and tangent, the
+/// tangent perpendicular, coefficients of restitution in [0, 1], μ ≥ 0.
+///
+/// # Errors
+/// The first field that fails.
+pub(crate) fn validate_contact<T: Scalar>(i: usize, c: &Contact<T>) -> Result<(), InvalidProblem> {
+    finite_vector(&c.point, |_| Field::Point(i))?;
+    axis(&c.normal, Field::Normal(i))?;
+    if let Some(t) = &c.tangent {
+        axis(t, Field::Tangent(i))?;
+        perpendicular(&c.normal, t).map_err(|d| {
+            invalid(
+                Field::Tangent(i),
+                Reason::NotPerpendicular { dot: d.to_f64() },
+            )
+        })?;
+    }
+    coefficient(&c.k_newton, Field::KNewton(i))?;
+    coefficient(&c.k_poisson, Field::KPoisson(i))?;
+    coefficient(&c.k_energetic, Field::KEnergetic(i))?;
+    finite(&c.mu, Field::Mu(i))?;
+    if c.mu.known_sign() == Some(-1) {
+        return Err(invalid(Field::Mu(i), Reason::Negative));
+    }
+    Ok(())
 }
 
 /// The paper's mechanism: one body, free or held by ideal constraints (§9–11), its contacts'

@@ -156,7 +156,7 @@ pub fn route<T: Scalar>(problem: &Problem<T>, g_hat: &[T], n: usize) -> Route {
 /// s ≤ s*(N), with N = 1 and 2 written out: one contact is always well conditioned, and two
 /// compare ĝ_12² ≤ s*² ĝ_11 ĝ_22 without a square root (false when that product is not a
 /// normal f64, so an overflow cannot pass the test).
-fn well_conditioned<T: Scalar>(g_hat: &[T], n: usize) -> bool {
+pub(crate) fn well_conditioned<T: Scalar>(g_hat: &[T], n: usize) -> bool {
     match n {
         1 => true,
         2 => {

@@ -676,22 +676,8 @@ impl<T: Scalar, M: Mechanism<T>> Impact<T, M> {
     pub(crate) fn solve_singular(&mut self, b: &[T], x: &mut Vec<T>) -> Option<()> {
         let (n, r) = (self.contacts(), self.rank);
         debug_assert_eq!(b.len(), n, "one entry per contact");
-        // Π G Πᵀ = [L11 0; L21 I] diag(D1, 0) [L11ᵀ L21ᵀ; 0 I]: with x2 = 0 the first block
-        // row is L11 D1 L11ᵀ x1 = (Π b)_1.
-        let mut sub = vec![T::zero(); r * r];
-        for i in 0..r {
-            for j in 0..r {
-                sub[i * r + j] = self.factor[i * n + j].clone();
-            }
-        }
-        let mut y: Vec<T> = (0..r).map(|k| b[self.perm[k]].clone()).collect();
-        let identity: Vec<usize> = (0..r).collect();
         resize(&mut self.work, n);
-        linalg::solve_factored(&sub, r, &identity, &mut y, &mut self.work[..r]);
-        resize(x, n);
-        for (k, yk) in y.into_iter().enumerate() {
-            x[self.perm[k]] = yk;
-        }
+        linalg::solve_leading(&self.factor, n, &self.perm, r, b, x, &mut self.work);
         let mut scale = T::zero();
         for bi in b {
             if bi.abs_gt(&scale) {

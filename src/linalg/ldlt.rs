@@ -204,6 +204,46 @@ pub fn solve_factored<T: Scalar>(a: &[T], n: usize, perm: &[usize], b: &mut [T],
     }
 }
 
+/// A solution of G x = b from a factorization of rank r ≤ n ([`factor_psd`]): with
+/// Π G Πᵀ = [L11 0; L21 I] diag(D1, 0) [L11ᵀ L21ᵀ; 0 I], the last n − r pivoted entries of x
+/// zero and the first r from L11 D1 L11ᵀ x1 = (Π b)_1 — the solution whenever b lies in the
+/// range of G (a caller that does not know it checks the residual). `x` gets n entries;
+/// `work` is scratch of length at least r.
+pub fn solve_leading<T: Scalar>(
+    a: &[T],
+    n: usize,
+    perm: &[usize],
+    rank: usize,
+    b: &[T],
+    x: &mut Vec<T>,
+    work: &mut [T],
+) {
+    let r = rank;
+    for k in 0..r {
+        work[k] = b[perm[k]].clone();
+    }
+    for i in 0..r {
+        for j in 0..i {
+            let t = a[i * n + j].clone() * &work[j];
+            work[i] -= t;
+        }
+    }
+    for (i, w) in work.iter_mut().enumerate().take(r) {
+        *w /= &a[i * n + i];
+    }
+    for i in (0..r).rev() {
+        for j in i + 1..r {
+            let t = a[j * n + i].clone() * &work[j];
+            work[i] -= t;
+        }
+    }
+    x.clear();
+    x.resize(n, T::zero());
+    for k in 0..r {
+        x[perm[k]] = work[k].clone();
+    }
+}
+
 /// Δ = det G = Π d_k from a factorization (zero when rank-deficient).
 pub fn determinant<T: Scalar>(a: &[T], n: usize) -> T {
     let mut det = T::one();

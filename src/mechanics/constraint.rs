@@ -111,6 +111,12 @@ pub enum Joint<T: Scalar> {
         /// The plane's normal.
         normal: Vec3<T>,
     },
+    /// No relative motion at all (a weld): two bodies of a system move as one
+    /// ([`crate::mechanics::system`]); `point` is where its reaction is reported.
+    Fixed {
+        /// The anchor of its reaction.
+        point: Vec3<T>,
+    },
 }
 
 impl<T: Scalar> Joint<T> {
@@ -122,6 +128,7 @@ impl<T: Scalar> Joint<T> {
             Joint::Cylindrical { .. } => "cylindrical",
             Joint::Spherical { .. } => "spherical",
             Joint::Planar { .. } => "planar",
+            Joint::Fixed { .. } => "fixed",
         }
     }
 
@@ -131,7 +138,8 @@ impl<T: Scalar> Joint<T> {
         match self {
             Joint::Revolute { point, .. }
             | Joint::Cylindrical { point, .. }
-            | Joint::Spherical { point } => Some(point),
+            | Joint::Spherical { point }
+            | Joint::Fixed { point } => Some(point),
             Joint::Prismatic { .. } | Joint::Planar { .. } => None,
         }
     }
@@ -170,6 +178,7 @@ impl<T: Scalar> Joint<T> {
                     prismatic(&t2),
                 ]
             }
+            Joint::Fixed { .. } => Vec::new(),
         }
     }
 }

@@ -1,0 +1,69 @@
+//! The impact of a system of bodies ([`crate::mechanics::system`]): its [`Mechanism`].
+//!
+//! A contact's frame is built as for one body (eq. 2–4; §12's tangent from the velocity of the
+//! contact point, here relative to the second body), its axes the system's
+//! ([`System::contact_axis`]: the axis's screw on the first body minus its screw on the
+//! second). The solve, the laws, the energies and their identity are then those of
+//! [`crate::impact::solve`], unchanged. The constraint impulses are the joints' impulses λ, one
+//! per blocked screw ([`crate::mechanics::system::mobility`]); their wrenches are
+//! [`System::joint_reactions`].
+//!
+//! **Route.** A free system whose G passes [`crate::impact::route`]'s test takes the normal
+//! equations in floats; one held by joints, or with an ill-conditioned G, takes the
+//! orthogonalised contact wrenches in the metric ηW ([`crate::impact::gram_schmidt`]), which
+//! keeps the twist to √cond G·ε as for one body.
+
+use crate::impact::mechanism::Mechanism;
+use crate::impact::route::{self, Route};
+use crate::impact::solve::Outcome;
+use crate::mechanics::contact::{Contact, ContactFrame, TangentNotPerpendicular};
+use crate::mechanics::system::{System, SystemScrew};
+use crate::scalar::Scalar;
+
+impl<T: Scalar> Mechanism<T> for System<T> {
+    type Screw = SystemScrew<T>;
+
+    fn contacts(&self) -> &[Contact<T>] {
+        System::contacts(self)
+    }
+
+    fn velocity(&self) -> &SystemScrew<T> {
+        System::velocity(self)
+    }
+
+    fn frame(
+        &self,
+        i: usize,
+        tangential: bool,
+    ) -> Result<ContactFrame<T, SystemScrew<T>>, TangentNotPerpendicular> {
+        let c = &self.contacts()[i];
+        let axis = |u: &crate::mechanics::screw::Vec3<T>| self.contact_axis(i, u);
+        if tangential {
+            ContactFrame::with_axes(i, c, || self.relative_velocity(i), axis)
+        } else {
+            Ok(ContactFrame::normal_with(c, axis))
+        }
+    }
+
+    fn kinetic_energy(&self, v: &SystemScrew<T>) -> T {
+        System::kinetic_energy(self, v)
+    }
+
+    fn route(&self, g_hat: &[T], n: usize) -> Route {
+        if T::IS_EXACT || (self.joints().is_empty() && route::well_conditioned(g_hat, n)) {
+            Route::NormalEquations
+        } else {
+            Route::OrthogonalWrenches
+        }
+    }
+
+    fn constraint_impulses(
+        &self,
+        dv: &SystemScrew<T>,
+        frames: &[ContactFrame<T, SystemScrew<T>>],
+        out: &mut Outcome<T, SystemScrew<T>>,
+    ) {
+        let axes = frames.iter().map(|f| &f.axes[0]);
+        out.constraint_impulses = self.joint_impulses(dv, out.impulses_hat.iter().zip(axes));
+    }
+}

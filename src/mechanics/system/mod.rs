@@ -1,0 +1,424 @@
+//! Systems of rigid bodies in one impact: several bodies, contacts between two of them or
+//! between one and an obstacle, and joints between bodies or to the ground.
+//!
+//! The paper treats one body (§2–13); its machinery extends to a system without a new idea.
+//! The convention here: every vector is in **world axes**, and each body's screws are about its
+//! own centre of mass C_b, so a body keeps the paper's [ω; v_C] and block \[M\] (eq. 9) and
+//! the system's mass matrix is block diagonal. The system's twist, its contact axes, its
+//! constraint screws and its wrenches are stacks of one screw per body ([`SystemScrew`]):
+//!
+//! * a **contact** i joins body a and body b (or a and an obstacle) at the world point A_i,
+//!   its normal n_i pointing out of a. Its axis acts on a as {E_a} = [n; (A − C_a) × n] and on
+//!   b as −{E_b}, so {Ê_i}ᵀ η {V} = n·(v_a(A) − v_b(A)) is the relative normal velocity
+//!   (positive: approaching) and the impulse −P {Ê_i} pushes a along −n and b along +n
+//!   (eq. 2–8 on each body);
+//! * a **joint** blocks the relative twist of its two bodies along the screws its kind does
+//!   not leave free (revolute, prismatic, cylindrical, spherical, planar, fixed; one body: to
+//!   the ground), and the system answers impulses through the mobility of
+//!   [`mobility`]: W = M⁻¹ for a free system, the Schur complement of the joints' KKT
+//!   system otherwise — §9–11's W = D M_red⁻¹ Dᵀ η on the system's 6B-dimensional space.
+//!
+//! Then G = [{Ê_i}ᵀ η W {Ê_j}], Δ, Newton's and Poisson's laws, E_p and ΔE_c (eq. 12–34) are
+//! the paper's, through the same solve ([`crate::impact::mechanism::Mechanism`],
+//! implemented for [`System`] in [`crate::impact::system`]). A system of one body with no
+//! joints is the paper's body.
+
+pub mod mobility;
+pub mod screw;
+
+use crate::impact::problem::{InvalidProblem, validate_body, validate_contact};
+use crate::linalg::NotSemidefinite;
+use crate::mechanics::body::{Mobility, RigidBody};
+use crate::mechanics::constraint::Joint;
+use crate::mechanics::contact::Contact;
+use crate::mechanics::reaction::Wrench;
+use crate::mechanics::screw::{Screw, Screws, Vec3};
+use crate::scalar::Scalar;
+
+use mobility::{JointRows, free_response};
+pub use screw::{SystemScrew, about};
+
+/// One body of a system: its mass and central inertia (world axes) and where its centre of
+/// mass is (world).
+#[derive(Clone, Debug, PartialEq)]
+pub struct SystemBody<T: Scalar> {
+    /// Mass and central inertia tensor, in world axes.
+    pub body: RigidBody<T>,
+    /// C_b, the centre of mass, in the world.
+    pub centre: Vec3<T>,
+}
+
+/// What a contact of a system joins: its first body a (the normal points out of it) and its
+/// second body b, or an obstacle (`None`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Pair {
+    /// a.
+    pub first: usize,
+    /// b, or `None` for an obstacle.
+    pub second: Option<usize>,
+}
+
+/// A joint of a system: its kind and geometry (points in the world) and the bodies it joins.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SystemJoint<T: Scalar> {
+    /// The kind, with its anchor and axis in the world.
+    pub joint: Joint<T>,
+    /// The bodies: the reaction is reported on the first; the second `None` for the ground.
+    pub pair: Pair,
+}
+
+/// Why a system is not valid. Indices count from 0 in the order given.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum SystemError {
+    /// A body's mass, inertia or twist (named as for one body).
+    #[error("body {body}: {error}")]
+    Body {
+        /// The body.
+        body: usize,
+        /// What is wrong with it.
+        error: InvalidProblem,
+    },
+    /// A contact's point, normal, tangent or coefficients.
+    #[error("contact {contact}: {error}")]
+    Contact {
+        /// The contact.
+        contact: usize,
+        /// What is wrong with it.
+        error: InvalidProblem,
+    },
+    /// No contact: nothing collides.
+    #[error("a collision needs at least one contact")]
+    NoContacts,
+    /// A contact or joint names a body the system does not have.
+    #[error("{what} {index} names body {body}, but the system has {bodies}")]
+    UnknownBody {
+        /// `"contact"` or `"joint"`.
+        what: &'static str,
+        /// Its index.
+        index: usize,
+        /// The body named.
+        body: usize,
+        /// How many bodies there are.
+        bodies: usize,
+    },
+    /// A contact or joint between a body and itself.
+    #[error("{what} {index} joins body {body} to itself")]
+    SameBody {
+        /// `"contact"` or `"joint"`.
+        what: &'static str,
+        /// Its index.
+        index: usize,
+        /// The body.
+        body: usize,
+    },
+    /// The twist before impact moves a joint along a screw it blocks.
+    #[error(
+        "the velocities before impact violate joint {joint}: its bodies move relative to each \
+         other along a screw it blocks ({kind}; relative rate {rate:e})"
+    )]
+    JointViolated {
+        /// The joint.
+        joint: usize,
+        /// Its kind.
+        kind: &'static str,
+        /// H_kᵀ η {V⁰} for the first blocked screw violated, as f64.
+        rate: f64,
+    },
+    /// K was not positive semidefinite (rounding; cannot happen exactly).
+    #[error(transparent)]
+    NotSemidefinite(#[from] NotSemidefinite),
+}
+
+/// A validated system (module docs).
+#[derive(Clone, Debug, PartialEq)]
+pub struct System<T: Scalar> {
+    bodies: Vec<SystemBody<T>>,
+    rigid: Vec<RigidBody<T>>,
+    velocity: SystemScrew<T>,
+    contacts: Vec<Contact<T>>,
+    pairs: Vec<Pair>,
+    joints: Vec<SystemJoint<T>>,
+    rows: Option<JointRows<T>>,
+}
+
+impl<T: Scalar> System<T> {
+    /// The system of `bodies` moving with `velocity` (one twist per body, world axes, about
+    /// its centre), hit at `contacts` (world points; the normal out of the pair's first body)
+    /// joining `pairs`, held by `joints`.
+    ///
+    /// # Errors
+    /// The first [`SystemError`]: a body or contact as [`crate::impact::problem::Problem::new`]
+    /// checks them, a reference to a body that does not exist or to the same body twice, a
+    /// twist before impact that a joint forbids.
+    pub fn new(
+        bodies: Vec<SystemBody<T>>,
+        velocity: SystemScrew<T>,
+        contacts: Vec<Contact<T>>,
+        pairs: Vec<Pair>,
+        joints: Vec<SystemJoint<T>>,
+    ) -> Result<Self, SystemError> {
+        let count = bodies.len();
+        for (b, (body, v)) in bodies.iter().zip(&velocity.0).enumerate() {
+            validate_body(&body.body, v).map_err(|error| SystemError::Body { body: b, error })?;
+        }
+        if contacts.is_empty() {
+            return Err(SystemError::NoContacts);
+        }
+        for (i, c) in contacts.iter().enumerate() {
+            validate_contact(i, c).map_err(|error| SystemError::Contact { contact: i, error })?;
+        }
+        let check = |what: &'static str, index: usize, pair: &Pair| {
+            for body in std::iter::once(pair.first).chain(pair.second) {
+                if body >= count {
+                    return Err(SystemError::UnknownBody {
+                        what,
+                        index,
+                        body,
+                        bodies: count,
+                    });
+                }
+            }
+            if pair.second == Some(pair.first) {
+                return Err(SystemError::SameBody {
+                    what,
+                    index,
+                    body: pair.first,
+                });
+            }
+            Ok(())
+        };
+        for (i, p) in pairs.iter().enumerate() {
+            check("contact", i, p)?;
+        }
+        for (j, joint) in joints.iter().enumerate() {
+            check("joint", j, &joint.pair)?;
+        }
+        let rigid: Vec<RigidBody<T>> = bodies.iter().map(|b| b.body.clone()).collect();
+        let rows = if joints.is_empty() {
+            None
+        } else {
+            let (rows, blocked) = joint_rows(&bodies, &joints);
+            Some(JointRows::new(&rigid, rows, blocked)?)
+        };
+        let system = System {
+            bodies,
+            rigid,
+            velocity,
+            contacts,
+            pairs,
+            joints,
+            rows,
+        };
+        system.check_allowed()?;
+        Ok(system)
+    }
+
+    /// The bodies.
+    pub fn bodies(&self) -> &[SystemBody<T>] {
+        &self.bodies
+    }
+
+    /// {V⁰}: each body's twist before impact.
+    pub fn velocity(&self) -> &SystemScrew<T> {
+        &self.velocity
+    }
+
+    /// The contacts (world points).
+    pub fn contacts(&self) -> &[Contact<T>] {
+        &self.contacts
+    }
+
+    /// What each contact joins.
+    pub fn pairs(&self) -> &[Pair] {
+        &self.pairs
+    }
+
+    /// The joints.
+    pub fn joints(&self) -> &[SystemJoint<T>] {
+        &self.joints
+    }
+
+    /// Whether some joints are redundant (their reactions are then not all determined).
+    pub fn redundant_joints(&self) -> bool {
+        self.rows.as_ref().is_some_and(|r| r.rank < r.rows.len())
+    }
+
+    /// The screw of the axis through contact `i`'s point with direction `u` (module docs).
+    pub fn contact_axis(&self, i: usize, u: &Vec3<T>) -> SystemScrew<T> {
+        let a = &self.contacts[i].point;
+        let pair = self.pairs[i];
+        let mut s = SystemScrew::zeros(self.bodies.len());
+        s.0[pair.first] = Screw::axis(&(a.clone() - self.bodies[pair.first].centre.clone()), u);
+        if let Some(b) = pair.second {
+            let e = Screw::axis(&(a.clone() - self.bodies[b].centre.clone()), u);
+            s.0[b] = Screw(-e.0);
+        }
+        s
+    }
+
+    /// The velocity of contact `i`'s point on its first body relative to its second, before
+    /// impact: v_a(A) − v_b(A).
+    pub fn relative_velocity(&self, i: usize) -> Vec3<T> {
+        let a = &self.contacts[i].point;
+        let pair = self.pairs[i];
+        let at = |b: usize| {
+            let v = &self.velocity.0[b];
+            v.bottom() + v.top().cross(&(a.clone() - self.bodies[b].centre.clone()))
+        };
+        match pair.second {
+            Some(b) => at(pair.first) - at(b),
+            None => at(pair.first),
+        }
+    }
+
+    /// ½ Σ_b {V_b}ᵀ η M_b {V_b} (eq. 28, 32 on each body).
+    pub fn kinetic_energy(&self, v: &SystemScrew<T>) -> T {
+        let mut t = T::zero();
+        for (b, s) in self.rigid.iter().zip(&v.0) {
+            t += b.kinetic_energy(s);
+        }
+        t
+    }
+
+    /// Each body's kinetic energy ½ {V_b}ᵀ η M_b {V_b}.
+    pub fn kinetic_energies(&self, v: &SystemScrew<T>) -> Vec<T> {
+        self.rigid
+            .iter()
+            .zip(&v.0)
+            .map(|(b, s)| b.kinetic_energy(s))
+            .collect()
+    }
+
+    /// The system's momentum screw about the world origin: [Σ m_b v_Cb; Σ (J_b ω_b + C_b × m_b
+    /// v_Cb)] — linear momentum and angular momentum about O.
+    pub fn momentum(&self, v: &SystemScrew<T>) -> (Vec3<T>, Vec3<T>) {
+        let mut linear = Vec3::zeros();
+        let mut angular = Vec3::zeros();
+        for ((b, body), s) in self.bodies.iter().zip(&self.rigid).zip(&v.0) {
+            // [M]{v} = [m v_C; J ω] (RigidBody::momentum).
+            let m = body.momentum(s);
+            let p = m.top();
+            angular += m.bottom() + b.centre.cross(&p);
+            linear += p;
+        }
+        (linear, angular)
+    }
+
+    /// The joints' impulses λ (one per blocked screw) for the twist change `dv` and the
+    /// contact impulses `impulses` along the axes `axes` (hatted): K λ = Hᵀ η W₀ (M Δ{V} + Σ
+    /// P̂_i {Ê_i}) ([`mobility`]). Empty without joints.
+    pub fn joint_impulses<'a>(
+        &self,
+        dv: &SystemScrew<T>,
+        impulses: impl Iterator<Item = (&'a T, &'a SystemScrew<T>)>,
+    ) -> Vec<T>
+    where
+        T: 'a,
+    {
+        let Some(rows) = &self.rows else {
+            return Vec::new();
+        };
+        // W₀ (M Δ{V} + Σ P̂ Ê) = Δ{V} + W₀ Σ P̂ Ê.
+        let mut wrench = dv.zero_like();
+        for (p, e) in impulses {
+            wrench.add_scaled(p, e);
+        }
+        let mut twist = free_response(&self.rigid, &wrench);
+        twist.add_scaled(&T::one(), dv);
+        rows.multipliers(&twist)
+    }
+
+    /// Each joint's reaction on its first body from the joints' impulses `lambda`, reduced to
+    /// its anchor (the origin for a joint without one), world axes ([`mobility`]).
+    pub fn joint_reactions(&self, lambda: &[T]) -> Vec<Wrench<T>> {
+        let Some(rows) = &self.rows else {
+            return Vec::new();
+        };
+        let mut sums: Vec<Screw<T>> = vec![Screw::zero(); self.joints.len()];
+        for ((j, u), l) in rows.blocked.iter().zip(lambda) {
+            sums[*j].add_scaled(l, u);
+        }
+        sums.iter()
+            .zip(&self.joints)
+            .map(|(w, joint)| {
+                let p = joint.joint.anchor().cloned().unwrap_or_else(Vec3::zeros);
+                Wrench::about(w, p)
+            })
+            .collect()
+    }
+
+    /// The twist before impact must satisfy every joint (module docs).
+    fn check_allowed(&self) -> Result<(), SystemError> {
+        let Some(rows) = &self.rows else {
+            return Ok(());
+        };
+        for (h, (j, _)) in rows.rows.iter().zip(&rows.blocked) {
+            let rate = h.reciprocal(&self.velocity);
+            let mut scale = T::zero();
+            for (a, b) in h.0.iter().zip(&self.velocity.0) {
+                for k in 0..6 {
+                    let t = a.0[k].clone() * &b.0[(k + 3) % 6];
+                    if t.abs_gt(&scale) {
+                        scale = if t.signum_i8() < 0 { -t } else { t };
+                    }
+                }
+            }
+            if !rate.is_negligible(&scale, 12 * self.bodies.len()) {
+                return Err(SystemError::JointViolated {
+                    joint: *j,
+                    kind: self.joints[*j].joint.name(),
+                    rate: rate.to_f64(),
+                });
+            }
+        }
+        Ok(())
+    }
+}
+
+impl<T: Scalar> Mobility<T, SystemScrew<T>> for System<T> {
+    /// W{E}: each body's \[M\]⁻¹ (eq. 11), then the joints' correction ([`mobility`]).
+    fn response(&self, e: &SystemScrew<T>) -> SystemScrew<T> {
+        let free = free_response(&self.rigid, e);
+        match &self.rows {
+            Some(rows) => rows.constrain(free),
+            None => free,
+        }
+    }
+}
+
+/// The rows H_k of `joints` (each blocked screw on the first body minus on the second, about
+/// their centres) and the blocked screws about the world origin, with their joint.
+fn joint_rows<T: Scalar>(
+    bodies: &[SystemBody<T>],
+    joints: &[SystemJoint<T>],
+) -> (Vec<SystemScrew<T>>, Vec<(usize, Screw<T>)>) {
+    let mut rows = Vec::new();
+    let mut blocked = Vec::new();
+    for (j, joint) in joints.iter().enumerate() {
+        for u in blocked_screws(&joint.joint.free_screws()) {
+            let mut h = SystemScrew::zeros(bodies.len());
+            h.0[joint.pair.first] = about(&u, &bodies[joint.pair.first].centre);
+            if let Some(b) = joint.pair.second {
+                h.0[b] = Screw(-about(&u, &bodies[b].centre).0);
+            }
+            rows.push(h);
+            blocked.push((j, u));
+        }
+    }
+    (rows, blocked)
+}
+
+/// A basis of the screws u with uᵀ η f = 0 for every free screw f: what the joint blocks.
+fn blocked_screws<T: Scalar>(free: &[Screw<T>]) -> Vec<Screw<T>> {
+    // Rows (η f)ᵀ: [f_bottom; f_top].
+    let mut a = Vec::with_capacity(free.len() * 6);
+    for f in free {
+        a.extend(f.0.iter().skip(3).cloned());
+        a.extend(f.0.iter().take(3).cloned());
+    }
+    let (_, basis) = crate::linalg::null_space(&a, free.len(), 6);
+    basis
+        .into_iter()
+        .map(|v| Screw(nalgebra::SVector::<T, 6>::from_iterator(v)))
+        .collect()
+}
