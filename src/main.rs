@@ -450,6 +450,9 @@ fn solve(path: PathBuf, flags: Flags, opts: &SceneOpts) -> ExitCode {
         },
     };
     let models = flags.model.map(ModelArg::models);
+    if scene.system.is_some() {
+        return solve_system(&path, &scene, flags.exact, flags.json, models.as_deref());
+    }
     let solved = if flags.exact && !scene.is_rational() {
         // Radicals ("2/sqrt(5)", "cos(30 deg)") run exactly in the symbolic field.
         run::<RatFun>(&scene, models.as_deref())
@@ -565,6 +568,73 @@ fn tolerance_floor(path: &std::path::Path, asked: Option<f64>, report: &inertanc
                 report.scalar
             );
         }
+    }
+}
+
+/// `solve` on a scene of several bodies: its system report, the same warnings and statuses.
+fn solve_system(
+    path: &std::path::Path,
+    scene: &Scene,
+    exact: bool,
+    json: bool,
+    models: Option<&[inertance::Model]>,
+) -> ExitCode {
+    use inertance::scene::system_pipeline::run_system;
+    let solved = if exact && !scene.is_rational() {
+        run_system::<RatFun>(scene, models)
+    } else if exact {
+        run_system::<Exact>(scene, models)
+    } else {
+        run_system::<f64>(scene, models)
+    };
+    match solved {
+        Ok(s) => {
+            let report = &s.report;
+            for m in &report.models {
+                for v in &m.inadmissible {
+                    eprintln!("warning: {}: {}: {v}", path.display(), m.model);
+                }
+                if !m.inadmissible.is_empty() && m.law == inertance::Law::Simultaneous {
+                    eprintln!(
+                        "  the simultaneous-collision hypothesis fails for this scene: `--law \
+                         unilateral` gives the physical answer, in which such contacts separate"
+                    );
+                }
+            }
+            for (model, message, _) in &report.model_failures {
+                eprintln!(
+                    "warning: {}: {model} under the unilateral law has no answer: {message}",
+                    path.display()
+                );
+            }
+            for ((m, energy), momentum) in report
+                .models
+                .iter()
+                .zip(&s.energy_identity)
+                .zip(&s.momentum_conserved)
+            {
+                if !energy || !momentum {
+                    eprintln!(
+                        "warning: {}: {}: the solve's checks failed ({}): this answer may be \
+                         wrong; `--exact` decides",
+                        path.display(),
+                        m.model,
+                        if *energy {
+                            "momentum not conserved"
+                        } else {
+                            "energy identity, eq. 34"
+                        }
+                    );
+                }
+            }
+            let code = emit(json, || report.to_json(), || report.to_table());
+            if report.model_failures.is_empty() {
+                code
+            } else {
+                ExitCode::from(4)
+            }
+        }
+        Err(e) => fail(path, e),
     }
 }
 

@@ -164,6 +164,8 @@ fn reciprocal_to_its_joint(joint: &Joint<Exact>, w: &Wrench<Exact>) -> bool {
                 && w.force.cross(normal) == Vec3::zeros()
                 && zero(dot(&w.moment, normal))
         }
+        // A weld allows no motion: any wrench is reciprocal to its (empty) set of screws.
+        Joint::Fixed { point } => *point == w.point,
     }
 }
 

@@ -15,6 +15,7 @@
 
 mod friction;
 mod json;
+pub mod system;
 mod table;
 pub mod trajectory;
 mod wide;
@@ -33,7 +34,7 @@ use crate::impact::unilateral::{Activity, Law};
 use crate::mechanics::constraint::Constrained;
 use crate::mechanics::contact::{ContactFrame, Surd, TangentRule};
 use crate::mechanics::reaction::{Wrench, joint_reactions};
-use crate::mechanics::screw::{Vec3, rescaled};
+use crate::mechanics::screw::{Screws, Vec3, rescaled};
 use crate::scalar::Scalar;
 
 /// One reported number: f64 always, exact text in exact mode; in a dual-number run (a
@@ -453,9 +454,9 @@ impl Report {
 
 /// One block of inertances in physical units, row by row: g_ij,ax = ĝ_ij,ax / (|â_i| |x̂_j|)
 /// = (ĝ / (â_i² x̂_j²)) · √(â_i² x̂_j²), â the axis `a` of contact i's frame.
-fn inertances<T: Scalar>(
+fn inertances<T: Scalar, S: Screws<T>>(
     m: &[T],
-    frames: &[ContactFrame<T>],
+    frames: &[ContactFrame<T, S>],
     n: usize,
     a: usize,
 ) -> Vec<Vec<Value>> {
@@ -472,7 +473,7 @@ fn inertances<T: Scalar>(
 }
 
 /// Δ = Δ̂ / Π |x̂_i|², rational.
-fn determinant<T: Scalar>(det: &T, frames: &[ContactFrame<T>]) -> Value {
+fn determinant<T: Scalar, S: Screws<T>>(det: &T, frames: &[ContactFrame<T, S>]) -> Value {
     let mut norms = T::one();
     for f in frames {
         norms *= &f.norm2[0];
@@ -482,9 +483,12 @@ fn determinant<T: Scalar>(det: &T, frames: &[ContactFrame<T>]) -> Value {
 
 /// A contact frame's unit axes (x_i, y_i, z_i), and how y_i was chosen; y_i and z_i zero when
 /// they were not built (`tangential` false).
-fn unit_axes<T: Scalar>(f: &ContactFrame<T>, tangential: bool) -> ([[Value; 3]; 3], TangentRule) {
+fn unit_axes<T: Scalar, S: Screws<T>>(
+    f: &ContactFrame<T, S>,
+    tangential: bool,
+) -> ([[Value; 3]; 3], TangentRule) {
     let unit = |a: usize| -> [Value; 3] {
-        let d = f.axes[a].top();
+        let d = &f.directions[a];
         [0, 1, 2].map(|k| match a == 0 || tangential {
             true => Value::surd(&Surd::over_norm(&d[k], &f.norm2[a])),
             false => Value::of(&T::zero()),
@@ -495,9 +499,9 @@ fn unit_axes<T: Scalar>(f: &ContactFrame<T>, tangential: bool) -> ([[Value; 3]; 
 
 /// Each contact point's velocity in its own frame; along the normal only (the rest zero, no
 /// angle) when the tangent axes were not built (`tangential` false).
-fn point_velocities<T: Scalar>(
+fn point_velocities<T: Scalar, S: Screws<T>>(
     hats: &[[T; 3]],
-    frames: &[ContactFrame<T>],
+    frames: &[ContactFrame<T, S>],
     tangential: bool,
 ) -> Vec<PointVelocity> {
     hats.iter()
@@ -517,7 +521,7 @@ fn point_velocities<T: Scalar>(
 }
 
 /// Impulses along the normals as written: P_i = P̂_i |x̂_i|.
-fn impulses<T: Scalar>(hats: &[T], frames: &[ContactFrame<T>]) -> Vec<Value> {
+fn impulses<T: Scalar, S: Screws<T>>(hats: &[T], frames: &[ContactFrame<T, S>]) -> Vec<Value> {
     hats.iter()
         .zip(frames)
         .map(|(p, f)| Value::surd(&Surd::times_norm(p, &f.norm2[0])))
@@ -591,7 +595,7 @@ impl ConstraintsReport {
 }
 
 /// Velocity components in the unit frame, and the tangential angle (eq. 8, 27).
-fn point_velocity<T: Scalar>(hat: &[T; 3], frame: &ContactFrame<T>) -> PointVelocity {
+fn point_velocity<T: Scalar, S: Screws<T>>(hat: &[T; 3], frame: &ContactFrame<T, S>) -> PointVelocity {
     let s: [Surd<T>; 3] = [0, 1, 2].map(|k| Surd::over_norm(&hat[k], &frame.norm2[k]));
     // v_y = a√r, v_z = b√s ⇒ |v_t|² = a²r + b²s = Q, cos α = a√(r/Q), sin α = b√(s/Q): the
     // same for a and b times one power of two, which in floats keeps Q within range (a

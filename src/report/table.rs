@@ -298,7 +298,7 @@ impl Report {
 
 /// The header and rows as columns: labels left-aligned, cells right-aligned, each column as
 /// wide as its widest cell (counted in characters, not bytes).
-fn aligned(header: &[String], rows: &[Row]) -> String {
+pub(super) fn aligned(header: &[String], rows: &[Row]) -> String {
     let w0 = rows.iter().map(|r| r.0.chars().count()).max().unwrap_or(0);
     let cols: Vec<usize> = (0..header.len())
         .map(|c| {

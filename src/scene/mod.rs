@@ -58,7 +58,9 @@ pub mod pipeline;
 mod read;
 pub mod scale;
 mod schema;
+mod system;
 pub mod seed;
+pub mod system_pipeline;
 
 pub use model::Axes;
 pub use model::params::ParamSpec;
@@ -184,6 +186,10 @@ pub struct Scene {
     pub angles: Vec<(String, Number)>,
     /// The density m / V (kg/m³) of a shape given its mass, for the units note.
     pub density: Option<f64>,
+    /// A scene of several bodies (`[[body]]` tables, [`crate::mechanics::system`]): its bodies,
+    /// what each contact joins, and its joints. The one-body fields then hold the first body's
+    /// numbers, and the contacts' points are in the world.
+    pub system: Option<model::system::SystemSpec>,
 }
 
 impl Scene {
@@ -285,6 +291,11 @@ impl Scene {
     /// Whether the scene can run in exact rationals: every number rational, and the surface
     /// (if any) exact at its contact points.
     pub fn is_rational(&self) -> bool {
+        if let Some(spec) = &self.system {
+            return self.numbers().all(|(_, n)| n.exact.is_ok())
+                && spec.numbers().iter().all(|(_, n)| n.exact.is_ok())
+                && self.system::<crate::scalar::Exact>().is_ok();
+        }
         self.numbers().all(|(_, n)| n.exact.is_ok())
             && self.problem::<crate::scalar::Exact>().is_ok()
     }
@@ -427,6 +438,15 @@ impl Scene {
     /// The problem in the scalar type `T`. Exact types take each number's exact value and
     /// refuse irrational ones (naming the key and the value); floats take the rounded value.
     pub fn problem<T: Scalar>(&self) -> Result<Problem<T>, SceneError> {
+        if self.system.is_some() {
+            return Err(self.error(
+                "body",
+                None,
+                "a scene of several bodies is solved by `inertance solve` (simultaneous and \
+                 unilateral laws, exactly and in floats); `analyze`, `derive`, `sweep`, `bench`, \
+                 friction and the Python package take one body yet",
+            ));
+        }
         let num = |n: &Number, key: &str| -> Result<T, SceneError> { self.value::<T>(n, key) };
         let vec3 = |t: &[Number; 3], key: &str| -> Result<Vec3<T>, SceneError> {
             Ok(Vec3::new(
@@ -474,23 +494,46 @@ impl Scene {
                     ));
                 }
             };
-            contacts.push(Contact {
-                point,
-                normal,
-                tangent: match &c.tangent {
-                    Some(t) => Some(vec3(t, &key("tangent"))?),
-                    None => None,
-                },
-                k_newton: num(&c.k_newton, &key("k_newton"))?,
-                k_poisson: num(&c.k_poisson, &key("k_poisson"))?,
-                k_energetic: match &c.k_energetic {
-                    Some(k) => num(k, &key("k_energetic"))?,
-                    None => num(&c.k_poisson, &key("k_poisson"))?,
-                },
-                mu: num(&c.mu, &key("mu"))?,
-            });
+            contacts.push(self.contact(i, c, point, normal)?);
         }
         Problem::new(body, velocity, contacts).map_err(|e| self.invalid(e))
+    }
+
+    /// Contact `i` in `T`, at `point` with `normal` (already read): its tangent and
+    /// coefficients.
+    pub(crate) fn contact<T: Scalar>(
+        &self,
+        i: usize,
+        c: &ContactSpec,
+        point: Vec3<T>,
+        normal: Vec3<T>,
+    ) -> Result<Contact<T>, SceneError> {
+        let num = |n: &Number, key: &str| -> Result<T, SceneError> { self.value::<T>(n, key) };
+        let key = |k: &str| format!("contact[{i}].{k}");
+        Ok(Contact {
+            point,
+            normal,
+            tangent: match &c.tangent {
+                Some(t) => Some(self.vec3(t, &key("tangent"))?),
+                None => None,
+            },
+            k_newton: num(&c.k_newton, &key("k_newton"))?,
+            k_poisson: num(&c.k_poisson, &key("k_poisson"))?,
+            k_energetic: match &c.k_energetic {
+                Some(k) => num(k, &key("k_energetic"))?,
+                None => num(&c.k_poisson, &key("k_poisson"))?,
+            },
+            mu: num(&c.mu, &key("mu"))?,
+        })
+    }
+
+    /// Three numbers at `key[0..3]` in `T`.
+    pub(crate) fn vec3<T: Scalar>(&self, t: &[Number; 3], key: &str) -> Result<Vec3<T>, SceneError> {
+        Ok(Vec3::new(
+            self.value::<T>(&t[0], &format!("{key}[0]"))?,
+            self.value::<T>(&t[1], &format!("{key}[1]"))?,
+            self.value::<T>(&t[2], &format!("{key}[2]"))?,
+        ))
     }
 
     /// §12: the outward normal is ∇f, which points outward only if f < 0 inside the body — so
@@ -772,7 +815,7 @@ impl Scene {
     }
 
     /// One number in `T`: exact types refuse irrational values, naming the key and value.
-    fn value<T: Scalar>(&self, n: &Number, key: &str) -> Result<T, SceneError> {
+    pub(crate) fn value<T: Scalar>(&self, n: &Number, key: &str) -> Result<T, SceneError> {
         let error = |message: String| SceneError {
             file: self.file.clone(),
             key: key.to_string(),

@@ -42,9 +42,22 @@ pub(super) fn scene(
         ..r
     };
     let name = r.name(root)?;
-    let modelled = model::declared(root);
+    let several = model::system::declared(root);
+    if !several && let Some(joint) = root.get("joint") {
+        return Err(r.err(
+            "joint",
+            Some(short(joint)),
+            "[[joint]] tables join the bodies of a scene of several [[body]] tables; one body's \
+             joints to the ground are `[[constraints.joint]]`",
+        ));
+    }
+    let modelled = !several && model::declared(root);
     // The paper's body first, as it was always read (messages name its keys first).
-    let classic = if modelled { None } else { Some(r.body(root)?) };
+    let classic = if modelled || several {
+        None
+    } else {
+        Some(r.body(root)?)
+    };
     let mut contacts = r.contacts(root)?;
     let solve = r.solve(root)?;
     let (models, law, restitution, outputs) =
@@ -61,8 +74,23 @@ pub(super) fn scene(
         None => None,
         Some(item) => Some(r.constraints(item)?),
     };
+    let mut system = None;
     let (body, axes) = match classic {
         Some(body) => (body, None),
+        None if several => {
+            let spec = r.system(root, &mut contacts)?;
+            // The first body stands in the one-body fields, which a system's solve does not read.
+            let first = &spec.bodies[0];
+            let body = super::schema::BodyTable {
+                mass: first.mass.clone(),
+                inertia: first.inertia.clone(),
+                inertia_products: first.inertia_products.clone(),
+                velocity: first.velocity.clone(),
+                angular_velocity: first.angular_velocity.clone(),
+            };
+            system = Some(spec);
+            (body, Some(model::Axes::World))
+        }
         None => {
             let lowered = r.lower(root, &mut contacts, &mut constraints)?;
             (lowered.body, Some(lowered.axes))
@@ -92,6 +120,7 @@ pub(super) fn scene(
         axes,
         angles: r.observed.borrow().angles.clone(),
         density: r.observed.borrow().density.clone(),
+        system,
     })
 }
 
@@ -212,6 +241,7 @@ const TOP_KEYS: &[&str] = &[
     "solve",
     "constraints",
     "surface",
+    "joint",
 ];
 
 /// Whether a value in symbols is identically zero (`"m - m"`).

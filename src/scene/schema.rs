@@ -356,6 +356,8 @@ impl Reader<'_> {
                 "body_point",
                 "corner",
                 "obstacle",
+                "bodies",
+                "body",
             ],
         )?;
         // A modelled contact may be placed by `body_point`, `corner` or its obstacle instead

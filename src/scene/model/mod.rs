@@ -30,6 +30,7 @@ pub(crate) mod obstacle;
 pub(crate) mod params;
 pub(crate) mod pose;
 pub(crate) mod shape;
+pub(crate) mod system;
 pub(crate) mod term;
 
 use toml_edit::{Item, Table};
@@ -227,9 +228,9 @@ impl Reader<'_> {
         let mut keys = vec!["mass", "inertia", "velocity", "angular_velocity"];
         keys.extend(BODY_KEYS);
         self.only_keys(body, "body", &keys)?;
-        let (mut props, shape) = self.mass_properties(body)?;
-        let degenerate = self.degenerate(&mut props, shape.as_ref())?;
-        let r = self.pose(body.get("pose"))?;
+        let (mut props, shape) = self.mass_properties(body, "body")?;
+        let degenerate = self.degenerate(&mut props, shape.as_ref(), "body")?;
+        let r = self.pose(body.get("pose"), "body")?;
         let position = match body.get("position") {
             None => zero(),
             Some(p) => self.triple(p, "body.position")?.each_ref().map(Term::of),
@@ -308,6 +309,7 @@ impl Reader<'_> {
         &self,
         props: &mut shape::MassProperties,
         shape: Option<&Shape>,
+        prefix: &str,
     ) -> Result<Option<Degenerate>, SceneError> {
         let j = &mut props.inertia;
         let found = match shape {
@@ -319,7 +321,7 @@ impl Reader<'_> {
                 let mut axis: Option<Vec3> = None;
                 for di in &d {
                     if dot(di, di).is_zero()
-                        || self.decide_zero(&dot(di, di), "body.shape.points")? == Some(true)
+                        || self.decide_zero(&dot(di, di), &format!("{prefix}.shape.points"))? == Some(true)
                     {
                         continue;
                     }
@@ -328,7 +330,7 @@ impl Reader<'_> {
                         Some(u) => {
                             let c = term::cross(u, di);
                             let off = dot(&c, &c);
-                            if self.decide_zero(&off, "body.shape.points")? != Some(true) {
+                            if self.decide_zero(&off, &format!("{prefix}.shape.points"))? != Some(true) {
                                 return Ok(None);
                             }
                         }
@@ -451,15 +453,16 @@ impl Reader<'_> {
     fn mass_properties(
         &self,
         body: &Table,
+        prefix: &str,
     ) -> Result<(shape::MassProperties, Option<Shape>), SceneError> {
         let refuse = |key: &str, why: &str| -> Result<(), SceneError> {
             match body.get(key) {
-                Some(v) => Err(self.err(&format!("body.{key}"), Some(short(v)), why.to_string())),
+                Some(v) => Err(self.err(&format!("{prefix}.{key}"), Some(short(v)), why.to_string())),
                 None => Ok(()),
             }
         };
         if let Some(s) = body.get("shape") {
-            let shape = self.shape(s)?;
+            let shape = self.shape(s, &format!("{prefix}.shape"))?;
             for key in ["inertia", "centre_of_mass", "inertia_about"] {
                 refuse(
                     key,
@@ -474,18 +477,18 @@ impl Reader<'_> {
             } else {
                 match (body.get("mass"), body.get("density")) {
                     (Some(m), None) => {
-                        let m = self.number(m, "body.mass")?;
-                        self.positive(&m, "body.mass", "a mass must be positive")?;
+                        let m = self.number(m, &format!("{prefix}.mass"))?;
+                        self.positive(&m, &format!("{prefix}.mass"), "a mass must be positive")?;
                         let density = shape.volume().map(|v| m.approx / v.approx());
                         self.observed.borrow_mut().density = density.filter(|d| d.is_finite());
                         Term::of(&m)
                     }
                     (None, Some(rho)) => {
-                        let rho = self.number(rho, "body.density")?;
-                        self.positive(&rho, "body.density", "a density must be positive")?;
+                        let rho = self.number(rho, &format!("{prefix}.density"))?;
+                        self.positive(&rho, &format!("{prefix}.density"), "a density must be positive")?;
                         let volume = shape.volume().ok_or_else(|| {
                             self.err(
-                                "body.density",
+                                &format!("{prefix}.density"),
                                 Some(rho.text.clone()),
                                 "a thin rod has no volume: give its `mass`",
                             )
@@ -494,14 +497,14 @@ impl Reader<'_> {
                     }
                     (Some(_), Some(_)) => {
                         return Err(self.err(
-                            "body.density",
+                            &format!("{prefix}.density"),
                             None,
                             "give `mass` or `density`, not both",
                         ));
                     }
                     (None, None) => {
                         return Err(self.err(
-                            "body.mass",
+                            &format!("{prefix}.mass"),
                             None,
                             "missing: give the body's `mass` or `density`",
                         ));
@@ -512,11 +515,11 @@ impl Reader<'_> {
             return Ok((props, Some(shape)));
         }
         refuse("density", "a density needs a `shape` to give the volume")?;
-        let m = self.number(self.get(body, "mass", "body")?, "body.mass")?;
-        self.positive(&m, "body.mass", "a mass must be positive")?;
+        let m = self.number(self.get(body, "mass", prefix)?, &format!("{prefix}.mass"))?;
+        self.positive(&m, &format!("{prefix}.mass"), "a mass must be positive")?;
         let mass = Term::of(&m);
         let (diagonal, products) =
-            self.inertia(self.get(body, "inertia", "body")?, "body.inertia")?;
+            self.inertia(self.get(body, "inertia", prefix)?, &format!("{prefix}.inertia"))?;
         let d = diagonal.each_ref().map(Term::of);
         let p = products.as_ref().map(|p| p.each_ref().map(Term::of));
         // (J_xy, J_xz, J_yz) at (0, 1), (0, 2), (1, 2), mirrored.
@@ -530,7 +533,7 @@ impl Reader<'_> {
         let centre = match body.get("centre_of_mass") {
             None => zero(),
             Some(c) => self
-                .triple(c, "body.centre_of_mass")?
+                .triple(c, &format!("{prefix}.centre_of_mass"))?
                 .each_ref()
                 .map(Term::of),
         };
@@ -539,7 +542,7 @@ impl Reader<'_> {
             Some(a) => {
                 // J_C = J_A − m (|d|² I − d dᵀ), d = A − c.
                 let about = self
-                    .triple(a, "body.inertia_about")?
+                    .triple(a, &format!("{prefix}.inertia_about"))?
                     .each_ref()
                     .map(Term::of);
                 let d = sub(&about, &centre);

@@ -21,23 +21,24 @@ use super::term::{Mat3, Term, Vec3, dot, identity, product, transpose};
 
 impl Reader<'_> {
     /// `[body] pose`: R (body → world); the identity when absent.
-    pub(super) fn pose(&self, item: Option<&Item>) -> Result<Mat3, SceneError> {
+    pub(super) fn pose(&self, item: Option<&Item>, prefix: &str) -> Result<Mat3, SceneError> {
         let Some(item) = item else {
             return Ok(identity());
         };
         if let Some(list) = item.as_array() {
             let mut r = identity();
             for (i, v) in list.iter().enumerate() {
-                let step = self.rotation(v, &format!("body.pose[{i}]"))?;
+                let step = self.rotation(v, &format!("{prefix}.pose[{i}]"))?;
                 r = product(&step, &r);
             }
             return Ok(r);
         }
+        let key = format!("{prefix}.pose");
         match item.as_value() {
-            Some(v) => self.rotation(v, "body.pose"),
+            Some(v) => self.rotation(v, &key),
             None => match item.as_table_like() {
-                Some(_) => self.rotation_table(item, "body.pose"),
-                None => Err(self.pose_error("body.pose", short(item))),
+                Some(_) => self.rotation_table(item, &key),
+                None => Err(self.pose_error(&key, short(item))),
             },
         }
     }

@@ -49,8 +49,7 @@ const KINDS: &str = "box = [a, b, c], sphere = r, cylinder = [r, h], rod = L, po
 
 impl Reader<'_> {
     /// `[body] shape`.
-    pub(super) fn shape(&self, item: &Item) -> Result<Shape, SceneError> {
-        let key = "body.shape";
+    pub(super) fn shape(&self, item: &Item, key: &str) -> Result<Shape, SceneError> {
         let t = item
             .as_table_like()
             .filter(|t| t.len() == 1)

@@ -1,0 +1,580 @@
+//! Reading a scene of several bodies: `[[body]]` tables with a `name`, contacts that name the
+//! bodies they join, and `[[joint]]` tables ([`crate::mechanics::system`]).
+//!
+//! Every body is read as a modelled body is (`shape` or the mass properties, `pose`,
+//! `position`, `velocity` and `angular_velocity` in the world frame), its keys at
+//! `body[i].…`, and kept in **world axes about its own centre of mass**: m_b, J_b = R J_C Rᵀ,
+//! C_b = position + R c, [ω_b; v_Cb]. A contact names its bodies — `bodies = ["a", "b"]`, the
+//! normal pointing out of `a` toward `b`, or `body = "a"` with an `obstacle` (the normal −N) —
+//! and is placed by a world `point`, a `corner` of the first body's box or a `body_point` in
+//! its axes. A box touching an obstacle along an edge or a face must name every touching
+//! corner, as for one body; a contact between two spheres or boxes must lie on both surfaces.
+//! A `[[joint]]` has a `kind` (`revolute`, `prismatic`, `cylindrical`, `spherical`, `planar`,
+//! `fixed`), the `bodies` it joins (one name: to the ground), an `anchor` (world) and an `axis`
+//! (the plane's normal for `planar`), as its kind needs.
+
+use toml_edit::{Item, Table};
+
+use super::super::SceneError;
+use super::super::read::{Reader, short};
+use super::super::schema::ContactSpec;
+use super::obstacle::{Obstacle, world};
+use super::shape::Shape;
+use super::term::{Mat3, Term, Vec3, apply, dot, product, sub, transpose, zero};
+use super::{Axes, Frame};
+use crate::mechanics::system::Pair;
+use crate::number::Number;
+
+/// One body of a system scene, as read: world axes, about its centre of mass.
+#[derive(Clone, Debug, PartialEq)]
+pub struct BodySpec {
+    /// Its `name`.
+    pub name: String,
+    /// m.
+    pub mass: Number,
+    /// J in world axes: (J_xx, J_yy, J_zz).
+    pub inertia: [Number; 3],
+    /// (J_xy, J_xz, J_yz), when not all zero.
+    pub inertia_products: Option<[Number; 3]>,
+    /// C, in the world.
+    pub centre: [Number; 3],
+    /// v_C before impact.
+    pub velocity: [Number; 3],
+    /// ω before impact.
+    pub angular_velocity: [Number; 3],
+}
+
+/// The kinds of joint between bodies (`[[joint]] kind`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SystemJointKind {
+    /// `revolute`: `anchor`, `axis`.
+    Revolute,
+    /// `prismatic`: `axis`.
+    Prismatic,
+    /// `cylindrical`: `anchor`, `axis`.
+    Cylindrical,
+    /// `spherical`: `anchor`.
+    Spherical,
+    /// `planar`: `axis`, the plane's normal.
+    Planar,
+    /// `fixed`: `anchor`, where its reaction is reported.
+    Fixed,
+}
+
+impl SystemJointKind {
+    const NAMES: [(&'static str, SystemJointKind); 6] = [
+        ("revolute", SystemJointKind::Revolute),
+        ("prismatic", SystemJointKind::Prismatic),
+        ("cylindrical", SystemJointKind::Cylindrical),
+        ("spherical", SystemJointKind::Spherical),
+        ("planar", SystemJointKind::Planar),
+        ("fixed", SystemJointKind::Fixed),
+    ];
+
+    /// (needs `anchor`, needs `axis`).
+    fn needs(self) -> (bool, bool) {
+        match self {
+            SystemJointKind::Revolute | SystemJointKind::Cylindrical => (true, true),
+            SystemJointKind::Prismatic | SystemJointKind::Planar => (false, true),
+            SystemJointKind::Spherical | SystemJointKind::Fixed => (true, false),
+        }
+    }
+}
+
+/// One `[[joint]]`, as read (world).
+#[derive(Clone, Debug, PartialEq)]
+pub struct SystemJointSpec {
+    /// Its kind.
+    pub kind: SystemJointKind,
+    /// The bodies it joins (the second `None`: the ground).
+    pub pair: Pair,
+    /// Its anchor, when its kind has one.
+    pub anchor: Option<[Number; 3]>,
+    /// Its axis (a planar joint's normal), when its kind has one.
+    pub axis: Option<[Number; 3]>,
+}
+
+/// A system scene's bodies, what each contact joins, and its joints.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SystemSpec {
+    /// The bodies, in order.
+    pub bodies: Vec<BodySpec>,
+    /// Per contact, the bodies it joins.
+    pub pairs: Vec<Pair>,
+    /// The joints.
+    pub joints: Vec<SystemJointSpec>,
+}
+
+impl SystemSpec {
+    /// Every number of the bodies and joints, with its key.
+    pub fn numbers(&self) -> Vec<(String, &Number)> {
+        let mut v: Vec<(String, &Number)> = Vec::new();
+        for (b, body) in self.bodies.iter().enumerate() {
+            v.push((format!("body[{b}].mass"), &body.mass));
+            let triples = [
+                ("inertia", Some(&body.inertia)),
+                ("inertia_products", body.inertia_products.as_ref()),
+                ("centre", Some(&body.centre)),
+                ("velocity", Some(&body.velocity)),
+                ("angular_velocity", Some(&body.angular_velocity)),
+            ];
+            for (key, t) in triples {
+                for (k, n) in t.into_iter().flatten().enumerate() {
+                    v.push((format!("body[{b}].{key}[{k}]"), n));
+                }
+            }
+        }
+        for (j, joint) in self.joints.iter().enumerate() {
+            for (key, t) in [("anchor", &joint.anchor), ("axis", &joint.axis)] {
+                for (k, n) in t.iter().flatten().enumerate() {
+                    v.push((format!("joint[{j}].{key}[{k}]"), n));
+                }
+            }
+        }
+        v
+    }
+}
+
+/// Keys a `[[body]]` of a system may have.
+const BODY_KEYS: [&str; 11] = [
+    "name",
+    "shape",
+    "mass",
+    "density",
+    "inertia",
+    "inertia_about",
+    "centre_of_mass",
+    "pose",
+    "position",
+    "velocity",
+    "angular_velocity",
+];
+
+/// Whether the document is a system of bodies: `[[body]]` tables.
+pub(crate) fn declared(root: &Table) -> bool {
+    matches!(root.get("body"), Some(Item::ArrayOfTables(_)))
+}
+
+/// A body read, in the world, with what its contacts need.
+struct Placed {
+    frame: Frame,
+    shape: Option<Shape>,
+}
+
+impl Reader<'_> {
+    /// Read a system scene's bodies and joints, and place its contacts (world points, normals
+    /// out of their first body).
+    pub(crate) fn system(
+        &self,
+        root: &Table,
+        contacts: &mut [ContactSpec],
+    ) -> Result<SystemSpec, SceneError> {
+        for key in ["constraints", "surface"] {
+            if root.contains_key(key) {
+                return Err(self.err(
+                    key,
+                    None,
+                    format!(
+                        "a scene of several bodies takes [[joint]] tables for its joints; `[{key}]` \
+                         is the one-body form"
+                    ),
+                ));
+            }
+        }
+        let Some(Item::ArrayOfTables(tables)) = root.get("body") else {
+            return Err(self.err("body", None, "must be [[body]] tables"));
+        };
+        let mut names: Vec<String> = Vec::new();
+        let mut bodies = Vec::new();
+        let mut placed = Vec::new();
+        for (i, t) in tables.iter().enumerate() {
+            let (spec, p) = self.system_body(t, i, &names)?;
+            names.push(spec.name.clone());
+            bodies.push(spec);
+            placed.push(p);
+        }
+        let obstacles = self.obstacles(root)?;
+        let pairs = self.place_system_contacts(root, contacts, &names, &placed, &obstacles)?;
+        let joints = self.joints(root, &names)?;
+        Ok(SystemSpec {
+            bodies,
+            pairs,
+            joints,
+        })
+    }
+
+    /// `body[i]`: its numbers in world axes about its centre.
+    fn system_body(
+        &self,
+        t: &Table,
+        i: usize,
+        taken: &[String],
+    ) -> Result<(BodySpec, Placed), SceneError> {
+        let at = format!("body[{i}]");
+        self.only_keys(t, &at, &BODY_KEYS)?;
+        let name = self.string(self.get(t, "name", &at)?, &format!("{at}.name"))?;
+        if taken.contains(&name) {
+            return Err(self.err(
+                &format!("{at}.name"),
+                Some(format!("\"{name}\"")),
+                "two bodies have this name",
+            ));
+        }
+        let (mut props, shape) = self.mass_properties(t, &at)?;
+        if self.degenerate(&mut props, shape.as_ref(), &at)?.is_some() {
+            return Err(self.err(
+                &format!("{at}.shape"),
+                None,
+                "a body of a system needs a moment of inertia about every axis: a thin rod or \
+                 point masses on a line are not taken yet (give it a solid shape, or its inertia)",
+            ));
+        }
+        let r = self.pose(t.get("pose"), &at)?;
+        let position = match t.get("position") {
+            None => zero(),
+            Some(p) => self
+                .triple(p, &format!("{at}.position"))?
+                .each_ref()
+                .map(Term::of),
+        };
+        let centre = world(&position, &r, &props.centre);
+        let j: Mat3 = product(&product(&r, &props.inertia), &transpose(&r));
+        let mass = self.term_number(&props.mass, &format!("{at}.mass"))?;
+        self.positive(&mass, &format!("{at}.mass"), "a mass must be positive")?;
+        let inertia = [
+            self.term_number(&j[0][0], &format!("{at}.inertia[0]"))?,
+            self.term_number(&j[1][1], &format!("{at}.inertia[1]"))?,
+            self.term_number(&j[2][2], &format!("{at}.inertia[2]"))?,
+        ];
+        let off = [&j[0][1], &j[0][2], &j[1][2]];
+        let inertia_products = if off.iter().all(|t| t.is_zero()) {
+            None
+        } else {
+            Some([
+                self.term_number(off[0], &format!("{at}.inertia[0][1]"))?,
+                self.term_number(off[1], &format!("{at}.inertia[0][2]"))?,
+                self.term_number(off[2], &format!("{at}.inertia[1][2]"))?,
+            ])
+        };
+        let velocity = self.triple(self.get(t, "velocity", &at)?, &format!("{at}.velocity"))?;
+        let angular_velocity = self.triple(
+            self.get(t, "angular_velocity", &at)?,
+            &format!("{at}.angular_velocity"),
+        )?;
+        let spec = BodySpec {
+            name,
+            mass,
+            inertia,
+            inertia_products,
+            centre: self.numbers3(&centre, &format!("{at}.centre"))?,
+            velocity,
+            angular_velocity,
+        };
+        let frame = Frame {
+            r,
+            position,
+            centre_body: props.centre.clone(),
+            centre,
+            axes: Axes::World,
+        };
+        Ok((spec, Placed { frame, shape }))
+    }
+
+    /// The body named by `item` at `key`.
+    fn body_ref(&self, item: &Item, key: &str, names: &[String]) -> Result<usize, SceneError> {
+        let name = self.string(item, key)?;
+        names.iter().position(|n| *n == name).ok_or_else(|| {
+            self.err(
+                key,
+                Some(format!("\"{name}\"")),
+                format!("no such body; the scene has: {}", names.join(", ")),
+            )
+        })
+    }
+
+    /// `bodies = ["a", "b"]` (or `["a"]` where one is allowed) at `key`.
+    fn body_list(
+        &self,
+        item: &Item,
+        key: &str,
+        names: &[String],
+        one: bool,
+    ) -> Result<Pair, SceneError> {
+        let list = item.as_array().filter(|a| a.len() == 2 || (one && a.len() == 1));
+        let Some(list) = list else {
+            return Err(self.err(
+                key,
+                Some(short(item)),
+                if one {
+                    "must name one body (joined to the ground) or two: [\"a\", \"b\"]"
+                } else {
+                    "must name two bodies, [\"a\", \"b\"] (the normal out of a); for a body \
+                     against an obstacle write `body` and `obstacle`"
+                },
+            ));
+        };
+        let refs: Vec<usize> = list
+            .iter()
+            .enumerate()
+            .map(|(k, v)| self.body_ref(&Item::Value(v.clone()), &format!("{key}[{k}]"), names))
+            .collect::<Result<_, _>>()?;
+        if refs.len() == 2 && refs[0] == refs[1] {
+            return Err(self.err(
+                key,
+                Some(short(item)),
+                "joins a body to itself: name two different bodies",
+            ));
+        }
+        Ok(Pair {
+            first: refs[0],
+            second: refs.get(1).copied(),
+        })
+    }
+
+    /// Each contact's bodies, world point and normal (out of its first body).
+    fn place_system_contacts(
+        &self,
+        root: &Table,
+        contacts: &mut [ContactSpec],
+        names: &[String],
+        placed: &[Placed],
+        obstacles: &[Obstacle],
+    ) -> Result<Vec<Pair>, SceneError> {
+        let Some(Item::ArrayOfTables(tables)) = root.get("contact") else {
+            return Ok(Vec::new());
+        };
+        let mut pairs = Vec::with_capacity(contacts.len());
+        let mut on_obstacles: Vec<Vec<(usize, usize, Vec3)>> = vec![Vec::new(); placed.len()];
+        for (i, (t, spec)) in tables.iter().zip(contacts.iter_mut()).enumerate() {
+            let at = format!("contact[{i}]");
+            let obstacle = match t.get("obstacle") {
+                None => None,
+                Some(o) => Some(self.obstacle_ref(o, &format!("{at}.obstacle"), obstacles)?),
+            };
+            let pair = match (t.get("bodies"), t.get("body"), obstacle) {
+                (Some(b), None, None) => self.body_list(b, &format!("{at}.bodies"), names, false)?,
+                (None, Some(b), Some(_)) => Pair {
+                    first: self.body_ref(b, &format!("{at}.body"), names)?,
+                    second: None,
+                },
+                (Some(_), _, Some(_)) => {
+                    return Err(self.err(
+                        &format!("{at}.obstacle"),
+                        None,
+                        "a contact is between two bodies (`bodies`) or between a body and an \
+                         obstacle (`body` and `obstacle`), not both",
+                    ));
+                }
+                _ => {
+                    return Err(self.err(
+                        &format!("{at}.bodies"),
+                        None,
+                        "missing: name the two bodies it joins, `bodies = [\"a\", \"b\"]` (the \
+                         normal out of a), or `body` and `obstacle`",
+                    ));
+                }
+            };
+            let first = &placed[pair.first];
+            let given: Vec<&str> = ["point", "body_point", "corner"]
+                .into_iter()
+                .filter(|k| t.contains_key(k))
+                .collect();
+            let (point, body_point): (Vec3, Option<Vec3>) = match given.as_slice() {
+                ["point"] => (spec.point.each_ref().map(Term::of), None),
+                ["body_point"] => {
+                    let p = self.triple(
+                        t.get("body_point").unwrap_or(&Item::None),
+                        &format!("{at}.body_point"),
+                    )?;
+                    let p = p.each_ref().map(Term::of);
+                    (world(&first.frame.position, &first.frame.r, &p), Some(p))
+                }
+                [_] => {
+                    let p = self.corner(
+                        t.get("corner").unwrap_or(&Item::None),
+                        &format!("{at}.corner"),
+                        first.shape.as_ref(),
+                    )?;
+                    (world(&first.frame.position, &first.frame.r, &p), Some(p))
+                }
+                [] => {
+                    return Err(self.err(
+                        &format!("{at}.point"),
+                        None,
+                        "missing: give `point` (world), `body_point` (the first body's axes) or \
+                         `corner` (of the first body's box)",
+                    ));
+                }
+                [a, b, ..] => {
+                    return Err(self.err(
+                        &format!("{at}.{b}"),
+                        None,
+                        format!("give one of `point`, `body_point` or `corner`, not `{a}` and `{b}`"),
+                    ));
+                }
+            };
+            spec.point = self.numbers3(&point, &format!("{at}.point"))?;
+            match obstacle {
+                Some(o) => {
+                    if let Some(n) = t.get("normal") {
+                        return Err(self.err(
+                            &format!("{at}.normal"),
+                            Some(short(n)),
+                            "the contact names an obstacle, whose normal gives the body's (n = −N); drop `normal`",
+                        ));
+                    }
+                    let ob = &obstacles[o];
+                    let n = ob.normal.each_ref().map(|x| -x);
+                    spec.normal = Some(self.numbers3(&n, &format!("{at}.normal"))?);
+                    self.check_obstacle(
+                        ob,
+                        o,
+                        &point,
+                        body_point.as_ref(),
+                        &first.frame,
+                        first.shape.as_ref(),
+                        &at,
+                    )?;
+                    on_obstacles[pair.first].push((i, o, point.clone()));
+                }
+                None => {
+                    if spec.normal.is_none() {
+                        return Err(self.err(
+                            &format!("{at}.normal"),
+                            None,
+                            "missing: give the normal at the contact, pointing out of the first \
+                             body toward the second",
+                        ));
+                    }
+                    for body in std::iter::once(pair.first).chain(pair.second) {
+                        self.on_surface(&placed[body], &point, &names[body], &at)?;
+                    }
+                }
+            }
+            pairs.push(pair);
+        }
+        for (p, named) in placed.iter().zip(&on_obstacles) {
+            if let Some(Shape::Box(dims)) = &p.shape {
+                self.every_touching_corner_named(named, obstacles, &p.frame, dims)?;
+            }
+        }
+        Ok(pairs)
+    }
+
+    /// A contact between two bodies must lie on each one's surface, where the shape says what
+    /// that is (a sphere, a box): two bodies cannot touch at a point inside one of them.
+    fn on_surface(
+        &self,
+        body: &Placed,
+        point: &Vec3,
+        name: &str,
+        at: &str,
+    ) -> Result<(), SceneError> {
+        // The point in the body's axes, from its centre.
+        let local = apply(&transpose(&body.frame.r), &sub(point, &body.frame.centre));
+        let scale = local
+            .iter()
+            .map(|x| self.magnitude(x))
+            .fold(0.0, f64::max)
+            .max(1e-300);
+        let off = |what: &str| {
+            self.err(
+                &format!("{at}.point"),
+                None,
+                format!(
+                    "the contact point is not on the surface of body \"{name}\" ({what}): two \
+                     bodies touch where both their surfaces are"
+                ),
+            )
+        };
+        match &body.shape {
+            Some(Shape::Sphere(r)) => {
+                let d = &dot(&local, &local) - &(r * r);
+                if self.sign_at(&d, scale * scale, at)? != Some(0) {
+                    return Err(off("its distance from the centre is not the radius"));
+                }
+            }
+            Some(Shape::Box(dims)) => {
+                let half = |k: usize| &dims[k] / &Term::int(2);
+                let mut on_face = false;
+                for k in 0..3 {
+                    let slack = &(&half(k) * &half(k)) - &(&local[k] * &local[k]);
+                    match self.sign_at(&slack, scale * scale, at)? {
+                        Some(s) if s < 0 => return Err(off("it lies outside the box")),
+                        Some(0) => on_face = true,
+                        _ => {}
+                    }
+                }
+                if !on_face {
+                    return Err(off("it lies inside the box"));
+                }
+            }
+            _ => {}
+        }
+        Ok(())
+    }
+
+    /// The `[[joint]]` tables.
+    fn joints(&self, root: &Table, names: &[String]) -> Result<Vec<SystemJointSpec>, SceneError> {
+        let tables = match root.get("joint") {
+            None => return Ok(Vec::new()),
+            Some(Item::ArrayOfTables(a)) => a,
+            Some(other) => {
+                return Err(self.err(
+                    "joint",
+                    Some(short(other)),
+                    "must be [[joint]] tables (kind, bodies, anchor, axis)",
+                ));
+            }
+        };
+        let mut out = Vec::with_capacity(tables.len());
+        for (j, t) in tables.iter().enumerate() {
+            let at = format!("joint[{j}]");
+            self.only_keys(t, &at, &["kind", "bodies", "anchor", "axis"])?;
+            let kind_item = self.get(t, "kind", &at)?;
+            let kind_name = self.string(kind_item, &format!("{at}.kind"))?;
+            let kind = SystemJointKind::NAMES
+                .iter()
+                .find(|(n, _)| *n == kind_name)
+                .map(|(_, k)| *k)
+                .ok_or_else(|| {
+                    self.err(
+                        &format!("{at}.kind"),
+                        Some(format!("\"{kind_name}\"")),
+                        "expected one of revolute, prismatic, cylindrical, spherical, planar, fixed",
+                    )
+                })?;
+            let pair = self.body_list(self.get(t, "bodies", &at)?, &format!("{at}.bodies"), names, true)?;
+            let (anchor_needed, axis_needed) = kind.needs();
+            let vector = |key: &str, needed: bool| -> Result<Option<[Number; 3]>, SceneError> {
+                match (t.get(key), needed) {
+                    (Some(item), true) => {
+                        let v = self.triple(item, &format!("{at}.{key}"))?;
+                        if key == "axis" {
+                            self.nonzero(&v, &format!("{at}.axis"), "an axis")?;
+                        }
+                        Ok(Some(v))
+                    }
+                    (None, true) => Err(self.err(
+                        &format!("{at}.{key}"),
+                        None,
+                        format!("missing (required for a {kind_name} joint)"),
+                    )),
+                    (Some(item), false) => Err(self.err(
+                        &format!("{at}.{key}"),
+                        Some(short(item)),
+                        format!("a {kind_name} joint has no {key}; drop it"),
+                    )),
+                    (None, false) => Ok(None),
+                }
+            };
+            out.push(SystemJointSpec {
+                kind,
+                pair,
+                anchor: vector("anchor", anchor_needed)?,
+                axis: vector("axis", axis_needed)?,
+            });
+        }
+        Ok(out)
+    }
+}

@@ -1,0 +1,194 @@
+//! From a scene of several bodies to its report: the system's impact under the scene's law
+//! (simultaneous or unilateral), each restitution model asked for, and the checks every
+//! solve runs — the energy identity (eq. 34) and, for a free system, the conservation of
+//! momentum (both exact in exact types).
+//!
+//! What a system scene is not solved with yet is refused, naming it: friction (the
+//! frictional integration is written for one body), and float scenes whose numbers are far
+//! from 1 (a system is solved in the scene's own units, not scaled: an output f64 cannot hold
+//! is refused, naming the output).
+
+use crate::impact::admissibility::{energy_gain, verdicts};
+use crate::impact::restitution::Model;
+use crate::impact::solve::{Impact, Outcome};
+use crate::impact::unilateral::{Law, UnilateralError, active};
+use crate::mechanics::system::{System, SystemScrew};
+use crate::report::Value;
+use crate::report::system::SystemReport;
+use crate::scalar::Scalar;
+
+use super::pipeline::RunError;
+use super::{Scene, SceneError};
+
+/// A solved system scene: its report, and per model whether the energy identity held and,
+/// for a free system, whether the momentum was conserved (exactly in exact types, to
+/// rounding in floats).
+#[derive(Clone, Debug)]
+pub struct SolvedSystem {
+    /// The readout.
+    pub report: SystemReport,
+    /// Per model, in report order: ΔE_c = −E_p + Σ P_i v_ix⁰ (eq. 34).
+    pub energy_identity: Vec<bool>,
+    /// Per model: momentum after equals momentum before (a free system; `true` otherwise).
+    pub momentum_conserved: Vec<bool>,
+}
+
+/// Solve the system scene `scene` in `T` for `models` (the scene's own when `None`).
+///
+/// # Errors
+/// A [`RunError`]: the scene (friction, a number `T` cannot hold, an invalid body or joint),
+/// a singular G under the simultaneous law, a jam under the unilateral law when no model
+/// answers.
+pub fn run_system<T: Scalar>(scene: &Scene, models: Option<&[Model]>) -> Result<SolvedSystem, RunError> {
+    scene.law_applies()?;
+    if scene.frictional() {
+        let i = scene
+            .contacts
+            .iter()
+            .position(|c| !matches!(&c.mu.exact, Ok(q) if num_traits::Zero::is_zero(q)))
+            .unwrap_or(0);
+        return Err(RunError::Scene(SceneError {
+            file: scene.file.clone(),
+            key: format!("contact[{i}].mu"),
+            value: Some(scene.contacts[i].mu.text.clone()),
+            message: "friction in a system of several bodies is not integrated yet (the \
+                      frictional integration is written for one body): set μ = 0, or solve the \
+                      bodies one at a time"
+                .into(),
+        }));
+    }
+    let system = scene.system::<T>()?;
+    let mut impact = Impact::assemble(&system)?;
+    let models = models.unwrap_or(&scene.models);
+    let mut outcomes = Vec::with_capacity(models.len());
+    let mut inadmissible = Vec::with_capacity(models.len());
+    let mut activities = Vec::with_capacity(models.len());
+    let mut failures = Vec::new();
+    let mut first_failure = None;
+    for &m in models {
+        let mut out: Outcome<T, SystemScrew<T>> = Outcome::default();
+        match scene.law {
+            Law::Simultaneous => {
+                impact.solve(m, &mut out)?;
+                inadmissible.push(verdicts(&impact, m, &out));
+                activities.push(None);
+            }
+            Law::Unilateral => match impact.solve_unilateral(m, &mut out) {
+                Ok(a) => {
+                    inadmissible.push(energy_gain(&impact, &out).into_iter().collect());
+                    activities.push(Some(a));
+                }
+                Err(e @ UnilateralError::Jammed { .. }) => {
+                    failures.push((m, e.to_string(), "jammed"));
+                    first_failure.get_or_insert(e);
+                    continue;
+                }
+                Err(e) => return Err(e.into()),
+            },
+        }
+        outcomes.push((m, out));
+    }
+    if let (true, Some(e)) = (outcomes.is_empty(), first_failure) {
+        return Err(e.into());
+    }
+    let names: Vec<String> = scene
+        .system
+        .as_ref()
+        .map(|s| s.bodies.iter().map(|b| b.name.clone()).collect())
+        .unwrap_or_default();
+    let mut effects = Vec::new();
+    if !system.joints().is_empty() {
+        effects.push("joints".to_string());
+    }
+    if scene.law == Law::Unilateral {
+        effects.push("unilateral".to_string());
+    }
+    effects.extend(outcomes.iter().map(|(m, _)| m.name().to_string()));
+    let mut report = SystemReport::new(&scene.name, effects, &names, &impact, &outcomes);
+    for ((r, (_, out)), (bad, activity)) in report
+        .models
+        .iter_mut()
+        .zip(&outcomes)
+        .zip(inadmissible.into_iter().zip(activities))
+    {
+        r.law = scene.law;
+        r.inadmissible = bad;
+        if activity.is_some() {
+            r.active = active(out);
+        }
+        r.activity = activity;
+    }
+    report.model_failures = failures;
+    if !T::IS_EXACT {
+        refuse_unrepresentable(scene, &report)?;
+    }
+    let energy_identity = outcomes
+        .iter()
+        .map(|(_, out)| {
+            let work = impact.impulse_work(out);
+            let sum = out.kinetic_energy_loss.clone() + &out.lost_velocity_energy;
+            let scale = impact.kinetic_before().clone() + &out.lost_velocity_energy;
+            (sum - work).is_negligible(&scale, 16 * impact.contacts().max(1))
+        })
+        .collect();
+    let momentum_conserved = outcomes
+        .iter()
+        .map(|(_, out)| !report.free || conserved(&system, system.velocity(), &out.velocity))
+        .collect();
+    Ok(SolvedSystem {
+        report,
+        energy_identity,
+        momentum_conserved,
+    })
+}
+
+/// Linear and angular momentum equal before and after: exactly in exact types, to 64 N ε of
+/// the largest body momentum in floats.
+fn conserved<T: Scalar>(system: &System<T>, before: &SystemScrew<T>, after: &SystemScrew<T>) -> bool {
+    let (p0, l0) = system.momentum(before);
+    let (p1, l1) = system.momentum(after);
+    let mut scale = T::zero();
+    for x in p0.iter().chain(&l0).chain(&p1).chain(&l1) {
+        if x.abs_gt(&scale) {
+            scale = if x.signum_i8() < 0 { -x.clone() } else { x.clone() };
+        }
+    }
+    let n = 64 * system.bodies().len();
+    (0..3).all(|k| {
+        (p1[k].clone() - &p0[k]).is_negligible(&scale, n)
+            && (l1[k].clone() - &l0[k]).is_negligible(&scale, n)
+    })
+}
+
+/// A float result that f64 does not hold (the system is solved in the scene's own units) is
+/// refused, naming it.
+fn refuse_unrepresentable(scene: &Scene, report: &SystemReport) -> Result<(), RunError> {
+    let finite = |v: &Value| v.f64.is_finite();
+    for m in &report.models {
+        let checks = [
+            ("impulses", m.impulses.iter().all(finite)),
+            (
+                "velocities after impact",
+                m.twists
+                    .iter()
+                    .all(|(w, v)| w.iter().chain(v).all(finite)),
+            ),
+            (
+                "energies",
+                finite(&m.lost_velocity_energy) && finite(&m.kinetic_energy_loss),
+            ),
+        ];
+        if let Some((name, _)) = checks.iter().find(|(_, ok)| !ok) {
+            return Err(RunError::Scene(SceneError {
+                file: scene.file.clone(),
+                key: "body".into(),
+                value: None,
+                message: format!(
+                    "the {name} of this system are beyond the range of f64 in the scene's units \
+                     (systems are not scaled yet): solve it with --exact"
+                ),
+            }));
+        }
+    }
+    Ok(())
+}
