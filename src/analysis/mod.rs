@@ -28,7 +28,9 @@ pub mod wrench_space;
 use crate::impact::problem::Problem;
 use crate::impact::restitution::Model;
 use crate::impact::solve::{Impact, Outcome};
-use crate::mechanics::screw::Screw;
+use crate::impact::mechanism::Mechanism;
+use crate::mechanics::contact::Contact;
+use crate::mechanics::screw::{Screw, Screws};
 use crate::scalar::Scalar;
 
 /// The Rouché–Capelli classification of a model's system.
@@ -66,7 +68,7 @@ pub struct Admissibility {
 
 /// The analysis of one model.
 #[derive(Clone, Debug)]
-pub struct ModelAnalysis<T: Scalar> {
+pub struct ModelAnalysis<T: Scalar, S: Screws<T> = Screw<T>> {
     /// Which model.
     pub model: Model,
     /// rank [G | b].
@@ -75,7 +77,7 @@ pub struct ModelAnalysis<T: Scalar> {
     pub classification: Classification,
     /// The impulses (hatted, see [`crate::mechanics::contact`]) and everything after impact: the unique
     /// solution, or the family's least-norm member; `None` when incompatible.
-    pub outcome: Option<Outcome<T>>,
+    pub outcome: Option<Outcome<T, S>>,
     /// A basis of the impulse family's directions (hatted), empty unless singular-compatible;
     /// also empty from the linear-cost route ([`wrench_space`]), which gives only its dimension.
     pub family: Vec<Vec<T>>,
@@ -89,7 +91,7 @@ pub struct ModelAnalysis<T: Scalar> {
     pub energy_gain: Option<bool>,
 }
 
-impl<T: Scalar> ModelAnalysis<T> {
+impl<T: Scalar, S: Screws<T>> ModelAnalysis<T, S> {
     /// rank [G | b] > rank G (`augmented_rank`): no impulses satisfy the law; only whether
     /// each contact is approaching is known.
     pub(crate) fn incompatible(model: Model, augmented_rank: usize, approaching: &[bool]) -> Self {
@@ -139,13 +141,13 @@ pub const MAX_COINCIDENT_CANDIDATES: usize = 1_000_000;
 
 /// The analysis of a scene.
 #[derive(Clone, Debug)]
-pub struct Analysis<T: Scalar> {
+pub struct Analysis<T: Scalar, S: Screws<T> = Screw<T>> {
     /// rank G.
     pub rank: usize,
     /// The zero-pivot tolerance used (floats), relative quantities in the units of G.
     pub tolerance: Option<f64>,
     /// Per model.
-    pub models: Vec<ModelAnalysis<T>>,
+    pub models: Vec<ModelAnalysis<T, S>>,
     /// Whether Newton and Poisson give the same impulses, and why.
     pub newton_equals_poisson: Option<(bool, String)>,
     /// Contacts at the same point: at most [`MAX_COINCIDENT`] pairs, in order.
@@ -156,7 +158,10 @@ pub struct Analysis<T: Scalar> {
 }
 
 /// Analyse the assembled `impact` for `models`.
-pub fn analyze<T: Scalar>(impact: &mut Impact<T>, models: &[Model]) -> Analysis<T> {
+pub fn analyze<T: Scalar, M: Mechanism<T>>(
+    impact: &mut Impact<T, M>,
+    models: &[Model],
+) -> Analysis<T, M::Screw> {
     let n = impact.contacts();
     let tolerance = if T::IS_EXACT {
         None
@@ -176,9 +181,9 @@ pub fn analyze<T: Scalar>(impact: &mut Impact<T>, models: &[Model]) -> Analysis<
             i == j || impact.g_hat()[i * n + j].is_negligible(&impact.g_hat()[i * n + i], 16 * n)
         })
     });
-    let newton_equals_poisson = newton_equals_poisson(impact.problem(), &out_models, diagonal);
+    let newton_equals_poisson = newton_equals_poisson(impact.problem().contacts(), &out_models, diagonal);
     let (coincident, coincident_truncated) = coincident(
-        impact.problem(),
+        impact.problem().contacts(),
         all_pairs(n),
         |i| {
             (
@@ -208,9 +213,9 @@ pub fn analyze_reduced<T: Scalar>(
     let out_models: Vec<ModelAnalysis<T>> =
         models.iter().map(|&m| space.analyze_model(m)).collect();
     let newton_equals_poisson =
-        newton_equals_poisson(space.problem(), &out_models, space.g_diagonal());
+        newton_equals_poisson(space.problem().contacts(), &out_models, space.g_diagonal());
     let (coincident, coincident_truncated) = coincident(
-        space.problem(),
+        space.problem().contacts(),
         near_pairs(space.problem()),
         |i| {
             (
@@ -230,7 +235,10 @@ pub fn analyze_reduced<T: Scalar>(
     }
 }
 
-fn analyze_model<T: Scalar>(impact: &mut Impact<T>, model: Model) -> ModelAnalysis<T> {
+fn analyze_model<T: Scalar, M: Mechanism<T>>(
+    impact: &mut Impact<T, M>,
+    model: Model,
+) -> ModelAnalysis<T, M::Screw> {
     let n = impact.contacts();
     let problem = impact.problem().clone();
     let approaching: Vec<bool> = impact
@@ -297,16 +305,15 @@ fn analyze_model<T: Scalar>(impact: &mut Impact<T>, model: Model) -> ModelAnalys
     impact.complete(&mut out);
     // The twist change along each direction of the family: −Σ z_j W{E_jx}.
     let twist_fixed = family.iter().all(|z| {
-        let mut dv = Screw::zero();
+        let v0 = problem.velocity();
+        let mut dv = v0.zero_like();
         for (zj, r) in z.iter().zip(impact.responses()) {
             dv.add_scaled(zj, r);
         }
-        let v0 = problem.velocity();
-        let reference = v0.reciprocal(&problem.body().momentum(v0));
-        problem
-            .body()
-            .kinetic_energy(&dv)
-            .is_negligible(&reference, 16 * n)
+        // {v⁰}ᵀ η M {v⁰} = 2 T⁰, the scale of the energies.
+        let t0 = problem.kinetic_energy(v0);
+        let reference = t0.clone() + &t0;
+        problem.kinetic_energy(&dv).is_negligible(&reference, 16 * n)
     });
     let admissible = (0..n)
         .map(|i| Admissibility {
@@ -341,7 +348,7 @@ fn analyze_model<T: Scalar>(impact: &mut Impact<T>, model: Model) -> ModelAnalys
 ///
 /// — O(r² (N − r)) work where the normal equations of the family, (Bᵀ W B) c = Bᵀ W p, cost
 /// O((N − r)³): a minute in rationals for 220 contacts (r ≤ 6), milliseconds this way.
-fn least_norm<T: Scalar>(p: &mut [T], basis: &[Vec<T>], impact: &Impact<T>) {
+fn least_norm<T: Scalar, M: Mechanism<T>>(p: &mut [T], basis: &[Vec<T>], impact: &Impact<T, M>) {
     let k = basis.len();
     if k == 0 {
         return;
@@ -395,14 +402,14 @@ fn least_norm<T: Scalar>(p: &mut [T], basis: &[Vec<T>], impact: &Impact<T>) {
 }
 
 /// eq. 50–55: equal impulses, and why.
-fn newton_equals_poisson<T: Scalar>(
-    problem: &Problem<T>,
-    models: &[ModelAnalysis<T>],
+fn newton_equals_poisson<T: Scalar, S: Screws<T>>(
+    cs: &[Contact<T>],
+    models: &[ModelAnalysis<T, S>],
     diagonal: bool,
 ) -> Option<(bool, String)> {
     let newton = models.iter().find(|m| m.model == Model::Newton)?;
     let poisson = models.iter().find(|m| m.model == Model::Poisson)?;
-    let n = problem.contacts().len();
+    let n = cs.len();
     let equal = match (&newton.outcome, &poisson.outcome) {
         (Some(a), Some(b)) => {
             (0..n).all(|i| {
@@ -418,7 +425,6 @@ fn newton_equals_poisson<T: Scalar>(
         (None, None) => newton.classification == poisson.classification,
         _ => false,
     };
-    let cs = problem.contacts();
     let same_k = cs
         .iter()
         .all(|c| c.k_newton == c.k_poisson && c.k_newton == cs[0].k_newton);
@@ -502,7 +508,7 @@ fn near_pairs<T: Scalar>(problem: &Problem<T>) -> impl Iterator<Item = (usize, u
 /// `tolerance` in floats — and whether the list stopped short: at [`MAX_COINCIDENT`] pairs,
 /// or after [`MAX_COINCIDENT_CANDIDATES`] candidates.
 fn coincident<T: Scalar>(
-    problem: &Problem<T>,
+    contacts: &[Contact<T>],
     pairs: impl IntoIterator<Item = (usize, usize)>,
     own: impl Fn(usize) -> (T, T),
     tolerance: Option<f64>,
@@ -513,7 +519,7 @@ fn coincident<T: Scalar>(
         if examined == MAX_COINCIDENT_CANDIDATES {
             return (out, true);
         }
-        let (pi, pj) = (&problem.contacts()[i].point, &problem.contacts()[j].point);
+        let (pi, pj) = (&contacts[i].point, &contacts[j].point);
         let d = pi - pj;
         if !norm2(&d).is_negligible(&(norm2(pi) + norm2(pj)), 3) {
             continue;
@@ -521,10 +527,10 @@ fn coincident<T: Scalar>(
         if out.len() == MAX_COINCIDENT {
             return (out, true);
         }
-        let (ni, nj) = (&problem.contacts()[i].normal, &problem.contacts()[j].normal);
+        let (ni, nj) = (&contacts[i].normal, &contacts[j].normal);
         let same_axis = norm2(&ni.cross(nj)).is_negligible(&(norm2(ni) * norm2(nj)), 3)
             && dot(ni, nj).signum_i8() > 0;
-        let c = &problem.contacts()[i];
+        let c = &contacts[i];
         let (gii, v0) = own(i);
         let zero = match tolerance {
             Some(t) => gii.to_f64() <= t,

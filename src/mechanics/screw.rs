@@ -94,6 +94,8 @@ pub trait Screws<T: Scalar>: Clone + std::fmt::Debug + PartialEq + Default {
     fn minus(&self, other: &Self) -> Self;
     /// The zero of `self`'s space.
     fn zero_like(&self) -> Self;
+    /// The components in order: [ω; v] for one screw, each body's in turn for a stack.
+    fn components(&self) -> Vec<T>;
 }
 
 impl<T: Scalar> Default for Screw<T> {
@@ -121,6 +123,10 @@ impl<T: Scalar> Screws<T> for Screw<T> {
     #[inline]
     fn zero_like(&self) -> Self {
         Screw::zero()
+    }
+
+    fn components(&self) -> Vec<T> {
+        self.as_slice().to_vec()
     }
 }
 

@@ -184,8 +184,9 @@ pub struct Scene {
     /// (`body.pose.angle`, `body.pose[1].angle`): the notes and the exact solver's refusals
     /// name them rather than the numbers computed from them.
     pub angles: Vec<(String, Number)>,
-    /// The density m / V (kg/m³) of a shape given its mass, for the units note.
-    pub density: Option<f64>,
+    /// The density m / V (kg/m³) of each shape given its mass, with its body's key (`body`,
+    /// `body[i]`), for the units note.
+    pub density: Vec<(String, f64)>,
     /// A scene of several bodies (`[[body]]` tables, [`crate::mechanics::system`]): its bodies,
     /// what each contact joins, and its joints. The one-body fields then hold the first body's
     /// numbers, and the contacts' points are in the world.

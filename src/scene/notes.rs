@@ -92,18 +92,24 @@ impl Scene {
     /// A shape whose mass gives an implausible density: lengths in millimetres, or a mass in
     /// grams.
     fn units_note(&self) -> Option<String> {
-        let rho = self.density?;
         let (low, high) = PLAUSIBLE_DENSITY;
-        let hint = if rho < low {
-            "lighter than air: were the lengths written in millimetres or centimetres?"
-        } else if rho > high {
-            "denser than any material: was the mass written in grams, or the lengths in \
-             kilometres?"
-        } else {
-            return None;
+        let (key, rho, hint) = self.density.iter().find_map(|(key, rho)| {
+            let hint = if *rho < low {
+                "lighter than air: were the lengths written in millimetres or centimetres?"
+            } else if *rho > high {
+                "denser than any material: was the mass written in grams, or the lengths in \
+                 kilometres?"
+            } else {
+                return None;
+            };
+            Some((key, *rho, hint))
+        })?;
+        let whose = match &self.system {
+            None => "the body's".to_string(),
+            Some(_) => format!("`{key}`'s"),
         };
         Some(format!(
-            "note: {}: the body's mass over its shape's volume gives a density of {rho:.3e} kg/m³, \
+            "note: {}: {whose} mass over its shape's volume gives a density of {rho:.3e} kg/m³, \
              {hint} Lengths are in metres, masses in kilograms",
             self.file
         ))

@@ -269,8 +269,9 @@ pub(super) struct Reader<'a> {
 pub(super) struct Observed {
     /// Each pose angle: its key and its value as read.
     pub(super) angles: Vec<(String, Number)>,
-    /// The density m / V of a shape given its mass, in kg/m³, as a number.
-    pub(super) density: Option<f64>,
+    /// The density m / V of each shape given its mass, in kg/m³, as a number, with the key of
+    /// its body (`body`, or `body[i]` in a system).
+    pub(super) density: Vec<(String, f64)>,
 }
 
 impl Reader<'_> {

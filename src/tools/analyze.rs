@@ -7,7 +7,9 @@ use crate::analysis::wrench_space::WrenchSpace;
 use crate::analysis::{
     Analysis, Classification, analyze, analyze_reduced, condition_number, largest_eigenvalue,
 };
+use crate::impact::mechanism::Mechanism;
 use crate::impact::problem::Problem;
+use crate::mechanics::screw::Screws;
 use crate::impact::restitution::Model;
 use crate::impact::solve::Impact;
 use crate::mechanics::contact::Surd;
@@ -22,6 +24,9 @@ use crate::scene::pipeline::{RunError, prepare};
 pub struct AnalysisReport {
     /// The scene's name.
     pub scene: String,
+    /// A system's bodies by name, in order (empty for one body): each twist below is then one
+    /// [ω; v_C] per body.
+    pub bodies: Vec<String>,
     /// `"f64"` or `"exact"`.
     pub scalar: &'static str,
     /// N.
@@ -154,6 +159,9 @@ pub fn analyze_scene<T: Scalar>(
         )));
     }
     let models = models.unwrap_or(&scene.models);
+    if scene.system.is_some() {
+        return analyze_system::<T>(scene, models);
+    }
     let problem = prepare::<T>(scene)?;
     let space = WrenchSpace::build(&problem)?;
     let finite = |x: &T| x.to_f64().is_finite();
@@ -187,7 +195,8 @@ pub fn analyze_scene<T: Scalar>(
             cond,
             unilateral,
         };
-        return finish(scene, impact.problem(), analysis, parts);
+        return finish(scene, impact.problem(), analysis, parts)
+            .map(|r| with_friction(r, scene, &problem));
     }
     let analysis = analyze_reduced(&space, models);
     let norm2: Vec<T> = space.frames().iter().map(|f| f.norm2[0].clone()).collect();
@@ -218,7 +227,70 @@ pub fn analyze_scene<T: Scalar>(
         norm2,
         unilateral,
     };
-    finish(scene, space.problem(), analysis, parts)
+    finish(scene, space.problem(), analysis, parts).map(|r| with_friction(r, scene, &problem))
+}
+
+/// `report` with the frictional part of a one-body `scene` when it has friction.
+fn with_friction<T: Scalar>(
+    mut report: AnalysisReport,
+    scene: &Scene,
+    problem: &Problem<T>,
+) -> AnalysisReport {
+    report.friction = scene
+        .frictional()
+        .then(|| friction_analysis(scene, problem));
+    report
+}
+
+/// A system of bodies ([`crate::mechanics::system`]): the N×N route for any N (a system's
+/// contacts are few; its cost is in the bodies), no frictional part (a frictional system scene
+/// is refused by the pipeline it would run).
+fn analyze_system<T: Scalar>(scene: &Scene, models: &[Model]) -> Result<AnalysisReport, RunError> {
+    if scene.frictional() {
+        // The same refusal `solve` gives, naming the key.
+        crate::scene::system_pipeline::run_system::<T>(scene, Some(models))?;
+    }
+    let system = scene.system::<T>()?;
+    let mut impact = Impact::assemble(&system)?;
+    let analysis = analyze(&mut impact, models);
+    let (det, cond) = dense_det_cond(&mut impact);
+    let norm2: Vec<T> = impact.frames().iter().map(|f| f.norm2[0].clone()).collect();
+    let unilateral: Vec<Result<UnilateralReport, String>> = if scene.contacts.len()
+        <= max_unilateral_contacts::<T>()
+    {
+        analysis
+            .models
+            .iter()
+            .map(|m| unilateral_report(&mut impact, m.model, &norm2))
+            .collect()
+    } else {
+        let why = crate::impact::unilateral::UnilateralError::TooManyContacts {
+            contacts: scene.contacts.len(),
+            limit: max_unilateral_contacts::<T>(),
+        }
+        .to_string();
+        vec![Err(why); analysis.models.len()]
+    };
+    let parts = Parts {
+        before_x: impact.before_hat().iter().map(|v| v[0].clone()).collect(),
+        norm2,
+        kinetic_before: impact.kinetic_before().clone(),
+        det,
+        cond,
+        unilateral,
+    };
+    let mut report = finish(scene, impact.problem(), analysis, parts)?;
+    report.bodies = system_names(scene);
+    Ok(report)
+}
+
+/// The body names of a system scene, in order.
+fn system_names(scene: &Scene) -> Vec<String> {
+    scene
+        .system
+        .as_ref()
+        .map(|s| s.bodies.iter().map(|b| b.name.clone()).collect())
+        .unwrap_or_default()
 }
 
 /// What the report needs besides the analysis, from either route.
@@ -234,7 +306,7 @@ struct Parts<T: Scalar> {
 }
 
 /// Δ and cond₂ G from the N×N matrix.
-fn dense_det_cond<T: Scalar>(impact: &mut Impact<T>) -> (Value, f64) {
+fn dense_det_cond<T: Scalar, M: Mechanism<T>>(impact: &mut Impact<T, M>) -> (Value, f64) {
     let n = impact.contacts();
     let norm2: Vec<T> = impact.frames().iter().map(|f| f.norm2[0].clone()).collect();
     let mut norms = T::one();
@@ -271,10 +343,10 @@ fn dense_det_cond<T: Scalar>(impact: &mut Impact<T>) -> (Value, f64) {
 }
 
 /// The readable report of `analysis` of `scene` (assembled as `problem`).
-fn finish<T: Scalar>(
+fn finish<T: Scalar, M: Mechanism<T>>(
     scene: &Scene,
-    problem: &Problem<T>,
-    analysis: Analysis<T>,
+    problem: &M,
+    analysis: Analysis<T, M::Screw>,
     parts: Parts<T>,
 ) -> Result<AnalysisReport, RunError> {
     let n = problem.contacts().len();
@@ -361,7 +433,7 @@ fn finish<T: Scalar>(
                 twist_fixed: m.twist_fixed,
                 admissible,
                 energy_gain: m.energy_gain,
-                twist: m.outcome.as_ref().map(|o| o.velocity.as_slice().iter().map(Value::of).collect()),
+                twist: m.outcome.as_ref().map(|o| o.velocity.components().iter().map(Value::of).collect()),
                 energies: m.outcome.as_ref().map(|o| [Value::of(&o.lost_velocity_energy), Value::of(&o.kinetic_energy_loss)]),
                 verdicts,
                 unilateral: unilateral.remove(0),
@@ -384,6 +456,7 @@ fn finish<T: Scalar>(
         .collect();
     let mut report = AnalysisReport {
         scene: scene.name.clone(),
+        bodies: Vec::new(),
         scalar: T::NAME,
         contacts: n,
         det,
@@ -395,9 +468,8 @@ fn finish<T: Scalar>(
         newton_equals_poisson: analysis.newton_equals_poisson,
         coincident,
         coincident_truncated: analysis.coincident_truncated,
-        friction: scene
-            .frictional()
-            .then(|| friction_analysis(scene, problem)),
+        // Set by the caller for one body ([`friction_analysis`]).
+        friction: None,
     };
     if !T::IS_EXACT && report.rank == n && !report.det.f64.is_normal() {
         // Δ ~ M⁻ᴺ left f64 in the scene's units (a body of 10⁻³⁰⁰ kg): from the scaled scene.
@@ -553,8 +625,8 @@ impl AnalysisReport {
 }
 
 /// The unilateral law on the assembled `impact` for `model`, read out in the paper's units.
-fn unilateral_report<T: Scalar>(
-    impact: &mut Impact<T>,
+fn unilateral_report<T: Scalar, M: Mechanism<T>>(
+    impact: &mut Impact<T, M>,
     model: Model,
     norm2: &[T],
 ) -> Result<UnilateralReport, String> {
@@ -576,7 +648,7 @@ fn unilateral_report<T: Scalar>(
             .zip(norm2)
             .map(|(v, w)| Value::surd(&Surd::over_norm(&v[0], w)))
             .collect(),
-        twist: out.velocity.as_slice().iter().map(Value::of).collect(),
+        twist: out.velocity.components().iter().map(Value::of).collect(),
         energies: [
             Value::of(&out.lost_velocity_energy),
             Value::of(&out.kinetic_energy_loss),
@@ -587,7 +659,7 @@ fn unilateral_report<T: Scalar>(
 }
 
 /// `[ω; v_C]` as text: `ω = (…), v_C = (…)`.
-fn twist_text(t: &[Value]) -> String {
+fn body_twist_text(t: &[Value]) -> String {
     let part =
         |r: std::ops::Range<usize>| t[r].iter().map(Value::text).collect::<Vec<_>>().join(", ");
     format!("ω = ({}), v_C = ({})", part(0..3), part(3..6))
@@ -601,6 +673,37 @@ fn json_f64(x: f64) -> Json {
 }
 
 impl AnalysisReport {
+    /// A twist after impact as text: `ω = (…), v_C = (…)` for one body; for a system, each
+    /// body's by name.
+    fn twist_text(&self, t: &[Value]) -> String {
+        if self.bodies.is_empty() {
+            return body_twist_text(t);
+        }
+        self.bodies
+            .iter()
+            .zip(t.chunks(6))
+            .map(|(name, t)| format!("\n    {name}: {}", body_twist_text(t)))
+            .collect()
+    }
+
+    /// A twist after impact as JSON: the six numbers [ω; v_C] for one body; for a system, per
+    /// body `{name, angular_velocity, velocity}`.
+    fn twist_json(&self, t: &[Value]) -> Json {
+        let vec = |v: &[Value]| Json::Array(v.iter().map(Value::json).collect());
+        if self.bodies.is_empty() {
+            return vec(t);
+        }
+        Json::Array(
+            self.bodies
+                .iter()
+                .zip(t.chunks(6))
+                .map(|(name, t)| {
+                    json!({"name": name, "angular_velocity": vec(&t[..3]), "velocity": vec(&t[3..])})
+                })
+                .collect(),
+        )
+    }
+
     /// The JSON report.
     pub fn to_json(&self) -> Json {
         let vec = |v: &[Value]| Json::Array(v.iter().map(Value::json).collect());
@@ -639,7 +742,7 @@ impl AnalysisReport {
             }
             o.insert(
                 "twist_after".into(),
-                m.twist.as_ref().map_or(Json::Null, |t| vec(t)),
+                m.twist.as_ref().map_or(Json::Null, |t| self.twist_json(t)),
             );
             if let Some([ep, de]) = &m.energies {
                 o.insert("lost_velocity_energy".into(), Value::json(ep));
@@ -657,7 +760,7 @@ impl AnalysisReport {
                         "impulses_unique": u.impulses_unique,
                         "outcome_decided": u.outcome_decided,
                         "normal_velocities_after": vec(&u.normal_velocities),
-                        "twist_after": vec(&u.twist),
+                        "twist_after": self.twist_json(&u.twist),
                         "lost_velocity_energy": u.energies[0].json(),
                         "kinetic_energy_loss": u.energies[1].json(),
                     }),
@@ -682,6 +785,9 @@ impl AnalysisReport {
             "coincident_truncated": self.coincident_truncated,
         });
         if let Some(obj) = top.as_object_mut() {
+            if !self.bodies.is_empty() {
+                obj.insert("bodies".into(), json!(self.bodies));
+            }
             if let Some((equal, reason)) = &self.newton_equals_poisson {
                 obj.insert(
                     "newton_equals_poisson".into(),
@@ -806,12 +912,12 @@ impl AnalysisReport {
                 if m.twist_fixed {
                     s += &format!(
                         "  velocities after impact (the same for the whole family): {}\n",
-                        twist_text(t)
+                        self.twist_text(t)
                     );
                 } else {
                     s += &format!(
                         "  velocities after impact (least-norm member; they vary): {}\n",
-                        twist_text(t)
+                        self.twist_text(t)
                     );
                 }
             }
@@ -861,7 +967,7 @@ impl AnalysisReport {
                             u.normal_velocities[i].text()
                         );
                     }
-                    s += &format!("    velocities after impact: {}\n", twist_text(&u.twist));
+                    s += &format!("    velocities after impact: {}\n", self.twist_text(&u.twist));
                     s += &format!(
                         "    E_p = {}, ΔE_c = {}\n",
                         u.energies[0].text(),
@@ -899,6 +1005,7 @@ impl AnalysisReport {
                 s += &format!("  no answer: {m}\n");
             }
         }
-        s
+        // A system's twist starts on the next line: no space before it.
+        s.replace(": \n", ":\n")
     }
 }

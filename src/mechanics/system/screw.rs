@@ -69,6 +69,10 @@ impl<T: Scalar> Screws<T> for SystemScrew<T> {
     fn zero_like(&self) -> Self {
         SystemScrew::zeros(self.0.len())
     }
+
+    fn components(&self) -> Vec<T> {
+        self.0.iter().flat_map(|s| s.as_slice().iter().cloned()).collect()
+    }
 }
 
 /// The axis (or wrench) screw `screw`, written about the world origin, about the point `c`:

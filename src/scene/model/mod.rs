@@ -480,7 +480,9 @@ impl Reader<'_> {
                         let m = self.number(m, &format!("{prefix}.mass"))?;
                         self.positive(&m, &format!("{prefix}.mass"), "a mass must be positive")?;
                         let density = shape.volume().map(|v| m.approx / v.approx());
-                        self.observed.borrow_mut().density = density.filter(|d| d.is_finite());
+                        if let Some(rho) = density.filter(|d| d.is_finite()) {
+                            self.observed.borrow_mut().density.push((prefix.to_string(), rho));
+                        }
                         Term::of(&m)
                     }
                     (None, Some(rho)) => {
