@@ -14,7 +14,7 @@ use rayon::prelude::*;
 use toml_edit::DocumentMut;
 
 use super::SweepError;
-use super::outputs::{law_values, output_names, point_status, status, sweep_laws};
+use super::outputs::{law_values, output_names, point_status, body_status, sweep_laws};
 use super::slot::Slot;
 use super::target::Target;
 
@@ -66,6 +66,17 @@ pub fn solve_batch(
     law: Option<Law>,
 ) -> Result<Batch, SweepError> {
     let mut base = Scene::from_document(doc, file)?;
+    if base.system.is_some() {
+        return Err(crate::scene::SceneError {
+            file: file.to_string(),
+            key: "body".into(),
+            value: None,
+            message: "a batch solves one body's scenes; a scene of several bodies is swept \
+                      point by point with `inertance sweep`"
+                .into(),
+        }
+        .into());
+    }
     if let Some(law) = law {
         base.law = law;
     }
@@ -100,7 +111,7 @@ pub fn solve_batch(
         vary.iter().map(|v| Slot::find(&v.path, &base)).collect()
     };
     let (models, friction) = sweep_laws(&base, vary.iter().map(|v| v.path.as_str()));
-    let outputs = output_names(base.contacts.len(), friction);
+    let outputs = output_names(base.contacts.len(), friction, &[]);
     let width = outputs.len();
     let solved = (0..points)
         .into_par_iter()
@@ -141,7 +152,7 @@ pub fn solve_batch(
                 }
             };
             match run::<f64>(&scene, None) {
-                Ok(s) => Ok((Some(s.report.clone()), status(&s.report))),
+                Ok(s) => Ok((Some(s.report.clone()), body_status(&s.report))),
                 Err(e) => match point_status(&e) {
                     Some(status) => Ok((None, status.to_string())),
                     None => Err(at(e.to_string())),

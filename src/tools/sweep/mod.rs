@@ -116,6 +116,7 @@
 //! row; `stream` solves the points in chunks and writes them through `file`, which never
 //! leaves a file half-written; `plot` draws the SVG; `text` writes exact values.
 
+mod answer;
 mod axis;
 mod batch;
 mod file;

@@ -2,6 +2,7 @@
 //! the CSV header and a point's row, and the plotted series named by the user.
 
 use super::SweepError;
+use super::answer::Answer;
 use super::plan::Plan;
 use super::text::num;
 use crate::impact::friction::Restitution;
@@ -15,13 +16,20 @@ use crate::scene::pipeline::RunError;
 
 /// The per-law outputs, in CSV order (after the `law_` prefix); a frictional sweep adds the
 /// energy dissipated by friction, `Ef`.
-pub(super) fn output_names(contacts: usize, friction: bool) -> Vec<String> {
+///
+/// A system's bodies (`bodies`, empty for one body) each give their six, named
+/// `BODY.vCx` … `BODY.wz`.
+pub(super) fn output_names(contacts: usize, friction: bool, bodies: &[String]) -> Vec<String> {
+    const TWIST: [&str; 6] = ["vCx", "vCy", "vCz", "wx", "wy", "wz"];
     let mut v: Vec<String> = (1..=contacts).map(|i| format!("P{i}")).collect();
-    v.extend(
-        ["vCx", "vCy", "vCz", "wx", "wy", "wz", "Ep", "dEc"]
-            .iter()
-            .map(|s| s.to_string()),
-    );
+    if bodies.is_empty() {
+        v.extend(TWIST.iter().map(|s| s.to_string()));
+    } else {
+        for b in bodies {
+            v.extend(TWIST.iter().map(|s| format!("{b}.{s}")));
+        }
+    }
+    v.extend(["Ep", "dEc"].iter().map(|s| s.to_string()));
     if friction {
         v.push("Ef".into());
     }
@@ -95,9 +103,11 @@ fn model_outputs(r: &ModelReport) -> Vec<Value> {
     v
 }
 
-/// The indices among [`output_names`] that also get an exact column: P_i, E_p, ΔE_c.
-pub(super) fn exact_outputs(contacts: usize) -> impl Iterator<Item = usize> {
-    (0..contacts).chain([contacts + 6, contacts + 7])
+/// The indices among [`output_names`] that also get an exact column: P_i, E_p, ΔE_c (for
+/// `bodies` bodies, one for a single body).
+pub(super) fn exact_outputs(contacts: usize, bodies: usize) -> impl Iterator<Item = usize> {
+    let twists = 6 * bodies.max(1);
+    (0..contacts).chain([contacts + twists, contacts + twists + 1])
 }
 
 /// One law's outputs at a solved point, in [`output_names`] order: from the frictional
@@ -105,7 +115,24 @@ pub(super) fn exact_outputs(contacts: usize) -> impl Iterator<Item = usize> {
 /// paper's model of that name, which the integrator equals exactly there (with E_f = 0, whose
 /// derivative is 0 too: no μ_i moves at such a point unless seeded, which makes it frictional).
 /// `None` when the law was not solved.
-pub(super) fn law_outputs(report: &Report, law: Restitution, friction: bool) -> Option<Vec<Value>> {
+pub(super) fn law_outputs(answer: &Answer, law: Restitution, friction: bool) -> Option<Vec<Value>> {
+    let report = match answer {
+        Answer::Body(r) => r,
+        // A system scene is frictionless (the pipeline refuses friction on systems).
+        Answer::System(r) => {
+            let model = match law {
+                Restitution::Newton => Model::Newton,
+                Restitution::Poisson => Model::Poisson,
+                Restitution::Energetic => return None,
+            };
+            return Answer::system_outputs(r, model);
+        }
+    };
+    body_outputs(report, law, friction)
+}
+
+/// [`law_outputs`] of one body's report.
+pub(super) fn body_outputs(report: &Report, law: Restitution, friction: bool) -> Option<Vec<Value>> {
     if let Some(f) = report.friction.iter().find(|f| f.law == law) {
         let mut v: Vec<Value> = f
             .contacts
@@ -150,9 +177,9 @@ pub(super) fn law_values(
     law: Restitution,
     friction: bool,
 ) -> Option<(Vec<f64>, Vec<String>)> {
-    let v = law_outputs(report, law, friction)?;
+    let v = body_outputs(report, law, friction)?;
     let contacts = v.len() - 8 - usize::from(friction);
-    let exact = exact_outputs(contacts)
+    let exact = exact_outputs(contacts, 1)
         .map(|k| v[k].exact.clone().unwrap_or_default())
         .collect();
     Some((v.iter().map(|x| x.f64).collect(), exact))
@@ -182,9 +209,10 @@ pub(super) fn resolve_outputs(
     models: &[Restitution],
     contacts: usize,
     friction: bool,
+    bodies: &[String],
     keys: &[String],
 ) -> Result<Vec<Series>, SweepError> {
-    let names = output_names(contacts, friction);
+    let names = output_names(contacts, friction, bodies);
     let mut out: Vec<Series> = Vec::new();
     let mut push = |s: Series| {
         if !out
@@ -310,11 +338,14 @@ impl Plan {
                 h.push(format!("{}_exact", v.path));
             }
         }
-        let names = output_names(self.contacts, self.friction);
+        let names = output_names(self.contacts, self.friction, &self.bodies);
         let model_columns = |m: &Restitution| -> Vec<String> {
             let mut c: Vec<String> = names.iter().map(|n| format!("{m}_{n}")).collect();
             if self.exact {
-                c.extend(exact_outputs(self.contacts).map(|k| format!("{m}_{}_exact", names[k])));
+                c.extend(
+                    exact_outputs(self.contacts, self.bodies.len())
+                        .map(|k| format!("{m}_{}_exact", names[k])),
+                );
             }
             c
         };
@@ -339,7 +370,7 @@ impl Plan {
 
     /// The columns per model.
     fn model_width(&self) -> usize {
-        let n = self.contacts + 8 + usize::from(self.friction);
+        let n = self.contacts + 6 * self.bodies.len().max(1) + 2 + usize::from(self.friction);
         if self.exact { n + self.contacts + 2 } else { n }
     }
 
@@ -375,7 +406,7 @@ impl Plan {
                     fields.extend(v.iter().map(|x| num(x.f64)));
                     if self.exact {
                         fields.extend(
-                            exact_outputs(self.contacts)
+                            exact_outputs(self.contacts, self.bodies.len())
                                 .map(|k| v[k].exact.clone().unwrap_or_default()),
                         );
                     }
@@ -398,7 +429,8 @@ impl Plan {
                         fields.extend(d.iter().map(|x| derivative_cell(x).0));
                         if self.exact {
                             fields.extend(
-                                exact_outputs(self.contacts).map(|k| derivative_exact(&d[k])),
+                                exact_outputs(self.contacts, self.bodies.len())
+                                    .map(|k| derivative_exact(&d[k])),
                             );
                         }
                     }
@@ -438,7 +470,36 @@ impl Plan {
 /// A solved point's status: `ok`, or the reasons its simultaneous answer is not physical
 /// (`tensile`, `separating`, `still-approaching`, `energy-gain`), across the models, joined
 /// by `+` in that order.
-pub(super) fn status(report: &crate::report::Report) -> String {
+pub(super) fn status(answer: &Answer) -> String {
+    let report = match answer {
+        Answer::Body(r) => r,
+        Answer::System(r) => return system_status(r),
+    };
+    body_status(report)
+}
+
+/// [`status`] of a system: its models' verdicts and failures.
+fn system_status(r: &crate::report::system::SystemReport) -> String {
+    let mut found: Vec<&str> = Vec::new();
+    let names = r
+        .models
+        .iter()
+        .flat_map(|m| m.inadmissible.iter().map(|v| v.name()))
+        .chain(r.model_failures.iter().map(|(_, _, s)| *s));
+    for n in names {
+        if !found.contains(&n) {
+            found.push(n);
+        }
+    }
+    if found.is_empty() {
+        "ok".to_string()
+    } else {
+        found.join("+")
+    }
+}
+
+/// [`status`] of one body's report.
+pub(super) fn body_status(report: &crate::report::Report) -> String {
     let names = [
         "tensile",
         "tensile-rate",

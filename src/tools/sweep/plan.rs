@@ -6,6 +6,7 @@
 use num_rational::BigRational;
 use toml_edit::DocumentMut;
 
+use super::answer::{Answer, body_names};
 use super::outputs::{Series, point_status, resolve_outputs, sweep_laws};
 use super::slot::Slot;
 use super::target::{SEED, Target};
@@ -13,10 +14,9 @@ use super::text::text;
 use super::{SweepError, SweepOptions, Vary};
 use crate::impact::friction::Restitution;
 use crate::impact::unilateral::Law;
-use crate::report::Report;
 use crate::scalar::Exact;
 use crate::scalar::dual::Dual;
-use crate::scene::pipeline::{RunError, run};
+use crate::scene::pipeline::RunError;
 use crate::scene::seed::seeded;
 use crate::scene::{Scene, SceneError, parse_document};
 
@@ -27,9 +27,9 @@ pub(super) struct Solved {
     /// The varied values, outer first.
     pub(super) values: Vec<BigRational>,
     /// The report, or the status of a point without an answer.
-    pub(super) report: Result<Report, &'static str>,
+    pub(super) report: Result<Answer, &'static str>,
     /// Per varied path, the dual run's report (its values carry the derivatives).
-    pub(super) derivatives: Vec<Option<Report>>,
+    pub(super) derivatives: Vec<Option<Answer>>,
 }
 
 /// A validated sweep.
@@ -55,6 +55,8 @@ pub(super) struct Plan {
     pub(super) friction: bool,
     /// N, the number of contacts.
     pub(super) contacts: usize,
+    /// A system's bodies by name (empty for one body): each gives its own twist columns.
+    pub(super) bodies: Vec<String>,
     /// The points of the whole grid (every shard).
     pub(super) points: usize,
     /// The plotted series (none without `--plot`).
@@ -82,19 +84,23 @@ impl Plan {
         check_paths(&opts.vary, &targets, &doc, &base, &file)?;
         let (models, friction) = sweep_laws(&base, opts.vary.iter().map(|v| v.path.as_str()));
         let contacts = base.contacts.len();
+        let bodies = body_names(&base);
         let keys: Vec<String> = if opts.sensitivity {
             opts.vary.iter().map(|v| v.path.clone()).collect()
         } else {
             Vec::new()
         };
         let series = if opts.plot.is_some() {
-            resolve_outputs(&opts.plot_outputs, &models, contacts, friction, &keys)?
+            resolve_outputs(&opts.plot_outputs, &models, contacts, friction, &bodies, &keys)?
         } else {
             Vec::new()
         };
         // A modelled scene's numbers are computed from what was written (a shape's mass
         // gives its moments), and a parameter may feed many: those re-read the document.
-        let slots = if base.axes.is_some() || targets.iter().any(|t| t.param) {
+        let slots = if base.axes.is_some()
+            || base.system.is_some()
+            || targets.iter().any(|t| t.param)
+        {
             None
         } else {
             opts.vary
@@ -113,6 +119,7 @@ impl Plan {
             models,
             friction,
             contacts,
+            bodies,
             points,
             series,
             law: opts.law,
@@ -228,12 +235,12 @@ impl Plan {
         let fail = |message: String| self.point_error(p, &values, message);
         let scene = self.scene_at(&values).map_err(fail)?;
         let solved = if self.exact {
-            run::<Exact>(&scene, None)
+            Answer::solve::<Exact>(&scene)
         } else {
-            run::<f64>(&scene, None)
+            Answer::solve::<f64>(&scene)
         };
         let report = match solved {
-            Ok(s) => Ok(s.report),
+            Ok(s) => Ok(s),
             Err(e) => Err(point_status(&e).ok_or_else(|| fail(e.to_string()))?),
         };
         let mut derivatives = Vec::new();
@@ -242,12 +249,12 @@ impl Plan {
                 let at = |e: RunError| fail(format!("d/d({}): {e}", v.path));
                 let seeded = self.seeded_at(&scene, &values, i).map_err(fail)?;
                 let solved = if self.exact {
-                    run::<Dual<Exact>>(&seeded, None)
+                    Answer::solve::<Dual<Exact>>(&seeded)
                 } else {
-                    run::<Dual<f64>>(&seeded, None)
+                    Answer::solve::<Dual<f64>>(&seeded)
                 };
                 derivatives.push(match solved {
-                    Ok(s) => Some(s.report),
+                    Ok(s) => Some(s),
                     Err(e) if point_status(&e).is_some() => None,
                     Err(e) => return Err(at(e)),
                 });

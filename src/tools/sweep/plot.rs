@@ -40,7 +40,7 @@ impl Plan {
         let (y0, y1) = y_range(&plotted.series);
         // Colour by output, dash by model.
         let colours = self.colours();
-        let names = output_names(self.contacts, self.friction);
+        let names = output_names(self.contacts, self.friction, &self.bodies);
         let dots = v0.count <= 41;
 
         let mut svg = String::new();

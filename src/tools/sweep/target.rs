@@ -51,6 +51,7 @@ impl Target {
     pub(super) fn known(&self, path: &str, base: &Scene, keys: &[String]) -> bool {
         self.param
             || base.axes.is_some()
+            || base.system.is_some()
             || keys.iter().any(|k| {
                 k == path
                     || path
