@@ -620,8 +620,8 @@ fn solve(
                  solve`); outputs= selects the outputs of a one-body solve",
             ));
         }
-        let solved =
-            system::run(py, scene, models, law, tolerance, exact).map_err(|e| errors::run_error(py, &e))?;
+        let solved = system::run(py, scene, models, law, tolerance, exact)
+            .map_err(|e| errors::run_error(py, &e))?;
         return Ok(system::SystemSolution::new(solved, exact)
             .into_pyobject(py)?
             .into_any()

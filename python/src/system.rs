@@ -96,7 +96,11 @@ fn momentum<'py>(
 }
 
 /// The bodies a contact or joint joins, by name (one name: an obstacle or the ground).
-fn pair<'py>(py: Python<'py>, first: &str, second: &Option<String>) -> PyResult<Bound<'py, PyList>> {
+fn pair<'py>(
+    py: Python<'py>,
+    first: &str,
+    second: &Option<String>,
+) -> PyResult<Bound<'py, PyList>> {
     let names: Vec<&str> = std::iter::once(first).chain(second.as_deref()).collect();
     PyList::new(py, names)
 }
@@ -200,7 +204,10 @@ impl SystemSolution {
             let d = PyDict::new(py);
             d.set_item("bodies", pair(py, a, b)?)?;
             d.set_item("normal", vector(py, &axes[0], self.mode)?)?;
-            d.set_item("velocity_before", vector(py, &before.components, self.mode)?)?;
+            d.set_item(
+                "velocity_before",
+                vector(py, &before.components, self.mode)?,
+            )?;
             list.append(d)?;
         }
         Ok(list)

@@ -185,9 +185,9 @@ def outputs(r):
     return out
 
 
-def assert_f64_near_exact(scene):
-    exact = outputs(inertance.solve(scene, exact=True))
-    approx = outputs(inertance.solve(scene))
+def assert_f64_near_exact(scene, law=None):
+    exact = outputs(inertance.solve(scene, exact=True, law=law))
+    approx = outputs(inertance.solve(scene, law=law))
     assert exact.keys() == approx.keys()
     for key, xs in exact.items():
         xs = [real(x) for x in xs]
@@ -410,8 +410,28 @@ def test_a_free_system_conserves_momentum_exactly(law):
             assert matvec(J, sub(s.angular_velocity(b), w0)) == cross(sub(FREE_POINT, C), impulse)
 
 
-def test_a_free_system_f64_against_exact():
-    assert_f64_near_exact(free_scene())
+@pytest.mark.parametrize("law", ["simultaneous", "unilateral"])
+def test_a_free_system_f64_against_exact(law):
+    assert_f64_near_exact(free_scene(), law)
+
+
+def test_a_normal_as_written_is_only_a_direction():
+    # 3 n: the same unit normal, the same answer (P is along the unit normal).
+    r = inertance.solve(free_scene(), exact=True).to_json()
+    d = free_scene()
+    d["contact"][0]["normal"] = scale(3, FREE_NORMAL)
+    assert inertance.solve(d, exact=True).to_json() == r
+
+
+def test_an_irrational_normal_runs_exactly_in_radicals_and_in_f64():
+    # n along (1, 1, 0): the unit normal is (1, 1, 0)/√2, so P and the twists carry √2; the
+    # exact solve gives them as radicals, SymPy reads them, and f64 agrees.
+    d = free_scene()
+    d["contact"][0]["normal"] = [1, 1, 0]
+    r = inertance.solve(d, exact=True)
+    (P,) = r.newton.impulses
+    assert isinstance(P, str) and "sqrt(2)" in P and real(P) > 0
+    assert_f64_near_exact(d)
 
 
 # --- the laws: simultaneous against unilateral --------------------------------------------------
