@@ -15,7 +15,7 @@ import numpy as np
 import pytest
 
 import inertance
-from conftest import cli_json
+from conftest import ROOT, cli_json
 
 # --- small exact vector algebra, written here so that the checks do not use the library -------
 
@@ -577,3 +577,86 @@ def test_the_commands_that_take_one_body_refuse_a_system():
     with pytest.raises(inertance.SceneError) as err:
         inertance.analyze(s)
     assert err.value.key == "body" and "several bodies" in err.value.message
+
+
+# --- one body as a system: the one-body solver is the reference ---------------------------------
+#
+# A one-body scene (the paper's, body axes at C) written as a system of one body at the origin,
+# each contact against an obstacle whose normal is the body's reversed: the system's pipeline
+# (its own Mechanism, src/mechanics/system) must give what the one-body solver gives.
+
+
+def as_system(path):
+    import tomllib
+
+    d = tomllib.loads(path.read_text())
+    obstacles, contacts = [], []
+    for i, c in enumerate(d["contact"]):
+        c = dict(c)
+        n = c.pop("normal")
+        obstacles.append({"name": f"support{i}", "normal": [-x for x in n], "point": c["point"]})
+        contacts.append(dict(c, body="body", obstacle=f"support{i}"))
+    return dict(d, body=[dict(d["body"], name="body", position=[0, 0, 0])], obstacle=obstacles,
+                contact=contacts)
+
+
+@pytest.mark.parametrize("name", ["planar-bar", "rod-between-walls"])
+@pytest.mark.parametrize("exact", [False, True], ids=["f64", "exact"])
+def test_one_body_as_a_system_equals_the_one_body_solver(name, exact):
+    path = pathlib.Path(ROOT / "examples" / f"{name}.toml")
+    one = inertance.solve(inertance.Scene.load(path), exact=exact)
+    system = inertance.solve(as_system(path), exact=exact)
+    assert isinstance(system, inertance.SystemSolution) and system.bodies == ["body"]
+    assert [m for m, _ in system.models] == [m for m, _ in one.models]
+    assert {m: f["status"] for m, f in system.failures.items()} == {
+        m: f["status"] for m, f in one.failures.items()}
+    for m, s in system.models:
+        o = getattr(one, m)
+        for a, b in [(s.impulses, o.impulses), (s.velocity("body"), o.velocity),
+                     (s.angular_velocity(0), o.angular_velocity),
+                     ([s.lost_velocity_energy, s.kinetic_energy_loss],
+                      [o.lost_velocity_energy, o.kinetic_energy_loss])]:
+            if exact:
+                assert list(a) == list(b), m
+            else:
+                # Two f64 computations (the one-body solver works in scaled units): each within
+                # a few roundings of outputs of magnitude ≤ 10 (E_p of the bar is 9.2 J).
+                np.testing.assert_allclose(a, b, rtol=0, atol=64 * EPS * 10, err_msg=m)
+
+
+# --- a partial answer: one model jams -----------------------------------------------------------
+#
+# Two balls in a row fitted exactly between two walls, both moving left at 2 m/s, k = 1/2. The
+# chain cannot move: a cannot go left (the wall), b cannot go right (the wall), a cannot pass b.
+# Newton's law would have a rebound from the left wall that the right wall forbids: no
+# admissible impulses (jammed, the CLI's status 4 with Poisson's answer). Poisson's answer must
+# leave both at rest, and the impulses on the chain, P1 (left wall, +x) − P3 (right wall, −x),
+# equal its momentum change 2 · 1 · 2 = 4 N s; a's own balance: P1 − P2 = 2.
+
+
+def chain():
+    ball = lambda name, x: {"name": name, "mass": 1, "inertia": [1, 1, 1],  # noqa: E731
+                            "position": [x, 0, 0], "velocity": [-2, 0, 0], "angular_velocity": [0, 0, 0]}
+    return {
+        "name": "two balls between two walls",
+        "body": [ball("a", 0), ball("b", 2)],
+        "obstacle": [{"name": "left", "normal": [1, 0, 0], "point": [-1, 0, 0]},
+                     {"name": "right", "normal": [-1, 0, 0], "point": [3, 0, 0]}],
+        "contact": [{"body": "a", "obstacle": "left", "point": [-1, 0, 0], "k": "1/2"},
+                    {"bodies": ["a", "b"], "point": [1, 0, 0], "normal": [1, 0, 0], "k": "1/2"},
+                    {"body": "b", "obstacle": "right", "point": [3, 0, 0], "k": "1/2"}],
+        "solve": {"law": "unilateral"},
+    }
+
+
+@pytest.mark.parametrize("exact", [False, True], ids=["f64", "exact"])
+def test_a_jammed_model_is_a_failure_beside_the_other_models_answer(exact):
+    r = inertance.solve(chain(), exact=exact)
+    assert r.newton is None and [m for m, _ in r.models] == ["poisson"]
+    assert r.failures["newton"]["status"] == "jammed"
+    assert "jam" in r.failures["newton"]["error"]
+    p = r.poisson
+    P1, P2, P3 = (float(x) for x in p.impulses)
+    assert np.allclose(np.asarray(p.velocities, dtype=float), 0, atol=64 * EPS * 6)
+    assert P1 - P3 == pytest.approx(4, abs=64 * EPS * 6) and P1 - P2 == pytest.approx(2, abs=64 * EPS * 6)
+    assert "newton" in r.to_json()["models"] and r.to_json()["models"]["newton"]["status"] == "jammed"
