@@ -44,3 +44,34 @@ show("solve_batch, per point (100 000 points, all cores)", (time.perf_counter() 
 t = time.perf_counter()
 inertance.sweep(bar, {"contact[1].k": (0, 1, 100_001)}, frame=False)
 show("sweep, per point (100 001 points, all cores)", (time.perf_counter() - t) / 100_001)
+
+# Systems of bodies (guide/python.md, "Systems of bodies"): Newton's cradle, three free balls,
+# and two bars pinned to the ground and to each other (two revolute joints) striking a floor.
+ball = lambda name, x, v: {"name": name, "shape": {"sphere": 1}, "mass": 1,  # noqa: E731
+                           "position": [x, 0, 0], "velocity": [v, 0, 0], "angular_velocity": [0, 0, 0]}
+cradle = inertance.Scene.from_dict({
+    "name": "Newton's cradle",
+    "body": [ball("striker", 0, 1), ball("middle", 2, 0), ball("last", 4, 0)],
+    "contact": [{"bodies": ["striker", "middle"], "point": [1, 0, 0], "normal": [1, 0, 0], "k": 1},
+                {"bodies": ["middle", "last"], "point": [3, 0, 0], "normal": [1, 0, 0], "k": 1}],
+})
+bars = inertance.Scene.from_dict({
+    "name": "two bars, pinned, striking the floor",
+    "body": [
+        {"name": "upper", "mass": 2, "inertia": [1, 2, 2], "position": [1, 0, 0],
+         "velocity": [0, -1, 0], "angular_velocity": [0, 0, -1]},
+        {"name": "lower", "mass": 1, "inertia": [1, 1, 2], "position": ["7/2", -2, 0],
+         "velocity": [-2, "-7/2", 0], "angular_velocity": [0, 0, -1]},
+    ],
+    "obstacle": [{"name": "floor", "normal": [0, 1, 0], "point": [0, -4, 0]}],
+    "contact": [{"body": "lower", "obstacle": "floor", "point": [5, -4, 0], "k": "1/2"}],
+    "joint": [
+        {"kind": "revolute", "bodies": ["upper"], "anchor": [0, 0, 0], "axis": [0, 0, 1]},
+        {"kind": "revolute", "bodies": ["upper", "lower"], "anchor": [2, 0, 0], "axis": [0, 0, 1]},
+    ],
+})
+show("system: solve(cradle) f64 (3 bodies, 2 contacts)", per_call(lambda: inertance.solve(cradle), 5_000))
+show("system: ... + .newton.velocities (numpy)", per_call(lambda: inertance.solve(cradle).newton.velocities, 5_000))
+show("system: solve(cradle, exact=True)", per_call(lambda: inertance.solve(cradle, exact=True), 500))
+show("system: solve(bars) f64 (2 bodies, 2 joints, 1 contact)", per_call(lambda: inertance.solve(bars), 5_000))
+show("system: solve(bars, exact=True)", per_call(lambda: inertance.solve(bars, exact=True), 500))

@@ -7,7 +7,9 @@ Every call converts its arguments, runs the validated Rust library and converts 
 * :class:`Scene` — a scene (guide/scenes.md) from a TOML file or string or from Python
   values, read once and reused across calls;
 * :func:`solve` — impulses (eq. 20, 23), velocities after impact (eq. 24), E_p (eq. 28) and
-  ΔE_c (eq. 32), per restitution model; numpy arrays in f64, ``Fraction`` exactly;
+  ΔE_c (eq. 32), per restitution model; numpy arrays in f64, ``Fraction`` exactly; for a
+  system of several bodies (``[[body]]`` tables) each body's twist and the joints' reactions
+  (:class:`SystemSolution`);
 * :func:`solve_batch` — many points of one scene from arrays of numbers, in parallel;
 * :func:`sweep` — a grid of one or two varied numbers (as ``inertance sweep``);
 * :func:`analyze` — degenerate cases (§8): Δ, ranks, families, admissibility;
@@ -32,10 +34,13 @@ from ._inertance import (
     Solution,
     SolveError,
     SweepError,
+    SystemModelSolution,
+    SystemSolution,
 )
 
 __all__ = [
-    "__version__", "Scene", "Solution", "ModelSolution", "Derivation", "CheckResult",
+    "__version__", "Scene", "Solution", "ModelSolution", "SystemSolution", "SystemModelSolution",
+    "Derivation", "CheckResult",
     "solve", "solve_batch", "sweep", "analyze", "derive", "check",
     "InertanceError", "SceneError", "SolveError", "SweepError", "FormatError",
 ]
@@ -64,7 +69,7 @@ def _scene(scene: SceneLike, symbols: Optional[Sequence[str]] = None) -> Scene:
 def solve(scene: SceneLike, model: Union[str, Sequence[str], None] = None,
           law: Optional[str] = None, exact: bool = False,
           outputs: Union[str, Sequence[str], None] = None,
-          tolerance: Optional[float] = None) -> Solution:
+          tolerance: Optional[float] = None) -> Union[Solution, SystemSolution]:
     """Solve the collision of ``scene`` (as ``inertance solve --json``).
 
     ``model``: ``"newton"`` (eq. 14–20), ``"poisson"`` (eq. 21–23), ``"both"`` or ``None``
@@ -83,6 +88,17 @@ def solve(scene: SceneLike, model: Union[str, Sequence[str], None] = None,
     eq. 28), ``kinetic_energy_loss`` (ΔE_c, eq. 32), … In f64 numbers are floats and vectors
     numpy arrays; exactly, rationals are ``fractions.Fraction`` and radicals strings such as
     ``"12/17*sqrt(17)"`` (``sympy.sympify`` reads them).
+
+    A scene of several bodies (``scene.is_system``: ``[[body]]`` tables, contacts between
+    bodies or against obstacles, ``[[joint]]`` tables) gives a :class:`SystemSolution`, as
+    ``inertance solve`` reports it: ``bodies`` (names), ``inertance``, ``det``, ``free``,
+    ``momentum_before``, and per model ``impulses`` (−P_i n_i on a contact's first body,
+    +P_i n_i on its second), ``velocity(body)`` and ``angular_velocity(body)`` (by name or
+    index; about each body's own centre of mass, world axes), ``velocities`` and
+    ``angular_velocities`` (one row per body), ``kinetic_energies``, ``joint_reactions``
+    (force and moment on the joint's first body at its anchor), ``momentum_after``,
+    ``contact_velocities``, ``lost_velocity_energy``, ``kinetic_energy_loss``. ``outputs``
+    does not apply to it (a system is reported whole).
 
     Raises :class:`SceneError` for bad input and :class:`SolveError` when there is no answer
     (``kind == "singular"``: Δ = 0, §8; ``"jammed"`` under the unilateral law).

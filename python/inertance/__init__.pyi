@@ -12,13 +12,16 @@ from ._inertance import (
     Solution as Solution,
     SolveError as SolveError,
     SweepError as SweepError,
+    SystemModelSolution as SystemModelSolution,
+    SystemSolution as SystemSolution,
 )
 
 SceneLike = Union[Scene, Mapping[str, Any], str, os.PathLike[str]]
 ModelArg = Union[str, Sequence[str], None]
 
 def solve(scene: SceneLike, model: ModelArg = None, law: Optional[str] = None, exact: bool = False,
-          outputs: Union[str, Sequence[str], None] = None, tolerance: Optional[float] = None) -> Solution: ...
+          outputs: Union[str, Sequence[str], None] = None,
+          tolerance: Optional[float] = None) -> Union[Solution, SystemSolution]: ...
 def solve_batch(scene: SceneLike, vary: Mapping[str, Any], law: Optional[str] = None) -> dict[str, Any]: ...
 def sweep(scene: SceneLike, vary: Mapping[str, Any], exact: bool = False, law: Optional[str] = None,
           threads: Optional[int] = None, frame: Optional[bool] = None) -> Any: ...

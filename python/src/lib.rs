@@ -7,10 +7,12 @@
 
 mod convert;
 mod errors;
+mod system;
 
 use std::path::PathBuf;
 use std::sync::{Arc, OnceLock};
 
+use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 use serde_json::Value as Json;
@@ -182,6 +184,29 @@ impl Scene {
         self.scene.contacts.len()
     }
 
+    /// Whether the scene is a system of several bodies (`[[body]]` tables): `solve` then
+    /// gives a `SystemSolution`.
+    #[getter]
+    fn is_system(&self) -> bool {
+        self.scene.system.is_some()
+    }
+
+    /// A system's bodies' names, in order; `None` for a one-body scene.
+    #[getter]
+    fn bodies(&self) -> Option<Vec<String>> {
+        self.scene
+            .system
+            .as_ref()
+            .map(|s| s.bodies.iter().map(|b| b.name.clone()).collect())
+    }
+
+    /// A system's number of `[[joint]]` tables; `None` for a one-body scene (its joints to
+    /// the ground are `[constraints]`).
+    #[getter]
+    fn joints(&self) -> Option<usize> {
+        self.scene.system.as_ref().map(|s| s.joints.len())
+    }
+
     /// Every number by key path, as written.
     fn numbers(&self) -> Vec<(String, String)> {
         self.scene
@@ -191,11 +216,20 @@ impl Scene {
     }
 
     fn __repr__(&self) -> String {
-        format!(
-            "Scene({:?}, {} contacts)",
-            self.scene.name,
-            self.scene.contacts.len()
-        )
+        match &self.scene.system {
+            Some(s) => format!(
+                "Scene({:?}, {} bodies, {} contacts, {} joints)",
+                self.scene.name,
+                s.bodies.len(),
+                self.scene.contacts.len(),
+                s.joints.len()
+            ),
+            None => format!(
+                "Scene({:?}, {} contacts)",
+                self.scene.name,
+                self.scene.contacts.len()
+            ),
+        }
     }
 }
 
@@ -563,6 +597,7 @@ fn run_scene(
     .map(|r| r.report)
 }
 
+/// A `Solution`, or a `SystemSolution` for a scene of several bodies.
 #[pyfunction]
 #[pyo3(signature = (scene, model = None, law = None, exact = false, outputs = None, tolerance = None))]
 fn solve(
@@ -573,18 +608,35 @@ fn solve(
     exact: bool,
     outputs: Option<&Bound<'_, PyAny>>,
     tolerance: Option<f64>,
-) -> PyResult<Solution> {
+) -> PyResult<PyObject> {
     let models = convert::models(model)?;
     let law = convert::law(law)?;
     let outputs = convert::outputs(outputs)?;
     let tolerance = convert::tolerance(tolerance)?;
+    if scene.scene.system.is_some() {
+        if outputs.is_some() {
+            return Err(PyValueError::new_err(
+                "outputs=: a system of bodies is solved and reported whole (as by `inertance \
+                 solve`); outputs= selects the outputs of a one-body solve",
+            ));
+        }
+        let solved = system::run(py, scene, models, law, tolerance, exact)
+            .map_err(|e| errors::run_error(py, &e))?;
+        return Ok(system::SystemSolution::new(solved, exact)
+            .into_pyobject(py)?
+            .into_any()
+            .unbind());
+    }
     let report = run_scene(py, scene, models, law, outputs, tolerance, exact)
         .map_err(|e| errors::run_error(py, &e))?;
     Ok(Solution {
         report: Arc::new(report),
         mode: if exact { Mode::Exact } else { Mode::F64 },
         json: OnceLock::new(),
-    })
+    }
+    .into_pyobject(py)?
+    .into_any()
+    .unbind())
 }
 
 #[pyfunction]
@@ -796,6 +848,8 @@ fn _inertance(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<Scene>()?;
     m.add_class::<Solution>()?;
     m.add_class::<ModelSolution>()?;
+    m.add_class::<system::SystemSolution>()?;
+    m.add_class::<system::SystemModelSolution>()?;
     m.add_function(wrap_pyfunction!(solve, m)?)?;
     m.add_function(wrap_pyfunction!(analyze, m)?)?;
     m.add_function(wrap_pyfunction!(check, m)?)?;

@@ -443,9 +443,9 @@ impl Scene {
             return Err(self.error(
                 "body",
                 None,
-                "a scene of several bodies is solved by `inertance solve` (simultaneous and \
-                 unilateral laws, exactly and in floats); `analyze`, `derive`, `sweep`, `bench`, \
-                 friction and the Python package take one body yet",
+                "a scene of several bodies is solved by `inertance solve` and Python's \
+                 `inertance.solve` (simultaneous and unilateral laws, exactly and in floats); \
+                 `analyze`, `derive`, `sweep`, `bench` and friction take one body yet",
             ));
         }
         let num = |n: &Number, key: &str| -> Result<T, SceneError> { self.value::<T>(n, key) };
