@@ -1,0 +1,204 @@
+//! `analyze` and `sweep` on scenes of several bodies, against closed forms derived by hand
+//! (not by the code under test):
+//!
+//! * **Newton's cradle of three equal balls** (mass m, radius 1, the striker at v, one
+//!   coefficient k at both contacts). Each contact's axis acts on its two balls only, so with
+//!   unit normals along x, G = [[2, −1], [−1, 2]]/m and v⁰ = (v, 0). Newton's law
+//!   G P = (1 + k) v⁰ (eq. 19) gives P = (1 + k) m v (2/3, 1/3), and the balls' velocities
+//!   after are v − P₁/m, (P₁ − P₂)/m, P₂/m = ((1 − 2k)/3, (1 + k)/3, (1 + k)/3) v. So
+//!   ∂P₁/∂v = (2/3)(1 + k) m, exactly, for the sweep's sensitivities.
+//! * `analyze` reports the same answer as `solve` on a system held by joints, body by body.
+
+mod common;
+
+use common::SceneFile;
+use serde_json::Value as Json;
+
+fn cradle(k: &str, v: &str) -> String {
+    let ball = |name: &str, x: i64, v: &str| {
+        format!(
+            "[[body]]\nname = \"{name}\"\nshape = {{ sphere = 1 }}\nmass = 2\n\
+             position = [{x}, 0, 0]\nvelocity = [{v}, 0, 0]\nangular_velocity = [0, 0, 0]\n"
+        )
+    };
+    format!(
+        "name = \"cradle\"\n{}{}{}\
+         [[contact]]\nbodies = [\"striker\", \"middle\"]\npoint = [1, 0, 0]\nnormal = [1, 0, 0]\nk = \"{k}\"\n\
+         [[contact]]\nbodies = [\"middle\", \"last\"]\npoint = [3, 0, 0]\nnormal = [1, 0, 0]\nk = \"{k}\"\n",
+        ball("striker", 0, v),
+        ball("middle", 2, "0"),
+        ball("last", 4, "0")
+    )
+}
+
+/// Two bars (mass 1, moment 1/3 about every axis through C), the upper pinned at (0, 1, 0), the
+/// lower joined to it at (2, 1, 0), the lower's tip striking the floor at (4, 9/10, 0).
+const BARS: &str = r#"
+name = "two bars"
+[[body]]
+name = "upper"
+mass = 1
+inertia = ["1/3", "1/3", "1/3"]
+position = [1, 1, 0]
+velocity = [0, -1, 0]
+angular_velocity = [0, 0, -1]
+[[body]]
+name = "lower"
+mass = 1
+inertia = ["1/3", "1/3", "1/3"]
+position = [3, 1, 0]
+velocity = [0, -3, 0]
+angular_velocity = [0, 0, -1]
+[[joint]]
+kind = "revolute"
+bodies = ["upper"]
+anchor = [0, 1, 0]
+axis = [0, 0, 1]
+[[joint]]
+kind = "revolute"
+bodies = ["upper", "lower"]
+anchor = [2, 1, 0]
+axis = [0, 0, 1]
+[[obstacle]]
+name = "floor"
+normal = [0, 1, 0]
+[[contact]]
+body = "lower"
+obstacle = "floor"
+point = [4, "9/10", 0]
+k = "1/2"
+"#;
+
+fn json(out: &std::process::Output) -> Json {
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    serde_json::from_slice(&out.stdout).expect("JSON")
+}
+
+fn strings(v: &Json) -> Vec<String> {
+    v.as_array()
+        .expect("an array")
+        .iter()
+        .map(|x| x.as_str().expect("an exact value").to_string())
+        .collect()
+}
+
+#[test]
+fn analyze_gives_the_cradle_by_hand_and_says_the_last_contact_is_not_approaching() {
+    // k = 1/2, m = 2, v = 1: P = (3/2)·2·(2/3, 1/3) = (2, 1); velocities (0, 1/2, 1/2).
+    let scene = SceneFile::new("sys-analyze-cradle", &cradle("1/2", "1"));
+    let a = json(&scene.run(&["analyze", "--exact", "--json"]));
+    assert_eq!(a["bodies"], serde_json::json!(["striker", "middle", "last"]));
+    assert_eq!(a["det"], "3/4");
+    for model in ["newton", "poisson"] {
+        let m = &a["models"][model];
+        assert_eq!(strings(&m["impulses"]), ["2", "1"]);
+        let twist = m["twist_after"].as_array().unwrap();
+        let vx: Vec<String> = twist
+            .iter()
+            .map(|b| b["velocity"][0].as_str().unwrap().to_string())
+            .collect();
+        assert_eq!(vx, ["0", "1/2", "1/2"]);
+        assert_eq!(twist[2]["name"], "last");
+        // The second contact does not approach (v_2x⁰ = 0): the verdict says so.
+        assert_eq!(m["admissible"][1]["approaching"], false);
+        assert!(
+            m["verdicts"].as_array().unwrap().iter().any(|v| v
+                .as_str()
+                .unwrap()
+                .contains("A2 is not approaching")),
+            "{m}"
+        );
+    }
+}
+
+#[test]
+fn analyze_and_solve_agree_body_by_body_on_a_system_with_joints() {
+    let scene = SceneFile::new("sys-analyze-bars", BARS);
+    let a = json(&scene.run(&["analyze", "--exact", "--json"]));
+    let s = json(&scene.run(&["solve", "--exact", "--json"]));
+    for model in ["newton", "poisson"] {
+        let from_analyze = a["models"][model]["twist_after"].as_array().unwrap().clone();
+        let from_solve = s["models"][model]["bodies"].as_array().unwrap();
+        assert_eq!(from_analyze.len(), 2);
+        for (x, y) in from_analyze.iter().zip(from_solve) {
+            assert_eq!(x["name"], y["name"]);
+            assert_eq!(x["velocity"], y["velocity"]);
+            assert_eq!(x["angular_velocity"], y["angular_velocity"]);
+        }
+        assert_eq!(
+            a["models"][model]["impulses"],
+            s["models"][model]["impulses"]
+        );
+        assert_eq!(
+            a["models"][model]["lost_velocity_energy"],
+            s["models"][model]["lost_velocity_energy"]
+        );
+    }
+    // Newton's law at the tip: v_x after = −k v_x⁰ = −(1/2)·4.
+    assert_eq!(
+        s["models"]["newton"]["contacts"][0]["velocity"][0],
+        "-2"
+    );
+}
+
+#[test]
+fn a_sweep_of_the_cradle_gives_the_closed_form_and_its_derivative_at_every_point() {
+    // k = 1/2, m = 2, the striker's speed v varied: P = (2v, v), the last ball at v/2.
+    let scene = SceneFile::new("sys-sweep-cradle", &cradle("1/2", "1"));
+    let csv = scene.sweep(&[
+        "--vary",
+        "body[0].velocity[0]=1:3:5",
+        "--exact",
+        "--sensitivity",
+    ]);
+    for (r, v) in ["1", "3/2", "2", "5/2", "3"].iter().enumerate() {
+        let v: num_rational::BigRational = v.parse().unwrap();
+        let two = num_rational::BigRational::from_integer(2.into());
+        let half = |x: num_rational::BigRational| x / &two;
+        assert_eq!(csv.cell(r, "newton_P1_exact"), (two.clone() * &v).to_string());
+        assert_eq!(csv.cell(r, "newton_P2_exact"), v.to_string());
+        let last: f64 = csv.cell(r, "newton_last.vCx").parse().unwrap();
+        let expected = half(v.clone());
+        assert_eq!(last, num_traits::ToPrimitive::to_f64(&expected).unwrap());
+        // ∂P₁/∂v = (2/3)(1 + k) m = 2, exactly.
+        assert_eq!(
+            csv.cell(r, "d(newton_P1)/d(body[0].velocity[0])_exact"),
+            "2"
+        );
+        assert_eq!(csv.cell(r, "status"), "ok");
+    }
+}
+
+#[test]
+fn a_sweep_names_a_body_that_does_not_exist() {
+    let scene = SceneFile::new("sys-sweep-unknown", &cradle("1", "1"));
+    let out = scene.run(&[
+        "sweep",
+        "--vary",
+        "body[7].mass=1:2:2",
+        "--out",
+        scene.dir().join("x.csv").to_str().unwrap(),
+    ]);
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("body[7]"), "{err}");
+    assert!(!scene.dir().join("x.csv").exists());
+}
+
+#[test]
+fn a_batch_refuses_a_system_naming_sweep() {
+    let doc: toml_edit::DocumentMut = cradle("1", "1").parse().unwrap();
+    let varied = [inertance::tools::sweep::Varied {
+        path: "body[0].mass".into(),
+        values: vec![1.0, 2.0],
+    }];
+    let e = inertance::tools::sweep::solve_batch(&doc, "cradle.toml", &varied, None)
+        .err()
+        .expect("refused")
+        .to_string();
+    assert!(e.contains("inertance sweep"), "{e}");
+}
