@@ -572,10 +572,22 @@ def test_a_system_with_friction_is_solved_or_refused_naming_mu():
         assert r.to_json() != inertance.solve(cradle(), exact=True).to_json()
 
 
-def test_the_commands_that_take_one_body_refuse_a_system():
+def test_analyze_takes_a_system_and_agrees_with_solve():
+    s = inertance.Scene.from_dict(cradle())
+    a = inertance.analyze(s, exact=True)
+    r = inertance.solve(s, exact=True)
+    assert a["bodies"] == r.bodies
+    for name in ("newton", "poisson"):
+        m = a["models"][name]
+        assert m["impulses"] == list(getattr(r, name).impulses)
+        for body in m["twist_after"]:
+            assert body["velocity"] == list(getattr(r, name).velocity(body["name"]))
+
+
+def test_the_batch_takes_one_body_and_refuses_a_system():
     s = inertance.Scene.from_dict(cradle())
     with pytest.raises(inertance.SceneError) as err:
-        inertance.analyze(s)
+        inertance.solve_batch(s, {"body[0].mass": [1.0, 2.0]})
     assert err.value.key == "body" and "several bodies" in err.value.message
 
 
