@@ -202,3 +202,58 @@ fn a_batch_refuses_a_system_naming_sweep() {
         .to_string();
     assert!(e.contains("inertance sweep"), "{e}");
 }
+
+/// The cradle with its mass, speed and coefficient as symbols.
+fn symbolic_cradle() -> String {
+    cradle("k", "v")
+        .replace("mass = 2", "mass = \"m\"")
+        .replace("k = \"k\"", "k = \"k\"")
+        .replacen("name = \"cradle\"\n", "name = \"cradle\"\n[params]\nm = 2\nv = 1\nk = \"1/2\"\n", 1)
+        .replace("velocity = [v, 0, 0]", "velocity = [\"v\", 0, 0]")
+}
+
+#[test]
+fn derive_gives_the_cradle_in_closed_form_with_no_condition_on_the_speed() {
+    let scene = SceneFile::new("sys-derive-cradle", &symbolic_cradle());
+    let out = scene.run(&["derive", "--model", "newton"]);
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    // The closed forms of the module docs: P = (1 + k) m v (2/3, 1/3), the striker at
+    // (1 − 2k)/3 v and the others at (1 + k)/3 v; E_p = (1 + k)² m v²/3 (eq. 28:
+    // ½ Σ P_i (1 + k) v_ix⁰ / (1 + k) … written out: ½ (1 + k) P₁ v).
+    for line in [
+        "det = 3/m^2",
+        "g12xx = -1/m",
+        "newton.P1 = 2/3*m*v*(k + 1)",
+        "newton.P2 = 1/3*m*v*(k + 1)",
+        "newton.striker.vC[0] = -1/3*v*(2*k - 1)",
+        "newton.middle.vC[0] = 1/3*v*(k + 1)",
+        "newton.last.vC[0] = 1/3*v*(k + 1)",
+        "newton.v1x = -k*v",
+        "newton.Ep = 1/3*m*v^2*(k + 1)^2",
+        "newton: energy identity ΔE_c = −E_p + Σ P_i v_ix⁰ (eq. 34) holds identically",
+    ] {
+        assert!(text.lines().any(|l| l.trim() == line), "no `{line}` in\n{text}");
+    }
+    // A sign of v is never assumed: the formulas hold for a striker moving either way.
+    assert!(!text.contains("v > 0"), "{text}");
+}
+
+#[test]
+fn a_symbolic_twist_that_violates_a_joint_is_refused_naming_it() {
+    // The upper bar's centre moves at −2w while it turns at −w about its pin one length away.
+    let scene = SceneFile::new(
+        "sys-derive-violated",
+        &BARS
+            .replace("name = \"two bars\"", "name = \"two bars\"\n[params]\nw = 1")
+            .replace("velocity = [0, -1, 0]", "velocity = [0, \"-2*w\", 0]")
+            .replace("angular_velocity = [0, 0, -1]", "angular_velocity = [0, 0, \"-w\"]"),
+    );
+    let out = scene.run(&["derive"]);
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("joint[0]") && err.contains("not identically zero"),
+        "{err}"
+    );
+}

@@ -495,13 +495,28 @@ pub fn check_derivation(
         // A symbolic case is derived (so a singular family has its compatibility conditions).
         let mut family = None;
         let solved: Result<Solved, RunError> = if symbolic {
-            crate::tools::derive::derive(&scene, &case.symbols, None).map(|d| {
-                family = d.singular;
-                Solved {
-                    energy_identity: d.energy_identity.iter().map(|(_, ok)| *ok).collect(),
-                    report: d.report,
+            match crate::tools::derive::derive(&scene, &case.symbols, None) {
+                Ok(crate::tools::derive::Derived {
+                    report: crate::tools::derive::Readout::Body(report),
+                    singular,
+                    energy_identity,
+                    ..
+                }) => {
+                    family = singular;
+                    Ok(Solved {
+                        energy_identity: energy_identity.iter().map(|(_, ok)| *ok).collect(),
+                        report,
+                    })
                 }
-            })
+                Ok(_) => {
+                    return Err(fmt_err(format!(
+                        "case `{}`: a case is one body's scene (a system of bodies is checked by \
+                         its tests, tests/systems.rs)",
+                        case.name
+                    )));
+                }
+                Err(e) => Err(e),
+            }
         } else if exact && radical {
             run_with::<RatFun>(&scene, None, true)
         } else if exact {

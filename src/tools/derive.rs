@@ -25,8 +25,9 @@
 use serde_json::{Value as Json, json};
 
 use crate::impact::restitution::Model;
-use crate::impact::solve::{Outcome, SolveError};
+use crate::impact::solve::{Impact, Outcome, SolveError};
 use crate::mechanics::screw::Screw;
+use crate::report::system::SystemReport;
 use crate::report::{Report, Value, WrenchReport};
 use crate::scalar::Scalar;
 use crate::scalar::symbolic::{
@@ -41,7 +42,7 @@ pub struct Derived {
     /// The symbols declared.
     pub symbols: Vec<String>,
     /// Every quantity, as an expression (`Value::exact`) with its LaTeX form.
-    pub report: Report,
+    pub report: Readout,
     /// Δ = det G.
     pub det: RatFun,
     /// Δ's numerator, factored: the locus Δ = 0 (`None` when Δ is a nonzero constant).
@@ -52,6 +53,46 @@ pub struct Derived {
     pub energy_identity: Vec<(Model, bool)>,
     /// The conditions the derivation assumed, in order of first use.
     pub conditions: Vec<Assumption>,
+}
+
+/// What a derivation reads out: one body's report, or a system's
+/// ([`crate::mechanics::system`]).
+#[derive(Clone, Debug)]
+pub enum Readout {
+    /// One body.
+    Body(Report),
+    /// A system of bodies.
+    System(SystemReport),
+}
+
+impl Readout {
+    fn scene(&self) -> &str {
+        match self {
+            Readout::Body(r) => &r.scene,
+            Readout::System(r) => &r.scene,
+        }
+    }
+
+    fn effects(&self) -> &[String] {
+        match self {
+            Readout::Body(r) => &r.effects,
+            Readout::System(r) => &r.effects,
+        }
+    }
+
+    fn to_json(&self) -> Json {
+        match self {
+            Readout::Body(r) => r.to_json(),
+            Readout::System(r) => r.to_json(),
+        }
+    }
+
+    fn quantities(&self) -> Vec<(String, Vec<(String, Value)>)> {
+        match self {
+            Readout::Body(r) => quantities(r),
+            Readout::System(r) => system_quantities(r),
+        }
+    }
 }
 
 /// A collision that is singular for every value of the symbols.
@@ -118,6 +159,9 @@ pub fn derive(
     }
     let models = models.unwrap_or(&scene.models).to_vec();
     take_assumptions();
+    if scene.system.is_some() {
+        return derive_system(scene, symbols, &models);
+    }
     let mut a = assemble::<RatFun>(scene)?;
     // The printed quantities carry the normals' norms (P_i = P̂_i |n_i|, v_ix = v̂_ix / |n_i|,
     // g_ij = ĝ_ij / (|n_i| |n_j|)): their conditions (|n_i|² ≠ 0, a base of √ positive).
@@ -147,7 +191,7 @@ pub fn derive(
     let conditions = take_assumptions();
     // The report also computes what the formulas do not need (tangential angles divide by
     // tangential speeds): its conditions are not the formulas' and are dropped.
-    let report = a.report(scene, &outcomes);
+    let report = Readout::Body(a.report(scene, &outcomes));
     take_assumptions();
     // Only the numerator can vanish (the denominator's factors are assumed nonzero).
     let locus = if det.numer().is_constant() {
@@ -160,15 +204,7 @@ pub fn derive(
         .iter()
         .find(|c| num_traits::Zero::is_zero(&c.expr))
     {
-        return Err(RunError::Scene(crate::scene::SceneError {
-            file: scene.file.clone(),
-            key: String::new(),
-            value: None,
-            message: format!(
-                "the derivation needs a value that is identically zero to be nonzero ({c}): \
-                 a symbolic input makes the collision degenerate (a zero normal, mass or moment?)"
-            ),
-        }));
+        return Err(identically_zero(scene, c));
     }
     Ok(Derived {
         symbols: symbols.to_vec(),
@@ -179,6 +215,130 @@ pub fn derive(
         energy_identity,
         conditions,
     })
+}
+
+/// [`derive`] for a system of bodies: its closed forms through the system's solve
+/// ([`crate::scene::system_pipeline`]) in rational functions. A system singular for every
+/// value of the symbols is reported as `solve` reports it (its family is not derived yet).
+fn derive_system(scene: &Scene, symbols: &[String], models: &[Model]) -> Result<Derived, RunError> {
+    use crate::mechanics::system::SystemScrew;
+    if scene.frictional() {
+        // The refusal `solve` gives, naming the key.
+        crate::scene::system_pipeline::run_system::<RatFun>(scene, Some(models))?;
+    }
+    let system = scene.system::<RatFun>()?;
+    let mut impact = Impact::assemble(&system)?;
+    let mut outcomes = Vec::with_capacity(models.len());
+    let mut energy_identity = Vec::with_capacity(models.len());
+    for &m in models {
+        let mut out: Outcome<RatFun, SystemScrew<RatFun>> = Outcome::default();
+        impact.solve(m, &mut out)?;
+        let sum = out.kinetic_energy_loss.clone() + &out.lost_velocity_energy;
+        energy_identity.push((m, num_traits::Zero::is_zero(&(sum - impact.impulse_work(&out)))));
+        outcomes.push((m, out));
+    }
+    let mut norms = RatFun::from_integer(1);
+    for f in impact.frames() {
+        let _ = f.norm2[0].sqrt_exact();
+        norms *= &f.norm2[0];
+    }
+    let det = impact.det_hat().clone() / &norms;
+    // The formulas' conditions; the readout's own (its frames' angles) are dropped.
+    let conditions = take_assumptions();
+    let names: Vec<String> = scene
+        .system
+        .as_ref()
+        .map(|s| s.bodies.iter().map(|b| b.name.clone()).collect())
+        .unwrap_or_default();
+    let mut effects = Vec::new();
+    if !system.joints().is_empty() {
+        effects.push("joints".to_string());
+    }
+    effects.extend(models.iter().map(|m| m.name().to_string()));
+    let report = SystemReport::new(&scene.name, effects, &names, &impact, &outcomes);
+    take_assumptions();
+    if let Some(c) = conditions.iter().find(|c| num_traits::Zero::is_zero(&c.expr)) {
+        return Err(identically_zero(scene, c));
+    }
+    let locus = if det.numer().is_constant() {
+        None
+    } else {
+        Some(factor(det.numer()))
+    };
+    Ok(Derived {
+        symbols: symbols.to_vec(),
+        report: Readout::System(report),
+        det,
+        locus,
+        singular: None,
+        energy_identity,
+        conditions,
+    })
+}
+
+/// The refusal of a derivation that needs an identically zero value to be nonzero.
+fn identically_zero(scene: &Scene, c: &Assumption) -> RunError {
+    RunError::Scene(crate::scene::SceneError {
+        file: scene.file.clone(),
+        key: String::new(),
+        value: None,
+        message: format!(
+            "the derivation needs a value that is identically zero to be nonzero ({c}): \
+             a symbolic input makes the collision degenerate (a zero normal, mass or moment?)"
+        ),
+    })
+}
+
+/// A system's quantities as (name, value) lines: G and the approach speeds, then per model
+/// the impulses, each body's ω and v_C by name (`newton.upper.omega[2]`), the contacts'
+/// normal velocities, E_p, ΔE_c and each joint's reaction at its anchor.
+fn system_quantities(r: &SystemReport) -> Vec<(String, Vec<(String, Value)>)> {
+    let n = r.inertance.len();
+    let mut g = Vec::new();
+    for i in 0..n {
+        for j in i..n {
+            g.push((format!("g{}{}xx", i + 1, j + 1), r.inertance[i][j].clone()));
+        }
+    }
+    for (i, c) in r.contacts_before.iter().enumerate() {
+        g.push((format!("v{}x0", i + 1), c.components[0].clone()));
+    }
+    let mut sections = vec![("inertances and velocities before impact".to_string(), g)];
+    for mr in &r.models {
+        let m = mr.model.name();
+        let mut v = Vec::new();
+        for (i, p) in mr.impulses.iter().enumerate() {
+            v.push((format!("{m}.P{}", i + 1), p.clone()));
+        }
+        if let Some(pc) = &mr.compression_impulses {
+            for (i, p) in pc.iter().enumerate() {
+                v.push((format!("{m}.P{}c", i + 1), p.clone()));
+            }
+        }
+        for (name, (w, vc)) in r.bodies.iter().zip(&mr.twists) {
+            for (k, x) in w.iter().enumerate() {
+                v.push((format!("{m}.{name}.omega[{k}]"), x.clone()));
+            }
+            for (k, x) in vc.iter().enumerate() {
+                v.push((format!("{m}.{name}.vC[{k}]"), x.clone()));
+            }
+        }
+        for (i, c) in mr.contacts.iter().enumerate() {
+            v.push((format!("{m}.v{}x", i + 1), c.components[0].clone()));
+        }
+        v.push((format!("{m}.Ep"), mr.lost_velocity_energy.clone()));
+        v.push((format!("{m}.dEc"), mr.kinetic_energy_loss.clone()));
+        for (j, w) in mr.joint_reactions.iter().enumerate() {
+            for (k, f) in w.force.iter().enumerate() {
+                v.push((format!("{m}.J{}.F[{k}]", j + 1), f.clone()));
+            }
+            for (k, x) in w.moment.iter().enumerate() {
+                v.push((format!("{m}.J{}.M[{k}]", j + 1), x.clone()));
+            }
+        }
+        sections.push((format!("{m} (after impact)"), v));
+    }
+    sections
 }
 
 /// The singular family of a collision with rank G < N for every value of the symbols: per
@@ -451,9 +611,9 @@ impl Derived {
             (" = ", "")
         };
         let val = |v: &Value| if latex { latex_of(v) } else { text_of(v) };
-        out += &comment(&format!("derivation of {}", self.report.scene));
+        out += &comment(&format!("derivation of {}", self.report.scene()));
         out += &comment(&format!("symbols: {}", self.symbols.join(", ")));
-        out += &comment(&format!("effects: {}", self.report.effects.join(", ")));
+        out += &comment(&format!("effects: {}", self.report.effects().join(", ")));
         if latex {
             out += "\\begin{aligned}\n";
         }
@@ -470,7 +630,7 @@ impl Derived {
                 out += &format!("  degenerate (Δ = 0) where {} = 0\n", locus.to_text());
             }
         }
-        for (title, lines) in &quantities(&self.report) {
+        for (title, lines) in &self.report.quantities() {
             if latex {
                 out += &format!("&\\text{{{title}}}{and}\n");
             } else {

@@ -114,15 +114,16 @@ pub enum SystemError {
     /// The twist before impact moves a joint along a screw it blocks.
     #[error(
         "the velocities before impact violate joint {joint}: its bodies move relative to each \
-         other along a screw it blocks ({kind}; relative rate {rate:e})"
+         other along a screw it blocks ({kind}; relative rate {rate})"
     )]
     JointViolated {
         /// The joint.
         joint: usize,
         /// Its kind.
         kind: &'static str,
-        /// H_kᵀ η {V⁰} for the first blocked screw violated, as f64.
-        rate: f64,
+        /// H_kᵀ η {V⁰} for the first blocked screw violated, as f64 (`"not identically
+        /// zero"` for a symbolic rate).
+        rate: String,
     },
     /// K was not positive semidefinite (rounding; cannot happen exactly).
     #[error(transparent)]
@@ -354,6 +355,18 @@ impl<T: Scalar> System<T> {
         };
         for (h, (j, _)) in rows.rows.iter().zip(&rows.blocked) {
             let rate = h.reciprocal(&self.velocity);
+            if T::IS_EXACT {
+                // Exactly zero or not (a symbolic rate must vanish identically: no sign
+                // is assumed).
+                if !num_traits::Zero::is_zero(&rate) {
+                    return Err(SystemError::JointViolated {
+                        joint: *j,
+                        kind: self.joints[*j].joint.name(),
+                        rate: rate_text(&rate),
+                    });
+                }
+                continue;
+            }
             let mut scale = T::zero();
             for (a, b) in h.0.iter().zip(&self.velocity.0) {
                 for k in 0..6 {
@@ -367,7 +380,7 @@ impl<T: Scalar> System<T> {
                 return Err(SystemError::JointViolated {
                     joint: *j,
                     kind: self.joints[*j].joint.name(),
-                    rate: rate.to_f64(),
+                    rate: rate_text(&rate),
                 });
             }
         }
@@ -383,6 +396,17 @@ impl<T: Scalar> Mobility<T, SystemScrew<T>> for System<T> {
             Some(rows) => rows.constrain(free),
             None => free,
         }
+    }
+}
+
+/// A violated joint's rate for the message: its f64 value, or for a symbolic one that it is not
+/// zero for every value of the symbols.
+fn rate_text<T: Scalar>(rate: &T) -> String {
+    let x = rate.to_f64();
+    if x.is_finite() {
+        format!("{x:e}")
+    } else {
+        "not identically zero".into()
     }
 }
 
