@@ -94,6 +94,8 @@ pub trait Screws<T: Scalar>: Clone + std::fmt::Debug + PartialEq + Default {
     fn minus(&self, other: &Self) -> Self;
     /// The zero of `self`'s space.
     fn zero_like(&self) -> Self;
+    /// The largest |coordinate|, as f64: the scale of a response, for error bounds.
+    fn max_abs_f64(&self) -> f64;
 }
 
 impl<T: Scalar> Default for Screw<T> {
@@ -121,6 +123,10 @@ impl<T: Scalar> Screws<T> for Screw<T> {
     #[inline]
     fn zero_like(&self) -> Self {
         Screw::zero()
+    }
+
+    fn max_abs_f64(&self) -> f64 {
+        self.0.iter().map(|x| x.to_f64().abs()).fold(0.0, f64::max)
     }
 }
 
