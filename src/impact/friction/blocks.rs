@@ -3,7 +3,9 @@
 //!
 //! Every contact i contributes its normal axis and, when μ_i > 0, its tangent axes; their
 //! screws {E_q} are stacked in one list, and the impulses Λ = (p_1, τ_1, p_2, τ_2, …) act
-//! along them. With the body's mobility W,
+//! along them. With the mechanism's mobility W (one body's, or a system's: the axis of a
+//! contact between two bodies is its screw on the first minus its screw on the second,
+//! [`Mechanism::contact_axis`]),
 //!
 //! ```text
 //! K_qr = {E_q}ᵀ η W {E_r}          (a Gram matrix: symmetric, positive semidefinite)
@@ -16,11 +18,13 @@
 //! (unnormalised) axes of
 //! [`crate::mechanics::contact`] the Coulomb cone |τ_i| ≤ μ_i P_i reads |τ̂_i| ≤ μ_i p̂_i with
 //! no square root, and every quantity stays in the scalar's field — as long as e itself is in
-//! the field. The planes tried are the coordinate planes of the body axes (z, y, x: every
-//! scene written in principal axes), then, in exact types, the planes whose normal is a
+//! the field. The planes tried are the mechanism's ([`Mechanism::planes`]): the coordinate
+//! planes (z, y, x: every scene written in principal axes), then, in exact types, the planes
+//! whose normal is a
 //! direction d built from the scene's own vectors (d = n_a × n_b for two frictional normals
 //! that are not parallel; otherwise d = n × w, with n the common direction of the frictional
-//! normals and w a contact point, a normal, v_C⁰ or ω⁰; or d = ω⁰) whose length |d| is
+//! normals and w a contact point, a normal, v_C⁰ or ω⁰ — for a system, every body's, with
+//! points taken from the first contact; or d = ω⁰) whose length |d| is
 //! rational, so that e = d/|d| is: a scene posed in world axes by a rational rotation (a
 //! body with a full inertia tensor) keeps its plane. A plane whose normal has an irrational
 //! length (e ∝ (1, 1, 0)) would put μ_i/|d| in the cone; such a scene is integrated as a
@@ -30,8 +34,10 @@
 //! out of the plane and none moves out of it before impact:
 //! {Z_i}ᵀ η W {E_r} = 0 for every r and {Z_i}ᵀ η {v⁰} = 0, with Z_i the axis through A_i
 //! along e — then v_iz ≡ 0 (eq. 144), slip stays along t_i and sticking needs no impulse
-//! along e. The test is exact in exact types; it makes no assumption on the body (a
-//! constrained body qualifies as well).
+//! along e. The test is exact in exact types; it makes no assumption on the mechanism: a
+//! constrained body qualifies, and so does a system whose frictional contacts stay in the
+//! plane, its joints acting through W — it asks only what the integration uses, not that every
+//! body moves in the plane.
 //!
 //! **Spatial scenes** use the contact frame's y and z axes, normalised (a square root: floats
 //! only), so the cone is the Euclidean |τ_i| ≤ μ_i P_i.

@@ -39,6 +39,12 @@
 //! coefficient), so stick, slip reversal and the dependence on where in the impact they occur
 //! are resolved — at the cost of integrating.
 //!
+//! **Mechanisms.** The integration asks only for the contacts' axes and μ, k, the mobility W,
+//! the velocity before and the kinetic energy ([`Mechanism`]), so it runs unchanged on one body
+//! and on a system of bodies ([`crate::mechanics::system`]): there contact i's impulses act on
+//! its first body as above and on its second body oppositely, and the twist after is each
+//! body's.
+//!
 //! **Planar scenes** ([`planar`]) are solved event by event, exactly: every rate is constant
 //! between events. **Spatial scenes** ([`spatial`]) are integrated numerically in floats with
 //! an adaptive embedded Runge–Kutta pair and event location, with an error estimate.
