@@ -47,11 +47,12 @@ pub trait Mechanism<T: Scalar>: Mobility<T, Self::Screw> + Clone + std::fmt::Deb
     /// body.
     fn contact_axis(&self, i: usize, u: &Vec3<T>) -> Self::Screw;
 
-    /// The unit normals of the planes a frictional impact of this mechanism may stay in, in
-    /// the order to try them. Each is only a candidate: [`crate::impact::friction::blocks`]
-    /// tests it exactly (no impulse along a stacked axis, nor the velocity before, moves a
-    /// frictional contact out of the plane) before integrating in it. None by default: the
-    /// frictional integration is then spatial (floats).
+    /// The unit normals of planes other than the coordinate ones that a frictional impact of
+    /// this mechanism may stay in, in the order to try them; asked in exact types only, once
+    /// the coordinate planes have failed. Each is only a candidate:
+    /// [`crate::impact::friction::blocks`] tests every plane exactly (no impulse along a
+    /// stacked axis, nor the velocity before, moves a frictional contact out of it) before
+    /// integrating in it. None by default: such a scene is then integrated as a spatial one.
     fn planes(&self) -> Vec<Vec3<T>> {
         Vec::new()
     }

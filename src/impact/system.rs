@@ -13,7 +13,7 @@
 //! orthogonalised contact wrenches in the metric ηW ([`crate::impact::gram_schmidt`]), which
 //! keeps the twist to √cond G·ε as for one body.
 
-use crate::impact::friction::blocks::{coordinate_planes, plane_normals};
+use crate::impact::friction::blocks::plane_normals;
 use crate::impact::mechanism::Mechanism;
 use crate::impact::route::{self, Route};
 use crate::impact::solve::Outcome;
@@ -51,31 +51,27 @@ impl<T: Scalar> Mechanism<T> for System<T> {
         System::contact_axis(self, i, u)
     }
 
-    /// The coordinate planes z, y, x, then in exact types the planes of rational unit normal
-    /// built from the system's vectors ([`plane_normals`]): each body's ω⁰ (along the normal
-    /// of a planar motion), and as vectors of the plane the contact points and the bodies'
-    /// centres from the first contact point, the normals, each body's v_C⁰ and ω⁰.
+    /// The planes of rational unit normal built from the system's vectors
+    /// ([`plane_normals`]): each body's ω⁰ (along the normal of a planar motion), and as
+    /// vectors of the plane the contact points and the bodies' centres from the first contact
+    /// point, the normals, each body's v_C⁰ and ω⁰.
     fn planes(&self) -> Vec<Vec3<T>> {
-        let mut planes = coordinate_planes();
-        if T::IS_EXACT {
-            let contacts = System::contacts(self);
-            let origin = contacts[0].point.clone();
-            let spins: Vec<Vec3<T>> = self.velocity().0.iter().map(|v| v.top()).collect();
-            let mut vectors: Vec<Vec3<T>> = contacts
+        let contacts = System::contacts(self);
+        let origin = contacts[0].point.clone();
+        let spins: Vec<Vec3<T>> = self.velocity().0.iter().map(|v| v.top()).collect();
+        let mut vectors: Vec<Vec3<T>> = contacts
+            .iter()
+            .flat_map(|c| [c.point.clone() - origin.clone(), c.normal.clone()])
+            .collect();
+        vectors.extend(
+            self.bodies()
                 .iter()
-                .flat_map(|c| [c.point.clone() - origin.clone(), c.normal.clone()])
-                .collect();
-            vectors.extend(
-                self.bodies()
-                    .iter()
-                    .map(|b| b.centre.clone() - origin.clone()),
-            );
-            for v in &self.velocity().0 {
-                vectors.extend([v.bottom(), v.top()]);
-            }
-            planes.extend(plane_normals(contacts, &spins, &vectors));
+                .map(|b| b.centre.clone() - origin.clone()),
+        );
+        for v in &self.velocity().0 {
+            vectors.extend([v.bottom(), v.top()]);
         }
-        planes
+        plane_normals(contacts, &spins, &vectors)
     }
 
     fn kinetic_energy(&self, v: &SystemScrew<T>) -> T {

@@ -18,8 +18,8 @@
 //! (unnormalised) axes of
 //! [`crate::mechanics::contact`] the Coulomb cone |τ_i| ≤ μ_i P_i reads |τ̂_i| ≤ μ_i p̂_i with
 //! no square root, and every quantity stays in the scalar's field — as long as e itself is in
-//! the field. The planes tried are the mechanism's ([`Mechanism::planes`]): the coordinate
-//! planes (z, y, x: every scene written in principal axes), then, in exact types, the planes
+//! the field. The planes tried are the coordinate planes (z, y, x: every scene written in
+//! principal axes), then, in exact types, the mechanism's ([`Mechanism::planes`]): the planes
 //! whose normal is a
 //! direction d built from the scene's own vectors (d = n_a × n_b for two frictional normals
 //! that are not parallel; otherwise d = n × w, with n the common direction of the frictional
@@ -94,11 +94,17 @@ impl<T: Scalar, S: Screws<T>> Blocks<T, S> {
         &self.k[q * self.len() + r]
     }
 
-    /// The planar blocks of `mechanism`, exact: tangents ±e × n_i in the first of its
-    /// [`Mechanism::planes`] that passes the planarity test (for one body: a coordinate plane
-    /// z, y, x, then in exact types a plane of rational unit normal found from the scene's
-    /// vectors, see the module docs); `None` when none does.
+    /// The planar blocks of `mechanism`, exact: tangents ±e × n_i in the first plane that
+    /// passes the planarity test — a coordinate plane (z, y, x), then in exact types the
+    /// mechanism's own [`Mechanism::planes`] (planes of rational unit normal found from the
+    /// scene's vectors, see the module docs); `None` when none does.
     pub fn planar<M: Mechanism<T, Screw = S>>(mechanism: &M) -> Option<Self> {
+        let coordinate = coordinate_planes()
+            .into_iter()
+            .find_map(|unit| Self::in_plane(mechanism, unit));
+        if coordinate.is_some() || !T::IS_EXACT {
+            return coordinate;
+        }
         mechanism
             .planes()
             .into_iter()
@@ -248,7 +254,7 @@ impl<T: Scalar, S: Screws<T>> Blocks<T, S> {
 }
 
 /// The coordinate planes' unit normals, z, y, x: every scene written in principal axes.
-pub fn coordinate_planes<T: Scalar>() -> Vec<Vec3<T>> {
+fn coordinate_planes<T: Scalar>() -> Vec<Vec3<T>> {
     (0..3)
         .rev()
         .map(|k| {
