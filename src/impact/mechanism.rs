@@ -16,7 +16,7 @@ use crate::impact::route::Route;
 use crate::impact::solve::{Impact, Outcome, SolveError};
 use crate::mechanics::body::Mobility;
 use crate::mechanics::contact::{Contact, ContactFrame, TangentNotPerpendicular};
-use crate::mechanics::screw::Screws;
+use crate::mechanics::screw::{Screws, Vec3};
 use crate::scalar::Scalar;
 
 /// A mechanism an impact is solved on (module docs).
@@ -40,6 +40,22 @@ pub trait Mechanism<T: Scalar>: Mobility<T, Self::Screw> + Clone + std::fmt::Deb
         i: usize,
         tangential: bool,
     ) -> Result<ContactFrame<T, Self::Screw>, TangentNotPerpendicular>;
+
+    /// The screw of the axis through contact `i`'s point with direction `u`, |u| as given
+    /// (eq. 3–4; for a contact between two bodies, its screw on the first minus its screw on
+    /// the second): {E}ᵀ η {v} is the velocity of the point along u, relative to the second
+    /// body.
+    fn contact_axis(&self, i: usize, u: &Vec3<T>) -> Self::Screw;
+
+    /// The unit normals of planes other than the coordinate ones that a frictional impact of
+    /// this mechanism may stay in, in the order to try them; asked in exact types only, once
+    /// the coordinate planes have failed. Each is only a candidate:
+    /// [`crate::impact::friction::blocks`] tests every plane exactly (no impulse along a
+    /// stacked axis, nor the velocity before, moves a frictional contact out of it) before
+    /// integrating in it. None by default: such a scene is then integrated as a spatial one.
+    fn planes(&self) -> Vec<Vec3<T>> {
+        Vec::new()
+    }
 
     /// ½ {v}ᵀ η M {v} (eq. 28, 32).
     fn kinetic_energy(&self, v: &Self::Screw) -> T;

@@ -22,6 +22,7 @@
 
 use std::fmt;
 
+use crate::impact::friction::blocks::plane_normals;
 use crate::impact::mechanism::Mechanism;
 use crate::impact::restitution::Model;
 use crate::impact::route::{self, Route};
@@ -493,6 +494,23 @@ impl<T: Scalar> Mechanism<T> for Problem<T> {
         } else {
             Ok(ContactFrame::normal(c))
         }
+    }
+
+    fn contact_axis(&self, i: usize, u: &Vec3<T>) -> Screw<T> {
+        Screw::axis(&self.contacts[i].point, u)
+    }
+
+    /// The planes of rational unit normal built from the contacts' points and normals, v_C⁰
+    /// and ω⁰ ([`plane_normals`]).
+    fn planes(&self) -> Vec<Vec3<T>> {
+        let (w0, v0) = (self.velocity.top(), self.velocity.bottom());
+        let mut vectors: Vec<Vec3<T>> = self
+            .contacts
+            .iter()
+            .flat_map(|c| [c.point.clone(), c.normal.clone()])
+            .collect();
+        vectors.extend([v0, w0.clone()]);
+        plane_normals(&self.contacts, &[w0], &vectors)
     }
 
     fn kinetic_energy(&self, v: &Screw<T>) -> T {

@@ -13,10 +13,12 @@
 //! orthogonalised contact wrenches in the metric ηW ([`crate::impact::gram_schmidt`]), which
 //! keeps the twist to √cond G·ε as for one body.
 
+use crate::impact::friction::blocks::plane_normals;
 use crate::impact::mechanism::Mechanism;
 use crate::impact::route::{self, Route};
 use crate::impact::solve::Outcome;
 use crate::mechanics::contact::{Contact, ContactFrame, TangentNotPerpendicular};
+use crate::mechanics::screw::Vec3;
 use crate::mechanics::system::{System, SystemScrew};
 use crate::scalar::Scalar;
 
@@ -37,12 +39,39 @@ impl<T: Scalar> Mechanism<T> for System<T> {
         tangential: bool,
     ) -> Result<ContactFrame<T, SystemScrew<T>>, TangentNotPerpendicular> {
         let c = &self.contacts()[i];
-        let axis = |u: &crate::mechanics::screw::Vec3<T>| self.contact_axis(i, u);
+        let axis = |u: &Vec3<T>| System::contact_axis(self, i, u);
         if tangential {
             ContactFrame::with_axes(i, c, || self.relative_velocity(i), axis)
         } else {
             Ok(ContactFrame::normal_with(c, axis))
         }
+    }
+
+    fn contact_axis(&self, i: usize, u: &Vec3<T>) -> SystemScrew<T> {
+        System::contact_axis(self, i, u)
+    }
+
+    /// The planes of rational unit normal built from the system's vectors
+    /// ([`plane_normals`]): each body's ω⁰ (along the normal of a planar motion), and as
+    /// vectors of the plane the contact points and the bodies' centres from the first contact
+    /// point, the normals, each body's v_C⁰ and ω⁰.
+    fn planes(&self) -> Vec<Vec3<T>> {
+        let contacts = System::contacts(self);
+        let origin = contacts[0].point.clone();
+        let spins: Vec<Vec3<T>> = self.velocity().0.iter().map(|v| v.top()).collect();
+        let mut vectors: Vec<Vec3<T>> = contacts
+            .iter()
+            .flat_map(|c| [c.point.clone() - origin.clone(), c.normal.clone()])
+            .collect();
+        vectors.extend(
+            self.bodies()
+                .iter()
+                .map(|b| b.centre.clone() - origin.clone()),
+        );
+        for v in &self.velocity().0 {
+            vectors.extend([v.bottom(), v.top()]);
+        }
+        plane_normals(contacts, &spins, &vectors)
     }
 
     fn kinetic_energy(&self, v: &SystemScrew<T>) -> T {

@@ -96,6 +96,8 @@ pub trait Screws<T: Scalar>: Clone + std::fmt::Debug + PartialEq + Default {
     fn zero_like(&self) -> Self;
     /// The components in order: [ω; v] for one screw, each body's in turn for a stack.
     fn components(&self) -> Vec<T>;
+    /// The largest |coordinate|, as f64: the scale of a response, for error bounds.
+    fn max_abs_f64(&self) -> f64;
 }
 
 impl<T: Scalar> Default for Screw<T> {
@@ -127,6 +129,10 @@ impl<T: Scalar> Screws<T> for Screw<T> {
 
     fn components(&self) -> Vec<T> {
         self.as_slice().to_vec()
+    }
+
+    fn max_abs_f64(&self) -> f64 {
+        self.0.iter().map(|x| x.to_f64().abs()).fold(0.0, f64::max)
     }
 }
 

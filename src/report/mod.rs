@@ -16,6 +16,7 @@
 mod friction;
 mod json;
 pub mod system;
+pub mod system_friction;
 mod table;
 pub mod trajectory;
 mod wide;

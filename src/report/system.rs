@@ -10,7 +10,9 @@ use super::{
     PointVelocity, Value, WrenchReport, determinant, impulses, inertances, point_velocities,
     unit_axes,
 };
+use super::system_friction::SystemFrictionReport;
 use crate::impact::admissibility::Inadmissible;
+use crate::impact::friction::Restitution;
 use crate::impact::restitution::Model;
 use crate::impact::solve::{Impact, Outcome};
 use crate::impact::unilateral::{Activity, Law};
@@ -53,6 +55,11 @@ pub struct SystemReport {
     pub models: Vec<SystemModelReport>,
     /// The models without an answer while others have one: the model, why, the status.
     pub model_failures: Vec<(Model, String, &'static str)>,
+    /// A frictional scene: one readout per restitution law integrated (then `models` is
+    /// empty).
+    pub friction: Vec<SystemFrictionReport>,
+    /// The frictional laws without an answer while others have one: the law, why, the status.
+    pub friction_failures: Vec<(Restitution, String, &'static str)>,
 }
 
 /// One restitution model's readout of a system.
@@ -180,6 +187,8 @@ impl SystemReport {
                 })
                 .collect(),
             model_failures: Vec::new(),
+            friction: Vec::new(),
+            friction_failures: Vec::new(),
         }
     }
 
@@ -234,7 +243,14 @@ impl SystemReport {
         for (model, message, status) in &self.model_failures {
             models.insert(model.name().into(), json!({ "error": message, "status": status }));
         }
-        json!({
+        let mut friction = Map::new();
+        for f in &self.friction {
+            friction.insert(f.law.name().into(), f.to_json(&self.bodies));
+        }
+        for (law, message, status) in &self.friction_failures {
+            friction.insert(law.name().into(), json!({ "error": message, "status": status }));
+        }
+        let mut top = json!({
             "scene": self.scene,
             "scalar": self.scalar,
             "effects": self.effects,
@@ -260,7 +276,11 @@ impl SystemReport {
                 "angular": vec(&self.momentum_before.1),
             },
             "models": Json::Object(models),
-        })
+        });
+        if let (false, Some(o)) = (friction.is_empty(), top.as_object_mut()) {
+            o.insert("friction".into(), Json::Object(friction));
+        }
+        top
     }
 
     /// The report as text.
@@ -296,7 +316,17 @@ impl SystemReport {
                 r.iter().map(Value::text).collect::<Vec<_>>().join("  ")
             );
         }
-        out += &format!("Δ = det G = {}\n\nAfter impact:\n", self.det.text());
+        out += &format!("Δ = det G = {}\n", self.det.text());
+        if !self.friction.is_empty() || !self.friction_failures.is_empty() {
+            for f in &self.friction {
+                out += &f.to_text(&self.bodies, self.free);
+            }
+            for (law, message, _) in &self.friction_failures {
+                out += &format!("\nAfter impact, with friction — {law} restitution: no answer: {message}\n");
+            }
+            return out;
+        }
+        out += "\nAfter impact:\n";
         let header: Vec<String> = self.models.iter().map(|m| m.model.name().to_string()).collect();
         let mut rows: Vec<(String, Vec<String>)> = Vec::new();
         let each = |f: &dyn Fn(&SystemModelReport) -> String| -> Vec<String> {

@@ -3,21 +3,27 @@
 //! solve runs — the energy identity (eq. 34) and, for a free system, the conservation of
 //! momentum (both exact in exact types).
 //!
-//! What a system scene is not solved with yet is refused, naming it: friction (the
-//! frictional integration is written for one body), and float scenes whose numbers are far
-//! from 1 (a system is solved in the scene's own units, not scaled: an output f64 cannot hold
-//! is refused, naming the output).
+//! A frictional scene (some μ_i > 0, or `[solve] restitution`) is integrated in impulse space
+//! by [`crate::impact::friction`], as one body's is, each restitution law asked for: exactly,
+//! event by event, when the system stays in a plane; adaptively in floats otherwise. Its checks
+//! are the energy balance ΔE_c = Σ∫v·dΛ = T⁰ − T and, for a free system, the momentum.
+//!
+//! What a system scene is not solved with yet is refused, naming it: float scenes whose
+//! numbers are far from 1 (a system is solved in the scene's own units, not scaled: an output
+//! f64 cannot hold is refused, naming the output).
 
 use crate::impact::admissibility::{energy_gain, verdicts};
+use crate::impact::friction::solve_frictional;
 use crate::impact::restitution::Model;
 use crate::impact::solve::{Impact, Outcome};
 use crate::impact::unilateral::{Law, UnilateralError, active};
 use crate::mechanics::system::{System, SystemScrew};
 use crate::report::Value;
 use crate::report::system::SystemReport;
+use crate::report::system_friction::SystemFrictionReport;
 use crate::scalar::Scalar;
 
-use super::pipeline::RunError;
+use super::pipeline::{RunError, friction_tolerance};
 use super::{Scene, SceneError};
 
 /// A solved system scene: its report, and per model whether the energy identity held and,
@@ -31,6 +37,11 @@ pub struct SolvedSystem {
     pub energy_identity: Vec<bool>,
     /// Per model: momentum after equals momentum before (a free system; `true` otherwise).
     pub momentum_conserved: Vec<bool>,
+    /// Per frictional law, in report order: the energy balance ΔE_c = Σ∫v·dΛ = T⁰ − T
+    /// (exactly in exact types; to the integration's estimate in a spatial one).
+    pub friction_energy_balance: Vec<bool>,
+    /// Per frictional law: momentum conserved (a free system; `true` otherwise).
+    pub friction_momentum_conserved: Vec<bool>,
 }
 
 /// Solve the system scene `scene` in `T` for `models` (the scene's own when `None`).
@@ -42,20 +53,7 @@ pub struct SolvedSystem {
 pub fn run_system<T: Scalar>(scene: &Scene, models: Option<&[Model]>) -> Result<SolvedSystem, RunError> {
     scene.law_applies()?;
     if scene.frictional() {
-        let i = scene
-            .contacts
-            .iter()
-            .position(|c| !matches!(&c.mu.exact, Ok(q) if num_traits::Zero::is_zero(q)))
-            .unwrap_or(0);
-        return Err(RunError::Scene(SceneError {
-            file: scene.file.clone(),
-            key: format!("contact[{i}].mu"),
-            value: Some(scene.contacts[i].mu.text.clone()),
-            message: "friction in a system of several bodies is not integrated yet (the \
-                      frictional integration is written for one body): set μ = 0, or solve the \
-                      bodies one at a time"
-                .into(),
-        }));
+        return run_frictional::<T>(scene, models);
     }
     let system = scene.system::<T>()?;
     let mut impact = Impact::assemble(&system)?;
@@ -91,11 +89,7 @@ pub fn run_system<T: Scalar>(scene: &Scene, models: Option<&[Model]>) -> Result<
     if let (true, Some(e)) = (outcomes.is_empty(), first_failure) {
         return Err(e.into());
     }
-    let names: Vec<String> = scene
-        .system
-        .as_ref()
-        .map(|s| s.bodies.iter().map(|b| b.name.clone()).collect())
-        .unwrap_or_default();
+    let names = body_names(scene);
     let mut effects = Vec::new();
     if !system.joints().is_empty() {
         effects.push("joints".to_string());
@@ -139,6 +133,71 @@ pub fn run_system<T: Scalar>(scene: &Scene, models: Option<&[Model]>) -> Result<
         report,
         energy_identity,
         momentum_conserved,
+        friction_energy_balance: Vec::new(),
+        friction_momentum_conserved: Vec::new(),
+    })
+}
+
+/// The bodies' names, in order.
+fn body_names(scene: &Scene) -> Vec<String> {
+    scene
+        .system
+        .as_ref()
+        .map(|s| s.bodies.iter().map(|b| b.name.clone()).collect())
+        .unwrap_or_default()
+}
+
+/// A frictional system scene: each restitution law integrated in impulse space (module docs);
+/// the report holds the model-independent part (G, the frames, the velocities before) and one
+/// frictional readout per law.
+fn run_frictional<T: Scalar>(
+    scene: &Scene,
+    models: Option<&[Model]>,
+) -> Result<SolvedSystem, RunError> {
+    let system = scene.system::<T>()?;
+    let impact = Impact::assemble(&system)?;
+    let laws = scene.restitutions(models);
+    let mut effects = Vec::new();
+    if !system.joints().is_empty() {
+        effects.push("joints".to_string());
+    }
+    effects.push("friction".to_string());
+    effects.extend(laws.iter().map(|l| l.name().to_string()));
+    let mut report = SystemReport::new(&scene.name, effects, &body_names(scene), &impact, &[]);
+    let kinetic = system.kinetic_energy(system.velocity());
+    let tolerance = scene.tolerance.unwrap_or_else(friction_tolerance::<T>);
+    let mut balance = Vec::new();
+    let mut momentum = Vec::new();
+    let mut first_failure = None;
+    for law in laws {
+        let f = match solve_frictional(&system, law, tolerance) {
+            Ok(f) => f,
+            Err(e) => match e.status() {
+                // A verdict of the physics for this law: the others still answer.
+                Some(status) => {
+                    report.friction_failures.push((law, e.to_string(), status));
+                    first_failure.get_or_insert(e);
+                    continue;
+                }
+                None => return Err(e.into()),
+            },
+        };
+        balance.push(f.energy_balance_holds(&kinetic));
+        momentum.push(!report.free || conserved(&system, system.velocity(), &f.velocity));
+        report.friction.push(SystemFrictionReport::new(&system, &f));
+    }
+    if let (true, Some(e)) = (report.friction.is_empty(), first_failure) {
+        return Err(e.into());
+    }
+    if !T::IS_EXACT {
+        refuse_unrepresentable(scene, &report)?;
+    }
+    Ok(SolvedSystem {
+        report,
+        energy_identity: Vec::new(),
+        momentum_conserved: Vec::new(),
+        friction_energy_balance: balance,
+        friction_momentum_conserved: momentum,
     })
 }
 
@@ -164,8 +223,26 @@ fn conserved<T: Scalar>(system: &System<T>, before: &SystemScrew<T>, after: &Sys
 /// refused, naming it.
 fn refuse_unrepresentable(scene: &Scene, report: &SystemReport) -> Result<(), RunError> {
     let finite = |v: &Value| v.f64.is_finite();
-    for m in &report.models {
-        let checks = [
+    let frictional = report.friction.iter().map(|f| {
+        [
+            (
+                "impulses",
+                f.contacts.iter().all(|c| {
+                    finite(&c.normal_impulse) && c.tangential_impulse.iter().all(finite)
+                }),
+            ),
+            (
+                "velocities after impact",
+                f.twists.iter().all(|(w, v)| w.iter().chain(v).all(finite)),
+            ),
+            (
+                "energies",
+                finite(&f.lost_velocity_energy) && finite(&f.kinetic_energy_loss),
+            ),
+        ]
+    });
+    for checks in report.models.iter().map(|m| {
+        [
             ("impulses", m.impulses.iter().all(finite)),
             (
                 "velocities after impact",
@@ -177,7 +254,8 @@ fn refuse_unrepresentable(scene: &Scene, report: &SystemReport) -> Result<(), Ru
                 "energies",
                 finite(&m.lost_velocity_energy) && finite(&m.kinetic_energy_loss),
             ),
-        ];
+        ]
+    }).chain(frictional) {
         if let Some((name, _)) = checks.iter().find(|(_, ok)| !ok) {
             return Err(RunError::Scene(SceneError {
                 file: scene.file.clone(),

@@ -243,13 +243,8 @@ fn with_friction<T: Scalar>(
 }
 
 /// A system of bodies ([`crate::mechanics::system`]): the N×N route for any N (a system's
-/// contacts are few; its cost is in the bodies), no frictional part (a frictional system scene
-/// is refused by the pipeline it would run).
+/// contacts are few; its cost is in the bodies), with the frictional part as for one body.
 fn analyze_system<T: Scalar>(scene: &Scene, models: &[Model]) -> Result<AnalysisReport, RunError> {
-    if scene.frictional() {
-        // The same refusal `solve` gives, naming the key.
-        crate::scene::system_pipeline::run_system::<T>(scene, Some(models))?;
-    }
     let system = scene.system::<T>()?;
     let mut impact = Impact::assemble(&system)?;
     let analysis = analyze(&mut impact, models);
@@ -281,6 +276,9 @@ fn analyze_system<T: Scalar>(scene: &Scene, models: &[Model]) -> Result<Analysis
     };
     let mut report = finish(scene, impact.problem(), analysis, parts)?;
     report.bodies = system_names(scene);
+    report.friction = scene
+        .frictional()
+        .then(|| friction_analysis(scene, &system));
     Ok(report)
 }
 
@@ -497,33 +495,32 @@ pub struct FrictionAnalysis {
     /// rod's μ̄ = 3 sin θ cos θ / (1 + 3 sin² θ) in derivations/friction-rod.md). Below it
     /// such a slip reverses instead.
     pub stick_thresholds: Vec<Option<Value>>,
-    /// The frictional readouts, one per law, as `solve` gives them.
+    /// The frictional readouts, one per law, as `solve` gives them (one body).
     pub readouts: Vec<crate::report::FrictionReport>,
+    /// A system's frictional readouts, one per law: its name, JSON and text, as `solve`
+    /// gives them.
+    pub system_readouts: Vec<(String, Json, String)>,
     /// Laws without an answer, and why; or why no integration ran (an exact type on a
     /// spatial scene).
     pub failures: Vec<String>,
 }
 
 /// The friction part of the analysis of `scene` in `T`.
-fn friction_analysis<T: Scalar>(scene: &Scene, problem: &Problem<T>) -> FrictionAnalysis {
+fn friction_analysis<T: Scalar, M: Mechanism<T>>(scene: &Scene, problem: &M) -> FrictionAnalysis {
     use crate::impact::friction::Blocks;
     if let Some(refusal) = friction_limit(scene) {
         // The thresholds and the integration both work on the 3N×3N blocks.
         return FrictionAnalysis {
             stick_thresholds: vec![None; problem.contacts().len()],
             readouts: Vec::new(),
+            system_readouts: Vec::new(),
             failures: vec![refusal.to_string()],
         };
     }
     let planar = Blocks::planar(problem);
     let spatial = if planar.is_none() && !T::IS_EXACT {
-        let frames: Option<Vec<_>> = problem
-            .contacts()
-            .iter()
-            .enumerate()
-            .map(|(i, c)| {
-                crate::mechanics::contact::ContactFrame::new(i, c, problem.velocity()).ok()
-            })
+        let frames: Option<Vec<_>> = (0..problem.contacts().len())
+            .map(|i| problem.frame(i, true).ok())
             .collect();
         frames.map(|f| Blocks::spatial(problem, &f))
     } else {
@@ -562,20 +559,35 @@ fn friction_analysis<T: Scalar>(scene: &Scene, problem: &Problem<T>) -> Friction
             })
             .collect(),
     };
-    let (readouts, failures) = match crate::scene::pipeline::run_with::<T>(scene, None, true) {
-        Ok(s) => (
-            s.report.friction,
-            s.report
-                .friction_failures
-                .into_iter()
-                .map(|(law, m, _)| format!("{law}: {m}"))
-                .collect(),
-        ),
-        Err(e) => (Vec::new(), vec![e.to_string()]),
+    let (mut readouts, mut system_readouts) = (Vec::new(), Vec::new());
+    let laws = |f: Vec<(crate::impact::friction::Restitution, String, &'static str)>| -> Vec<String> {
+        f.into_iter().map(|(law, m, _)| format!("{law}: {m}")).collect()
+    };
+    let failures = if let Some(spec) = &scene.system {
+        match crate::scene::system_pipeline::run_system::<T>(scene, None) {
+            Ok(s) => {
+                let bodies: Vec<String> = spec.bodies.iter().map(|b| b.name.clone()).collect();
+                let free = s.report.free;
+                system_readouts = (s.report.friction.iter())
+                    .map(|f| (f.law.name().to_string(), f.to_json(&bodies), f.to_text(&bodies, free)))
+                    .collect();
+                laws(s.report.friction_failures)
+            }
+            Err(e) => vec![e.to_string()],
+        }
+    } else {
+        match crate::scene::pipeline::run_with::<T>(scene, None, true) {
+            Ok(s) => {
+                readouts = s.report.friction;
+                laws(s.report.friction_failures)
+            }
+            Err(e) => vec![e.to_string()],
+        }
     };
     FrictionAnalysis {
         stick_thresholds,
         readouts,
+        system_readouts,
         failures,
     }
 }
@@ -799,7 +811,9 @@ impl AnalysisReport {
                     "friction".into(),
                     json!({
                         "stick_thresholds": f.stick_thresholds.iter().map(|t| t.as_ref().map(Value::json)).collect::<Vec<_>>(),
-                        "laws": f.readouts.iter().map(|r| (r.law.name().to_string(), r.to_json())).collect::<Map<_, _>>(),
+                        "laws": f.readouts.iter().map(|r| (r.law.name().to_string(), r.to_json()))
+                            .chain(f.system_readouts.iter().map(|(law, j, _)| (law.clone(), j.clone())))
+                            .collect::<Map<_, _>>(),
                         "failures": f.failures,
                     }),
                 );
@@ -1000,6 +1014,9 @@ impl AnalysisReport {
             }
             for r in &f.readouts {
                 s += &r.to_text();
+            }
+            for (_, _, text) in &f.system_readouts {
+                s += text;
             }
             for m in &f.failures {
                 s += &format!("  no answer: {m}\n");

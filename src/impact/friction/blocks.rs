@@ -3,7 +3,9 @@
 //!
 //! Every contact i contributes its normal axis and, when μ_i > 0, its tangent axes; their
 //! screws {E_q} are stacked in one list, and the impulses Λ = (p_1, τ_1, p_2, τ_2, …) act
-//! along them. With the body's mobility W,
+//! along them. With the mechanism's mobility W (one body's, or a system's: the axis of a
+//! contact between two bodies is its screw on the first minus its screw on the second,
+//! [`Mechanism::contact_axis`]),
 //!
 //! ```text
 //! K_qr = {E_q}ᵀ η W {E_r}          (a Gram matrix: symmetric, positive semidefinite)
@@ -16,11 +18,13 @@
 //! (unnormalised) axes of
 //! [`crate::mechanics::contact`] the Coulomb cone |τ_i| ≤ μ_i P_i reads |τ̂_i| ≤ μ_i p̂_i with
 //! no square root, and every quantity stays in the scalar's field — as long as e itself is in
-//! the field. The planes tried are the coordinate planes of the body axes (z, y, x: every
-//! scene written in principal axes), then, in exact types, the planes whose normal is a
+//! the field. The planes tried are the coordinate planes (z, y, x: every scene written in
+//! principal axes), then, in exact types, the mechanism's ([`Mechanism::planes`]): the planes
+//! whose normal is a
 //! direction d built from the scene's own vectors (d = n_a × n_b for two frictional normals
 //! that are not parallel; otherwise d = n × w, with n the common direction of the frictional
-//! normals and w a contact point, a normal, v_C⁰ or ω⁰; or d = ω⁰) whose length |d| is
+//! normals and w a contact point, a normal, v_C⁰ or ω⁰ — for a system, every body's, with
+//! points taken from the first contact; or d = ω⁰) whose length |d| is
 //! rational, so that e = d/|d| is: a scene posed in world axes by a rational rotation (a
 //! body with a full inertia tensor) keeps its plane. A plane whose normal has an irrational
 //! length (e ∝ (1, 1, 0)) would put μ_i/|d| in the cone; such a scene is integrated as a
@@ -30,42 +34,46 @@
 //! out of the plane and none moves out of it before impact:
 //! {Z_i}ᵀ η W {E_r} = 0 for every r and {Z_i}ᵀ η {v⁰} = 0, with Z_i the axis through A_i
 //! along e — then v_iz ≡ 0 (eq. 144), slip stays along t_i and sticking needs no impulse
-//! along e. The test is exact in exact types; it makes no assumption on the body (a
-//! constrained body qualifies as well).
+//! along e. The test is exact in exact types; it makes no assumption on the mechanism: a
+//! constrained body qualifies, and so does a system whose frictional contacts stay in the
+//! plane, its joints acting through W — it asks only what the integration uses, not that every
+//! body moves in the plane.
 //!
 //! **Spatial scenes** use the contact frame's y and z axes, normalised (a square root: floats
 //! only), so the cone is the Euclidean |τ_i| ≤ μ_i P_i.
 
-use crate::impact::problem::Problem;
-use crate::mechanics::body::Mobility;
-use crate::mechanics::contact::ContactFrame;
-use crate::mechanics::screw::{Screw, Vec3, dot, norm2};
+use crate::impact::mechanism::Mechanism;
+use crate::mechanics::contact::Contact;
+use crate::mechanics::screw::{Screw, Screws, Vec3, dot, norm2};
 use crate::scalar::Scalar;
 
-/// The stacked axes of a frictional impact and their inertance matrix K.
+/// The stacked axes of a frictional impact and their inertance matrix K, in the screw space
+/// `S` of the mechanism ([`Mechanism`]: one body's [`Screw`], a system's stack).
 #[derive(Clone, Debug)]
-pub struct Blocks<T: Scalar> {
+pub struct Blocks<T: Scalar, S: Screws<T> = Screw<T>> {
     /// Tangential dimensions per contact: 0 when μ_i = 0, 1 in a planar scene, 2 in space.
     pub dims: Vec<usize>,
     /// Index in Λ of contact i's normal impulse; its tangential ones follow.
     pub offset: Vec<usize>,
     /// The axis screws {E_q}, in Λ order.
-    pub axes: Vec<Screw<T>>,
+    pub axes: Vec<S>,
+    /// The axes' directions (hatted in a planar scene, unit in a spatial one), in Λ order.
+    pub directions: Vec<Vec3<T>>,
     /// W{E_q}: the twist change per unit impulse along axis q.
-    pub responses: Vec<Screw<T>>,
+    pub responses: Vec<S>,
     /// K, `len × len`, row-major.
     pub k: Vec<T>,
     /// v_q⁰: the velocity along each axis before impact.
     pub v0: Vec<T>,
     /// μ_i per contact.
     pub mu: Vec<T>,
-    /// The contact points A_i (from C, body axes).
+    /// The contact points A_i (one body: from C, body axes; a system: in the world).
     pub points: Vec<Vec3<T>>,
     /// The plane's unit normal e when the scene is planar.
     pub plane: Option<Vec3<T>>,
 }
 
-impl<T: Scalar> Blocks<T> {
+impl<T: Scalar, S: Screws<T>> Blocks<T, S> {
     /// The number of stacked axes (the length of Λ).
     pub fn len(&self) -> usize {
         self.axes.len()
@@ -86,32 +94,33 @@ impl<T: Scalar> Blocks<T> {
         &self.k[q * self.len() + r]
     }
 
-    /// The planar blocks of `problem`, exact: tangents ±e × n_i in the first plane that passes
-    /// the planarity test — a coordinate plane (z, y, x), then in exact types a plane of
-    /// rational unit normal found from the scene's vectors (see the module docs); `None` when
-    /// none does.
-    pub fn planar(problem: &Problem<T>) -> Option<Self> {
-        let coordinate = (0..3).rev().find_map(|k| {
-            let mut unit = Vec3::zeros();
-            unit[k] = T::one();
-            Self::in_plane(problem, unit)
-        });
+    /// The planar blocks of `mechanism`, exact: tangents ±e × n_i in the first plane that
+    /// passes the planarity test — a coordinate plane (z, y, x), then in exact types the
+    /// mechanism's own [`Mechanism::planes`] (planes of rational unit normal found from the
+    /// scene's vectors, see the module docs); `None` when none does.
+    pub fn planar<M: Mechanism<T, Screw = S>>(mechanism: &M) -> Option<Self> {
+        let coordinate = coordinate_planes()
+            .into_iter()
+            .find_map(|unit| Self::in_plane(mechanism, unit));
         if coordinate.is_some() || !T::IS_EXACT {
             return coordinate;
         }
-        plane_normals(problem)
+        mechanism
+            .planes()
             .into_iter()
-            .find_map(|unit| Self::in_plane(problem, unit))
+            .find_map(|unit| Self::in_plane(mechanism, unit))
     }
 
     /// The blocks in the plane of unit normal `unit`, if the scene stays in it.
-    fn in_plane(problem: &Problem<T>, unit: Vec3<T>) -> Option<Self> {
+    fn in_plane<M: Mechanism<T, Screw = S>>(mechanism: &M, unit: Vec3<T>) -> Option<Self> {
         let mut axes = Vec::new();
+        let mut directions = Vec::new();
         let mut dims = Vec::new();
         let mut out_of_plane = Vec::new();
-        let velocity = problem.velocity();
-        for (i, c) in problem.contacts().iter().enumerate() {
-            axes.push(Screw::axis(&c.point, &c.normal));
+        let velocity = mechanism.velocity();
+        for (i, c) in mechanism.contacts().iter().enumerate() {
+            axes.push(mechanism.contact_axis(i, &c.normal));
+            directions.push(c.normal.clone());
             if c.mu.is_zero() {
                 dims.push(0);
                 continue;
@@ -119,62 +128,72 @@ impl<T: Scalar> Blocks<T> {
             if !dot(&unit, &c.normal).is_zero() {
                 return None;
             }
-            let z = Screw::axis(&c.point, &unit);
+            let z = mechanism.contact_axis(i, &unit);
             if !z.reciprocal(velocity).is_zero() {
                 return None;
             }
             // slide+ is slip along +y_i, the tangent as given or as §12 chooses it (the frame
             // the report prints), so t_i takes the sense of y_i when y_i lies in the plane.
             let t = unit.cross(&c.normal);
-            let y = ContactFrame::new(i, c, velocity).map(|f| f.axes[1].top());
+            let y = mechanism.frame(i, true).map(|f| f.directions[1].clone());
             let t = match y {
                 Ok(y) if dot(&y, &t).signum_i8() < 0 => -t,
                 _ => t,
             };
-            axes.push(Screw::axis(&c.point, &t));
+            axes.push(mechanism.contact_axis(i, &t));
+            directions.push(t);
             out_of_plane.push(z);
             dims.push(1);
         }
-        let blocks = Self::from_axes(problem, axes, dims, Some(unit));
+        let blocks = Self::from_axes(mechanism, axes, directions, dims, Some(unit));
         let stays = out_of_plane
             .iter()
             .all(|z| blocks.responses.iter().all(|r| z.reciprocal(r).is_zero()));
         stays.then_some(blocks)
     }
 
-    /// The spatial blocks of `problem`: unit normals and the unit y, z axes of each contact's
-    /// frame (§12). Floats: the normalisation takes square roots.
+    /// The spatial blocks of `mechanism`: unit normals and the unit y, z axes of each
+    /// contact's frame `frames` (§12). Floats: the normalisation takes square roots.
     ///
     /// # Panics
     /// Never for a validated problem in a float type; an exact type has no square root and is
     /// refused by the caller before this is reached.
-    pub fn spatial(problem: &Problem<T>, frames: &[ContactFrame<T>]) -> Self {
+    pub fn spatial<M: Mechanism<T, Screw = S>>(
+        mechanism: &M,
+        frames: &[crate::mechanics::contact::ContactFrame<T, S>],
+    ) -> Self {
         let mut axes = Vec::new();
+        let mut directions = Vec::new();
         let mut dims = Vec::new();
-        for (c, f) in problem.contacts().iter().zip(frames) {
-            let unit = |v: &Vec3<T>| -> Vec3<T> {
-                let n = norm2(v).sqrt_value().expect("a float has a square root");
-                v / n
+        let unit = |v: &Vec3<T>| -> Vec3<T> {
+            let n = norm2(v).sqrt_value().expect("a float has a square root");
+            v / n
+        };
+        for (i, (c, f)) in mechanism.contacts().iter().zip(frames).enumerate() {
+            let mut push = |u: Vec3<T>| {
+                axes.push(mechanism.contact_axis(i, &u));
+                directions.push(u);
             };
-            axes.push(Screw::axis(&c.point, &unit(&c.normal)));
+            push(unit(&c.normal));
             if c.mu.is_zero() {
                 dims.push(0);
             } else {
-                axes.push(Screw::axis(&c.point, &unit(&f.axes[1].top())));
-                axes.push(Screw::axis(&c.point, &unit(&f.axes[2].top())));
+                push(unit(&f.directions[1]));
+                push(unit(&f.directions[2]));
                 dims.push(2);
             }
         }
-        Self::from_axes(problem, axes, dims, None)
+        Self::from_axes(mechanism, axes, directions, dims, None)
     }
 
-    fn from_axes(
-        problem: &Problem<T>,
-        axes: Vec<Screw<T>>,
+    fn from_axes<M: Mechanism<T, Screw = S>>(
+        mechanism: &M,
+        axes: Vec<S>,
+        directions: Vec<Vec3<T>>,
         dims: Vec<usize>,
         plane: Option<Vec3<T>>,
     ) -> Self {
-        let responses: Vec<Screw<T>> = axes.iter().map(|a| problem.response(a)).collect();
+        let responses: Vec<S> = axes.iter().map(|a| mechanism.response(a)).collect();
         let len = axes.len();
         let mut k = Vec::with_capacity(len * len);
         for a in &axes {
@@ -184,7 +203,7 @@ impl<T: Scalar> Blocks<T> {
         }
         let v0 = axes
             .iter()
-            .map(|a| a.reciprocal(problem.velocity()))
+            .map(|a| a.reciprocal(mechanism.velocity()))
             .collect();
         let mut offset = Vec::with_capacity(dims.len());
         let mut at = 0;
@@ -192,15 +211,17 @@ impl<T: Scalar> Blocks<T> {
             offset.push(at);
             at += 1 + d;
         }
+        let contacts: &[Contact<T>] = mechanism.contacts();
         Blocks {
             dims,
             offset,
             axes,
+            directions,
             responses,
             k,
             v0,
-            mu: problem.contacts().iter().map(|c| c.mu.clone()).collect(),
-            points: problem.contacts().iter().map(|c| c.point.clone()).collect(),
+            mu: contacts.iter().map(|c| c.mu.clone()).collect(),
+            points: contacts.iter().map(|c| c.point.clone()).collect(),
             plane,
         }
     }
@@ -221,7 +242,7 @@ impl<T: Scalar> Blocks<T> {
     }
 
     /// The twist {v⁰} − Σ_q Λ_q W{E_q} after the impulses Λ (eq. 142).
-    pub fn twist_after(&self, velocity: &Screw<T>, lambda: &[T]) -> Screw<T> {
+    pub fn twist_after(&self, velocity: &S, lambda: &[T]) -> S {
         let mut v = velocity.clone();
         for (l, r) in lambda.iter().zip(&self.responses) {
             if !l.is_zero() {
@@ -232,12 +253,29 @@ impl<T: Scalar> Blocks<T> {
     }
 }
 
+/// The coordinate planes' unit normals, z, y, x: every scene written in principal axes.
+fn coordinate_planes<T: Scalar>() -> Vec<Vec3<T>> {
+    (0..3)
+        .rev()
+        .map(|k| {
+            let mut unit = Vec3::zeros();
+            unit[k] = T::one();
+            unit
+        })
+        .collect()
+}
+
 /// The unit normals e = d/|d| of the planes a planar scene in other than coordinate axes may
-/// lie in: d from the scene's vectors (see the module docs), kept when d ≠ 0, d ⊥ every
-/// frictional normal and |d|² is the square of a rational; each plane once, coordinate planes
-/// (tried already) left out.
-fn plane_normals<T: Scalar>(problem: &Problem<T>) -> Vec<Vec3<T>> {
-    let contacts = problem.contacts();
+/// lie in: d from the scene's vectors (see the module docs) — n_a × n_b for two frictional
+/// normals of `contacts` that are not parallel; otherwise each of `spins` (angular velocities,
+/// along e in a planar motion), then n × w for each of `vectors` (vectors of the plane:
+/// points, normals, velocities) — kept when d ≠ 0, d ⊥ every frictional normal and |d|² is the
+/// square of a rational; each plane once, coordinate planes (tried first) left out.
+pub fn plane_normals<T: Scalar>(
+    contacts: &[Contact<T>],
+    spins: &[Vec3<T>],
+    vectors: &[Vec3<T>],
+) -> Vec<Vec3<T>> {
     let rough: Vec<&Vec3<T>> = contacts
         .iter()
         .filter(|c| !c.mu.is_zero())
@@ -246,19 +284,14 @@ fn plane_normals<T: Scalar>(problem: &Problem<T>) -> Vec<Vec3<T>> {
     let Some(&n) = rough.first() else {
         return Vec::new();
     };
-    let (w0, v0) = (problem.velocity().top(), problem.velocity().bottom());
     let crossing = rough.iter().map(|m| n.cross(m)).find(|d| !is_zero(d));
     let directions: Vec<Vec3<T>> = match crossing {
         Some(d) => vec![d],
-        None => {
-            let others = contacts
-                .iter()
-                .flat_map(|c| [&c.point, &c.normal])
-                .chain([&v0, &w0]);
-            std::iter::once(w0.clone())
-                .chain(others.map(|w| n.cross(w)))
-                .collect()
-        }
+        None => spins
+            .iter()
+            .cloned()
+            .chain(vectors.iter().map(|w| n.cross(w)))
+            .collect(),
     };
     let mut normals: Vec<Vec3<T>> = Vec::new();
     for d in directions {
@@ -289,6 +322,7 @@ fn is_zero<T: Scalar>(v: &Vec3<T>) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::impact::problem::Problem;
     use crate::mechanics::body::RigidBody;
     use crate::mechanics::contact::Contact;
     use crate::scalar::{Exact, int, ratio};

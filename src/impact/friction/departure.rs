@@ -48,6 +48,7 @@
 use crate::impact::friction::blocks::Blocks;
 use crate::impact::friction::modes::nonnegative;
 use crate::impact::friction::rates::{Mode, Normal, RateFailure, max_abs, rates};
+use crate::mechanics::screw::Screws;
 use crate::scalar::Scalar;
 
 /// |x|.
@@ -84,8 +85,8 @@ pub(super) fn of<T: Scalar>(x: f64) -> T {
 ///
 /// # Errors
 /// [`RateFailure`] when the modes have no rates.
-pub fn slip_rate<T: Scalar>(
-    b: &Blocks<T>,
+pub fn slip_rate<T: Scalar, S: Screws<T>>(
+    b: &Blocks<T, S>,
     normals: &[Normal<T>],
     modes: &mut [Mode<T>],
     i: usize,
@@ -115,8 +116,8 @@ fn turned<T: Scalar>(u: &[T], t: &T) -> Vec<T> {
 /// κ = −dg/dθ at `u` (by a central difference of 10⁻⁶ rad): how fast the slips turned from u
 /// are pulled back to it, per unit angle, times ρ; κ > 0 attracts, κ < 0 repels. `None` when
 /// the rates fail near u. `modes[i]` is restored.
-pub fn pull<T: Scalar>(
-    b: &Blocks<T>,
+pub fn pull<T: Scalar, S: Screws<T>>(
+    b: &Blocks<T, S>,
     normals: &[Normal<T>],
     modes: &mut [Mode<T>],
     i: usize,
@@ -190,8 +191,8 @@ fn refine<T: Scalar>(
 /// fixed-point iteration u ← f/|f| diverges there whenever κ > 2λ. Returns whether a root was
 /// found: otherwise `modes[i]` keeps the held direction (the direction has moved further than
 /// `reach`, or no longer leaves zero slip).
-pub fn track<T: Scalar>(
-    b: &Blocks<T>,
+pub fn track<T: Scalar, S: Screws<T>>(
+    b: &Blocks<T, S>,
     normals: &[Normal<T>],
     modes: &mut [Mode<T>],
     i: usize,
@@ -281,8 +282,8 @@ pub struct Invariant<T: Scalar> {
 ///
 /// # Errors
 /// [`RateFailure`] when the rates fail at a root being refined.
-pub fn invariant_directions<T: Scalar>(
-    b: &Blocks<T>,
+pub fn invariant_directions<T: Scalar, S: Screws<T>>(
+    b: &Blocks<T, S>,
     normals: &[Normal<T>],
     modes: &mut [Mode<T>],
     i: usize,

@@ -39,6 +39,12 @@
 //! coefficient), so stick, slip reversal and the dependence on where in the impact they occur
 //! are resolved — at the cost of integrating.
 //!
+//! **Mechanisms.** The integration asks only for the contacts' axes and μ, k, the mobility W,
+//! the velocity before and the kinetic energy ([`Mechanism`]), so it runs unchanged on one body
+//! and on a system of bodies ([`crate::mechanics::system`]): there contact i's impulses act on
+//! its first body as above and on its second body oppositely, and the twist after is each
+//! body's.
+//!
 //! **Planar scenes** ([`planar`]) are solved event by event, exactly: every rate is constant
 //! between events. **Spatial scenes** ([`spatial`]) are integrated numerically in floats with
 //! an adaptive embedded Runge–Kutta pair and event location, with an error estimate.
@@ -52,10 +58,10 @@ pub mod spatial;
 
 use std::fmt;
 
-use crate::impact::problem::Problem;
+use crate::impact::mechanism::Mechanism;
 use crate::impact::restitution::Model;
 use crate::mechanics::contact::ContactFrame;
-use crate::mechanics::screw::{Screw, Vec3};
+use crate::mechanics::screw::{Screw, Screws, Vec3};
 use crate::scalar::Scalar;
 
 pub use blocks::Blocks;
@@ -376,21 +382,22 @@ pub enum FrictionError {
 }
 
 /// The outcome of a frictional impact. Impulses are along the stacked axes of
-/// [`Blocks`]: hatted in a planar scene (exact), unit in a spatial one.
+/// [`Blocks`]: hatted in a planar scene (exact), unit in a spatial one. `S` is the
+/// mechanism's screw space: one body's [`Screw`], a system's stack.
 #[derive(Clone, Debug)]
-pub struct Frictional<T: Scalar> {
+pub struct Frictional<T: Scalar, S: Screws<T> = Screw<T>> {
     /// The restitution law.
     pub law: Restitution,
     /// The axes and inertances.
-    pub blocks: Blocks<T>,
+    pub blocks: Blocks<T, S>,
     /// Λ: the impulses along every axis at the end.
     pub impulses: Vec<T>,
     /// p_i^c: the normal impulses at the end of compression.
     pub compression: Vec<T>,
     /// The velocities along every axis after impact.
     pub after: Vec<T>,
-    /// {v} = [ω; v_C] after impact (eq. 142).
-    pub velocity: Screw<T>,
+    /// {v} = [ω; v_C] after impact (eq. 142); each body's, for a system.
+    pub velocity: S,
     /// ∫ v_ix dp_i over compression, per contact.
     pub work_compression: Vec<T>,
     /// −∫ v_ix dp_i over restitution, per contact.
@@ -420,11 +427,11 @@ pub struct Frictional<T: Scalar> {
     pub samples: Vec<Sample<T>>,
 }
 
-impl<T: Scalar> Frictional<T> {
+impl<T: Scalar, S: Screws<T>> Frictional<T, S> {
     #[allow(clippy::too_many_arguments)]
-    pub(crate) fn finish(
-        problem: &Problem<T>,
-        blocks: Blocks<T>,
+    pub(crate) fn finish<M: Mechanism<T, Screw = S>>(
+        mechanism: &M,
+        blocks: Blocks<T, S>,
         law: Restitution,
         impulses: Vec<T>,
         compression: Vec<T>,
@@ -436,18 +443,18 @@ impl<T: Scalar> Frictional<T> {
         mut verdicts: Vec<Verdict>,
         end: T,
     ) -> Self {
-        let before = problem.velocity();
+        let before = mechanism.velocity();
         let velocity = blocks.twist_after(before, &impulses);
-        let body = problem.body();
         let mut change = velocity.clone();
         change.add_scaled(&-T::one(), before);
-        let lost_velocity_energy = body.kinetic_energy(&change);
+        let lost_velocity_energy = mechanism.kinetic_energy(&change);
         let mut kinetic_energy_loss = friction_dissipation.clone();
         for (c, r) in work_compression.iter().zip(&work_restitution) {
             kinetic_energy_loss += c.clone() - r;
         }
-        let energy_residual =
-            body.kinetic_energy(before) - body.kinetic_energy(&velocity) - &kinetic_energy_loss;
+        let energy_residual = mechanism.kinetic_energy(before)
+            - mechanism.kinetic_energy(&velocity)
+            - &kinetic_energy_loss;
         verdicts.dedup_by(|a, b| match (a, b) {
             (
                 Verdict::TensileRate {
@@ -471,7 +478,7 @@ impl<T: Scalar> Frictional<T> {
         }
         if !modes::nonnegative(
             &kinetic_energy_loss,
-            &body.kinetic_energy(before),
+            &mechanism.kinetic_energy(before),
             blocks.len(),
         ) {
             verdicts.push(Verdict::EnergyGain);
@@ -507,10 +514,11 @@ impl<T: Scalar> Frictional<T> {
 
     /// The impulse vector the obstacle applies at contact i, split into its normal and
     /// tangential parts, in body axes: −(p_i n̂_i) and −(τ_i t̂_i) with the axes as stacked.
-    /// Exact in a planar scene (no norm is taken).
+    /// Exact in a planar scene (no norm is taken). For a contact of a system, the impulse on
+    /// its first body, in world axes (its second body takes the opposite).
     pub fn impulse_vectors(&self, i: usize) -> (Vec3<T>, Vec3<T>) {
         let off = self.blocks.offset[i];
-        let dir = |q: usize| self.blocks.axes[q].top() * self.impulses[q].clone();
+        let dir = |q: usize| self.blocks.directions[q].clone() * self.impulses[q].clone();
         let normal = -dir(off);
         let mut tangential = Vec3::zeros();
         for a in 0..self.blocks.dims[i] {
@@ -576,22 +584,22 @@ fn linear_samples<T: Scalar>(segments: &[Segment<T>], len: usize) -> Vec<Sample<
     out
 }
 
-/// Solve the frictional impact of `problem` under `law`: event by event, exactly, when the
-/// scene is planar; by the adaptive integrator in floats otherwise, to the relative
-/// `tolerance`.
+/// Solve the frictional impact of `mechanism` (one body, or a system of bodies) under `law`:
+/// event by event, exactly, when the scene is planar ([`Blocks::planar`]); by the adaptive
+/// integrator in floats otherwise, to the relative `tolerance`.
 ///
 /// # Errors
 /// [`FrictionError`]; [`FrictionError::NotPlanar`] for a spatial scene in an exact type,
 /// [`FrictionError::NotDifferentiable`] in a dual-number type (a planar scene runs event by
 /// event, its events solved in the scalar type, so their dependence on the inputs is carried;
 /// the spatial integrator's step sizes and bisected events are f64 and would drop it).
-pub fn solve_frictional<T: Scalar>(
-    problem: &Problem<T>,
+pub fn solve_frictional<T: Scalar, M: Mechanism<T>>(
+    mechanism: &M,
     law: Restitution,
     tolerance: f64,
-) -> Result<Frictional<T>, FrictionError> {
-    if let Some(b) = Blocks::planar(problem) {
-        return planar::solve_planar(problem, b, law);
+) -> Result<Frictional<T, M::Screw>, FrictionError> {
+    if let Some(b) = Blocks::planar(mechanism) {
+        return planar::solve_planar(mechanism, b, law);
     }
     if T::IS_EXACT {
         return Err(FrictionError::NotPlanar);
@@ -599,13 +607,17 @@ pub fn solve_frictional<T: Scalar>(
     if T::IS_DUAL {
         return Err(FrictionError::NotDifferentiable);
     }
-    let frames: Vec<ContactFrame<T>> = problem
-        .contacts()
-        .iter()
-        .enumerate()
-        .map(|(i, c)| {
-            ContactFrame::new(i, c, problem.velocity()).expect("a validated problem's tangents")
+    let frames: Vec<ContactFrame<T, M::Screw>> = (0..mechanism.contacts().len())
+        .map(|i| {
+            mechanism
+                .frame(i, true)
+                .expect("a validated problem's tangents")
         })
         .collect();
-    spatial::solve_spatial(problem, Blocks::spatial(problem, &frames), law, tolerance)
+    spatial::solve_spatial(
+        mechanism,
+        Blocks::spatial(mechanism, &frames),
+        law,
+        tolerance,
+    )
 }

@@ -14,6 +14,7 @@
 
 use crate::impact::friction::blocks::Blocks;
 use crate::impact::friction::rates::{Mode, Normal, RateFailure, Rates, max_abs, rates};
+use crate::mechanics::screw::Screws;
 use crate::scalar::Scalar;
 
 /// The modes chosen at an event.
@@ -52,8 +53,8 @@ pub(super) fn positive<T: Scalar>(x: &T, scale: &T, n: usize) -> bool {
 ///
 /// # Errors
 /// [`NoConsistentModes`] when no assignment is consistent.
-pub fn resolve_planar<T: Scalar>(
-    b: &Blocks<T>,
+pub fn resolve_planar<T: Scalar, S: Screws<T>>(
+    b: &Blocks<T, S>,
     normals: &[Normal<T>],
     current: &[Mode<T>],
     candidates: &[usize],
@@ -99,8 +100,8 @@ pub fn resolve_planar<T: Scalar>(
 }
 
 /// The tests of the module docs for the candidates.
-fn planar_consistent<T: Scalar>(
-    b: &Blocks<T>,
+fn planar_consistent<T: Scalar, S: Screws<T>>(
+    b: &Blocks<T, S>,
     modes: &[Mode<T>],
     r: &Rates<T>,
     candidates: &[usize],

@@ -14,7 +14,9 @@ use crate::impact::friction::rates::{Mode, Normal, normal_rules};
 use crate::impact::friction::{
     FrictionError, Frictional, Phase, Restitution, Segment, Verdict, label,
 };
-use crate::impact::problem::Problem;
+use crate::impact::mechanism::Mechanism;
+use crate::mechanics::contact::Contact;
+use crate::mechanics::screw::Screws;
 use crate::scalar::Scalar;
 
 /// The most events one impact may have before the integration is declared runaway.
@@ -39,11 +41,12 @@ struct State<T: Scalar> {
 /// # Errors
 /// [`FrictionError`] when the modes cannot be chosen, the rates are undetermined, an
 /// energetic contact never stops, or a stop needs a square root the scalar does not hold.
-pub fn solve_planar<T: Scalar>(
-    problem: &Problem<T>,
-    b: Blocks<T>,
+pub fn solve_planar<T: Scalar, S: Screws<T>, M: Mechanism<T, Screw = S>>(
+    mechanism: &M,
+    b: Blocks<T, S>,
     law: Restitution,
-) -> Result<Frictional<T>, FrictionError> {
+) -> Result<Frictional<T, S>, FrictionError> {
+    let contacts = mechanism.contacts();
     let n = b.contacts();
     let two = T::one() + T::one();
     let mut st = State {
@@ -61,7 +64,7 @@ pub fn solve_planar<T: Scalar>(
     let mut segments = Vec::new();
     let mut verdicts = Vec::new();
     for events in 1..=MAX_EVENTS {
-        let normals = normals(problem, &b, &st, law);
+        let normals = normals(contacts, &b, &st, law);
         // Modes: slip keeps its sense; zero slip is resolved jointly.
         let mut candidates = Vec::new();
         for i in 0..n {
@@ -146,7 +149,7 @@ pub fn solve_planar<T: Scalar>(
                 if st.stopped[i] {
                     continue;
                 }
-                if let Some(hi) = energetic_stop(problem, &b, &st, &r.lambda, &r.velocity, i)? {
+                if let Some(hi) = energetic_stop(contacts, &b, &st, &r.lambda, &r.velocity, i)? {
                     stops.push((i, hi.clone()));
                     take(hi, &mut h);
                 }
@@ -191,8 +194,8 @@ pub fn solve_planar<T: Scalar>(
                 st.compression = b.offset.iter().map(|&o| st.lambda[o].clone()).collect();
                 if law == Restitution::Energetic {
                     for i in 0..n {
-                        let left = problem.contacts()[i].k_energetic.clone()
-                            * &problem.contacts()[i].k_energetic
+                        let left = contacts[i].k_energetic.clone()
+                            * &contacts[i].k_energetic
                             * &st.work_compression[i];
                         st.stopped[i] = st.compression[i].is_zero() || left.signum_i8() <= 0;
                     }
@@ -215,7 +218,7 @@ pub fn solve_planar<T: Scalar>(
         }
     }
     Ok(Frictional::finish(
-        problem,
+        mechanism,
         b,
         law,
         st.lambda,
@@ -240,18 +243,24 @@ fn sign<T: Scalar>(x: &T) -> T {
 }
 
 /// The normal rule of every contact in the current phase.
-fn normals<T: Scalar>(
-    problem: &Problem<T>,
-    b: &Blocks<T>,
+fn normals<T: Scalar, S: Screws<T>>(
+    contacts: &[Contact<T>],
+    b: &Blocks<T, S>,
     st: &State<T>,
     law: Restitution,
 ) -> Vec<Normal<T>> {
-    normal_rules(problem, b, st.phase, law, &st.compression, &st.stopped)
+    normal_rules(contacts, b, st.phase, law, &st.compression, &st.stopped)
 }
 
 /// Move the state by `h` at the rates `dl` (impulses) and `dv` (velocities), integrating the
 /// works exactly (trapezoid rule on a linear velocity).
-fn advance<T: Scalar>(b: &Blocks<T>, st: &mut State<T>, dl: &[T], dv: &[T], h: &T) {
+fn advance<T: Scalar, S: Screws<T>>(
+    b: &Blocks<T, S>,
+    st: &mut State<T>,
+    dl: &[T],
+    dv: &[T],
+    h: &T,
+) {
     let two = T::one() + T::one();
     for q in 0..b.len() {
         let before = st.v[q].clone();
@@ -274,16 +283,16 @@ fn advance<T: Scalar>(b: &Blocks<T>, st: &mut State<T>, dl: &[T], dv: &[T], h: &
 /// smallest h > 0 with W_r(h) = k² W_c, where over the segment
 /// W_r(h) = W_r − r (v_a h + ½ v' h²) (rate r, normal velocity v_a, its rate v'). Written in
 /// the cancellation-free form h = −2C / (B + √(B² − 4AC)) of the root of A h² + B h + C.
-fn energetic_stop<T: Scalar>(
-    problem: &Problem<T>,
-    b: &Blocks<T>,
+fn energetic_stop<T: Scalar, S: Screws<T>>(
+    contacts: &[Contact<T>],
+    b: &Blocks<T, S>,
     st: &State<T>,
     dl: &[T],
     dv: &[T],
     i: usize,
 ) -> Result<Option<T>, FrictionError> {
     let off = b.offset[i];
-    let k = &problem.contacts()[i].k_energetic;
+    let k = &contacts[i].k_energetic;
     let two = T::one() + T::one();
     let c = st.work_restitution[i].clone() - k.clone() * k * &st.work_compression[i];
     if c.signum_i8() >= 0 {

@@ -20,6 +20,8 @@
 
 use crate::impact::friction::blocks::Blocks;
 use crate::linalg::solve_general;
+use crate::mechanics::contact::Contact;
+use crate::mechanics::screw::Screws;
 use crate::scalar::Scalar;
 
 /// How contact i's normal impulse evolves over a segment.
@@ -31,21 +33,20 @@ pub enum Normal<T: Scalar> {
     Given(T),
 }
 
-/// The normal rule of every contact of `problem` in `phase` under `law` (the module docs of
+/// The normal rule of every contact of `contacts` in `phase` under `law` (the module docs of
 /// [`super`]): compression drives every normal velocity to zero at s = 1; Newton's restitution
 /// drives it to −k^N v⁰; Poisson's prescribes k^P p^c; the energetic law p^c until the contact
 /// has `stopped`. `compression` holds p^c (read in restitution only).
-pub fn normal_rules<T: Scalar>(
-    problem: &crate::impact::problem::Problem<T>,
-    b: &Blocks<T>,
+pub fn normal_rules<T: Scalar, S: Screws<T>>(
+    contacts: &[Contact<T>],
+    b: &Blocks<T, S>,
     phase: super::Phase,
     law: super::Restitution,
     compression: &[T],
     stopped: &[bool],
 ) -> Vec<Normal<T>> {
     use super::{Phase, Restitution};
-    problem
-        .contacts()
+    contacts
         .iter()
         .enumerate()
         .map(|(i, c)| {
@@ -112,8 +113,8 @@ enum Unknown {
 ///
 /// # Errors
 /// [`RateFailure`] when the assignment admits no rates, or no determined ones.
-pub fn rates<T: Scalar>(
-    b: &Blocks<T>,
+pub fn rates<T: Scalar, S: Screws<T>>(
+    b: &Blocks<T, S>,
     normals: &[Normal<T>],
     modes: &[Mode<T>],
 ) -> Result<Rates<T>, RateFailure> {
@@ -233,8 +234,8 @@ pub(super) fn max_abs<T: Scalar>(xs: &[T]) -> T {
 /// The parameter c of the member z + c·w (one null direction) in the middle of the interval
 /// where every sticking contact it moves stays in its cone, |τ'_i| ≤ μ_i p'_i (planar: one
 /// tangential entry per contact); 0 when the interval is empty (the stick then fails its test).
-fn middle_of_cones<T: Scalar>(
-    b: &Blocks<T>,
+fn middle_of_cones<T: Scalar, S: Screws<T>>(
+    b: &Blocks<T, S>,
     columns: &[(Unknown, Vec<(usize, T)>)],
     z: &[T],
     w: &[T],

@@ -61,7 +61,9 @@ use crate::impact::friction::rates::{
 use crate::impact::friction::{
     FrictionError, Frictional, Phase, Restitution, Sample, Segment, Verdict, label,
 };
-use crate::impact::problem::Problem;
+use crate::impact::mechanism::Mechanism;
+use crate::mechanics::contact::Contact;
+use crate::mechanics::screw::Screws;
 use crate::scalar::{Scalar, ratio};
 
 /// The most accepted and rejected steps before the integration is declared runaway.
@@ -135,9 +137,9 @@ impl Stats {
 }
 
 /// The integration's fixed data.
-struct Run<'a, T: Scalar> {
-    problem: &'a Problem<T>,
-    b: &'a Blocks<T>,
+struct Run<'a, T: Scalar, S: Screws<T>> {
+    contacts: &'a [Contact<T>],
+    b: &'a Blocks<T, S>,
     law: Restitution,
     tol: f64,
     /// Below this slip speed a contact is at zero slip.
@@ -213,7 +215,7 @@ struct Trial<T: Scalar> {
     impulse: f64,
 }
 
-impl<T: Scalar> Run<'_, T> {
+impl<T: Scalar, S: Screws<T>> Run<'_, T, S> {
     fn n(&self) -> usize {
         self.b.contacts()
     }
@@ -244,7 +246,7 @@ impl<T: Scalar> Run<'_, T> {
 
     fn normals(&self, st: &State<T>) -> Vec<Normal<T>> {
         normal_rules(
-            self.problem,
+            self.contacts,
             self.b,
             st.phase,
             self.law,
@@ -477,7 +479,7 @@ impl<T: Scalar> Run<'_, T> {
                 && self.law == Restitution::Energetic
                 && !st.stopped[i]
             {
-                let k = &self.problem.contacts()[i].k_energetic;
+                let k = &self.contacts[i].k_energetic;
                 let left = k.clone() * k * &y[len + i] - &y[len + n + i];
                 g[2 * i + 1] = left.to_f64() / self.work_scale;
             }
@@ -495,25 +497,25 @@ fn crossed(before: &[f64], after: &[f64]) -> bool {
 ///
 /// # Errors
 /// [`FrictionError`] as for planar scenes, and [`FrictionError::Runaway`] past the step budget.
-pub fn solve_spatial<T: Scalar>(
-    problem: &Problem<T>,
-    b: Blocks<T>,
+pub fn solve_spatial<T: Scalar, S: Screws<T>, M: Mechanism<T, Screw = S>>(
+    mechanism: &M,
+    b: Blocks<T, S>,
     law: Restitution,
     tol: f64,
-) -> Result<Frictional<T>, FrictionError> {
-    integrate(problem, b, law, tol).map(|(out, _)| out)
+) -> Result<Frictional<T, S>, FrictionError> {
+    integrate(mechanism, b, law, tol).map(|(out, _)| out)
 }
 
 /// [`solve_spatial`], with what the integration cost.
 ///
 /// # Errors
 /// As [`solve_spatial`].
-pub fn integrate<T: Scalar>(
-    problem: &Problem<T>,
-    b: Blocks<T>,
+pub fn integrate<T: Scalar, S: Screws<T>, M: Mechanism<T, Screw = S>>(
+    mechanism: &M,
+    b: Blocks<T, S>,
     law: Restitution,
     tol: f64,
-) -> Result<(Frictional<T>, Stats), FrictionError> {
+) -> Result<(Frictional<T, S>, Stats), FrictionError> {
     let n = b.contacts();
     let len = b.len();
     let tol = tol.max(4.0 * T::epsilon_f64());
@@ -523,19 +525,10 @@ pub fn integrate<T: Scalar>(
         .fold(0.0, f64::max)
         .max(f64::MIN_POSITIVE);
     // Twist change per unit impulse on all axes: turns an impulse error into a velocity one.
-    let response: f64 = b
-        .responses
-        .iter()
-        .map(|r| {
-            r.as_slice()
-                .iter()
-                .map(|x| x.to_f64().abs())
-                .fold(0.0, f64::max)
-        })
-        .sum();
+    let response: f64 = b.responses.iter().map(Screws::max_abs_f64).sum();
     let ratio_t = |(p, q): (i64, i64)| ratio::<T>(p, q);
     let run = Run {
-        problem,
+        contacts: mechanism.contacts(),
         b: &b,
         law,
         tol,
@@ -841,7 +834,7 @@ pub fn integrate<T: Scalar>(
     let ef = st.y[len + 2 * n].clone();
     let end = st.s.clone();
     let mut out = Frictional::finish(
-        problem,
+        mechanism,
         b,
         law,
         lambda,
@@ -862,13 +855,13 @@ pub fn integrate<T: Scalar>(
 
 /// Enter the restitution phase: the compression impulses p^c, and under the energetic law
 /// which contacts have no restitution work to do.
-fn begin_restitution<T: Scalar>(run: &Run<'_, T>, st: &mut State<T>) {
+fn begin_restitution<T: Scalar, S: Screws<T>>(run: &Run<'_, T, S>, st: &mut State<T>) {
     let (n, len) = (run.n(), run.len());
     st.phase = Phase::Restitution;
     st.compression = run.b.offset.iter().map(|&o| st.y[o].clone()).collect();
     if run.law == Restitution::Energetic {
         for i in 0..n {
-            let k = &run.problem.contacts()[i].k_energetic;
+            let k = &run.contacts[i].k_energetic;
             let left = k.clone() * k * &st.y[len + i];
             st.stopped[i] = st.compression[i].is_zero() || left.signum_i8() <= 0;
         }
@@ -908,8 +901,8 @@ fn close_segment<T: Scalar>(
 /// are free; slipping ones slide; those at zero slip stick if their cones allow it (and they
 /// are not `leaving` it: their cone margin was just found negative), else slide along an
 /// invariant direction of their tangential block, one contact at a time.
-fn resolve<T: Scalar>(
-    run: &Run<'_, T>,
+fn resolve<T: Scalar, S: Screws<T>>(
+    run: &Run<'_, T, S>,
     st: &mut State<T>,
     leaving: &[usize],
     resting: &[usize],
@@ -1056,8 +1049,8 @@ fn resolve<T: Scalar>(
 
 /// Whether every sticking candidate's required rate lies in its cone (to the tolerance's
 /// slack, as the event margins) with a nonnegative normal rate.
-fn sticks_hold<T: Scalar>(
-    run: &Run<'_, T>,
+fn sticks_hold<T: Scalar, S: Screws<T>>(
+    run: &Run<'_, T, S>,
     st: &State<T>,
     candidates: &[usize],
     r: &Rates<T>,
@@ -1079,8 +1072,8 @@ fn sticks_hold<T: Scalar>(
 /// Several contacts leaving zero slip together: their slip directions by a joint fixed-point
 /// iteration u_i ← dv_it/|dv_it| from the `guesses`; true when it settles with every λ_i > 0
 /// and nonnegative normal rates (the modes are left set).
-fn joint_directions<T: Scalar>(
-    run: &Run<'_, T>,
+fn joint_directions<T: Scalar, S: Screws<T>>(
+    run: &Run<'_, T, S>,
     st: &mut State<T>,
     normals: &[Normal<T>],
     candidates: &[usize],
@@ -1133,8 +1126,8 @@ fn joint_directions<T: Scalar>(
 /// ([`departure::invariant_directions`]), those that attract the slips around them preferred
 /// (a slip restarting at a cone's edge, λ → 0⁺, must take the one that grows out of the edge's
 /// direction, which attracts), then the nearest `guess` — a verdict when there are several.
-fn invariant_direction<T: Scalar>(
-    run: &Run<'_, T>,
+fn invariant_direction<T: Scalar, S: Screws<T>>(
+    run: &Run<'_, T, S>,
     st: &mut State<T>,
     normals: &[Normal<T>],
     i: usize,

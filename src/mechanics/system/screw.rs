@@ -73,6 +73,10 @@ impl<T: Scalar> Screws<T> for SystemScrew<T> {
     fn components(&self) -> Vec<T> {
         self.0.iter().flat_map(|s| s.as_slice().iter().cloned()).collect()
     }
+
+    fn max_abs_f64(&self) -> f64 {
+        self.0.iter().map(Screws::max_abs_f64).fold(0.0, f64::max)
+    }
 }
 
 /// The axis (or wrench) screw `screw`, written about the world origin, about the point `c`:
