@@ -607,6 +607,37 @@ fn solve_system(
                     path.display()
                 );
             }
+            for f in &report.friction {
+                for v in &f.verdicts {
+                    eprintln!("warning: {}: {} with friction: {v}", path.display(), f.law);
+                }
+            }
+            for (law, message, _) in &report.friction_failures {
+                eprintln!(
+                    "warning: {}: {law} with friction has no answer: {message}",
+                    path.display()
+                );
+            }
+            for ((f, energy), momentum) in report
+                .friction
+                .iter()
+                .zip(&s.friction_energy_balance)
+                .zip(&s.friction_momentum_conserved)
+            {
+                if !energy || !momentum {
+                    eprintln!(
+                        "warning: {}: {} with friction: the solve's checks failed ({}): this \
+                         answer may be wrong",
+                        path.display(),
+                        f.law,
+                        if *energy {
+                            "momentum not conserved"
+                        } else {
+                            "energy balance"
+                        }
+                    );
+                }
+            }
             for ((m, energy), momentum) in report
                 .models
                 .iter()
@@ -628,7 +659,7 @@ fn solve_system(
                 }
             }
             let code = emit(json, || report.to_json(), || report.to_table());
-            if report.model_failures.is_empty() {
+            if report.model_failures.is_empty() && report.friction_failures.is_empty() {
                 code
             } else {
                 ExitCode::from(4)
