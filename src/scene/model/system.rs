@@ -446,8 +446,16 @@ impl Reader<'_> {
                              body toward the second",
                         ));
                     }
+                    // The key the point was written at, and its value, for the messages.
+                    let written = given[0];
+                    let item = t.get(written).map(short);
                     for body in std::iter::once(pair.first).chain(pair.second) {
-                        self.on_surface(&placed[body], &point, &names[body], &at)?;
+                        self.on_surface(
+                            &placed[body],
+                            &point,
+                            (&names[body], body),
+                            (&format!("{at}.{written}"), item.clone()),
+                        )?;
                     }
                 }
             }
@@ -462,51 +470,71 @@ impl Reader<'_> {
     }
 
     /// A contact between two bodies must lie on each one's surface, where the shape says what
-    /// that is (a sphere, a box): two bodies cannot touch at a point inside one of them.
+    /// that is (a sphere, a box): two bodies cannot touch at a point inside one of them. The
+    /// error is at the key the point was written at (`key`, with its value), and says where the
+    /// point is relative to the body (`body`: its name and index).
     fn on_surface(
         &self,
-        body: &Placed,
+        placed: &Placed,
         point: &Vec3,
-        name: &str,
-        at: &str,
+        (name, index): (&str, usize),
+        (key, value): (&str, Option<String>),
     ) -> Result<(), SceneError> {
         // The point in the body's axes, from its centre.
-        let local = apply(&transpose(&body.frame.r), &sub(point, &body.frame.centre));
+        let local = apply(&transpose(&placed.frame.r), &sub(point, &placed.frame.centre));
         let scale = local
             .iter()
             .map(|x| self.magnitude(x))
             .fold(0.0, f64::max)
             .max(1e-300);
-        let off = |what: &str| {
+        let at = |x: &Term| self.approx(x);
+        let world = format!("({}, {}, {})", at(&point[0]), at(&point[1]), at(&point[2]));
+        let off = |what: String| {
             self.err(
-                &format!("{at}.point"),
-                None,
+                key,
+                value.clone(),
                 format!(
-                    "the contact point is not on the surface of body \"{name}\" ({what}): two \
-                     bodies touch where both their surfaces are"
+                    "the contact point {world} is not on the surface of body \"{name}\": {what}. \
+                     Two bodies touch where both their surfaces are: move the point there, or \
+                     the bodies (`body[{index}].position`) so that they touch at it"
                 ),
             )
         };
-        match &body.shape {
+        match &placed.shape {
             Some(Shape::Sphere(r)) => {
                 let d = &dot(&local, &local) - &(r * r);
-                if self.sign_at(&d, scale * scale, at)? != Some(0) {
-                    return Err(off("its distance from the centre is not the radius"));
+                if self.sign_at(&d, scale * scale, key)? != Some(0) {
+                    let distance = self.magnitude(&dot(&local, &local)).sqrt();
+                    return Err(off(format!(
+                        "it is {distance:.6} m from the sphere's centre, whose radius is {} m",
+                        at(r)
+                    )));
                 }
             }
             Some(Shape::Box(dims)) => {
                 let half = |k: usize| &dims[k] / &Term::int(2);
                 let mut on_face = false;
+                let mut outside = false;
                 for k in 0..3 {
                     let slack = &(&half(k) * &half(k)) - &(&local[k] * &local[k]);
-                    match self.sign_at(&slack, scale * scale, at)? {
-                        Some(s) if s < 0 => return Err(off("it lies outside the box")),
+                    match self.sign_at(&slack, scale * scale, key)? {
+                        Some(s) if s < 0 => outside = true,
                         Some(0) => on_face = true,
                         _ => {}
                     }
                 }
-                if !on_face {
-                    return Err(off("it lies inside the box"));
+                if outside || !on_face {
+                    return Err(off(format!(
+                        "in the box's axes, from its centre, it is at ({}, {}, {}), {} the faces \
+                         at ±({}, {}, {})",
+                        at(&local[0]),
+                        at(&local[1]),
+                        at(&local[2]),
+                        if outside { "outside" } else { "inside, between" },
+                        at(&half(0)),
+                        at(&half(1)),
+                        at(&half(2)),
+                    )));
                 }
             }
             _ => {}
