@@ -181,10 +181,10 @@ fn a_contact_point_off_a_spheres_surface_is_refused() {
     );
 }
 
-/// A box resting on a larger slab: a corner of the box named as the contact, the box placed
-/// at `z` (its bottom face at z − 0.1; the slab's top face at 0.1).
-fn box_on_slab(z: &str) -> String {
-    format!(
+/// A box above a larger slab, the box placed at `z` (its bottom face at z − 0.1; the slab's
+/// top face at 0.1), with a contact at each of `corners` of the box.
+fn box_on_slab(z: &str, corners: &[&str]) -> String {
+    let mut text = format!(
         r#"
 name = "box on a slab"
 [[body]]
@@ -200,20 +200,21 @@ shape = {{ box = [1, 1, 0.2] }}
 mass = 1
 velocity = [0, 0, 0]
 angular_velocity = [0, 0, 0]
-[[contact]]
-bodies = ["box", "slab"]
-corner = [1, 1, -1]
-normal = [0, 0, -1]
-k = 1
 "#
-    )
+    );
+    for c in corners {
+        text.push_str(&format!(
+            "[[contact]]\nbodies = [\"box\", \"slab\"]\ncorner = {c}\nnormal = [0, 0, -1]\nk = 1\n"
+        ));
+    }
+    text
 }
 
 #[test]
 fn a_contact_point_off_a_boxs_surface_is_refused() {
     refused(
         "inside-box",
-        &box_on_slab("0.15"),
+        &box_on_slab("0.15", &["[1, 1, -1]"]),
         "contact[0].corner",
         Some("[1, 1, -1]"),
         &[
@@ -224,14 +225,34 @@ fn a_contact_point_off_a_boxs_surface_is_refused() {
     );
     refused(
         "outside-box",
-        &box_on_slab("0.25"),
+        &box_on_slab("0.25", &["[1, 1, -1]"]),
         "contact[0].corner",
         Some("[1, 1, -1]"),
         &["not on the surface of body \"slab\"", "outside the faces"],
     );
-    // Touching: read and solved.
-    let (status, stderr) = solve("on-box", &box_on_slab("0.2"));
-    assert_eq!(status, 0, "{stderr}");
+}
+
+/// A box resting flat on another body touches it at four corners, as it would an obstacle:
+/// naming fewer is refused, naming the missing ones; naming all four is read and solved (under
+/// the unilateral law: four contacts on three relative motions make G singular).
+#[test]
+fn a_box_resting_on_a_box_must_name_every_touching_corner() {
+    refused(
+        "one-corner-of-four",
+        &box_on_slab("0.2", &["[1, 1, -1]"]),
+        "contact[0]",
+        None,
+        &[
+            "the box \"box\" touches \"slab\" at 4 corners in this pose",
+            "name 1 of them",
+            "at the others ([-1, -1, -1], [-1, 1, -1], [1, -1, -1]) it would pass through \"slab\"",
+            "`corner = [-1, -1, -1]`",
+        ],
+    );
+    let all = ["[1, 1, -1]", "[1, -1, -1]", "[-1, 1, -1]", "[-1, -1, -1]"];
+    let scene = SceneFile::new("four-corners", &box_on_slab("0.2", &all));
+    let out = scene.run(&["solve", "--exact", "--law", "unilateral"]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
 }
 
 #[test]

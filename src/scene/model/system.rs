@@ -8,7 +8,9 @@
 //! normal pointing out of `a` toward `b`, or `body = "a"` with an `obstacle` (the normal −N) —
 //! and is placed by a world `point`, a `corner` of the first body's box or a `body_point` in
 //! its axes. A box touching an obstacle along an edge or a face must name every touching
-//! corner, as for one body; a contact between two spheres or boxes must lie on both surfaces.
+//! corner, as for one body; a contact between two spheres or boxes must lie on both surfaces,
+//! and a box resting on another body along an edge or a face must name every corner of it
+//! that touches the other body.
 //! A `[[joint]]` has a `kind` (`revolute`, `prismatic`, `cylindrical`, `spherical`, `planar`,
 //! `fixed`), the `bodies` it joins (one name: to the ground), an `anchor` (world) and an `axis`
 //! (the plane's normal for `planar`), as its kind needs.
@@ -345,6 +347,7 @@ impl Reader<'_> {
         };
         let mut pairs = Vec::with_capacity(contacts.len());
         let mut on_obstacles: Vec<Vec<(usize, usize, Vec3)>> = vec![Vec::new(); placed.len()];
+        let mut between: Vec<(usize, Pair, Vec3, Vec3)> = Vec::new();
         for (i, (t, spec)) in tables.iter().zip(contacts.iter_mut()).enumerate() {
             let at = format!("contact[{i}]");
             let obstacle = match t.get("obstacle") {
@@ -438,14 +441,15 @@ impl Reader<'_> {
                     on_obstacles[pair.first].push((i, o, point.clone()));
                 }
                 None => {
-                    if spec.normal.is_none() {
+                    let Some(normal) = &spec.normal else {
                         return Err(self.err(
                             &format!("{at}.normal"),
                             None,
                             "missing: give the normal at the contact, pointing out of the first \
                              body toward the second",
                         ));
-                    }
+                    };
+                    between.push((i, pair, point.clone(), normal.each_ref().map(Term::of)));
                     // The key the point was written at, and its value, for the messages.
                     let written = given[0];
                     let item = t.get(written).map(short);
@@ -461,6 +465,7 @@ impl Reader<'_> {
             }
             pairs.push(pair);
         }
+        self.every_corner_on_a_body_named(&between, placed, names)?;
         for (p, named) in placed.iter().zip(&on_obstacles) {
             if let Some(Shape::Box(dims)) = &p.shape {
                 self.every_touching_corner_named(named, obstacles, &p.frame, dims)?;
@@ -480,6 +485,32 @@ impl Reader<'_> {
         (name, index): (&str, usize),
         (key, value): (&str, Option<String>),
     ) -> Result<(), SceneError> {
+        let Some(what) = self.off_surface(placed, point, key)? else {
+            return Ok(());
+        };
+        let at = |x: &Term| self.approx(x);
+        Err(self.err(
+            key,
+            value,
+            format!(
+                "the contact point ({}, {}, {}) is not on the surface of body \"{name}\": {what}. \
+                 Two bodies touch where both their surfaces are: move the point there, or the \
+                 bodies (`body[{index}].position`) so that they touch at it",
+                at(&point[0]),
+                at(&point[1]),
+                at(&point[2]),
+            ),
+        ))
+    }
+
+    /// Where `point` is, when it is not on the surface of the body `placed` (a sphere or a
+    /// box; any point is on the surface of a body without a shape); `None` when it is on it.
+    fn off_surface(
+        &self,
+        placed: &Placed,
+        point: &Vec3,
+        key: &str,
+    ) -> Result<Option<String>, SceneError> {
         // The point in the body's axes, from its centre.
         let local = apply(&transpose(&placed.frame.r), &sub(point, &placed.frame.centre));
         let scale = local
@@ -488,24 +519,12 @@ impl Reader<'_> {
             .fold(0.0, f64::max)
             .max(1e-300);
         let at = |x: &Term| self.approx(x);
-        let world = format!("({}, {}, {})", at(&point[0]), at(&point[1]), at(&point[2]));
-        let off = |what: String| {
-            self.err(
-                key,
-                value.clone(),
-                format!(
-                    "the contact point {world} is not on the surface of body \"{name}\": {what}. \
-                     Two bodies touch where both their surfaces are: move the point there, or \
-                     the bodies (`body[{index}].position`) so that they touch at it"
-                ),
-            )
-        };
         match &placed.shape {
             Some(Shape::Sphere(r)) => {
                 let d = &dot(&local, &local) - &(r * r);
                 if self.sign_at(&d, scale * scale, key)? != Some(0) {
                     let distance = self.magnitude(&dot(&local, &local)).sqrt();
-                    return Err(off(format!(
+                    return Ok(Some(format!(
                         "it is {distance:.6} m from the sphere's centre, whose radius is {} m",
                         at(r)
                     )));
@@ -524,7 +543,7 @@ impl Reader<'_> {
                     }
                 }
                 if outside || !on_face {
-                    return Err(off(format!(
+                    return Ok(Some(format!(
                         "in the box's axes, from its centre, it is at ({}, {}, {}), {} the faces \
                          at ±({}, {}, {})",
                         at(&local[0]),
@@ -538,6 +557,101 @@ impl Reader<'_> {
                 }
             }
             _ => {}
+        }
+        Ok(None)
+    }
+
+    /// Whether two points are the same (see [`Reader::sign_at`]).
+    fn same_point(&self, p: &Vec3, q: &Vec3, key: &str) -> Result<bool, SceneError> {
+        let scale = p
+            .iter()
+            .chain(q.iter())
+            .map(|x| self.magnitude(x))
+            .fold(0.0, f64::max)
+            .max(1e-300);
+        for (a, b) in p.iter().zip(q) {
+            if self.sign_at(&(a - b), scale, key)? != Some(0) {
+                return Ok(false);
+            }
+        }
+        Ok(true)
+    }
+
+    /// A box resting on another body along an edge or a face, as against an obstacle: when a
+    /// contact between two bodies is at a corner of the first body's box, every corner of that
+    /// box as far along the contact's normal that lies on the second body's surface touches it
+    /// too, and must be a contact between the two — else the box would pass through the other
+    /// body there. `between`: (index, pair, point, normal) of each contact between two bodies.
+    fn every_corner_on_a_body_named(
+        &self,
+        between: &[(usize, Pair, Vec3, Vec3)],
+        placed: &[Placed],
+        names: &[String],
+    ) -> Result<(), SceneError> {
+        for (i, pair, point, n) in between {
+            let (a, Some(b)) = (pair.first, pair.second) else {
+                continue;
+            };
+            let (Some(Shape::Box(dims)), Some(_)) = (&placed[a].shape, &placed[b].shape) else {
+                continue;
+            };
+            let at = format!("contact[{i}]");
+            let frame = &placed[a].frame;
+            let down: Vec3 = n.each_ref().map(|x| -x);
+            let Some(extreme) = self.touching(dims, frame, &down, &at)? else {
+                continue;
+            };
+            let mut corners = Vec::with_capacity(extreme.len());
+            let mut at_a_corner = false;
+            for s in &extreme {
+                let c = world(&frame.position, &frame.r, &Shape::corner(dims, *s));
+                at_a_corner |= self.same_point(&c, point, &at)?;
+                corners.push((*s, c));
+            }
+            if extreme.len() < 2 || !at_a_corner {
+                continue;
+            }
+            let mut touching = Vec::new();
+            let mut missing = Vec::new();
+            for (s, c) in &corners {
+                if self.off_surface(&placed[b], c, &at)?.is_some() {
+                    continue;
+                }
+                touching.push(*s);
+                let mut named = false;
+                for (_, other, p, _) in between {
+                    let same_pair = (other.first, other.second) == (a, Some(b))
+                        || (other.first, other.second) == (b, Some(a));
+                    named |= same_pair && self.same_point(p, c, &at)?;
+                }
+                if !named {
+                    missing.push(*s);
+                }
+            }
+            if let Some(first) = missing.first() {
+                let list = |v: &[[i64; 3]]| {
+                    v.iter().map(|s| format!("{s:?}")).collect::<Vec<_>>().join(", ")
+                };
+                return Err(self.err(
+                    &at,
+                    None,
+                    format!(
+                        "the box \"{}\" touches \"{}\" at {} corners in this pose ({}), but the \
+                         contacts between them name {} of them: at the others ({}) it would pass \
+                         through \"{}\". Add a contact for each (`bodies = [\"{}\", \"{}\"]`, \
+                         `corner = {first:?}`, the same normal)",
+                        names[a],
+                        names[b],
+                        touching.len(),
+                        list(&touching),
+                        touching.len() - missing.len(),
+                        list(&missing),
+                        names[b],
+                        names[a],
+                        names[b],
+                    ),
+                ));
+            }
         }
         Ok(())
     }
