@@ -5,7 +5,8 @@
 //! Each case writes a scene, runs `inertance solve` on it and checks the exit status and
 //! stderr: a contact between a body and itself, a contact or joint naming an unknown body, a
 //! joint between a body and itself, a twist that breaks a joint, a contact point off one
-//! body's surface (spheres, boxes), `[[joint]]` in a one-body scene.
+//! body's surface (spheres, boxes), a normal that is not the surfaces' (crossing bodies), a box
+//! resting on another at fewer named corners than touch, `[[joint]]` in a one-body scene.
 
 mod common;
 
@@ -55,12 +56,18 @@ fn solve(name: &str, text: &str) -> (i32, String) {
 fn refused(name: &str, text: &str, key: &str, value: Option<&str>, says: &[&str]) {
     let (status, stderr) = solve(name, text);
     assert_eq!(status, 2, "{name}: {stderr}");
-    assert!(stderr.contains("scene.toml"), "{name}: the file is named: {stderr}");
+    assert!(
+        stderr.contains("scene.toml"),
+        "{name}: the file is named: {stderr}"
+    );
     let named = match value {
         Some(v) => format!("key `{key}` = {v}"),
         None => format!("key `{key}`:"),
     };
-    assert!(stderr.contains(&named), "{name}: expected {named:?} in {stderr}");
+    assert!(
+        stderr.contains(&named),
+        "{name}: expected {named:?} in {stderr}"
+    );
     for s in says {
         assert!(stderr.contains(s), "{name}: expected {s:?} in {stderr}");
     }
@@ -143,7 +150,8 @@ fn a_twist_that_breaks_a_joint_is_refused_saying_how_the_bodies_move() {
             "`body[1].velocity`",
         ],
     );
-    let hinge = "[[joint]]\nkind = \"revolute\"\nbodies = [\"a\"]\nanchor = [0, 0, 1]\naxis = [0, 0, 1]";
+    let hinge =
+        "[[joint]]\nkind = \"revolute\"\nbodies = [\"a\"]\nanchor = [0, 0, 1]\naxis = [0, 0, 1]";
     refused(
         "twist-breaks-hinge",
         &two_spheres("bodies = [\"a\", \"b\"]\npoint = [0.5, 0, 0]", hinge),
@@ -177,7 +185,60 @@ fn a_contact_point_off_a_spheres_surface_is_refused() {
         &two_spheres("bodies = [\"a\", \"b\"]\npoint = [0, 0.5, 0]", ""),
         "contact[0].point",
         Some("[0, 0.5, 0]"),
-        &["not on the surface of body \"b\"", "1.118034 m", "`body[1].position`"],
+        &[
+            "not on the surface of body \"b\"",
+            "1.118034 m",
+            "`body[1].position`",
+        ],
+    );
+}
+
+/// Two spheres of radius 1/2 whose centres are 0.8 apart cross each other: (0.4, 0.3, 0) lies
+/// on both surfaces (their circle of intersection), but their surface normals there differ, so
+/// no normal fits both; and a normal that is not the spheres' common normal at their touching
+/// point is refused too.
+#[test]
+fn a_contact_normal_off_the_surface_normal_is_refused() {
+    let crossing = two_spheres("bodies = [\"a\", \"b\"]\npoint = [0.4, 0.3, 0]", "")
+        .replace("position = [1, 0, 0]", "position = [0.8, 0, 0]");
+    refused(
+        "crossing-spheres",
+        &crossing,
+        "contact[0].normal",
+        Some("[1, 0, 0]"),
+        &[
+            "not the surface normal of body \"a\"",
+            "faces (2/5, 3/10, 0)",
+            "cross each other",
+        ],
+    );
+    // The normal along a's surface normal there: b's differs.
+    refused(
+        "crossing-spheres-b",
+        &crossing.replace("normal = [1, 0, 0]", "normal = [0.8, 0.6, 0]"),
+        "contact[0].normal",
+        Some("[0.8, 0.6, 0]"),
+        &[
+            "not the surface normal of body \"b\"",
+            "faces (-2/5, 3/10, 0)",
+        ],
+    );
+    refused(
+        "tilted-normal",
+        &two_spheres("bodies = [\"a\", \"b\"]\npoint = [0.5, 0, 0]", "")
+            .replace("normal = [1, 0, 0]", "normal = [1, 1, 0]"),
+        "contact[0].normal",
+        Some("[1, 1, 0]"),
+        &["not the surface normal of body \"a\""],
+    );
+    // Pointing into the first body.
+    refused(
+        "reversed-normal",
+        &two_spheres("bodies = [\"a\", \"b\"]\npoint = [0.5, 0, 0]", "")
+            .replace("normal = [1, 0, 0]", "normal = [-1, 0, 0]"),
+        "contact[0].normal",
+        Some("[-1, 0, 0]"),
+        &["points out of the first body into the second"],
     );
 }
 
@@ -252,7 +313,11 @@ fn a_box_resting_on_a_box_must_name_every_touching_corner() {
     let all = ["[1, 1, -1]", "[1, -1, -1]", "[-1, 1, -1]", "[-1, -1, -1]"];
     let scene = SceneFile::new("four-corners", &box_on_slab("0.2", &all));
     let out = scene.run(&["solve", "--exact", "--law", "unilateral"]);
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
 }
 
 #[test]
@@ -282,7 +347,10 @@ axis = [0, 0, 1]
         text,
         "joint",
         Some("[{ kind = \"revolute\", bodies = [\"ball\"]"),
-        &["[[joint]] tables join the bodies of a scene of several [[body]] tables", "[[constraints.joint]]"],
+        &[
+            "[[joint]] tables join the bodies of a scene of several [[body]] tables",
+            "[[constraints.joint]]",
+        ],
     );
 }
 
@@ -330,7 +398,11 @@ fn report(name: &str, text: &str, args: &[&str]) -> Value {
     all.extend(args);
     all.push("--json");
     let out = scene.run(&all);
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     serde_json::from_slice(&out.stdout).expect("JSON")
 }
 
@@ -338,7 +410,11 @@ fn report(name: &str, text: &str, args: &[&str]) -> Value {
 /// system).
 fn pairs<'a>(single: &'a Value, system: &'a Value) -> Vec<(String, &'a Value, &'a Value)> {
     let mut v = vec![
-        ("inertance".to_string(), &single["inertance"], &system["inertance"]),
+        (
+            "inertance".to_string(),
+            &single["inertance"],
+            &system["inertance"],
+        ),
         ("det".to_string(), &single["det"], &system["det"]),
     ];
     for model in ["newton", "poisson"] {
@@ -347,9 +423,21 @@ fn pairs<'a>(single: &'a Value, system: &'a Value) -> Vec<(String, &'a Value, &'
         for (what, x, y) in [
             ("impulses", &a["impulses"], &b["impulses"]),
             ("velocity", &a["velocity"], &body["velocity"]),
-            ("angular_velocity", &a["angular_velocity"], &body["angular_velocity"]),
-            ("lost_velocity_energy", &a["lost_velocity_energy"], &b["lost_velocity_energy"]),
-            ("kinetic_energy_loss", &a["kinetic_energy_loss"], &b["kinetic_energy_loss"]),
+            (
+                "angular_velocity",
+                &a["angular_velocity"],
+                &body["angular_velocity"],
+            ),
+            (
+                "lost_velocity_energy",
+                &a["lost_velocity_energy"],
+                &b["lost_velocity_energy"],
+            ),
+            (
+                "kinetic_energy_loss",
+                &a["kinetic_energy_loss"],
+                &b["kinetic_energy_loss"],
+            ),
             ("admissible", &a["admissible"], &b["admissible"]),
         ] {
             v.push((format!("{model}.{what}"), x, y));

@@ -58,11 +58,17 @@ const LAWS: [(bool, Model); 4] = [
     (true, Model::Poisson),
 ];
 
-fn solve(system: &System<Exact>, unilateral: bool, model: Model) -> Outcome<Exact, SystemScrew<Exact>> {
+fn solve(
+    system: &System<Exact>,
+    unilateral: bool,
+    model: Model,
+) -> Outcome<Exact, SystemScrew<Exact>> {
     let mut impact = Impact::assemble(system).expect("assembles");
     let mut out = Outcome::default();
     if unilateral {
-        impact.solve_unilateral(model, &mut out).expect("the unilateral law answers");
+        impact
+            .solve_unilateral(model, &mut out)
+            .expect("the unilateral law answers");
     } else {
         impact.solve(model, &mut out).expect("G is regular");
     }
@@ -97,7 +103,9 @@ fn exact_report(name: &str, law: &str) -> Value {
 
 /// An exact number as the report prints it: `p/q` or `p`.
 fn parse(v: &Value) -> Exact {
-    let s = v.as_str().unwrap_or_else(|| panic!("not an exact number: {v}"));
+    let s = v
+        .as_str()
+        .unwrap_or_else(|| panic!("not an exact number: {v}"));
     let (p, d) = s.split_once('/').unwrap_or((s, "1"));
     Exact::new(p.parse::<BigInt>().unwrap(), d.parse::<BigInt>().unwrap())
 }
@@ -166,10 +174,19 @@ fn cradle(n: i64, m: &Exact, r: &Exact, v: &Exact, k: &Exact) -> System<Exact> {
         })
         .collect();
     let contacts = (0..n - 1)
-        .map(|i| Contact::new(v3(ex(2 * i + 1) * r, ex(0), ex(0)), v3(ex(1), ex(0), ex(0)), k.clone()))
+        .map(|i| {
+            Contact::new(
+                v3(ex(2 * i + 1) * r, ex(0), ex(0)),
+                v3(ex(1), ex(0), ex(0)),
+                k.clone(),
+            )
+        })
         .collect();
     let pairs = (0..n - 1)
-        .map(|i| Pair { first: i as usize, second: Some(i as usize + 1) })
+        .map(|i| Pair {
+            first: i as usize,
+            second: Some(i as usize + 1),
+        })
         .collect();
     System::new(bodies, SystemScrew(twists), contacts, pairs, Vec::new()).expect("valid")
 }
@@ -217,7 +234,12 @@ fn no_coefficient_makes_the_simultaneous_cradle_the_experiment() {
         let k = q(1, n - 1);
         for (unilateral, model) in LAWS {
             let out = solve(&cradle(n, &m, &r, &v, &k), unilateral, model);
-            let speeds: Vec<Exact> = out.velocity.0.iter().map(|s| s.bottom()[0].clone()).collect();
+            let speeds: Vec<Exact> = out
+                .velocity
+                .0
+                .iter()
+                .map(|s| s.bottom()[0].clone())
+                .collect();
             assert_eq!(speeds[0], ex(0));
             assert_eq!(speeds[n as usize - 1], q(1, n - 1));
             assert_ne!(speeds[n as usize - 1], v);
@@ -233,11 +255,19 @@ fn the_cradle_examples_give_the_hand_closed_form() {
             let report = exact_report(name, law);
             for model in ["newton", "poisson"] {
                 let r = &report["models"][model];
-                assert_eq!(parse_all(&r["impulses"]), want.impulses, "{name} {law} {model}");
+                assert_eq!(
+                    parse_all(&r["impulses"]),
+                    want.impulses,
+                    "{name} {law} {model}"
+                );
                 for b in 0..n as usize {
                     let (w, vc) = twist_in(&report, model, b);
                     assert_eq!(w, Vec3::zeros());
-                    assert_eq!(vc, v3(want.speeds[b].clone(), ex(0), ex(0)), "{name} {law} {model}");
+                    assert_eq!(
+                        vc,
+                        v3(want.speeds[b].clone(), ex(0), ex(0)),
+                        "{name} {law} {model}"
+                    );
                 }
                 assert_eq!(parse(&r["lost_velocity_energy"]), want.lost_velocity_energy);
                 assert_eq!(parse(&r["kinetic_energy_loss"]), want.kinetic_energy_loss);
@@ -318,21 +348,38 @@ fn two_boxes_meeting_obliquely_while_spinning_take_the_textbook_impulse() {
         let p = (Exact::one() + &k) * &approach / &g;
         for law in ["simultaneous", "unilateral"] {
             let out = scene.run(&["solve", "--exact", "--json", "--law", law]);
-            assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+            assert!(
+                out.status.success(),
+                "{}",
+                String::from_utf8_lossy(&out.stderr)
+            );
             let report: Value = serde_json::from_slice(&out.stdout).unwrap();
             for model in ["newton", "poisson"] {
-                assert_eq!(parse_all(&report["models"][model]["impulses"]), vec![p.clone()]);
+                assert_eq!(
+                    parse_all(&report["models"][model]["impulses"]),
+                    vec![p.clone()]
+                );
                 // A takes −P n at the point, B takes +P n: Δv = ∓P n/m, Δω = ∓P J⁻¹ (r × n).
                 let turn = |t: &Vec3<Exact>, j: &Vec3<Exact>| {
-                    v3(t[0].clone() / &j[0], t[1].clone() / &j[1], t[2].clone() / &j[2]) * p.clone()
+                    v3(
+                        t[0].clone() / &j[0],
+                        t[1].clone() / &j[1],
+                        t[2].clone() / &j[2],
+                    ) * p.clone()
                 };
                 assert_eq!(
                     twist_in(&report, model, 0),
-                    (wa.clone() - turn(&t1, &ja), va.clone() - n.clone() * (p.clone() / &ma))
+                    (
+                        wa.clone() - turn(&t1, &ja),
+                        va.clone() - n.clone() * (p.clone() / &ma)
+                    )
                 );
                 assert_eq!(
                     twist_in(&report, model, 1),
-                    (wb.clone() + turn(&t2, &jb), vb.clone() + n.clone() * (p.clone() / &mb))
+                    (
+                        wb.clone() + turn(&t2, &jb),
+                        vb.clone() + n.clone() * (p.clone() / &mb)
+                    )
                 );
                 // The points leave at −k times their approach.
                 let after = &report["models"][model]["contacts"][0]["velocity"][0];
@@ -478,7 +525,10 @@ impl Chain {
             .links
             .iter()
             .map(|l| SystemBody {
-                body: RigidBody::principal(l.mass.clone(), v3(l.inertia.clone(), l.inertia.clone(), l.inertia.clone())),
+                body: RigidBody::principal(
+                    l.mass.clone(),
+                    v3(l.inertia.clone(), l.inertia.clone(), l.inertia.clone()),
+                ),
                 centre: z(&l.centre),
             })
             .collect();
@@ -491,20 +541,49 @@ impl Chain {
             })
             .collect();
         let hinge = |l: usize, pair: Pair| SystemJoint {
-            joint: Joint::Revolute { point: z(&self.links[l].hinge), axis: v3(ex(0), ex(0), ex(1)) },
+            joint: Joint::Revolute {
+                point: z(&self.links[l].hinge),
+                axis: v3(ex(0), ex(0), ex(1)),
+            },
             pair,
         };
         let mut joints: Vec<SystemJoint<Exact>> = (1..self.links.len())
-            .map(|l| hinge(l, Pair { first: l - 1, second: Some(l) }))
+            .map(|l| {
+                hinge(
+                    l,
+                    Pair {
+                        first: l - 1,
+                        second: Some(l),
+                    },
+                )
+            })
             .collect();
         if !self.free_base {
-            joints.insert(0, hinge(0, Pair { first: 0, second: None }));
+            joints.insert(
+                0,
+                hinge(
+                    0,
+                    Pair {
+                        first: 0,
+                        second: None,
+                    },
+                ),
+            );
         }
         System::new(
             bodies,
             SystemScrew(twists),
-            self.contacts.iter().map(|c| Contact::new(z(&c.point), z(&c.normal), c.k.clone())).collect(),
-            self.contacts.iter().map(|c| Pair { first: c.link, second: None }).collect(),
+            self.contacts
+                .iter()
+                .map(|c| Contact::new(z(&c.point), z(&c.normal), c.k.clone()))
+                .collect(),
+            self.contacts
+                .iter()
+                .map(|c| Pair {
+                    first: c.link,
+                    second: None,
+                })
+                .collect(),
             joints,
         )
         .expect("the chain's twists satisfy its hinges")
@@ -524,26 +603,39 @@ impl Chain {
         let mut g = vec![ex(0); n * n];
         for i in 0..n {
             for j in 0..n {
-                g[i * n + j] = jc[i].iter().zip(&x[j]).fold(ex(0), |s, (a, b)| s + a.clone() * b);
+                g[i * n + j] = jc[i]
+                    .iter()
+                    .zip(&x[j])
+                    .fold(ex(0), |s, (a, b)| s + a.clone() * b);
             }
         }
         let v0: Vec<Exact> = jc
             .iter()
-            .map(|row| row.iter().zip(&self.rates).fold(ex(0), |s, (a, b)| s + a.clone() * b))
+            .map(|row| {
+                row.iter()
+                    .zip(&self.rates)
+                    .fold(ex(0), |s, (a, b)| s + a.clone() * b)
+            })
             .collect();
         let k: Vec<Exact> = self.contacts.iter().map(|c| c.k.clone()).collect();
         let scale = |p: &[Exact]| -> Vec<Exact> {
-            p.iter().zip(&k).map(|(p, k)| (Exact::one() + k) * p).collect()
+            p.iter()
+                .zip(&k)
+                .map(|(p, k)| (Exact::one() + k) * p)
+                .collect()
         };
         let neg = |v: &[Exact]| -> Vec<Exact> { v.iter().map(|x| -x.clone()).collect() };
         let times_g = |p: &[Exact]| -> Vec<Exact> {
-            (0..n).map(|i| (0..n).fold(ex(0), |s, j| s + g[i * n + j].clone() * &p[j])).collect()
+            (0..n)
+                .map(|i| (0..n).fold(ex(0), |s, j| s + g[i * n + j].clone() * &p[j]))
+                .collect()
         };
         let (impulses, compression) = match (unilateral, model) {
             // G P = (1 + k)∘v⁰ (eq. 15).
-            (false, Model::Newton) => {
-                (common::gauss(g.clone(), scale(&v0), n).expect("G regular"), Vec::new())
-            }
+            (false, Model::Newton) => (
+                common::gauss(g.clone(), scale(&v0), n).expect("G regular"),
+                Vec::new(),
+            ),
             // G Pᶜ = v⁰, P = (1 + k)∘Pᶜ (eq. 21–23).
             (false, _) => {
                 let pc = common::gauss(g.clone(), v0.clone(), n).expect("G regular");
@@ -554,9 +646,14 @@ impl Chain {
                 let rhs: Vec<Exact> = v0
                     .iter()
                     .zip(&k)
-                    .map(|(v, k)| v.clone() + k.clone() * &(if v.is_positive() { v.clone() } else { ex(0) }))
+                    .map(|(v, k)| {
+                        v.clone() + k.clone() * &(if v.is_positive() { v.clone() } else { ex(0) })
+                    })
                     .collect();
-                (common::enumerate(&g, &neg(&rhs)).expect("solvable").0, Vec::new())
+                (
+                    common::enumerate(&g, &neg(&rhs)).expect("solvable").0,
+                    Vec::new(),
+                )
             }
             // Compression Pᶜ ≥ 0 ⊥ G Pᶜ − v⁰ ≥ 0; expansion X ≥ 0 ⊥ G((1 + k)∘Pᶜ + X) − v⁰ ≥ 0.
             (true, _) => {
@@ -565,7 +662,14 @@ impl Chain {
                 let gs = times_g(&start);
                 let rhs: Vec<Exact> = gs.iter().zip(&v0).map(|(a, b)| a.clone() - b).collect();
                 let extra = common::enumerate(&g, &rhs).expect("solvable").0;
-                (start.iter().zip(&extra).map(|(a, b)| a.clone() + b).collect(), pc)
+                (
+                    start
+                        .iter()
+                        .zip(&extra)
+                        .map(|(a, b)| a.clone() + b)
+                        .collect(),
+                    pc,
+                )
             }
         };
         // q̇⁺ = q̇⁻ − M⁻¹ J_cᵀ P.
@@ -575,7 +679,13 @@ impl Chain {
                 *a -= p.clone() * c;
             }
         }
-        JointImpact { impulses, compression, after, mass: m, rows: jc }
+        JointImpact {
+            impulses,
+            compression,
+            after,
+            mass: m,
+            rows: jc,
+        }
     }
 }
 
@@ -614,7 +724,11 @@ fn rates_of(chain: &Chain, twist: &SystemScrew<Exact>) -> Vec<Exact> {
     }
     for l in 0..chain.links.len() {
         let w = twist.0[l].top()[2].clone();
-        q.push(if l == 0 { w } else { w - twist.0[l - 1].top()[2].clone() });
+        q.push(if l == 0 {
+            w
+        } else {
+            w - twist.0[l - 1].top()[2].clone()
+        });
     }
     q
 }
@@ -633,8 +747,16 @@ fn assert_matches_joint_coordinates(
     for (j, link) in chain.links.iter().enumerate() {
         let s = &twist.0[j];
         let v = chain.velocity_of(j, &link.centre, &reference.after);
-        assert_eq!(s.top(), v3(ex(0), ex(0), chain.omega_of(j, &reference.after)), "{at}: link {j}");
-        assert_eq!(s.bottom(), v3(v[0].clone(), v[1].clone(), ex(0)), "{at}: link {j}");
+        assert_eq!(
+            s.top(),
+            v3(ex(0), ex(0), chain.omega_of(j, &reference.after)),
+            "{at}: link {j}"
+        );
+        assert_eq!(
+            s.bottom(),
+            v3(v[0].clone(), v[1].clone(), ex(0)),
+            "{at}: link {j}"
+        );
     }
     let after = rates_of(chain, twist);
     assert_eq!(after, reference.after, "{at}");
@@ -651,7 +773,11 @@ fn assert_matches_joint_coordinates(
         assert_eq!(lhs, rhs, "{at}: M(q̇⁺ − q̇⁻) = −J_cᵀ P, row {a}");
     }
     // E_p = ½ Δq̇ᵀ M Δq̇, ΔE_c = T(q̇⁻) − T(q̇⁺), both in joint coordinates.
-    let delta: Vec<Exact> = after.iter().zip(&chain.rates).map(|(a, b)| a.clone() - b).collect();
+    let delta: Vec<Exact> = after
+        .iter()
+        .zip(&chain.rates)
+        .map(|(a, b)| a.clone() - b)
+        .collect();
     assert_eq!(energies.0, &reference.energy(&delta), "{at}: E_p");
     assert_eq!(
         energies.1,
@@ -667,15 +793,40 @@ fn leg(k_heel: Exact, k_toe: Exact) -> Chain {
     Chain {
         free_base: true,
         links: vec![
-            Link { mass: ex(7), inertia: q(7, 48), hinge: p2(ex(0), q(9, 10)), centre: p2(q(3, 20), q(7, 10)) },
-            Link { mass: ex(3), inertia: q(1, 16), hinge: p2(q(3, 10), q(1, 2)), centre: p2(q(3, 20), q(3, 10)) },
-            Link { mass: ex(1), inertia: q(1, 120), hinge: p2(ex(0), q(1, 10)), centre: p2(q(1, 20), q(1, 20)) },
+            Link {
+                mass: ex(7),
+                inertia: q(7, 48),
+                hinge: p2(ex(0), q(9, 10)),
+                centre: p2(q(3, 20), q(7, 10)),
+            },
+            Link {
+                mass: ex(3),
+                inertia: q(1, 16),
+                hinge: p2(q(3, 10), q(1, 2)),
+                centre: p2(q(3, 20), q(3, 10)),
+            },
+            Link {
+                mass: ex(1),
+                inertia: q(1, 120),
+                hinge: p2(ex(0), q(1, 10)),
+                centre: p2(q(1, 20), q(1, 20)),
+            },
         ],
         // v_H = (1, −1); absolute link rates (1/2, −1, 1/2).
         rates: vec![ex(1), ex(-1), q(1, 2), q(-3, 2), q(3, 2)],
         contacts: vec![
-            ChainContact { link: 2, point: p2(q(-1, 10), ex(0)), normal: down.clone(), k: k_heel },
-            ChainContact { link: 2, point: p2(q(1, 5), ex(0)), normal: down, k: k_toe },
+            ChainContact {
+                link: 2,
+                point: p2(q(-1, 10), ex(0)),
+                normal: down.clone(),
+                k: k_heel,
+            },
+            ChainContact {
+                link: 2,
+                point: p2(q(1, 5), ex(0)),
+                normal: down,
+                k: k_toe,
+            },
         ],
     }
 }
@@ -686,12 +837,27 @@ fn double_pendulum() -> Chain {
     Chain {
         free_base: false,
         links: vec![
-            Link { mass: ex(1), inertia: q(1, 3), hinge: p2(ex(0), ex(0)), centre: p2(q(3, 5), q(-4, 5)) },
-            Link { mass: ex(1), inertia: q(1, 3), hinge: p2(q(6, 5), q(-8, 5)), centre: p2(ex(2), q(-11, 5)) },
+            Link {
+                mass: ex(1),
+                inertia: q(1, 3),
+                hinge: p2(ex(0), ex(0)),
+                centre: p2(q(3, 5), q(-4, 5)),
+            },
+            Link {
+                mass: ex(1),
+                inertia: q(1, 3),
+                hinge: p2(q(6, 5), q(-8, 5)),
+                centre: p2(ex(2), q(-11, 5)),
+            },
         ],
         // Absolute rates (1, 2).
         rates: vec![ex(1), ex(1)],
-        contacts: vec![ChainContact { link: 1, point: p2(q(14, 5), q(-14, 5)), normal: p2(ex(1), ex(0)), k: q(1, 2) }],
+        contacts: vec![ChainContact {
+            link: 1,
+            point: p2(q(14, 5), q(-14, 5)),
+            normal: p2(ex(1), ex(0)),
+            k: q(1, 2),
+        }],
     }
 }
 
@@ -700,7 +866,13 @@ fn double_pendulum() -> Chain {
 /// which the unilateral Poisson law corrects with an expansion impulse X at the toe).
 #[test]
 fn a_three_link_leg_landing_on_heel_and_toe_is_its_impact_map_in_joint_coordinates() {
-    for (kh, kt) in [(ex(0), ex(0)), (q(1, 5), ex(0)), (q(1, 2), q(1, 4)), (ex(1), ex(1)), (ex(0), ex(1))] {
+    for (kh, kt) in [
+        (ex(0), ex(0)),
+        (q(1, 5), ex(0)),
+        (q(1, 2), q(1, 4)),
+        (ex(1), ex(1)),
+        (ex(0), ex(1)),
+    ] {
         let chain = leg(kh.clone(), kt.clone());
         let system = chain.system();
         for (unilateral, model) in LAWS {
@@ -761,7 +933,10 @@ fn check_chain_example(name: &str, chain: &Chain) {
                 &reference,
                 &parse_all(&r["impulses"]),
                 &twist,
-                (&parse(&r["lost_velocity_energy"]), &parse(&r["kinetic_energy_loss"])),
+                (
+                    &parse(&r["lost_velocity_energy"]),
+                    &parse(&r["kinetic_energy_loss"]),
+                ),
                 &format!("{name} {law} {model}"),
             );
         }
@@ -776,10 +951,16 @@ fn the_leg_example_is_its_impact_map_in_joint_coordinates() {
     // unilateral one does not.
     let (status, _, stderr) = solve_example("leg-heel-toe", &["--exact"]);
     assert_eq!(status, 0);
-    assert!(stderr.contains("poisson: contact 2 is still approaching after impact"), "{stderr}");
+    assert!(
+        stderr.contains("poisson: contact 2 is still approaching after impact"),
+        "{stderr}"
+    );
     let report = exact_report("leg-heel-toe", "unilateral");
     assert_eq!(report["models"]["poisson"]["admissible"], Value::Bool(true));
-    assert_eq!(parse(&report["models"]["poisson"]["contacts"][1]["velocity"][0]), ex(0));
+    assert_eq!(
+        parse(&report["models"]["poisson"]["contacts"][1]["velocity"][0]),
+        ex(0)
+    );
 }
 
 #[test]
@@ -830,7 +1011,11 @@ fn the_box_on_box_example_is_the_hand_closed_form() {
             ),
             "{model}"
         );
-        assert_eq!(twist_in(&report, model, 1), (Vec3::zeros(), Vec3::zeros()), "{model}");
+        assert_eq!(
+            twist_in(&report, model, 1),
+            (Vec3::zeros(), Vec3::zeros()),
+            "{model}"
+        );
         // The floor's impulses (corners at x = +A, +A, −A, −A) hold the base: they sum to 2P
         // and balance the top box's push at x = X.
         let floor = &impulses[2..];
@@ -854,12 +1039,27 @@ fn the_box_on_box_example_is_the_hand_closed_form() {
 /// and the unilateral one (box-on-box's own law is the unilateral one).
 #[test]
 fn every_system_example_solves() {
-    for name in ["cradle-3", "cradle-5", "box-on-box", "double-pendulum-wall", "leg-heel-toe"] {
-        for args in [&[][..], &["--exact"], &["--law", "unilateral"], &["--exact", "--law", "unilateral"], &["--json"]] {
+    for name in [
+        "cradle-3",
+        "cradle-5",
+        "box-on-box",
+        "double-pendulum-wall",
+        "leg-heel-toe",
+    ] {
+        for args in [
+            &[][..],
+            &["--exact"],
+            &["--law", "unilateral"],
+            &["--exact", "--law", "unilateral"],
+            &["--json"],
+        ] {
             let (status, stdout, stderr) = solve_example(name, args);
             assert_eq!(status, 0, "{name} {args:?}: {stderr}");
             assert!(!stdout.is_empty());
-            assert!(!stderr.contains("checks failed"), "{name} {args:?}: {stderr}");
+            assert!(
+                !stderr.contains("checks failed"),
+                "{name} {args:?}: {stderr}"
+            );
         }
     }
 }
@@ -876,7 +1076,13 @@ fn free_system() -> impl Strategy<Value = System<Exact>> {
                 prop::collection::vec(common::vec3(4, 2), b),
                 prop::collection::vec((common::vec3(3, 2), common::vec3(3, 2)), b),
                 prop::collection::vec(
-                    (0..b, 1..b, common::vec3(4, 2), common::direction(), common::coefficient()),
+                    (
+                        0..b,
+                        1..b,
+                        common::vec3(4, 2),
+                        common::direction(),
+                        common::coefficient(),
+                    ),
                     1..=4,
                 ),
             )
@@ -890,10 +1096,16 @@ fn free_system() -> impl Strategy<Value = System<Exact>> {
                     .map(|(body, centre)| SystemBody { body, centre })
                     .collect(),
                 SystemScrew(twists.into_iter().map(|(w, v)| Screw::new(w, v)).collect()),
-                contacts.iter().map(|(_, _, p, n, k)| Contact::new(p.clone(), n.clone(), k.clone())).collect(),
                 contacts
                     .iter()
-                    .map(|(a, o, ..)| Pair { first: *a, second: Some((a + o) % count) })
+                    .map(|(_, _, p, n, k)| Contact::new(p.clone(), n.clone(), k.clone()))
+                    .collect(),
+                contacts
+                    .iter()
+                    .map(|(a, o, ..)| Pair {
+                        first: *a,
+                        second: Some((a + o) % count),
+                    })
                     .collect(),
                 Vec::new(),
             )

@@ -67,13 +67,17 @@ impl Scene {
         let mut joints = Vec::with_capacity(spec.joints.len());
         for (j, joint) in spec.joints.iter().enumerate() {
             let at = |k: &str| format!("joint[{j}].{k}");
-            let vector = |v: &Option<[crate::number::Number; 3]>, k: &str| -> Result<Vec3<T>, SceneError> {
-                match v {
-                    Some(v) => self.vec3(v, &at(k)),
-                    None => Ok(Vec3::zeros()),
-                }
-            };
-            let (point, axis) = (vector(&joint.anchor, "anchor")?, vector(&joint.axis, "axis")?);
+            let vector =
+                |v: &Option<[crate::number::Number; 3]>, k: &str| -> Result<Vec3<T>, SceneError> {
+                    match v {
+                        Some(v) => self.vec3(v, &at(k)),
+                        None => Ok(Vec3::zeros()),
+                    }
+                };
+            let (point, axis) = (
+                vector(&joint.anchor, "anchor")?,
+                vector(&joint.axis, "axis")?,
+            );
             joints.push(SystemJoint {
                 joint: match joint.kind {
                     SystemJointKind::Revolute => Joint::Revolute { point, axis },
@@ -108,11 +112,15 @@ impl Scene {
         let key = match &e {
             SystemError::Body { body, error } => {
                 let field = error.field.to_string();
-                format!("body[{body}].{}", field.strip_prefix("body.").unwrap_or(&field))
+                format!(
+                    "body[{body}].{}",
+                    field.strip_prefix("body.").unwrap_or(&field)
+                )
             }
             SystemError::Contact { error, .. } => error.field.to_string(),
             SystemError::NoContacts => "contact".into(),
-            SystemError::UnknownBody { what, index, .. } | SystemError::SameBody { what, index, .. } => {
+            SystemError::UnknownBody { what, index, .. }
+            | SystemError::SameBody { what, index, .. } => {
                 format!("{what}[{index}].bodies")
             }
             SystemError::JointViolated { joint, .. } => format!("joint[{joint}]"),
@@ -132,7 +140,10 @@ impl Scene {
                 let pair = spec.joints[*joint].pair;
                 let mut names = vec![format!("\"{}\"", spec.bodies[pair.first].name)];
                 names.extend(pair.second.map(|b| format!("\"{}\"", spec.bodies[b].name)));
-                Some(format!("{{ kind = \"{kind}\", bodies = [{}] }}", names.join(", ")))
+                Some(format!(
+                    "{{ kind = \"{kind}\", bodies = [{}] }}",
+                    names.join(", ")
+                ))
             }
             _ => None,
         };
@@ -181,7 +192,9 @@ fn joint_violation<T: Scalar>(
         name(second),
         show(&omega(second))
     ));
-    let mut keys = vec![format!("`body[{first}].velocity`, `body[{first}].angular_velocity`")];
+    let mut keys = vec![format!(
+        "`body[{first}].velocity`, `body[{first}].angular_velocity`"
+    )];
     keys.extend(second.map(|b| format!("`body[{b}].velocity`, `body[{b}].angular_velocity`")));
     format!(
         "the velocities before impact break this {kind} joint: its bodies move relative to each \

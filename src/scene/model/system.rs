@@ -9,8 +9,9 @@
 //! and is placed by a world `point`, a `corner` of the first body's box or a `body_point` in
 //! its axes. A box touching an obstacle along an edge or a face must name every touching
 //! corner, as for one body; a contact between two spheres or boxes must lie on both surfaces,
-//! and a box resting on another body along an edge or a face must name every corner of it
-//! that touches the other body.
+//! with its normal the surfaces' normal there (where a point lies on both surfaces with
+//! different normals the bodies cross each other), and a box resting on another body along an
+//! edge or a face must name every corner of it that touches the other body.
 //! A `[[joint]]` has a `kind` (`revolute`, `prismatic`, `cylindrical`, `spherical`, `planar`,
 //! `fixed`), the `bodies` it joins (one name: to the ground), an `anchor` (world) and an `axis`
 //! (the plane's normal for `planar`), as its kind needs.
@@ -22,7 +23,7 @@ use super::super::read::{Reader, short};
 use super::super::schema::ContactSpec;
 use super::obstacle::{Obstacle, world};
 use super::shape::Shape;
-use super::term::{Mat3, Term, Vec3, apply, dot, product, sub, transpose, zero};
+use super::term::{Mat3, Term, Vec3, apply, cross, dot, product, sub, transpose, zero};
 use super::{Axes, Frame};
 use crate::mechanics::system::Pair;
 use crate::number::Number;
@@ -302,7 +303,9 @@ impl Reader<'_> {
         names: &[String],
         one: bool,
     ) -> Result<Pair, SceneError> {
-        let list = item.as_array().filter(|a| a.len() == 2 || (one && a.len() == 1));
+        let list = item
+            .as_array()
+            .filter(|a| a.len() == 2 || (one && a.len() == 1));
         let Some(list) = list else {
             return Err(self.err(
                 key,
@@ -355,7 +358,9 @@ impl Reader<'_> {
                 Some(o) => Some(self.obstacle_ref(o, &format!("{at}.obstacle"), obstacles)?),
             };
             let pair = match (t.get("bodies"), t.get("body"), obstacle) {
-                (Some(b), None, None) => self.body_list(b, &format!("{at}.bodies"), names, false)?,
+                (Some(b), None, None) => {
+                    self.body_list(b, &format!("{at}.bodies"), names, false)?
+                }
                 (None, Some(b), Some(_)) => Pair {
                     first: self.body_ref(b, &format!("{at}.body"), names)?,
                     second: None,
@@ -412,7 +417,9 @@ impl Reader<'_> {
                     return Err(self.err(
                         &format!("{at}.{b}"),
                         None,
-                        format!("give one of `point`, `body_point` or `corner`, not `{a}` and `{b}`"),
+                        format!(
+                            "give one of `point`, `body_point` or `corner`, not `{a}` and `{b}`"
+                        ),
                     ));
                 }
             };
@@ -459,6 +466,21 @@ impl Reader<'_> {
                             &point,
                             (&names[body], body),
                             (&format!("{at}.{written}"), item.clone()),
+                        )?;
+                    }
+                    let n = normal.each_ref().map(Term::of);
+                    let shown = t.get("normal").map(short);
+                    for (body, out) in [(pair.first, true)]
+                        .into_iter()
+                        .chain(pair.second.map(|b| (b, false)))
+                    {
+                        self.along_surface_normal(
+                            &placed[body],
+                            &point,
+                            &n,
+                            out,
+                            &names[body],
+                            (&format!("{at}.normal"), shown.clone()),
                         )?;
                     }
                 }
@@ -512,7 +534,10 @@ impl Reader<'_> {
         key: &str,
     ) -> Result<Option<String>, SceneError> {
         // The point in the body's axes, from its centre.
-        let local = apply(&transpose(&placed.frame.r), &sub(point, &placed.frame.centre));
+        let local = apply(
+            &transpose(&placed.frame.r),
+            &sub(point, &placed.frame.centre),
+        );
         let scale = local
             .iter()
             .map(|x| self.magnitude(x))
@@ -549,7 +574,11 @@ impl Reader<'_> {
                         at(&local[0]),
                         at(&local[1]),
                         at(&local[2]),
-                        if outside { "outside" } else { "inside, between" },
+                        if outside {
+                            "outside"
+                        } else {
+                            "inside, between"
+                        },
                         at(&half(0)),
                         at(&half(1)),
                         at(&half(2)),
@@ -559,6 +588,90 @@ impl Reader<'_> {
             _ => {}
         }
         Ok(None)
+    }
+
+    /// Where a contact between two bodies is on a sphere or inside a face of a box, that
+    /// surface has one normal there, and the contact's normal must be along it: out of the
+    /// first body (`out`), into the second. Where two surfaces share a point with different
+    /// normals the bodies cross each other (two spheres closer than their radii meet on a
+    /// circle). On a box's edge or corner any normal of the other body's surface fits.
+    fn along_surface_normal(
+        &self,
+        placed: &Placed,
+        point: &Vec3,
+        n: &Vec3,
+        out: bool,
+        name: &str,
+        (key, value): (&str, Option<String>),
+    ) -> Result<(), SceneError> {
+        let local = apply(
+            &transpose(&placed.frame.r),
+            &sub(point, &placed.frame.centre),
+        );
+        // The outward normal of the surface at the point, in the world.
+        let outward: Vec3 = match &placed.shape {
+            Some(Shape::Sphere(_)) => sub(point, &placed.frame.centre),
+            Some(Shape::Box(dims)) => {
+                let scale = local
+                    .iter()
+                    .map(|x| self.magnitude(x))
+                    .fold(0.0, f64::max)
+                    .max(1e-300);
+                let mut faces = Vec::new();
+                for k in 0..3 {
+                    let half = &dims[k] / &Term::int(2);
+                    let slack = &(&half * &half) - &(&local[k] * &local[k]);
+                    if self.sign_at(&slack, scale * scale, key)? == Some(0) {
+                        faces.push(k);
+                    }
+                }
+                let [k] = faces[..] else {
+                    return Ok(());
+                };
+                let mut e: Vec3 = zero();
+                e[k] = match self.sign_at(&local[k], scale, key)? {
+                    Some(s) if s < 0 => Term::int(-1),
+                    _ => Term::int(1),
+                };
+                apply(&placed.frame.r, &e)
+            }
+            _ => return Ok(()),
+        };
+        let across = cross(n, &outward);
+        let scale = n
+            .iter()
+            .chain(outward.iter())
+            .map(|x| self.magnitude(x))
+            .fold(0.0, f64::max)
+            .max(1e-300);
+        let mut parallel = true;
+        for c in &across {
+            parallel &= self.sign_at(c, scale * scale, key)? == Some(0);
+        }
+        let facing = self.sign_at(&dot(n, &outward), scale * scale, key)?;
+        let right = if out { Some(1) } else { Some(-1) };
+        if parallel && facing == right {
+            return Ok(());
+        }
+        let at = |x: &Term| self.approx(x);
+        let show = |v: &Vec3| format!("({}, {}, {})", at(&v[0]), at(&v[1]), at(&v[2]));
+        Err(self.err(
+            key,
+            value,
+            format!(
+                "the normal is not the surface normal of body \"{name}\" at the contact point {}: \
+                 its surface there faces {} ({}), and the contact's normal points out of the first \
+                 body into the second. Two bodies that touch share their surface normal there; \
+                 where a point lies on both surfaces with different normals, the bodies cross \
+                 each other — move them apart so that they only touch",
+                show(point),
+                show(&outward),
+                match &placed.shape {
+                    Some(Shape::Sphere(_)) => "from its centre through the point",
+                    _ => "across the face the point is on",
+                },
+            ),
+        ))
     }
 
     /// Whether two points are the same (see [`Reader::sign_at`]).
@@ -630,7 +743,10 @@ impl Reader<'_> {
             }
             if let Some(first) = missing.first() {
                 let list = |v: &[[i64; 3]]| {
-                    v.iter().map(|s| format!("{s:?}")).collect::<Vec<_>>().join(", ")
+                    v.iter()
+                        .map(|s| format!("{s:?}"))
+                        .collect::<Vec<_>>()
+                        .join(", ")
                 };
                 return Err(self.err(
                     &at,
@@ -686,7 +802,12 @@ impl Reader<'_> {
                         "expected one of revolute, prismatic, cylindrical, spherical, planar, fixed",
                     )
                 })?;
-            let pair = self.body_list(self.get(t, "bodies", &at)?, &format!("{at}.bodies"), names, true)?;
+            let pair = self.body_list(
+                self.get(t, "bodies", &at)?,
+                &format!("{at}.bodies"),
+                names,
+                true,
+            )?;
             let (anchor_needed, axis_needed) = kind.needs();
             let vector = |key: &str, needed: bool| -> Result<Option<[Number; 3]>, SceneError> {
                 match (t.get(key), needed) {
