@@ -67,13 +67,17 @@ impl Scene {
         let mut joints = Vec::with_capacity(spec.joints.len());
         for (j, joint) in spec.joints.iter().enumerate() {
             let at = |k: &str| format!("joint[{j}].{k}");
-            let vector = |v: &Option<[crate::number::Number; 3]>, k: &str| -> Result<Vec3<T>, SceneError> {
-                match v {
-                    Some(v) => self.vec3(v, &at(k)),
-                    None => Ok(Vec3::zeros()),
-                }
-            };
-            let (point, axis) = (vector(&joint.anchor, "anchor")?, vector(&joint.axis, "axis")?);
+            let vector =
+                |v: &Option<[crate::number::Number; 3]>, k: &str| -> Result<Vec3<T>, SceneError> {
+                    match v {
+                        Some(v) => self.vec3(v, &at(k)),
+                        None => Ok(Vec3::zeros()),
+                    }
+                };
+            let (point, axis) = (
+                vector(&joint.anchor, "anchor")?,
+                vector(&joint.axis, "axis")?,
+            );
             joints.push(SystemJoint {
                 joint: match joint.kind {
                     SystemJointKind::Revolute => Joint::Revolute { point, axis },
@@ -86,26 +90,37 @@ impl Scene {
                 pair: joint.pair,
             });
         }
+        let twists = SystemScrew(twists);
         System::new(
-            bodies,
-            SystemScrew(twists),
+            bodies.clone(),
+            twists.clone(),
             contacts,
             spec.pairs.clone(),
-            joints,
+            joints.clone(),
         )
-        .map_err(|e| self.system_error(spec, e))
+        .map_err(|e| self.system_error(spec, e, (&bodies, &twists, &joints)))
     }
 
-    /// A [`SystemError`] as a scene error at the key it concerns.
-    fn system_error(&self, spec: &SystemSpec, e: SystemError) -> SceneError {
+    /// A [`SystemError`] as a scene error at the key it concerns; the system as read, to say
+    /// how a joint's bodies move when their twists break it.
+    fn system_error<T: Scalar>(
+        &self,
+        spec: &SystemSpec,
+        e: SystemError,
+        (bodies, twists, joints): (&[SystemBody<T>], &SystemScrew<T>, &[SystemJoint<T>]),
+    ) -> SceneError {
         let key = match &e {
             SystemError::Body { body, error } => {
                 let field = error.field.to_string();
-                format!("body[{body}].{}", field.strip_prefix("body.").unwrap_or(&field))
+                format!(
+                    "body[{body}].{}",
+                    field.strip_prefix("body.").unwrap_or(&field)
+                )
             }
             SystemError::Contact { error, .. } => error.field.to_string(),
             SystemError::NoContacts => "contact".into(),
-            SystemError::UnknownBody { what, index, .. } | SystemError::SameBody { what, index, .. } => {
+            SystemError::UnknownBody { what, index, .. }
+            | SystemError::SameBody { what, index, .. } => {
                 format!("{what}[{index}].bodies")
             }
             SystemError::JointViolated { joint, .. } => format!("joint[{joint}]"),
@@ -115,22 +130,77 @@ impl Scene {
             SystemError::Body { error, .. } | SystemError::Contact { error, .. } => {
                 error.reason.to_string()
             }
-            SystemError::JointViolated { joint, .. } => {
-                let names = |p: &crate::mechanics::system::Pair| match p.second {
-                    Some(b) => format!(
-                        "\"{}\" and \"{}\"",
-                        spec.bodies[p.first].name, spec.bodies[b].name
-                    ),
-                    None => format!("\"{}\" and the ground", spec.bodies[p.first].name),
-                };
-                format!(
-                    "{e}: the bodies {} must move as the joint allows before impact (check their \
-                     `velocity` and `angular_velocity`: a point shared by both moves with both)",
-                    names(&spec.joints[*joint].pair)
-                )
+            SystemError::JointViolated { joint, kind, .. } => {
+                joint_violation(spec, kind, bodies, twists, &joints[*joint])
             }
             other => other.to_string(),
         };
-        self.error(&key, None, message)
+        let value = match &e {
+            SystemError::JointViolated { joint, kind, .. } => {
+                let pair = spec.joints[*joint].pair;
+                let mut names = vec![format!("\"{}\"", spec.bodies[pair.first].name)];
+                names.extend(pair.second.map(|b| format!("\"{}\"", spec.bodies[b].name)));
+                Some(format!(
+                    "{{ kind = \"{kind}\", bodies = [{}] }}",
+                    names.join(", ")
+                ))
+            }
+            _ => None,
+        };
+        self.error(&key, value, message)
     }
+}
+
+/// Why the twists before impact break `joint` (of kind `kind`): how its bodies move where
+/// they are joined — the velocity of its anchor counted on each body, and their angular
+/// velocities — and which keys to change.
+fn joint_violation<T: Scalar>(
+    spec: &SystemSpec,
+    kind: &str,
+    bodies: &[SystemBody<T>],
+    twists: &SystemScrew<T>,
+    joint: &SystemJoint<T>,
+) -> String {
+    let show = |v: &Vec3<T>| format!("({}, {}, {})", v[0].to_f64(), v[1].to_f64(), v[2].to_f64());
+    let name = |b: Option<usize>| match b {
+        Some(b) => format!("\"{}\"", spec.bodies[b].name),
+        None => "the ground".to_string(),
+    };
+    let (first, second) = (joint.pair.first, joint.pair.second);
+    let omega = |b: Option<usize>| b.map_or_else(Vec3::zeros, |b| twists.0[b].top());
+    let mut how = Vec::new();
+    if let Some(p) = joint.joint.anchor() {
+        let at = |b: Option<usize>| {
+            b.map_or_else(Vec3::zeros, |b| {
+                let v = &twists.0[b];
+                v.bottom() + v.top().cross(&(p.clone() - bodies[b].centre.clone()))
+            })
+        };
+        how.push(format!(
+            "at its anchor {}, {} moves at {} m/s and {} at {} m/s",
+            show(p),
+            name(Some(first)),
+            show(&at(Some(first))),
+            name(second),
+            show(&at(second))
+        ));
+    }
+    how.push(format!(
+        "{} turns at {} rad/s and {} at {} rad/s",
+        name(Some(first)),
+        show(&omega(Some(first))),
+        name(second),
+        show(&omega(second))
+    ));
+    let mut keys = vec![format!(
+        "`body[{first}].velocity`, `body[{first}].angular_velocity`"
+    )];
+    keys.extend(second.map(|b| format!("`body[{b}].velocity`, `body[{b}].angular_velocity`")));
+    format!(
+        "the velocities before impact break this {kind} joint: its bodies move relative to each \
+         other along a motion it blocks ({}). Give {} values the joint allows: the anchor moves \
+         with both bodies, and a hinge lets them turn relative to each other about its axis only",
+        how.join("; "),
+        keys.join(" and ")
+    )
 }

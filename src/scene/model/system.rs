@@ -8,7 +8,10 @@
 //! normal pointing out of `a` toward `b`, or `body = "a"` with an `obstacle` (the normal −N) —
 //! and is placed by a world `point`, a `corner` of the first body's box or a `body_point` in
 //! its axes. A box touching an obstacle along an edge or a face must name every touching
-//! corner, as for one body; a contact between two spheres or boxes must lie on both surfaces.
+//! corner, as for one body; a contact between two spheres or boxes must lie on both surfaces,
+//! with its normal the surfaces' normal there (where a point lies on both surfaces with
+//! different normals the bodies cross each other), and a box resting on another body along an
+//! edge or a face must name every corner of it that touches the other body.
 //! A `[[joint]]` has a `kind` (`revolute`, `prismatic`, `cylindrical`, `spherical`, `planar`,
 //! `fixed`), the `bodies` it joins (one name: to the ground), an `anchor` (world) and an `axis`
 //! (the plane's normal for `planar`), as its kind needs.
@@ -20,7 +23,7 @@ use super::super::read::{Reader, short};
 use super::super::schema::ContactSpec;
 use super::obstacle::{Obstacle, world};
 use super::shape::Shape;
-use super::term::{Mat3, Term, Vec3, apply, dot, product, sub, transpose, zero};
+use super::term::{Mat3, Term, Vec3, apply, cross, dot, product, sub, transpose, zero};
 use super::{Axes, Frame};
 use crate::mechanics::system::Pair;
 use crate::number::Number;
@@ -300,7 +303,9 @@ impl Reader<'_> {
         names: &[String],
         one: bool,
     ) -> Result<Pair, SceneError> {
-        let list = item.as_array().filter(|a| a.len() == 2 || (one && a.len() == 1));
+        let list = item
+            .as_array()
+            .filter(|a| a.len() == 2 || (one && a.len() == 1));
         let Some(list) = list else {
             return Err(self.err(
                 key,
@@ -345,6 +350,7 @@ impl Reader<'_> {
         };
         let mut pairs = Vec::with_capacity(contacts.len());
         let mut on_obstacles: Vec<Vec<(usize, usize, Vec3)>> = vec![Vec::new(); placed.len()];
+        let mut between: Vec<(usize, Pair, Vec3, Vec3)> = Vec::new();
         for (i, (t, spec)) in tables.iter().zip(contacts.iter_mut()).enumerate() {
             let at = format!("contact[{i}]");
             let obstacle = match t.get("obstacle") {
@@ -352,7 +358,9 @@ impl Reader<'_> {
                 Some(o) => Some(self.obstacle_ref(o, &format!("{at}.obstacle"), obstacles)?),
             };
             let pair = match (t.get("bodies"), t.get("body"), obstacle) {
-                (Some(b), None, None) => self.body_list(b, &format!("{at}.bodies"), names, false)?,
+                (Some(b), None, None) => {
+                    self.body_list(b, &format!("{at}.bodies"), names, false)?
+                }
                 (None, Some(b), Some(_)) => Pair {
                     first: self.body_ref(b, &format!("{at}.body"), names)?,
                     second: None,
@@ -409,7 +417,9 @@ impl Reader<'_> {
                     return Err(self.err(
                         &format!("{at}.{b}"),
                         None,
-                        format!("give one of `point`, `body_point` or `corner`, not `{a}` and `{b}`"),
+                        format!(
+                            "give one of `point`, `body_point` or `corner`, not `{a}` and `{b}`"
+                        ),
                     ));
                 }
             };
@@ -438,21 +448,46 @@ impl Reader<'_> {
                     on_obstacles[pair.first].push((i, o, point.clone()));
                 }
                 None => {
-                    if spec.normal.is_none() {
+                    let Some(normal) = &spec.normal else {
                         return Err(self.err(
                             &format!("{at}.normal"),
                             None,
                             "missing: give the normal at the contact, pointing out of the first \
                              body toward the second",
                         ));
-                    }
+                    };
+                    between.push((i, pair, point.clone(), normal.each_ref().map(Term::of)));
+                    // The key the point was written at, and its value, for the messages.
+                    let written = given[0];
+                    let item = t.get(written).map(short);
                     for body in std::iter::once(pair.first).chain(pair.second) {
-                        self.on_surface(&placed[body], &point, &names[body], &at)?;
+                        self.on_surface(
+                            &placed[body],
+                            &point,
+                            (&names[body], body),
+                            (&format!("{at}.{written}"), item.clone()),
+                        )?;
+                    }
+                    let n = normal.each_ref().map(Term::of);
+                    let shown = t.get("normal").map(short);
+                    for (body, out) in [(pair.first, true)]
+                        .into_iter()
+                        .chain(pair.second.map(|b| (b, false)))
+                    {
+                        self.along_surface_normal(
+                            &placed[body],
+                            &point,
+                            &n,
+                            out,
+                            &names[body],
+                            (&format!("{at}.normal"), shown.clone()),
+                        )?;
                     }
                 }
             }
             pairs.push(pair);
         }
+        self.every_corner_on_a_body_named(&between, placed, names)?;
         for (p, named) in placed.iter().zip(&on_obstacles) {
             if let Some(Shape::Box(dims)) = &p.shape {
                 self.every_touching_corner_named(named, obstacles, &p.frame, dims)?;
@@ -462,54 +497,277 @@ impl Reader<'_> {
     }
 
     /// A contact between two bodies must lie on each one's surface, where the shape says what
-    /// that is (a sphere, a box): two bodies cannot touch at a point inside one of them.
+    /// that is (a sphere, a box): two bodies cannot touch at a point inside one of them. The
+    /// error is at the key the point was written at (`key`, with its value), and says where the
+    /// point is relative to the body (`body`: its name and index).
     fn on_surface(
         &self,
-        body: &Placed,
+        placed: &Placed,
         point: &Vec3,
-        name: &str,
-        at: &str,
+        (name, index): (&str, usize),
+        (key, value): (&str, Option<String>),
     ) -> Result<(), SceneError> {
+        let Some(what) = self.off_surface(placed, point, key)? else {
+            return Ok(());
+        };
+        let at = |x: &Term| self.approx(x);
+        Err(self.err(
+            key,
+            value,
+            format!(
+                "the contact point ({}, {}, {}) is not on the surface of body \"{name}\": {what}. \
+                 Two bodies touch where both their surfaces are: move the point there, or the \
+                 bodies (`body[{index}].position`) so that they touch at it",
+                at(&point[0]),
+                at(&point[1]),
+                at(&point[2]),
+            ),
+        ))
+    }
+
+    /// Where `point` is, when it is not on the surface of the body `placed` (a sphere or a
+    /// box; any point is on the surface of a body without a shape); `None` when it is on it.
+    fn off_surface(
+        &self,
+        placed: &Placed,
+        point: &Vec3,
+        key: &str,
+    ) -> Result<Option<String>, SceneError> {
         // The point in the body's axes, from its centre.
-        let local = apply(&transpose(&body.frame.r), &sub(point, &body.frame.centre));
+        let local = apply(
+            &transpose(&placed.frame.r),
+            &sub(point, &placed.frame.centre),
+        );
         let scale = local
             .iter()
             .map(|x| self.magnitude(x))
             .fold(0.0, f64::max)
             .max(1e-300);
-        let off = |what: &str| {
-            self.err(
-                &format!("{at}.point"),
-                None,
-                format!(
-                    "the contact point is not on the surface of body \"{name}\" ({what}): two \
-                     bodies touch where both their surfaces are"
-                ),
-            )
-        };
-        match &body.shape {
+        let at = |x: &Term| self.approx(x);
+        match &placed.shape {
             Some(Shape::Sphere(r)) => {
                 let d = &dot(&local, &local) - &(r * r);
-                if self.sign_at(&d, scale * scale, at)? != Some(0) {
-                    return Err(off("its distance from the centre is not the radius"));
+                if self.sign_at(&d, scale * scale, key)? != Some(0) {
+                    let distance = self.magnitude(&dot(&local, &local)).sqrt();
+                    return Ok(Some(format!(
+                        "it is {distance:.6} m from the sphere's centre, whose radius is {} m",
+                        at(r)
+                    )));
                 }
             }
             Some(Shape::Box(dims)) => {
                 let half = |k: usize| &dims[k] / &Term::int(2);
                 let mut on_face = false;
+                let mut outside = false;
                 for k in 0..3 {
                     let slack = &(&half(k) * &half(k)) - &(&local[k] * &local[k]);
-                    match self.sign_at(&slack, scale * scale, at)? {
-                        Some(s) if s < 0 => return Err(off("it lies outside the box")),
+                    match self.sign_at(&slack, scale * scale, key)? {
+                        Some(s) if s < 0 => outside = true,
                         Some(0) => on_face = true,
                         _ => {}
                     }
                 }
-                if !on_face {
-                    return Err(off("it lies inside the box"));
+                if outside || !on_face {
+                    return Ok(Some(format!(
+                        "in the box's axes, from its centre, it is at ({}, {}, {}), {} the faces \
+                         at ±({}, {}, {})",
+                        at(&local[0]),
+                        at(&local[1]),
+                        at(&local[2]),
+                        if outside {
+                            "outside"
+                        } else {
+                            "inside, between"
+                        },
+                        at(&half(0)),
+                        at(&half(1)),
+                        at(&half(2)),
+                    )));
                 }
             }
             _ => {}
+        }
+        Ok(None)
+    }
+
+    /// Where a contact between two bodies is on a sphere or inside a face of a box, that
+    /// surface has one normal there, and the contact's normal must be along it: out of the
+    /// first body (`out`), into the second. Where two surfaces share a point with different
+    /// normals the bodies cross each other (two spheres closer than their radii meet on a
+    /// circle). On a box's edge or corner any normal of the other body's surface fits.
+    fn along_surface_normal(
+        &self,
+        placed: &Placed,
+        point: &Vec3,
+        n: &Vec3,
+        out: bool,
+        name: &str,
+        (key, value): (&str, Option<String>),
+    ) -> Result<(), SceneError> {
+        let local = apply(
+            &transpose(&placed.frame.r),
+            &sub(point, &placed.frame.centre),
+        );
+        // The outward normal of the surface at the point, in the world.
+        let outward: Vec3 = match &placed.shape {
+            Some(Shape::Sphere(_)) => sub(point, &placed.frame.centre),
+            Some(Shape::Box(dims)) => {
+                let scale = local
+                    .iter()
+                    .map(|x| self.magnitude(x))
+                    .fold(0.0, f64::max)
+                    .max(1e-300);
+                let mut faces = Vec::new();
+                for k in 0..3 {
+                    let half = &dims[k] / &Term::int(2);
+                    let slack = &(&half * &half) - &(&local[k] * &local[k]);
+                    if self.sign_at(&slack, scale * scale, key)? == Some(0) {
+                        faces.push(k);
+                    }
+                }
+                let [k] = faces[..] else {
+                    return Ok(());
+                };
+                let mut e: Vec3 = zero();
+                e[k] = match self.sign_at(&local[k], scale, key)? {
+                    Some(s) if s < 0 => Term::int(-1),
+                    _ => Term::int(1),
+                };
+                apply(&placed.frame.r, &e)
+            }
+            _ => return Ok(()),
+        };
+        let across = cross(n, &outward);
+        let scale = n
+            .iter()
+            .chain(outward.iter())
+            .map(|x| self.magnitude(x))
+            .fold(0.0, f64::max)
+            .max(1e-300);
+        let mut parallel = true;
+        for c in &across {
+            parallel &= self.sign_at(c, scale * scale, key)? == Some(0);
+        }
+        let facing = self.sign_at(&dot(n, &outward), scale * scale, key)?;
+        let right = if out { Some(1) } else { Some(-1) };
+        if parallel && facing == right {
+            return Ok(());
+        }
+        let at = |x: &Term| self.approx(x);
+        let show = |v: &Vec3| format!("({}, {}, {})", at(&v[0]), at(&v[1]), at(&v[2]));
+        Err(self.err(
+            key,
+            value,
+            format!(
+                "the normal is not the surface normal of body \"{name}\" at the contact point {}: \
+                 its surface there faces {} ({}), and the contact's normal points out of the first \
+                 body into the second. Two bodies that touch share their surface normal there; \
+                 where a point lies on both surfaces with different normals, the bodies cross \
+                 each other — move them apart so that they only touch",
+                show(point),
+                show(&outward),
+                match &placed.shape {
+                    Some(Shape::Sphere(_)) => "from its centre through the point",
+                    _ => "across the face the point is on",
+                },
+            ),
+        ))
+    }
+
+    /// Whether two points are the same (see [`Reader::sign_at`]).
+    fn same_point(&self, p: &Vec3, q: &Vec3, key: &str) -> Result<bool, SceneError> {
+        let scale = p
+            .iter()
+            .chain(q.iter())
+            .map(|x| self.magnitude(x))
+            .fold(0.0, f64::max)
+            .max(1e-300);
+        for (a, b) in p.iter().zip(q) {
+            if self.sign_at(&(a - b), scale, key)? != Some(0) {
+                return Ok(false);
+            }
+        }
+        Ok(true)
+    }
+
+    /// A box resting on another body along an edge or a face, as against an obstacle: when a
+    /// contact between two bodies is at a corner of the first body's box, every corner of that
+    /// box as far along the contact's normal that lies on the second body's surface touches it
+    /// too, and must be a contact between the two — else the box would pass through the other
+    /// body there. `between`: (index, pair, point, normal) of each contact between two bodies.
+    fn every_corner_on_a_body_named(
+        &self,
+        between: &[(usize, Pair, Vec3, Vec3)],
+        placed: &[Placed],
+        names: &[String],
+    ) -> Result<(), SceneError> {
+        for (i, pair, point, n) in between {
+            let (a, Some(b)) = (pair.first, pair.second) else {
+                continue;
+            };
+            let (Some(Shape::Box(dims)), Some(_)) = (&placed[a].shape, &placed[b].shape) else {
+                continue;
+            };
+            let at = format!("contact[{i}]");
+            let frame = &placed[a].frame;
+            let down: Vec3 = n.each_ref().map(|x| -x);
+            let Some(extreme) = self.touching(dims, frame, &down, &at)? else {
+                continue;
+            };
+            let mut corners = Vec::with_capacity(extreme.len());
+            let mut at_a_corner = false;
+            for s in &extreme {
+                let c = world(&frame.position, &frame.r, &Shape::corner(dims, *s));
+                at_a_corner |= self.same_point(&c, point, &at)?;
+                corners.push((*s, c));
+            }
+            if extreme.len() < 2 || !at_a_corner {
+                continue;
+            }
+            let mut touching = Vec::new();
+            let mut missing = Vec::new();
+            for (s, c) in &corners {
+                if self.off_surface(&placed[b], c, &at)?.is_some() {
+                    continue;
+                }
+                touching.push(*s);
+                let mut named = false;
+                for (_, other, p, _) in between {
+                    let same_pair = (other.first, other.second) == (a, Some(b))
+                        || (other.first, other.second) == (b, Some(a));
+                    named |= same_pair && self.same_point(p, c, &at)?;
+                }
+                if !named {
+                    missing.push(*s);
+                }
+            }
+            if let Some(first) = missing.first() {
+                let list = |v: &[[i64; 3]]| {
+                    v.iter()
+                        .map(|s| format!("{s:?}"))
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                };
+                return Err(self.err(
+                    &at,
+                    None,
+                    format!(
+                        "the box \"{}\" touches \"{}\" at {} corners in this pose ({}), but the \
+                         contacts between them name {} of them: at the others ({}) it would pass \
+                         through \"{}\". Add a contact for each (`bodies = [\"{}\", \"{}\"]`, \
+                         `corner = {first:?}`, the same normal)",
+                        names[a],
+                        names[b],
+                        touching.len(),
+                        list(&touching),
+                        touching.len() - missing.len(),
+                        list(&missing),
+                        names[b],
+                        names[a],
+                        names[b],
+                    ),
+                ));
+            }
         }
         Ok(())
     }
@@ -544,7 +802,12 @@ impl Reader<'_> {
                         "expected one of revolute, prismatic, cylindrical, spherical, planar, fixed",
                     )
                 })?;
-            let pair = self.body_list(self.get(t, "bodies", &at)?, &format!("{at}.bodies"), names, true)?;
+            let pair = self.body_list(
+                self.get(t, "bodies", &at)?,
+                &format!("{at}.bodies"),
+                names,
+                true,
+            )?;
             let (anchor_needed, axis_needed) = kind.needs();
             let vector = |key: &str, needed: bool| -> Result<Option<[Number; 3]>, SceneError> {
                 match (t.get(key), needed) {
