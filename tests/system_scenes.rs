@@ -145,7 +145,7 @@ fn a_twist_that_breaks_a_joint_is_refused_saying_how_the_bodies_move() {
         Some("{ kind = \"spherical\", bodies = [\"a\", \"b\"] }"),
         &[
             "break this spherical joint",
-            "at its anchor (0.5, 0, 0), \"a\" moves at (1, 0, 0) m/s and \"b\" at (0, 0, 0) m/s",
+            "at its anchor (1/2, 0, 0), \"a\" moves at (1, 0, 0) m/s and \"b\" at (0, 0, 0) m/s",
             "`body[0].velocity`",
             "`body[1].velocity`",
         ],

@@ -161,7 +161,14 @@ fn joint_violation<T: Scalar>(
     twists: &SystemScrew<T>,
     joint: &SystemJoint<T>,
 ) -> String {
-    let show = |v: &Vec3<T>| format!("({}, {}, {})", v[0].to_f64(), v[1].to_f64(), v[2].to_f64());
+    // Exact and symbolic values as written (a symbolic speed has no f64: it printed NaN).
+    let show = |v: &Vec3<T>| {
+        let t = |x: &T| {
+            let v = crate::report::Value::of(x);
+            v.exact.unwrap_or_else(|| format!("{}", v.f64))
+        };
+        format!("({}, {}, {})", t(&v[0]), t(&v[1]), t(&v[2]))
+    };
     let name = |b: Option<usize>| match b {
         Some(b) => format!("\"{}\"", spec.bodies[b].name),
         None => "the ground".to_string(),
