@@ -25,6 +25,7 @@
 
 pub mod mobility;
 pub mod screw;
+mod tree;
 
 use crate::impact::problem::{InvalidProblem, validate_body, validate_contact};
 use crate::linalg::NotSemidefinite;
@@ -35,7 +36,7 @@ use crate::mechanics::reaction::Wrench;
 use crate::mechanics::screw::{Screw, Screws, Vec3};
 use crate::scalar::Scalar;
 
-use mobility::{JointRows, free_response};
+use mobility::{JointRows, Row, free_response};
 pub use screw::{SystemScrew, about};
 
 /// One body of a system: its mass and central inertia (world axes) and where its centre of
@@ -197,8 +198,16 @@ impl<T: Scalar> System<T> {
         let rows = if joints.is_empty() {
             None
         } else {
-            let (rows, blocked) = joint_rows(&bodies, &joints);
-            Some(JointRows::new(&rigid, rows, blocked)?)
+            let pairs: Vec<_> = joints
+                .iter()
+                .map(|j| (j.pair.first, j.pair.second))
+                .collect();
+            Some(JointRows::new(
+                &rigid,
+                joint_rows(&bodies, &joints),
+                &pairs,
+                false,
+            )?)
         };
         let system = System {
             bodies,
@@ -211,6 +220,30 @@ impl<T: Scalar> System<T> {
         };
         system.check_allowed()?;
         Ok(system)
+    }
+
+    /// The same system with its joints' system factored densely whatever their graph (the
+    /// path closed loops take, [`mobility`]): for tests, which compare it with the tree's.
+    ///
+    /// # Errors
+    /// [`SystemError::NotSemidefinite`], as [`System::new`].
+    #[doc(hidden)]
+    pub fn with_dense_joints(mut self) -> Result<Self, SystemError> {
+        if let Some(rows) = self.rows.take() {
+            let pairs: Vec<_> = self
+                .joints
+                .iter()
+                .map(|j| (j.pair.first, j.pair.second))
+                .collect();
+            self.rows = Some(JointRows::new(&self.rigid, rows.rows, &pairs, true)?);
+        }
+        Ok(self)
+    }
+
+    /// Whether the joints' system is factored along a tree, in time linear in the bodies (the
+    /// joints form a forest; [`mobility`]), rather than densely.
+    pub fn joints_factored_along_tree(&self) -> bool {
+        self.rows.as_ref().is_some_and(JointRows::is_tree)
     }
 
     /// The bodies.
@@ -335,8 +368,8 @@ impl<T: Scalar> System<T> {
             return Vec::new();
         };
         let mut sums: Vec<Screw<T>> = vec![Screw::zero(); self.joints.len()];
-        for ((j, u), l) in rows.blocked.iter().zip(lambda) {
-            sums[*j].add_scaled(l, u);
+        for (h, l) in rows.rows.iter().zip(lambda) {
+            sums[h.joint].add_scaled(l, &h.blocked);
         }
         sums.iter()
             .zip(&self.joints)
@@ -352,10 +385,11 @@ impl<T: Scalar> System<T> {
         let Some(rows) = &self.rows else {
             return Ok(());
         };
-        for (h, (j, _)) in rows.rows.iter().zip(&rows.blocked) {
-            let rate = h.reciprocal(&self.velocity);
+        for h in &rows.rows {
+            let rate = h.rate(&self.velocity);
             let mut scale = T::zero();
-            for (a, b) in h.0.iter().zip(&self.velocity.0) {
+            for (b, a) in h.entries() {
+                let b = &self.velocity.0[b];
                 for k in 0..6 {
                     let t = a.0[k].clone() * &b.0[(k + 3) % 6];
                     if t.abs_gt(&scale) {
@@ -365,8 +399,8 @@ impl<T: Scalar> System<T> {
             }
             if !rate.is_negligible(&scale, 12 * self.bodies.len()) {
                 return Err(SystemError::JointViolated {
-                    joint: *j,
-                    kind: self.joints[*j].joint.name(),
+                    joint: h.joint,
+                    kind: self.joints[h.joint].joint.name(),
                     rate: rate.to_f64(),
                 });
             }
@@ -378,34 +412,29 @@ impl<T: Scalar> System<T> {
 impl<T: Scalar> Mobility<T, SystemScrew<T>> for System<T> {
     /// W{E}: each body's \[M\]⁻¹ (eq. 11), then the joints' correction ([`mobility`]).
     fn response(&self, e: &SystemScrew<T>) -> SystemScrew<T> {
-        let free = free_response(&self.rigid, e);
         match &self.rows {
-            Some(rows) => rows.constrain(free),
-            None => free,
+            Some(rows) => rows.response(&self.rigid, e),
+            None => free_response(&self.rigid, e),
         }
     }
 }
 
-/// The rows H_k of `joints` (each blocked screw on the first body minus on the second, about
-/// their centres) and the blocked screws about the world origin, with their joint.
-fn joint_rows<T: Scalar>(
-    bodies: &[SystemBody<T>],
-    joints: &[SystemJoint<T>],
-) -> (Vec<SystemScrew<T>>, Vec<(usize, Screw<T>)>) {
+/// The rows H_k of `joints`: each blocked screw on the first body minus on the second, about
+/// their centres, with the screw about the world origin and its joint.
+fn joint_rows<T: Scalar>(bodies: &[SystemBody<T>], joints: &[SystemJoint<T>]) -> Vec<Row<T>> {
     let mut rows = Vec::new();
-    let mut blocked = Vec::new();
     for (j, joint) in joints.iter().enumerate() {
+        let (a, second) = (joint.pair.first, joint.pair.second);
         for u in blocked_screws(&joint.joint.free_screws()) {
-            let mut h = SystemScrew::zeros(bodies.len());
-            h.0[joint.pair.first] = about(&u, &bodies[joint.pair.first].centre);
-            if let Some(b) = joint.pair.second {
-                h.0[b] = Screw(-about(&u, &bodies[b].centre).0);
-            }
-            rows.push(h);
-            blocked.push((j, u));
+            rows.push(Row {
+                joint: j,
+                first: (a, about(&u, &bodies[a].centre)),
+                second: second.map(|b| (b, Screw(-about(&u, &bodies[b].centre).0))),
+                blocked: u,
+            });
         }
     }
-    (rows, blocked)
+    rows
 }
 
 /// A basis of the screws u with uᵀ η f = 0 for every free screw f: what the joint blocks.
