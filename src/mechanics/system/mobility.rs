@@ -45,6 +45,8 @@
 //! opposite. It is basis-independent when λ is not unique (redundant joints leave only the sum
 //! of the redundant reactions determined, and the report says which are).
 
+use std::sync::Arc;
+
 use crate::linalg::{self, NotSemidefinite};
 use crate::mechanics::body::{Mobility, RigidBody};
 use crate::mechanics::screw::Screw;
@@ -95,8 +97,10 @@ impl<T: Scalar> Row<T> {
 /// How K λ = … is solved (module docs).
 #[derive(Clone, Debug, PartialEq)]
 enum Factor<T: Scalar> {
-    /// The KKT system factored along a forest of joints.
-    Tree(Tree<T>),
+    /// The KKT system factored along a forest of joints, shared by the system's copies (an
+    /// impact keeps one: cloning it is then O(bodies) pointers, not the factor's 2 × 36 numbers
+    /// per node).
+    Tree(Arc<Tree<T>>),
     /// K formed and factored densely with pivoting (loops, redundant joints).
     Dense(Dense<T>),
 }
@@ -136,7 +140,7 @@ impl<T: Scalar> JointRows<T> {
             return Ok(JointRows {
                 rank: rows.len(),
                 rows,
-                factor: Factor::Tree(tree),
+                factor: Factor::Tree(Arc::new(tree)),
             });
         }
         let responses: Vec<Vec<(usize, Screw<T>)>> = rows
@@ -175,6 +179,20 @@ impl<T: Scalar> JointRows<T> {
         })
     }
 
+    /// `f(k, at)` for every row k, in order, with `at` its place in the tree's stacked vector.
+    fn each_joint(&self, tree: &Tree<T>, mut f: impl FnMut(usize, usize)) {
+        let mut k = 0;
+        let mut j = 0;
+        while k < self.rows.len() {
+            let (at, m) = tree.joint_span(j);
+            for r in 0..m {
+                f(k + r, at + r);
+            }
+            k += m;
+            j += 1;
+        }
+    }
+
     /// Whether the KKT system was factored along a tree ([`super::tree`]).
     pub(crate) fn is_tree(&self) -> bool {
         matches!(self.factor, Factor::Tree(_))
@@ -186,14 +204,12 @@ impl<T: Scalar> JointRows<T> {
         match &self.factor {
             Factor::Tree(tree) => {
                 // E = 0, c = −Hᵀ η t ([`super::tree`]).
-                let b = 6 * twist.bodies();
-                let mut x = vec![T::zero(); b + n];
-                for (xk, h) in x[b..].iter_mut().zip(&self.rows) {
-                    *xk = -h.rate(twist);
-                }
+                let mut x = vec![T::zero(); tree.len()];
+                self.each_joint(tree, |k, at| x[at] = -self.rows[k].rate(twist));
                 tree.solve(&mut x);
-                x.drain(..b);
-                x
+                let mut lambda = Vec::with_capacity(n);
+                self.each_joint(tree, |_, at| lambda.push(x[at].clone()));
+                lambda
             }
             Factor::Dense(d) => {
                 let b: Vec<T> = self.rows.iter().map(|h| h.rate(twist)).collect();
@@ -210,15 +226,14 @@ impl<T: Scalar> JointRows<T> {
         match &self.factor {
             Factor::Tree(tree) => {
                 // [E; 0] ↦ [y; λ], W{E} = η y ([`super::tree`]).
-                let b = 6 * e.bodies();
-                let mut x = Vec::with_capacity(b + self.rows.len());
+                let mut x = Vec::with_capacity(tree.len());
                 for s in &e.0 {
                     x.extend_from_slice(s.as_slice());
                 }
-                x.resize(b + self.rows.len(), T::zero());
+                x.resize(tree.len(), T::zero());
                 tree.solve(&mut x);
                 SystemScrew(
-                    x[..b]
+                    x[..6 * e.bodies()]
                         .chunks_exact(6)
                         .map(|y| {
                             Screw(nalgebra::SVector::<T, 6>::from_fn(|k, _| {

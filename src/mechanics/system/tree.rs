@@ -32,8 +32,9 @@
 //! ```
 //!
 //! and a solve is one pass up the trees (z_p −= Q_iᵀ z_i, then z_i ← D_i⁻¹ z_i) and one pass
-//! down (x_i = z_i − Q_i x_p): O(Σ sizes²) work, linear in the bodies for bounded joint sizes
-//! (≤ 6 rows each), whatever the degree of a body.
+//! down (x_i = z_i − Q_i x_p): three 6 × 6 products per node, linear in the bodies whatever
+//! the degree of a body. The factorization keeps D_i⁻¹ itself (from an LDLᵀ of the block) and
+//! Q_i, so that a solve — one per contact axis — is products only.
 //!
 //! **The pivots.** A body's block stays positive definite: A_b⁻¹ plus, for each child joint,
 //! −H D_j⁻¹ Hᵀ with D_j negative definite. A joint's block is D_j = −H_j(c)ᵀ D_c⁻¹ H_j(c) for
@@ -41,7 +42,8 @@
 //! for a forest every pivot is nonzero **exactly** (an elimination of the leaves shows H has
 //! full column rank: a leaf body's only joint has λ_j = 0 in any H λ = 0), K is nonsingular and
 //! λ is unique; the pivots are taken without reordering, each block's LDLᵀ unpivoted (it is
-//! definite, which makes that stable in floats). A pivot that rounding makes negligible or of
+//! definite, which makes that stable in floats; Higham, *Accuracy and Stability of Numerical
+//! Algorithms*, §10.1). A pivot that rounding makes negligible or of
 //! the wrong sign (floats only) refuses the tree, and the dense pivoted path of
 //! [`super::mobility`] answers instead, as it does for closed loops and redundant joints.
 
@@ -53,27 +55,27 @@ use super::mobility::Row;
 /// No parent: a root.
 const ROOT: usize = usize::MAX;
 
+/// A 6 × 6 block, row-major. Every node's block is 6 × 6: a joint of m < 6 rows is padded
+/// with 6 − m rows of its own, −1 on the diagonal and zero elsewhere, whose multipliers are
+/// zero — so every kernel has one fixed size, which the compiler unrolls.
+type Block<T> = [T; 36];
+
 /// The factored KKT system of a forest of joints (module docs).
 #[derive(Clone, Debug, PartialEq)]
 pub(crate) struct Tree<T: Scalar> {
-    /// Bodies (nodes 0..B; the joints are nodes B..B+J).
+    /// Bodies (nodes 0..B; the joints are nodes B..B+J). Node i's entries in a stacked
+    /// vector are 6i..6i + 6: [y_1 … y_B, λ of joint 1 (padded to 6), …].
     bodies: usize,
     /// The nodes, leaves first: every node before its parent.
     order: Vec<usize>,
     /// Per node: its parent node, or [`ROOT`].
     parent: Vec<usize>,
-    /// Per node: where its entries start in a stacked vector [y_1 … y_B, λ] (bodies: 6 each;
-    /// joint j: its rows, in the order of the rows of H).
-    offset: Vec<usize>,
-    /// Per node: its size (6 for a body, m_j for a joint).
-    size: Vec<usize>,
-    /// Per node: where its factored D_i (size², row-major, L below the diagonal, D on it)
-    /// starts in `diag`.
-    diag_at: Vec<usize>,
-    diag: Vec<T>,
-    /// Per node: where Q_i = D_i⁻¹ S_{i,p} (size_i × size_p, row-major) starts in `coupling`.
-    coupling_at: Vec<usize>,
-    coupling: Vec<T>,
+    /// Per joint: its first row of H and its number of rows.
+    rows: Vec<(usize, usize)>,
+    /// Per node: D_i⁻¹.
+    inverse: Vec<Block<T>>,
+    /// Per node: Q_i = D_i⁻¹ S_{i,p} (zero for a root).
+    coupling: Vec<Block<T>>,
 }
 
 impl<T: Scalar> Tree<T> {
@@ -88,49 +90,20 @@ impl<T: Scalar> Tree<T> {
         let b = bodies.len();
         let joints = pairs.len();
         let (order, parent) = eliminate_leaves_first(b, pairs)?;
-        let nodes = b + joints;
-        let mut size = vec![6; nodes];
-        let mut offset: Vec<usize> = (0..nodes).map(|i| 6 * i.min(b)).collect();
-        // Each joint's rows are consecutive: its offset is 6B + its first row.
-        let mut first_row = vec![usize::MAX; joints];
+        let mut joint_rows = vec![(rows.len(), 0); joints];
         for (k, r) in rows.iter().enumerate() {
-            if first_row[r.joint] == usize::MAX {
-                first_row[r.joint] = k;
-            }
-            size[b + r.joint] = k + 1 - first_row[r.joint];
+            let (first, count) = &mut joint_rows[r.joint];
+            *first = (*first).min(k);
+            *count += 1;
         }
-        for j in 0..joints {
-            if first_row[j] == usize::MAX {
-                size[b + j] = 0;
-                first_row[j] = rows.len();
-            }
-            offset[b + j] = 6 * b + first_row[j];
+        if joint_rows.iter().any(|&(_, m)| m > 6) {
+            return None;
         }
-        let mut diag_at = Vec::with_capacity(nodes);
-        let mut coupling_at = Vec::with_capacity(nodes);
-        let (mut d_len, mut q_len) = (0, 0);
-        for i in 0..nodes {
-            diag_at.push(d_len);
-            coupling_at.push(q_len);
-            d_len += size[i] * size[i];
-            if parent[i] != ROOT {
-                q_len += size[i] * size[parent[i]];
-            }
-        }
-        let mut tree = Tree {
-            bodies: b,
-            order,
-            parent,
-            offset,
-            size,
-            diag_at,
-            diag: vec![T::zero(); d_len],
-            coupling_at,
-            coupling: vec![T::zero(); q_len],
-        };
-        // S_ii: A_b⁻¹ = diag(m I, J) on [v_C; ω] for a body; zero for a joint.
-        for (i, body) in bodies.iter().enumerate() {
-            let d = &mut tree.diag[tree.diag_at[i]..tree.diag_at[i] + 36];
+        // S_ii: A_b⁻¹ = diag(m I, J) on [v_C; ω] for a body; zero (and the padding) for a
+        // joint.
+        let mut inverse = Vec::with_capacity(b + joints);
+        for body in bodies {
+            let mut d = zero_block();
             for k in 0..3 {
                 d[7 * k] = body.mass.clone();
             }
@@ -140,89 +113,101 @@ impl<T: Scalar> Tree<T> {
                     d[6 * (3 + r) + 3 + c] = j[(r, c)].clone();
                 }
             }
+            inverse.push(d);
         }
-        tree.factor(rows, &first_row)?;
+        for &(_, m) in &joint_rows {
+            let mut d = zero_block();
+            for k in m..6 {
+                d[7 * k] = -T::one();
+            }
+            inverse.push(d);
+        }
+        let mut tree = Tree {
+            bodies: b,
+            order,
+            parent,
+            rows: joint_rows,
+            inverse,
+            coupling: vec![zero_block(); b + joints],
+        };
+        tree.factor(rows)?;
         Some(tree)
     }
 
-    /// The block LDLᵀ, leaves first (module docs); `None` at a negligible or wrongly signed
-    /// pivot.
-    fn factor(&mut self, rows: &[Row<T>], first_row: &[usize]) -> Option<()> {
+    /// The block LDLᵀ, leaves first (module docs), keeping D_i⁻¹ and Q_i; `None` at a
+    /// negligible or wrongly signed pivot.
+    fn factor(&mut self, rows: &[Row<T>]) -> Option<()> {
         let b = self.bodies;
-        let mut s = [(); 36].map(|_| T::zero());
-        let mut column = [(); 6].map(|_| T::zero());
+        let mut s: Block<T> = zero_block();
         for at in 0..self.order.len() {
             let i = self.order[at];
-            let n = self.size[i];
-            let sign = if i < b { 1 } else { -1 };
-            let d = &mut self.diag[self.diag_at[i]..self.diag_at[i] + n * n];
-            factor_definite(d, n, sign)?;
+            invert_definite(&mut self.inverse[i], if i < b { 1 } else { -1 })?;
             let p = self.parent[i];
             if p == ROOT {
                 continue;
             }
-            // S_{i,p}, size_i × size_p: a body under its joint p holds H_p(i) (6 × m_p); a
-            // joint under its body p holds H_i(p)ᵀ (m_i × 6).
-            let np = self.size[p];
+            // S_{i,p}: a body under its joint p holds H_p(i) (columns: the joint's rows); a
+            // joint under its body p holds H_i(p)ᵀ (rows: the joint's rows).
             let (body, joint) = if i < b { (i, p - b) } else { (p, i - b) };
-            for r in 0..self.size[b + joint] {
-                let h = rows[first_row[joint] + r].on(body);
+            let (first, m) = self.rows[joint];
+            s.iter_mut().for_each(|x| x.set_zero());
+            for r in 0..m {
+                let h = rows[first + r].on(body).as_slice();
                 for k in 0..6 {
-                    let (row, col) = if i < b { (k, r) } else { (r, k) };
-                    s[row * np + col] = h.0[k].clone();
+                    let at = if i < b { 6 * k + r } else { 6 * r + k };
+                    s[at] = h[k].clone();
                 }
             }
-            // Q_i = D_i⁻¹ S_{i,p}, column by column.
-            let q_at = self.coupling_at[i];
-            let d = &self.diag[self.diag_at[i]..self.diag_at[i] + n * n];
-            for c in 0..np {
-                for r in 0..n {
-                    column[r] = s[r * np + c].clone();
-                }
-                solve_definite(d, n, &mut column[..n]);
-                for r in 0..n {
-                    self.coupling[q_at + r * np + c] = column[r].clone();
-                }
+            // Q_i = D_i⁻¹ S_{i,p}; D_p −= S_{i,p}ᵀ Q_i.
+            let q = multiply(&self.inverse[i], &s);
+            let update = multiply_transposed(&s, &q);
+            for (d, u) in self.inverse[p].iter_mut().zip(update) {
+                *d -= u;
             }
-            // D_p −= S_{p,i} Q_i = S_{i,p}ᵀ Q_i (the lower triangle, which the factor reads).
-            let q = &self.coupling[q_at..q_at + n * np];
-            let dp = &mut self.diag[self.diag_at[p]..self.diag_at[p] + np * np];
-            for r in 0..np {
-                for c in 0..=r {
-                    let mut t = T::zero();
-                    for k in 0..n {
-                        if !s[k * np + r].is_zero() {
-                            t += s[k * np + r].clone() * &q[k * np + c];
-                        }
-                    }
-                    dp[r * np + c] -= t;
-                }
-            }
+            self.coupling[i] = q;
         }
         Some(())
     }
 
-    /// Solve the KKT system in place: `x` holds [E_1 … E_B, c] (each E_b a wrench [F; M]
-    /// about C_b, c one entry per row) and receives [y_1 … y_B, λ] (y_b = [v_C; ω]).
+    /// Where joint `j`'s multipliers start in a stacked vector, and how many it has.
+    pub(crate) fn joint_span(&self, j: usize) -> (usize, usize) {
+        (6 * (self.bodies + j), self.rows[j].1)
+    }
+
+    /// The length of a stacked vector: six entries per node.
+    pub(crate) fn len(&self) -> usize {
+        6 * self.inverse.len()
+    }
+
+    /// Solve the KKT system in place: `x` ([`Tree::len`] entries) holds [E_1 … E_B, c] (each
+    /// E_b a wrench [F; M] about C_b; joint j's entries of c at [`Tree::joint_span`], zero
+    /// past them) and receives [y_1 … y_B, λ] (y_b = [v_C; ω]).
     pub(crate) fn solve(&self, x: &mut [T]) {
-        let mut z = [(); 6].map(|_| T::zero());
+        let take = |x: &[T], i: usize| -> [T; 6] { std::array::from_fn(|k| x[6 * i + k].clone()) };
         // Up: z_p −= Q_iᵀ z_i, then z_i ← D_i⁻¹ z_i.
         for &i in &self.order {
-            let (o, n) = (self.offset[i], self.size[i]);
+            let z = take(x, i);
             let p = self.parent[i];
             if p != ROOT {
-                let (op, np) = (self.offset[p], self.size[p]);
-                let q = &self.coupling[self.coupling_at[i]..self.coupling_at[i] + n * np];
-                for c in 0..np {
+                let q = &self.coupling[i];
+                let zp = &mut x[6 * p..6 * p + 6];
+                for c in 0..6 {
                     let mut t = T::zero();
-                    for r in 0..n {
-                        t += q[r * np + c].clone() * &x[o + r];
+                    for r in 0..6 {
+                        t += q[6 * r + c].clone() * &z[r];
                     }
-                    x[op + c] -= t;
+                    zp[c] -= t;
                 }
             }
-            let d = &self.diag[self.diag_at[i]..self.diag_at[i] + n * n];
-            solve_definite(d, n, &mut x[o..o + n]);
+            let d = &self.inverse[i];
+            let zi = &mut x[6 * i..6 * i + 6];
+            for r in 0..6 {
+                let mut t = T::zero();
+                for c in 0..6 {
+                    t += d[6 * r + c].clone() * &z[c];
+                }
+                zi[r] = t;
+            }
         }
         // Down: x_i = z_i − Q_i x_p.
         for &i in self.order.iter().rev() {
@@ -230,21 +215,57 @@ impl<T: Scalar> Tree<T> {
             if p == ROOT {
                 continue;
             }
-            let (o, n) = (self.offset[i], self.size[i]);
-            let (op, np) = (self.offset[p], self.size[p]);
-            for (zc, xc) in z.iter_mut().zip(&x[op..op + np]) {
-                zc.clone_from(xc);
-            }
-            let q = &self.coupling[self.coupling_at[i]..self.coupling_at[i] + n * np];
-            for r in 0..n {
+            let xp = take(x, p);
+            let q = &self.coupling[i];
+            let xi = &mut x[6 * i..6 * i + 6];
+            for r in 0..6 {
                 let mut t = T::zero();
-                for c in 0..np {
-                    t += q[r * np + c].clone() * &z[c];
+                for c in 0..6 {
+                    t += q[6 * r + c].clone() * &xp[c];
                 }
-                x[o + r] -= t;
+                xi[r] -= t;
             }
         }
     }
+}
+
+/// a b. Exact types skip the zeros of `a` (most of S's entries); floats keep the loops
+/// branch-free.
+fn multiply<T: Scalar>(a: &Block<T>, b: &Block<T>) -> Block<T> {
+    let mut out = zero_block();
+    for r in 0..6 {
+        for k in 0..6 {
+            let x = &a[6 * r + k];
+            if T::IS_EXACT && x.is_zero() {
+                continue;
+            }
+            for c in 0..6 {
+                out[6 * r + c] += x.clone() * &b[6 * k + c];
+            }
+        }
+    }
+    out
+}
+
+/// aᵀ b, as [`multiply`].
+fn multiply_transposed<T: Scalar>(a: &Block<T>, b: &Block<T>) -> Block<T> {
+    let mut out = zero_block();
+    for k in 0..6 {
+        for r in 0..6 {
+            let x = &a[6 * k + r];
+            if T::IS_EXACT && x.is_zero() {
+                continue;
+            }
+            for c in 0..6 {
+                out[6 * r + c] += x.clone() * &b[6 * k + c];
+            }
+        }
+    }
+    out
+}
+
+fn zero_block<T: Scalar>() -> Block<T> {
+    [(); 36].map(|_| T::zero())
 }
 
 /// The nodes (bodies 0..B, joints B..B+J) ordered leaves first, and each node's parent, when
@@ -333,57 +354,59 @@ fn eliminate_leaves_first(
     Some((order, parent))
 }
 
-/// A symmetric definite `n × n` block (row-major, the lower triangle read) factored in place
-/// as L D Lᵀ without pivoting; every pivot must have the sign `sign` and not be negligible
-/// against the block's largest diagonal entry.
-fn factor_definite<T: Scalar>(a: &mut [T], n: usize, sign: i8) -> Option<()> {
+/// The symmetric definite block `a` replaced by its inverse: a = L D Lᵀ without pivoting,
+/// then a⁻¹ = L⁻ᵀ D⁻¹ L⁻¹. Every pivot must have the sign `sign` and not be negligible against
+/// the block's largest diagonal entry (else `None`).
+fn invert_definite<T: Scalar>(a: &mut Block<T>, sign: i8) -> Option<()> {
     let mut scale = T::zero();
-    for k in 0..n {
-        if a[k * n + k].abs_gt(&scale) {
-            scale = a[k * n + k].clone();
+    for k in 0..6 {
+        if a[7 * k].abs_gt(&scale) {
+            scale = a[7 * k].clone();
         }
     }
-    for k in 0..n {
-        let d = a[k * n + k].clone();
-        if d.signum_i8() != sign || d.is_negligible(&scale, n) {
+    // L (strictly below the diagonal) and D (on it), in place; the lower triangle is read.
+    for k in 0..6 {
+        let d = a[7 * k].clone();
+        if d.signum_i8() != sign || d.is_negligible(&scale, 6) {
             return None;
         }
         // a_ij −= a_ik a_jk / d below the pivot (rows from the bottom up, so that a_jk, j ≤ i,
         // is still unscaled), then column k becomes L.
-        for i in (k + 1..n).rev() {
-            if a[i * n + k].is_zero() {
+        for i in (k + 1..6).rev() {
+            if T::IS_EXACT && a[6 * i + k].is_zero() {
                 continue;
             }
-            let l = a[i * n + k].clone() / &d;
+            let l = a[6 * i + k].clone() / &d;
             for j in k + 1..=i {
-                let t = l.clone() * &a[j * n + k];
-                a[i * n + j] -= t;
+                let t = l.clone() * &a[6 * j + k];
+                a[6 * i + j] -= t;
             }
-            a[i * n + k] = l;
+            a[6 * i + k] = l;
+        }
+    }
+    // M = L⁻¹ (unit lower triangular): m_ij = −Σ_{j≤k<i} l_ik m_kj.
+    let mut m = zero_block::<T>();
+    for i in 0..6 {
+        m[7 * i] = T::one();
+        for j in 0..i {
+            let mut t = a[6 * i + j].clone();
+            for k in j + 1..i {
+                t += a[6 * i + k].clone() * &m[6 * k + j];
+            }
+            m[6 * i + j] = -t;
+        }
+    }
+    // a⁻¹ = Mᵀ D⁻¹ M: (a⁻¹)_rc = Σ_{k ≥ max(r, c)} m_kr m_kc / d_k.
+    let inv_d: [T; 6] = std::array::from_fn(|k| T::one() / &a[7 * k]);
+    for r in 0..6 {
+        for c in 0..=r {
+            let mut t = T::zero();
+            for k in r..6 {
+                t += m[6 * k + r].clone() * &m[6 * k + c] * &inv_d[k];
+            }
+            a[6 * r + c] = t.clone();
+            a[6 * c + r] = t;
         }
     }
     Some(())
-}
-
-/// x ← (L D Lᵀ)⁻¹ x for a block factored by [`factor_definite`].
-fn solve_definite<T: Scalar>(a: &[T], n: usize, x: &mut [T]) {
-    for i in 0..n {
-        for j in 0..i {
-            if !a[i * n + j].is_zero() {
-                let t = a[i * n + j].clone() * &x[j];
-                x[i] -= t;
-            }
-        }
-    }
-    for i in 0..n {
-        x[i] /= &a[i * n + i];
-    }
-    for i in (0..n).rev() {
-        for j in i + 1..n {
-            if !a[j * n + i].is_zero() {
-                let t = a[j * n + i].clone() * &x[j];
-                x[i] -= t;
-            }
-        }
-    }
 }
