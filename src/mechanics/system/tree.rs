@@ -12,7 +12,7 @@
 //! [ Hᵀ   0 ] [ λ ] = [ c ],          Hᵀ y = c          ⇒   K λ = Hᵀ A E − c,
 //! ```
 //!
-//! so c = 0 gives W{E} = η y and the multipliers of `constrain`, and E = 0, c = −Hᵀ η t gives
+//! so c = 0 gives the response W{E} = η y, and E = 0, c = −Hᵀ η t gives
 //! K λ = Hᵀ η t (the joints' impulses). A⁻¹ = diag(m I, J) on [v_C; ω] is each body's mass
 //! matrix \[η\]\[M\] read in the order [v; ω], and H's block at body b and joint j is the
 //! joint's blocked screws about C_b (6 × m_j, signed as in [`super::mobility`]).
@@ -141,7 +141,12 @@ impl<T: Scalar> Tree<T> {
         let mut s: Block<T> = zero_block();
         for at in 0..self.order.len() {
             let i = self.order[at];
-            invert_definite(&mut self.inverse[i], if i < b { 1 } else { -1 })?;
+            let (sign, real) = if i < b {
+                (1, 6)
+            } else {
+                (-1, self.rows[i - b].1)
+            };
+            invert_definite(&mut self.inverse[i], sign, real)?;
             let p = self.parent[i];
             if p == ROOT {
                 continue;
@@ -355,11 +360,12 @@ fn eliminate_leaves_first(
 }
 
 /// The symmetric definite block `a` replaced by its inverse: a = L D Lᵀ without pivoting,
-/// then a⁻¹ = L⁻ᵀ D⁻¹ L⁻¹. Every pivot must have the sign `sign` and not be negligible against
-/// the block's largest diagonal entry (else `None`).
-fn invert_definite<T: Scalar>(a: &mut Block<T>, sign: i8) -> Option<()> {
+/// then a⁻¹ = L⁻ᵀ D⁻¹ L⁻¹. Each of the first `real` pivots must have the sign `sign` and not
+/// be negligible against the largest of the first `real` diagonal entries (else `None`); the
+/// others are a joint's padding, −1 and uncoupled, in no unit of the block's.
+fn invert_definite<T: Scalar>(a: &mut Block<T>, sign: i8, real: usize) -> Option<()> {
     let mut scale = T::zero();
-    for k in 0..6 {
+    for k in 0..real {
         if a[7 * k].abs_gt(&scale) {
             scale = a[7 * k].clone();
         }
@@ -367,7 +373,7 @@ fn invert_definite<T: Scalar>(a: &mut Block<T>, sign: i8) -> Option<()> {
     // L (strictly below the diagonal) and D (on it), in place; the lower triangle is read.
     for k in 0..6 {
         let d = a[7 * k].clone();
-        if d.signum_i8() != sign || d.is_negligible(&scale, 6) {
+        if k < real && (d.signum_i8() != sign || d.is_negligible(&scale, 6)) {
             return None;
         }
         // a_ij −= a_ik a_jk / d below the pivot (rows from the bottom up, so that a_jk, j ≤ i,
