@@ -249,12 +249,12 @@ fn rank(screws: &[Screw<Exact>]) -> usize {
             continue;
         };
         rows.swap(r, p);
-        for i in 0..rows.len() {
-            if i != r && rows[i][c] != int(0) {
-                let f = rows[i][c].clone() / &rows[r][c];
-                for k in 0..6 {
-                    let t = f.clone() * &rows[r][k];
-                    rows[i][k] -= t;
+        let pivot = rows[r].clone();
+        for (i, row) in rows.iter_mut().enumerate() {
+            if i != r && row[c] != int(0) {
+                let f = row[c].clone() / &pivot[c];
+                for (x, y) in row.iter_mut().zip(&pivot) {
+                    *x -= f.clone() * y;
                 }
             }
         }
