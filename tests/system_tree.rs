@@ -467,10 +467,11 @@ fn a_ring_of_bodies_takes_the_dense_path() {
 /// A planar chain of `links` bars of length 2 along x, hinged about z, the first to the
 /// ground at the origin, all turning together at ω = −1 (so v_C = ω × C); contacts at the tip
 /// and at the end of the middle link, normals −y (the ground below them, struck from above).
-fn chain<T: Scalar>(links: usize) -> System<T> {
+/// Masses and moments are multiplied by `heavy` (a change of the unit of mass).
+fn chain<T: Scalar>(links: usize, heavy: i64) -> System<T> {
     let c = |n: i64, d: i64| T::from_rational(&num_rational::BigRational::new(n.into(), d.into()));
     let v = |x: T, y: T, z: T| Vec3::new(x, y, z);
-    let (m, jx, jz) = (c(1, 1), c(1, 100), c(1, 3) + c(1, 100));
+    let (m, jx, jz) = (c(heavy, 1), c(heavy, 100), c(heavy, 3) + c(heavy, 100));
     let mut bodies = Vec::new();
     let mut velocity = Vec::new();
     let mut joints = Vec::new();
@@ -537,7 +538,7 @@ fn relative<'a>(pairs: impl Iterator<Item = (&'a f64, &'a Exact)>) -> f64 {
     err / size
 }
 
-/// The chain of 200 links in f64 against its exact solve (3 s in rationals, release).
+/// A chain of `links` in f64 against its exact solve.
 ///
 /// The tolerance, from the error model of the f64 path: each node's elimination is an
 /// unpivoted LDLᵀ of a definite block of size ≤ 6, backward stable (Higham, *Accuracy and
@@ -547,11 +548,9 @@ fn relative<'a>(pairs: impl Iterator<Item = (&'a f64, &'a Exact)>) -> f64 {
 /// a relative error in G and b by cond∞(G) (computed here exactly), and the twist
 /// {v⁰} − Σ P̂ W{Ê} inherits both. So every impulse and twist is within
 /// 2 · 12·links·ε · cond∞(G) relative (normwise, ∞), the factor 2 for the two stages.
-#[test]
-fn a_long_chain_in_f64_agrees_with_its_exact_solve() {
-    let links = 200;
-    let exact = chain::<Exact>(links);
-    let float = chain::<f64>(links);
+fn f64_agrees_with_exact(links: usize, heavy: i64) {
+    let exact = chain::<Exact>(links, heavy);
+    let float = chain::<f64>(links, heavy);
     assert!(exact.joints_factored_along_tree() && float.joints_factored_along_tree());
     let g = Impact::assemble(&exact)
         .expect("assembles")
@@ -579,4 +578,18 @@ fn a_long_chain_in_f64_agrees_with_its_exact_solve() {
         );
         assert!(f.impulses_hat.iter().all(|p| *p > 0.0), "both compressive");
     }
+}
+
+/// 200 links (3 s in rationals, release).
+#[test]
+fn a_long_chain_in_f64_agrees_with_its_exact_solve() {
+    f64_agrees_with_exact(200, 1);
+}
+
+/// In a unit of mass 10¹⁸ times smaller the joints' blocks are 10¹⁸ times larger than the
+/// padding of a joint's block (−1, in no unit): the tree's zero tests must be relative to the
+/// block's own entries, or the f64 chain would be refused the tree.
+#[test]
+fn a_chain_of_heavy_links_keeps_its_tree_in_f64() {
+    f64_agrees_with_exact(10, 1_000_000_000_000_000_000);
 }
