@@ -25,6 +25,7 @@
 
 pub mod mobility;
 pub mod screw;
+mod tree;
 
 use crate::impact::problem::{InvalidProblem, validate_body, validate_contact};
 use crate::linalg::NotSemidefinite;
@@ -35,7 +36,7 @@ use crate::mechanics::reaction::Wrench;
 use crate::mechanics::screw::{Screw, Screws, Vec3};
 use crate::scalar::Scalar;
 
-use mobility::{JointRows, free_response};
+use mobility::{JointRows, Row, free_response};
 pub use screw::{SystemScrew, about};
 
 /// One body of a system: its mass and central inertia (world axes) and where its centre of
@@ -198,8 +199,16 @@ impl<T: Scalar> System<T> {
         let rows = if joints.is_empty() {
             None
         } else {
-            let (rows, blocked) = joint_rows(&bodies, &joints);
-            Some(JointRows::new(&rigid, rows, blocked)?)
+            let pairs: Vec<_> = joints
+                .iter()
+                .map(|j| (j.pair.first, j.pair.second))
+                .collect();
+            Some(JointRows::new(
+                &rigid,
+                joint_rows(&bodies, &joints),
+                &pairs,
+                false,
+            )?)
         };
         let system = System {
             bodies,
@@ -212,6 +221,30 @@ impl<T: Scalar> System<T> {
         };
         system.check_allowed()?;
         Ok(system)
+    }
+
+    /// The same system with its joints' system factored densely whatever their graph (the
+    /// path closed loops take, [`mobility`]): for tests, which compare it with the tree's.
+    ///
+    /// # Errors
+    /// [`SystemError::NotSemidefinite`], as [`System::new`].
+    #[doc(hidden)]
+    pub fn with_dense_joints(mut self) -> Result<Self, SystemError> {
+        if let Some(rows) = self.rows.take() {
+            let pairs: Vec<_> = self
+                .joints
+                .iter()
+                .map(|j| (j.pair.first, j.pair.second))
+                .collect();
+            self.rows = Some(JointRows::new(&self.rigid, rows.rows, &pairs, true)?);
+        }
+        Ok(self)
+    }
+
+    /// Whether the joints' system is factored along a tree, in time linear in the bodies (the
+    /// joints form a forest; [`mobility`]), rather than densely.
+    pub fn joints_factored_along_tree(&self) -> bool {
+        self.rows.as_ref().is_some_and(JointRows::is_tree)
     }
 
     /// The bodies.
@@ -336,8 +369,8 @@ impl<T: Scalar> System<T> {
             return Vec::new();
         };
         let mut sums: Vec<Screw<T>> = vec![Screw::zero(); self.joints.len()];
-        for ((j, u), l) in rows.blocked.iter().zip(lambda) {
-            sums[*j].add_scaled(l, u);
+        for (h, l) in rows.rows.iter().zip(lambda) {
+            sums[h.joint].add_scaled(l, &h.blocked);
         }
         sums.iter()
             .zip(&self.joints)
@@ -353,22 +386,23 @@ impl<T: Scalar> System<T> {
         let Some(rows) = &self.rows else {
             return Ok(());
         };
-        for (h, (j, _)) in rows.rows.iter().zip(&rows.blocked) {
-            let rate = h.reciprocal(&self.velocity);
+        for h in &rows.rows {
+            let rate = h.rate(&self.velocity);
             if T::IS_EXACT {
                 // Exactly zero or not (a symbolic rate must vanish identically: no sign
                 // is assumed).
                 if !num_traits::Zero::is_zero(&rate) {
                     return Err(SystemError::JointViolated {
-                        joint: *j,
-                        kind: self.joints[*j].joint.name(),
+                        joint: h.joint,
+                        kind: self.joints[h.joint].joint.name(),
                         rate: rate_text(&rate),
                     });
                 }
                 continue;
             }
             let mut scale = T::zero();
-            for (a, b) in h.0.iter().zip(&self.velocity.0) {
+            for (b, a) in h.entries() {
+                let b = &self.velocity.0[b];
                 for k in 0..6 {
                     let t = a.0[k].clone() * &b.0[(k + 3) % 6];
                     if t.abs_gt(&scale) {
@@ -378,8 +412,8 @@ impl<T: Scalar> System<T> {
             }
             if !rate.is_negligible(&scale, 12 * self.bodies.len()) {
                 return Err(SystemError::JointViolated {
-                    joint: *j,
-                    kind: self.joints[*j].joint.name(),
+                    joint: h.joint,
+                    kind: self.joints[h.joint].joint.name(),
                     rate: rate_text(&rate),
                 });
             }
@@ -391,10 +425,9 @@ impl<T: Scalar> System<T> {
 impl<T: Scalar> Mobility<T, SystemScrew<T>> for System<T> {
     /// W{E}: each body's \[M\]⁻¹ (eq. 11), then the joints' correction ([`mobility`]).
     fn response(&self, e: &SystemScrew<T>) -> SystemScrew<T> {
-        let free = free_response(&self.rigid, e);
         match &self.rows {
-            Some(rows) => rows.constrain(free),
-            None => free,
+            Some(rows) => rows.response(&self.rigid, e),
+            None => free_response(&self.rigid, e),
         }
     }
 }
@@ -410,39 +443,47 @@ fn rate_text<T: Scalar>(rate: &T) -> String {
     }
 }
 
-/// The rows H_k of `joints` (each blocked screw on the first body minus on the second, about
-/// their centres) and the blocked screws about the world origin, with their joint.
-fn joint_rows<T: Scalar>(
-    bodies: &[SystemBody<T>],
-    joints: &[SystemJoint<T>],
-) -> (Vec<SystemScrew<T>>, Vec<(usize, Screw<T>)>) {
+/// The rows H_k of `joints`: each blocked screw on the first body minus on the second, about
+/// their centres, with the screw about the world origin and its joint.
+fn joint_rows<T: Scalar>(bodies: &[SystemBody<T>], joints: &[SystemJoint<T>]) -> Vec<Row<T>> {
     let mut rows = Vec::new();
-    let mut blocked = Vec::new();
     for (j, joint) in joints.iter().enumerate() {
+        let (a, second) = (joint.pair.first, joint.pair.second);
         for u in blocked_screws(&joint.joint.free_screws()) {
-            let mut h = SystemScrew::zeros(bodies.len());
-            h.0[joint.pair.first] = about(&u, &bodies[joint.pair.first].centre);
-            if let Some(b) = joint.pair.second {
-                h.0[b] = Screw(-about(&u, &bodies[b].centre).0);
-            }
-            rows.push(h);
-            blocked.push((j, u));
+            rows.push(Row {
+                joint: j,
+                first: (a, about(&u, &bodies[a].centre)),
+                second: second.map(|b| (b, Screw(-about(&u, &bodies[b].centre).0))),
+                blocked: u,
+            });
         }
     }
-    (rows, blocked)
+    rows
 }
 
-/// A basis of the screws u with uᵀ η f = 0 for every free screw f: what the joint blocks.
+/// A basis of the screws u with uᵀ η f = 0 for every free screw f: what the joint blocks —
+/// the null space of the rows (η f)ᵀ by reduced row echelon form, one screw per free column
+/// with a 1 there ([`crate::linalg::null_space`]'s basis, built here without its vectors of
+/// vectors: one joint at a time, on a chain of a thousand it was a sixth of the solve).
 fn blocked_screws<T: Scalar>(free: &[Screw<T>]) -> Vec<Screw<T>> {
     // Rows (η f)ᵀ: [f_bottom; f_top].
-    let mut a = Vec::with_capacity(free.len() * 6);
-    for f in free {
-        a.extend(f.0.iter().skip(3).cloned());
-        a.extend(f.0.iter().take(3).cloned());
+    let rows = free.len().min(6);
+    let mut a: [T; 36] = std::array::from_fn(|_| T::zero());
+    for (r, f) in free.iter().take(rows).enumerate() {
+        for k in 0..6 {
+            a[6 * r + k] = f.0[(k + 3) % 6].clone();
+        }
     }
-    let (_, basis) = crate::linalg::null_space(&a, free.len(), 6);
-    basis
-        .into_iter()
-        .map(|v| Screw(nalgebra::SVector::<T, 6>::from_iterator(v)))
+    let pivots = crate::linalg::gauss::rref(&mut a[..6 * rows], rows, 6, &mut [], 0);
+    (0..6)
+        .filter(|c| !pivots.contains(c))
+        .map(|free| {
+            let mut u = Screw::zero();
+            u.0[free] = T::one();
+            for (k, &pc) in pivots.iter().enumerate() {
+                u.0[pc] = -a[6 * k + free].clone();
+            }
+            u
+        })
         .collect()
 }

@@ -1,0 +1,118 @@
+//! The cost of a system's impact against its number of bodies: the planar chain of
+//! `benches/common/chain.rs` (N revolute links, the first pinned to the ground, tip and middle link
+//! striking the ground: two contacts) in f64, N = 1, 10, 100, 1000.
+//!
+//! * `chain/tree/N`: everything from the data — [`System::new`] (checks, the joints' rows and
+//!   their tree factorization, `mechanics::system::tree`), [`Impact::assemble`], Newton and
+//!   Poisson, every output; throughput in bodies, so criterion prints bodies per second;
+//! * `chain/newton/N`: the same with Newton's law only (what Pinocchio's `impulseDynamics`
+//!   computes; `benches/peers/chains.py`);
+//! * `chain/dense/N` (N ≤ 100): the same through the dense pivoted factorization of K (the path
+//!   closed loops take, and every system took before the tree): O(rows³).
+//!
+//! At the end it prints ns per body for each N and the log–log slope of the tree's N-curve
+//! between consecutive N, measured in this run.
+//!
+//! `cargo bench --bench systems`
+
+#[path = "common/chain.rs"]
+mod chain;
+
+use std::hint::black_box;
+use std::time::{Duration, Instant};
+
+use chain::Chain;
+use criterion::{Criterion, Throughput};
+use inertance::impact::restitution::Model;
+use inertance::impact::solve::{Impact, Outcome};
+use inertance::mechanics::system::{System, SystemScrew};
+
+const SIZES: [usize; 4] = [1, 10, 100, 1000];
+
+fn solve(system: &System<f64>, models: &[Model], out: &mut Outcome<f64, SystemScrew<f64>>) {
+    let mut impact = Impact::assemble(system).expect("assembles");
+    for &m in models {
+        impact.solve(m, out).expect("solves");
+    }
+}
+
+fn tree(chain: &Chain<f64>, models: &[Model], out: &mut Outcome<f64, SystemScrew<f64>>) {
+    let system = chain.system();
+    solve(black_box(&system), models, out);
+}
+
+fn dense(chain: &Chain<f64>, out: &mut Outcome<f64, SystemScrew<f64>>) {
+    let system = chain.system().with_dense_joints().expect("factors");
+    solve(black_box(&system), &[Model::Newton, Model::Poisson], out);
+}
+
+/// The median time of one call of `f` over 7 runs of at least 20 ms each.
+fn median(mut f: impl FnMut()) -> Duration {
+    let mut runs = Vec::new();
+    for _ in 0..7 {
+        let (mut n, start) = (0u32, Instant::now());
+        while start.elapsed() < Duration::from_millis(20) || n == 0 {
+            f();
+            n += 1;
+        }
+        runs.push(start.elapsed() / n);
+    }
+    runs.sort();
+    runs[3]
+}
+
+fn main() {
+    let mut c = Criterion::default()
+        .configure_from_args()
+        .warm_up_time(Duration::from_millis(500))
+        .measurement_time(Duration::from_secs(2))
+        .sample_size(20);
+    let both = [Model::Newton, Model::Poisson];
+    let mut out = Outcome::default();
+    {
+        let mut g = c.benchmark_group("chain");
+        for n in SIZES {
+            let chain = Chain::<f64>::new(n);
+            g.throughput(Throughput::Elements(n as u64));
+            g.bench_function(format!("tree/{n}"), |b| {
+                b.iter(|| tree(&chain, &both, &mut out))
+            });
+            g.bench_function(format!("newton/{n}"), |b| {
+                b.iter(|| tree(&chain, &[Model::Newton], &mut out))
+            });
+            if n <= 100 {
+                g.bench_function(format!("dense/{n}"), |b| b.iter(|| dense(&chain, &mut out)));
+            }
+        }
+        g.finish();
+    }
+    c.final_summary();
+    // Ratios in one run: ns per body, the slope of log t against log N, tree against dense.
+    println!("\nchain (f64, in this run; median of 7 runs ≥ 20 ms each)");
+    println!(
+        "{:>6} {:>12} {:>12} {:>12} {:>8} {:>12}",
+        "N", "tree+both", "ns/body", "newton", "slope", "dense/tree"
+    );
+    let mut last: Option<(usize, f64)> = None;
+    for n in SIZES {
+        let chain = Chain::<f64>::new(n);
+        let t = median(|| tree(&chain, &both, &mut out)).as_nanos() as f64;
+        let newton = median(|| tree(&chain, &[Model::Newton], &mut out)).as_nanos() as f64;
+        let slope = last.map_or(String::from("—"), |(m, s)| {
+            format!("{:.2}", (t / s).ln() / (n as f64 / m as f64).ln())
+        });
+        let ratio = if n <= 100 {
+            let d = median(|| dense(&chain, &mut out)).as_nanos() as f64;
+            format!("{:.1}×", d / t)
+        } else {
+            String::from("—")
+        };
+        println!(
+            "{n:>6} {:>10.1} µs {:>12.0} {:>9.1} µs {slope:>8} {ratio:>12}",
+            t / 1e3,
+            t / n as f64,
+            newton / 1e3
+        );
+        last = Some((n, t));
+    }
+}
