@@ -213,7 +213,7 @@ mod tests {
                 let w = b.outputs.len();
                 assert_eq!(column[p * w..(p + 1) * w], expected[..], "{m:?} at k = {k}");
             }
-            assert_eq!(b.status[p], status(&r));
+            assert_eq!(b.status[p], body_status(&r));
         }
     }
 

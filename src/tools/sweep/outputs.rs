@@ -542,7 +542,7 @@ mod tests {
         let models = vec![Restitution::Newton, Restitution::Poisson];
         let pairs = |names: &[&str]| -> Vec<(usize, usize)> {
             let asked: Vec<String> = names.iter().map(|s| s.to_string()).collect();
-            resolve_outputs(&asked, &models, 2, false, &[])
+            resolve_outputs(&asked, &models, 2, false, &[], &[])
                 .unwrap()
                 .iter()
                 .map(|s| (s.model, s.output))
@@ -559,10 +559,10 @@ mod tests {
             vec![(1, 1), (0, 8)]
         );
         let asked = vec!["P3".to_string()];
-        let e = resolve_outputs(&asked, &models, 2, false, &[]).unwrap_err();
+        let e = resolve_outputs(&asked, &models, 2, false, &[], &[]).unwrap_err();
         assert!(e.to_string().contains("newton_P1"), "{e}");
         let asked = vec!["poisson_P1".to_string()];
-        let e = resolve_outputs(&asked, &[Restitution::Newton], 2, false, &[]).unwrap_err();
+        let e = resolve_outputs(&asked, &[Restitution::Newton], 2, false, &[], &[]).unwrap_err();
         assert!(e.to_string().contains("poisson"), "{e}");
     }
 
@@ -572,7 +572,7 @@ mod tests {
         let keys = vec!["contact[1].k".to_string(), "body.mass".to_string()];
         let series = |names: &[&str], keys: &[String]| {
             let asked: Vec<String> = names.iter().map(|s| s.to_string()).collect();
-            resolve_outputs(&asked, &models, 2, false, keys).map(|v| {
+            resolve_outputs(&asked, &models, 2, false, &[], keys).map(|v| {
                 v.iter()
                     .map(|s| (s.model, s.output, s.wrt))
                     .collect::<Vec<_>>()
