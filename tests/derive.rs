@@ -77,7 +77,8 @@ fn expr(text: &str, symbols: &[String]) -> RatFun {
 }
 
 /// A derived quantity, read back from its reported text.
-fn derived(report: &inertance::report::Report, q: &str, symbols: &[String]) -> RatFun {
+fn derived(report: &inertance::tools::derive::Readout, q: &str, symbols: &[String]) -> RatFun {
+    let report = report.body().expect("one body's derivation");
     let v = inertance::tools::check::lookup(report, q).unwrap();
     assert_eq!(v.len(), 1, "{q}");
     expr(v[0].exact.as_deref().expect("an exact text"), symbols)

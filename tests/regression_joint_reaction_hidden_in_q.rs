@@ -292,7 +292,7 @@ axis = [0, 0, 1]
     let d = derive(&scene, &symbols, None).unwrap();
     let expr = |t: &str| symbolic(t, &symbols).unwrap_or_else(|e| panic!("{t}: {e}"));
     let derived = |q: &str| {
-        let v = lookup(&d.report, q).unwrap();
+        let v = lookup(d.report.body().expect("one body"), q).unwrap();
         expr(v[0].exact.as_deref().expect("an exact text"))
     };
     let f = "(1 + k)*w*(j + m*l^2/4)/l * (1 - m*l^2/(2*(j + m*l^2/4)))";

@@ -416,3 +416,33 @@ fn a_double_pendulum_against_its_impact_map_in_joint_coordinates() {
     assert_eq!(axis.reciprocal(&system.response(&axis)), g);
     let _ = Mechanism::<Exact>::contacts(&system);
 }
+
+/// One pair of bodies per contact: a system built with fewer is refused (it panicked at
+/// assembly, indexing the missing pair).
+#[test]
+fn a_contact_without_its_pair_of_bodies_is_refused() {
+    let ball = || SystemBody {
+        body: RigidBody::principal(int(1), vi(1, 1, 1)),
+        centre: vi(0, 0, 0),
+    };
+    let mut b = ball();
+    b.centre = vi(2, 0, 0);
+    let velocity = SystemScrew(vec![
+        Screw::new(vi(0, 0, 0), vi(1, 0, 0)),
+        Screw::new(vi(0, 0, 0), vi(0, 0, 0)),
+    ]);
+    let contacts = vec![
+        contact(vi(1, 0, 0), vi(1, 0, 0), int(1)),
+        contact(vi(3, 0, 0), vi(1, 0, 0), int(1)),
+    ];
+    let e = System::new(vec![ball(), b], velocity, contacts, vec![free_pair(0, Some(1))], vec![])
+        .err()
+        .expect("refused");
+    assert_eq!(
+        e,
+        inertance::mechanics::system::SystemError::PairsMismatch {
+            contacts: 2,
+            pairs: 1
+        }
+    );
+}

@@ -118,7 +118,7 @@ impl Scene {
                 )
             }
             SystemError::Contact { error, .. } => error.field.to_string(),
-            SystemError::NoContacts => "contact".into(),
+            SystemError::NoContacts | SystemError::PairsMismatch { .. } => "contact".into(),
             SystemError::UnknownBody { what, index, .. }
             | SystemError::SameBody { what, index, .. } => {
                 format!("{what}[{index}].bodies")

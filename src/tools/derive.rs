@@ -66,6 +66,22 @@ pub enum Readout {
 }
 
 impl Readout {
+    /// One body's report (`None` for a system).
+    pub fn body(&self) -> Option<&Report> {
+        match self {
+            Readout::Body(r) => Some(r),
+            Readout::System(_) => None,
+        }
+    }
+
+    /// A system's report (`None` for one body).
+    pub fn system(&self) -> Option<&SystemReport> {
+        match self {
+            Readout::Body(_) => None,
+            Readout::System(r) => Some(r),
+        }
+    }
+
     fn scene(&self) -> &str {
         match self {
             Readout::Body(r) => &r.scene,

@@ -90,6 +90,14 @@ pub enum SystemError {
     /// No contact: nothing collides.
     #[error("a collision needs at least one contact")]
     NoContacts,
+    /// Not one pair of bodies per contact.
+    #[error("{contacts} contacts but {pairs} pairs of bodies: each contact needs the bodies it joins")]
+    PairsMismatch {
+        /// How many contacts.
+        contacts: usize,
+        /// How many pairs.
+        pairs: usize,
+    },
     /// A contact or joint names a body the system does not have.
     #[error("{what} {index} names body {body}, but the system has {bodies}")]
     UnknownBody {
@@ -165,6 +173,12 @@ impl<T: Scalar> System<T> {
         }
         if contacts.is_empty() {
             return Err(SystemError::NoContacts);
+        }
+        if pairs.len() != contacts.len() {
+            return Err(SystemError::PairsMismatch {
+                contacts: contacts.len(),
+                pairs: pairs.len(),
+            });
         }
         for (i, c) in contacts.iter().enumerate() {
             validate_contact(i, c).map_err(|error| SystemError::Contact { contact: i, error })?;
