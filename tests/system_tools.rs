@@ -252,9 +252,10 @@ fn a_symbolic_twist_that_violates_a_joint_is_refused_naming_it() {
     let out = scene.run(&["derive"]);
     assert_eq!(out.status.code(), Some(2));
     let err = String::from_utf8_lossy(&out.stderr);
-    // The anchor's speeds are shown as expressions in w, never as NaN.
+    // The pin's speed on the upper bar, v_C + ω × (P − C) = (0, −2w) + (−w e_z) × (−1, 0, 0)
+    // = (0, −w), shown as an expression in w, never as NaN.
     assert!(
-        err.contains("joint[0]") && err.contains("-2*w") && !err.contains("NaN"),
+        err.contains("joint[0]") && err.contains("moves at (0, -w, 0) m/s") && !err.contains("NaN"),
         "{err}"
     );
 }
