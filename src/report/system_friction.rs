@@ -14,26 +14,12 @@ use crate::mechanics::screw::{Vec3, norm2};
 use crate::mechanics::system::{System, SystemScrew};
 use crate::scalar::Scalar;
 
-/// One contact of a system's frictional readout.
-#[derive(Clone, Debug, PartialEq)]
-pub struct SystemFrictionContact {
-    /// P_i along the normal as written: −P_i n_i on the first body, +P_i n_i on the second.
-    pub normal_impulse: Value,
-    /// P_i^c, at the end of compression.
-    pub compression_impulse: Value,
-    /// The tangential impulse on the first body (world axes; the second body takes the
-    /// opposite).
-    pub tangential_impulse: [Value; 3],
-    /// The relative normal velocity after impact, n·(v_a(A) − v_b(A)) / |n| (positive: still
-    /// approaching).
-    pub normal_velocity: Value,
-    /// v_a(A) − v_b(A) after impact, world axes.
-    pub velocity: [Value; 3],
-    /// The modes the contact went through (`stick`, `slide+`, `slide-`, `slide`, `free`).
-    pub history: Vec<ModeLabel>,
-    /// Whether it sticks at the end of the impact.
-    pub sticks: bool,
-}
+/// One contact of a system's frictional readout: the fields of one body's
+/// ([`super::FrictionContact`]), read in the system's terms — P_i along the normal as
+/// written (−P_i n_i on the first body, +P_i n_i on the second), the tangential impulse on the
+/// first body and v_a(A) − v_b(A) after impact, both in world axes (the second body takes the
+/// opposite impulse).
+pub type SystemFrictionContact = super::FrictionContact;
 
 /// One frictional law's readout of a system.
 #[derive(Clone, Debug, PartialEq)]
