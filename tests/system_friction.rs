@@ -809,12 +809,19 @@ fn the_rough_pendulum_example_solves_as_derived() {
         .args(["solve", "examples/rough-pendulum.toml", "--exact", "--json"])
         .output()
         .unwrap();
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     let json: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     let f = &json["friction"]["poisson"];
     let c = &f["contacts"][0];
     assert_eq!(c["normal_impulse"], "132/35");
-    assert_eq!(c["tangential_impulse"], serde_json::json!(["-7666/2289", "0", "0"]));
+    assert_eq!(
+        c["tangential_impulse"],
+        serde_json::json!(["-7666/2289", "0", "0"])
+    );
     assert_eq!(c["velocity_after"][0], "0");
     assert_eq!(c["sticks"], true);
     assert_eq!(f["method"], "planar, exact events");

@@ -91,7 +91,10 @@ fn analyze_gives_the_cradle_by_hand_and_says_the_last_contact_is_not_approaching
     // k = 1/2, m = 2, v = 1: P = (3/2)·2·(2/3, 1/3) = (2, 1); velocities (0, 1/2, 1/2).
     let scene = SceneFile::new("sys-analyze-cradle", &cradle("1/2", "1"));
     let a = json(&scene.run(&["analyze", "--exact", "--json"]));
-    assert_eq!(a["bodies"], serde_json::json!(["striker", "middle", "last"]));
+    assert_eq!(
+        a["bodies"],
+        serde_json::json!(["striker", "middle", "last"])
+    );
     assert_eq!(a["det"], "3/4");
     for model in ["newton", "poisson"] {
         let m = &a["models"][model];
@@ -106,10 +109,11 @@ fn analyze_gives_the_cradle_by_hand_and_says_the_last_contact_is_not_approaching
         // The second contact does not approach (v_2x⁰ = 0): the verdict says so.
         assert_eq!(m["admissible"][1]["approaching"], false);
         assert!(
-            m["verdicts"].as_array().unwrap().iter().any(|v| v
-                .as_str()
+            m["verdicts"]
+                .as_array()
                 .unwrap()
-                .contains("A2 is not approaching")),
+                .iter()
+                .any(|v| v.as_str().unwrap().contains("A2 is not approaching")),
             "{m}"
         );
     }
@@ -121,7 +125,10 @@ fn analyze_and_solve_agree_body_by_body_on_a_system_with_joints() {
     let a = json(&scene.run(&["analyze", "--exact", "--json"]));
     let s = json(&scene.run(&["solve", "--exact", "--json"]));
     for model in ["newton", "poisson"] {
-        let from_analyze = a["models"][model]["twist_after"].as_array().unwrap().clone();
+        let from_analyze = a["models"][model]["twist_after"]
+            .as_array()
+            .unwrap()
+            .clone();
         let from_solve = s["models"][model]["bodies"].as_array().unwrap();
         assert_eq!(from_analyze.len(), 2);
         for (x, y) in from_analyze.iter().zip(from_solve) {
@@ -139,10 +146,7 @@ fn analyze_and_solve_agree_body_by_body_on_a_system_with_joints() {
         );
     }
     // Newton's law at the tip: v_x after = −k v_x⁰ = −(1/2)·4.
-    assert_eq!(
-        s["models"]["newton"]["contacts"][0]["velocity"][0],
-        "-2"
-    );
+    assert_eq!(s["models"]["newton"]["contacts"][0]["velocity"][0], "-2");
 }
 
 #[test]
@@ -159,7 +163,10 @@ fn a_sweep_of_the_cradle_gives_the_closed_form_and_its_derivative_at_every_point
         let v: num_rational::BigRational = v.parse().unwrap();
         let two = num_rational::BigRational::from_integer(2.into());
         let half = |x: num_rational::BigRational| x / &two;
-        assert_eq!(csv.cell(r, "newton_P1_exact"), (two.clone() * &v).to_string());
+        assert_eq!(
+            csv.cell(r, "newton_P1_exact"),
+            (two.clone() * &v).to_string()
+        );
         assert_eq!(csv.cell(r, "newton_P2_exact"), v.to_string());
         let last: f64 = csv.cell(r, "newton_last.vCx").parse().unwrap();
         let expected = half(v.clone());
@@ -208,7 +215,11 @@ fn symbolic_cradle() -> String {
     cradle("k", "v")
         .replace("mass = 2", "mass = \"m\"")
         .replace("k = \"k\"", "k = \"k\"")
-        .replacen("name = \"cradle\"\n", "name = \"cradle\"\n[params]\nm = 2\nv = 1\nk = \"1/2\"\n", 1)
+        .replacen(
+            "name = \"cradle\"\n",
+            "name = \"cradle\"\n[params]\nm = 2\nv = 1\nk = \"1/2\"\n",
+            1,
+        )
         .replace("velocity = [v, 0, 0]", "velocity = [\"v\", 0, 0]")
 }
 
@@ -217,7 +228,11 @@ fn derive_gives_the_cradle_in_closed_form_with_no_condition_on_the_speed() {
     let scene = SceneFile::new("sys-derive-cradle", &symbolic_cradle());
     let out = scene.run(&["derive", "--model", "newton"]);
     let text = String::from_utf8_lossy(&out.stdout);
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     // The closed forms of the module docs: P = (1 + k) m v (2/3, 1/3), the striker at
     // (1 − 2k)/3 v and the others at (1 + k)/3 v; E_p = (1 + k)² m v²/3 (eq. 28:
     // ½ Σ P_i (1 + k) v_ix⁰ / (1 + k) … written out: ½ (1 + k) P₁ v).
@@ -233,7 +248,10 @@ fn derive_gives_the_cradle_in_closed_form_with_no_condition_on_the_speed() {
         "newton.Ep = 1/3*m*v^2*(k + 1)^2",
         "newton: energy identity ΔE_c = −E_p + Σ P_i v_ix⁰ (eq. 34) holds identically",
     ] {
-        assert!(text.lines().any(|l| l.trim() == line), "no `{line}` in\n{text}");
+        assert!(
+            text.lines().any(|l| l.trim() == line),
+            "no `{line}` in\n{text}"
+        );
     }
     // A sign of v is never assumed: the formulas hold for a striker moving either way.
     assert!(!text.contains("v > 0"), "{text}");
@@ -245,9 +263,15 @@ fn a_symbolic_twist_that_violates_a_joint_is_refused_naming_it() {
     let scene = SceneFile::new(
         "sys-derive-violated",
         &BARS
-            .replace("name = \"two bars\"", "name = \"two bars\"\n[params]\nw = 1")
+            .replace(
+                "name = \"two bars\"",
+                "name = \"two bars\"\n[params]\nw = 1",
+            )
             .replace("velocity = [0, -1, 0]", "velocity = [0, \"-2*w\", 0]")
-            .replace("angular_velocity = [0, 0, -1]", "angular_velocity = [0, 0, \"-w\"]"),
+            .replace(
+                "angular_velocity = [0, 0, -1]",
+                "angular_velocity = [0, 0, \"-w\"]",
+            ),
     );
     let out = scene.run(&["derive"]);
     assert_eq!(out.status.code(), Some(2));

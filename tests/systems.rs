@@ -435,9 +435,15 @@ fn a_contact_without_its_pair_of_bodies_is_refused() {
         contact(vi(1, 0, 0), vi(1, 0, 0), int(1)),
         contact(vi(3, 0, 0), vi(1, 0, 0), int(1)),
     ];
-    let e = System::new(vec![ball(), b], velocity, contacts, vec![free_pair(0, Some(1))], vec![])
-        .err()
-        .expect("refused");
+    let e = System::new(
+        vec![ball(), b],
+        velocity,
+        contacts,
+        vec![free_pair(0, Some(1))],
+        vec![],
+    )
+    .err()
+    .expect("refused");
     assert_eq!(
         e,
         inertance::mechanics::system::SystemError::PairsMismatch {

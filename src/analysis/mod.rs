@@ -25,10 +25,10 @@
 pub mod accuracy;
 pub mod wrench_space;
 
+use crate::impact::mechanism::Mechanism;
 use crate::impact::problem::Problem;
 use crate::impact::restitution::Model;
 use crate::impact::solve::{Impact, Outcome};
-use crate::impact::mechanism::Mechanism;
 use crate::mechanics::contact::Contact;
 use crate::mechanics::screw::{Screw, Screws};
 use crate::scalar::Scalar;
@@ -181,7 +181,8 @@ pub fn analyze<T: Scalar, M: Mechanism<T>>(
             i == j || impact.g_hat()[i * n + j].is_negligible(&impact.g_hat()[i * n + i], 16 * n)
         })
     });
-    let newton_equals_poisson = newton_equals_poisson(impact.problem().contacts(), &out_models, diagonal);
+    let newton_equals_poisson =
+        newton_equals_poisson(impact.problem().contacts(), &out_models, diagonal);
     let (coincident, coincident_truncated) = coincident(
         impact.problem().contacts(),
         all_pairs(n),
@@ -313,7 +314,9 @@ fn analyze_model<T: Scalar, M: Mechanism<T>>(
         // {v⁰}ᵀ η M {v⁰} = 2 T⁰, the scale of the energies.
         let t0 = problem.kinetic_energy(v0);
         let reference = t0.clone() + &t0;
-        problem.kinetic_energy(&dv).is_negligible(&reference, 16 * n)
+        problem
+            .kinetic_energy(&dv)
+            .is_negligible(&reference, 16 * n)
     });
     let admissible = (0..n)
         .map(|i| Admissibility {

@@ -596,7 +596,10 @@ impl ConstraintsReport {
 }
 
 /// Velocity components in the unit frame, and the tangential angle (eq. 8, 27).
-fn point_velocity<T: Scalar, S: Screws<T>>(hat: &[T; 3], frame: &ContactFrame<T, S>) -> PointVelocity {
+fn point_velocity<T: Scalar, S: Screws<T>>(
+    hat: &[T; 3],
+    frame: &ContactFrame<T, S>,
+) -> PointVelocity {
     let s: [Surd<T>; 3] = [0, 1, 2].map(|k| Surd::over_norm(&hat[k], &frame.norm2[k]));
     // v_y = a√r, v_z = b√s ⇒ |v_t|² = a²r + b²s = Q, cos α = a√(r/Q), sin α = b√(s/Q): the
     // same for a and b times one power of two, which in floats keeps Q within range (a

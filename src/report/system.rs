@@ -6,11 +6,11 @@
 
 use serde_json::{Map, Value as Json, json};
 
+use super::system_friction::SystemFrictionReport;
 use super::{
     PointVelocity, Value, WrenchReport, determinant, impulses, inertances, point_velocities,
     unit_axes,
 };
-use super::system_friction::SystemFrictionReport;
 use crate::impact::admissibility::Inadmissible;
 use crate::impact::friction::Restitution;
 use crate::impact::restitution::Model;
@@ -118,12 +118,7 @@ impl SystemReport {
         let system = impact.problem();
         let frames = impact.frames();
         let n = impact.contacts();
-        let name = |p: &Pair| {
-            (
-                names[p.first].clone(),
-                p.second.map(|b| names[b].clone()),
-            )
-        };
+        let name = |p: &Pair| (names[p.first].clone(), p.second.map(|b| names[b].clone()));
         let free = system.pairs().iter().all(|p| p.second.is_some())
             && system.joints().iter().all(|j| j.pair.second.is_some());
         SystemReport {
@@ -241,14 +236,20 @@ impl SystemReport {
             models.insert(m.model.name().into(), obj);
         }
         for (model, message, status) in &self.model_failures {
-            models.insert(model.name().into(), json!({ "error": message, "status": status }));
+            models.insert(
+                model.name().into(),
+                json!({ "error": message, "status": status }),
+            );
         }
         let mut friction = Map::new();
         for f in &self.friction {
             friction.insert(f.law.name().into(), f.to_json(&self.bodies));
         }
         for (law, message, status) in &self.friction_failures {
-            friction.insert(law.name().into(), json!({ "error": message, "status": status }));
+            friction.insert(
+                law.name().into(),
+                json!({ "error": message, "status": status }),
+            );
         }
         let mut top = json!({
             "scene": self.scene,
@@ -285,7 +286,12 @@ impl SystemReport {
 
     /// The report as text.
     pub fn to_table(&self) -> String {
-        let mut out = format!("{} — {} ({})\n\n", self.scene, self.scalar, self.effects.join(", "));
+        let mut out = format!(
+            "{} — {} ({})\n\n",
+            self.scene,
+            self.scalar,
+            self.effects.join(", ")
+        );
         out += "Vectors in world axes; each body's twist about its own centre of mass.\n\n";
         out += "Contacts:\n";
         for (i, ((a, b), before)) in self.pairs.iter().zip(&self.contacts_before).enumerate() {
@@ -322,12 +328,18 @@ impl SystemReport {
                 out += &f.to_text(&self.bodies, self.free);
             }
             for (law, message, _) in &self.friction_failures {
-                out += &format!("\nAfter impact, with friction — {law} restitution: no answer: {message}\n");
+                out += &format!(
+                    "\nAfter impact, with friction — {law} restitution: no answer: {message}\n"
+                );
             }
             return out;
         }
         out += "\nAfter impact:\n";
-        let header: Vec<String> = self.models.iter().map(|m| m.model.name().to_string()).collect();
+        let header: Vec<String> = self
+            .models
+            .iter()
+            .map(|m| m.model.name().to_string())
+            .collect();
         let mut rows: Vec<(String, Vec<String>)> = Vec::new();
         let each = |f: &dyn Fn(&SystemModelReport) -> String| -> Vec<String> {
             self.models.iter().map(f).collect()
@@ -336,17 +348,32 @@ impl SystemReport {
             rows.push((format!("P{} [N s]", i + 1), each(&|m| m.impulses[i].text())));
         }
         let vector = |v: &[Value; 3]| {
-            format!("({})", v.iter().map(Value::text).collect::<Vec<_>>().join(", "))
+            format!(
+                "({})",
+                v.iter().map(Value::text).collect::<Vec<_>>().join(", ")
+            )
         };
         for (b, name) in self.bodies.iter().enumerate() {
-            rows.push((format!("{name} ω [rad/s]"), each(&|m| vector(&m.twists[b].0))));
-            rows.push((format!("{name} v_C [m/s]"), each(&|m| vector(&m.twists[b].1))));
+            rows.push((
+                format!("{name} ω [rad/s]"),
+                each(&|m| vector(&m.twists[b].0)),
+            ));
+            rows.push((
+                format!("{name} v_C [m/s]"),
+                each(&|m| vector(&m.twists[b].1)),
+            ));
         }
         for i in 0..self.pairs.len() {
-            rows.push((format!("v{}x [m/s]", i + 1), each(&|m| m.contacts[i].components[0].text())));
+            rows.push((
+                format!("v{}x [m/s]", i + 1),
+                each(&|m| m.contacts[i].components[0].text()),
+            ));
         }
         for (j, _) in self.joints.iter().enumerate() {
-            rows.push((format!("J{} F [N s]", j + 1), each(&|m| vector(&m.joint_reactions[j].force))));
+            rows.push((
+                format!("J{} F [N s]", j + 1),
+                each(&|m| vector(&m.joint_reactions[j].force)),
+            ));
             rows.push((
                 format!("J{} M [N m s]", j + 1),
                 each(&|m| vector(&m.joint_reactions[j].moment)),

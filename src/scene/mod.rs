@@ -58,8 +58,8 @@ pub mod pipeline;
 mod read;
 pub mod scale;
 mod schema;
-mod system;
 pub mod seed;
+mod system;
 pub mod system_pipeline;
 
 pub use model::Axes;
@@ -529,7 +529,11 @@ impl Scene {
     }
 
     /// Three numbers at `key[0..3]` in `T`.
-    pub(crate) fn vec3<T: Scalar>(&self, t: &[Number; 3], key: &str) -> Result<Vec3<T>, SceneError> {
+    pub(crate) fn vec3<T: Scalar>(
+        &self,
+        t: &[Number; 3],
+        key: &str,
+    ) -> Result<Vec3<T>, SceneError> {
         Ok(Vec3::new(
             self.value::<T>(&t[0], &format!("{key}[0]"))?,
             self.value::<T>(&t[1], &format!("{key}[1]"))?,

@@ -50,7 +50,10 @@ pub struct SolvedSystem {
 /// A [`RunError`]: the scene (friction, a number `T` cannot hold, an invalid body or joint),
 /// a singular G under the simultaneous law, a jam under the unilateral law when no model
 /// answers.
-pub fn run_system<T: Scalar>(scene: &Scene, models: Option<&[Model]>) -> Result<SolvedSystem, RunError> {
+pub fn run_system<T: Scalar>(
+    scene: &Scene,
+    models: Option<&[Model]>,
+) -> Result<SolvedSystem, RunError> {
     scene.law_applies()?;
     if scene.frictional() {
         return run_frictional::<T>(scene, models);
@@ -203,13 +206,21 @@ fn run_frictional<T: Scalar>(
 
 /// Linear and angular momentum equal before and after: exactly in exact types, to 64 N ε of
 /// the largest body momentum in floats.
-fn conserved<T: Scalar>(system: &System<T>, before: &SystemScrew<T>, after: &SystemScrew<T>) -> bool {
+fn conserved<T: Scalar>(
+    system: &System<T>,
+    before: &SystemScrew<T>,
+    after: &SystemScrew<T>,
+) -> bool {
     let (p0, l0) = system.momentum(before);
     let (p1, l1) = system.momentum(after);
     let mut scale = T::zero();
     for x in p0.iter().chain(&l0).chain(&p1).chain(&l1) {
         if x.abs_gt(&scale) {
-            scale = if x.signum_i8() < 0 { -x.clone() } else { x.clone() };
+            scale = if x.signum_i8() < 0 {
+                -x.clone()
+            } else {
+                x.clone()
+            };
         }
     }
     let n = 64 * system.bodies().len();
@@ -227,9 +238,9 @@ fn refuse_unrepresentable(scene: &Scene, report: &SystemReport) -> Result<(), Ru
         [
             (
                 "impulses",
-                f.contacts.iter().all(|c| {
-                    finite(&c.normal_impulse) && c.tangential_impulse.iter().all(finite)
-                }),
+                f.contacts
+                    .iter()
+                    .all(|c| finite(&c.normal_impulse) && c.tangential_impulse.iter().all(finite)),
             ),
             (
                 "velocities after impact",
@@ -241,21 +252,24 @@ fn refuse_unrepresentable(scene: &Scene, report: &SystemReport) -> Result<(), Ru
             ),
         ]
     });
-    for checks in report.models.iter().map(|m| {
-        [
-            ("impulses", m.impulses.iter().all(finite)),
-            (
-                "velocities after impact",
-                m.twists
-                    .iter()
-                    .all(|(w, v)| w.iter().chain(v).all(finite)),
-            ),
-            (
-                "energies",
-                finite(&m.lost_velocity_energy) && finite(&m.kinetic_energy_loss),
-            ),
-        ]
-    }).chain(frictional) {
+    for checks in report
+        .models
+        .iter()
+        .map(|m| {
+            [
+                ("impulses", m.impulses.iter().all(finite)),
+                (
+                    "velocities after impact",
+                    m.twists.iter().all(|(w, v)| w.iter().chain(v).all(finite)),
+                ),
+                (
+                    "energies",
+                    finite(&m.lost_velocity_energy) && finite(&m.kinetic_energy_loss),
+                ),
+            ]
+        })
+        .chain(frictional)
+    {
         if let Some((name, _)) = checks.iter().find(|(_, ok)| !ok) {
             return Err(RunError::Scene(SceneError {
                 file: scene.file.clone(),

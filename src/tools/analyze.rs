@@ -9,10 +9,10 @@ use crate::analysis::{
 };
 use crate::impact::mechanism::Mechanism;
 use crate::impact::problem::Problem;
-use crate::mechanics::screw::Screws;
 use crate::impact::restitution::Model;
 use crate::impact::solve::Impact;
 use crate::mechanics::contact::Surd;
+use crate::mechanics::screw::Screws;
 use crate::report::{Value, Wide};
 use crate::scalar::Scalar;
 use crate::scene::Scene;
@@ -250,22 +250,21 @@ fn analyze_system<T: Scalar>(scene: &Scene, models: &[Model]) -> Result<Analysis
     let analysis = analyze(&mut impact, models);
     let (det, cond) = dense_det_cond(&mut impact);
     let norm2: Vec<T> = impact.frames().iter().map(|f| f.norm2[0].clone()).collect();
-    let unilateral: Vec<Result<UnilateralReport, String>> = if scene.contacts.len()
-        <= max_unilateral_contacts::<T>()
-    {
-        analysis
-            .models
-            .iter()
-            .map(|m| unilateral_report(&mut impact, m.model, &norm2))
-            .collect()
-    } else {
-        let why = crate::impact::unilateral::UnilateralError::TooManyContacts {
-            contacts: scene.contacts.len(),
-            limit: max_unilateral_contacts::<T>(),
-        }
-        .to_string();
-        vec![Err(why); analysis.models.len()]
-    };
+    let unilateral: Vec<Result<UnilateralReport, String>> =
+        if scene.contacts.len() <= max_unilateral_contacts::<T>() {
+            analysis
+                .models
+                .iter()
+                .map(|m| unilateral_report(&mut impact, m.model, &norm2))
+                .collect()
+        } else {
+            let why = crate::impact::unilateral::UnilateralError::TooManyContacts {
+                contacts: scene.contacts.len(),
+                limit: max_unilateral_contacts::<T>(),
+            }
+            .to_string();
+            vec![Err(why); analysis.models.len()]
+        };
     let parts = Parts {
         before_x: impact.before_hat().iter().map(|v| v[0].clone()).collect(),
         norm2,
@@ -560,16 +559,25 @@ fn friction_analysis<T: Scalar, M: Mechanism<T>>(scene: &Scene, problem: &M) -> 
             .collect(),
     };
     let (mut readouts, mut system_readouts) = (Vec::new(), Vec::new());
-    let laws = |f: Vec<(crate::impact::friction::Restitution, String, &'static str)>| -> Vec<String> {
-        f.into_iter().map(|(law, m, _)| format!("{law}: {m}")).collect()
-    };
+    let laws =
+        |f: Vec<(crate::impact::friction::Restitution, String, &'static str)>| -> Vec<String> {
+            f.into_iter()
+                .map(|(law, m, _)| format!("{law}: {m}"))
+                .collect()
+        };
     let failures = if let Some(spec) = &scene.system {
         match crate::scene::system_pipeline::run_system::<T>(scene, None) {
             Ok(s) => {
                 let bodies: Vec<String> = spec.bodies.iter().map(|b| b.name.clone()).collect();
                 let free = s.report.free;
                 system_readouts = (s.report.friction.iter())
-                    .map(|f| (f.law.name().to_string(), f.to_json(&bodies), f.to_text(&bodies, free)))
+                    .map(|f| {
+                        (
+                            f.law.name().to_string(),
+                            f.to_json(&bodies),
+                            f.to_text(&bodies, free),
+                        )
+                    })
                     .collect();
                 laws(s.report.friction_failures)
             }
@@ -981,7 +989,10 @@ impl AnalysisReport {
                             u.normal_velocities[i].text()
                         );
                     }
-                    s += &format!("    velocities after impact: {}\n", self.twist_text(&u.twist));
+                    s += &format!(
+                        "    velocities after impact: {}\n",
+                        self.twist_text(&u.twist)
+                    );
                     s += &format!(
                         "    E_p = {}, ΔE_c = {}\n",
                         u.energies[0].text(),

@@ -250,7 +250,10 @@ fn derive_system(scene: &Scene, symbols: &[String], models: &[Model]) -> Result<
         let mut out: Outcome<RatFun, SystemScrew<RatFun>> = Outcome::default();
         impact.solve(m, &mut out)?;
         let sum = out.kinetic_energy_loss.clone() + &out.lost_velocity_energy;
-        energy_identity.push((m, num_traits::Zero::is_zero(&(sum - impact.impulse_work(&out)))));
+        energy_identity.push((
+            m,
+            num_traits::Zero::is_zero(&(sum - impact.impulse_work(&out))),
+        ));
         outcomes.push((m, out));
     }
     let mut norms = RatFun::from_integer(1);
@@ -273,7 +276,10 @@ fn derive_system(scene: &Scene, symbols: &[String], models: &[Model]) -> Result<
     effects.extend(models.iter().map(|m| m.name().to_string()));
     let report = SystemReport::new(&scene.name, effects, &names, &impact, &outcomes);
     take_assumptions();
-    if let Some(c) = conditions.iter().find(|c| num_traits::Zero::is_zero(&c.expr)) {
+    if let Some(c) = conditions
+        .iter()
+        .find(|c| num_traits::Zero::is_zero(&c.expr))
+    {
         return Err(identically_zero(scene, c));
     }
     let locus = if det.numer().is_constant() {

@@ -91,7 +91,9 @@ pub enum SystemError {
     #[error("a collision needs at least one contact")]
     NoContacts,
     /// Not one pair of bodies per contact.
-    #[error("{contacts} contacts but {pairs} pairs of bodies: each contact needs the bodies it joins")]
+    #[error(
+        "{contacts} contacts but {pairs} pairs of bodies: each contact needs the bodies it joins"
+    )]
     PairsMismatch {
         /// How many contacts.
         contacts: usize,

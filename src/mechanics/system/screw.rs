@@ -71,7 +71,10 @@ impl<T: Scalar> Screws<T> for SystemScrew<T> {
     }
 
     fn components(&self) -> Vec<T> {
-        self.0.iter().flat_map(|s| s.as_slice().iter().cloned()).collect()
+        self.0
+            .iter()
+            .flat_map(|s| s.as_slice().iter().cloned())
+            .collect()
     }
 
     fn max_abs_f64(&self) -> f64 {

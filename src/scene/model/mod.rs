@@ -321,7 +321,8 @@ impl Reader<'_> {
                 let mut axis: Option<Vec3> = None;
                 for di in &d {
                     if dot(di, di).is_zero()
-                        || self.decide_zero(&dot(di, di), &format!("{prefix}.shape.points"))? == Some(true)
+                        || self.decide_zero(&dot(di, di), &format!("{prefix}.shape.points"))?
+                            == Some(true)
                     {
                         continue;
                     }
@@ -330,7 +331,9 @@ impl Reader<'_> {
                         Some(u) => {
                             let c = term::cross(u, di);
                             let off = dot(&c, &c);
-                            if self.decide_zero(&off, &format!("{prefix}.shape.points"))? != Some(true) {
+                            if self.decide_zero(&off, &format!("{prefix}.shape.points"))?
+                                != Some(true)
+                            {
                                 return Ok(None);
                             }
                         }
@@ -457,7 +460,9 @@ impl Reader<'_> {
     ) -> Result<(shape::MassProperties, Option<Shape>), SceneError> {
         let refuse = |key: &str, why: &str| -> Result<(), SceneError> {
             match body.get(key) {
-                Some(v) => Err(self.err(&format!("{prefix}.{key}"), Some(short(v)), why.to_string())),
+                Some(v) => {
+                    Err(self.err(&format!("{prefix}.{key}"), Some(short(v)), why.to_string()))
+                }
                 None => Ok(()),
             }
         };
@@ -481,13 +486,20 @@ impl Reader<'_> {
                         self.positive(&m, &format!("{prefix}.mass"), "a mass must be positive")?;
                         let density = shape.volume().map(|v| m.approx / v.approx());
                         if let Some(rho) = density.filter(|d| d.is_finite()) {
-                            self.observed.borrow_mut().density.push((prefix.to_string(), rho));
+                            self.observed
+                                .borrow_mut()
+                                .density
+                                .push((prefix.to_string(), rho));
                         }
                         Term::of(&m)
                     }
                     (None, Some(rho)) => {
                         let rho = self.number(rho, &format!("{prefix}.density"))?;
-                        self.positive(&rho, &format!("{prefix}.density"), "a density must be positive")?;
+                        self.positive(
+                            &rho,
+                            &format!("{prefix}.density"),
+                            "a density must be positive",
+                        )?;
                         let volume = shape.volume().ok_or_else(|| {
                             self.err(
                                 &format!("{prefix}.density"),
@@ -520,8 +532,10 @@ impl Reader<'_> {
         let m = self.number(self.get(body, "mass", prefix)?, &format!("{prefix}.mass"))?;
         self.positive(&m, &format!("{prefix}.mass"), "a mass must be positive")?;
         let mass = Term::of(&m);
-        let (diagonal, products) =
-            self.inertia(self.get(body, "inertia", prefix)?, &format!("{prefix}.inertia"))?;
+        let (diagonal, products) = self.inertia(
+            self.get(body, "inertia", prefix)?,
+            &format!("{prefix}.inertia"),
+        )?;
         let d = diagonal.each_ref().map(Term::of);
         let p = products.as_ref().map(|p| p.each_ref().map(Term::of));
         // (J_xy, J_xz, J_yz) at (0, 1), (0, 2), (1, 2), mirrored.

@@ -14,7 +14,7 @@ use rayon::prelude::*;
 use toml_edit::DocumentMut;
 
 use super::SweepError;
-use super::outputs::{law_values, output_names, point_status, body_status, sweep_laws};
+use super::outputs::{body_status, law_values, output_names, point_status, sweep_laws};
 use super::slot::Slot;
 use super::target::Target;
 

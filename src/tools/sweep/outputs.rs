@@ -132,7 +132,11 @@ pub(super) fn law_outputs(answer: &Answer, law: Restitution, friction: bool) -> 
 }
 
 /// [`law_outputs`] of one body's report.
-pub(super) fn body_outputs(report: &Report, law: Restitution, friction: bool) -> Option<Vec<Value>> {
+pub(super) fn body_outputs(
+    report: &Report,
+    law: Restitution,
+    friction: bool,
+) -> Option<Vec<Value>> {
     if let Some(f) = report.friction.iter().find(|f| f.law == law) {
         let mut v: Vec<Value> = f
             .contacts

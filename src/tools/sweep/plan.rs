@@ -91,23 +91,28 @@ impl Plan {
             Vec::new()
         };
         let series = if opts.plot.is_some() {
-            resolve_outputs(&opts.plot_outputs, &models, contacts, friction, &bodies, &keys)?
+            resolve_outputs(
+                &opts.plot_outputs,
+                &models,
+                contacts,
+                friction,
+                &bodies,
+                &keys,
+            )?
         } else {
             Vec::new()
         };
         // A modelled scene's numbers are computed from what was written (a shape's mass
         // gives its moments), and a parameter may feed many: those re-read the document.
-        let slots = if base.axes.is_some()
-            || base.system.is_some()
-            || targets.iter().any(|t| t.param)
-        {
-            None
-        } else {
-            opts.vary
-                .iter()
-                .map(|v| Slot::find(&v.path, &base))
-                .collect::<Option<Vec<_>>>()
-        };
+        let slots =
+            if base.axes.is_some() || base.system.is_some() || targets.iter().any(|t| t.param) {
+                None
+            } else {
+                opts.vary
+                    .iter()
+                    .map(|v| Slot::find(&v.path, &base))
+                    .collect::<Option<Vec<_>>>()
+            };
         let plan = Plan {
             file,
             name: base.name.clone(),
