@@ -283,3 +283,18 @@ fn a_symbolic_twist_that_violates_a_joint_is_refused_naming_it() {
         "{err}"
     );
 }
+
+#[test]
+fn derive_refuses_a_system_under_the_unilateral_law_rather_than_derive_another() {
+    let scene = SceneFile::new(
+        "sys-derive-unilateral",
+        &symbolic_cradle().replacen("[params]", "[solve]\nlaw = \"unilateral\"\n[params]", 1),
+    );
+    let out = scene.run(&["derive"]);
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("solve.law") && err.contains("unilateral"),
+        "{err}"
+    );
+}
