@@ -1150,14 +1150,10 @@ proptest! {
     /// of both models under both laws (the body at the origin, so its contact points are the
     /// same numbers in both).
     ///
-    /// **Fails today** for 2 and 3 contacts: with Ĝ equal bit for bit, Δ̂, the impulses, the
-    /// twist and the normal velocities after impact differ in the last bits (on 400 random
-    /// problems: N = 2, the impulses differ in 53 of 78; N = 3, in 6 of 70; N = 1, 4, 5 never),
-    /// because the single body takes its fast paths (`Mechanism::assemble_fast`,
-    /// `solve_fast`) and the system the general one. Run with `--ignored` to see it; remove
-    /// the `ignore` once a one-body system takes the same path.
+    /// Both take the same small-N float lane (`Mechanism::lane_body`): before they did, the
+    /// system took the general code and differed in the last bits for 2 and 3 contacts (on
+    /// 400 random problems: N = 2, the impulses in 53 of 78; N = 3, in 6 of 70).
     #[test]
-    #[ignore = "a one-body system differs from the single body in the last bits for 2–3 contacts (the single body's fast paths)"]
     fn one_body_without_joints_is_the_single_body_problem_bit_for_bit_in_f64(p in common::problem(4)) {
         let p: Problem<f64> = common::convert(&p);
         let system = System::new(

@@ -14,7 +14,7 @@
 use crate::impact::restitution::Model;
 use crate::impact::route::Route;
 use crate::impact::solve::{Impact, Outcome, SolveError};
-use crate::mechanics::body::Mobility;
+use crate::mechanics::body::{Mobility, RigidBody};
 use crate::mechanics::contact::{Contact, ContactFrame, TangentNotPerpendicular};
 use crate::mechanics::screw::{Screws, Vec3};
 use crate::scalar::Scalar;
@@ -72,8 +72,15 @@ pub trait Mechanism<T: Scalar>: Mobility<T, Self::Screw> + Clone + std::fmt::Deb
         out: &mut Outcome<T, Self::Screw>,
     );
 
+    /// The mechanism's one free body, when it is one ([`crate::impact::solve`]'s small-N
+    /// float lane serves it): a body without constraints, or a system of one body with no
+    /// joints hit only against obstacles. `None` by default.
+    fn lane_body(&self) -> Option<&RigidBody<T>> {
+        None
+    }
+
     /// Assemble `impact` by a faster path than the general one, if the mechanism has one for
-    /// it (`true`: done).
+    /// it (`true`: done): the small-N float lane for one free body ([`Mechanism::lane_body`]).
     ///
     /// # Errors
     /// As [`Impact::assemble`].
@@ -81,8 +88,7 @@ pub trait Mechanism<T: Scalar>: Mobility<T, Self::Screw> + Clone + std::fmt::Deb
     where
         Self: Sized,
     {
-        let _ = impact;
-        Ok(false)
+        impact.build_lane()
     }
 
     /// Solve `model` on `impact` by the fast path it was assembled by, if any (`true`: done).
@@ -94,7 +100,6 @@ pub trait Mechanism<T: Scalar>: Mobility<T, Self::Screw> + Clone + std::fmt::Deb
     where
         Self: Sized,
     {
-        let _ = (impact, model, out);
-        false
+        impact.lane != 0 && impact.solve_lane(model, out)
     }
 }

@@ -24,9 +24,8 @@ use std::fmt;
 
 use crate::impact::friction::blocks::plane_normals;
 use crate::impact::mechanism::Mechanism;
-use crate::impact::restitution::Model;
 use crate::impact::route::{self, Route};
-use crate::impact::solve::{Impact, Outcome, SolveError};
+use crate::impact::solve::Outcome;
 use crate::mechanics::body::{Inertia, Mobility, RigidBody};
 use crate::mechanics::constraint::{Constrained, ConstraintError, Joint};
 use crate::mechanics::contact::{Contact, ContactFrame, TangentNotPerpendicular};
@@ -535,16 +534,9 @@ impl<T: Scalar> Mechanism<T> for Problem<T> {
         }
     }
 
-    fn assemble_fast(impact: &mut Impact<T>) -> Result<bool, SolveError> {
-        impact.build_lane()
-    }
-
-    fn solve_fast(impact: &mut Impact<T>, model: Model, out: &mut Outcome<T>) -> bool {
-        if impact.lane == 0 {
-            return false;
-        }
-        impact.solve_lane(model, out);
-        true
+    /// The body, when no constraint holds it.
+    fn lane_body(&self) -> Option<&RigidBody<T>> {
+        self.constraints.is_none().then_some(&self.body)
     }
 }
 

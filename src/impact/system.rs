@@ -8,8 +8,10 @@
 //! per blocked screw ([`crate::mechanics::system::mobility`]); their wrenches are
 //! [`System::joint_reactions`].
 //!
-//! **Route.** A free system whose G passes [`crate::impact::route`]'s test takes the normal
-//! equations in floats; one held by joints, or with an ill-conditioned G, takes the
+//! **Route.** A free system whose bodies are in principal axes and whose G passes
+//! [`crate::impact::route`]'s test takes the normal equations in floats; one held by joints,
+//! with a body's full inertia tensor (a posed body in world axes), or with an
+//! ill-conditioned G, takes the
 //! orthogonalised contact wrenches in the metric ηW ([`crate::impact::gram_schmidt`]), which
 //! keeps the twist to √cond G·ε as for one body.
 
@@ -17,6 +19,7 @@ use crate::impact::friction::blocks::plane_normals;
 use crate::impact::mechanism::Mechanism;
 use crate::impact::route::{self, Route};
 use crate::impact::solve::Outcome;
+use crate::mechanics::body::{Inertia, RigidBody};
 use crate::mechanics::contact::{Contact, ContactFrame, TangentNotPerpendicular};
 use crate::mechanics::screw::Vec3;
 use crate::mechanics::system::{System, SystemScrew};
@@ -51,6 +54,16 @@ impl<T: Scalar> Mechanism<T> for System<T> {
         System::contact_axis(self, i, u)
     }
 
+    /// One body with no joints, every contact against an obstacle: it is the single body of
+    /// [`crate::impact::problem::Problem`], and takes its float lane, so that its results are
+    /// that body's bit for bit.
+    fn lane_body(&self) -> Option<&RigidBody<T>> {
+        match (self.bodies(), self.joints().is_empty()) {
+            ([body], true) if self.pairs().iter().all(|p| p.second.is_none()) => Some(&body.body),
+            _ => None,
+        }
+    }
+
     /// The planes of rational unit normal built from the system's vectors
     /// ([`plane_normals`]): each body's ω⁰ (along the normal of a planar motion), and as
     /// vectors of the plane the contact points and the bodies' centres from the first contact
@@ -78,8 +91,18 @@ impl<T: Scalar> Mechanism<T> for System<T> {
         System::kinetic_energy(self, v)
     }
 
+    /// As one body's ([`route::route`]): the normal equations for a free system whose every
+    /// body has its inertia in principal axes — the metric ηM⁻¹ diagonal, where the route's
+    /// bound on the rounding of the inertances holds — and whose G passes the test.
     fn route(&self, g_hat: &[T], n: usize) -> Route {
-        if T::IS_EXACT || (self.joints().is_empty() && route::well_conditioned(g_hat, n)) {
+        let principal = || {
+            self.bodies()
+                .iter()
+                .all(|b| matches!(b.body.inertia, Inertia::Principal(_)))
+        };
+        if T::IS_EXACT
+            || (self.joints().is_empty() && principal() && route::well_conditioned(g_hat, n))
+        {
             Route::NormalEquations
         } else {
             Route::OrthogonalWrenches

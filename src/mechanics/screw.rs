@@ -98,6 +98,11 @@ pub trait Screws<T: Scalar>: Clone + std::fmt::Debug + PartialEq + Default {
     fn components(&self) -> Vec<T>;
     /// The largest |coordinate|, as f64: the scale of a response, for error bounds.
     fn max_abs_f64(&self) -> f64;
+    /// One body's screw as a member of this space (a stack of one for a system): how the
+    /// one-body float lane ([`crate::impact::solve`]) serves a system of one body.
+    fn from_single(s: Screw<T>) -> Self;
+    /// The one body's screw, when the space is one body's.
+    fn single(&self) -> Option<&Screw<T>>;
 }
 
 impl<T: Scalar> Default for Screw<T> {
@@ -133,6 +138,16 @@ impl<T: Scalar> Screws<T> for Screw<T> {
 
     fn max_abs_f64(&self) -> f64 {
         self.0.iter().map(|x| x.to_f64().abs()).fold(0.0, f64::max)
+    }
+
+    #[inline]
+    fn from_single(s: Screw<T>) -> Self {
+        s
+    }
+
+    #[inline]
+    fn single(&self) -> Option<&Screw<T>> {
+        Some(self)
     }
 }
 

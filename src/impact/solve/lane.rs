@@ -22,21 +22,26 @@
 //! bit for bit those of [`Outputs::ALL`], since each is formed by the same expression whatever
 //! else is asked. A problem outside the lane — or whose G the route test sends to the
 //! orthogonalised wrenches ([`crate::impact::route`]) — is built by the general code.
+//!
+//! The lane serves any [`Mechanism`] that is one free body ([`Mechanism::lane_body`]): a
+//! [`crate::impact::problem::Problem`] without constraints, and a system of one body with no
+//! joints whose contacts all touch obstacles — so that such a system gives the single body's
+//! results bit for bit (issue 24), its screws a stack of one ([`Screws::from_single`]).
 
 use std::array;
 
 use super::{Impact, Outcome, SolveError, energy_loss};
 use crate::impact::lean::{ldl, route_test};
+use crate::impact::mechanism::Mechanism;
 use crate::impact::outputs::Outputs;
 use crate::impact::restitution::Model;
 use crate::impact::route::Route;
 use crate::linalg;
 use crate::mechanics::body::Inertia;
-use crate::mechanics::contact::ContactFrame;
-use crate::mechanics::screw::{Screw, Vec3};
+use crate::mechanics::screw::{Screw, Screws, Vec3};
 use crate::scalar::Scalar;
 
-impl<T: Scalar> Impact<T> {
+impl<T: Scalar, M: Mechanism<T>> Impact<T, M> {
     /// Build `self.problem` through the lane when it applies; `Ok(false)` leaves it to the
     /// general build (exact types, constraints, a full inertia tensor, N outside 2..=4, or a
     /// G the route test does not give to the normal equations).
@@ -51,9 +56,10 @@ impl<T: Scalar> Impact<T> {
     /// required to be positive): how the tests check the lane's formulas for exact equality
     /// with the general code ([`Impact::assemble_in_lane`]).
     pub(super) fn build_lane_any(&mut self) -> Result<bool, SolveError> {
-        if self.problem.constraints().is_some()
-            || !matches!(self.problem.body().inertia, Inertia::Principal(_))
-        {
+        let Some(body) = self.problem.lane_body() else {
+            return Ok(false);
+        };
+        if !matches!(body.inertia, Inertia::Principal(_)) {
             return Ok(false);
         }
         match self.problem.contacts().len() {
@@ -68,7 +74,9 @@ impl<T: Scalar> Impact<T> {
     fn build_n<const N: usize>(&mut self) -> Result<bool, SolveError> {
         let tangential = self.tangential();
         let problem = &self.problem;
-        let body = problem.body();
+        let Some(body) = problem.lane_body() else {
+            return Ok(false);
+        };
         let Inertia::Principal(j) = &body.inertia else {
             return Ok(false);
         };
@@ -78,19 +86,13 @@ impl<T: Scalar> Impact<T> {
         self.frames.clear();
         self.before_hat.clear();
         self.responses.clear();
-        for (i, c) in problem.contacts().iter().enumerate() {
-            let frame = if tangential {
-                ContactFrame::new(i, c, v0)?
-            } else {
-                ContactFrame::normal(c)
+        for i in 0..N {
+            let frame = problem.frame(i, tangential)?;
+            let Some(axis) = frame.axes[0].single() else {
+                return Ok(false);
             };
-            let e = frame.axes[0].as_slice();
-            self.before_hat.push(if tangential {
-                frame.velocity(v0)
-            } else {
-                [frame.axes[0].reciprocal(v0), T::zero(), T::zero()]
-            });
-            self.responses.push(Screw::new(
+            let e = axis.as_slice();
+            let response = Screw::new(
                 Vec3::new(
                     e[3].clone() * &inv_j[0],
                     e[4].clone() * &inv_j[1],
@@ -101,7 +103,13 @@ impl<T: Scalar> Impact<T> {
                     e[1].clone() * &inv_m,
                     e[2].clone() * &inv_m,
                 ),
-            ));
+            );
+            self.before_hat.push(if tangential {
+                frame.velocity(v0)
+            } else {
+                [frame.axes[0].reciprocal(v0), T::zero(), T::zero()]
+            });
+            self.responses.push(M::Screw::from_single(response));
             self.frames.push(frame);
         }
         let mut g: [[T; N]; N] = array::from_fn(|_| array::from_fn(|_| T::zero()));
@@ -153,7 +161,7 @@ impl<T: Scalar> Impact<T> {
         self.rank = N;
         self.det_hat = linalg::determinant(&self.factor, N);
         self.kinetic_before = if self.outputs.contains(Outputs::ENERGIES) {
-            body.kinetic_energy(v0)
+            self.problem.kinetic_energy(self.problem.velocity())
         } else {
             T::zero()
         };
@@ -164,7 +172,8 @@ impl<T: Scalar> Impact<T> {
     }
 
     /// Solve `model` through the lane built by [`Impact::build_lane`] (`self.lane` contacts).
-    pub(crate) fn solve_lane(&mut self, model: Model, out: &mut Outcome<T>) {
+    /// `false` (nothing done) when the lane was not built for one free body.
+    pub(crate) fn solve_lane(&mut self, model: Model, out: &mut Outcome<T, M::Screw>) -> bool {
         match self.lane {
             2 => self.solve_n::<2>(model, out),
             3 => self.solve_n::<3>(model, out),
@@ -175,9 +184,12 @@ impl<T: Scalar> Impact<T> {
     /// [`Impact::solve_lane`] for N contacts: the impulses from the factored G (eq. 15, 21–23),
     /// then the twist (eq. 24), the contact velocities (eq. 13, 25–26) and the energies
     /// (eq. 28; ΔE_c = ½ Σ P̂_i (v̂_ix⁰ + v̂_ix)) asked for.
-    fn solve_n<const N: usize>(&mut self, model: Model, out: &mut Outcome<T>) {
+    fn solve_n<const N: usize>(&mut self, model: Model, out: &mut Outcome<T, M::Screw>) -> bool {
         let (asked, needs) = (self.outputs, self.outputs.needs());
         let problem = &self.problem;
+        let (Some(body), Some(v0)) = (problem.lane_body(), problem.velocity().single()) else {
+            return false; // not one free body: the lane was not built (build_lane_any)
+        };
         let contacts = problem.contacts();
         let mut x: [T; N] = array::from_fn(|i| {
             let v = self.before_hat[i][0].clone();
@@ -216,19 +228,24 @@ impl<T: Scalar> Impact<T> {
         if asked.contains(Outputs::IMPULSES) {
             out.impulses_hat.extend(x.iter().cloned());
         }
-        let v0 = problem.velocity();
+        let mut after = None;
         if needs.contains(Outputs::TWIST) {
             // eq. 24: {v} = {v⁰} − Σ P̂_j W{Ê_jx}.
             let mut v: [T; 6] = array::from_fn(|k| v0.0[k].clone());
             for (p, r) in x.iter().zip(&self.responses) {
+                let Some(r) = r.single() else {
+                    return false; // the lane's responses are one body's (build_n)
+                };
                 for (vk, rk) in v.iter_mut().zip(r.as_slice()) {
                     *vk -= p.clone() * rk;
                 }
             }
-            out.velocity = Screw::new(
+            let v = Screw::new(
                 Vec3::new(v[0].clone(), v[1].clone(), v[2].clone()),
                 Vec3::new(v[3].clone(), v[4].clone(), v[5].clone()),
             );
+            out.velocity = M::Screw::from_single(v.clone());
+            after = Some(v);
         }
         out.after_hat.clear();
         let (normal, tangential) = (
@@ -258,16 +275,18 @@ impl<T: Scalar> Impact<T> {
                 out.after_hat.push(v);
             }
         }
-        if needs.contains(Outputs::ENERGIES) {
+        // ENERGIES needs TWIST (`Outputs::needs`), so `after` is set when asked.
+        if let (true, Some(after)) = (needs.contains(Outputs::ENERGIES), &after) {
             // eq. 28 from the velocity change; ΔE_c from the momentum balance (module docs of
             // `solve`), free of the cancellation in T⁰ − T.
-            let dv = Screw(out.velocity.0.clone() - v0.0.clone());
-            out.lost_velocity_energy = problem.body().kinetic_energy(&dv);
+            let dv = Screw(after.0.clone() - v0.0.clone());
+            out.lost_velocity_energy = body.kinetic_energy(&dv);
             out.kinetic_energy_loss = energy_loss(&x, &self.before_hat, &out.after_hat);
         }
         out.clear_constraint_impulses();
         if !asked.intersects(Outputs::NORMAL_VELOCITIES | Outputs::TANGENTIAL) {
             out.after_hat.clear();
         }
+        true
     }
 }

@@ -80,6 +80,17 @@ impl<T: Scalar> Screws<T> for SystemScrew<T> {
     fn max_abs_f64(&self) -> f64 {
         self.0.iter().map(Screws::max_abs_f64).fold(0.0, f64::max)
     }
+
+    fn from_single(s: Screw<T>) -> Self {
+        SystemScrew(vec![s])
+    }
+
+    fn single(&self) -> Option<&Screw<T>> {
+        match self.0.as_slice() {
+            [s] => Some(s),
+            _ => None,
+        }
+    }
 }
 
 /// The axis (or wrench) screw `screw`, written about the world origin, about the point `c`:
