@@ -161,7 +161,7 @@ fn a_singular_family_gets_its_compatibility_conditions() {
                 // b = v⁰ is a multiple of G's column: compatible for every value.
                 assert!(f.conditions.iter().all(num_traits::Zero::is_zero));
                 let out = f.outcome.as_ref().unwrap();
-                let twist: Vec<RatFun> = out.velocity.0.iter().cloned().collect();
+                let twist: Vec<RatFun> = out.twist.clone();
                 let expect = ["0", "0", "-k1*omega", "k1*l*omega", "0", "0"].map(e);
                 assert_eq!(twist, expect.to_vec());
                 // … but with P_i = (1 + k_i) P_i^c the twist moves along the family unless

@@ -24,9 +24,10 @@
 
 use serde_json::{Value as Json, json};
 
+use crate::impact::mechanism::Mechanism;
 use crate::impact::restitution::Model;
 use crate::impact::solve::{Impact, Outcome, SolveError};
-use crate::mechanics::screw::Screw;
+use crate::mechanics::screw::Screws;
 use crate::report::system::SystemReport;
 use crate::report::{Report, Value, WrenchReport};
 use crate::scalar::Scalar;
@@ -34,7 +35,7 @@ use crate::scalar::symbolic::{
     Assumption, AssumptionKind, Factored, RatFun, factor, take_assumptions,
 };
 use crate::scene::Scene;
-use crate::scene::pipeline::{Assembled, RunError, assemble};
+use crate::scene::pipeline::{RunError, assemble};
 
 /// A symbolic derivation of a scene.
 #[derive(Clone, Debug)]
@@ -137,11 +138,29 @@ pub struct Family {
     pub solution: Option<(Vec<RatFun>, Vec<Vec<RatFun>>)>,
     /// The outcome of the particular solution (velocities after impact, energies), when
     /// compatible.
-    pub outcome: Option<Outcome<RatFun>>,
+    pub outcome: Option<Particular>,
     /// Per null direction z_k, the change of the twist after impact per unit t_k:
     /// −Σ_j c_j z_kj W{E_jx} with c_j = 1 (Newton) or 1 + k_j^P (Poisson). Zero for Newton
     /// (G z = 0 ⇒ W E z = 0, eq. 57–58); for Poisson zero only when the c_j agree along z.
     pub twist_change: Vec<Vec<RatFun>>,
+}
+
+/// A body's label in a singular family's lines: empty for one body, its name for a system's.
+#[derive(Clone, Debug, Default)]
+struct BodyLabel {
+    text: String,
+    latex: String,
+}
+
+/// What a singular family's particular solution gives after impact.
+#[derive(Clone, Debug)]
+pub struct Particular {
+    /// The twist after impact: [ω; v_C] (a system: each body's in turn, in the scene's order).
+    pub twist: Vec<RatFun>,
+    /// E_p (eq. 28).
+    pub lost_velocity_energy: RatFun,
+    /// ΔE_c (eq. 32).
+    pub kinetic_energy_loss: RatFun,
 }
 
 /// The symbols `derive` takes when none are named (`inertance derive` without `--symbols`,
@@ -195,7 +214,7 @@ pub fn derive(
         }
     }
     let singular = if a.singular() {
-        Some(singular_family(&mut a, &models)?)
+        Some(singular_family(&mut a.impact, &models)?)
     } else {
         None
     };
@@ -234,8 +253,8 @@ pub fn derive(
 }
 
 /// [`derive`] for a system of bodies: its closed forms through the system's solve
-/// ([`crate::scene::system_pipeline`]) in rational functions. A system singular for every
-/// value of the symbols is reported as `solve` reports it (its family is not derived yet).
+/// ([`crate::scene::system_pipeline`]) in rational functions; a system singular for every
+/// value of the symbols gets its family as one body does ([`singular_family`]).
 fn derive_system(scene: &Scene, symbols: &[String], models: &[Model]) -> Result<Derived, RunError> {
     use crate::mechanics::system::SystemScrew;
     if scene.law == crate::impact::unilateral::Law::Unilateral {
@@ -257,7 +276,8 @@ fn derive_system(scene: &Scene, symbols: &[String], models: &[Model]) -> Result<
     let mut impact = Impact::assemble(&system)?;
     let mut outcomes = Vec::with_capacity(models.len());
     let mut energy_identity = Vec::with_capacity(models.len());
-    for &m in models {
+    let singular = impact.rank() < impact.contacts();
+    for &m in models.iter().filter(|_| !singular) {
         let mut out: Outcome<RatFun, SystemScrew<RatFun>> = Outcome::default();
         impact.solve(m, &mut out)?;
         let sum = out.kinetic_energy_loss.clone() + &out.lost_velocity_energy;
@@ -267,6 +287,11 @@ fn derive_system(scene: &Scene, symbols: &[String], models: &[Model]) -> Result<
         ));
         outcomes.push((m, out));
     }
+    let singular = if singular {
+        Some(singular_family(&mut impact, models)?)
+    } else {
+        None
+    };
     let mut norms = RatFun::from_integer(1);
     for f in impact.frames() {
         let _ = f.norm2[0].sqrt_exact();
@@ -303,7 +328,7 @@ fn derive_system(scene: &Scene, symbols: &[String], models: &[Model]) -> Result<
         report: Readout::System(report),
         det,
         locus,
-        singular: None,
+        singular,
         energy_identity,
         conditions,
     })
@@ -375,15 +400,19 @@ fn system_quantities(r: &SystemReport) -> Vec<(String, Vec<(String, Value)>)> {
 }
 
 /// The singular family of a collision with rank G < N for every value of the symbols: per
-/// model, the compatibility conditions and, where they hold identically, the family.
-fn singular_family(a: &mut Assembled<RatFun>, models: &[Model]) -> Result<Singular, RunError> {
-    let n = a.impact.contacts();
-    let basis = a.impact.null_space();
+/// model, the compatibility conditions and, where they hold identically, the family — for one
+/// body or a system alike (the mechanism's screws, each body's in turn).
+fn singular_family<M: Mechanism<RatFun>>(
+    impact: &mut Impact<RatFun, M>,
+    models: &[Model],
+) -> Result<Singular, RunError> {
+    let n = impact.contacts();
+    let basis = impact.null_space();
     let one = RatFun::from_integer(1);
     let mut families = Vec::new();
     for &m in models {
         let mut b = Vec::new();
-        a.impact.rhs(m, &mut b);
+        impact.rhs(m, &mut b);
         let conditions: Vec<RatFun> = basis
             .iter()
             .map(|z| {
@@ -397,16 +426,16 @@ fn singular_family(a: &mut Assembled<RatFun>, models: &[Model]) -> Result<Singul
         let (mut solution, mut outcome, mut twist_change) = (None, None, Vec::new());
         if compatible {
             let mut x = Vec::new();
-            a.impact
+            impact
                 .solve_singular(&b, &mut x)
                 .ok_or(RunError::Solve(SolveError::Singular {
-                    rank: a.impact.rank(),
+                    rank: impact.rank(),
                     contacts: n,
                     rounded: false,
                 }))?;
             // Impulses are c_i x_i, c_i = 1 (Newton) or 1 + k_i^P (Poisson, eq. 23): so are
             // the family's directions in impulse space.
-            let c: Vec<RatFun> = a
+            let c: Vec<RatFun> = impact
                 .problem()
                 .contacts()
                 .iter()
@@ -415,12 +444,12 @@ fn singular_family(a: &mut Assembled<RatFun>, models: &[Model]) -> Result<Singul
                     Model::Poisson => one.clone() + &k.k_poisson,
                 })
                 .collect();
-            let mut out = Outcome::<RatFun>::default();
+            let mut out = Outcome::<RatFun, M::Screw>::default();
             if m == Model::Poisson {
                 out.compression_hat.clone_from(&x);
             }
             out.impulses_hat = x.iter().zip(&c).map(|(xi, ci)| xi.clone() * ci).collect();
-            a.impact.complete(&mut out);
+            impact.complete(&mut out);
             let dirs: Vec<Vec<RatFun>> = basis
                 .iter()
                 .map(|z| z.iter().zip(&c).map(|(zj, cj)| zj.clone() * cj).collect())
@@ -428,15 +457,19 @@ fn singular_family(a: &mut Assembled<RatFun>, models: &[Model]) -> Result<Singul
             twist_change = dirs
                 .iter()
                 .map(|d| {
-                    let mut dv = Screw::<RatFun>::zero();
-                    for (dj, r) in d.iter().zip(a.impact.responses()) {
+                    let mut dv = impact.problem().velocity().zero_like();
+                    for (dj, r) in d.iter().zip(impact.responses()) {
                         dv.add_scaled(&-dj.clone(), r);
                     }
-                    dv.0.iter().cloned().collect()
+                    dv.components()
                 })
                 .collect();
             solution = Some((out.impulses_hat.clone(), dirs));
-            outcome = Some(out);
+            outcome = Some(Particular {
+                twist: out.velocity.components(),
+                lost_velocity_energy: out.lost_velocity_energy,
+                kinetic_energy_loss: out.kinetic_energy_loss,
+            });
         }
         families.push(Family {
             model: m,
@@ -448,7 +481,7 @@ fn singular_family(a: &mut Assembled<RatFun>, models: &[Model]) -> Result<Singul
         });
     }
     Ok(Singular {
-        rank: a.impact.rank(),
+        rank: impact.rank(),
         contacts: n,
         models: families,
     })
@@ -711,6 +744,26 @@ impl Derived {
         out
     }
 
+    /// A twist's components by body: one body's whole (no label), a system's six at a time
+    /// labelled with the body's name (`.ball2` in text, `_{\\text{ball2}}` in LaTeX).
+    fn per_body<'a>(&'a self, v: &'a [RatFun]) -> Vec<(BodyLabel, &'a [RatFun])> {
+        match &self.report {
+            Readout::Body(_) => vec![(BodyLabel::default(), v)],
+            Readout::System(r) => r
+                .bodies
+                .iter()
+                .zip(v.chunks(6))
+                .map(|(name, part)| {
+                    let label = BodyLabel {
+                        text: format!(".{name}"),
+                        latex: format!("_{{\\text{{{name}}}}}"),
+                    };
+                    (label, part)
+                })
+                .collect(),
+        }
+    }
+
     fn singular_text(&self, s: &Singular, latex: bool) -> String {
         let mut out = String::new();
         let line = |t: String| {
@@ -778,25 +831,43 @@ impl Derived {
                             "{m}: the twist after impact VARIES along the family (P_i = (1 + k_i) P_i^c with unequal k_i); per unit t_k it changes by:"
                         ));
                         for (k, d) in varies.iter().enumerate() {
-                            let ds: Vec<String> = d.iter().map(ex).collect();
-                            out += &if latex {
-                                format!(
-                                    "\\delta\\{{v\\}}_{{{}}} &= \\left[{}\\right] \\\\\n",
-                                    k + 1,
-                                    ds.join(",\\ ")
-                                )
-                            } else {
-                                format!("  d(twist)/dt{} = [{}]\n", k + 1, ds.join(", "))
-                            };
+                            for (body, part) in self.per_body(d) {
+                                let ds: Vec<String> = part.iter().map(ex).collect();
+                                out += &if latex {
+                                    format!(
+                                        "\\delta\\{{v{}\\}}_{{{}}} &= \\left[{}\\right] \\\\\n",
+                                        body.latex,
+                                        k + 1,
+                                        ds.join(",\\ ")
+                                    )
+                                } else {
+                                    format!(
+                                        "  d(twist{})/dt{} = [{}]\n",
+                                        body.text,
+                                        k + 1,
+                                        ds.join(", ")
+                                    )
+                                };
+                            }
                         }
                     }
                     if let Some(o) = &f.outcome {
-                        let tw: Vec<String> = o.velocity.0.iter().map(ex).collect();
-                        out += &if latex {
-                            format!("\\{{v\\}} &= \\left[{}\\right] \\\\\n", tw.join(",\\ "))
-                        } else {
-                            format!("  {m}.twist (particular solution) = [{}]\n", tw.join(", "))
-                        };
+                        for (body, part) in self.per_body(&o.twist) {
+                            let tw: Vec<String> = part.iter().map(ex).collect();
+                            out += &if latex {
+                                format!(
+                                    "\\{{v{}\\}} &= \\left[{}\\right] \\\\\n",
+                                    body.latex,
+                                    tw.join(",\\ ")
+                                )
+                            } else {
+                                format!(
+                                    "  {m}{}.twist (particular solution) = [{}]\n",
+                                    body.text,
+                                    tw.join(", ")
+                                )
+                            };
+                        }
                         if !latex {
                             out += &format!(
                                 "  {m}.Ep = {}\n  {m}.dEc = {}\n",
