@@ -1035,6 +1035,41 @@ fn the_box_on_box_example_is_the_hand_closed_form() {
     assert!(stderr.contains("singular"), "{stderr}");
 }
 
+/// The same in f64: Newton's floor impulses are the least-norm member of their set, as exact
+/// (before the negligible contact velocities were judged against the impact's speed, every
+/// w_i being rounding noise made the rounding look like separation: a vertex of the set was
+/// reported and called unique). Both models say the impulses may be one of a set. Tolerance:
+/// the regular part of G has cond ≈ 30 and its entries carry (3ℓ + 16N)ε ≈ 10⁻¹⁴ relative
+/// error (the accuracy contract), so 10⁻¹² of P bounds the least-norm member's error with a
+/// margin; measured: ~10⁻¹⁶.
+#[test]
+fn the_box_on_box_example_in_f64_reports_the_least_norm_impulses_and_says_they_may_be_one_of_a_set()
+{
+    let exact = exact_report("box-on-box", "unilateral");
+    let (status, stdout, stderr) = solve_example("box-on-box", &["--json"]);
+    assert_eq!(status, 0, "{stderr}");
+    let float: Value = serde_json::from_str(&stdout).expect("JSON");
+    for model in ["newton", "poisson"] {
+        assert_eq!(float["models"][model]["impulses_unique"], false, "{model}");
+        assert_eq!(exact["models"][model]["impulses_unique"], false, "{model}");
+    }
+    let want = parse_all(&exact["models"]["newton"]["impulses"]);
+    let got: Vec<f64> = float["models"]["newton"]["impulses"]
+        .as_array()
+        .expect("impulses")
+        .iter()
+        .map(|v| v.as_f64().expect("a number"))
+        .collect();
+    let scale = inertance::scalar::Scalar::to_f64(&want[0]);
+    for (i, (w, g)) in want.iter().zip(&got).enumerate() {
+        assert!(
+            (inertance::scalar::Scalar::to_f64(w) - g).abs() <= 1e-12 * scale,
+            "P{}: {g} against {w}",
+            i + 1
+        );
+    }
+}
+
 /// Every example scene of a system solves with status 0, in f64 and exactly, under its own law
 /// and the unilateral one (box-on-box's own law is the unilateral one).
 #[test]

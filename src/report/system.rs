@@ -34,6 +34,10 @@ pub struct SystemReport {
     pub bodies: Vec<String>,
     /// Per contact, what it joins: its first body's name and its second's (`None`: an obstacle).
     pub pairs: Vec<(String, Option<String>)>,
+    /// Per contact, the obstacle it touches, by name (`obstacle[i]` when unnamed; `None` for a
+    /// contact between bodies or with a written normal), as the scene reader gives them;
+    /// empty for a system built without a scene.
+    pub obstacles: Vec<Option<String>>,
     /// Per joint: its kind, the bodies it joins (the second `None`: the ground).
     pub joints: Vec<(&'static str, String, Option<String>)>,
     /// G = \[g_ij,xx\] (1/kg).
@@ -127,6 +131,7 @@ impl SystemReport {
             effects,
             bodies: names.to_vec(),
             pairs: system.pairs().iter().map(name).collect(),
+            obstacles: Vec::new(),
             joints: system
                 .joints()
                 .iter()
@@ -233,6 +238,10 @@ impl SystemReport {
             if let (false, Some(o)) = (m.active.is_empty(), obj.as_object_mut()) {
                 o.insert("active".into(), json!(m.active));
             }
+            if let (Some(a), Some(o)) = (&m.activity, obj.as_object_mut()) {
+                o.insert("impulses_unique".into(), a.impulses_unique.into());
+                o.insert("outcome_decided".into(), a.outcome_decided.into());
+            }
             models.insert(m.model.name().into(), obj);
         }
         for (model, message, status) in &self.model_failures {
@@ -258,9 +267,10 @@ impl SystemReport {
             "bodies": self.bodies.iter().zip(&self.kinetic_energy_before).map(|(n, t)| json!({
                 "name": n, "kinetic_energy_before": t.json(),
             })).collect::<Vec<_>>(),
-            "contacts": self.pairs.iter().zip(&self.frames).zip(&self.contacts_before)
-                .map(|(((a, b), (axes, _)), before)| json!({
+            "contacts": self.pairs.iter().zip(&self.frames).zip(&self.contacts_before).enumerate()
+                .map(|(i, (((a, b), (axes, _)), before))| json!({
                     "bodies": match b { Some(b) => json!([a, b]), None => json!([a]) },
+                    "obstacle": self.obstacles.get(i).cloned().flatten(),
                     "normal": vec(&axes[0]),
                     "velocity_before": vec(&before.components),
                 }))
@@ -295,9 +305,10 @@ impl SystemReport {
         out += "Vectors in world axes; each body's twist about its own centre of mass.\n\n";
         out += "Contacts:\n";
         for (i, ((a, b), before)) in self.pairs.iter().zip(&self.contacts_before).enumerate() {
-            let other = match b {
-                Some(b) => format!("\"{b}\""),
-                None => "an obstacle".into(),
+            let other = match (b, self.obstacles.get(i)) {
+                (Some(b), _) => format!("\"{b}\""),
+                (None, Some(Some(o))) => format!("obstacle \"{o}\""),
+                (None, _) => "an obstacle".into(),
             };
             out += &format!(
                 "  A{}: \"{a}\" against {other}, approaching at v_x = {} m/s\n",
@@ -382,6 +393,11 @@ impl SystemReport {
         rows.push(("E_p [J]".into(), each(&|m| m.lost_velocity_energy.text())));
         rows.push(("ΔE_c [J]".into(), each(&|m| m.kinetic_energy_loss.text())));
         out += &super::table::aligned(&header, &rows);
+        for m in &self.models {
+            if let Some(a) = &m.activity {
+                out += &super::table::activity_note(m.model, a);
+            }
+        }
         if self.free {
             out += "Momentum (a free system: conserved):\n";
             let show = |(p, l): &([Value; 3], [Value; 3])| {

@@ -3,6 +3,8 @@
 
 use super::{FrictionReport, ModelReport, Report, Value, WrenchReport, fmt_f64};
 use crate::impact::outputs::Outputs;
+use crate::impact::restitution::Model;
+use crate::impact::unilateral::Activity;
 
 /// A row of the after-impact table: its label, and one cell per model.
 type Row = (String, Vec<String>);
@@ -52,40 +54,24 @@ impl Report {
             .collect();
         out += &aligned(&header, &self.after_rows());
         for m in &self.models {
-            match &m.activity {
-                Some(a) if !a.outcome_decided => {
-                    out += &format!(
-                        "{}: the law does not decide the outcome — the compression impulses form a \
-                         set and the k_i differ, so the velocities after impact depend on which are \
-                         taken; shown: one possibility\n",
-                        m.model
-                    );
-                    if let Some(r) = &m.outcome_range {
-                        let names = ["ωx", "ωy", "ωz", "vCx", "vCy", "vCz"];
-                        let varying: Vec<String> = names
-                            .iter()
-                            .zip(r)
-                            .filter(|(_, (lo, hi))| lo.f64 != hi.f64 || lo.exact != hi.exact)
-                            .map(|(n, (lo, hi))| format!("{n} ∈ [{}, {}]", lo.text(), hi.text()))
-                            .collect();
-                        out += &format!(
-                            "  over the vertices of the set of compression impulses: {}\n",
-                            if varying.is_empty() {
-                                "the same twist".to_string()
-                            } else {
-                                varying.join(", ")
-                            }
-                        );
+            let Some(a) = &m.activity else { continue };
+            out += &activity_note(m.model, a);
+            if let (false, Some(r)) = (a.outcome_decided, &m.outcome_range) {
+                let names = ["ωx", "ωy", "ωz", "vCx", "vCy", "vCz"];
+                let varying: Vec<String> = names
+                    .iter()
+                    .zip(r)
+                    .filter(|(_, (lo, hi))| lo.f64 != hi.f64 || lo.exact != hi.exact)
+                    .map(|(n, (lo, hi))| format!("{n} ∈ [{}, {}]", lo.text(), hi.text()))
+                    .collect();
+                out += &format!(
+                    "  over the vertices of the set of compression impulses: {}\n",
+                    if varying.is_empty() {
+                        "the same twist".to_string()
+                    } else {
+                        varying.join(", ")
                     }
-                }
-                Some(a) if !a.impulses_unique => {
-                    out += &format!(
-                        "{}: the velocities after impact are unique; the impulses shown may be one of \
-                         a set (G is singular on the contacts that meet their law)\n",
-                        m.model
-                    )
-                }
-                _ => {}
+                );
             }
         }
         for (model, message, _) in &self.model_failures {
@@ -293,6 +279,26 @@ impl Report {
             rows.push(("ΔE_c [J]".into(), each(&|m| m.kinetic_energy_loss.text())));
         }
         rows
+    }
+}
+
+/// What the unilateral law leaves open for `model` (its `activity`): the outcome itself, or
+/// only which impulses among a set; empty when both are unique. One body's report and a
+/// system's say it in the same words.
+pub(crate) fn activity_note(model: Model, a: &Activity) -> String {
+    if !a.outcome_decided {
+        format!(
+            "{model}: the law does not decide the outcome — the compression impulses form a \
+             set and the k_i differ, so the velocities after impact depend on which are \
+             taken; shown: one possibility\n"
+        )
+    } else if !a.impulses_unique {
+        format!(
+            "{model}: the velocities after impact are unique; the impulses shown may be one of \
+             a set (G is singular on the contacts that meet their law)\n"
+        )
+    } else {
+        String::new()
     }
 }
 

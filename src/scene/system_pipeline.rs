@@ -102,6 +102,7 @@ pub fn run_system<T: Scalar>(
     }
     effects.extend(outcomes.iter().map(|(m, _)| m.name().to_string()));
     let mut report = SystemReport::new(&scene.name, effects, &names, &impact, &outcomes);
+    report.obstacles = obstacle_names(scene);
     for ((r, (_, out)), (bad, activity)) in report
         .models
         .iter_mut()
@@ -142,6 +143,17 @@ pub fn run_system<T: Scalar>(
 }
 
 /// The bodies' names, in order.
+/// Per contact, the obstacle it touches, as the report names it ([`SystemSpec::obstacles`]).
+///
+/// [`SystemSpec::obstacles`]: crate::scene::model::system::SystemSpec::obstacles
+pub(crate) fn obstacle_names(scene: &Scene) -> Vec<Option<String>> {
+    scene
+        .system
+        .as_ref()
+        .map(|s| s.obstacles.clone())
+        .unwrap_or_default()
+}
+
 fn body_names(scene: &Scene) -> Vec<String> {
     scene
         .system
@@ -167,6 +179,7 @@ fn run_frictional<T: Scalar>(
     effects.push("friction".to_string());
     effects.extend(laws.iter().map(|l| l.name().to_string()));
     let mut report = SystemReport::new(&scene.name, effects, &body_names(scene), &impact, &[]);
+    report.obstacles = obstacle_names(scene);
     let kinetic = system.kinetic_energy(system.velocity());
     let tolerance = scene.tolerance.unwrap_or_else(friction_tolerance::<T>);
     let mut balance = Vec::new();

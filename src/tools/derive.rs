@@ -310,7 +310,8 @@ fn derive_system(scene: &Scene, symbols: &[String], models: &[Model]) -> Result<
         effects.push("joints".to_string());
     }
     effects.extend(models.iter().map(|m| m.name().to_string()));
-    let report = SystemReport::new(&scene.name, effects, &names, &impact, &outcomes);
+    let mut report = SystemReport::new(&scene.name, effects, &names, &impact, &outcomes);
+    report.obstacles = crate::scene::system_pipeline::obstacle_names(scene);
     take_assumptions();
     if let Some(c) = conditions
         .iter()

@@ -104,6 +104,10 @@ pub struct SystemSpec {
     pub bodies: Vec<BodySpec>,
     /// Per contact, the bodies it joins.
     pub pairs: Vec<Pair>,
+    /// Per contact against an obstacle, how the report names it: its `name`, or
+    /// `obstacle[i]` when it has none; `None` for a contact between bodies or with a
+    /// written normal.
+    pub obstacles: Vec<Option<String>>,
     /// The joints.
     pub joints: Vec<SystemJointSpec>,
 }
@@ -197,11 +201,13 @@ impl Reader<'_> {
             placed.push(p);
         }
         let obstacles = self.obstacles(root)?;
-        let pairs = self.place_system_contacts(root, contacts, &names, &placed, &obstacles)?;
+        let (pairs, against) =
+            self.place_system_contacts(root, contacts, &names, &placed, &obstacles)?;
         let joints = self.joints(root, &names)?;
         Ok(SystemSpec {
             bodies,
             pairs,
+            obstacles: against,
             joints,
         })
     }
@@ -336,7 +342,8 @@ impl Reader<'_> {
         })
     }
 
-    /// Each contact's bodies, world point and normal (out of its first body).
+    /// Each contact's bodies, world point and normal (out of its first body); with the name
+    /// of the obstacle it touches ([`SystemSpec::obstacles`]).
     fn place_system_contacts(
         &self,
         root: &Table,
@@ -344,11 +351,12 @@ impl Reader<'_> {
         names: &[String],
         placed: &[Placed],
         obstacles: &[Obstacle],
-    ) -> Result<Vec<Pair>, SceneError> {
+    ) -> Result<(Vec<Pair>, Vec<Option<String>>), SceneError> {
         let Some(Item::ArrayOfTables(tables)) = root.get("contact") else {
-            return Ok(Vec::new());
+            return Ok((Vec::new(), Vec::new()));
         };
         let mut pairs = Vec::with_capacity(contacts.len());
+        let mut against = Vec::with_capacity(contacts.len());
         let mut on_obstacles: Vec<Vec<(usize, usize, Vec3)>> = vec![Vec::new(); placed.len()];
         let mut between: Vec<(usize, Pair, Vec3, Vec3)> = Vec::new();
         for (i, (t, spec)) in tables.iter().zip(contacts.iter_mut()).enumerate() {
@@ -486,6 +494,12 @@ impl Reader<'_> {
                 }
             }
             pairs.push(pair);
+            against.push(obstacle.map(|o| {
+                obstacles[o]
+                    .name
+                    .clone()
+                    .unwrap_or_else(|| format!("obstacle[{o}]"))
+            }));
         }
         self.every_corner_on_a_body_named(&between, placed, names)?;
         for (p, named) in placed.iter().zip(&on_obstacles) {
@@ -493,7 +507,7 @@ impl Reader<'_> {
                 self.every_touching_corner_named(named, obstacles, &p.frame, dims)?;
             }
         }
-        Ok(pairs)
+        Ok((pairs, against))
     }
 
     /// A contact between two bodies must lie on each one's surface, where the shape says what
