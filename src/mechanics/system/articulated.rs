@@ -80,13 +80,10 @@ struct Node<T: Scalar> {
     first: bool,
     /// n, its joint's free screws.
     free: usize,
-    /// Where its S and K start (6 numbers per column) — for a free root, its index in
-    /// `roots`.
+    /// Where its columns of S and K start — for a free root, its index in `roots`.
     at: usize,
-    /// Where its D⁻¹ starts (n × n) and its w in a solve's scratch (n).
+    /// Where its D⁻¹ starts (n × n, row-major).
     square: usize,
-    /// Where its w starts in a solve's scratch.
-    rates: usize,
     /// r = C_i − C_parent (zero for a root).
     r: [T; 3],
 }
@@ -98,16 +95,14 @@ pub(crate) struct Articulated<T: Scalar> {
     order: Vec<usize>,
     /// Per body.
     nodes: Vec<Node<T>>,
-    /// S_i per body, column by column (6 numbers each, [v; ω] about C_i).
-    s: Vec<T>,
-    /// K_i = U_i D_i⁻¹, laid out as `s`.
-    k: Vec<T>,
+    /// The columns of every S_i, as twists [ω; v] about C_i.
+    s: Vec<[T; 6]>,
+    /// The columns of every K_i = U_i D_i⁻¹, as wrenches [F; M] about C_i.
+    k: Vec<[T; 6]>,
     /// D_i⁻¹ per body, n × n row-major.
     dinv: Vec<T>,
-    /// (I^A)⁻¹ of each root free of the ground.
+    /// (I^A)⁻¹ of each root free of the ground, on [F; M] to [v; ω].
     roots: Vec<Block<T>>,
-    /// Σ n_i: the length of a solve's scratch for w.
-    rates: usize,
 }
 
 impl<T: Scalar> Articulated<T> {
@@ -125,39 +120,43 @@ impl<T: Scalar> Articulated<T> {
         let b = bodies.len();
         let (order, mut nodes) = forest(b, joints)?;
         // S about each body's centre, from the joint's free screws about the origin:
-        // [ω; v_O] ↦ [v_O + ω × C; ω].
-        let mut s = Vec::new();
-        let (mut square, mut rates) = (0, 0);
+        // [ω; v_O] ↦ [ω; v_O + ω × C].
+        let mut s = Vec::with_capacity(b);
+        let mut square = 0;
         for (i, node) in nodes.iter_mut().enumerate() {
-            if let Some(p) = (node.parent != NONE).then_some(node.parent) {
-                let (ci, cp) = (&bodies[i].centre, &bodies[p].centre);
+            if node.parent != NONE {
+                let (ci, cp) = (&bodies[i].centre, &bodies[node.parent].centre);
                 node.r = std::array::from_fn(|k| ci[k].clone() - &cp[k]);
             }
             if node.joint == NONE {
                 continue;
             }
             let free = screws.free(node.joint);
-            node.at = s.len() / 6;
+            node.at = s.len();
             node.free = free.len();
             node.square = square;
-            node.rates = rates;
             square += free.len() * free.len();
-            rates += free.len();
             let c = &bodies[i].centre;
             for f in free {
                 let (w, v) = (f.top(), f.bottom());
                 let vc = v + w.cross(c);
-                s.extend([vc[0].clone(), vc[1].clone(), vc[2].clone()]);
-                s.extend([w[0].clone(), w[1].clone(), w[2].clone()]);
+                s.push([
+                    w[0].clone(),
+                    w[1].clone(),
+                    w[2].clone(),
+                    vc[0].clone(),
+                    vc[1].clone(),
+                    vc[2].clone(),
+                ]);
             }
         }
-        let mut k = vec![T::zero(); s.len()];
-        let mut dinv = vec![T::zero(); square];
+        let mut k: Vec<[T; 6]> = Vec::with_capacity(s.len());
+        let mut dinv = Vec::with_capacity(square);
         let mut roots = Vec::new();
         let mut inertia: Vec<Option<Block<T>>> =
             bodies.iter().map(|body| Some(mass_block(body))).collect();
-        let mut u: Block<T> = zero_block();
         let mut d: Block<T> = zero_block();
+        let mut u: [[T; 6]; 6] = std::array::from_fn(|_| std::array::from_fn(|_| T::zero()));
         for &i in &order {
             let node = &mut nodes[i];
             let mut a = inertia[i].take().expect("each body once");
@@ -168,62 +167,62 @@ impl<T: Scalar> Articulated<T> {
                 continue;
             }
             let n = node.free;
-            let si = &s[6 * node.at..6 * (node.at + n)];
-            // U = I^A S, column by column.
-            for c in 0..n {
-                let col = &si[6 * c..6 * c + 6];
+            let si = &s[node.at..node.at + n];
+            // U = I^A S column by column (I^A on [v; ω], S's columns [ω; v]: a wrench).
+            for (c, col) in si.iter().enumerate() {
+                let y: [&T; 6] = [&col[3], &col[4], &col[5], &col[0], &col[1], &col[2]];
                 for r in 0..6 {
+                    let row = &a[6 * r..6 * r + 6];
                     let mut t = T::zero();
-                    for (x, y) in a[6 * r..6 * r + 6].iter().zip(col) {
-                        if T::IS_EXACT && y.is_zero() {
+                    for q in 0..6 {
+                        if T::IS_EXACT && y[q].is_zero() {
                             continue;
                         }
-                        t += x.clone() * y;
+                        t += row[q].clone() * y[q];
                     }
-                    u[6 * c + r] = t;
+                    u[c][r] = t;
                 }
             }
-            // D = Sᵀ U, then D⁻¹.
+            // D = Sᵀ U (the power of U's wrenches on S's twists), then D⁻¹.
             for x in 0..n {
                 for y in 0..=x {
-                    let mut t = T::zero();
-                    for (p, q) in si[6 * x..6 * x + 6].iter().zip(&u[6 * y..6 * y + 6]) {
-                        if T::IS_EXACT && p.is_zero() {
-                            continue;
-                        }
-                        t += p.clone() * q;
-                    }
+                    let t = power(&u[y], &si[x]);
                     d[n * x + y] = t.clone();
                     d[n * y + x] = t;
                 }
             }
             invert_definite(&mut d[..n * n], n)?;
-            dinv[node.square..node.square + n * n].clone_from_slice(&d[..n * n]);
+            dinv.extend_from_slice(&d[..n * n]);
             // K = U D⁻¹.
-            let ki = &mut k[6 * node.at..6 * (node.at + n)];
+            let from = k.len();
             for c in 0..n {
-                for r in 0..6 {
-                    let mut t = T::zero();
-                    for b in 0..n {
-                        t += u[6 * b + r].clone() * &d[n * b + c];
-                    }
-                    ki[6 * c + r] = t;
+                let mut kc = u[0].clone();
+                let d0 = &d[c];
+                for x in kc.iter_mut() {
+                    *x *= d0;
                 }
+                for (b, ub) in u.iter().enumerate().take(n).skip(1) {
+                    let db = &d[n * b + c];
+                    for (x, y) in kc.iter_mut().zip(ub) {
+                        *x += y.clone() * db;
+                    }
+                }
+                k.push(kc);
             }
             if node.parent == NONE {
                 continue;
             }
-            // I^a = I^A − K Uᵀ, then the parent's I^A += Xᵀ I^a X.
+            // I^a = I^A − K Uᵀ (its lower triangle, then mirrored).
+            for (kb, ub) in k[from..].iter().zip(&u) {
+                for r in 0..6 {
+                    for c in 0..=r {
+                        a[6 * r + c] -= kb[r].clone() * &ub[c];
+                    }
+                }
+            }
             for r in 0..6 {
-                for c in 0..=r {
-                    let mut t = T::zero();
-                    for b in 0..n {
-                        t += ki[6 * b + r].clone() * &u[6 * b + c];
-                    }
-                    a[6 * r + c] -= t;
-                    if c < r {
-                        a[6 * c + r] = a[6 * r + c].clone();
-                    }
+                for c in 0..r {
+                    a[6 * c + r] = a[6 * r + c].clone();
                 }
             }
             let p = node.parent;
@@ -236,88 +235,93 @@ impl<T: Scalar> Articulated<T> {
             k,
             dinv,
             roots,
-            rates,
         })
     }
 
     /// W{E}: the twist of every body for the impulse `e` (one wrench [F; M] about each
     /// body's centre), by one pass up and one down (module docs).
     pub(crate) fn response(&self, e: &[Screw<T>]) -> Vec<Screw<T>> {
-        let b = self.nodes.len();
-        let mut z: Vec<[T; 6]> = e
-            .iter()
-            .map(|s| std::array::from_fn(|k| s.0[k].clone()))
-            .collect();
+        let mut z: Vec<Screw<T>> = e.to_vec();
         // Whether a body's z can be nonzero: an impulse on a few bodies reaches their
         // ancestors only.
         let mut live: Vec<bool> = e
             .iter()
             .map(|s| s.0.iter().any(|x| !x.is_zero()))
             .collect();
-        let mut w = vec![T::zero(); self.rates];
+        // w_i = S_iᵀ z_i, n_i numbers per body, at the body's columns.
+        let mut w = vec![T::zero(); self.s.len()];
         for &i in &self.order {
             let node = &self.nodes[i];
             if node.joint == NONE || !live[i] {
                 continue;
             }
-            let n = node.free;
-            let (si, ki) = self.columns(node);
-            let zi = &mut z[i];
-            for c in 0..n {
-                w[node.rates + c] = dot6(&si[6 * c..6 * c + 6], zi);
-            }
-            for c in 0..n {
-                let wc = &w[node.rates + c];
+            let cols = node.at..node.at + node.free;
+            let zi = &mut z[i].0;
+            for ((sc, kc), wc) in self.s[cols.clone()]
+                .iter()
+                .zip(&self.k[cols.clone()])
+                .zip(&mut w[cols.clone()])
+            {
+                *wc = power(zi.as_slice(), sc);
                 if T::IS_EXACT && wc.is_zero() {
                     continue;
                 }
                 for r in 0..6 {
-                    zi[r] -= ki[6 * c + r].clone() * wc;
+                    zi[r] -= kc[r].clone() * &*wc;
                 }
             }
             if node.parent != NONE {
-                let za = zi.clone();
-                let zp = &mut z[node.parent];
-                carry_wrench(&za, &node.r, zp);
+                let za = z[i].clone();
+                carry_wrench(&za, &node.r, &mut z[node.parent]);
                 live[node.parent] = true;
             }
         }
-        let mut a: Vec<[T; 6]> = vec![std::array::from_fn(|_| T::zero()); b];
+        // Down: z_i becomes a_i, a twist [ω; v] (read by the children after).
         for &i in self.order.iter().rev() {
             let node = &self.nodes[i];
             if node.joint == NONE {
                 let inv = &self.roots[node.at];
-                a[i] = std::array::from_fn(|r| dot6(&inv[6 * r..6 * r + 6], &z[i]));
+                let zi = &z[i].0;
+                // (I^A)⁻¹ maps [F; M] to [v; ω].
+                let y: [T; 6] = std::array::from_fn(|r| {
+                    let mut t = T::zero();
+                    for c in 0..6 {
+                        t += inv[6 * r + c].clone() * &zi[c];
+                    }
+                    t
+                });
+                z[i] = Screw(nalgebra::SVector::<T, 6>::from_fn(|k, _| {
+                    y[(k + 3) % 6].clone()
+                }));
                 continue;
             }
-            let mut ai: [T; 6] = match node.parent {
-                NONE => std::array::from_fn(|_| T::zero()),
-                p => carry_twist(&a[p], &node.r),
+            let mut ai = match node.parent {
+                NONE => Screw::zero(),
+                p => carry_twist(&z[p], &node.r),
             };
             let n = node.free;
-            let (si, ki) = self.columns(node);
+            let cols = node.at..node.at + n;
             let di = &self.dinv[node.square..node.square + n * n];
-            let wi = &w[node.rates..node.rates + n];
-            for c in 0..n {
-                let mut q = T::zero();
+            let wi = &w[cols.clone()];
+            let mut q: [T; 6] = std::array::from_fn(|_| T::zero());
+            for (c, kc) in self.k[cols.clone()].iter().enumerate() {
+                let mut t = -power(kc, ai.0.as_slice());
                 for (x, y) in di[n * c..n * c + n].iter().zip(wi) {
-                    q += x.clone() * y;
+                    t += x.clone() * y;
                 }
-                q -= dot6(&ki[6 * c..6 * c + 6], &ai);
-                if T::IS_EXACT && q.is_zero() {
+                q[c] = t;
+            }
+            for (sc, qc) in self.s[cols].iter().zip(&q) {
+                if T::IS_EXACT && qc.is_zero() {
                     continue;
                 }
                 for r in 0..6 {
-                    ai[r] += si[6 * c + r].clone() * &q;
+                    ai.0[r] += sc[r].clone() * qc;
                 }
             }
-            a[i] = ai;
+            z[i] = ai;
         }
-        a.into_iter()
-            .map(|[v0, v1, v2, w0, w1, w2]| {
-                Screw(nalgebra::SVector::<T, 6>::new(w0, w1, w2, v0, v1, v2))
-            })
-            .collect()
+        z
     }
 
     /// The joints' impulses λ (one per blocked screw, joint by joint, as `screws` orders
@@ -327,7 +331,7 @@ impl<T: Scalar> Articulated<T> {
         &self,
         bodies: &[SystemBody<T>],
         screws: &JointScrews<T>,
-        mut wrench: Vec<[T; 6]>,
+        mut wrench: Vec<Screw<T>>,
     ) -> Vec<T> {
         let mut lambda = vec![T::zero(); screws.rows()];
         for &i in &self.order {
@@ -335,7 +339,7 @@ impl<T: Scalar> Articulated<T> {
             if node.joint == NONE {
                 continue;
             }
-            let f = wrench[i].clone();
+            let f = wrench[i].0.clone();
             // About the origin: M_O = M_C + C × F.
             let c = &bodies[i].centre;
             let fo = [
@@ -352,16 +356,10 @@ impl<T: Scalar> Articulated<T> {
                 lambda[start + k] = if node.first { x } else { -x };
             }
             if node.parent != NONE {
-                carry_wrench(&f, &node.r, &mut wrench[node.parent]);
+                carry_wrench(&Screw(f), &node.r, &mut wrench[node.parent]);
             }
         }
         lambda
-    }
-
-    /// Body `node`'s S and K.
-    fn columns(&self, node: &Node<T>) -> (&[T], &[T]) {
-        let span = 6 * node.at..6 * (node.at + node.free);
-        (&self.s[span.clone()], &self.k[span])
     }
 }
 
@@ -384,72 +382,68 @@ fn zero_block<T: Scalar>() -> Block<T> {
     [(); 36].map(|_| T::zero())
 }
 
-/// Σ a_k b_k over six entries.
-fn dot6<T: Scalar>(a: &[T], b: &[T; 6]) -> T {
-    let mut t = T::zero();
-    for (x, y) in a.iter().zip(b) {
-        if T::IS_EXACT && x.is_zero() {
-            continue;
+/// The power of the wrench `f` = [F; M] on the twist `t` = [ω; v]: F·v + M·ω (the mixed
+/// product of eq. 6).
+fn power<T: Scalar>(f: &[T], t: &[T]) -> T {
+    let mut s = T::zero();
+    for k in 0..3 {
+        if !(T::IS_EXACT && f[k].is_zero()) {
+            s += f[k].clone() * &t[k + 3];
         }
-        t += x.clone() * y;
+        if !(T::IS_EXACT && f[k + 3].is_zero()) {
+            s += f[k + 3].clone() * &t[k];
+        }
     }
-    t
+    s
 }
 
 /// `to` += the wrench `z` = [F; M] at the child carried to its parent: [F; M + r × F].
-fn carry_wrench<T: Scalar>(z: &[T; 6], r: &[T; 3], to: &mut [T; 6]) {
-    for k in 0..3 {
+fn carry_wrench<T: Scalar>(z: &Screw<T>, r: &[T; 3], to: &mut Screw<T>) {
+    let (z, to) = (&z.0, &mut to.0);
+    for k in 0..6 {
         to[k] += &z[k];
-        to[3 + k] += &z[3 + k];
     }
     to[3] += r[1].clone() * &z[2] - r[2].clone() * &z[1];
     to[4] += r[2].clone() * &z[0] - r[0].clone() * &z[2];
     to[5] += r[0].clone() * &z[1] - r[1].clone() * &z[0];
 }
 
-/// The parent's velocity y = [v; ω] carried to the child: [v + ω × r; ω].
-fn carry_twist<T: Scalar>(y: &[T; 6], r: &[T; 3]) -> [T; 6] {
+/// The parent's twist [ω; v] carried to the child: [ω; v + ω × r].
+fn carry_twist<T: Scalar>(y: &Screw<T>, r: &[T; 3]) -> Screw<T> {
+    let y = &y.0;
+    Screw(nalgebra::SVector::<T, 6>::new(
+        y[0].clone(),
+        y[1].clone(),
+        y[2].clone(),
+        y[3].clone() + y[1].clone() * &r[2] - y[2].clone() * &r[1],
+        y[4].clone() + y[2].clone() * &r[0] - y[0].clone() * &r[2],
+        y[5].clone() + y[0].clone() * &r[1] - y[1].clone() * &r[0],
+    ))
+}
+
+/// r × v.
+fn cross<T: Scalar>(r: &[T; 3], v: [&T; 3]) -> [T; 3] {
     [
-        y[0].clone() + y[4].clone() * &r[2] - y[5].clone() * &r[1],
-        y[1].clone() + y[5].clone() * &r[0] - y[3].clone() * &r[2],
-        y[2].clone() + y[3].clone() * &r[1] - y[4].clone() * &r[0],
-        y[3].clone(),
-        y[4].clone(),
-        y[5].clone(),
+        r[1].clone() * v[2] - r[2].clone() * v[1],
+        r[2].clone() * v[0] - r[0].clone() * v[2],
+        r[0].clone() * v[1] - r[1].clone() * v[0],
     ]
 }
 
-/// `to` += Xᵀ a X for the symmetric `a` = [[A, B], [Bᵀ, C]] (3 × 3 blocks) and
-/// X = [[I, R], [0, I]], R ω = ω × r: [[A, T], [Tᵀ, Rᵀ T + Bᵀ R + C]] with T = A R + B.
+/// `to` += Xᵀ a X for the symmetric `a` = [[A, B], [Bᵀ, C]] (3 × 3 blocks, on [v; ω]) and
+/// X = [[I, R], [0, I]], R ω = ω × r: [[A, T], [Tᵀ, Rᵀ T + Bᵀ R + C]] with T = A R + B. Row i
+/// of M R is r × (row i of M) and column j of Rᵀ M is r × (column j of M).
 fn transport<T: Scalar>(a: &Block<T>, r: &[T; 3], to: &mut Block<T>) {
     let at = |i: usize, j: usize| &a[6 * i + j];
-    // (M R) column by column for the rows m(i, ·): R's columns are
-    // (0, −r3, r2), (r3, 0, −r1), (−r2, r1, 0).
-    let times_r = |m: &dyn Fn(usize, usize) -> T, i: usize| -> [T; 3] {
-        [
-            m(i, 2) * &r[1] - m(i, 1) * &r[2],
-            m(i, 0) * &r[2] - m(i, 2) * &r[0],
-            m(i, 1) * &r[0] - m(i, 0) * &r[1],
-        ]
-    };
-    // T = A R + B.
-    let mut t: [[T; 3]; 3] = std::array::from_fn(|i| times_r(&|i, j| at(i, j).clone(), i));
-    for (i, row) in t.iter_mut().enumerate() {
-        for (j, x) in row.iter_mut().enumerate() {
-            *x += at(i, 3 + j);
-        }
-    }
-    // Rᵀ T: row i of Rᵀ M is R's column i against M's rows, the same combination.
-    let rt = |m: &dyn Fn(usize, usize) -> T, j: usize| -> [T; 3] {
-        [
-            m(2, j) * &r[1] - m(1, j) * &r[2],
-            m(0, j) * &r[2] - m(2, j) * &r[0],
-            m(1, j) * &r[0] - m(0, j) * &r[1],
-        ]
-    };
+    // T = A R + B, row by row (A is symmetric: its rows are its columns).
+    let t: [[T; 3]; 3] = std::array::from_fn(|i| {
+        let x = cross(r, [at(i, 0), at(i, 1), at(i, 2)]);
+        std::array::from_fn(|j| x[j].clone() + at(i, 3 + j))
+    });
     // Column j of Rᵀ T and of Rᵀ B.
-    let rtt: [[T; 3]; 3] = std::array::from_fn(|j| rt(&|i, k| t[i][k].clone(), j));
-    let rtb: [[T; 3]; 3] = std::array::from_fn(|j| rt(&|i, k| at(i, 3 + k).clone(), j));
+    let rtt: [[T; 3]; 3] = std::array::from_fn(|j| cross(r, [&t[0][j], &t[1][j], &t[2][j]]));
+    let rtb: [[T; 3]; 3] =
+        std::array::from_fn(|j| cross(r, [at(0, 3 + j), at(1, 3 + j), at(2, 3 + j)]));
     for i in 0..3 {
         for j in 0..3 {
             to[6 * i + j] += at(i, j);
@@ -514,7 +508,6 @@ fn forest<T: Scalar>(b: usize, joints: &[SystemJoint<T>]) -> Option<(Vec<usize>,
             free: 0,
             at: 0,
             square: 0,
-            rates: 0,
             r: std::array::from_fn(|_| T::zero()),
         })
         .collect();

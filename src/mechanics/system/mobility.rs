@@ -202,8 +202,9 @@ impl<T: Scalar> JointRows<T> {
                     .zip(&dv.0)
                     .zip(&applied.0)
                     .map(|((b, v), e)| {
-                        let m = b.body.momentum(v);
-                        std::array::from_fn(|k| m.0[k].clone() + &e.0[k])
+                        let mut m = b.body.momentum(v);
+                        m.add_scaled(&T::one(), e);
+                        m
                     })
                     .collect();
                 tree.impulses(bodies, screws, r)

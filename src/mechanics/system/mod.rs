@@ -398,48 +398,44 @@ impl<T: Scalar> System<T> {
     /// The twist before impact must satisfy every joint (module docs).
     fn check_allowed(&self) -> Result<(), SystemError> {
         for (j, joint) in self.joints.iter().enumerate() {
+            let (a, b) = (joint.pair.first, joint.pair.second);
             for u in self.screws.blocked(j) {
-                self.check_rate(j, &Row::new(u, joint, &self.bodies))?;
+                // H_kᵀ η {V}: u about C_a on the first body, −u about C_b on the second.
+                let mut rate = about(u, &self.bodies[a].centre).reciprocal(&self.velocity.0[a]);
+                if let Some(b) = b {
+                    rate -= about(u, &self.bodies[b].centre).reciprocal(&self.velocity.0[b]);
+                }
+                if rate.is_zero() {
+                    continue;
+                }
+                // Exactly zero or not (a symbolic rate must vanish identically: no sign is
+                // assumed); in floats, negligible against the row's largest term.
+                if T::IS_EXACT || !self.negligible(&rate, &Row::new(u, joint, &self.bodies)) {
+                    return Err(SystemError::JointViolated {
+                        joint: j,
+                        kind: joint.joint.name(),
+                        rate: rate_text(&rate),
+                    });
+                }
             }
         }
         Ok(())
     }
 
-    /// The twist before impact must not move along the row `h` of joint `j`.
-    fn check_rate(&self, j: usize, h: &Row<T>) -> Result<(), SystemError> {
-        {
-            let rate = h.rate(&self.velocity);
-            if T::IS_EXACT {
-                // Exactly zero or not (a symbolic rate must vanish identically: no sign
-                // is assumed).
-                if !num_traits::Zero::is_zero(&rate) {
-                    return Err(SystemError::JointViolated {
-                        joint: j,
-                        kind: self.joints[j].joint.name(),
-                        rate: rate_text(&rate),
-                    });
+    /// Whether the rate `rate` of the twist before impact along the row `h` is rounding:
+    /// negligible against the largest product it sums.
+    fn negligible(&self, rate: &T, h: &Row<T>) -> bool {
+        let mut scale = T::zero();
+        for (b, a) in h.entries() {
+            let b = &self.velocity.0[b];
+            for k in 0..6 {
+                let t = a.0[k].clone() * &b.0[(k + 3) % 6];
+                if t.abs_gt(&scale) {
+                    scale = if t.signum_i8() < 0 { -t } else { t };
                 }
-                return Ok(());
-            }
-            let mut scale = T::zero();
-            for (b, a) in h.entries() {
-                let b = &self.velocity.0[b];
-                for k in 0..6 {
-                    let t = a.0[k].clone() * &b.0[(k + 3) % 6];
-                    if t.abs_gt(&scale) {
-                        scale = if t.signum_i8() < 0 { -t } else { t };
-                    }
-                }
-            }
-            if !rate.is_negligible(&scale, 12 * self.bodies.len()) {
-                return Err(SystemError::JointViolated {
-                    joint: j,
-                    kind: self.joints[j].joint.name(),
-                    rate: rate_text(&rate),
-                });
             }
         }
-        Ok(())
+        rate.is_negligible(&scale, 12 * self.bodies.len())
     }
 }
 
