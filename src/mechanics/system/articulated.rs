@@ -150,8 +150,9 @@ impl<T: Scalar> Articulated<T> {
                 ]);
             }
         }
-        let mut k: Vec<[T; 6]> = Vec::with_capacity(s.len());
-        let mut dinv = Vec::with_capacity(square);
+        // Filled at each body's place as the bodies are eliminated, leaves first.
+        let mut k: Vec<[T; 6]> = vec![std::array::from_fn(|_| T::zero()); s.len()];
+        let mut dinv = vec![T::zero(); square];
         let mut roots = Vec::new();
         let mut inertia: Vec<Option<Block<T>>> =
             bodies.iter().map(|body| Some(mass_block(body))).collect();
@@ -192,9 +193,8 @@ impl<T: Scalar> Articulated<T> {
                 }
             }
             invert_definite(&mut d[..n * n], n)?;
-            dinv.extend_from_slice(&d[..n * n]);
+            dinv[node.square..node.square + n * n].clone_from_slice(&d[..n * n]);
             // K = U D⁻¹.
-            let from = k.len();
             for c in 0..n {
                 let mut kc = u[0].clone();
                 let d0 = &d[c];
@@ -207,13 +207,13 @@ impl<T: Scalar> Articulated<T> {
                         *x += y.clone() * db;
                     }
                 }
-                k.push(kc);
+                k[node.at + c] = kc;
             }
             if node.parent == NONE {
                 continue;
             }
             // I^a = I^A − K Uᵀ (its lower triangle, then mirrored).
-            for (kb, ub) in k[from..].iter().zip(&u) {
+            for (kb, ub) in k[node.at..node.at + n].iter().zip(&u) {
                 for r in 0..6 {
                     for c in 0..=r {
                         a[6 * r + c] -= kb[r].clone() * &ub[c];
@@ -257,17 +257,29 @@ impl<T: Scalar> Articulated<T> {
             }
             let cols = node.at..node.at + node.free;
             let zi = &mut z[i].0;
-            for ((sc, kc), wc) in self.s[cols.clone()]
-                .iter()
-                .zip(&self.k[cols.clone()])
-                .zip(&mut w[cols.clone()])
-            {
-                *wc = power(zi.as_slice(), sc);
-                if T::IS_EXACT && wc.is_zero() {
-                    continue;
+            if node.free == 1 {
+                // One free screw (revolute, prismatic): the same, without the loops.
+                let (sc, kc) = (&self.s[node.at], &self.k[node.at]);
+                let wc = power(zi.as_slice(), sc);
+                if !(T::IS_EXACT && wc.is_zero()) {
+                    for r in 0..6 {
+                        zi[r] -= kc[r].clone() * &wc;
+                    }
                 }
-                for r in 0..6 {
-                    zi[r] -= kc[r].clone() * &*wc;
+                w[node.at] = wc;
+            } else {
+                for ((sc, kc), wc) in self.s[cols.clone()]
+                    .iter()
+                    .zip(&self.k[cols.clone()])
+                    .zip(&mut w[cols])
+                {
+                    *wc = power(zi.as_slice(), sc);
+                    if T::IS_EXACT && wc.is_zero() {
+                        continue;
+                    }
+                    for r in 0..6 {
+                        zi[r] -= kc[r].clone() * &*wc;
+                    }
                 }
             }
             if node.parent != NONE {
@@ -300,6 +312,17 @@ impl<T: Scalar> Articulated<T> {
                 p => carry_twist(&z[p], &node.r),
             };
             let n = node.free;
+            if n == 1 {
+                let q = self.dinv[node.square].clone() * &w[node.at]
+                    - power(&self.k[node.at], ai.0.as_slice());
+                if !(T::IS_EXACT && q.is_zero()) {
+                    for (x, y) in ai.0.iter_mut().zip(&self.s[node.at]) {
+                        *x += y.clone() * &q;
+                    }
+                }
+                z[i] = ai;
+                continue;
+            }
             let cols = node.at..node.at + n;
             let di = &self.dinv[node.square..node.square + n * n];
             let wi = &w[cols.clone()];

@@ -397,20 +397,31 @@ impl<T: Scalar> System<T> {
 
     /// The twist before impact must satisfy every joint (module docs).
     fn check_allowed(&self) -> Result<(), SystemError> {
+        // Body b's twist as a field about the world origin: [ω; v_O], v_O = v_C + ω × (O − C).
+        let at_origin = |b: usize| {
+            let (v, c) = (&self.velocity.0[b], &self.bodies[b].centre);
+            let w = v.top();
+            Screw::new(w.clone(), v.bottom() - w.cross(c))
+        };
         for (j, joint) in self.joints.iter().enumerate() {
             let (a, b) = (joint.pair.first, joint.pair.second);
+            // The relative twist, about the origin: H_kᵀ η {V} = u_kᵀ η (V_a − V_b).
+            let mut relative = at_origin(a);
+            if let Some(b) = b {
+                relative = Screws::minus(&relative, &at_origin(b));
+            }
             for u in self.screws.blocked(j) {
-                // H_kᵀ η {V}: u about C_a on the first body, −u about C_b on the second.
-                let mut rate = about(u, &self.bodies[a].centre).reciprocal(&self.velocity.0[a]);
-                if let Some(b) = b {
-                    rate -= about(u, &self.bodies[b].centre).reciprocal(&self.velocity.0[b]);
-                }
-                if rate.is_zero() {
+                if u.reciprocal(&relative).is_zero() {
                     continue;
                 }
-                // Exactly zero or not (a symbolic rate must vanish identically: no sign is
-                // assumed); in floats, negligible against the row's largest term.
-                if T::IS_EXACT || !self.negligible(&rate, &Row::new(u, joint, &self.bodies)) {
+                // Not zero (exactly, or in floats perhaps by rounding): the rate as the row
+                // gives it, body by body about each centre, and in floats its test against
+                // the row's largest term.
+                let h = Row::new(u, joint, &self.bodies);
+                let rate = h.rate(&self.velocity);
+                if T::IS_EXACT || !self.negligible(&rate, &h) {
+                    // Exactly zero or not (a symbolic rate must vanish identically: no sign
+                    // is assumed).
                     return Err(SystemError::JointViolated {
                         joint: j,
                         kind: joint.joint.name(),
