@@ -226,7 +226,11 @@ impl<T: Scalar> Articulated<T> {
                 }
             }
             let p = node.parent;
-            transport(&a, &node.r, inertia[p].as_mut().expect("parent after child"));
+            transport(
+                &a,
+                &node.r,
+                inertia[p].as_mut().expect("parent after child"),
+            );
         }
         Some(Articulated {
             order,
@@ -244,10 +248,7 @@ impl<T: Scalar> Articulated<T> {
         let mut z: Vec<Screw<T>> = e.to_vec();
         // Whether a body's z can be nonzero: an impulse on a few bodies reaches their
         // ancestors only.
-        let mut live: Vec<bool> = e
-            .iter()
-            .map(|s| s.0.iter().any(|x| !x.is_zero()))
-            .collect();
+        let mut live: Vec<bool> = e.iter().map(|s| s.0.iter().any(|x| !x.is_zero())).collect();
         // w_i = S_iᵀ z_i, n_i numbers per body, at the body's columns.
         let mut w = vec![T::zero(); self.s.len()];
         for &i in &self.order {

@@ -289,7 +289,9 @@ impl<T: Scalar> System<T> {
 
     /// Whether some joints are redundant (their reactions are then not all determined).
     pub fn redundant_joints(&self) -> bool {
-        self.rows.as_ref().is_some_and(|r| r.rank < self.screws.rows())
+        self.rows
+            .as_ref()
+            .is_some_and(|r| r.rank < self.screws.rows())
     }
 
     /// The screw of the axis through contact `i`'s point with direction `u` (module docs).
