@@ -2,8 +2,9 @@
 //! `benches/common/chain.rs` (N revolute links, the first pinned to the ground, tip and middle link
 //! striking the ground: two contacts) in f64, N = 1, 10, 100, 1000.
 //!
-//! * `chain/tree/N`: everything from the data — [`System::new`] (checks, the joints' rows and
-//!   their tree factorization, `mechanics::system::tree`), [`Impact::assemble`], Newton and
+//! * `chain/tree/N`: everything from the data — [`System::new`] (checks, the joints' screws
+//!   and their articulated-body factorization along the tree, `mechanics::system::articulated`),
+//!   [`Impact::assemble`], Newton and
 //!   Poisson, every output; throughput in bodies, so criterion prints bodies per second;
 //! * `chain/newton/N`: the same with Newton's law only (what Pinocchio's `impulseDynamics`
 //!   computes; `benches/peers/chains.py`);

@@ -1,12 +1,14 @@
-//! The joints of a system factored along their tree (`mechanics::system::tree`, linear in the
-//! bodies) against the dense pivoted factorization of K (`mechanics::system::mobility`), which
-//! forms K = Hᵀ η W₀ H and knows nothing of the graph — exactly, in rationals:
+//! The joints of a system eliminated along their tree by the articulated-body recursion
+//! (`mechanics::system::articulated`, Featherstone 2008 ch. 7, linear in the bodies) against the
+//! dense pivoted factorization of K (`mechanics::system::mobility`), which forms K = Hᵀ η W₀ H
+//! and knows nothing of the graph — exactly, in rationals:
 //!
 //! * random forests of 2–6 bodies (chains and branched trees, revolute, spherical, prismatic
 //!   and fixed joints, some trees held to the ground, some free), with random twists the
 //!   joints allow (built joint by joint from the joints' free screws, not by the solver): the
 //!   tree path is taken, and W{E} for every body's unit wrenches, the impact (G, every output
-//!   of Newton and Poisson) and the joints' impulses are equal to the dense path's, value for
+//!   of Newton and Poisson) and the joints' impulses (read off the bodies' momentum balance
+//!   along the tree on one path, solved from K on the other) are equal to the dense path's, value for
 //!   value; W is symmetric ({E}ᵀ η W {F} = {F}ᵀ η W {E}) and every W{E} moves the bodies as
 //!   the joints allow (invariants neither path is built from);
 //! * joints that close a loop — two joints between the same bodies, two joints to the ground
@@ -540,11 +542,12 @@ fn relative<'a>(pairs: impl Iterator<Item = (&'a f64, &'a Exact)>) -> f64 {
 
 /// A chain of `links` in f64 against its exact solve.
 ///
-/// The tolerance, from the error model of the f64 path: each node's elimination is an
-/// unpivoted LDLᵀ of a definite block of size ≤ 6, backward stable (Higham, *Accuracy and
-/// Stability of Numerical Algorithms*, §10.1), so each contact's response W{Ê} carries a
-/// relative error of a few ε per node it passes through — at most 2·links nodes (bodies and
-/// joints) along a chain, ≤ 6 entries each: 12·links·ε; the 2×2 solve G P = b then amplifies
+/// The tolerance, from the error model of the f64 path: the articulated-body recursion passes
+/// each body twice (up and down), each step a few products of 6-vectors and an unpivoted LDLᵀ
+/// of a definite block of size ≤ 6, backward stable (Higham, *Accuracy and Stability of
+/// Numerical Algorithms*, §10.1), so each contact's response W{Ê} carries a relative error of
+/// a few ε per step it passes through — at most 2·links along a chain, ≤ 6 entries each:
+/// 12·links·ε; the 2×2 solve G P = b then amplifies
 /// a relative error in G and b by cond∞(G) (computed here exactly), and the twist
 /// {v⁰} − Σ P̂ W{Ê} inherits both. So every impulse and twist is within
 /// 2 · 12·links·ε · cond∞(G) relative (normwise, ∞), the factor 2 for the two stages.
@@ -586,9 +589,9 @@ fn a_long_chain_in_f64_agrees_with_its_exact_solve() {
     f64_agrees_with_exact(200, 1);
 }
 
-/// In a unit of mass 10¹⁸ times smaller the joints' blocks are 10¹⁸ times larger than the
-/// padding of a joint's block (−1, in no unit): the tree's zero tests must be relative to the
-/// block's own entries, or the f64 chain would be refused the tree.
+/// In a unit of mass 10¹⁸ times smaller every articulated inertia is 10¹⁸ times larger: the
+/// tree's pivot tests must be relative to the block's own entries, or the f64 chain would be
+/// refused the tree.
 #[test]
 fn a_chain_of_heavy_links_keeps_its_tree_in_f64() {
     f64_agrees_with_exact(10, 1_000_000_000_000_000_000);

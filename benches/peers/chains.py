@@ -8,7 +8,7 @@ the tip only) is built as a Pinocchio model with N revolute-z joints and the sam
 centres and inertias.  For each N:
 
   * inertance: ``cargo run --release --example chain_timing -- N ...`` prints, per N, the
-    in-process time of one solve from the chain's data (``System::new`` with the joints' tree
+    in-process time of one solve from the chain's data (``System::new`` with the joints' articulated-body
     factorization, ``Impact::assemble``, Newton's law, every output; median over 7 runs of the
     mean per call, each run >= 20 ms) and the answer (impulses, each link's omega_z);
   * Pinocchio, with the two contacts' normal rows of the frame Jacobians (taken outside the

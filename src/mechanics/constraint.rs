@@ -146,19 +146,26 @@ impl<T: Scalar> Joint<T> {
 
     /// The free screws (twists [ω; v_C]) this joint allows.
     pub fn free_screws(&self) -> Vec<Screw<T>> {
+        let mut out = Vec::with_capacity(3);
+        self.free_screws_into(&mut out);
+        out
+    }
+
+    /// [`Joint::free_screws`] appended to `out` (a system's joints fill one vector).
+    pub fn free_screws_into(&self, out: &mut Vec<Screw<T>>) {
         let revolute = |p: &Vec3<T>, a: &Vec3<T>| Screw::new(a.clone(), p.cross(a));
         let prismatic = |a: &Vec3<T>| Screw::new(Vec3::zeros(), a.clone());
         match self {
-            Joint::Revolute { point, axis } => vec![revolute(point, axis)],
-            Joint::Prismatic { axis } => vec![prismatic(axis)],
-            Joint::Cylindrical { point, axis } => vec![revolute(point, axis), prismatic(axis)],
-            Joint::Spherical { point } => (0..3)
-                .map(|k| {
-                    let mut e = Vec3::zeros();
-                    e[k] = T::one();
-                    revolute(point, &e)
-                })
-                .collect(),
+            Joint::Revolute { point, axis } => out.push(revolute(point, axis)),
+            Joint::Prismatic { axis } => out.push(prismatic(axis)),
+            Joint::Cylindrical { point, axis } => {
+                out.extend([revolute(point, axis), prismatic(axis)]);
+            }
+            Joint::Spherical { point } => out.extend((0..3).map(|k| {
+                let mut e = Vec3::zeros();
+                e[k] = T::one();
+                revolute(point, &e)
+            })),
             Joint::Planar { normal } => {
                 // Two in-plane directions, rational: n × e_k for the axis e_k least aligned
                 // with n, then n × that.
@@ -172,13 +179,13 @@ impl<T: Scalar> Joint<T> {
                 e[k] = T::one();
                 let t1 = normal.cross(&e);
                 let t2 = normal.cross(&t1);
-                vec![
+                out.extend([
                     revolute(&Vec3::zeros(), normal),
                     prismatic(&t1),
                     prismatic(&t2),
-                ]
+                ]);
             }
-            Joint::Fixed { .. } => Vec::new(),
+            Joint::Fixed { .. } => {}
         }
     }
 }

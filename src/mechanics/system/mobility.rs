@@ -28,18 +28,20 @@
 //! LDLᵀ of K ([`crate::linalg::factor_psd`]) takes the particular solution
 //! ([`crate::linalg::solve_leading`]). Exact types decide that rank exactly.
 //!
-//! **Sparsity.** A row touches at most two bodies, so it is stored as those (the rest of H_k
-//! is zero, [`Row`]), and so is W₀ H_k. When the joints form a forest — a chain, a branched
-//! tree, each tree held to the ground by at most one joint — the KKT system is factored along
-//! the tree in time and memory linear in the bodies ([`super::tree`], Baraff 1996), and K is
-//! never formed: that is the path every open mechanism takes. A closed loop (through the
-//! ground too) or two joints between the same bodies take the dense path above, O(rows³):
-//! K formed from the sparse rows and factored with pivoting, its rank decided exactly in
-//! exact types. Both give the same W{E} and, K being nonsingular for a forest, the same λ —
-//! equal in exact arithmetic (tested, `tests/system_tree.rs`).
+//! **Sparsity.** When the joints form a forest — a chain, a branched tree, each tree held to
+//! the ground by at most one joint — the articulated-body recursion of [`super::articulated`]
+//! (Featherstone 2008, ch. 7) answers in time and memory linear in the bodies, eliminating
+//! each joint through its free screws, and neither H nor K is formed: that is the path every
+//! open mechanism takes. A closed loop (through the ground too), two joints between the same
+//! bodies or a joint whose free screws are dependent take the dense path above, O(rows³): the
+//! rows stored sparse (a row touches at most two bodies, [`Row`], and so does W₀ H_k), K
+//! formed from them and factored with pivoting, its rank decided exactly in exact types. Both
+//! give the same W{E} and, K being nonsingular for a forest, the same λ — equal in exact
+//! arithmetic (tested, `tests/system_tree.rs`).
 //!
 //! **Reactions.** Once the impulses are known the joints' impulses follow from the same
-//! balance: H λ = M Δ{V} + Σ P̂_i {Ê_i} =: r, so K λ = Hᵀ η W₀ r. The wrench joint j applies to
+//! balance: H λ = M Δ{V} + Σ P̂_i {Ê_i} =: r, so K λ = Hᵀ η W₀ r on the dense path; a forest
+//! reads λ off r summed along its trees ([`super::articulated`]), without a solve. The wrench joint j applies to
 //! its first body is Σ_{k∈j} λ_k u_k about the world origin, [F; M_O]; reduced to its anchor p,
 //! M_p = M_O − p × F ([`crate::mechanics::reaction::Wrench::about`]); the second body gets the
 //! opposite. It is basis-independent when λ is not unique (redundant joints leave only the sum
@@ -48,21 +50,18 @@
 use std::sync::Arc;
 
 use crate::linalg::{self, NotSemidefinite};
-use crate::mechanics::body::{Mobility, RigidBody};
-use crate::mechanics::screw::Screw;
+use crate::mechanics::body::Mobility;
+use crate::mechanics::screw::{Screw, Screws};
 use crate::scalar::Scalar;
 
-use super::screw::SystemScrew;
-use super::tree::Tree;
+use super::articulated::Articulated;
+use super::screw::{SystemScrew, about};
+use super::{JointScrews, SystemBody, SystemJoint};
 
 /// A row H_k of the joints: one blocked screw of one joint, on the (at most two) bodies it
 /// acts on — u_k about C_a on the first, −u_k about C_b on the second.
 #[derive(Clone, Debug, PartialEq)]
 pub(crate) struct Row<T: Scalar> {
-    /// The joint it belongs to.
-    pub(crate) joint: usize,
-    /// u_k about the world origin.
-    pub(crate) blocked: Screw<T>,
     /// The first body and H_k's screw on it.
     pub(crate) first: (usize, Screw<T>),
     /// The second body and H_k's screw on it; `None` for a joint to the ground.
@@ -70,18 +69,19 @@ pub(crate) struct Row<T: Scalar> {
 }
 
 impl<T: Scalar> Row<T> {
+    /// The row of the blocked screw `u` (about the world origin) of `joint`.
+    pub(crate) fn new(u: &Screw<T>, joint: &SystemJoint<T>, bodies: &[SystemBody<T>]) -> Self {
+        let (a, second) = (joint.pair.first, joint.pair.second);
+        Row {
+            first: (a, about(u, &bodies[a].centre)),
+            second: second.map(|b| (b, Screw(-about(u, &bodies[b].centre).0))),
+        }
+    }
+
     /// The bodies it acts on, with its screw on each.
     pub(crate) fn entries(&self) -> impl Iterator<Item = (usize, &Screw<T>)> {
         std::iter::once((self.first.0, &self.first.1))
             .chain(self.second.as_ref().map(|(b, s)| (*b, s)))
-    }
-
-    /// Its screw on body `b`, one of its bodies.
-    pub(crate) fn on(&self, b: usize) -> &Screw<T> {
-        match &self.second {
-            Some((second, s)) if *second == b => s,
-            _ => &self.first.1,
-        }
     }
 
     /// H_kᵀ η {V}: the rate of {V} along the blocked screw, relative between the bodies.
@@ -94,20 +94,21 @@ impl<T: Scalar> Row<T> {
     }
 }
 
-/// How K λ = … is solved (module docs).
+/// How the joints' system is solved (module docs).
 #[derive(Clone, Debug, PartialEq)]
 enum Factor<T: Scalar> {
-    /// The KKT system factored along a forest of joints, shared by the system's copies (an
-    /// impact keeps one: cloning it is then O(bodies) pointers, not the factor's 2 × 36 numbers
-    /// per node).
-    Tree(Arc<Tree<T>>),
+    /// The articulated-body factorization of a forest of joints, shared by the system's
+    /// copies (an impact keeps one: cloning it is then a pointer).
+    Articulated(Arc<Articulated<T>>),
     /// K formed and factored densely with pivoting (loops, redundant joints).
-    Dense(Dense<T>),
+    Dense(Arc<Dense<T>>),
 }
 
-/// The dense path: W₀ H_k per row, and the pivoted LDLᵀ of K.
+/// The dense path: the rows, W₀ H_k per row, and the pivoted LDLᵀ of K.
 #[derive(Clone, Debug, PartialEq)]
 struct Dense<T: Scalar> {
+    /// H_k, sparse.
+    rows: Vec<Row<T>>,
     /// W₀ H_k on the bodies of row k.
     responses: Vec<Vec<(usize, Screw<T>)>>,
     /// The LDLᵀ of K, row-major, and its pivots.
@@ -115,39 +116,40 @@ struct Dense<T: Scalar> {
     perm: Vec<usize>,
 }
 
-/// The joints' rows and the factorization of their system (module docs), built once per
-/// system.
+/// The factorization of the joints' system (module docs), built once per system.
 #[derive(Clone, Debug, PartialEq)]
 pub(crate) struct JointRows<T: Scalar> {
-    /// H_k, sparse.
-    pub(crate) rows: Vec<Row<T>>,
     factor: Factor<T>,
     /// rank K: fewer than the rows when the joints are redundant.
     pub(crate) rank: usize,
 }
 
 impl<T: Scalar> JointRows<T> {
-    /// The rows `rows` of a system of `bodies` whose joints join `pairs` (first, second or
-    /// the ground): factored along the tree when the joints form a forest and `dense` is
-    /// false, densely otherwise.
+    /// The joints `joints` of `bodies`, their screws `screws`: factored along the forest when
+    /// they form one and `dense` is false, densely otherwise.
     pub(crate) fn new(
-        bodies: &[RigidBody<T>],
-        rows: Vec<Row<T>>,
-        pairs: &[(usize, Option<usize>)],
+        bodies: &[SystemBody<T>],
+        joints: &[SystemJoint<T>],
+        screws: &JointScrews<T>,
         dense: bool,
     ) -> Result<Self, NotSemidefinite> {
-        if !dense && let Some(tree) = Tree::new(bodies, &rows, pairs) {
+        if !dense && let Some(tree) = Articulated::new(bodies, joints, screws) {
             return Ok(JointRows {
-                rank: rows.len(),
-                rows,
-                factor: Factor::Tree(Arc::new(tree)),
+                rank: screws.rows(),
+                factor: Factor::Articulated(Arc::new(tree)),
             });
+        }
+        let mut rows = Vec::with_capacity(screws.rows());
+        for (j, joint) in joints.iter().enumerate() {
+            for u in screws.blocked(j) {
+                rows.push(Row::new(u, joint, bodies));
+            }
         }
         let responses: Vec<Vec<(usize, Screw<T>)>> = rows
             .iter()
             .map(|h| {
                 h.entries()
-                    .map(|(b, s)| (b, bodies[b].response(s)))
+                    .map(|(b, s)| (b, bodies[b].body.response(s)))
                     .collect()
             })
             .collect();
@@ -169,83 +171,70 @@ impl<T: Scalar> JointRows<T> {
         let mut perm = vec![0; n];
         let rank = linalg::factor_psd(&mut factor, n, &mut perm)?.rank;
         Ok(JointRows {
-            rows,
-            factor: Factor::Dense(Dense {
+            factor: Factor::Dense(Arc::new(Dense {
+                rows,
                 responses,
                 factor,
                 perm,
-            }),
+            })),
             rank,
         })
     }
 
-    /// `f(k, at)` for every row k, in order, with `at` its place in the tree's stacked vector.
-    fn each_joint(&self, tree: &Tree<T>, mut f: impl FnMut(usize, usize)) {
-        let mut k = 0;
-        let mut j = 0;
-        while k < self.rows.len() {
-            let (at, m) = tree.joint_span(j);
-            for r in 0..m {
-                f(k + r, at + r);
-            }
-            k += m;
-            j += 1;
-        }
-    }
-
-    /// Whether the KKT system was factored along a tree ([`super::tree`]).
+    /// Whether the joints were factored along a forest ([`super::articulated`]).
     pub(crate) fn is_tree(&self) -> bool {
-        matches!(self.factor, Factor::Tree(_))
+        matches!(self.factor, Factor::Articulated(_))
     }
 
-    /// λ with K λ = Hᵀ η `twist` (a twist of the free system, W₀ of a wrench).
-    pub(crate) fn multipliers(&self, twist: &SystemScrew<T>) -> Vec<T> {
-        let n = self.rows.len();
+    /// λ with K λ = Hᵀ η W₀ r for the wrench r = M Δ{V} + Σ P̂_i {Ê_i} the joints exert on
+    /// the bodies (module docs), from the twist change `dv` and `applied` = Σ P̂_i {Ê_i}.
+    pub(crate) fn multipliers(
+        &self,
+        bodies: &[SystemBody<T>],
+        screws: &JointScrews<T>,
+        dv: &SystemScrew<T>,
+        applied: &SystemScrew<T>,
+    ) -> Vec<T> {
         match &self.factor {
-            Factor::Tree(tree) => {
-                // E = 0, c = −Hᵀ η t ([`super::tree`]).
-                let mut x = vec![T::zero(); tree.len()];
-                self.each_joint(tree, |k, at| x[at] = -self.rows[k].rate(twist));
-                tree.solve(&mut x);
-                let mut lambda = Vec::with_capacity(n);
-                self.each_joint(tree, |_, at| lambda.push(x[at].clone()));
-                lambda
+            Factor::Articulated(tree) => {
+                let r = bodies
+                    .iter()
+                    .zip(&dv.0)
+                    .zip(&applied.0)
+                    .map(|((b, v), e)| {
+                        let mut m = b.body.momentum(v);
+                        m.add_scaled(&T::one(), e);
+                        m
+                    })
+                    .collect();
+                tree.impulses(bodies, screws, r)
             }
             Factor::Dense(d) => {
-                let b: Vec<T> = self.rows.iter().map(|h| h.rate(twist)).collect();
-                let mut lambda = Vec::with_capacity(n);
-                let mut work = vec![T::zero(); n];
-                linalg::solve_leading(&d.factor, n, &d.perm, self.rank, &b, &mut lambda, &mut work);
-                lambda
+                // W₀ (M Δ{V} + Σ P̂ Ê) = Δ{V} + W₀ Σ P̂ Ê.
+                let mut twist = free_response(bodies, applied);
+                twist.add_scaled(&T::one(), dv);
+                self.dense_multipliers(d, &twist)
             }
         }
+    }
+
+    /// λ with K λ = Hᵀ η `twist` on the dense path.
+    fn dense_multipliers(&self, d: &Dense<T>, twist: &SystemScrew<T>) -> Vec<T> {
+        let n = d.rows.len();
+        let b: Vec<T> = d.rows.iter().map(|h| h.rate(twist)).collect();
+        let mut lambda = Vec::with_capacity(n);
+        let mut work = vec![T::zero(); n];
+        linalg::solve_leading(&d.factor, n, &d.perm, self.rank, &b, &mut lambda, &mut work);
+        lambda
     }
 
     /// W{E} (module docs) for the impulse `e`, on `bodies`.
-    pub(crate) fn response(&self, bodies: &[RigidBody<T>], e: &SystemScrew<T>) -> SystemScrew<T> {
+    pub(crate) fn response(&self, bodies: &[SystemBody<T>], e: &SystemScrew<T>) -> SystemScrew<T> {
         match &self.factor {
-            Factor::Tree(tree) => {
-                // [E; 0] ↦ [y; λ], W{E} = η y ([`super::tree`]).
-                let mut x = Vec::with_capacity(tree.len());
-                for s in &e.0 {
-                    x.extend_from_slice(s.as_slice());
-                }
-                x.resize(tree.len(), T::zero());
-                tree.solve(&mut x);
-                SystemScrew(
-                    x[..6 * e.bodies()]
-                        .chunks_exact(6)
-                        .map(|y| {
-                            Screw(nalgebra::SVector::<T, 6>::from_fn(|k, _| {
-                                y[(k + 3) % 6].clone()
-                            }))
-                        })
-                        .collect(),
-                )
-            }
+            Factor::Articulated(tree) => SystemScrew(tree.response(&e.0)),
             Factor::Dense(d) => {
                 let mut free = free_response(bodies, e);
-                let lambda = self.multipliers(&free);
+                let lambda = self.dense_multipliers(d, &free);
                 for (l, w) in lambda.iter().zip(&d.responses) {
                     if l.is_zero() {
                         continue;
@@ -263,14 +252,14 @@ impl<T: Scalar> JointRows<T> {
 
 /// W₀{E}: each body's \[M\]⁻¹ on its block (eq. 11).
 pub(crate) fn free_response<T: Scalar>(
-    bodies: &[RigidBody<T>],
+    bodies: &[SystemBody<T>],
     e: &SystemScrew<T>,
 ) -> SystemScrew<T> {
     SystemScrew(
         bodies
             .iter()
             .zip(&e.0)
-            .map(|(b, s)| b.response(s))
+            .map(|(b, s)| b.body.response(s))
             .collect(),
     )
 }

@@ -23,9 +23,11 @@
 //! implemented for [`System`] in [`crate::impact::system`]). A system of one body with no
 //! joints is the paper's body.
 
+mod articulated;
 pub mod mobility;
 pub mod screw;
-mod tree;
+
+use std::sync::Arc;
 
 use crate::impact::problem::{InvalidProblem, validate_body, validate_contact};
 use crate::linalg::NotSemidefinite;
@@ -145,11 +147,12 @@ pub enum SystemError {
 #[derive(Clone, Debug, PartialEq)]
 pub struct System<T: Scalar> {
     bodies: Vec<SystemBody<T>>,
-    rigid: Vec<RigidBody<T>>,
     velocity: SystemScrew<T>,
     contacts: Vec<Contact<T>>,
     pairs: Vec<Pair>,
     joints: Vec<SystemJoint<T>>,
+    /// The joints' free and blocked screws (shared by the system's copies).
+    screws: Arc<JointScrews<T>>,
     rows: Option<JointRows<T>>,
 }
 
@@ -211,31 +214,26 @@ impl<T: Scalar> System<T> {
         for (j, joint) in joints.iter().enumerate() {
             check("joint", j, &joint.pair)?;
         }
-        let rigid: Vec<RigidBody<T>> = bodies.iter().map(|b| b.body.clone()).collect();
-        let rows = if joints.is_empty() {
-            None
-        } else {
-            let pairs: Vec<_> = joints
-                .iter()
-                .map(|j| (j.pair.first, j.pair.second))
-                .collect();
-            Some(JointRows::new(
-                &rigid,
-                joint_rows(&bodies, &joints),
-                &pairs,
-                false,
-            )?)
-        };
+        let screws = JointScrews::new(&joints);
         let system = System {
+            rows: None,
             bodies,
-            rigid,
+            screws: Arc::new(screws),
             velocity,
             contacts,
             pairs,
             joints,
-            rows,
         };
         system.check_allowed()?;
+        let mut system = system;
+        if !system.joints.is_empty() {
+            system.rows = Some(JointRows::new(
+                &system.bodies,
+                &system.joints,
+                &system.screws,
+                false,
+            )?);
+        }
         Ok(system)
     }
 
@@ -246,19 +244,20 @@ impl<T: Scalar> System<T> {
     /// [`SystemError::NotSemidefinite`], as [`System::new`].
     #[doc(hidden)]
     pub fn with_dense_joints(mut self) -> Result<Self, SystemError> {
-        if let Some(rows) = self.rows.take() {
-            let pairs: Vec<_> = self
-                .joints
-                .iter()
-                .map(|j| (j.pair.first, j.pair.second))
-                .collect();
-            self.rows = Some(JointRows::new(&self.rigid, rows.rows, &pairs, true)?);
+        if self.rows.is_some() {
+            self.rows = Some(JointRows::new(
+                &self.bodies,
+                &self.joints,
+                &self.screws,
+                true,
+            )?);
         }
         Ok(self)
     }
 
     /// Whether the joints' system is factored along a tree, in time linear in the bodies (the
-    /// joints form a forest; [`mobility`]), rather than densely.
+    /// joints form a forest; the articulated-body recursion, [`mobility`]), rather than
+    /// densely.
     pub fn joints_factored_along_tree(&self) -> bool {
         self.rows.as_ref().is_some_and(JointRows::is_tree)
     }
@@ -290,7 +289,9 @@ impl<T: Scalar> System<T> {
 
     /// Whether some joints are redundant (their reactions are then not all determined).
     pub fn redundant_joints(&self) -> bool {
-        self.rows.as_ref().is_some_and(|r| r.rank < r.rows.len())
+        self.rows
+            .as_ref()
+            .is_some_and(|r| r.rank < self.screws.rows())
     }
 
     /// The screw of the axis through contact `i`'s point with direction `u` (module docs).
@@ -324,18 +325,18 @@ impl<T: Scalar> System<T> {
     /// ½ Σ_b {V_b}ᵀ η M_b {V_b} (eq. 28, 32 on each body).
     pub fn kinetic_energy(&self, v: &SystemScrew<T>) -> T {
         let mut t = T::zero();
-        for (b, s) in self.rigid.iter().zip(&v.0) {
-            t += b.kinetic_energy(s);
+        for (b, s) in self.bodies.iter().zip(&v.0) {
+            t += b.body.kinetic_energy(s);
         }
         t
     }
 
     /// Each body's kinetic energy ½ {V_b}ᵀ η M_b {V_b}.
     pub fn kinetic_energies(&self, v: &SystemScrew<T>) -> Vec<T> {
-        self.rigid
+        self.bodies
             .iter()
             .zip(&v.0)
-            .map(|(b, s)| b.kinetic_energy(s))
+            .map(|(b, s)| b.body.kinetic_energy(s))
             .collect()
     }
 
@@ -344,9 +345,9 @@ impl<T: Scalar> System<T> {
     pub fn momentum(&self, v: &SystemScrew<T>) -> (Vec3<T>, Vec3<T>) {
         let mut linear = Vec3::zeros();
         let mut angular = Vec3::zeros();
-        for ((b, body), s) in self.bodies.iter().zip(&self.rigid).zip(&v.0) {
+        for (b, s) in self.bodies.iter().zip(&v.0) {
             // [M]{v} = [m v_C; J ω] (RigidBody::momentum).
-            let m = body.momentum(s);
+            let m = b.body.momentum(s);
             let p = m.top();
             angular += m.bottom() + b.centre.cross(&p);
             linear += p;
@@ -368,73 +369,86 @@ impl<T: Scalar> System<T> {
         let Some(rows) = &self.rows else {
             return Vec::new();
         };
-        // W₀ (M Δ{V} + Σ P̂ Ê) = Δ{V} + W₀ Σ P̂ Ê.
         let mut wrench = dv.zero_like();
         for (p, e) in impulses {
             wrench.add_scaled(p, e);
         }
-        let mut twist = free_response(&self.rigid, &wrench);
-        twist.add_scaled(&T::one(), dv);
-        rows.multipliers(&twist)
+        rows.multipliers(&self.bodies, &self.screws, dv, &wrench)
     }
 
     /// Each joint's reaction on its first body from the joints' impulses `lambda`, reduced to
     /// its anchor (the origin for a joint without one), world axes ([`mobility`]).
     pub fn joint_reactions(&self, lambda: &[T]) -> Vec<Wrench<T>> {
-        let Some(rows) = &self.rows else {
+        if self.rows.is_none() {
             return Vec::new();
-        };
-        let mut sums: Vec<Screw<T>> = vec![Screw::zero(); self.joints.len()];
-        for (h, l) in rows.rows.iter().zip(lambda) {
-            sums[h.joint].add_scaled(l, &h.blocked);
         }
-        sums.iter()
-            .zip(&self.joints)
-            .map(|(w, joint)| {
+        let mut lambda = lambda.iter();
+        self.joints
+            .iter()
+            .enumerate()
+            .map(|(j, joint)| {
+                let mut w = Screw::zero();
+                for (u, l) in self.screws.blocked(j).iter().zip(lambda.by_ref()) {
+                    w.add_scaled(l, u);
+                }
                 let p = joint.joint.anchor().cloned().unwrap_or_else(Vec3::zeros);
-                Wrench::about(w, p)
+                Wrench::about(&w, p)
             })
             .collect()
     }
 
     /// The twist before impact must satisfy every joint (module docs).
     fn check_allowed(&self) -> Result<(), SystemError> {
-        let Some(rows) = &self.rows else {
-            return Ok(());
+        // Body b's twist as a field about the world origin: [ω; v_O], v_O = v_C + ω × (O − C).
+        let at_origin = |b: usize| {
+            let (v, c) = (&self.velocity.0[b], &self.bodies[b].centre);
+            let w = v.top();
+            Screw::new(w.clone(), v.bottom() - w.cross(c))
         };
-        for h in &rows.rows {
-            let rate = h.rate(&self.velocity);
-            if T::IS_EXACT {
-                // Exactly zero or not (a symbolic rate must vanish identically: no sign
-                // is assumed).
-                if !num_traits::Zero::is_zero(&rate) {
+        for (j, joint) in self.joints.iter().enumerate() {
+            let (a, b) = (joint.pair.first, joint.pair.second);
+            // The relative twist, about the origin: H_kᵀ η {V} = u_kᵀ η (V_a − V_b).
+            let mut relative = at_origin(a);
+            if let Some(b) = b {
+                relative = Screws::minus(&relative, &at_origin(b));
+            }
+            for u in self.screws.blocked(j) {
+                if u.reciprocal(&relative).is_zero() {
+                    continue;
+                }
+                // Not zero (exactly, or in floats perhaps by rounding): the rate as the row
+                // gives it, body by body about each centre, and in floats its test against
+                // the row's largest term.
+                let h = Row::new(u, joint, &self.bodies);
+                let rate = h.rate(&self.velocity);
+                if T::IS_EXACT || !self.negligible(&rate, &h) {
+                    // Exactly zero or not (a symbolic rate must vanish identically: no sign
+                    // is assumed).
                     return Err(SystemError::JointViolated {
-                        joint: h.joint,
-                        kind: self.joints[h.joint].joint.name(),
+                        joint: j,
+                        kind: joint.joint.name(),
                         rate: rate_text(&rate),
                     });
                 }
-                continue;
-            }
-            let mut scale = T::zero();
-            for (b, a) in h.entries() {
-                let b = &self.velocity.0[b];
-                for k in 0..6 {
-                    let t = a.0[k].clone() * &b.0[(k + 3) % 6];
-                    if t.abs_gt(&scale) {
-                        scale = if t.signum_i8() < 0 { -t } else { t };
-                    }
-                }
-            }
-            if !rate.is_negligible(&scale, 12 * self.bodies.len()) {
-                return Err(SystemError::JointViolated {
-                    joint: h.joint,
-                    kind: self.joints[h.joint].joint.name(),
-                    rate: rate_text(&rate),
-                });
             }
         }
         Ok(())
+    }
+
+    /// Whether the rate `rate` of the twist before impact along the row `h` is rounding:
+    /// negligible against the largest product it sums.
+    fn negligible(&self, rate: &T, h: &Row<T>) -> bool {
+        let mut scale = T::zero();
+        for (b, a) in h.entries() {
+            let b = &self.velocity.0[b];
+            for k in 0..6 {
+                let t = a.0[k].clone() * &b.0[(k + 3) % 6];
+                if t.abs_gt(&scale) {
+                    scale = if t.signum_i8() < 0 { -t } else { t };
+                }
+            }
+        }
+        rate.is_negligible(&scale, 12 * self.bodies.len())
     }
 }
 
@@ -442,8 +456,8 @@ impl<T: Scalar> Mobility<T, SystemScrew<T>> for System<T> {
     /// W{E}: each body's \[M\]⁻¹ (eq. 11), then the joints' correction ([`mobility`]).
     fn response(&self, e: &SystemScrew<T>) -> SystemScrew<T> {
         match &self.rows {
-            Some(rows) => rows.response(&self.rigid, e),
-            None => free_response(&self.rigid, e),
+            Some(rows) => rows.response(&self.bodies, e),
+            None => free_response(&self.bodies, e),
         }
     }
 }
@@ -459,29 +473,78 @@ fn rate_text<T: Scalar>(rate: &T) -> String {
     }
 }
 
-/// The rows H_k of `joints`: each blocked screw on the first body minus on the second, about
-/// their centres, with the screw about the world origin and its joint.
-fn joint_rows<T: Scalar>(bodies: &[SystemBody<T>], joints: &[SystemJoint<T>]) -> Vec<Row<T>> {
-    let mut rows = Vec::new();
-    for (j, joint) in joints.iter().enumerate() {
-        let (a, second) = (joint.pair.first, joint.pair.second);
-        for u in blocked_screws(&joint.joint.free_screws()) {
-            rows.push(Row {
-                joint: j,
-                first: (a, about(&u, &bodies[a].centre)),
-                second: second.map(|b| (b, Screw(-about(&u, &bodies[b].centre).0))),
-                blocked: u,
-            });
-        }
-    }
-    rows
+/// Every joint's free screws (about the world origin, as [`Joint::free_screws`] gives them)
+/// and the screws it blocks ([`blocked_screws`]), all joints' in one vector each.
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) struct JointScrews<T: Scalar> {
+    free: Vec<Screw<T>>,
+    /// Joint j's free screws are `free[free_starts[j]..free_starts[j + 1]]`.
+    free_starts: Vec<usize>,
+    blocked: Vec<Screw<T>>,
+    /// Per blocked screw: the column where it is 1 and its joint's other blocked screws 0.
+    columns: Vec<u8>,
+    /// Joint j's blocked screws are `blocked[blocked_starts[j]..blocked_starts[j + 1]]`.
+    blocked_starts: Vec<usize>,
+    /// Whether every joint's free screws are independent.
+    pub(crate) independent: bool,
 }
 
-/// A basis of the screws u with uᵀ η f = 0 for every free screw f: what the joint blocks —
-/// the null space of the rows (η f)ᵀ by reduced row echelon form, one screw per free column
-/// with a 1 there ([`crate::linalg::null_space`]'s basis, built here without its vectors of
-/// vectors: one joint at a time, on a chain of a thousand it was a sixth of the solve).
-fn blocked_screws<T: Scalar>(free: &[Screw<T>]) -> Vec<Screw<T>> {
+impl<T: Scalar> JointScrews<T> {
+    fn new(joints: &[SystemJoint<T>]) -> Self {
+        let mut s = JointScrews {
+            free: Vec::with_capacity(joints.len()),
+            free_starts: Vec::with_capacity(joints.len() + 1),
+            blocked: Vec::with_capacity(5 * joints.len()),
+            columns: Vec::with_capacity(5 * joints.len()),
+            blocked_starts: Vec::with_capacity(joints.len() + 1),
+            independent: true,
+        };
+        s.free_starts.push(0);
+        s.blocked_starts.push(0);
+        for joint in joints {
+            let from = s.free.len();
+            joint.joint.free_screws_into(&mut s.free);
+            let rank = blocked_screws(&s.free[from..], &mut s.blocked, &mut s.columns);
+            s.independent &= rank == s.free.len() - from;
+            s.free_starts.push(s.free.len());
+            s.blocked_starts.push(s.blocked.len());
+        }
+        s
+    }
+
+    /// Joint `j`'s free screws.
+    pub(crate) fn free(&self, j: usize) -> &[Screw<T>] {
+        &self.free[self.free_starts[j]..self.free_starts[j + 1]]
+    }
+
+    /// Joint `j`'s blocked screws.
+    pub(crate) fn blocked(&self, j: usize) -> &[Screw<T>] {
+        &self.blocked[self.blocked_starts[j]..self.blocked_starts[j + 1]]
+    }
+
+    /// Where joint `j`'s blocked screws start among all joints', and the column where each
+    /// is 1 (and the others 0).
+    pub(crate) fn columns(&self, j: usize) -> (usize, &[u8]) {
+        let (a, b) = (self.blocked_starts[j], self.blocked_starts[j + 1]);
+        (a, &self.columns[a..b])
+    }
+
+    /// All joints' blocked screws: the rows of H.
+    pub(crate) fn rows(&self) -> usize {
+        self.blocked.len()
+    }
+}
+
+/// A basis of the screws u with uᵀ η f = 0 for every free screw f, appended to `blocked`:
+/// what the joint blocks — the null space of the rows (η f)ᵀ by reduced row echelon form
+/// (partial pivoting, as [`crate::linalg::gauss::rref`], here on a fixed 6 × 6 array without
+/// allocating), one screw per column that is not a pivot, with a 1 there and 0 in the other
+/// such columns (appended to `columns`). Returns the rank of the free screws.
+fn blocked_screws<T: Scalar>(
+    free: &[Screw<T>],
+    blocked: &mut Vec<Screw<T>>,
+    columns: &mut Vec<u8>,
+) -> usize {
     // Rows (η f)ᵀ: [f_bottom; f_top].
     let rows = free.len().min(6);
     let mut a: [T; 36] = std::array::from_fn(|_| T::zero());
@@ -490,16 +553,55 @@ fn blocked_screws<T: Scalar>(free: &[Screw<T>]) -> Vec<Screw<T>> {
             a[6 * r + k] = f.0[(k + 3) % 6].clone();
         }
     }
-    let pivots = crate::linalg::gauss::rref(&mut a[..6 * rows], rows, 6, &mut [], 0);
-    (0..6)
-        .filter(|c| !pivots.contains(c))
-        .map(|free| {
-            let mut u = Screw::zero();
-            u.0[free] = T::one();
-            for (k, &pc) in pivots.iter().enumerate() {
-                u.0[pc] = -a[6 * k + free].clone();
+    let mut scale = T::zero();
+    for x in &a[..6 * rows] {
+        if x.abs_gt(&scale) {
+            scale = x.clone();
+        }
+    }
+    let mut pivots = [0usize; 6];
+    let mut r = 0;
+    for c in 0..6 {
+        if r == rows {
+            break;
+        }
+        let mut p = r;
+        for i in r + 1..rows {
+            if a[6 * i + c].abs_gt(&a[6 * p + c]) {
+                p = i;
             }
-            u
-        })
-        .collect()
+        }
+        if a[6 * p + c].is_negligible(&scale, 6) {
+            continue;
+        }
+        for j in 0..6 {
+            a.swap(6 * r + j, 6 * p + j);
+        }
+        let piv = a[6 * r + c].clone();
+        for j in 0..6 {
+            a[6 * r + j] /= &piv;
+        }
+        for i in 0..rows {
+            if i != r && !a[6 * i + c].is_zero() {
+                let f = a[6 * i + c].clone();
+                for j in 0..6 {
+                    let t = f.clone() * &a[6 * r + j];
+                    a[6 * i + j] -= t;
+                }
+            }
+        }
+        pivots[r] = c;
+        r += 1;
+    }
+    let pivots = &pivots[..r];
+    for free in (0..6).filter(|c| !pivots.contains(c)) {
+        let mut u = Screw::zero();
+        u.0[free] = T::one();
+        for (k, &pc) in pivots.iter().enumerate() {
+            u.0[pc] = -a[6 * k + free].clone();
+        }
+        blocked.push(u);
+        columns.push(free as u8);
+    }
+    r
 }
