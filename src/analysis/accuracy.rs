@@ -132,6 +132,13 @@ pub trait Contracted: Mechanism<Exact> {
 
     /// μ ≥ 1, the accuracy to which the mobility W is applied (1 when free).
     fn metric(&self) -> f64;
+
+    /// {E}ᵀ η W′ {E} for the axis screw {E}, W′ the mobility whose metric bounds how an error
+    /// of the twist after impact shows along the axis, |{E}ᵀ η δv| ≤ ({E}ᵀ η W′ {E})^½ ‖δv‖_M
+    /// (module docs, systems): W itself where the float twist is admissible by construction.
+    fn seen_inertance(&self, e: &Self::Screw) -> Exact {
+        e.reciprocal(&self.response(e))
+    }
 }
 
 impl Contracted for Problem<Exact> {
@@ -183,6 +190,18 @@ impl Contracted for System<Exact> {
             sum += magnitude_norm(&body.body, &arm, u).powi(2);
         }
         sum.sqrt()
+    }
+
+    /// W₀ = M⁻¹, the free bodies' mobility: the joints hold a float twist only to rounding
+    /// (it is W₀ applied to the wrench less the joints' impulses, found by a solve), so its
+    /// error need not be admissible, and Cauchy–Schwarz in the metric M bounds its velocity
+    /// along {E} by ({E}ᵀ η M⁻¹ {E})^½ ‖δv‖_M, whatever its direction.
+    fn seen_inertance(&self, e: &SystemScrew<Exact>) -> Exact {
+        let mut sum = Exact::zero();
+        for (body, x) in self.bodies().iter().zip(&e.0) {
+            sum += x.reciprocal(&body.body.response(x));
+        }
+        sum
     }
 
     /// cond₂ K̃ (module docs, systems): the joints' rows H_k in the free metric, K = Hᵀ η W₀ H,
@@ -571,7 +590,7 @@ pub fn measure<M: Contracted, T: Scalar>(
             let reference = axis.reciprocal(&exact_out.velocity);
             let error =
                 to_f64(&(Exact::from(out.after_hat[i][a].exact_value()?) - reference).abs()) / unit;
-            let g = to_f64(&(axis.reciprocal(&problem.response(&axis)) / &unit2));
+            let g = to_f64(&(problem.seen_inertance(&axis) / &unit2));
             let bound = g.max(0.0).sqrt() * b_v
                 + 4.0 * eps * problem.magnitude(i, &direction) / unit * speed;
             let check = Check { error, bound };
