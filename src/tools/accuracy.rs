@@ -7,6 +7,10 @@
 //! units [`crate::scene::scale`] chooses for it (constrained scenes as written) — the units
 //! every float command solves in, and the bounds are unit-free — exactly, then in each float
 //! type, and every float outcome is measured against the exact one.
+//!
+//! Systems of bodies are measured by the same code ([`system_rows`]) on their own corpus: the
+//! system examples ([`system_examples`]) and seeded random free systems and joint trees
+//! ([`system_scenes`]), each in the units [`crate::scene::scale::system`] chooses.
 
 use std::path::Path;
 
@@ -165,8 +169,7 @@ pub fn system_rows(scenes: &[Scene]) -> Vec<ContractRow> {
     rows::<System<Exact>>(scenes)
 }
 
-fn rows<M: Measured>(scenes: &[Scene]) -> Vec<ContractRow>
-{
+fn rows<M: Measured>(scenes: &[Scene]) -> Vec<ContractRow> {
     let refs: Vec<Reference<M>> = scenes.iter().filter_map(reference::<M>).collect();
     let mut rows = vec![
         ContractRow {
