@@ -14,61 +14,10 @@
 //! singular only where κ·ε ≥ 10⁻³; and the corpus is not vacuous. The test prints the largest
 //! ratio per type and output.
 
-use inertance::analysis::accuracy::Output;
-use inertance::tools::accuracy::{ContractRow, system_examples, system_rows, system_scenes};
+mod common;
 
-fn epsilon(scalar: &str) -> f64 {
-    match scalar {
-        "f32" => f32::EPSILON as f64,
-        "f64" => f64::EPSILON,
-        _ => 2f64.powi(-104),
-    }
-}
-
-/// Every bound holds, and G is declared singular only beyond the type's precision; the
-/// number of solves measured per type.
-fn assert_contract(corpus: &str, rows: &[ContractRow]) -> Vec<usize> {
-    let mut solved = Vec::new();
-    let mut failures = Vec::new();
-    for r in rows {
-        let eps = epsilon(r.scalar);
-        let mut count = 0;
-        for m in &r.measurements {
-            match m.checks {
-                Some(checks) => {
-                    count += 1;
-                    for (o, c) in Output::ALL.iter().zip(checks) {
-                        if c.error > c.bound {
-                            failures.push(format!(
-                                "{corpus}, {} {}: {} error {:e} > bound {:e} ({}; cond {:e})",
-                                r.scalar,
-                                m.case,
-                                o.name(),
-                                c.error,
-                                c.bound,
-                                o.bound_text(),
-                                m.cond
-                            ));
-                        }
-                    }
-                }
-                None if m.cond * eps < 1e-3 => failures.push(format!(
-                    "{corpus}, {} {}: declared singular at cond {:e}",
-                    r.scalar, m.case, m.cond
-                )),
-                None => {}
-            }
-        }
-        eprintln!("{corpus}, {}: {count} solves measured", r.scalar);
-        for o in Output::ALL {
-            let (ratio, case) = r.worst(o);
-            eprintln!("  {:20} largest error/bound {ratio:.1e} ({case})", o.name());
-        }
-        solved.push(count);
-    }
-    assert!(failures.is_empty(), "{}", failures.join("\n"));
-    solved
-}
+use common::assert_contract;
+use inertance::tools::accuracy::{system_examples, system_rows, system_scenes};
 
 #[test]
 fn every_output_meets_its_bound_on_the_system_examples() {

@@ -394,7 +394,8 @@ fn system_text(n: usize, pick: &mut dyn FnMut(i64, i64) -> i64) -> String {
     let contacts = pick(1, if jointed { 3 } else { 4 });
     let near = pick(0, 2) == 0;
     // (point in tenths of a metre, its shift 10^−s along x, normal, what it joins, k).
-    let mut written: Vec<([i64; 3], Option<i64>, [i64; 3], String, (i64, i64))> = Vec::new();
+    type Written = ([i64; 3], Option<i64>, [i64; 3], String, (i64, i64));
+    let mut written: Vec<Written> = Vec::new();
     for i in 0..contacts {
         let point = vector(pick, -30, 30);
         let mut normal = vector(pick, -4, 4);

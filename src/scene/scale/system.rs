@@ -74,9 +74,7 @@ pub fn scale_system(scene: &Scene) -> Option<(Scene, Units)> {
         b - approach.clamp(s - HEADROOM, s)
     });
     let mut s = scene.clone();
-    let Some(spec) = s.system.as_mut() else {
-        return None;
-    };
+    let spec = s.system.as_mut()?;
     for body in &mut spec.bodies {
         scale_number(&mut body.mass, -a);
         for j in body
