@@ -17,60 +17,10 @@
 //! G is well conditioned (`impact::route`), and the corpora exercise both routes
 //! (`tests/route.rs` counts them and compares the two where both apply).
 
-use inertance::analysis::accuracy::Output;
-use inertance::tools::accuracy::{ContractRow, hard_cases, ratio_scenes, run};
+mod common;
 
-fn epsilon(scalar: &str) -> f64 {
-    match scalar {
-        "f32" => f32::EPSILON as f64,
-        "f64" => f64::EPSILON,
-        _ => 2f64.powi(-104),
-    }
-}
-
-/// Every bound holds, and G is declared singular only beyond the type's precision; the
-/// number of solves measured per type.
-fn assert_contract(corpus: &str, rows: &[ContractRow]) -> Vec<usize> {
-    let mut solved = Vec::new();
-    for r in rows {
-        let eps = epsilon(r.scalar);
-        let mut count = 0;
-        for m in &r.measurements {
-            match m.checks {
-                Some(checks) => {
-                    count += 1;
-                    for (o, c) in Output::ALL.iter().zip(checks) {
-                        assert!(
-                            c.error <= c.bound,
-                            "{corpus}, {} {}: {} error {:e} > bound {:e} ({}; cond {:e})",
-                            r.scalar,
-                            m.case,
-                            o.name(),
-                            c.error,
-                            c.bound,
-                            o.bound_text(),
-                            m.cond
-                        );
-                    }
-                }
-                None => assert!(
-                    m.cond * eps >= 1e-3,
-                    "{corpus}, {} {}: declared singular at cond {:e}",
-                    r.scalar,
-                    m.case,
-                    m.cond
-                ),
-            }
-        }
-        eprintln!("{corpus}, {}: {count} solves measured", r.scalar);
-        for o in Output::ALL {
-            let (ratio, case) = r.worst(o);
-            eprintln!("  {:20} largest error/bound {ratio:.1e} ({case})", o.name());
-        }
-        solved.push(count);
-    }
-    solved
-}
+use common::assert_contract;
+use inertance::tools::accuracy::{hard_cases, ratio_scenes, run};
 
 #[test]
 fn every_output_meets_its_bound_on_the_hard_corpus() {

@@ -67,12 +67,14 @@
 use num_rational::BigRational;
 use num_traits::{Signed, Zero};
 
+pub mod system;
+
 use super::{ConstraintsSpec, Scene, SurfaceSpec};
 use crate::mechanics::constraint::complement;
 use crate::mechanics::screw::Screw;
 use crate::mechanics::surface::Surface;
 use crate::number::{Number, format_rational, rational_to_f64};
-use crate::report::{PointVelocity, Report, Value, Wide};
+use crate::report::{FrictionContact, PointVelocity, Report, Value, Wide};
 use crate::scalar::{Exact, Scalar};
 
 /// The powers of two of a scaled scene: mass 2^a, length 2^b, time 2^c, and each contact's
@@ -497,15 +499,7 @@ pub fn unscale(report: &mut Report, u: &Units) {
     }
     for f in &mut report.friction {
         for p in &mut f.contacts {
-            times(&mut p.normal_impulse, a + b - c);
-            times(&mut p.compression_impulse, a + b - c);
-            for t in p.tangential_impulse.iter_mut() {
-                times(t, a + b - c);
-            }
-            times(&mut p.normal_velocity, b - c);
-            for v in p.velocity.iter_mut() {
-                times(v, b - c);
-            }
+            friction_contact(p, a, b, c);
         }
         for w in &mut f.angular_velocity {
             times(w, -c);
@@ -534,6 +528,20 @@ pub fn unscale(report: &mut Report, u: &Units) {
                 }
             }
         }
+    }
+}
+
+/// A frictional contact's readout (one body's or a system's) scaled back: its impulses
+/// M·L/T, its velocities L/T.
+fn friction_contact(p: &mut FrictionContact, a: i64, b: i64, c: i64) {
+    for i in [&mut p.normal_impulse, &mut p.compression_impulse]
+        .into_iter()
+        .chain(&mut p.tangential_impulse)
+    {
+        times(i, a + b - c);
+    }
+    for v in std::iter::once(&mut p.normal_velocity).chain(&mut p.velocity) {
+        times(v, b - c);
     }
 }
 
@@ -708,8 +716,14 @@ pub fn precision_lost(report: &Report) -> Option<&'static str> {
 /// The key of the scene's number farthest from 1 in magnitude (the likeliest culprit when a
 /// result is out of range), with its text.
 pub fn most_extreme(scene: &Scene) -> Option<(String, String)> {
+    let bodies = scene
+        .system
+        .as_ref()
+        .map(|s| s.numbers())
+        .unwrap_or_default();
     scene
         .numbers()
+        .chain(bodies)
         .filter_map(|(k, n)| {
             let e = n.exact.as_ref().ok().and_then(exponent).or_else(|| {
                 (n.approx != 0.0 && n.approx.is_finite()).then(|| n.approx.abs().log2() as i64)

@@ -8,9 +8,19 @@
 //! event by event, when the system stays in a plane; adaptively in floats otherwise. Its checks
 //! are the energy balance ΔE_c = Σ∫v·dΛ = T⁰ − T and, for a free system, the momentum.
 //!
-//! What a system scene is not solved with yet is refused, naming it: float scenes whose
-//! numbers are far from 1 (a system is solved in the scene's own units, not scaled: an output
-//! f64 cannot hold is refused, naming the output).
+//! **Floats.** As one body's ([`super::pipeline::run_with`]), a float solve of a system runs in
+//! units of mass, length and time that are powers of two chosen from all its bodies' numbers
+//! ([`crate::scene::scale::system`]): every input scaled exactly, every output scaled back by
+//! its dimension — each body's twist and kinetic energy, the impulses, the energies, the joints'
+//! reactions (a force M·L/T and a moment M·L²/T at the anchor), the momentum, G and Δ (held
+//! wide where f64 cannot hold them). A system in grams and millimetres, or an astronomical one,
+//! is then solved as well as one in SI units: the scaling is exact and the laws are invariant
+//! under it, so a scene rewritten in units that differ by powers of two gives the same answers,
+//! bit for bit. A physical output that lost its precision in the scaled units, or that f64
+//! cannot hold once scaled back, is refused, naming it and the input farthest from 1 — never
+//! printed as NaN or ∞. The frictional path is scaled the same way; the exact path is not (it is
+//! exact). How accurate the float answers are is stated per output by
+//! [`crate::analysis::accuracy`] (its systems paragraph).
 
 use crate::impact::admissibility::{energy_gain, verdicts};
 use crate::impact::friction::solve_frictional;
@@ -18,13 +28,16 @@ use crate::impact::restitution::Model;
 use crate::impact::solve::{Impact, Outcome};
 use crate::impact::unilateral::{Law, UnilateralError, active};
 use crate::mechanics::system::{System, SystemScrew};
-use crate::report::Value;
 use crate::report::system::SystemReport;
 use crate::report::system_friction::SystemFrictionReport;
 use crate::scalar::Scalar;
 
 use super::pipeline::{RunError, friction_tolerance};
-use super::{Scene, SceneError};
+use super::scale::system::{
+    scale_system, system_out_of_range, system_precision_lost, unscale_system,
+};
+use super::scale::{Units, output_below, output_beyond, unrepresentable};
+use super::{OUT_OF_RANGE, Scene};
 
 /// A solved system scene: its report, and per model whether the energy identity held and,
 /// for a free system, whether the momentum was conserved (exactly in exact types, to
@@ -51,6 +64,73 @@ pub struct SolvedSystem {
 /// a singular G under the simultaneous law, a jam under the unilateral law when no model
 /// answers.
 pub fn run_system<T: Scalar>(
+    scene: &Scene,
+    models: Option<&[Model]>,
+) -> Result<SolvedSystem, RunError> {
+    if T::IS_EXACT {
+        return run_as_written::<T>(scene, models);
+    }
+    let input_out_of_range =
+        |e: &RunError| matches!(e, RunError::Scene(s) if s.message.ends_with(OUT_OF_RANGE));
+    let unrepresentable = || RunError::Scene(unrepresentable(scene, T::NAME, SCALED));
+    let Some((scaled, units)) = scale_system(scene) else {
+        let mut solved = match run_as_written::<T>(scene, models) {
+            Err(e) if input_out_of_range(&e) => return Err(unrepresentable()),
+            solved => solved?,
+        };
+        finish_float::<T>(scene, &mut solved.report, None)?;
+        return Ok(solved);
+    };
+    let mut solved = match run_as_written::<T>(&scaled, models) {
+        Ok(solved) => solved,
+        Err(e) if input_out_of_range(&e) => return Err(unrepresentable()),
+        // Another refusal names the values as written: the scene's own error.
+        Err(RunError::Scene(e)) => {
+            run_as_written::<T>(scene, models)?;
+            return Err(RunError::Scene(e));
+        }
+        Err(e) => return Err(e),
+    };
+    finish_float::<T>(scene, &mut solved.report, Some(&units))?;
+    Ok(solved)
+}
+
+/// How a float solve in units scaled to the scene was tried, for refusals.
+const SCALED: &str = ", even in units of mass, length and time scaled to the scene";
+
+/// A float report refused when a physical output lost its precision in the units it was solved
+/// in, else scaled back (`units`, when it was solved in scaled ones) and refused when a
+/// physical output is beyond `T` in the scene's units — naming the output
+/// ([`crate::scene::scale::system`]).
+fn finish_float<T: Scalar>(
+    scene: &Scene,
+    report: &mut SystemReport,
+    units: Option<&Units>,
+) -> Result<(), RunError> {
+    if let Some(output) = system_precision_lost(report) {
+        return Err(RunError::Scene(output_below(
+            scene,
+            T::NAME,
+            output,
+            SCALED,
+        )));
+    }
+    if let Some(units) = units {
+        unscale_system(report, units);
+    }
+    match system_out_of_range(report) {
+        Some(output) => Err(RunError::Scene(output_beyond(
+            scene,
+            T::NAME,
+            output,
+            SCALED,
+        ))),
+        None => Ok(()),
+    }
+}
+
+/// Solve the system scene `scene` in `T` in its own units (module docs).
+fn run_as_written<T: Scalar>(
     scene: &Scene,
     models: Option<&[Model]>,
 ) -> Result<SolvedSystem, RunError> {
@@ -117,9 +197,6 @@ pub fn run_system<T: Scalar>(
         r.activity = activity;
     }
     report.model_failures = failures;
-    if !T::IS_EXACT {
-        refuse_unrepresentable(scene, &report)?;
-    }
     let energy_identity = outcomes
         .iter()
         .map(|(_, out)| {
@@ -205,9 +282,6 @@ fn run_frictional<T: Scalar>(
     if let (true, Some(e)) = (report.friction.is_empty(), first_failure) {
         return Err(e.into());
     }
-    if !T::IS_EXACT {
-        refuse_unrepresentable(scene, &report)?;
-    }
     Ok(SolvedSystem {
         report,
         energy_identity: Vec::new(),
@@ -241,59 +315,4 @@ fn conserved<T: Scalar>(
         (p1[k].clone() - &p0[k]).is_negligible(&scale, n)
             && (l1[k].clone() - &l0[k]).is_negligible(&scale, n)
     })
-}
-
-/// A float result that f64 does not hold (the system is solved in the scene's own units) is
-/// refused, naming it.
-fn refuse_unrepresentable(scene: &Scene, report: &SystemReport) -> Result<(), RunError> {
-    let finite = |v: &Value| v.f64.is_finite();
-    let frictional = report.friction.iter().map(|f| {
-        [
-            (
-                "impulses",
-                f.contacts
-                    .iter()
-                    .all(|c| finite(&c.normal_impulse) && c.tangential_impulse.iter().all(finite)),
-            ),
-            (
-                "velocities after impact",
-                f.twists.iter().all(|(w, v)| w.iter().chain(v).all(finite)),
-            ),
-            (
-                "energies",
-                finite(&f.lost_velocity_energy) && finite(&f.kinetic_energy_loss),
-            ),
-        ]
-    });
-    for checks in report
-        .models
-        .iter()
-        .map(|m| {
-            [
-                ("impulses", m.impulses.iter().all(finite)),
-                (
-                    "velocities after impact",
-                    m.twists.iter().all(|(w, v)| w.iter().chain(v).all(finite)),
-                ),
-                (
-                    "energies",
-                    finite(&m.lost_velocity_energy) && finite(&m.kinetic_energy_loss),
-                ),
-            ]
-        })
-        .chain(frictional)
-    {
-        if let Some((name, _)) = checks.iter().find(|(_, ok)| !ok) {
-            return Err(RunError::Scene(SceneError {
-                file: scene.file.clone(),
-                key: "body".into(),
-                value: None,
-                message: format!(
-                    "the {name} of this system are beyond the range of f64 in the scene's units \
-                     (systems are not scaled yet): solve it with --exact"
-                ),
-            }));
-        }
-    }
-    Ok(())
 }

@@ -333,3 +333,63 @@ pub fn exact_of(p: &Problem<f64>) -> Problem<Exact> {
     )
     .expect("the binary values of a valid problem")
 }
+
+/// The machine epsilon of a float type, by its name (the accuracy contract's tests).
+pub fn epsilon(scalar: &str) -> f64 {
+    match scalar {
+        "f32" => f32::EPSILON as f64,
+        "f64" => f64::EPSILON,
+        _ => 2f64.powi(-104),
+    }
+}
+
+/// Every bound holds, and G is declared singular only beyond the type's precision; the
+/// number of solves measured per type.
+pub fn assert_contract(
+    corpus: &str,
+    rows: &[inertance::tools::accuracy::ContractRow],
+) -> Vec<usize> {
+    let mut solved = Vec::new();
+    let mut failures = Vec::new();
+    for r in rows {
+        let eps = epsilon(r.scalar);
+        let mut count = 0;
+        for m in &r.measurements {
+            match m.checks {
+                Some(checks) => {
+                    count += 1;
+                    for (o, c) in inertance::analysis::accuracy::Output::ALL
+                        .iter()
+                        .zip(checks)
+                    {
+                        if c.error > c.bound {
+                            failures.push(format!(
+                                "{corpus}, {} {}: {} error {:e} > bound {:e} ({}; cond {:e})",
+                                r.scalar,
+                                m.case,
+                                o.name(),
+                                c.error,
+                                c.bound,
+                                o.bound_text(),
+                                m.cond
+                            ));
+                        }
+                    }
+                }
+                None if m.cond * eps < 1e-3 => failures.push(format!(
+                    "{corpus}, {} {}: declared singular at cond {:e}",
+                    r.scalar, m.case, m.cond
+                )),
+                None => {}
+            }
+        }
+        eprintln!("{corpus}, {}: {count} solves measured", r.scalar);
+        for o in inertance::analysis::accuracy::Output::ALL {
+            let (ratio, case) = r.worst(o);
+            eprintln!("  {:20} largest error/bound {ratio:.1e} ({case})", o.name());
+        }
+        solved.push(count);
+    }
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+    solved
+}
