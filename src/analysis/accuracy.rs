@@ -114,9 +114,17 @@
 //!   |A_k| + |C_bk|, so a system placed far from the origin counts the cancellation in A − C.
 //!   The subtraction's own rounding (½ε of |A_k| + |C_bk|) is not added to the 3 of η_E: that
 //!   step is measured, not proved.
-//! - **μ.** The joints apply W without D: W{E} = W₀{E} − W₀ H λ with K λ = Hᵀ η W₀ {E},
-//!   K = Hᵀ η W₀ H the Gram matrix of the joints' rows in the free metric, factored along the
-//!   tree or, for loops, densely with pivoting ([`crate::mechanics::system::mobility`]). W{E}
+//! - **μ.** A forest of joints applies W by the articulated-body recursion
+//!   ([`crate::mechanics::system`]'s `articulated`), an elimination of the mass matrix in the
+//!   joints' own rates, M_q = Jᵀ η M J (each joint's free screws moving its child's subtree,
+//!   six rates per root free of the ground); loops and redundant joints apply it densely:
+//!   W{E} = W₀{E} − W₀ H λ with K λ = Hᵀ η W₀ {E},
+//!   K = Hᵀ η W₀ H the Gram matrix of the joints' rows in the free metric, factored with
+//!   pivoting ([`crate::mechanics::system::mobility`]). μ = max(cond₂ K̃, cond₂ M̃_q), each
+//!   scaled to a unit diagonal, covers both paths (which one a float solve takes is its own
+//!   decision). With cond₂ K̃ alone, the recursion's twist broke the bound by 8.7× (f64, a
+//!   joint tree with masses 10^±6): the recursion's rounding follows M_q, not K. For the
+//!   dense path: W{E}
 //!   is the M-orthogonal projection of W₀{E} onto the admissible twists, so the accuracy of its
 //!   application is that of a projection onto the span of the rows, which (as the contacts'
 //!   projection above) is governed by the rows' conditioning, not by a basis of the admissible
@@ -138,8 +146,9 @@
 //!
 //! Measured (`tests/system_accuracy.rs`, [`crate::tools::accuracy::system_rows`]: the system
 //! examples and 60 seeded free systems and joint trees, masses over 10^±6, one in three nearly
-//! singular): every ratio ≤ 1, the largest 0.59 (a twist, f64, on a joint tree), against
-//! 2·10⁻² for one body — the joints cost accuracy the bound only just covers there.
+//! singular): every ratio ≤ 1, the largest 7·10⁻³ (a twist, f64, on a joint tree), against
+//! 2·10⁻² for one body. (With μ = cond₂ K̃ and the earlier block factorization along the
+//! tree (Baraff 1996) the largest was 0.59.)
 
 use num_traits::{One, Zero};
 
@@ -299,8 +308,155 @@ impl Contracted for System<Exact> {
                     / (diagonal[e / m] * diagonal[e % m])
             })
             .collect();
-        super::condition_number(&matrix, m)
+        super::condition_number(&matrix, m).max(joint_space_condition(self))
     }
+}
+
+/// cond₂ M̃_q: the system's mass matrix in the joints' own rates, M_q = Jᵀ η M J, scaled to a
+/// unit diagonal, for a forest of joints (1 otherwise, and without joints). A forest is solved
+/// by the articulated-body recursion (`mechanics::system::articulated`), which is an
+/// elimination of M_q in these coordinates — each joint's free screws, moving its child's
+/// whole subtree, and six rates of each root free of the ground about its centre — so its
+/// rounding grows with cond M̃_q as the dense path's does with cond K̃ ([`Contracted::metric`]
+/// takes the larger: which path a float solve takes is its own decision).
+fn joint_space_condition(system: &System<Exact>) -> f64 {
+    let (bodies, joints) = (system.bodies(), system.joints());
+    let b = bodies.len();
+    if joints.is_empty() {
+        return 1.0;
+    }
+    // The forest: each body's joint to its parent, found from the roots outwards.
+    let mut parent: Vec<Option<usize>> = vec![None; b]; // the joint to the parent
+    let mut placed = vec![false; b];
+    let mut roots: Vec<(usize, Option<usize>)> = Vec::new(); // (body, its joint to the ground)
+    for (j, joint) in joints.iter().enumerate() {
+        if joint.pair.second.is_none() {
+            let r = joint.pair.first;
+            if placed[r] {
+                return 1.0; // two joints to the ground on one body: a loop
+            }
+            placed[r] = true;
+            roots.push((r, Some(j)));
+        }
+    }
+    let mut used = vec![false; joints.len()];
+    for &(_, j) in &roots {
+        if let Some(j) = j {
+            used[j] = true;
+        }
+    }
+    let mut frontier: Vec<usize> = roots.iter().map(|&(r, _)| r).collect();
+    loop {
+        while let Some(x) = frontier.pop() {
+            for (j, joint) in joints.iter().enumerate() {
+                let (a, c) = (joint.pair.first, joint.pair.second);
+                let other = match c {
+                    Some(c) if a == x => c,
+                    Some(c) if c == x => a,
+                    _ => continue,
+                };
+                if used[j] {
+                    continue;
+                }
+                used[j] = true;
+                if placed[other] {
+                    return 1.0; // a loop: the dense path answers
+                }
+                placed[other] = true;
+                parent[other] = Some(j);
+                frontier.push(other);
+            }
+        }
+        match (0..b).find(|&i| !placed[i]) {
+            Some(r) => {
+                placed[r] = true;
+                roots.push((r, None));
+                frontier.push(r);
+            }
+            None => break,
+        }
+    }
+    // The body whose joint to its parent (or the ground) is joint j, for each body its chain
+    // of ancestors (itself included).
+    let mut child_of = vec![usize::MAX; joints.len()];
+    for (i, p) in parent.iter().enumerate() {
+        if let Some(j) = p {
+            child_of[*j] = i;
+        }
+    }
+    for &(r, j) in &roots {
+        if let Some(j) = j {
+            child_of[j] = r;
+        }
+    }
+    let root_of_tree = |mut i: usize| {
+        while let Some(j) = parent[i] {
+            let joint = &joints[j];
+            i = if joint.pair.first == i {
+                joint.pair.second.unwrap_or(i)
+            } else {
+                joint.pair.first
+            };
+        }
+        i
+    };
+    let moves = |i: usize, top: usize| {
+        // Whether body i is in the subtree of body `top`.
+        let mut k = i;
+        loop {
+            if k == top {
+                return true;
+            }
+            let Some(j) = parent[k] else { return false };
+            let joint = &joints[j];
+            k = if joint.pair.first == k {
+                joint.pair.second.unwrap_or(k)
+            } else {
+                joint.pair.first
+            };
+        }
+    };
+    // The columns: a world screw (about the origin) and the bodies it moves.
+    let mut columns: Vec<(Screw<Exact>, usize)> = Vec::new();
+    for (j, joint) in joints.iter().enumerate() {
+        for f in joint.joint.free_screws() {
+            columns.push((f, child_of[j]));
+        }
+    }
+    for &(r, j) in &roots {
+        if j.is_none() {
+            let c = &bodies[r].centre;
+            for k in 0..6 {
+                let mut e = Screw::<Exact>::zero();
+                e.0[k] = Exact::one();
+                // A unit twist of the root about its centre, written about the origin.
+                columns.push((Screw::new(e.top(), e.bottom() + c.cross(&e.top())), r));
+            }
+        }
+    }
+    let n = columns.len();
+    let column = |k: usize, i: usize| -> Option<Screw<Exact>> {
+        let (s, top) = &columns[k];
+        (root_of_tree(i) == root_of_tree(*top) && moves(i, *top))
+            .then(|| about(s, &bodies[i].centre))
+    };
+    let entry = |k: usize, l: usize| -> Exact {
+        let mut sum = Exact::zero();
+        for (i, body) in bodies.iter().enumerate() {
+            if let (Some(x), Some(y)) = (column(k, i), column(l, i)) {
+                sum += x.reciprocal(&body.body.momentum(&y));
+            }
+        }
+        sum
+    };
+    let diagonal: Vec<f64> = (0..n).map(|k| to_f64(&entry(k, k)).sqrt()).collect();
+    if diagonal.iter().any(|d| !(d.is_finite() && *d > 0.0)) {
+        return 1.0;
+    }
+    let matrix: Vec<f64> = (0..n * n)
+        .map(|e| to_f64(&entry(e / n, e % n)) / (diagonal[e / n] * diagonal[e % n]))
+        .collect();
+    super::condition_number(&matrix, n)
 }
 
 /// The outputs the contract covers.
