@@ -1,5 +1,5 @@
 //! The cost of a system's impact against its number of bodies: the planar chain of
-//! `benches/common/chain.rs` (N revolute links, the first pinned to the ground, tip and middle link
+//! `inertance::tools::chain` (N revolute links, the first pinned to the ground, tip and middle link
 //! striking the ground: two contacts) in f64, N = 1, 10, 100, 1000.
 //!
 //! * `chain/tree/N`: everything from the data — [`System::new`] (checks, the joints' rows and
@@ -15,17 +15,14 @@
 //!
 //! `cargo bench --bench systems`
 
-#[path = "common/chain.rs"]
-mod chain;
-
 use std::hint::black_box;
 use std::time::{Duration, Instant};
 
-use chain::Chain;
 use criterion::{Criterion, Throughput};
 use inertance::impact::restitution::Model;
 use inertance::impact::solve::{Impact, Outcome};
 use inertance::mechanics::system::{System, SystemScrew};
+use inertance::tools::chain::Chain;
 
 const SIZES: [usize; 4] = [1, 10, 100, 1000];
 

@@ -1072,28 +1072,11 @@ fn run_bench(
             Ok(s) => s,
             Err(code) => return code,
         };
-        let times = inertance::tools::bench::time_scene(&scene, quick);
+        let timing = inertance::tools::bench::time_scene(&scene, quick);
         if json {
-            let ns: serde_json::Map<String, serde_json::Value> = times
-                .iter()
-                .map(|(name, t)| {
-                    (
-                        name.to_string(),
-                        t.map_or(serde_json::Value::Null, |x| serde_json::json!(x)),
-                    )
-                })
-                .collect();
-            println!(
-                "{}",
-                serde_json::json!({"scene": scene.name, "ns_per_solve": ns})
-            );
+            println!("{}", timing.to_json());
         } else {
-            for (name, t) in times {
-                println!(
-                    "{name:>18}: {}",
-                    t.map_or("singular".to_string(), |x| format!("{x:.0} ns per solve"))
-                );
-            }
+            print!("{}", timing.to_text());
         }
         return ExitCode::SUCCESS;
     }

@@ -116,19 +116,10 @@ pub(super) fn exact_outputs(contacts: usize, bodies: usize) -> impl Iterator<Ite
 /// derivative is 0 too: no μ_i moves at such a point unless seeded, which makes it frictional).
 /// `None` when the law was not solved.
 pub(super) fn law_outputs(answer: &Answer, law: Restitution, friction: bool) -> Option<Vec<Value>> {
-    let report = match answer {
-        Answer::Body(r) => r,
-        // A system scene is frictionless (the pipeline refuses friction on systems).
-        Answer::System(r) => {
-            let model = match law {
-                Restitution::Newton => Model::Newton,
-                Restitution::Poisson => Model::Poisson,
-                Restitution::Energetic => return None,
-            };
-            return Answer::system_outputs(r, model);
-        }
-    };
-    body_outputs(report, law, friction)
+    match answer {
+        Answer::Body(r) => body_outputs(r, law, friction),
+        Answer::System(r) => Answer::system_outputs(r, law, friction),
+    }
 }
 
 /// [`law_outputs`] of one body's report.
@@ -163,7 +154,7 @@ pub(super) fn body_outputs(
 }
 
 /// Zero in the form of `v`: with an exact text and a derivative when `v` has them.
-fn zero_like(v: &Value) -> Value {
+pub(super) fn zero_like(v: &Value) -> Value {
     let zero = |v: &Value| Value {
         exact: v.exact.as_ref().map(|_| "0".to_string()),
         ..Value::float(0.0)
@@ -174,19 +165,15 @@ fn zero_like(v: &Value) -> Value {
     }
 }
 
-/// One law's outputs at a solved point, in [`output_names`] order, with the exact texts of
-/// P_i, E_p, ΔE_c (see [`law_outputs`]).
-pub(super) fn law_values(
-    report: &Report,
-    law: Restitution,
-    friction: bool,
-) -> Option<(Vec<f64>, Vec<String>)> {
-    let v = body_outputs(report, law, friction)?;
-    let contacts = v.len() - 8 - usize::from(friction);
-    let exact = exact_outputs(contacts, 1)
-        .map(|k| v[k].exact.clone().unwrap_or_default())
-        .collect();
-    Some((v.iter().map(|x| x.f64).collect(), exact))
+/// One law's outputs at a solved point as f64, in [`output_names`] order (see
+/// [`law_outputs`]).
+pub(super) fn law_values(answer: &Answer, law: Restitution, friction: bool) -> Option<Vec<f64>> {
+    Some(
+        law_outputs(answer, law, friction)?
+            .iter()
+            .map(|x| x.f64)
+            .collect(),
+    )
 }
 
 /// A derivative as a CSV cell and a plotted y: empty and NaN when it does not exist or is not
@@ -489,7 +476,13 @@ fn system_status(r: &crate::report::system::SystemReport) -> String {
         .models
         .iter()
         .flat_map(|m| m.inadmissible.iter().map(|v| v.name()))
-        .chain(r.model_failures.iter().map(|(_, _, s)| *s));
+        .chain(r.model_failures.iter().map(|(_, _, s)| *s))
+        .chain(
+            r.friction
+                .iter()
+                .flat_map(|f| f.verdict_names.iter().copied()),
+        )
+        .chain(r.friction_failures.iter().map(|(_, _, s)| *s));
     for n in names {
         if !found.contains(&n) {
             found.push(n);
