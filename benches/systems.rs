@@ -21,26 +21,21 @@ use std::time::{Duration, Instant};
 use criterion::{Criterion, Throughput};
 use inertance::impact::restitution::Model;
 use inertance::impact::solve::{Impact, Outcome};
-use inertance::mechanics::system::{System, SystemScrew};
+use inertance::mechanics::system::SystemScrew;
 use inertance::tools::chain::Chain;
 
 const SIZES: [usize; 4] = [1, 10, 100, 1000];
 
-fn solve(system: &System<f64>, models: &[Model], out: &mut Outcome<f64, SystemScrew<f64>>) {
-    let mut impact = Impact::assemble(system).expect("assembles");
-    for &m in models {
-        impact.solve(m, out).expect("solves");
-    }
-}
-
 fn tree(chain: &Chain<f64>, models: &[Model], out: &mut Outcome<f64, SystemScrew<f64>>) {
-    let system = chain.system();
-    solve(black_box(&system), models, out);
+    chain.solve(models, out).expect("solves");
 }
 
 fn dense(chain: &Chain<f64>, out: &mut Outcome<f64, SystemScrew<f64>>) {
     let system = chain.system().with_dense_joints().expect("factors");
-    solve(black_box(&system), &[Model::Newton, Model::Poisson], out);
+    let mut impact = Impact::assemble(black_box(&system)).expect("assembles");
+    for m in [Model::Newton, Model::Poisson] {
+        impact.solve(m, out).expect("solves");
+    }
 }
 
 /// The median time of one call of `f` over 7 runs of at least 20 ms each.

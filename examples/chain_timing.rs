@@ -14,20 +14,15 @@
 //! and nothing printed, for instruction counts:
 //! `valgrind --tool=callgrind target/release/examples/chain_timing --once 1000`
 
-use std::hint::black_box;
 use std::time::{Duration, Instant};
 
 use inertance::impact::restitution::Model;
-use inertance::impact::solve::{Impact, Outcome};
+use inertance::impact::solve::Outcome;
 use inertance::mechanics::system::SystemScrew;
 use inertance::tools::chain::Chain;
 
 fn solve(chain: &Chain<f64>, models: &[Model], out: &mut Outcome<f64, SystemScrew<f64>>) {
-    let system = chain.system();
-    let mut impact = Impact::assemble(black_box(&system)).expect("assembles");
-    for &m in models {
-        impact.solve(m, out).expect("solves");
-    }
+    chain.solve(models, out).expect("solves");
 }
 
 fn median(mut f: impl FnMut()) -> f64 {

@@ -164,7 +164,8 @@ enum Command {
         /// Print JSON instead of the tables.
         #[arg(long)]
         json: bool,
-        /// Write an SVG plot of error versus time (and cost versus N) to this file.
+        /// Write an SVG plot of error versus time (and cost versus N, and a chain of bodies'
+        /// cost versus N) to this file.
         #[arg(long, value_name = "FILE.svg")]
         plot: Option<PathBuf>,
         /// Time only this scene, in every scalar type (ns per solve, JSON with --json).

@@ -1062,15 +1062,18 @@ impl BenchReport {
     }
 
     /// Write the plot: error versus time per scalar type (log–log; exact results, error 0,
-    /// are drawn on the floor 10⁻³⁵), and the cost growth with N (solid: assemble + analyze;
-    /// dashed with triangles: the unilateral solve).
+    /// are drawn on the floor 10⁻³⁵), the cost growth with N (solid: assemble + analyze;
+    /// dashed with triangles: the unilateral solve), and a system's cost against its bodies
+    /// (the planar chain, per solve and per body).
     pub fn plot(&self, path: &Path) -> Result<(), String> {
         use plotters::prelude::*;
         let tmp = path.with_extension("svg.tmp");
         let result = (|| -> Result<(), Box<dyn std::error::Error>> {
-            let root = SVGBackend::new(&tmp, (1100, 480)).into_drawing_area();
+            let root = SVGBackend::new(&tmp, (1600, 480)).into_drawing_area();
             root.fill(&WHITE)?;
-            let (left, right) = root.split_horizontally(560);
+            let (left, rest) = root.split_horizontally(560);
+            let (right, systems) = rest.split_horizontally(540);
+            self.systems.plot_chain(&systems)?;
             // Exponents on linear axes, labelled as powers of ten: plotters' log axes stop
             // labelling long before 10⁻³⁵, where the double-double and exact points sit.
             let floor = -35f64;

@@ -450,3 +450,65 @@ impl SystemsBench {
         })
     }
 }
+
+impl SystemsBench {
+    /// Draw the chain's cost against N (log–log; per solve ●, per body ▲) on `area`.
+    ///
+    /// # Errors
+    /// What plotters reports.
+    pub(crate) fn plot_chain<DB: plotters::prelude::DrawingBackend>(
+        &self,
+        area: &plotters::prelude::DrawingArea<DB, plotters::coord::Shift>,
+    ) -> Result<(), Box<dyn std::error::Error>>
+    where
+        DB::ErrorType: 'static,
+    {
+        use plotters::prelude::*;
+        let nmax = self
+            .chain
+            .iter()
+            .map(|p| p.links)
+            .max()
+            .unwrap_or(10)
+            .max(10) as f64;
+        let ys = || {
+            self.chain
+                .iter()
+                .flat_map(|p| [p.ns, p.ns / p.links as f64])
+        };
+        let (lo, hi) = (
+            ys().fold(f64::INFINITY, f64::min).min(1e3) / 3.0,
+            ys().fold(10.0, f64::max) * 3.0,
+        );
+        let mut chart = ChartBuilder::on(area)
+            .caption(
+                "chain of N bars, f64 (● per solve, ▲ per body)",
+                ("sans-serif", 18),
+            )
+            .margin(12)
+            .x_label_area_size(40)
+            .y_label_area_size(60)
+            .build_cartesian_2d((1f64..nmax * 1.5).log_scale(), (lo..hi).log_scale())?;
+        chart
+            .configure_mesh()
+            .x_desc("bodies N")
+            .y_desc("time [ns]")
+            .x_label_formatter(&|x| format!("{x:.0}"))
+            .y_label_formatter(&|y| format!("{y:.0e}"))
+            .draw()?;
+        let solve: Vec<(f64, f64)> = self.chain.iter().map(|p| (p.links as f64, p.ns)).collect();
+        let body: Vec<(f64, f64)> = self
+            .chain
+            .iter()
+            .map(|p| (p.links as f64, p.ns / p.links as f64))
+            .collect();
+        chart.draw_series(LineSeries::new(solve.clone(), BLUE.stroke_width(2)))?;
+        chart.draw_series(solve.into_iter().map(|p| Circle::new(p, 4, BLUE.filled())))?;
+        chart.draw_series(LineSeries::new(body.clone(), RED.stroke_width(2)))?;
+        chart.draw_series(
+            body.into_iter()
+                .map(|p| TriangleMarker::new(p, 5, RED.filled())),
+        )?;
+        Ok(())
+    }
+}

@@ -1,7 +1,12 @@
-//! Batches (`tools::sweep::solve_batch`, what Python's `solve_batch` calls) of scenes of several
-//! bodies: every point's numbers are those of `run_system` on the scene with the same values
-//! written in, bit for bit in f64; the columns are the sweep's (`BODY.vCx` …); a bad value
-//! names the point, the key and the value.
+//! `bench` and batches on scenes of several bodies.
+//!
+//! * Batches (`tools::sweep::solve_batch`, what Python's `solve_batch` calls): every point's
+//!   numbers are those of `run_system` on the scene with the same values written in, bit for
+//!   bit in f64; the columns are the sweep's (`BODY.vCx` …); a bad value names the point, the
+//!   key and the value.
+//! * `bench --scene` on a system: every type has a time, and the per-body and per-contact
+//!   times are the time per solve divided by the counts; a type without an answer says why. No
+//!   timing is asserted beyond being positive.
 
 use inertance::report::Value;
 use inertance::report::system::SystemReport;
@@ -183,4 +188,180 @@ fn a_bad_value_in_a_system_batch_names_the_point_the_key_and_the_value() {
     );
     let e = batch(CRADLE, &[("body[7].mass", &[1.0])]).unwrap_err();
     assert!(matches!(e, SweepError::Vary { .. }), "{e}");
+}
+
+fn inertance(args: &[&str]) -> serde_json::Value {
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_inertance"))
+        .args(args)
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{args:?}: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    serde_json::from_slice(&out.stdout).unwrap()
+}
+
+/// `ns_per_body` and `ns_per_contact` are `ns_per_solve` over the counts, for every type.
+fn check_per_body_and_contact(v: &serde_json::Value, types: &[&str]) {
+    let (bodies, contacts) = (
+        v["bodies"].as_f64().unwrap(),
+        v["contacts"].as_f64().unwrap(),
+    );
+    for t in types {
+        let ns = v["ns_per_solve"][t]
+            .as_f64()
+            .unwrap_or_else(|| panic!("{t}: {v}"));
+        assert!(ns > 0.0, "{t}: {v}");
+        for (key, count) in [("ns_per_body", bodies), ("ns_per_contact", contacts)] {
+            let x = v[key][t]
+                .as_f64()
+                .unwrap_or_else(|| panic!("{key} {t}: {v}"));
+            assert!(
+                (x - ns / count).abs() <= 1e-12 * ns,
+                "{key} {t}: {x} vs {ns}/{count}"
+            );
+        }
+    }
+}
+
+#[test]
+fn bench_times_a_system_scene_per_solve_body_and_contact() {
+    let v = inertance(&[
+        "bench",
+        "--scene",
+        "examples/cradle-3.toml",
+        "--quick",
+        "--json",
+    ]);
+    assert_eq!(
+        (v["bodies"].as_u64(), v["contacts"].as_u64()),
+        (Some(3), Some(2)),
+        "{v}"
+    );
+    let types = ["f32", "f64", "double-double", "exact"];
+    assert_eq!(
+        v["ns_per_solve"].as_object().unwrap().len(),
+        types.len(),
+        "{v}"
+    );
+    check_per_body_and_contact(&v, &types);
+    assert_eq!(v["not_timed"], serde_json::json!({}), "{v}");
+    assert!(
+        v["solve"]
+            .as_str()
+            .unwrap()
+            .starts_with("System::new + assemble"),
+        "{v}"
+    );
+    // A frictional system: its restitution law integrated, in every type (planar: exact too).
+    let v = inertance(&[
+        "bench",
+        "--scene",
+        "examples/rough-pendulum.toml",
+        "--quick",
+        "--json",
+    ]);
+    assert_eq!(v["law"], "friction: poisson", "{v}");
+    check_per_body_and_contact(&v, &types);
+    // The batch of a system, per point.
+    let v = inertance(&[
+        "bench",
+        "--quick",
+        "--json",
+        "--scene",
+        "examples/cradle-3.toml",
+        "--batch",
+        "contact[1].k=0:1:20",
+    ]);
+    assert_eq!(v["batch"]["points"], 20, "{v}");
+    assert!(v["batch"]["ns_per_point"].as_f64().unwrap() > 0.0, "{v}");
+}
+
+#[test]
+fn a_type_without_an_answer_says_why() {
+    use inertance::tools::system_bench::{NotTimed, time_system_scene};
+    // Under the simultaneous law the boxes' G is singular in every type.
+    let mut scene = Scene::parse(BOXES, "boxes.toml").unwrap();
+    scene.law = inertance::impact::unilateral::Law::Simultaneous;
+    let t = time_system_scene(&scene, std::time::Duration::from_micros(100));
+    assert_eq!(t.rows.len(), 4);
+    for (name, r) in &t.rows {
+        assert_eq!(r, &Err(NotTimed::NoAnswer("singular")), "{name}");
+    }
+    let j = t.to_json();
+    assert_eq!(j["not_timed"]["exact"], "singular", "{j}");
+    assert!(j["ns_per_solve"]["f64"].is_null(), "{j}");
+    assert!(
+        t.to_text().contains("     exact: singular"),
+        "{}",
+        t.to_text()
+    );
+}
+
+#[test]
+fn the_reports_systems_section_has_the_chain_and_the_examples() {
+    use inertance::tools::system_bench::chain_curve;
+    let chain = chain_curve(&[1, 10, 30], std::time::Duration::from_micros(200));
+    assert_eq!(
+        chain
+            .iter()
+            .map(|p| (p.links, p.contacts))
+            .collect::<Vec<_>>(),
+        [(1, 1), (10, 2), (30, 2)]
+    );
+    assert!(chain[0].slope.is_none() && chain[1..].iter().all(|p| p.slope.is_some()));
+    let report = inertance::tools::system_bench::SystemsBench {
+        chain,
+        scenes: vec![],
+    };
+    let j = report.to_json();
+    for p in j["chain"].as_array().unwrap() {
+        let (ns, per) = (
+            p["ns_per_solve"].as_f64().unwrap(),
+            p["ns_per_body"].as_f64().unwrap(),
+        );
+        assert!(
+            (per - ns / p["bodies"].as_f64().unwrap()).abs() <= 1e-12 * ns,
+            "{p}"
+        );
+    }
+    assert!(
+        report.to_text().contains("| 30 | 2 |"),
+        "{}",
+        report.to_text()
+    );
+}
+
+/// The sweep's columns of a frictional system are the batch's (they were empty, status `ok`).
+#[test]
+fn a_frictional_system_sweep_writes_its_columns() {
+    let dir = std::env::temp_dir().join(format!("system-sweep-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let csv = dir.join("rough.csv");
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_inertance"))
+        .args(["sweep", "examples/rough-pendulum.toml", "--vary", "contact[0].k=0:1:3"])
+        .arg("--out")
+        .arg(&csv)
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let text = std::fs::read_to_string(&csv).unwrap();
+    let _ = std::fs::remove_dir_all(&dir);
+    let mut lines = text.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let b = batch(ROUGH, &[("contact[0].k", &[0.0, 0.5, 1.0])]).unwrap();
+    let w = b.outputs.len();
+    for (p, line) in lines.enumerate() {
+        let cells: Vec<&str> = line.split(',').collect();
+        for (k, name) in b.outputs.iter().enumerate() {
+            let c = header.iter().position(|h| *h == format!("poisson_{name}")).unwrap();
+            let x: f64 = cells[c].parse().unwrap_or_else(|_| panic!("{name} at {p}: {line}"));
+            assert_eq!(x, b.values[0][p * w + k], "{name} at point {p}");
+        }
+        assert_eq!(*cells.last().unwrap(), b.status[p]);
+    }
 }
