@@ -342,13 +342,22 @@ fn a_frictional_system_sweep_writes_its_columns() {
     std::fs::create_dir_all(&dir).unwrap();
     let csv = dir.join("rough.csv");
     let out = std::process::Command::new(env!("CARGO_BIN_EXE_inertance"))
-        .args(["sweep", "examples/rough-pendulum.toml", "--vary", "contact[0].k=0:1:3"])
+        .args([
+            "sweep",
+            "examples/rough-pendulum.toml",
+            "--vary",
+            "contact[0].k=0:1:3",
+        ])
         .arg("--out")
         .arg(&csv)
         .current_dir(env!("CARGO_MANIFEST_DIR"))
         .output()
         .unwrap();
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     let text = std::fs::read_to_string(&csv).unwrap();
     let _ = std::fs::remove_dir_all(&dir);
     let mut lines = text.lines();
@@ -358,8 +367,13 @@ fn a_frictional_system_sweep_writes_its_columns() {
     for (p, line) in lines.enumerate() {
         let cells: Vec<&str> = line.split(',').collect();
         for (k, name) in b.outputs.iter().enumerate() {
-            let c = header.iter().position(|h| *h == format!("poisson_{name}")).unwrap();
-            let x: f64 = cells[c].parse().unwrap_or_else(|_| panic!("{name} at {p}: {line}"));
+            let c = header
+                .iter()
+                .position(|h| *h == format!("poisson_{name}"))
+                .unwrap();
+            let x: f64 = cells[c]
+                .parse()
+                .unwrap_or_else(|_| panic!("{name} at {p}: {line}"));
             assert_eq!(x, b.values[0][p * w + k], "{name} at point {p}");
         }
         assert_eq!(*cells.last().unwrap(), b.status[p]);
