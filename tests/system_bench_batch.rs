@@ -190,18 +190,21 @@ fn a_bad_value_in_a_system_batch_names_the_point_the_key_and_the_value() {
     assert!(matches!(e, SweepError::Vary { .. }), "{e}");
 }
 
-fn inertance(args: &[&str]) -> serde_json::Value {
+/// Run the binary from the crate's folder; it must succeed.
+fn run(args: &[&str]) -> Vec<u8> {
     let out = std::process::Command::new(env!("CARGO_BIN_EXE_inertance"))
         .args(args)
         .current_dir(env!("CARGO_MANIFEST_DIR"))
         .output()
         .unwrap();
-    assert!(
-        out.status.success(),
-        "{args:?}: {}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    serde_json::from_slice(&out.stdout).unwrap()
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{args:?}: {err}");
+    out.stdout
+}
+
+/// Its JSON.
+fn inertance(args: &[&str]) -> serde_json::Value {
+    serde_json::from_slice(&run(args)).unwrap()
 }
 
 /// `ns_per_body` and `ns_per_contact` are `ns_per_solve` over the counts, for every type.
@@ -341,23 +344,14 @@ fn a_frictional_system_sweep_writes_its_columns() {
     let dir = std::env::temp_dir().join(format!("system-sweep-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let csv = dir.join("rough.csv");
-    let out = std::process::Command::new(env!("CARGO_BIN_EXE_inertance"))
-        .args([
-            "sweep",
-            "examples/rough-pendulum.toml",
-            "--vary",
-            "contact[0].k=0:1:3",
-        ])
-        .arg("--out")
-        .arg(&csv)
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    run(&[
+        "sweep",
+        "examples/rough-pendulum.toml",
+        "--vary",
+        "contact[0].k=0:1:3",
+        "--out",
+        csv.to_str().unwrap(),
+    ]);
     let text = std::fs::read_to_string(&csv).unwrap();
     let _ = std::fs::remove_dir_all(&dir);
     let mut lines = text.lines();

@@ -820,7 +820,7 @@ pub fn time_batch(
     })
 }
 
-fn fmt_ns(ns: f64) -> String {
+pub(crate) fn fmt_ns(ns: f64) -> String {
     if !ns.is_finite() {
         "—".into()
     } else if ns < 1e3 {

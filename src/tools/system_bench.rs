@@ -29,7 +29,7 @@ use crate::scalar::dd::DoubleDouble;
 use crate::scalar::{Exact, Scalar};
 use crate::scene::Scene;
 use crate::scene::pipeline::friction_tolerance;
-use crate::tools::bench::time_three;
+use crate::tools::bench::{fmt_ns, time_three};
 use crate::tools::chain::Chain;
 
 /// Why a type has no time for a scene.
@@ -373,16 +373,6 @@ pub fn run(quick: bool) -> SystemsBench {
     SystemsBench {
         chain: chain_curve(sizes, budget),
         scenes,
-    }
-}
-
-fn fmt_ns(ns: f64) -> String {
-    if ns < 1e3 {
-        format!("{ns:.0} ns")
-    } else if ns < 1e6 {
-        format!("{:.1} µs", ns / 1e3)
-    } else {
-        format!("{:.1} ms", ns / 1e6)
     }
 }
 
