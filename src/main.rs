@@ -168,7 +168,9 @@ enum Command {
         /// cost versus N) to this file.
         #[arg(long, value_name = "FILE.svg")]
         plot: Option<PathBuf>,
-        /// Time only this scene, in every scalar type (ns per solve, JSON with --json).
+        /// Time only this scene, in every scalar type under its law (ns per solve, per body and
+        /// per contact; a type without a time says why; JSON with --json). A scene of several
+        /// bodies is timed from its data: System::new, assemble, its law.
         #[arg(long, value_name = "SCENE")]
         scene: Option<PathBuf>,
         /// With --scene: time the batch API (`tools::sweep::solve_batch`, what Python's
