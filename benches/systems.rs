@@ -1,5 +1,5 @@
 //! The cost of a system's impact against its number of bodies: the planar chain of
-//! `benches/common/chain.rs` (N revolute links, the first pinned to the ground, tip and middle link
+//! `inertance::tools::chain` (N revolute links, the first pinned to the ground, tip and middle link
 //! striking the ground: two contacts) in f64, N = 1, 10, 100, 1000.
 //!
 //! * `chain/tree/N`: everything from the data — [`System::new`] (checks, the joints' screws
@@ -11,40 +11,58 @@
 //! * `chain/dense/N` (N ≤ 100): the same through the dense pivoted factorization of K (the path
 //!   closed loops take, and every system took before the tree): O(rows³).
 //!
-//! At the end it prints ns per body for each N and the log–log slope of the tree's N-curve
-//! between consecutive N, measured in this run.
+//! * `examples/{cradle-3,box-on-box}`: the examples of several bodies from their data under
+//!   their laws; throughput in contacts, so criterion prints contacts per second.
+//!
+//! At the end it prints ns per body and per contact for each N and the log–log slope of the
+//! tree's N-curve between consecutive N, measured in this run.
 //!
 //! `cargo bench --bench systems`
-
-#[path = "common/chain.rs"]
-mod chain;
 
 use std::hint::black_box;
 use std::time::{Duration, Instant};
 
-use chain::Chain;
 use criterion::{Criterion, Throughput};
 use inertance::impact::restitution::Model;
 use inertance::impact::solve::{Impact, Outcome};
+use inertance::impact::unilateral::Law;
 use inertance::mechanics::system::{System, SystemScrew};
+use inertance::scene::Scene;
+use inertance::tools::chain::Chain;
 
 const SIZES: [usize; 4] = [1, 10, 100, 1000];
 
-fn solve(system: &System<f64>, models: &[Model], out: &mut Outcome<f64, SystemScrew<f64>>) {
-    let mut impact = Impact::assemble(system).expect("assembles");
-    for &m in models {
-        impact.solve(m, out).expect("solves");
-    }
-}
-
 fn tree(chain: &Chain<f64>, models: &[Model], out: &mut Outcome<f64, SystemScrew<f64>>) {
-    let system = chain.system();
-    solve(black_box(&system), models, out);
+    chain.solve(models, out).expect("solves");
 }
 
 fn dense(chain: &Chain<f64>, out: &mut Outcome<f64, SystemScrew<f64>>) {
     let system = chain.system().with_dense_joints().expect("factors");
-    solve(black_box(&system), &[Model::Newton, Model::Poisson], out);
+    let mut impact = Impact::assemble(black_box(&system)).expect("assembles");
+    for m in [Model::Newton, Model::Poisson] {
+        impact.solve(m, out).expect("solves");
+    }
+}
+
+/// One solve of a system scene from its data: `System::new`, assemble, its models under its law.
+fn example(scene: &Scene, system: &System<f64>, out: &mut Outcome<f64, SystemScrew<f64>>) {
+    let system = System::new(
+        system.bodies().to_vec(),
+        system.velocity().clone(),
+        system.contacts().to_vec(),
+        system.pairs().to_vec(),
+        system.joints().to_vec(),
+    )
+    .expect("valid");
+    let mut impact = Impact::assemble(black_box(&system)).expect("assembles");
+    for &m in &scene.models {
+        match scene.law {
+            Law::Simultaneous => impact.solve(m, out).expect("solves"),
+            Law::Unilateral => {
+                impact.solve_unilateral(m, out).expect("solves");
+            }
+        }
+    }
 }
 
 /// The median time of one call of `f` over 7 runs of at least 20 ms each.
@@ -87,12 +105,27 @@ fn main() {
         }
         g.finish();
     }
+    {
+        // Example scenes of several bodies, throughput in contacts (criterion prints contacts
+        // per second): `examples/{name}`, everything from the data under the scene's law.
+        let mut g = c.benchmark_group("examples");
+        for (name, text) in [
+            ("cradle-3", include_str!("../examples/cradle-3.toml")),
+            ("box-on-box", include_str!("../examples/box-on-box.toml")),
+        ] {
+            let scene = Scene::parse(text, name).expect("an example");
+            let system = scene.system::<f64>().expect("a system");
+            g.throughput(Throughput::Elements(system.contacts().len() as u64));
+            g.bench_function(name, |b| b.iter(|| example(&scene, &system, &mut out)));
+        }
+        g.finish();
+    }
     c.final_summary();
     // Ratios in one run: ns per body, the slope of log t against log N, tree against dense.
     println!("\nchain (f64, in this run; median of 7 runs ≥ 20 ms each)");
     println!(
-        "{:>6} {:>12} {:>12} {:>12} {:>8} {:>12}",
-        "N", "tree+both", "ns/body", "newton", "slope", "dense/tree"
+        "{:>6} {:>12} {:>12} {:>12} {:>12} {:>8} {:>12}",
+        "N", "tree+both", "ns/body", "ns/contact", "newton", "slope", "dense/tree"
     );
     let mut last: Option<(usize, f64)> = None;
     for n in SIZES {
@@ -109,9 +142,10 @@ fn main() {
             String::from("—")
         };
         println!(
-            "{n:>6} {:>10.1} µs {:>12.0} {:>9.1} µs {slope:>8} {ratio:>12}",
+            "{n:>6} {:>10.1} µs {:>12.0} {:>12.0} {:>9.1} µs {slope:>8} {ratio:>12}",
             t / 1e3,
             t / n as f64,
+            t / chain.contacts.len() as f64,
             newton / 1e3
         );
         last = Some((n, t));

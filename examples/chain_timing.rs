@@ -1,5 +1,5 @@
 //! inertance's side of `benches/peers/chains.py`: the planar chains of
-//! `benches/common/chain.rs` in f64, timed in-process, with their answers.
+//! `inertance::tools::chain` in f64, timed in-process, with their answers.
 //!
 //! For each N on the command line (default 1 10 100 1000) it prints one JSON object per line:
 //! `{"links": N, "ns_per_solve": t, "ns_per_solve_both": t2, "impulses": [P_1, P_2],
@@ -14,23 +14,15 @@
 //! and nothing printed, for instruction counts:
 //! `valgrind --tool=callgrind target/release/examples/chain_timing --once 1000`
 
-#[path = "../benches/common/chain.rs"]
-mod chain;
-
-use std::hint::black_box;
 use std::time::{Duration, Instant};
 
-use chain::Chain;
 use inertance::impact::restitution::Model;
-use inertance::impact::solve::{Impact, Outcome};
+use inertance::impact::solve::Outcome;
 use inertance::mechanics::system::SystemScrew;
+use inertance::tools::chain::Chain;
 
 fn solve(chain: &Chain<f64>, models: &[Model], out: &mut Outcome<f64, SystemScrew<f64>>) {
-    let system = chain.system();
-    let mut impact = Impact::assemble(black_box(&system)).expect("assembles");
-    for &m in models {
-        impact.solve(m, out).expect("solves");
-    }
+    chain.solve(models, out).expect("solves");
 }
 
 fn median(mut f: impl FnMut()) -> f64 {

@@ -164,10 +164,13 @@ enum Command {
         /// Print JSON instead of the tables.
         #[arg(long)]
         json: bool,
-        /// Write an SVG plot of error versus time (and cost versus N) to this file.
+        /// Write an SVG plot of error versus time (and cost versus N, and a chain of bodies'
+        /// cost versus N) to this file.
         #[arg(long, value_name = "FILE.svg")]
         plot: Option<PathBuf>,
-        /// Time only this scene, in every scalar type (ns per solve, JSON with --json).
+        /// Time only this scene, in every scalar type under its law (ns per solve, per body and
+        /// per contact; a type without a time says why; JSON with --json). A scene of several
+        /// bodies is timed from its data: System::new, assemble, its law.
         #[arg(long, value_name = "SCENE")]
         scene: Option<PathBuf>,
         /// With --scene: time the batch API (`tools::sweep::solve_batch`, what Python's
@@ -1072,28 +1075,11 @@ fn run_bench(
             Ok(s) => s,
             Err(code) => return code,
         };
-        let times = inertance::tools::bench::time_scene(&scene, quick);
+        let timing = inertance::tools::bench::time_scene(&scene, quick);
         if json {
-            let ns: serde_json::Map<String, serde_json::Value> = times
-                .iter()
-                .map(|(name, t)| {
-                    (
-                        name.to_string(),
-                        t.map_or(serde_json::Value::Null, |x| serde_json::json!(x)),
-                    )
-                })
-                .collect();
-            println!(
-                "{}",
-                serde_json::json!({"scene": scene.name, "ns_per_solve": ns})
-            );
+            println!("{}", timing.to_json());
         } else {
-            for (name, t) in times {
-                println!(
-                    "{name:>18}: {}",
-                    t.map_or("singular".to_string(), |x| format!("{x:.0} ns per solve"))
-                );
-            }
+            print!("{}", timing.to_text());
         }
         return ExitCode::SUCCESS;
     }

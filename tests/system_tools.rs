@@ -197,17 +197,32 @@ fn a_sweep_names_a_body_that_does_not_exist() {
 }
 
 #[test]
-fn a_batch_refuses_a_system_naming_sweep() {
+fn a_batch_of_the_cradle_gives_the_closed_form() {
+    // Both coefficients k at each point: P = (1 + k) m v (2/3, 1/3), the balls after at
+    // ((1 − 2k)/3, (1 + k)/3, (1 + k)/3) v (module docs), m = 2, v = 1.
     let doc: toml_edit::DocumentMut = cradle("1", "1").parse().unwrap();
-    let varied = [inertance::tools::sweep::Varied {
-        path: "body[0].mass".into(),
-        values: vec![1.0, 2.0],
-    }];
-    let e = inertance::tools::sweep::solve_batch(&doc, "cradle.toml", &varied, None)
-        .err()
-        .expect("refused")
-        .to_string();
-    assert!(e.contains("inertance sweep"), "{e}");
+    let ks = vec![0.0, 0.5, 1.0];
+    let varied = ["contact[0].k", "contact[1].k"].map(|path| inertance::tools::sweep::Varied {
+        path: path.into(),
+        values: ks.clone(),
+    });
+    let b = inertance::tools::sweep::solve_batch(&doc, "cradle.toml", &varied, None).unwrap();
+    assert_eq!(b.bodies, ["striker", "middle", "last"]);
+    let w = b.outputs.len();
+    let col = |name: &str| b.outputs.iter().position(|o| o == name).unwrap();
+    for column in &b.values {
+        for (p, k) in ks.iter().enumerate() {
+            let row = &column[p * w..(p + 1) * w];
+            let near = |x: f64, y: f64| (x - y).abs() <= 1e-14;
+            assert!(near(row[col("P1")], (1.0 + k) * 2.0 * 2.0 / 3.0), "{row:?}");
+            assert!(near(row[col("P2")], (1.0 + k) * 2.0 / 3.0), "{row:?}");
+            assert!(
+                near(row[col("striker.vCx")], (1.0 - 2.0 * k) / 3.0),
+                "{row:?}"
+            );
+            assert!(near(row[col("last.vCx")], (1.0 + k) / 3.0), "{row:?}");
+        }
+    }
 }
 
 /// The cradle with its mass, speed and coefficient as symbols.

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Articulated chains: inertance's system impact against Pinocchio's ``impulseDynamics``.
 
-The planar chain of ``benches/common/chain.rs`` (N bars of length 1 and mass 1 along +x, hinges
+The planar chain of ``src/tools/chain.rs`` (N bars of length 1 and mass 1 along +x, hinges
 about z, the first to the ground at the origin, turning as one bar at omega = -1 about z and
 striking the ground y = 0 with the tip and the far end of the middle bar, k = 1/2; N = 1 keeps
 the tip only) is built as a Pinocchio model with N revolute-z joints and the same masses,

@@ -115,8 +115,15 @@ def solve_batch(scene: SceneLike, vary: Mapping[str, Any], law: Optional[str] = 
     to arrays of equal length: point p sets every path to its p-th value. Returns, per model
     solved, ``{"impulses": (P, N), "velocity": (P, 3), "angular_velocity": (P, 3),
     "lost_velocity_energy": (P,), "kinetic_energy_loss": (P,)}`` numpy arrays (NaN where the
-    point has no answer), and ``"status"``: per point ``"ok"``, ``"singular"``, ``"jammed"``
-    or the reasons the simultaneous answer is not physical joined by ``+``.
+    point has no answer; with friction also ``"friction_dissipation": (P,)``), and
+    ``"status"``: per point ``"ok"``, ``"singular"``, ``"jammed"`` or the reasons the
+    simultaneous answer is not physical joined by ``+`` (as :func:`sweep`'s ``status``).
+
+    A scene of several bodies (``[[body]]`` tables; paths such as ``"body[0].mass"``,
+    ``"contact[1].k"``) gives per model ``"impulses"`` (P, N), ``"bodies"``: per body name
+    ``{"velocity": (P, 3), "angular_velocity": (P, 3)}`` (world axes, v at the body's centre),
+    and the system's ``"lost_velocity_energy"`` and ``"kinetic_energy_loss"`` (P,) — the
+    numbers :func:`solve` gives at each point, bit for bit.
     """
     import numpy as np
 

@@ -22,6 +22,9 @@ ModelArg = Union[str, Sequence[str], None]
 def solve(scene: SceneLike, model: ModelArg = None, law: Optional[str] = None, exact: bool = False,
           outputs: Union[str, Sequence[str], None] = None,
           tolerance: Optional[float] = None) -> Union[Solution, SystemSolution]: ...
+# Per model: "impulses" (P, N); one body: "velocity", "angular_velocity" (P, 3); a system:
+# "bodies": {name: {"velocity": (P, 3), "angular_velocity": (P, 3)}}; then
+# "lost_velocity_energy", "kinetic_energy_loss" (P,) (and "friction_dissipation"); "status".
 def solve_batch(scene: SceneLike, vary: Mapping[str, Any], law: Optional[str] = None) -> dict[str, Any]: ...
 def sweep(scene: SceneLike, vary: Mapping[str, Any], exact: bool = False, law: Optional[str] = None,
           threads: Optional[int] = None, frame: Optional[bool] = None) -> Any: ...

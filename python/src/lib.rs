@@ -816,24 +816,39 @@ fn solve_batch<'py>(
     let out = PyDict::new(py);
     let w = b.outputs.len();
     let friction = b.outputs.last().is_some_and(|o| o == "Ef");
-    let n = w - 8 - usize::from(friction);
+    // Columns: P_1 … P_N, six per body (v_C then ω; one body's unnamed), E_p, ΔE_c (, E_f).
+    let bodies = b.bodies.len();
+    let n = w - 2 - 6 * bodies.max(1) - usize::from(friction);
+    let e = w - 2 - usize::from(friction);
     for (m, values) in b.models.iter().zip(&b.values) {
         let d = PyDict::new(py);
         d.set_item("impulses", convert::columns(py, values, w, 0..n)?)?;
-        d.set_item("velocity", convert::columns(py, values, w, n..n + 3)?)?;
-        d.set_item(
-            "angular_velocity",
-            convert::columns(py, values, w, n + 3..n + 6)?,
-        )?;
-        d.set_item(
-            "lost_velocity_energy",
-            convert::column(py, values, w, n + 6),
-        )?;
-        d.set_item("kinetic_energy_loss", convert::column(py, values, w, n + 7))?;
+        if bodies == 0 {
+            d.set_item("velocity", convert::columns(py, values, w, n..n + 3)?)?;
+            d.set_item(
+                "angular_velocity",
+                convert::columns(py, values, w, n + 3..n + 6)?,
+            )?;
+        } else {
+            let per_body = PyDict::new(py);
+            for (k, name) in b.bodies.iter().enumerate() {
+                let at = n + 6 * k;
+                let body = PyDict::new(py);
+                body.set_item("velocity", convert::columns(py, values, w, at..at + 3)?)?;
+                body.set_item(
+                    "angular_velocity",
+                    convert::columns(py, values, w, at + 3..at + 6)?,
+                )?;
+                per_body.set_item(name, body)?;
+            }
+            d.set_item("bodies", per_body)?;
+        }
+        d.set_item("lost_velocity_energy", convert::column(py, values, w, e))?;
+        d.set_item("kinetic_energy_loss", convert::column(py, values, w, e + 1))?;
         if friction {
             d.set_item(
                 "friction_dissipation",
-                convert::column(py, values, w, n + 8),
+                convert::column(py, values, w, e + 2),
             )?;
         }
         out.set_item(m.name(), d)?;

@@ -584,11 +584,57 @@ def test_analyze_takes_a_system_and_agrees_with_solve():
             assert body["velocity"] == list(getattr(r, name).velocity(body["name"]))
 
 
-def test_the_batch_takes_one_body_and_refuses_a_system():
+def test_a_system_batch_equals_one_solve_per_point():
     s = inertance.Scene.from_dict(cradle())
-    with pytest.raises(inertance.SceneError) as err:
-        inertance.solve_batch(s, {"body[0].mass": [1.0, 2.0]})
-    assert err.value.key == "body" and "several bodies" in err.value.message
+    k = np.array([0.0, 0.25, 0.5, 1.0])
+    mass = np.array([1.0, 2.0, 0.5, 3.0])
+    b = inertance.solve_batch(s, {"contact[1].k": k, "body[1].mass": mass})
+    assert set(b) == {"newton", "poisson", "status"}
+    # k = 0 at the second contact, 1 at the first: the simultaneous answer is not physical there.
+    assert b["status"][0] == "still-approaching+energy-gain" and b["status"][3] == "ok"
+    for name in ("newton", "poisson"):
+        m = b[name]
+        assert m["impulses"].shape == (4, 2)
+        assert set(m["bodies"]) == {"striker", "middle", "last"}
+        assert "velocity" not in m
+        for body in m["bodies"].values():
+            assert body["velocity"].shape == (4, 3) and body["angular_velocity"].shape == (4, 3)
+        assert m["lost_velocity_energy"].shape == (4,) and m["kinetic_energy_loss"].shape == (4,)
+    for i in range(4):
+        r = inertance.solve(s.with_values({"contact[1].k": float(k[i]), "body[1].mass": float(mass[i])}))
+        for name in ("newton", "poisson"):
+            m, want = b[name], getattr(r, name)
+            np.testing.assert_array_equal(m["impulses"][i], want.impulses)
+            for body in r.bodies:
+                np.testing.assert_array_equal(m["bodies"][body]["velocity"][i], want.velocity(body))
+                np.testing.assert_array_equal(m["bodies"][body]["angular_velocity"][i],
+                                              want.angular_velocity(body))
+            assert m["lost_velocity_energy"][i] == want.lost_velocity_energy
+            assert m["kinetic_energy_loss"][i] == want.kinetic_energy_loss
+    # The closed form at m = 1, v = 1, k = 1 (both contacts): P = (2/3, 1/3) (1 + k) m v / 2.
+    one = inertance.solve_batch(s, {"contact[1].k": [1.0]})
+    np.testing.assert_allclose(one["newton"]["impulses"][0], [4 / 3, 2 / 3], rtol=1e-15)
+    np.testing.assert_allclose(one["newton"]["bodies"]["last"]["velocity"][0], [2 / 3, 0, 0],
+                               rtol=1e-15)
+
+
+def test_a_system_batch_statuses_friction_and_errors():
+    s = inertance.Scene.from_dict(cradle())
+    # A value that makes the scene invalid names its point, key and value.
+    with pytest.raises(inertance.SweepError) as err:
+        inertance.solve_batch(s, {"contact[1].k": [0.5, 1.5]})
+    assert err.value.point == 1 and err.value.key == "contact[1].k" and err.value.value == "1.5"
+    # The boxes under the simultaneous law: G singular, a status and NaN.
+    boxes = inertance.solve_batch(ROOT / "examples/box-on-box.toml", {"contact[0].k": [0.5]},
+                                  law="simultaneous")
+    assert boxes["status"] == ["singular"] and np.isnan(boxes["newton"]["impulses"]).all()
+    # A frictional system: each law integrated, with the energy friction dissipates.
+    rough = inertance.solve_batch(ROOT / "examples/rough-pendulum.toml", {"contact[0].k": [0.5]})
+    r = inertance.solve(ROOT / "examples/rough-pendulum.toml")
+    p = rough["poisson"]
+    assert p["impulses"][0][0] == r.to_json()["friction"]["poisson"]["contacts"][0]["normal_impulse"]
+    assert p["friction_dissipation"].shape == (1,) and p["friction_dissipation"][0] > 0
+    np.testing.assert_allclose(p["impulses"][0], [132 / 35], rtol=1e-12)
 
 
 # --- one body as a system: the one-body solver is the reference ---------------------------------

@@ -44,6 +44,7 @@ use crate::scalar::dd::DoubleDouble;
 use crate::scalar::{Exact, Scalar};
 use crate::scene::Scene;
 use crate::tools::accuracy::ContractRow;
+use crate::tools::system_bench::{NotTimed, SceneTiming};
 
 /// Options of a bench run.
 #[derive(Clone, Debug)]
@@ -145,6 +146,9 @@ pub struct BenchReport {
     /// The cost of `analyze` against N on the linear-cost route, f64 to 10⁵ contacts and
     /// exact to 10³, with the fitted exponent ([`crate::tools::n_curve`]).
     pub n_curve: Vec<crate::tools::n_curve::NCurve>,
+    /// Scenes of several bodies: the planar chain against N and the examples per scalar type
+    /// ([`crate::tools::system_bench`]).
+    pub systems: crate::tools::system_bench::SystemsBench,
 }
 
 /// A small deterministic generator (SplitMix64), so the corpus is the same on every machine.
@@ -671,6 +675,7 @@ pub fn run(opts: &BenchOptions) -> BenchReport {
         contract,
         lean: crate::tools::lean_bench::run(opts.quick),
         n_curve: crate::tools::n_curve::run(opts.quick),
+        systems: crate::tools::system_bench::run(opts.quick),
     }
 }
 
@@ -679,63 +684,96 @@ fn with_problem<T: Scalar>(scene: &Scene, f: impl FnOnce(&Problem<T>) -> Timing)
     scene.problem::<T>().map_or(Timing::Singular, |p| f(&p))
 }
 
-/// Time one scene in every scalar type (ns per solve; `None` when singular in that type),
-/// and in f64 the cheapest public path, impulses and twist only (`f64/impulses,twist`), the
-/// lean path for both models (`f64/lean`) and for Newton's alone (`f64/lean-newton`: the work
-/// of one `impulseDynamics` call, which has Newton's law only).
-pub fn time_scene(scene: &Scene, quick: bool) -> Vec<(&'static str, Option<f64>)> {
+/// Time one scene in every scalar type, and in f64 the cheapest public path, impulses and
+/// twist only (`f64/impulses,twist`), the lean path for both models (`f64/lean`) and for
+/// Newton's alone (`f64/lean-newton`: the work of one `impulseDynamics` call, which has
+/// Newton's law only); each a time per solve or why there is none
+/// ([`crate::tools::system_bench::NotTimed`]).
+///
+/// One solve is the scene's law: its models, simultaneous or unilateral, or its frictional
+/// restitution laws. A scene of several bodies is timed per type only, each solve from its
+/// data ([`crate::tools::system_bench::time_system_scene`]).
+pub fn time_scene(scene: &Scene, quick: bool) -> SceneTiming {
     let budget = Duration::from_millis(if quick { 20 } else { 200 });
-    vec![
-        (
-            "f64/impulses,twist",
-            scene
-                .problem::<f64>()
-                .ok()
-                .and_then(|p| time_solve_for(&p, budget, Asked::IMPULSES | Asked::TWIST)),
-        ),
-        (
-            "f64/lean",
-            scene
-                .problem::<f64>()
-                .ok()
-                .and_then(|p| time_lean(&p, budget, &[Model::Newton, Model::Poisson])),
-        ),
-        (
-            "f64/lean-newton",
-            scene
-                .problem::<f64>()
-                .ok()
-                .and_then(|p| time_lean(&p, budget, &[Model::Newton])),
-        ),
-        (
-            "f32",
-            scene
-                .problem::<f32>()
-                .ok()
-                .and_then(|p| time_solve(&p, budget)),
-        ),
-        (
-            "f64",
-            scene
-                .problem::<f64>()
-                .ok()
-                .and_then(|p| time_solve(&p, budget)),
-        ),
-        (
-            "double-double",
-            scene
-                .problem::<DoubleDouble>()
-                .ok()
-                .and_then(|p| time_solve(&p, budget)),
-        ),
-        (
-            "exact",
-            scene
-                .problem::<Exact>()
-                .ok()
-                .and_then(|p| time_solve(&p, budget)),
-        ),
-    ]
+    if scene.system.is_some() {
+        return crate::tools::system_bench::time_system_scene(scene, budget);
+    }
+    let simultaneous =
+        scene.law == crate::impact::unilateral::Law::Simultaneous && !scene.frictional();
+    let problem = |t: Result<Problem<f64>, crate::scene::SceneError>| {
+        t.map_err(|e| NotTimed::NotApplicable(format!("{}: {}", e.key, e.message)))
+    };
+    let only_simultaneous = || {
+        NotTimed::NotApplicable(format!(
+            "the simultaneous frictionless solve only; this scene is solved under {}",
+            crate::tools::system_bench::law_name(scene)
+        ))
+    };
+    let lean = |models: &[Model]| -> Result<f64, NotTimed> {
+        if !simultaneous {
+            return Err(only_simultaneous());
+        }
+        let p = problem(scene.problem::<f64>())?;
+        time_lean(&p, budget, models).ok_or_else(|| {
+            NotTimed::NotApplicable(
+                "the lean path takes a free body with principal moments, 2 to 4 contacts and a \
+                 well-conditioned G"
+                    .into(),
+            )
+        })
+    };
+    fn typed<T: Scalar>(
+        scene: &Scene,
+        budget: Duration,
+        simultaneous: bool,
+    ) -> Result<f64, NotTimed> {
+        let p = scene
+            .problem::<T>()
+            .map_err(|e| NotTimed::NotApplicable(format!("{}: {}", e.key, e.message)))?;
+        if simultaneous {
+            time_solve(&p, budget).ok_or(NotTimed::NoAnswer("singular"))
+        } else {
+            crate::tools::system_bench::time_law::<T, Problem<T>>(scene, budget, || Ok(p.clone()))
+        }
+    }
+    SceneTiming {
+        scene: scene.name.clone(),
+        bodies: 1,
+        contacts: scene.contacts.len(),
+        // The simultaneous path times both models, whichever the scene asks for.
+        law: if simultaneous {
+            "newton + poisson".into()
+        } else {
+            crate::tools::system_bench::law_name(scene)
+        },
+        solve: if simultaneous {
+            "assemble + newton + poisson, every output".into()
+        } else {
+            crate::tools::system_bench::solve_description(scene, "assemble")
+        },
+        rows: vec![
+            (
+                "f64/impulses,twist",
+                if simultaneous {
+                    problem(scene.problem::<f64>()).and_then(|p| {
+                        time_solve_for(&p, budget, Asked::IMPULSES | Asked::TWIST)
+                            .ok_or(NotTimed::NoAnswer("singular"))
+                    })
+                } else {
+                    Err(only_simultaneous())
+                },
+            ),
+            ("f64/lean", lean(&[Model::Newton, Model::Poisson])),
+            ("f64/lean-newton", lean(&[Model::Newton])),
+            ("f32", typed::<f32>(scene, budget, simultaneous)),
+            ("f64", typed::<f64>(scene, budget, simultaneous)),
+            (
+                "double-double",
+                typed::<DoubleDouble>(scene, budget, simultaneous),
+            ),
+            ("exact", typed::<Exact>(scene, budget, simultaneous)),
+        ],
+    }
 }
 
 /// What [`time_batch`] measured.
@@ -782,7 +820,7 @@ pub fn time_batch(
     })
 }
 
-fn fmt_ns(ns: f64) -> String {
+pub(crate) fn fmt_ns(ns: f64) -> String {
     if !ns.is_finite() {
         "—".into()
     } else if ns < 1e3 {
@@ -903,7 +941,8 @@ impl BenchReport {
                 c.exponent.map_or("—".into(), |p| format!("{p:.2}"))
             );
         }
-        s + &self.friction.to_text()
+        s += &self.friction.to_text();
+        s + &self.systems.to_text()
     }
 
     /// The JSON report.
@@ -948,6 +987,7 @@ impl BenchReport {
             "contract": self.contract_json(),
             "friction": self.friction.to_json(),
             "lean": self.lean.to_json(),
+            "systems": self.systems.to_json(),
             "n_curve": self.n_curve.iter().map(|c| json!({
                 "scalar": c.scalar,
                 "points": c.points.iter().map(|(n, t)| json!({"contacts": n, "ns_per_analyze": num(*t)})).collect::<Vec<_>>(),
@@ -1022,15 +1062,18 @@ impl BenchReport {
     }
 
     /// Write the plot: error versus time per scalar type (log–log; exact results, error 0,
-    /// are drawn on the floor 10⁻³⁵), and the cost growth with N (solid: assemble + analyze;
-    /// dashed with triangles: the unilateral solve).
+    /// are drawn on the floor 10⁻³⁵), the cost growth with N (solid: assemble + analyze;
+    /// dashed with triangles: the unilateral solve), and a system's cost against its bodies
+    /// (the planar chain, per solve and per body).
     pub fn plot(&self, path: &Path) -> Result<(), String> {
         use plotters::prelude::*;
         let tmp = path.with_extension("svg.tmp");
         let result = (|| -> Result<(), Box<dyn std::error::Error>> {
-            let root = SVGBackend::new(&tmp, (1100, 480)).into_drawing_area();
+            let root = SVGBackend::new(&tmp, (1600, 480)).into_drawing_area();
             root.fill(&WHITE)?;
-            let (left, right) = root.split_horizontally(560);
+            let (left, rest) = root.split_horizontally(560);
+            let (right, systems) = rest.split_horizontally(540);
+            self.systems.plot_chain(&systems)?;
             // Exponents on linear axes, labelled as powers of ten: plotters' log axes stop
             // labelling long before 10⁻³⁵, where the double-double and exact points sit.
             let floor = -35f64;

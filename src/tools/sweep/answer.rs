@@ -2,7 +2,6 @@
 //! ([`crate::mechanics::system`]). Both give the same outputs in the same order: the
 //! impulses, each body's v_C and ω (a system's by body name), E_p and ΔE_c.
 
-use crate::impact::restitution::Model;
 use crate::report::Report;
 use crate::report::system::SystemReport;
 use crate::scalar::Scalar;
@@ -26,22 +25,6 @@ impl Answer {
         } else {
             run::<T>(scene, None).map(|s| Answer::Body(s.report))
         }
-    }
-
-    /// A system's outputs for `model` in the sweep's order (`None`: not solved).
-    pub(super) fn system_outputs(
-        r: &SystemReport,
-        model: Model,
-    ) -> Option<Vec<crate::report::Value>> {
-        let m = r.models.iter().find(|m| m.model == model)?;
-        let mut v = m.impulses.clone();
-        for (w, vc) in &m.twists {
-            v.extend(vc.iter().cloned());
-            v.extend(w.iter().cloned());
-        }
-        v.push(m.lost_velocity_energy.clone());
-        v.push(m.kinetic_energy_loss.clone());
-        Some(v)
     }
 }
 

@@ -8,13 +8,19 @@
 //! sweep's range, arbitrary values are not checked up front: a value that makes the scene
 //! invalid (k = 1.5) fails the batch with [`SweepError::Point`] naming the point, the key and
 //! the value. Points are solved in parallel (rayon).
+//!
+//! A scene of several bodies (`[[body]]` tables) is solved as `inertance sweep` solves it
+//! ([`crate::scene::system_pipeline::run_system`] at each point, the document re-read): per
+//! law the impulses, each body's v_C and ω by name ([`Batch::bodies`]), the system's E_p and
+//! ΔE_c (and E_f), and the sweep's status per point.
 
 use num_rational::BigRational;
 use rayon::prelude::*;
 use toml_edit::DocumentMut;
 
 use super::SweepError;
-use super::outputs::{body_status, law_values, output_names, point_status, sweep_laws};
+use super::answer::{Answer, body_names};
+use super::outputs::{law_values, output_names, point_status, status, sweep_laws};
 use super::slot::Slot;
 use super::target::Target;
 
@@ -22,7 +28,6 @@ use crate::impact::friction::Restitution;
 use crate::impact::unilateral::Law;
 use crate::number::parse_decimal;
 use crate::scene::Scene;
-use crate::scene::pipeline::run;
 
 /// One varied number: its key path (`contact[1].k`, `body.mass`, …) and its value per point.
 #[derive(Clone, Debug, PartialEq)]
@@ -40,8 +45,12 @@ pub struct Batch {
     /// integrates).
     pub models: Vec<Restitution>,
     /// The output names per law: `P1 … PN`, `vCx vCy vCz`, `wx wy wz`, `Ep`, `dEc` (and `Ef`
-    /// with friction).
+    /// with friction). A system's bodies each give their six, named by body as the sweep's
+    /// columns: `P1 … PN`, then per body in [`Batch::bodies`] order `BODY.vCx BODY.vCy BODY.vCz
+    /// BODY.wx BODY.wy BODY.wz`, then `Ep`, `dEc` (the system's) and `Ef`.
     pub outputs: Vec<String>,
+    /// A system's bodies by name, in the scene's order (empty for one body).
+    pub bodies: Vec<String>,
     /// Points solved.
     pub points: usize,
     /// Per model, row-major points × outputs; NaN where the point has no answer
@@ -66,17 +75,6 @@ pub fn solve_batch(
     law: Option<Law>,
 ) -> Result<Batch, SweepError> {
     let mut base = Scene::from_document(doc, file)?;
-    if base.system.is_some() {
-        return Err(crate::scene::SceneError {
-            file: file.to_string(),
-            key: "body".into(),
-            value: None,
-            message: "a batch solves one body's scenes; a scene of several bodies is swept \
-                      point by point with `inertance sweep`"
-                .into(),
-        }
-        .into());
-    }
     if let Some(law) = law {
         base.law = law;
     }
@@ -93,6 +91,15 @@ pub fn solve_batch(
                 ),
             });
         }
+        // A system's paths are checked against its document (every number of it can be
+        // varied): a path it has no place for is refused up front, not at point 0.
+        if base.system.is_some() {
+            t.set(&mut doc.clone(), &BigRational::from_integer(0.into()))
+                .map_err(|reason| SweepError::Vary {
+                    spec: v.path.clone(),
+                    reason,
+                })?;
+        }
         if v.values.len() != points {
             return Err(SweepError::Vary {
                 spec: v.path.clone(),
@@ -105,13 +112,17 @@ pub fn solve_batch(
         }
     }
     // Modelled scenes and parameters re-read the document (see `Plan`).
-    let slots: Option<Vec<Slot>> = if base.axes.is_some() || targets.iter().any(|t| t.param) {
-        None
-    } else {
-        vary.iter().map(|v| Slot::find(&v.path, &base)).collect()
-    };
+    // So do systems, as in a sweep: a body's numbers feed its shape's moments and the
+    // contacts' points.
+    let slots: Option<Vec<Slot>> =
+        if base.axes.is_some() || base.system.is_some() || targets.iter().any(|t| t.param) {
+            None
+        } else {
+            vary.iter().map(|v| Slot::find(&v.path, &base)).collect()
+        };
     let (models, friction) = sweep_laws(&base, vary.iter().map(|v| v.path.as_str()));
-    let outputs = output_names(base.contacts.len(), friction, &[]);
+    let bodies = body_names(&base);
+    let outputs = output_names(base.contacts.len(), friction, &bodies);
     let width = outputs.len();
     let solved = (0..points)
         .into_par_iter()
@@ -151,8 +162,11 @@ pub fn solve_batch(
                     scene
                 }
             };
-            match run::<f64>(&scene, None) {
-                Ok(s) => Ok((Some(s.report.clone()), body_status(&s.report))),
+            match Answer::solve::<f64>(&scene) {
+                Ok(answer) => {
+                    let status = status(&answer);
+                    Ok((Some(answer), status))
+                }
                 Err(e) => match point_status(&e) {
                     Some(status) => Ok((None, status.to_string())),
                     None => Err(at(e.to_string())),
@@ -165,7 +179,7 @@ pub fn solve_batch(
     for (report, s) in solved {
         for (m, column) in models.iter().zip(&mut values) {
             match report.as_ref().and_then(|r| law_values(r, *m, friction)) {
-                Some((v, _)) => column.extend(v),
+                Some(v) => column.extend(v),
                 None => column.extend(std::iter::repeat_n(f64::NAN, width)),
             }
         }
@@ -174,6 +188,7 @@ pub fn solve_batch(
     Ok(Batch {
         models,
         outputs,
+        bodies,
         points,
         values,
         status: statuses,
@@ -207,13 +222,16 @@ mod tests {
             let mut d = doc.clone();
             set_value(&mut d, "contact[1].k", &k.to_string()).unwrap();
             let scene = Scene::from_document(&d, "bar.toml").unwrap();
-            let r = run::<f64>(&scene, None).unwrap().report;
+            let r = crate::scene::pipeline::run::<f64>(&scene, None)
+                .unwrap()
+                .report;
+            let r = Answer::Body(r);
             for (m, column) in b.models.iter().zip(&b.values) {
-                let expected = law_values(&r, *m, false).unwrap().0;
+                let expected = law_values(&r, *m, false).unwrap();
                 let w = b.outputs.len();
                 assert_eq!(column[p * w..(p + 1) * w], expected[..], "{m:?} at k = {k}");
             }
-            assert_eq!(b.status[p], body_status(&r));
+            assert_eq!(b.status[p], status(&r));
         }
     }
 

@@ -10,7 +10,8 @@ use crate::impact::restitution::Model;
 use crate::impact::solve::SolveError;
 use crate::impact::unilateral::UnilateralError;
 use crate::number::{format_rational, rational_to_f64};
-use crate::report::{ModelReport, Report, Value};
+use crate::report::system::SystemReport;
+use crate::report::{Report, Value};
 use crate::scene::Scene;
 use crate::scene::pipeline::RunError;
 
@@ -93,16 +94,6 @@ pub(super) struct Row {
     pub(super) status: String,
 }
 
-/// A model's outputs, in [`output_names`] order.
-fn model_outputs(r: &ModelReport) -> Vec<Value> {
-    let mut v: Vec<Value> = r.impulses.clone();
-    v.extend(r.velocity.iter().cloned());
-    v.extend(r.angular_velocity.iter().cloned());
-    v.push(r.lost_velocity_energy.clone());
-    v.push(r.kinetic_energy_loss.clone());
-    v
-}
-
 /// The indices among [`output_names`] that also get an exact column: P_i, E_p, ΔE_c (for
 /// `bodies` bodies, one for a single body).
 pub(super) fn exact_outputs(contacts: usize, bodies: usize) -> impl Iterator<Item = usize> {
@@ -116,19 +107,32 @@ pub(super) fn exact_outputs(contacts: usize, bodies: usize) -> impl Iterator<Ite
 /// derivative is 0 too: no μ_i moves at such a point unless seeded, which makes it frictional).
 /// `None` when the law was not solved.
 pub(super) fn law_outputs(answer: &Answer, law: Restitution, friction: bool) -> Option<Vec<Value>> {
-    let report = match answer {
-        Answer::Body(r) => r,
-        // A system scene is frictionless (the pipeline refuses friction on systems).
-        Answer::System(r) => {
-            let model = match law {
-                Restitution::Newton => Model::Newton,
-                Restitution::Poisson => Model::Poisson,
-                Restitution::Energetic => return None,
-            };
-            return Answer::system_outputs(r, model);
-        }
-    };
-    body_outputs(report, law, friction)
+    match answer {
+        Answer::Body(r) => body_outputs(r, law, friction),
+        Answer::System(r) => system_outputs(r, law, friction),
+    }
+}
+
+/// The paper's model a restitution law is (`None` for the energetic law, which is not one).
+fn model_of(law: Restitution) -> Option<Model> {
+    match law {
+        Restitution::Newton => Some(Model::Newton),
+        Restitution::Poisson => Some(Model::Poisson),
+        Restitution::Energetic => None,
+    }
+}
+
+/// Outputs in [`output_names`] order: the impulses, the twist values (a body's v_C then ω,
+/// body after body), E_p, ΔE_c, then E_f when given.
+fn in_order<'a>(
+    impulses: impl Iterator<Item = &'a Value>,
+    twists: impl Iterator<Item = &'a Value>,
+    energies: [&'a Value; 2],
+    friction: Option<Value>,
+) -> Vec<Value> {
+    let mut v: Vec<Value> = impulses.chain(twists).chain(energies).cloned().collect();
+    v.extend(friction);
+    v
 }
 
 /// [`law_outputs`] of one body's report.
@@ -138,28 +142,47 @@ pub(super) fn body_outputs(
     friction: bool,
 ) -> Option<Vec<Value>> {
     if let Some(f) = report.friction.iter().find(|f| f.law == law) {
-        let mut v: Vec<Value> = f
-            .contacts
-            .iter()
-            .map(|c| c.normal_impulse.clone())
-            .collect();
-        v.extend(f.velocity.iter().chain(&f.angular_velocity).cloned());
-        v.push(f.lost_velocity_energy.clone());
-        v.push(f.kinetic_energy_loss.clone());
-        v.push(f.friction_dissipation.clone());
-        return Some(v);
+        return Some(in_order(
+            f.contacts.iter().map(|c| &c.normal_impulse),
+            f.velocity.iter().chain(&f.angular_velocity),
+            [&f.lost_velocity_energy, &f.kinetic_energy_loss],
+            Some(f.friction_dissipation.clone()),
+        ));
     }
-    let model = match law {
-        Restitution::Newton => Model::Newton,
-        Restitution::Poisson => Model::Poisson,
-        Restitution::Energetic => return None,
-    };
-    let r = report.model(model)?;
-    let mut v = model_outputs(r);
-    if friction {
-        v.push(zero_like(&r.kinetic_energy_loss));
+    let r = report.model(model_of(law)?)?;
+    Some(in_order(
+        r.impulses.iter(),
+        r.velocity.iter().chain(&r.angular_velocity),
+        [&r.lost_velocity_energy, &r.kinetic_energy_loss],
+        friction.then(|| zero_like(&r.kinetic_energy_loss)),
+    ))
+}
+
+/// [`law_outputs`] of a system's report: each body's twist in turn.
+pub(super) fn system_outputs(
+    report: &SystemReport,
+    law: Restitution,
+    friction: bool,
+) -> Option<Vec<Value>> {
+    fn twists(t: &[([Value; 3], [Value; 3])]) -> impl Iterator<Item = &Value> {
+        t.iter().flat_map(|(w, vc)| vc.iter().chain(w))
     }
-    Some(v)
+    if let Some(f) = report.friction.iter().find(|f| f.law == law) {
+        return Some(in_order(
+            f.contacts.iter().map(|c| &c.normal_impulse),
+            twists(&f.twists),
+            [&f.lost_velocity_energy, &f.kinetic_energy_loss],
+            Some(f.friction_dissipation.clone()),
+        ));
+    }
+    let model = model_of(law)?;
+    let m = report.models.iter().find(|m| m.model == model)?;
+    Some(in_order(
+        m.impulses.iter(),
+        twists(&m.twists),
+        [&m.lost_velocity_energy, &m.kinetic_energy_loss],
+        friction.then(|| zero_like(&m.kinetic_energy_loss)),
+    ))
 }
 
 /// Zero in the form of `v`: with an exact text and a derivative when `v` has them.
@@ -174,19 +197,15 @@ fn zero_like(v: &Value) -> Value {
     }
 }
 
-/// One law's outputs at a solved point, in [`output_names`] order, with the exact texts of
-/// P_i, E_p, ΔE_c (see [`law_outputs`]).
-pub(super) fn law_values(
-    report: &Report,
-    law: Restitution,
-    friction: bool,
-) -> Option<(Vec<f64>, Vec<String>)> {
-    let v = body_outputs(report, law, friction)?;
-    let contacts = v.len() - 8 - usize::from(friction);
-    let exact = exact_outputs(contacts, 1)
-        .map(|k| v[k].exact.clone().unwrap_or_default())
-        .collect();
-    Some((v.iter().map(|x| x.f64).collect(), exact))
+/// One law's outputs at a solved point as f64, in [`output_names`] order (see
+/// [`law_outputs`]).
+pub(super) fn law_values(answer: &Answer, law: Restitution, friction: bool) -> Option<Vec<f64>> {
+    Some(
+        law_outputs(answer, law, friction)?
+            .iter()
+            .map(|x| x.f64)
+            .collect(),
+    )
 }
 
 /// A derivative as a CSV cell and a plotted y: empty and NaN when it does not exist or is not
@@ -489,7 +508,13 @@ fn system_status(r: &crate::report::system::SystemReport) -> String {
         .models
         .iter()
         .flat_map(|m| m.inadmissible.iter().map(|v| v.name()))
-        .chain(r.model_failures.iter().map(|(_, _, s)| *s));
+        .chain(r.model_failures.iter().map(|(_, _, s)| *s))
+        .chain(
+            r.friction
+                .iter()
+                .flat_map(|f| f.verdict_names.iter().copied()),
+        )
+        .chain(r.friction_failures.iter().map(|(_, _, s)| *s));
     for n in names {
         if !found.contains(&n) {
             found.push(n);

@@ -1,5 +1,6 @@
-//! The planar chain the `systems` bench, `examples/chain_timing.rs` and
-//! `benches/peers/chains.py` (Pinocchio) all solve — one definition, included by path.
+//! The planar chain the `systems` bench (`benches/systems.rs`), `inertance bench`'s systems
+//! section ([`crate::tools::system_bench`]), `examples/chain_timing.rs` and
+//! `benches/peers/chains.py` (Pinocchio) all solve — one definition.
 //!
 //! N slender bars of length 1 and mass 1 lie along +x, bar i from x = i to x = i + 1, its
 //! centre at (i + ½, 0, 0) and central moments (J_x, J_y, J_z) = (1/1200, 1/12 + 1/1200,
@@ -10,25 +11,37 @@
 //! x = ⌊(N − 1)/2⌋ + 1), normals −y out of the bars, one coefficient k = 1/2 for both. A single
 //! bar has one degree of freedom, so N = 1 keeps the tip contact only.
 
-use inertance::mechanics::body::RigidBody;
-use inertance::mechanics::constraint::Joint;
-use inertance::mechanics::contact::Contact;
-use inertance::mechanics::screw::{Screw, Vec3};
-use inertance::mechanics::system::{Pair, System, SystemBody, SystemJoint, SystemScrew};
-use inertance::scalar::Scalar;
+use crate::impact::restitution::Model;
+use crate::impact::solve::{Impact, Outcome, SolveError};
+use crate::mechanics::body::RigidBody;
+use crate::mechanics::constraint::Joint;
+use crate::mechanics::contact::Contact;
+use crate::mechanics::screw::{Screw, Vec3};
+use crate::mechanics::system::{Pair, System, SystemBody, SystemJoint, SystemScrew};
+use crate::scalar::Scalar;
 use num_rational::BigRational;
 
 /// The parts of a chain of `links` bars, to build its [`System`] from (so a timing can include
 /// [`System::new`], where the joints are factored).
+#[derive(Clone, Debug)]
 pub struct Chain<T: Scalar> {
+    /// The bars, bar i centred at (i + ½, 0, 0).
     pub bodies: Vec<SystemBody<T>>,
+    /// Their twists before impact: the chain turning as one bar at ω = −1 about z.
     pub velocity: SystemScrew<T>,
+    /// The tip and (N > 1) the middle bar's far end, against the ground.
     pub contacts: Vec<Contact<T>>,
+    /// Each contact's body (and the ground).
     pub pairs: Vec<Pair>,
+    /// The hinges, the first to the ground.
     pub joints: Vec<SystemJoint<T>>,
 }
 
 impl<T: Scalar> Chain<T> {
+    /// The chain of `links` bars (at least one).
+    ///
+    /// # Panics
+    /// For `links` = 0.
     pub fn new(links: usize) -> Self {
         let c = |n: i64, d: i64| T::from_rational(&BigRational::new(n.into(), d.into()));
         let v = |x: T, y: T, z: T| Vec3::new(x, y, z);
@@ -90,6 +103,9 @@ impl<T: Scalar> Chain<T> {
     }
 
     /// The system (a clone of the parts: the timed path builds it from data every time).
+    ///
+    /// # Panics
+    /// Never for a chain built by [`Chain::new`].
     pub fn system(&self) -> System<T> {
         System::new(
             self.bodies.clone(),
@@ -99,5 +115,26 @@ impl<T: Scalar> Chain<T> {
             self.joints.clone(),
         )
         .expect("a valid chain")
+    }
+}
+
+impl<T: Scalar> Chain<T> {
+    /// One solve from the data, as every chain timing counts it: [`System::new`] (the joints'
+    /// rows and their tree factorization), [`Impact::assemble`] and each of `models`, every
+    /// output, into `out` (the last model's outcome).
+    ///
+    /// # Errors
+    /// A singular G (never for a chain of [`Chain::new`]).
+    pub fn solve(
+        &self,
+        models: &[Model],
+        out: &mut Outcome<T, SystemScrew<T>>,
+    ) -> Result<(), SolveError> {
+        let system = self.system();
+        let mut impact = Impact::assemble(std::hint::black_box(&system))?;
+        for &m in models {
+            impact.solve(m, out)?;
+        }
+        Ok(())
     }
 }
