@@ -139,3 +139,26 @@ fn no_library_path_applies_another_law_under_its_name() {
         Some("unilateral")
     );
 }
+
+/// `derive` on one body whose scene names the unilateral law printed the simultaneous law's
+/// closed forms under the header "effects: unilateral, poisson", exit 0 (found this session on
+/// `examples/symbolic-bar.toml` with `law = "unilateral"`). It is refused now, naming
+/// `solve.law`, as it is for a system (`tests/system_tools.rs`).
+#[test]
+fn derive_refuses_a_one_body_scene_under_the_unilateral_law() {
+    let text = std::fs::read_to_string(format!(
+        "{}/examples/symbolic-bar.toml",
+        env!("CARGO_MANIFEST_DIR")
+    ))
+    .expect("the example")
+    .replace("[solve]", "[solve]\nlaw = \"unilateral\"");
+    let scene = SceneFile::new("derive-unilateral-one-body", &text);
+    let out = scene.run(&["derive", "--symbols", "m,Jx,Jy,Jz,vx,vy,omega,y1,y2,k1,k2"]);
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("solve.law") && err.contains("unilateral"),
+        "{err}"
+    );
+    assert!(out.stdout.is_empty(), "nothing printed");
+}

@@ -192,6 +192,18 @@ pub fn derive(
     if let Some(refusal) = crate::scene::limits::derive_limit(scene) {
         return Err(refusal.into());
     }
+    if scene.law == crate::impact::unilateral::Law::Unilateral {
+        // Never a law named but not applied: the closed forms are the simultaneous law's, for
+        // one body as for a system.
+        return Err(RunError::Scene(crate::scene::SceneError {
+            file: scene.file.clone(),
+            key: "solve.law".into(),
+            value: Some("\"unilateral\"".into()),
+            message: "derive gives the simultaneous law's closed forms; the unilateral law's \
+                      answer is piecewise (which contacts separate): solve it with `solve --exact`"
+                .into(),
+        }));
+    }
     let models = models.unwrap_or(&scene.models).to_vec();
     take_assumptions();
     if scene.system.is_some() {
@@ -257,17 +269,6 @@ pub fn derive(
 /// value of the symbols gets its family as one body does ([`singular_family`]).
 fn derive_system(scene: &Scene, symbols: &[String], models: &[Model]) -> Result<Derived, RunError> {
     use crate::mechanics::system::SystemScrew;
-    if scene.law == crate::impact::unilateral::Law::Unilateral {
-        // Never a law named but not applied: the closed forms are the simultaneous law's.
-        return Err(RunError::Scene(crate::scene::SceneError {
-            file: scene.file.clone(),
-            key: "solve.law".into(),
-            value: Some("\"unilateral\"".into()),
-            message: "derive gives the simultaneous law's closed forms; the unilateral law's \
-                      answer is piecewise (which contacts separate): solve it with `solve --exact`"
-                .into(),
-        }));
-    }
     if scene.frictional() {
         // The refusal `solve` gives, naming the key.
         crate::scene::system_pipeline::run_system::<RatFun>(scene, Some(models))?;
