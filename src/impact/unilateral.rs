@@ -306,7 +306,10 @@ impl<T: Scalar, M: Mechanism<T>> Impact<T, M> {
                 for (p, x) in out.impulses_hat.iter_mut().zip(&lcp.z) {
                     *p += x;
                 }
-                let speed = largest(&(0..n).map(|i| v0(i).clone()).collect::<Vec<T>>());
+                let speed = (0..n).fold(T::zero(), |m, i| {
+                    let v = v0(i);
+                    if v.abs_gt(&m) { v.clone() } else { m }
+                });
                 let compression_unique = regular_on_equalities(g, w, &speed, set, sub, perm);
                 let unique =
                     compression_unique && regular_on_equalities(g, &lcp.w, &speed, set, sub, perm);
