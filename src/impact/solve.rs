@@ -214,8 +214,18 @@ impl<T: Scalar, M: Mechanism<T>> Impact<T, M> {
     /// # Errors
     /// As [`Impact::assemble`].
     pub fn assemble_for(problem: &M, outputs: Outputs) -> Result<Self, SolveError> {
+        Impact::assemble_owned(problem.clone(), outputs)
+    }
+
+    /// [`Impact::assemble_for`] taking the problem by value: the same impact, without the
+    /// copy of the problem that [`Impact::assemble`] keeps (for a system, a copy of each of
+    /// its vectors).
+    ///
+    /// # Errors
+    /// As [`Impact::assemble`].
+    pub fn assemble_owned(problem: M, outputs: Outputs) -> Result<Self, SolveError> {
         let mut impact = Impact {
-            problem: problem.clone(),
+            problem,
             frames: Vec::new(),
             before_hat: Vec::new(),
             responses: Vec::new(),

@@ -11,6 +11,7 @@
 //! x = ⌊(N − 1)/2⌋ + 1), normals −y out of the bars, one coefficient k = 1/2 for both. A single
 //! bar has one degree of freedom, so N = 1 keeps the tip contact only.
 
+use crate::impact::outputs::Outputs;
 use crate::impact::restitution::Model;
 use crate::impact::solve::{Impact, Outcome, SolveError};
 use crate::mechanics::body::RigidBody;
@@ -131,7 +132,7 @@ impl<T: Scalar> Chain<T> {
         out: &mut Outcome<T, SystemScrew<T>>,
     ) -> Result<(), SolveError> {
         let system = self.system();
-        let mut impact = Impact::assemble(std::hint::black_box(&system))?;
+        let mut impact = Impact::assemble_owned(std::hint::black_box(system), Outputs::ALL)?;
         for &m in models {
             impact.solve(m, out)?;
         }
