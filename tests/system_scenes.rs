@@ -500,17 +500,34 @@ fn one_body_at_the_origin_written_as_a_system_reads_as_the_one_body_scene_bit_fo
     }
 }
 
-/// Away from the origin the two differ in the last bits (Ĝ's g₁₁ 2.7476988235294124 against
-/// 2.747698823529412): a `[body]` scene's lever arms A_i − C are formed exactly from the
-/// scene's numbers and rounded once, a system's in f64 from its rounded world points and
-/// centres (`System::contact_axis`), one more rounding. Run with `--ignored` to see it.
+/// And away from the origin, posed or not: both scenes form each lever arm A_i − C exactly
+/// from the scene's numbers and round it once (`SystemSpec::levers`,
+/// `System::with_lever_arms`). Before, a system formed it in f64 from its rounded world point
+/// and centre, one more rounding, and Ĝ's g₁₁ read 2.7476988235294124 against the one-body
+/// scene's 2.747698823529412.
 #[test]
-#[ignore = "a system's lever arms A − C are formed in f64, a [body] scene's exactly"]
 fn one_body_away_from_the_origin_written_as_a_system_reads_as_the_one_body_scene_bit_for_bit_in_f64()
  {
-    let single = report("one-body-single-f64", &tilted_box(false), &[]);
-    let system = report("one-body-system-f64", &tilted_box(true), &[]);
-    for (what, a, b) in pairs(&single, &system) {
-        assert_eq!(a, b, "{what}");
+    let cases = [
+        ("[0.1, 0.2, 0.3]", "[7, 0, 1, 0]", "0.3 - 13/125"),
+        ("[0.1, 0.2, 0.3]", "[1, 0, 0, 0]", "0.3 - 1/20"),
+        ("[-1.7, 3.1, 0.7]", "[7, 0, 1, 0]", "0.7 - 13/125"),
+        (r#"[1e3, -2.5e2, "1/3"]"#, "[7, 0, 1, 0]", "1/3 - 13/125"),
+    ];
+    for (position, quaternion, floor) in cases {
+        let single = report(
+            "away-single-f64",
+            &box_at(false, position, quaternion, floor),
+            &[],
+        );
+        let system = report(
+            "away-system-f64",
+            &box_at(true, position, quaternion, floor),
+            &[],
+        );
+        for (what, a, b) in pairs(&single, &system) {
+            assert!(!a.is_null(), "{what} missing in the one-body report");
+            assert_eq!(a, b, "at {position}, pose {quaternion}: {what}");
+        }
     }
 }

@@ -68,8 +68,7 @@ impl SystemFrictionReport {
         let b = &f.blocks;
         let at = |i: usize, body: usize| {
             let v = &f.velocity.0[body];
-            let r = system.contacts()[i].point.clone() - system.bodies()[body].centre.clone();
-            v.bottom() + v.top().cross(&r)
+            v.bottom() + v.top().cross(system.lever_arm(i, body))
         };
         let contacts = (0..b.contacts())
             .map(|i| {

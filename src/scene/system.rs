@@ -90,6 +90,15 @@ impl Scene {
                 pair: joint.pair,
             });
         }
+        let mut levers = Vec::with_capacity(spec.levers.len());
+        for (i, (first, second)) in spec.levers.iter().enumerate() {
+            let key = format!("contact[{i}].point");
+            let second = second
+                .as_ref()
+                .map(|r| self.vec3::<T>(r, &key))
+                .transpose()?;
+            levers.push((self.vec3::<T>(first, &key)?, second));
+        }
         let twists = SystemScrew(twists);
         System::new(
             bodies.clone(),
@@ -98,6 +107,7 @@ impl Scene {
             spec.pairs.clone(),
             joints.clone(),
         )
+        .and_then(|s| s.with_lever_arms(levers))
         .map_err(|e| self.system_error(spec, e, (&bodies, &twists, &joints)))
     }
 

@@ -150,6 +150,8 @@ pub struct System<T: Scalar> {
     velocity: SystemScrew<T>,
     contacts: Vec<Contact<T>>,
     pairs: Vec<Pair>,
+    /// Per contact, A − C_a and A − C_b (`None`: an obstacle).
+    levers: Vec<(Vec3<T>, Option<Vec3<T>>)>,
     joints: Vec<SystemJoint<T>>,
     /// The joints' free and blocked screws (shared by the system's copies).
     screws: Arc<JointScrews<T>>,
@@ -215,8 +217,17 @@ impl<T: Scalar> System<T> {
             check("joint", j, &joint.pair)?;
         }
         let screws = JointScrews::new(&joints);
+        let levers = contacts
+            .iter()
+            .zip(&pairs)
+            .map(|(c, p)| {
+                let arm = |b: usize| c.point.clone() - bodies[b].centre.clone();
+                (arm(p.first), p.second.map(arm))
+            })
+            .collect();
         let system = System {
             rows: None,
+            levers,
             bodies,
             screws: Arc::new(screws),
             velocity,
@@ -235,6 +246,48 @@ impl<T: Scalar> System<T> {
             )?);
         }
         Ok(system)
+    }
+
+    /// The same system with its contacts' lever arms A − C_a and A − C_b (`None` for an
+    /// obstacle) given rather than formed in `T` from the rounded world points and centres:
+    /// a scene reader computes them exactly and rounds each once, as it does a `[body]`'s
+    /// r = A − C, so that a one-body system away from the origin is the one-body problem bit
+    /// for bit in floats (issue 24). In exact types they are the differences [`System::new`]
+    /// forms.
+    ///
+    /// # Errors
+    /// [`SystemError::PairsMismatch`] when `levers` has not one entry per contact, or names a
+    /// second body where the contact has none (or none where it has one).
+    pub fn with_lever_arms(
+        mut self,
+        levers: Vec<(Vec3<T>, Option<Vec3<T>>)>,
+    ) -> Result<Self, SystemError> {
+        let fits = levers.len() == self.pairs.len()
+            && levers
+                .iter()
+                .zip(&self.pairs)
+                .all(|((_, b), p)| b.is_some() == p.second.is_some());
+        if !fits {
+            return Err(SystemError::PairsMismatch {
+                contacts: self.contacts.len(),
+                pairs: levers.len(),
+            });
+        }
+        self.levers = levers;
+        Ok(self)
+    }
+
+    /// Contact `i`'s lever arm A − C_b on `body`, one of the two bodies it joins.
+    ///
+    /// # Panics
+    /// When the contact does not touch `body`.
+    pub fn lever_arm(&self, i: usize, body: usize) -> &Vec3<T> {
+        let (pair, (first, second)) = (self.pairs[i], &self.levers[i]);
+        match (body == pair.first, second) {
+            (true, _) => first,
+            (false, Some(r)) if pair.second == Some(body) => r,
+            _ => panic!("contact {i} does not touch body {body}"),
+        }
     }
 
     /// The same system with its joints' system factored densely whatever their graph (the
@@ -296,13 +349,11 @@ impl<T: Scalar> System<T> {
 
     /// The screw of the axis through contact `i`'s point with direction `u` (module docs).
     pub fn contact_axis(&self, i: usize, u: &Vec3<T>) -> SystemScrew<T> {
-        let a = &self.contacts[i].point;
-        let pair = self.pairs[i];
+        let (pair, (first, second)) = (self.pairs[i], &self.levers[i]);
         let mut s = SystemScrew::zeros(self.bodies.len());
-        s.0[pair.first] = Screw::axis(&(a.clone() - self.bodies[pair.first].centre.clone()), u);
-        if let Some(b) = pair.second {
-            let e = Screw::axis(&(a.clone() - self.bodies[b].centre.clone()), u);
-            s.0[b] = Screw(-e.0);
+        s.0[pair.first] = Screw::axis(first, u);
+        if let (Some(b), Some(r)) = (pair.second, second) {
+            s.0[b] = Screw(-Screw::axis(r, u).0);
         }
         s
     }
@@ -310,11 +361,10 @@ impl<T: Scalar> System<T> {
     /// The velocity of contact `i`'s point on its first body relative to its second, before
     /// impact: v_a(A) − v_b(A).
     pub fn relative_velocity(&self, i: usize) -> Vec3<T> {
-        let a = &self.contacts[i].point;
         let pair = self.pairs[i];
         let at = |b: usize| {
             let v = &self.velocity.0[b];
-            v.bottom() + v.top().cross(&(a.clone() - self.bodies[b].centre.clone()))
+            v.bottom() + v.top().cross(self.lever_arm(i, b))
         };
         match pair.second {
             Some(b) => at(pair.first) - at(b),

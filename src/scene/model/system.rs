@@ -110,7 +110,14 @@ pub struct SystemSpec {
     pub obstacles: Vec<Option<String>>,
     /// The joints.
     pub joints: Vec<SystemJointSpec>,
+    /// Per contact, its lever arms A − C_a on its first body and A − C_b on its second
+    /// (`None`: an obstacle), computed exactly from the scene's numbers, so that a float solve
+    /// rounds each once, as a `[body]` scene's ([`crate::mechanics::system::System::with_lever_arms`]).
+    pub levers: Vec<Lever>,
 }
+
+/// A contact's lever arms A − C_a and A − C_b (`None`: an obstacle), world axes.
+pub type Lever = ([Number; 3], Option<[Number; 3]>);
 
 impl SystemSpec {
     /// Every number of the bodies and joints, with its key.
@@ -203,12 +210,20 @@ impl Reader<'_> {
         let obstacles = self.obstacles(root)?;
         let (pairs, against) =
             self.place_system_contacts(root, contacts, &names, &placed, &obstacles)?;
+        let mut levers = Vec::with_capacity(pairs.len());
+        for (i, (contact, pair)) in contacts.iter().zip(&pairs).enumerate() {
+            let point = contact.point.each_ref().map(Term::of);
+            let key = format!("contact[{i}].point");
+            let arm = |b: usize| self.numbers3(&sub(&point, &placed[b].frame.centre), &key);
+            levers.push((arm(pair.first)?, pair.second.map(arm).transpose()?));
+        }
         let joints = self.joints(root, &names)?;
         Ok(SystemSpec {
             bodies,
             pairs,
             obstacles: against,
             joints,
+            levers,
         })
     }
 

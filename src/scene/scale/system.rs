@@ -100,6 +100,11 @@ pub fn scale_system(scene: &Scene) -> Option<(Scene, Units)> {
             own_scale(axis);
         }
     }
+    for (first, second) in &mut spec.levers {
+        for x in first.iter_mut().chain(second.iter_mut().flatten()) {
+            scale_number(x, -b);
+        }
+    }
     let mut normals = Vec::with_capacity(s.contacts.len());
     for contact in &mut s.contacts {
         contact.point.iter_mut().for_each(|x| scale_number(x, -b));
