@@ -16,6 +16,8 @@
 
 use std::time::{Duration, Instant};
 
+use inertance::impact::lean_system::LeanSystem;
+use inertance::impact::outputs::Outputs;
 use inertance::impact::restitution::Model;
 use inertance::impact::solve::Outcome;
 use inertance::mechanics::system::SystemScrew;
@@ -23,6 +25,14 @@ use inertance::tools::chain::Chain;
 
 fn solve(chain: &Chain<f64>, models: &[Model], out: &mut Outcome<f64, SystemScrew<f64>>) {
     chain.solve(models, out).expect("solves");
+}
+
+/// One more lean solve, on buffers sized by a first (for callgrind: `--once --lean`, toggle
+/// `chain_timing::lean_once`).
+#[inline(never)]
+fn lean_once(lean: &mut LeanSystem<f64>, system: &inertance::mechanics::system::System<f64>) {
+    lean.solve(std::hint::black_box(system), Model::Newton)
+        .expect("solves");
 }
 
 fn median(mut f: impl FnMut()) -> f64 {
@@ -44,7 +54,7 @@ fn main() {
     let once = std::env::args().any(|a| a == "--once");
     let sizes: Vec<usize> = std::env::args()
         .skip(1)
-        .filter(|a| a != "--once")
+        .filter(|a| a != "--once" && a != "--lean")
         .map(|a| a.parse().expect("a number of links"))
         .collect();
     let sizes = if sizes.is_empty() {
@@ -56,11 +66,47 @@ fn main() {
         let chain = Chain::<f64>::new(n);
         let mut out = Outcome::default();
         if once {
-            solve(&chain, &[Model::Newton], &mut out);
+            if std::env::args().any(|a| a == "--lean") {
+                let system = chain.system();
+                let mut lean = LeanSystem::new(&system).expect("a chain is a tree");
+                lean.solve(&system, Model::Newton).expect("solves");
+                lean_once(&mut lean, &system);
+            } else {
+                solve(&chain, &[Model::Newton], &mut out);
+            }
             continue;
         }
         let newton = median(|| solve(&chain, &[Model::Newton], &mut out));
         let both = median(|| solve(&chain, &[Model::Newton, Model::Poisson], &mut out));
+        let few = median(|| {
+            chain
+                .solve_for(
+                    &[Model::Newton],
+                    Outputs::IMPULSES | Outputs::TWIST,
+                    &mut out,
+                )
+                .expect("solves");
+        });
+        // The lean path: the system built once (as Pinocchio's model and data are), then per
+        // call the factorization, the responses, the basis and Newton's law.
+        let system = chain.system();
+        let mut lean = LeanSystem::new(&system).expect("a chain is a tree");
+        let lean_ns = median(|| {
+            lean.solve(std::hint::black_box(&system), Model::Newton)
+                .expect("solves");
+        });
+        lean.solve(&system, Model::Newton).expect("solves");
+        let lean_impulses: Vec<String> = lean
+            .impulses_hat()
+            .iter()
+            .map(|p| format!("{p:e}"))
+            .collect();
+        let lean_omega: Vec<String> = lean
+            .velocity()
+            .0
+            .iter()
+            .map(|s| format!("{:e}", s.0[2]))
+            .collect();
         solve(&chain, &[Model::Newton], &mut out);
         // P_i = P̂_i |n_i|, |n_i| = 1 here.
         let impulses: Vec<String> = out.impulses_hat.iter().map(|p| format!("{p:e}")).collect();
@@ -78,10 +124,14 @@ fn main() {
             .collect();
         println!(
             "{{\"links\": {n}, \"ns_per_solve\": {newton:.1}, \"ns_per_solve_both\": {both:.1}, \
-             \"impulses\": [{}], \"omega_z\": [{}], \"v_centre\": [{}]}}",
+             \"ns_per_solve_impulses_twist\": {few:.1}, \"ns_per_solve_lean\": {lean_ns:.1}, \
+             \"impulses\": [{}], \"omega_z\": [{}], \"v_centre\": [{}], \
+             \"lean_impulses\": [{}], \"lean_omega_z\": [{}]}}",
             impulses.join(", "),
             omega.join(", "),
-            centre.join(", ")
+            centre.join(", "),
+            lean_impulses.join(", "),
+            lean_omega.join(", ")
         );
     }
 }

@@ -143,3 +143,37 @@ fn repeated_f64_solves_do_not_allocate() {
         "allocations during 1100 assemble+solve rounds (both laws)"
     );
 }
+
+/// The lean path of a system (`impact::lean_system`): once built and sized by a first solve,
+/// solving again — the factorization of the joints' tree, the responses, the basis, either
+/// law — allocates nothing.
+#[test]
+fn repeated_lean_system_solves_do_not_allocate() {
+    use inertance::impact::lean_system::LeanSystem;
+    use inertance::tools::chain::Chain;
+    let systems: Vec<_> = [1, 2, 7].map(|n| Chain::<f64>::new(n).system()).into();
+    let mut leans: Vec<LeanSystem<f64>> = systems
+        .iter()
+        .map(|s| {
+            let mut lean = LeanSystem::new(s).expect("a chain is a tree");
+            lean.solve(s, Model::Newton).expect("solves");
+            lean.solve(s, Model::Poisson).expect("solves");
+            lean
+        })
+        .collect();
+    COUNTING.with(|c| c.set(true));
+    let before = ALLOCATIONS.load(Ordering::SeqCst);
+    let mut checksum = 0.0;
+    for _ in 0..50 {
+        for (lean, system) in leans.iter_mut().zip(&systems) {
+            for model in [Model::Newton, Model::Poisson] {
+                lean.solve(system, model).expect("solves");
+                checksum += lean.impulses_hat()[0] + lean.velocity().0[0].0[2];
+            }
+        }
+    }
+    let after = ALLOCATIONS.load(Ordering::SeqCst);
+    COUNTING.with(|c| c.set(false));
+    assert!(checksum.is_finite());
+    assert_eq!(after - before, 0, "allocations in 300 lean system solves");
+}

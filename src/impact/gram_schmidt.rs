@@ -125,46 +125,86 @@ impl<T: Scalar, S: Screws<T>> WrenchBasis<T, S> {
     where
         S: 'a,
     {
+        self.build_from(axes.map(|(e, r)| (e, Some(r))), mobility)
+    }
+
+    /// [`WrenchBasis::build`] from the axis screws alone (`None` for a response not already
+    /// computed): the first's response is then computed here, and every later vector is
+    /// orthogonalised twice, since its ĝ_kk for the test is not known — the lean path of a
+    /// system ([`crate::impact::lean_system`]), which so takes one response per contact.
+    pub fn build_from<'a>(
+        &mut self,
+        axes: impl ExactSizeIterator<Item = (&'a S, Option<&'a S>)>,
+        mobility: &impl Mobility<T, S>,
+    ) -> bool
+    where
+        S: 'a,
+    {
         let n = axes.len();
-        self.wrenches.clear();
-        self.responses.clear();
+        // The wrenches and responses are written over the previous solve's (a system's stack
+        // of screws keeps its storage), and the extra ones dropped at the end.
         self.norms2.clear();
         self.u.clear();
         self.u.resize(n * n, T::zero());
         let two = T::one() + T::one();
         for (k, (e, response)) in axes.enumerate() {
-            let own = e.reciprocal(response);
-            let mut q = e.clone();
+            if k == self.responses.len() {
+                self.responses.push(e.clone());
+            }
+            // ĝ_kk, when the response of the axis is known (always for the first).
+            let own = match (k, response) {
+                (_, Some(r)) => Some(e.reciprocal(r)),
+                (0, None) => {
+                    mobility.response_into(e, &mut self.responses[0]);
+                    Some(e.reciprocal(&self.responses[0]))
+                }
+                _ => None,
+            };
+            if k < self.wrenches.len() {
+                self.wrenches[k].clone_from(e);
+            } else {
+                self.wrenches.push(e.clone());
+            }
+            let (done, rest) = self.wrenches.split_at_mut(k);
+            let q = &mut rest[0];
             let mut removed = T::zero();
             for pass in 0..2 {
                 for i in 0..k {
                     let r = q.reciprocal(&self.responses[i]) / &self.norms2[i];
-                    q.add_scaled(&-r.clone(), &self.wrenches[i]);
+                    q.add_scaled(&-r.clone(), &done[i]);
                     if pass == 0 {
                         removed += r.clone() * &r * &self.norms2[i];
                     }
                     self.u[i * n + k] += r;
                 }
-                if k == 0 || !(removed.clone() * &two).abs_gt(&own) {
+                let again = match &own {
+                    Some(own) => (removed.clone() * &two).abs_gt(own),
+                    None => true,
+                };
+                if k == 0 || !again {
                     break;
                 }
             }
             // The first wrench is its axis: its response and norm are those of G.
-            let (s, d) = if k == 0 {
-                (response.clone(), own)
+            let d = if k == 0 {
+                if let Some(r) = response {
+                    self.responses[0].clone_from(r);
+                }
+                own.expect("the first axis's ĝ_11")
             } else {
-                let s = mobility.response(&q);
-                let d = q.reciprocal(&s);
-                (s, d)
+                mobility.response_into(q, &mut self.responses[k]);
+                q.reciprocal(&self.responses[k])
             };
             if d.signum_i8() <= 0 {
+                self.wrenches.truncate(k);
+                self.responses.truncate(k);
                 return false;
             }
             self.u[k * n + k] = T::one();
-            self.wrenches.push(q);
-            self.responses.push(s);
             self.norms2.push(d);
         }
+        self.wrenches.truncate(n);
+        self.responses.truncate(n);
         true
     }
 
@@ -194,6 +234,11 @@ impl<T: Scalar, S: Screws<T>> WrenchBasis<T, S> {
         self.norms2.is_empty()
     }
 
+    /// u_ik (i < k): Ê_k = q̂_k + Σ_{i<k} u_ik q̂_i, so ĝ_kk = d_k + Σ_{i<k} u_ik² d_i.
+    pub fn coefficient(&self, i: usize, k: usize) -> &T {
+        &self.u[i * self.len() + k]
+    }
+
     /// d_k = ⟨q̂_k, q̂_k⟩: the pivots of G = Uᵀ D U, so Δ̂ = Π d_k.
     pub fn norms2(&self) -> &[T] {
         &self.norms2
@@ -212,6 +257,61 @@ impl<T: Scalar, S: Screws<T>> WrenchBasis<T, S> {
         before: &[[T; 3]],
         needs: Outputs,
     ) -> BasisOutcome<T, S> {
+        self.coordinates(model, velocity, contacts, before);
+        let n = self.len();
+        let two = T::one() + T::one();
+        let mut twist_change = velocity.zero_like();
+        let (mut lost, mut loss) = (T::zero(), T::zero());
+        let (twist, energies) = (
+            needs.contains(Outputs::TWIST),
+            needs.contains(Outputs::ENERGIES),
+        );
+        for j in 0..n {
+            let (wp, d) = (&self.plus[j], &self.norms2[j]);
+            if twist {
+                twist_change.add_scaled(&-wp.clone(), &self.responses[j]);
+            }
+            if energies {
+                let dw = d.clone() * wp;
+                lost += dw.clone() * wp;
+                loss += dw * &self.minus[j];
+            }
+        }
+        BasisOutcome {
+            twist_change,
+            lost_velocity_energy: lost / two.clone(),
+            kinetic_energy_loss: loss / two,
+        }
+    }
+
+    /// {v} = {v⁰} − Σ_k w⁺_k W q̂_k (eq. 24) of `model` into `after` (its storage reused), for
+    /// the twist before impact `velocity`, the `contacts` and the velocities before impact
+    /// `before`, as [`WrenchBasis::solve`] — the velocity itself rather than its change, and
+    /// no energies: what the lean path of a system returns ([`crate::impact::lean_system`]).
+    pub fn solve_velocity(
+        &mut self,
+        model: Model,
+        velocity: &S,
+        contacts: &[Contact<T>],
+        before: &[[T; 3]],
+        after: &mut S,
+    ) {
+        self.coordinates(model, velocity, contacts, before);
+        after.clone_from(velocity);
+        for (wp, response) in self.plus.iter().zip(&self.responses) {
+            after.add_scaled(&-wp.clone(), response);
+        }
+    }
+
+    /// a, the correction δ and w± of `model` (module docs) into `stop`, `work`, `plus` and
+    /// `minus`.
+    fn coordinates(
+        &mut self,
+        model: Model,
+        velocity: &S,
+        contacts: &[Contact<T>],
+        before: &[[T; 3]],
+    ) {
         let n = self.len();
         debug_assert_eq!(contacts.len(), n, "one contact per wrench");
         let k = |i: usize| match model {
@@ -269,28 +369,6 @@ impl<T: Scalar, S: Screws<T>> WrenchBasis<T, S> {
         for (a, delta) in self.stop.iter().zip(&self.work) {
             self.plus.push(one_plus.clone() * a + delta);
             self.minus.push(one_minus.clone() * a - delta);
-        }
-        let mut twist_change = velocity.zero_like();
-        let (mut lost, mut loss) = (T::zero(), T::zero());
-        let (twist, energies) = (
-            needs.contains(Outputs::TWIST),
-            needs.contains(Outputs::ENERGIES),
-        );
-        for j in 0..n {
-            let (wp, d) = (&self.plus[j], &self.norms2[j]);
-            if twist {
-                twist_change.add_scaled(&-wp.clone(), &self.responses[j]);
-            }
-            if energies {
-                let dw = d.clone() * wp;
-                lost += dw.clone() * wp;
-                loss += dw * &self.minus[j];
-            }
-        }
-        BasisOutcome {
-            twist_change,
-            lost_velocity_energy: lost / two.clone(),
-            kinetic_energy_loss: loss / two,
         }
     }
 

@@ -20,6 +20,7 @@ pub mod batch;
 pub mod friction;
 pub mod gram_schmidt;
 pub mod lean;
+pub mod lean_system;
 pub mod mechanism;
 pub mod outputs;
 pub mod problem;

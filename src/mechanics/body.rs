@@ -55,6 +55,12 @@ impl<T: Scalar> Clone for RigidBody<T> {
 pub trait Mobility<T: Scalar, S = Screw<T>> {
     /// W{E}: the twist produced by a unit impulse along the axis screw {E}.
     fn response(&self, e: &S) -> S;
+
+    /// W{E} into `out`, which a mobility may fill in place reusing its storage (a system's
+    /// stack of screws); by default `out` is replaced by [`Mobility::response`].
+    fn response_into(&self, e: &S, out: &mut S) {
+        *out = self.response(e);
+    }
 }
 
 impl<T: Scalar> RigidBody<T> {

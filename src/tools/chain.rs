@@ -131,8 +131,22 @@ impl<T: Scalar> Chain<T> {
         models: &[Model],
         out: &mut Outcome<T, SystemScrew<T>>,
     ) -> Result<(), SolveError> {
+        self.solve_for(models, Outputs::ALL, out)
+    }
+
+    /// [`Chain::solve`] computing only `outputs` (what Pinocchio's `impulseDynamics` returns
+    /// is [`Outputs::IMPULSES`] and [`Outputs::TWIST`]).
+    ///
+    /// # Errors
+    /// As [`Chain::solve`].
+    pub fn solve_for(
+        &self,
+        models: &[Model],
+        outputs: Outputs,
+        out: &mut Outcome<T, SystemScrew<T>>,
+    ) -> Result<(), SolveError> {
         let system = self.system();
-        let mut impact = Impact::assemble_owned(std::hint::black_box(system), Outputs::ALL)?;
+        let mut impact = Impact::assemble_owned(std::hint::black_box(system), outputs)?;
         for &m in models {
             impact.solve(m, out)?;
         }

@@ -103,6 +103,26 @@ pub(crate) struct Articulated<T: Scalar> {
     dinv: Vec<T>,
     /// (I^A)⁻¹ of each root free of the ground, on [F; M] to [v; ω].
     roots: Vec<Block<T>>,
+    /// Scratch of the factorization: each body's articulated inertia until it is eliminated.
+    inertia: Vec<Option<Block<T>>>,
+}
+
+/// Scratch of [`Articulated::response_into`], reused across responses.
+#[derive(Clone, Debug)]
+pub(crate) struct ResponseScratch<T: Scalar> {
+    /// w_i = S_iᵀ z_i.
+    w: Vec<T>,
+    /// Whether a body's z can be nonzero.
+    live: Vec<bool>,
+}
+
+impl<T: Scalar> Default for ResponseScratch<T> {
+    fn default() -> Self {
+        ResponseScratch {
+            w: Vec::new(),
+            live: Vec::new(),
+        }
+    }
 }
 
 impl<T: Scalar> Articulated<T> {
@@ -117,11 +137,42 @@ impl<T: Scalar> Articulated<T> {
         if !screws.independent {
             return None;
         }
-        let b = bodies.len();
-        let (order, mut nodes) = forest(b, joints)?;
+        let (order, nodes) = forest(bodies.len(), joints)?;
+        let mut tree = Articulated {
+            order,
+            nodes,
+            s: Vec::new(),
+            k: Vec::new(),
+            dinv: Vec::new(),
+            roots: Vec::new(),
+            inertia: Vec::new(),
+        };
+        tree.refactor(bodies, screws)?;
+        Some(tree)
+    }
+
+    /// Factor again for `bodies` and the joints' `screws` of a system of the same shape (the
+    /// same bodies, joined by the same joints: the tree is kept) in a new configuration —
+    /// centres, inertias, anchors and axes — reusing every buffer, so that repeated solves
+    /// allocate nothing (the lean path, [`crate::impact::lean_system`]). `None` as
+    /// [`Articulated::new`] for a pivot.
+    pub(crate) fn refactor(
+        &mut self,
+        bodies: &[SystemBody<T>],
+        screws: &JointScrews<T>,
+    ) -> Option<()> {
+        let Articulated {
+            order,
+            nodes,
+            s,
+            k,
+            dinv,
+            roots,
+            inertia,
+        } = self;
         // S about each body's centre, from the joint's free screws about the origin:
         // [ω; v_O] ↦ [ω; v_O + ω × C].
-        let mut s = Vec::with_capacity(b);
+        s.clear();
         let mut square = 0;
         for (i, node) in nodes.iter_mut().enumerate() {
             if node.parent != NONE {
@@ -151,14 +202,16 @@ impl<T: Scalar> Articulated<T> {
             }
         }
         // Filled at each body's place as the bodies are eliminated, leaves first.
-        let mut k: Vec<[T; 6]> = vec![std::array::from_fn(|_| T::zero()); s.len()];
-        let mut dinv = vec![T::zero(); square];
-        let mut roots = Vec::new();
-        let mut inertia: Vec<Option<Block<T>>> =
-            bodies.iter().map(|body| Some(mass_block(body))).collect();
+        k.clear();
+        k.resize(s.len(), std::array::from_fn(|_| T::zero()));
+        dinv.clear();
+        dinv.resize(square, T::zero());
+        roots.clear();
+        inertia.clear();
+        inertia.extend(bodies.iter().map(|body| Some(mass_block(body))));
         let mut d: Block<T> = zero_block();
         let mut u: [[T; 6]; 6] = std::array::from_fn(|_| std::array::from_fn(|_| T::zero()));
-        for &i in &order {
+        for &i in order.iter() {
             let node = &mut nodes[i];
             let mut a = inertia[i].take().expect("each body once");
             if node.joint == NONE {
@@ -232,25 +285,28 @@ impl<T: Scalar> Articulated<T> {
                 inertia[p].as_mut().expect("parent after child"),
             );
         }
-        Some(Articulated {
-            order,
-            nodes,
-            s,
-            k,
-            dinv,
-            roots,
-        })
+        Some(())
     }
 
     /// W{E}: the twist of every body for the impulse `e` (one wrench [F; M] about each
     /// body's centre), by one pass up and one down (module docs).
     pub(crate) fn response(&self, e: &[Screw<T>]) -> Vec<Screw<T>> {
         let mut z: Vec<Screw<T>> = e.to_vec();
+        self.response_into(&mut z, &mut ResponseScratch::default());
+        z
+    }
+
+    /// [`Articulated::response`] in place: `z` holds the impulse on entry and its twists on
+    /// return; `scratch` is reused (nothing is allocated once it has grown to the system).
+    pub(crate) fn response_into(&self, z: &mut [Screw<T>], scratch: &mut ResponseScratch<T>) {
+        let ResponseScratch { w, live } = scratch;
         // Whether a body's z can be nonzero: an impulse on a few bodies reaches their
         // ancestors only.
-        let mut live: Vec<bool> = e.iter().map(|s| s.0.iter().any(|x| !x.is_zero())).collect();
+        live.clear();
+        live.extend(z.iter().map(|s| s.0.iter().any(|x| !x.is_zero())));
         // w_i = S_iᵀ z_i, n_i numbers per body, at the body's columns.
-        let mut w = vec![T::zero(); self.s.len()];
+        w.clear();
+        w.resize(self.s.len(), T::zero());
         for &i in &self.order {
             let node = &self.nodes[i];
             if node.joint == NONE || !live[i] {
@@ -345,7 +401,6 @@ impl<T: Scalar> Articulated<T> {
             }
             z[i] = ai;
         }
-        z
     }
 
     /// The joints' impulses λ (one per blocked screw, joint by joint, as `screws` orders

@@ -38,6 +38,7 @@ use crate::mechanics::reaction::Wrench;
 use crate::mechanics::screw::{Screw, Screws, Vec3};
 use crate::scalar::Scalar;
 
+pub(crate) use articulated::{Articulated, ResponseScratch};
 use mobility::{JointRows, Row, free_response};
 pub use screw::{SystemScrew, about};
 
@@ -349,13 +350,32 @@ impl<T: Scalar> System<T> {
 
     /// The screw of the axis through contact `i`'s point with direction `u` (module docs).
     pub fn contact_axis(&self, i: usize, u: &Vec3<T>) -> SystemScrew<T> {
+        let mut s = SystemScrew(Vec::new());
+        self.contact_axis_into(i, u, &mut s);
+        s
+    }
+
+    /// [`System::contact_axis`] into `s`, its storage reused.
+    pub fn contact_axis_into(&self, i: usize, u: &Vec3<T>, s: &mut SystemScrew<T>) {
         let (pair, (first, second)) = (self.pairs[i], &self.levers[i]);
-        let mut s = SystemScrew::zeros(self.bodies.len());
+        s.0.clear();
+        s.0.resize(self.bodies.len(), Screw::zero());
         s.0[pair.first] = Screw::axis(first, u);
         if let (Some(b), Some(r)) = (pair.second, second) {
             s.0[b] = Screw(-Screw::axis(r, u).0);
         }
-        s
+    }
+
+    /// The articulated-body factorization of the joints, when they form a forest with
+    /// independent free screws ([`articulated`]); a system without joints is a forest of
+    /// free roots.
+    pub(crate) fn articulated(&self) -> Option<Articulated<T>> {
+        Articulated::new(&self.bodies, &self.joints, &self.screws)
+    }
+
+    /// `tree` factored again for this system (of the shape it was built for).
+    pub(crate) fn refactor(&self, tree: &mut Articulated<T>) -> Option<()> {
+        tree.refactor(&self.bodies, &self.screws)
     }
 
     /// The velocity of contact `i`'s point on its first body relative to its second, before

@@ -15,8 +15,20 @@ use crate::scalar::Scalar;
 
 /// A system's screw: one [`Screw`] per body (module docs). The default is the empty stack, of
 /// no body, the placeholder of an outcome not yet solved.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Debug, PartialEq)]
 pub struct SystemScrew<T: Scalar>(pub Vec<Screw<T>>);
+
+/// `clone_from` reuses the stack's storage (the derived one would allocate a new one): how the
+/// solves' buffers of a system are written over without allocating.
+impl<T: Scalar> Clone for SystemScrew<T> {
+    fn clone(&self) -> Self {
+        SystemScrew(self.0.clone())
+    }
+
+    fn clone_from(&mut self, source: &Self) {
+        self.0.clone_from(&source.0);
+    }
+}
 
 impl<T: Scalar> Default for SystemScrew<T> {
     fn default() -> Self {
