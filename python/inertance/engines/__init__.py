@@ -9,7 +9,7 @@ imported until an adapter is asked for by name):
 * :mod:`.catalogue` — the catalogue (``benches/engines/scenes/*.toml``) with each scene's exact
   answer, solved by inertance under the law the engines implement (the unilateral law
   frictionless; Coulomb friction with Newton restitution where μ > 0);
-* :mod:`.grade` — the grades: the error of the twist after impact in the kinetic-energy metric,
+* :mod:`.grading` — the grades: the error of the twist after impact in the kinetic-energy metric,
   relative to the exact impact's velocity change; energy gained; contacts that should
   separate and do not;
 * :mod:`.runner` — runs adapters over scenes, tables in Markdown and JSON
@@ -26,7 +26,7 @@ body's twist after the impact (world axes, the velocity of the centre of mass). 
 """
 
 from .catalogue import CATALOGUE, CatalogueScene, Twist, scenes
-from .grade import Grade, grade
+from .grading import Grade, grade
 from .scene import Body, Contact, EngineScene, Plane, SceneUnsupported, Support
 
 #: Adapters shipped with inertance, by name: (module, class, constructor arguments). Importing

@@ -2,7 +2,7 @@
 
 * :class:`ExactAdapter` answers with inertance's own solve of the scene's file: it grades 0.
 * :class:`NoImpactAdapter` answers with the twist before impact (the bodies pass through each
-  other): it grades exactly 1 by the definition of the error (:mod:`inertance.engines.grade`).
+  other): it grades exactly 1 by the definition of the error (:mod:`inertance.engines.grading`).
 """
 
 from __future__ import annotations

@@ -10,7 +10,7 @@ import traceback
 from typing import Iterable, Sequence
 
 from .catalogue import CatalogueScene
-from .grade import Grade, grade
+from .grading import Grade, grade
 
 
 def run(adapters: Sequence, scenes: Sequence[CatalogueScene]) -> dict:
