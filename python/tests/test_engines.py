@@ -30,7 +30,7 @@ def scenes():
 
 def test_the_catalogue_has_the_scenes_of_the_brief():
     names = {p.stem for p in FILES}
-    for want in ["ball-floor-e0", "ball-floor-e05", "ball-floor-e1", "box-flat-e0", "box-flat-e05",
+    for want in ["bar-pitching-e02", "ball-floor-e0", "ball-floor-e05", "ball-floor-e1", "box-flat-e0", "box-flat-e05",
                  "box-flat-e1", "box-edge-45", "box-corner", "bar-pitching", "ball-corner",
                  "ball-corner-rough", "rod-rough-floor", "cradle-3", "box-on-box"]:
         assert want in names
@@ -211,6 +211,15 @@ def test_an_adapter_that_fails_is_reported_not_hidden(scenes):
         def run(self, scene):
             return []  # no twist for the body
 
+    class Refuses:
+        name = "refuses"
+
+        def run(self, scene):
+            raise escene.SceneUnsupported(scene.file, "contact.mu", "no friction here")
+
+    rep = runner.run([Refuses()], [scenes["ball-floor-e05"]])
+    assert rep["not_applicable"] == [{"scene": "ball-floor-e05", "engine": "refuses", "reason": "no friction here"}]
+    assert "n/a" in runner.markdown(rep)
     rep = runner.run([Broken(), Wrong()], [scenes["ball-floor-e05"]])
     assert not rep["grades"]
     msgs = [f["error"] for f in rep["failures"]]
@@ -304,6 +313,23 @@ def test_mujoco_tuned_ball_bounces_near_the_asked_e(scenes):
         assert g.error < 0.1, (name, g.error)
     up = a.run(scenes["ball-floor-e1"].engine)[0]
     assert up.velocity[2] > 0.95
+
+
+def test_pinocchio_agrees_where_every_contact_stays_active(scenes):
+    """impulseDynamics is the simultaneous Newton law: where the unilateral answer keeps every
+    contact active it is the same answer (to 1e-12 of the impact: a Cholesky solve of a small,
+    well-conditioned G); on the pitching bar it pulls and disagrees; frictional scenes and two
+    coefficients are refused by name, not graded."""
+    pytest.importorskip("pinocchio")
+    a = engines.adapter("pinocchio")
+    for name in ["ball-floor-e05", "ball-corner", "box-corner", "box-edge-30", "cradle-3", "box-on-box"]:
+        g = grading.grade(scenes[name], a.name, a.run(scenes[name].engine))
+        assert g.error < 1e-12, (name, g.error)
+    bar = scenes["bar-pitching-e02"]
+    assert grading.grade(bar, a.name, a.run(bar.engine)).error > 0.1
+    rep = runner.run([a], [scenes["bar-pitching"], scenes["rod-rough-floor"]])
+    assert not rep["grades"] and not rep["failures"]
+    assert [f["scene"] for f in rep["not_applicable"]] == ["bar-pitching", "rod-rough-floor"]
 
 
 def test_mujoco_default_runs_every_scene(scenes):

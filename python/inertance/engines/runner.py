@@ -11,20 +11,26 @@ from typing import Iterable, Sequence
 
 from .catalogue import CatalogueScene
 from .grading import Grade, grade
+from .scene import SceneUnsupported
 
 
 def run(adapters: Sequence, scenes: Sequence[CatalogueScene]) -> dict:
     """Every adapter on every scene. Returns ``{"date", "python", "engines": [{name, version,
     settings}], "scenes": [{name, file, law, contacts}], "grades": [Grade.to_json() …],
-    "failures": [{scene, engine, error}]}``: an adapter that raises on a scene is recorded as a
-    failure with its message, not graded and not hidden."""
-    grades, failures = [], []
+    "not_applicable": [{scene, engine, reason}], "failures": [{scene, engine, error}]}``: an
+    adapter that refuses a scene it cannot represent (:class:`SceneUnsupported`: a law or a
+    coefficient its engine does not have) is listed with the reason; one that raises anything
+    else is recorded as a failure with its message — neither is graded, neither is hidden."""
+    grades, failures, refused = [], [], []
     for a in adapters:
         for s in scenes:
             t0 = time.perf_counter()
             try:
                 twists = a.run(s.engine)
                 g = grade(s, a.name, twists)
+            except SceneUnsupported as e:
+                refused.append({"scene": s.name, "engine": a.name, "reason": e.message})
+                continue
             except Exception as e:  # an engine's failure is a result, reported
                 failures.append({"scene": s.name, "engine": a.name, "error": f"{type(e).__name__}: {e}",
                                  "trace": traceback.format_exc(limit=3)})
@@ -38,8 +44,10 @@ def run(adapters: Sequence, scenes: Sequence[CatalogueScene]) -> dict:
         "engines": [{"name": a.name, "version": str(getattr(a, "version", "?")),
                      "settings": getattr(a, "settings", {})} for a in adapters],
         "scenes": [{"name": s.name, "file": str(s.path), "law": s.law, "contacts": len(s.engine.contacts),
-                    "bodies": len(s.engine.bodies)} for s in scenes],
+                    "bodies": len(s.engine.bodies),
+                    "exact_energy_ratio": s.kinetic_energy_after / s.kinetic_energy_before} for s in scenes],
         "grades": grades,
+        "not_applicable": refused,
         "failures": failures,
     }
 
@@ -54,6 +62,7 @@ def markdown(report: dict) -> str:
     engines = [e["name"] for e in report["engines"]]
     by = {(g["scene"], g["engine"]): g for g in report["grades"]}
     failed = {(f["scene"], f["engine"]): f for f in report["failures"]}
+    refused = {(f["scene"], f["engine"]): f for f in report.get("not_applicable", [])}
     lines = [f"Engine conformance — {report['date']}, Python {report['python']}", ""]
     lines.append("Error of the twist after impact, ‖ξ − ξ*‖_M / ‖ξ* − ξ⁰‖_M (0: exact; 1: as if no impact); "
                  "`!sep` marks a contact that should separate and does not, or the converse; "
@@ -66,7 +75,7 @@ def markdown(report: dict) -> str:
         for e in engines:
             g = by.get((s["name"], e))
             if g is None:
-                cells.append("failed" if (s["name"], e) in failed else "—")
+                cells.append("failed" if (s["name"], e) in failed else "n/a" if (s["name"], e) in refused else "—")
                 continue
             c = _fmt(g["error"])
             if not g["separation_ok"]:
@@ -80,12 +89,16 @@ def markdown(report: dict) -> str:
     lines.append("| scene | inertance | " + " | ".join(engines) + " |")
     lines.append("|---|---|" + "---|" * len(engines))
     for s in report["scenes"]:
-        exact = next((g["exact_energy_ratio"] for g in report["grades"] if g["scene"] == s["name"]), None)
+        exact = s.get("exact_energy_ratio")
         cells = [_fmt(by[(s["name"], e)]["energy_ratio"]) if (s["name"], e) in by else "—" for e in engines]
         lines.append(f"| {s['name']} | {'—' if exact is None else _fmt(exact)} | " + " | ".join(cells) + " |")
     lines += ["", "Engines:", ""]
     for e in report["engines"]:
         lines.append(f"- **{e['name']}** {e['version']}: " + ", ".join(f"{k} = {v}" for k, v in e["settings"].items()))
+    if report.get("not_applicable"):
+        lines += ["", "Not applicable (n/a: the engine's call cannot represent the scene):", ""]
+        for f in report["not_applicable"]:
+            lines.append(f"- {f['engine']} on {f['scene']}: {f['reason']}")
     if report["failures"]:
         lines += ["", "Failures:", ""]
         for f in report["failures"]:
