@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The engine conformance suite on demand (benches/engines/README.md): a virtual environment in
-# the Cargo target directory with the package and its `engines` extra (MuJoCo, PyBullet, Pinocchio: wheels
+# the Cargo target directory with the package and its `engines` extra (MuJoCo, PyBullet, Pinocchio, Rapier: wheels
 # from PyPI), the engine tests of python/tests/test_engines.py (which python/test.sh skips
 # without the engines), then the whole catalogue graded into benches/engines/results/ (or the
 # directory given as the first argument).
@@ -12,7 +12,7 @@ venv="$target/python-engines-venv"
 python="${PYTHON:-python3}"
 out="${1:-$root/benches/engines/results}"
 [ -x "$venv/bin/python" ] || "$python" -m venv "$venv"
-"$venv/bin/python" -m pip install --quiet --disable-pip-version-check maturin pytest numpy sympy mujoco pybullet pin
+"$venv/bin/python" -m pip install --quiet --disable-pip-version-check maturin pytest numpy sympy mujoco pybullet pin rapier3d
 PATH="$venv/bin:$PATH" CARGO_TARGET_DIR="$target" "$venv/bin/python" -m pip install --quiet --disable-pip-version-check \
     --no-build-isolation --force-reinstall --no-deps "$here"
 cd "$here/tests"
@@ -20,7 +20,7 @@ cd "$here/tests"
 cd "$root"
 status=0
 "$venv/bin/python" -m inertance.engines --catalogue "$root/benches/engines/scenes" \
-    --engines "${ENGINES:-mujoco,mujoco-tuned,pybullet,pinocchio}" --out "$out" || status=$?
+    --engines "${ENGINES:-mujoco,mujoco-tuned,pybullet,pinocchio,rapier}" --out "$out" || status=$?
 "$venv/bin/python" - <<'PY'
 import importlib.metadata as md
 for p in ("mujoco", "pybullet", "numpy"):

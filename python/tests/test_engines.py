@@ -332,6 +332,17 @@ def test_pinocchio_agrees_where_every_contact_stays_active(scenes):
     assert [f["scene"] for f in rep["not_applicable"]] == ["bar-pitching", "rod-rough-floor"]
 
 
+def test_rapier_single_contacts(scenes):
+    """Rapier (f32) on one contact through the centre: Newton's law to its precision — 1e-6 of
+    the impact, a few f32 roundings (measured ≤ 2e-8) — so a wrong mass, sign or combine rule
+    is caught; and the frictionless corner's two decoupled contacts likewise."""
+    pytest.importorskip("rapier3d")
+    a = engines.adapter("rapier")
+    for name in ["ball-floor-e0", "ball-floor-e05", "ball-floor-e1", "ball-corner"]:
+        g = grading.grade(scenes[name], a.name, a.run(scenes[name].engine))
+        assert g.error < 1e-6, (name, g.error)
+
+
 def test_mujoco_default_runs_every_scene(scenes):
     """MuJoCo's defaults ignore e: every scene runs and gives a finite twist (no bound on the error:
     it is what the report measures)."""

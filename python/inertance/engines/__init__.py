@@ -16,7 +16,8 @@ imported until an adapter is asked for by name):
   (``python -m inertance.engines``);
 * :mod:`.reference` — two pure-Python adapters that need no engine (the exact answer, and
   "nothing happens"), the runner's own tests;
-* :mod:`.mujoco_adapter`, :mod:`.pybullet_adapter`, :mod:`.pinocchio_adapter` — the engines (optional: ``pip install
+* :mod:`.mujoco_adapter`, :mod:`.pybullet_adapter`, :mod:`.pinocchio_adapter`, :mod:`.rapier_adapter` — the
+  engines (optional: ``pip install
   ./python[engines]``).
 
 The adapter protocol: an object with a ``name`` (str), optionally ``settings`` (dict, recorded
@@ -38,6 +39,7 @@ ADAPTERS = {
     "mujoco-tuned": ("inertance.engines.mujoco_adapter", "MuJoCoAdapter", {"tuned": True}),
     "pybullet": ("inertance.engines.pybullet_adapter", "PyBulletAdapter", {}),
     "pinocchio": ("inertance.engines.pinocchio_adapter", "PinocchioAdapter", {}),
+    "rapier": ("inertance.engines.rapier_adapter", "RapierAdapter", {}),
 }
 
 
