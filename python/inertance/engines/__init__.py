@@ -16,9 +16,9 @@ imported until an adapter is asked for by name):
   (``python -m inertance.engines``);
 * :mod:`.reference` — two pure-Python adapters that need no engine (the exact answer, and
   "nothing happens"), the runner's own tests;
-* :mod:`.mujoco_adapter`, :mod:`.pybullet_adapter`, :mod:`.pinocchio_adapter`, :mod:`.rapier_adapter` — the
-  engines (optional: ``pip install
-  ./python[engines]``).
+* :mod:`.mujoco_adapter`, :mod:`.pybullet_adapter`, :mod:`.pinocchio_adapter`,
+  :mod:`.rapier_adapter` — the engines, one module each (optional: ``pip install
+  ./python[engines]``; not Drake yet).
 
 The adapter protocol: an object with a ``name`` (str), optionally ``settings`` (dict, recorded
 in the report) and ``version`` (str), and ``run(scene: EngineScene) -> list[Twist]`` giving each

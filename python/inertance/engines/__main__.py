@@ -6,7 +6,7 @@ import argparse
 import sys
 
 from . import ADAPTERS, adapter
-from .catalogue import CATALOGUE, scenes
+from .catalogue import scenes
 from .runner import markdown, run, write
 
 
@@ -15,7 +15,7 @@ def main(argv=None) -> int:
     p.add_argument("--engines", default="mujoco,mujoco-tuned,pybullet,pinocchio,rapier",
                    help=f"comma-separated adapters among {', '.join(ADAPTERS)} (default: %(default)s)")
     p.add_argument("--scenes", default=None, help="comma-separated scene names (file stems); default: all")
-    p.add_argument("--catalogue", default=None, help=f"the scenes' directory (default: {CATALOGUE})")
+    p.add_argument("--catalogue", default=None, help="the scenes' directory (default: $INERTANCE_CATALOGUE, the source checkout's, or ./benches/engines/scenes)")
     p.add_argument("--out", default=None, help="write report.md and report.json here (default: Markdown to stdout)")
     args = p.parse_args(argv)
     try:

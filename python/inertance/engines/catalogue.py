@@ -26,8 +26,21 @@ import numpy as np
 
 from .scene import EngineScene, load as load_engine_scene
 
-#: The catalogue's directory in a checkout: ``benches/engines/scenes/``.
+#: The catalogue's directory in a checkout: ``benches/engines/scenes/`` (the package run from
+#: its source tree). An installed package has no catalogue: :func:`default_catalogue` then
+#: looks at ``$INERTANCE_CATALOGUE`` and at ``benches/engines/scenes`` under the working directory.
 CATALOGUE = Path(__file__).resolve().parents[3] / "benches" / "engines" / "scenes"
+
+
+def default_catalogue() -> Path:
+    """The first of ``$INERTANCE_CATALOGUE``, :data:`CATALOGUE` and ``./benches/engines/scenes``
+    that is a directory (else :data:`CATALOGUE`, which :func:`scenes` reports missing)."""
+    import os
+
+    for d in (os.environ.get("INERTANCE_CATALOGUE"), CATALOGUE, Path.cwd() / "benches" / "engines" / "scenes"):
+        if d and Path(d).is_dir():
+            return Path(d)
+    return CATALOGUE
 
 
 @dataclass(frozen=True)
@@ -136,11 +149,12 @@ def _speed(engine: EngineScene, twists) -> float:
 
 
 def scenes(directory=None, names: Optional[Sequence[str]] = None) -> list:
-    """Every catalogue scene of ``directory`` (default :data:`CATALOGUE`), sorted by name, or
-    those named (stems); an unknown name is a ``KeyError`` listing the catalogue."""
-    directory = Path(directory) if directory is not None else CATALOGUE
+    """Every catalogue scene of ``directory`` (default :func:`default_catalogue`), sorted by name,
+    or those named (stems); an unknown name is a ``KeyError`` listing the catalogue."""
+    directory = Path(directory) if directory is not None else default_catalogue()
     if not directory.is_dir():
-        raise FileNotFoundError(f"no catalogue directory {directory} (pass the path of benches/engines/scenes)")
+        raise FileNotFoundError(f"no catalogue directory {directory} (pass the path of benches/engines/scenes, "
+                                "or set INERTANCE_CATALOGUE)")
     files = {p.stem: p for p in sorted(directory.glob("*.toml"))}
     if names:
         missing = [n for n in names if n not in files]
