@@ -20,7 +20,7 @@ cd "$here/tests"
 cd "$root"
 status=0
 "$venv/bin/python" -m inertance.engines --catalogue "$root/benches/engines/scenes" \
-    --engines "${ENGINES:-mujoco,mujoco-tuned,pybullet,pinocchio,rapier}" --out "$out" || status=$?
+    --engines "${ENGINES:-mujoco,mujoco-tuned,mujoco-calibrated,pybullet,pinocchio,rapier}" --out "$out" || status=$?
 "$venv/bin/python" - <<'PY'
 import importlib.metadata as md
 for p in ("mujoco", "pybullet", "numpy"):

@@ -37,6 +37,7 @@ ADAPTERS = {
     "no-impact": ("inertance.engines.reference", "NoImpactAdapter", {}),
     "mujoco": ("inertance.engines.mujoco_adapter", "MuJoCoAdapter", {"tuned": False}),
     "mujoco-tuned": ("inertance.engines.mujoco_adapter", "MuJoCoAdapter", {"tuned": True}),
+    "mujoco-calibrated": ("inertance.engines.mujoco_adapter", "MuJoCoAdapter", {"tuned": True, "calibrated": True}),
     "pybullet": ("inertance.engines.pybullet_adapter", "PyBulletAdapter", {}),
     "pinocchio": ("inertance.engines.pinocchio_adapter", "PinocchioAdapter", {}),
     "rapier": ("inertance.engines.rapier_adapter", "RapierAdapter", {}),
