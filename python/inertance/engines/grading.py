@@ -21,9 +21,10 @@ is a gain where none can be.
 at the scene's contact points, engine against exact. A contact "should separate" when its exact
 normal velocity exceeds ``SEPARATION_TOLERANCE`` times the scene's largest approach speed, and
 "separates" in the engine by the same test. The tolerance is 1 %: well above the f64 solve's
-rounding (≤ 10⁻¹² here) and below the smallest separation speed in the catalogue that is not
-zero (the bar's second support, about 3 % of its first's approach speed); an engine's
-residual velocities at a contact that stays (e = 0) are counted as separating only beyond it.
+rounding (≤ 10⁻¹² here) and far below the smallest separation speed in the catalogue that is
+not zero (20 % of the approach speed: bar-pitching-e02's first support, e = 0.2); an engine's
+residual velocity at a contact that stays (e = 0, or two cradle balls leaving together) counts
+as separating only beyond it.
 """
 
 from __future__ import annotations
