@@ -23,7 +23,7 @@ status=0
     --engines "${ENGINES:-mujoco,mujoco-tuned,mujoco-calibrated,pybullet,pinocchio,rapier}" --out "$out" || status=$?
 "$venv/bin/python" - <<'PY'
 import importlib.metadata as md
-for p in ("mujoco", "pybullet", "numpy"):
+for p in ("mujoco", "pybullet", "pin", "rapier3d", "numpy"):
     try:
         print(f"{p} {md.version(p)}")
     except md.PackageNotFoundError:
