@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The engine conformance suite on demand (benches/engines/README.md): a virtual environment in
-# the Cargo target directory with the package and its `engines` extra (MuJoCo, PyBullet, Pinocchio, Rapier: wheels
+# the Cargo target directory with the package and its `engines` extra (MuJoCo, PyBullet, Pinocchio, Rapier; Drake where its wheel installs: wheels
 # from PyPI), the engine tests of python/tests/test_engines.py (which python/test.sh skips
 # without the engines), then the whole catalogue graded into benches/engines/results/ (or the
 # directory given as the first argument).
@@ -13,6 +13,8 @@ python="${PYTHON:-python3}"
 out="${1:-$root/benches/engines/results}"
 [ -x "$venv/bin/python" ] || "$python" -m venv "$venv"
 "$venv/bin/python" -m pip install --quiet --disable-pip-version-check maturin pytest numpy sympy mujoco pybullet pin rapier3d
+# Drake (the `drake` extra) only where its wheel installs (manylinux_2_34, glibc ≥ 2.34)
+"$venv/bin/python" -m pip install --quiet --disable-pip-version-check drake || echo "drake did not install: its adapter and test are skipped" >&2
 PATH="$venv/bin:$PATH" CARGO_TARGET_DIR="$target" "$venv/bin/python" -m pip install --quiet --disable-pip-version-check \
     --no-build-isolation --force-reinstall --no-deps "$here"
 cd "$here/tests"
@@ -20,10 +22,10 @@ cd "$here/tests"
 cd "$root"
 status=0
 "$venv/bin/python" -m inertance.engines --catalogue "$root/benches/engines/scenes" \
-    --engines "${ENGINES:-mujoco,mujoco-tuned,mujoco-calibrated,pybullet,pinocchio,rapier}" --out "$out" || status=$?
+    --engines "${ENGINES:-mujoco,mujoco-tuned,mujoco-calibrated,pybullet,pinocchio,rapier,drake}" --out "$out" || status=$?
 "$venv/bin/python" - <<'PY'
 import importlib.metadata as md
-for p in ("mujoco", "pybullet", "pin", "rapier3d", "numpy"):
+for p in ("mujoco", "pybullet", "pin", "rapier3d", "drake", "numpy"):
     try:
         print(f"{p} {md.version(p)}")
     except md.PackageNotFoundError:

@@ -17,8 +17,8 @@ imported until an adapter is asked for by name):
 * :mod:`.reference` — two pure-Python adapters that need no engine (the exact answer, and
   "nothing happens"), the runner's own tests;
 * :mod:`.mujoco_adapter`, :mod:`.pybullet_adapter`, :mod:`.pinocchio_adapter`,
-  :mod:`.rapier_adapter` — the engines, one module each (optional: ``pip install
-  ./python[engines]``; not Drake yet).
+  :mod:`.rapier_adapter`, :mod:`.drake_adapter` — the engines, one module each (optional:
+  ``pip install ./python[engines]``, and ``[drake]``).
 
 The adapter protocol: an object with a ``name`` (str), optionally ``settings`` (dict, recorded
 in the report) and ``version`` (str), and ``run(scene: EngineScene) -> list[Twist]`` giving each
@@ -41,6 +41,7 @@ ADAPTERS = {
     "pybullet": ("inertance.engines.pybullet_adapter", "PyBulletAdapter", {}),
     "pinocchio": ("inertance.engines.pinocchio_adapter", "PinocchioAdapter", {}),
     "rapier": ("inertance.engines.rapier_adapter", "RapierAdapter", {}),
+    "drake": ("inertance.engines.drake_adapter", "DrakeAdapter", {}),
 }
 
 

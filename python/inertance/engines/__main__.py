@@ -12,7 +12,7 @@ from .runner import markdown, run, write
 
 def main(argv=None) -> int:
     p = argparse.ArgumentParser(prog="python -m inertance.engines", description=__doc__)
-    p.add_argument("--engines", default="mujoco,mujoco-tuned,mujoco-calibrated,pybullet,pinocchio,rapier",
+    p.add_argument("--engines", default="mujoco,mujoco-tuned,mujoco-calibrated,pybullet,pinocchio,rapier,drake",
                    help=f"comma-separated adapters among {', '.join(ADAPTERS)} (default: %(default)s)")
     p.add_argument("--scenes", default=None, help="comma-separated scene names (file stems); default: all")
     p.add_argument("--catalogue", default=None, help="the scenes' directory (default: $INERTANCE_CATALOGUE, the source checkout's, or ./benches/engines/scenes)")
