@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
 # The engine conformance suite on demand (benches/engines/README.md): a virtual environment in
-# the Cargo target directory with the package and its `engines` extra (MuJoCo, PyBullet, Pinocchio, Rapier; Drake where its wheel installs: wheels
-# from PyPI), the engine tests of python/tests/test_engines.py (which python/test.sh skips
-# without the engines), then the whole catalogue graded into benches/engines/results/ (or the
-# directory given as the first argument).
+# the Cargo target directory with the package and its engines from PyPI wheels (the `engines`
+# extra: MuJoCo, PyBullet, Pinocchio, Rapier; Drake where its wheel installs), the engine tests
+# of python/tests/test_engines.py (python/test.sh skips them without the engines), then the
+# whole catalogue graded by every installed engine (or by $ENGINES, comma-separated adapter
+# names) into benches/engines/results/ (or the directory given as the first argument).
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
 root="$here/.."
@@ -22,7 +23,7 @@ cd "$here/tests"
 cd "$root"
 status=0
 "$venv/bin/python" -m inertance.engines --catalogue "$root/benches/engines/scenes" \
-    --engines "${ENGINES:-mujoco,mujoco-tuned,mujoco-calibrated,pybullet,pinocchio,rapier,drake}" --out "$out" || status=$?
+    ${ENGINES:+--engines "$ENGINES"} --out "$out" || status=$?
 "$venv/bin/python" - <<'PY'
 import importlib.metadata as md
 for p in ("mujoco", "pybullet", "pin", "rapier3d", "drake", "numpy"):

@@ -275,6 +275,23 @@ def test_importing_inertance_imports_no_engine():
     assert out.stdout.strip() == "False"
 
 
+def test_the_command_line_defaults_to_the_installed_engines(tmp_path):
+    """Without --engines every installed engine runs and the others are named as skipped; with
+    none installed the command says how to install them and exits 2."""
+    have = engines.installed()
+    out = subprocess.run([sys.executable, "-m", "inertance.engines", "--catalogue", str(CAT),
+                          "--scenes", "ball-floor-e05", "--out", str(tmp_path)], capture_output=True, text=True)
+    missing = [n for n in engines.ENGINE_MODULES if n not in have]
+    if missing:
+        assert f"not installed, skipped: {', '.join(missing)}" in out.stderr
+    if not have:
+        assert out.returncode == 2 and "pip install ./python[engines]" in out.stderr
+    else:
+        assert out.returncode == 0, out.stderr
+        data = json.loads((tmp_path / "report.json").read_text())
+        assert [e["name"] for e in data["engines"]] == have
+
+
 def test_the_readme_adapter_example_runs(monkeypatch, capsys):
     """The dozen-line adapter of benches/engines/README.md, run as written from the repository's
     root: exact on the ball (1e-12: f64 rounding), wrong on the flat box (one pass of one contact

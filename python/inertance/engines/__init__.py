@@ -45,6 +45,18 @@ ADAPTERS = {
 }
 
 
+#: The engine each shipped adapter needs (a top-level module), for :func:`installed`.
+ENGINE_MODULES = {"mujoco": "mujoco", "mujoco-tuned": "mujoco", "mujoco-calibrated": "mujoco",
+                  "pybullet": "pybullet", "pinocchio": "pinocchio", "rapier": "rapier3d", "drake": "pydrake"}
+
+
+def installed() -> list:
+    """The shipped engine adapters whose engine is installed (found, not imported)."""
+    import importlib.util
+
+    return [name for name, module in ENGINE_MODULES.items() if importlib.util.find_spec(module) is not None]
+
+
 def adapter(name: str):
     """A shipped adapter by name (``ADAPTERS``); imports its engine now (``ImportError`` when
     the engine is not installed, naming the extra)."""
@@ -57,4 +69,5 @@ def adapter(name: str):
 
 
 __all__ = ["CATALOGUE", "CatalogueScene", "Twist", "scenes", "Grade", "grade", "Body", "Contact",
-           "EngineScene", "Plane", "Support", "SceneUnsupported", "ADAPTERS", "adapter"]
+           "EngineScene", "Plane", "Support", "SceneUnsupported", "ADAPTERS", "ENGINE_MODULES", "adapter",
+           "installed"]
