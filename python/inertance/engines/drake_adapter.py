@@ -1,7 +1,7 @@
 """Drake (``pip install drake``): MultibodyPlant, discrete contact, no restitution coefficient.
 
 Drake's contact is compliant: point contact with a stiffness and Hunt–Crossley dissipation (or
-hydroelastic, not used here), solved by its discrete solver (SAP). It has no coefficient of
+hydroelastic, not used here), solved by its discrete solver (the plant's default settings). It has no coefficient of
 restitution, so e is ignored (as for MuJoCo's defaults) and the grade says what its defaults do
 to a rigid impact. Setup: ``MultibodyPlant`` with ``time_step`` (1 ms), gravity zero, point
 contact (``ContactModel.kPoint``), one free body per body (``SpatialInertia`` from the mass
