@@ -240,6 +240,10 @@ def test_bad_input_is_refused_by_name(tmp_path):
         engines.adapter("nope")
     with pytest.raises(ValueError, match="not part of the grammar"):
         escene.evaluate("__import__('os')")
+    typo = tmp_path / "typo.toml"
+    typo.write_text((CAT / "ball-floor-e05.toml").read_text().replace("mass = 1", "mas = 1"))
+    with pytest.raises(inertance.SceneError, match="mas"):  # inertance's own message, first
+        catalogue.load(typo)
     with pytest.raises(FileNotFoundError, match="no catalogue directory"):
         catalogue.scenes(tmp_path / "missing")
 

@@ -130,8 +130,9 @@ def solve_exact(path) -> tuple:
 def load(path) -> CatalogueScene:
     """A catalogue scene with its exact answer."""
     path = Path(path)
-    engine = load_engine_scene(path)
+    # inertance reads the file first: a bad scene gets its error (file, key, value, fix)
     law, after = solve_exact(path)
+    engine = load_engine_scene(path)
     if len(after) != len(engine.bodies):
         raise ValueError(f"{path}: inertance reports {len(after)} bodies, the engine scene has {len(engine.bodies)}")
     before = tuple(Twist.of(b.velocity, b.angular_velocity) for b in engine.bodies)
