@@ -198,6 +198,16 @@ def test_the_report_in_markdown_and_json(scenes, tmp_path):
     assert "!sep" in text  # the no-impact adapter misses every separation
 
 
+def test_convergence_grades_each_step(scenes):
+    """runner.convergence builds the adapter at each step and grades it: the exact adapter is 0 at
+    every step, the no-impact one 1 (to rounding, 1e-15)."""
+    steps = [1e-3, 1e-4]
+    exact = runner.convergence(lambda h: reference.ExactAdapter(), scenes["box-edge-30"], steps)
+    assert [r["step"] for r in exact] == steps and all(r["error"] == 0.0 for r in exact)
+    none = runner.convergence(lambda h: reference.NoImpactAdapter(), scenes["box-edge-30"], steps)
+    assert all(r["error"] == pytest.approx(1, abs=1e-15) and not r["separation_ok"] for r in none)
+
+
 def test_an_adapter_that_fails_is_reported_not_hidden(scenes):
     class Broken:
         name = "broken"

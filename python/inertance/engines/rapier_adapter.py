@@ -10,7 +10,7 @@ computes the inertia of the uniform solid: the adapter checks it against the sce
 steps until none of the scene's contacts still touches and approaches
 (:func:`~inertance.engines._geometry.pending_contacts`; for body–body contacts the relative
 normal velocity at the contact point riding with the first body), at least one step, at most
-``max_steps``, and reads each body's ``linvel`` (the centre of mass) and ``angvel`` (world).
+``max_steps`` (scaled up when ``dt`` is smaller than the default), and reads each body's ``linvel`` (the centre of mass) and ``angvel`` (world).
 Cylinders are refused (Rapier's axis is y, the scene's z: not built yet).
 """
 
@@ -32,15 +32,16 @@ def _vec(v) -> np.ndarray:
 class RapierAdapter:
     name = "rapier"
 
-    def __init__(self, max_steps: int = 120):
+    def __init__(self, max_steps: int = 120, dt: float = None):
         self.max_steps = max_steps
+        self.dt = dt
         try:
             from importlib.metadata import version
             self.version = version("rapier3d")
         except Exception:  # pragma: no cover
             self.version = "?"
         ip = rp.PhysicsWorld().integration_parameters
-        self.settings = {"dt": ip.dt, "num_solver_iterations": ip.num_solver_iterations, "gravity": "0",
+        self.settings = {"dt": dt if dt is not None else ip.dt, "num_solver_iterations": ip.num_solver_iterations, "gravity": "0",
                          "combine rule": "MULTIPLY (restitution and friction)", "precision": "f32",
                          "stop": "no scene contact touching and approaching"}
 
@@ -49,6 +50,10 @@ class RapierAdapter:
         fb, fo = product_restitutions(scene, "friction")
         mul = rp.CoefficientCombineRule.MULTIPLY
         world = rp.PhysicsWorld(gravity=(0.0, 0.0, 0.0))
+        if self.dt is not None:
+            world.integration_parameters.dt = self.dt  # a live view of the world's parameters
+            if abs(world.integration_parameters.dt - self.dt) > 1e-6 * self.dt:  # f32
+                raise RuntimeError(f"Rapier kept dt = {world.integration_parameters.dt}, not {self.dt}")
 
         def material(builder, r, mu):
             return (builder.restitution(float(r)).friction(float(mu))
@@ -106,7 +111,8 @@ class RapierAdapter:
                     return True
             return False
 
-        for _ in range(self.max_steps):
+        steps = self.max_steps if self.dt is None else int(self.max_steps * max(1.0, (1 / 60) / self.dt))
+        for _ in range(steps):
             world.step()
             poses, twists = state()
             if not pending_contacts(scene, poses, twists) and not body_body_approaching(poses, twists):

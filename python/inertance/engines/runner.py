@@ -116,3 +116,16 @@ def write(report: dict, out_dir) -> tuple:
     md.write_text(markdown(report))
     js.write_text(json.dumps(report, indent=1) + "\n")
     return md, js
+
+
+def convergence(make_adapter, scene: CatalogueScene, steps: Sequence[float]) -> list:
+    """One engine's grade on one scene as its time step is refined: ``make_adapter(step)`` builds
+    the adapter at that step; returns ``[{"step", "error", "energy_ratio", "separation_ok"}]`` in
+    the order given. Does the engine approach the exact answer as the step shrinks, and at what
+    rate, or settle elsewhere? (The table of benches/engines/README.md.)"""
+    out = []
+    for h in steps:
+        a = make_adapter(h)
+        g = grade(scene, a.name, a.run(scene.engine))
+        out.append({"step": h, "error": g.error, "energy_ratio": g.energy_ratio, "separation_ok": g.separation_ok})
+    return out
