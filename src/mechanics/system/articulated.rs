@@ -58,6 +58,7 @@
 //! of the free screws' echelon form, so λ_j is f_i about the world origin read in those
 //! columns (signed for the joint's first body) — exact when Δ{V} is.
 
+use crate::mechanics::body::Inertia;
 use crate::mechanics::screw::Screw;
 use crate::scalar::Scalar;
 
@@ -104,7 +105,7 @@ pub(crate) struct Articulated<T: Scalar> {
     /// (I^A)⁻¹ of each root free of the ground, on [F; M] to [v; ω].
     roots: Vec<Block<T>>,
     /// Scratch of the factorization: each body's articulated inertia until it is eliminated.
-    inertia: Vec<Option<Block<T>>>,
+    inertia: Vec<Block<T>>,
 }
 
 /// Scratch of [`Articulated::response_into`], reused across responses.
@@ -207,17 +208,29 @@ impl<T: Scalar> Articulated<T> {
         dinv.clear();
         dinv.resize(square, T::zero());
         roots.clear();
-        inertia.clear();
-        inertia.extend(bodies.iter().map(|body| Some(mass_block(body))));
+        if inertia.len() != bodies.len() {
+            inertia.clear();
+            inertia.resize(bodies.len(), zero_block());
+        }
+        for (block, body) in inertia.iter_mut().zip(bodies) {
+            write_mass_block(body, block);
+        }
         let mut d: Block<T> = zero_block();
         let mut u: [[T; 6]; 6] = std::array::from_fn(|_| std::array::from_fn(|_| T::zero()));
         for &i in order.iter() {
             let node = &mut nodes[i];
-            let mut a = inertia[i].take().expect("each body once");
+            // Body i's articulated inertia, and its parent's (the ground's: none) to add to.
+            let (a, to) = match node.parent {
+                NONE => (&mut inertia[i], None),
+                p => {
+                    let (x, y) = pair_mut(inertia, i, p);
+                    (x, Some(y))
+                }
+            };
             if node.joint == NONE {
-                invert_definite(&mut a, 6)?;
+                invert_definite(a, 6)?;
                 node.at = roots.len();
-                roots.push(a);
+                roots.push(a.clone());
                 continue;
             }
             let n = node.free;
@@ -278,12 +291,9 @@ impl<T: Scalar> Articulated<T> {
                     a[6 * c + r] = a[6 * r + c].clone();
                 }
             }
-            let p = node.parent;
-            transport(
-                &a,
-                &node.r,
-                inertia[p].as_mut().expect("parent after child"),
-            );
+            if let Some(to) = to {
+                transport(a, &node.r, to);
+            }
         }
         Some(())
     }
@@ -442,19 +452,41 @@ impl<T: Scalar> Articulated<T> {
     }
 }
 
-/// M_i = diag(m I, J) on [v; ω].
-fn mass_block<T: Scalar>(body: &SystemBody<T>) -> Block<T> {
-    let mut d = zero_block();
+/// M_i = diag(m I, J) on [v; ω], written over `d`.
+fn write_mass_block<T: Scalar>(body: &SystemBody<T>, d: &mut Block<T>) {
+    for x in d.iter_mut() {
+        x.set_zero();
+    }
     for k in 0..3 {
         d[7 * k] = body.body.mass.clone();
     }
-    let j = body.body.inertia.matrix();
-    for r in 0..3 {
-        for c in 0..3 {
-            d[6 * (3 + r) + 3 + c] = j[(r, c)].clone();
+    match &body.body.inertia {
+        Inertia::Principal(j) => {
+            for k in 0..3 {
+                d[21 + 7 * k] = j[k].clone();
+            }
+        }
+        inertia => {
+            let j = inertia.matrix();
+            for r in 0..3 {
+                for c in 0..3 {
+                    d[6 * (3 + r) + 3 + c] = j[(r, c)].clone();
+                }
+            }
         }
     }
-    d
+}
+
+/// `&mut v[i]` and `&mut v[j]`, i ≠ j.
+fn pair_mut<X>(v: &mut [X], i: usize, j: usize) -> (&mut X, &mut X) {
+    debug_assert_ne!(i, j);
+    if i < j {
+        let (lo, hi) = v.split_at_mut(j);
+        (&mut lo[i], &mut hi[0])
+    } else {
+        let (lo, hi) = v.split_at_mut(i);
+        (&mut hi[0], &mut lo[j])
+    }
 }
 
 fn zero_block<T: Scalar>() -> Block<T> {

@@ -358,8 +358,7 @@ impl<T: Scalar> System<T> {
     /// [`System::contact_axis`] into `s`, its storage reused.
     pub fn contact_axis_into(&self, i: usize, u: &Vec3<T>, s: &mut SystemScrew<T>) {
         let (pair, (first, second)) = (self.pairs[i], &self.levers[i]);
-        s.0.clear();
-        s.0.resize(self.bodies.len(), Screw::zero());
+        s.set_zeros(self.bodies.len());
         s.0[pair.first] = Screw::axis(first, u);
         if let (Some(b), Some(r)) = (pair.second, second) {
             s.0[b] = Screw(-Screw::axis(r, u).0);

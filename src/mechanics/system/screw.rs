@@ -26,7 +26,15 @@ impl<T: Scalar> Clone for SystemScrew<T> {
     }
 
     fn clone_from(&mut self, source: &Self) {
-        self.0.clone_from(&source.0);
+        // Component by component: a whole screw's clone is a call to memcpy per body.
+        self.0.truncate(source.0.len());
+        let kept = self.0.len();
+        for (to, from) in self.0.iter_mut().zip(&source.0) {
+            for k in 0..6 {
+                to.0[k].clone_from(&from.0[k]);
+            }
+        }
+        self.0.extend(source.0[kept..].iter().cloned());
     }
 }
 
@@ -37,6 +45,18 @@ impl<T: Scalar> Default for SystemScrew<T> {
 }
 
 impl<T: Scalar> SystemScrew<T> {
+    /// The zero screw of `bodies` bodies written over `self`, its storage reused.
+    pub fn set_zeros(&mut self, bodies: usize) {
+        self.0.truncate(bodies);
+        for s in &mut self.0 {
+            for x in s.0.iter_mut() {
+                x.set_zero();
+            }
+        }
+        let kept = self.0.len();
+        self.0.extend((kept..bodies).map(|_| Screw::zero()));
+    }
+
     /// The zero screw of `bodies` bodies.
     pub fn zeros(bodies: usize) -> Self {
         SystemScrew(vec![Screw::zero(); bodies])
