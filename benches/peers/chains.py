@@ -14,7 +14,12 @@ centres and inertias.  For each N:
   * Pinocchio, with the two contacts' normal rows of the frame Jacobians (taken outside the
     timing): ``impulseDynamics(model, data, q, v, J, e, 0)`` (crba + Cholesky of M and of
     J M^-1 J^T + solve: Newton's law with one coefficient) timed the same way (timeit, gc off),
-    and the whole Pinocchio path with the Jacobians (computeJointJacobians + getFrameJacobian).
+    and the whole Pinocchio path with the Jacobians (computeJointJacobians + getFrameJacobian);
+  * Pinocchio's same call **from C++** (pinocchio_chain.cpp, no Python between the clock and the
+    call): the same model (written by ``model.saveToBinary``), q, v and J, timed as inertance is;
+    built once with g++ against the ``pin`` wheel (pin_build.py, as compare.py's harness), when
+    g++ and the cmeel prefix with Eigen's headers (``cmeel-eigen``) are there (``--no-cxx`` skips
+    it).  Its answers must equal the Python call's to a few ulps (the same library).
 
 Agreement: both Newton impulses are compressive in every scene (checked: the bilateral law is
 then the unilateral one, the problem Pinocchio solves), and the joint rates after impact agree:
@@ -22,7 +27,7 @@ inertance's link rates omega_i give qdot_i = omega_i - omega_{i-1}; the differen
 as max |qdot_pin - qdot_inertance| / max |qdot| and must stay below 16 N^4 eps (see rtol() and
 chains.md for why that tolerance).  Not part of CI.
 
-Run:  python3 -m venv target/peers-venv && target/peers-venv/bin/pip install pin numpy
+Run:  python3 -m venv target/peers-venv && target/peers-venv/bin/pip install pin numpy cmeel-eigen
       target/peers-venv/bin/python benches/peers/chains.py [--sizes 1 10 100 1000]
 """
 
@@ -37,11 +42,14 @@ import platform
 import statistics
 import subprocess
 import sys
+import tempfile
 import timeit
 from pathlib import Path
 
 import numpy as np
 import pinocchio as pin
+
+import pin_build  # benches/peers/pin_build.py: the C++ harness's build, shared with compare.py
 
 REPO = Path(__file__).resolve().parents[2]
 
@@ -92,6 +100,53 @@ def jacobian(model, data, q, frames):
     return np.vstack([normal @ pin.getFrameJacobian(model, data, f, pin.LOCAL_WORLD_ALIGNED)[:3] for f in frames])
 
 
+def initial_state(model):
+    """q = 0 (the chain along +x), v: the first joint at -1 (the chain turns as one bar)."""
+    v = np.zeros(model.nv)
+    v[0] = -1.0
+    return pin.neutral(model), v
+
+
+# The C++ call agrees with the Python call (the same library, the same inputs) to this many ulps of
+# the largest component.
+CXX_ULPS = 4
+
+
+def pinocchio_cxx_runs(sizes) -> tuple[dict, str | None]:
+    """Pinocchio's impulseDynamics timed in C++ (pinocchio_chain.cpp) on the chains of `sizes`:
+    ({N: {"ns": ns per call, "ulps": its answer's distance to the Python call's}}, None), or
+    ({}, why not).  Each model is written with saveToBinary and read back by the harness, with q, v
+    and the Jacobian rows taken here; every Data is released before the harness runs."""
+    target = Path(os.environ.get("CARGO_TARGET_DIR", REPO / "target"))
+    binary, why = pin_build.pinocchio_binary(Path(__file__).with_name("pinocchio_chain.cpp"), target / "peers",
+                                             ("boost_serialization",))
+    if binary is None:
+        return {}, why
+    ref, lines = {}, [str(len(sizes))]
+    with tempfile.TemporaryDirectory(prefix="inertance-chains-") as tmp:
+        for n in sizes:
+            model, frames = pinocchio_chain(n)
+            data = model.createData()
+            q, v = initial_state(model)
+            J = jacobian(model, data, q, frames)
+            ref[n] = (pin.impulseDynamics(model, data, q, v, J, K, 0.0).copy(), data.impulse_c.copy())
+            del data
+            path = Path(tmp) / f"chain-{n}.bin"
+            model.saveToBinary(str(path))
+            lines += [str(path), f"{J.shape[0]} {K!r}",
+                      *(" ".join(map(repr, x.ravel().tolist())) for x in (q, v, J))]
+        p = subprocess.run([str(binary)], input="\n".join(lines) + "\n", capture_output=True, text=True)
+    if p.returncode != 0:
+        return {}, f"pinocchio_chain failed (exit {p.returncode}): {p.stderr[-300:]}"
+    out = {}
+    for r in map(json.loads, p.stdout.splitlines()):
+        dq, impulse = ref[r["links"]]
+        ulps = max(float(np.max(np.abs(np.array(r[key]) - x)) / (np.finfo(float).eps * np.max(np.abs(x))))
+                   for key, x in (("dq_after", dq), ("impulse", impulse)))
+        out[r["links"]] = {"ns": r["ns_per_call"], "ulps": ulps}
+    return out, None
+
+
 def time_per_call(fn, repeat: int = 7, min_time: float = 0.02) -> float:
     """Median over `repeat` runs of the mean time per call, each run >= min_time s (gc off)."""
     fn()
@@ -122,6 +177,14 @@ def inertance_runs(sizes, example: str | None) -> dict:
     return {r["links"]: r for r in map(json.loads, out.splitlines())}
 
 
+def cxx_cols(c: dict | None, t_ours: float) -> str:
+    """The table's columns "pin C++ call" and its ratio to inertance's time."""
+    if c is None:
+        return f"{'—':>13} {'—':>12}"
+    t = c["ns"] * 1e-9
+    return f"{fmt(t):>13} {t / t_ours:>11.2f}×"
+
+
 def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--sizes", type=int, nargs="+", default=[1, 10, 100, 300, 1000])
@@ -130,6 +193,8 @@ def main() -> int:
     ap.add_argument("--example", help="a built chain_timing binary (default: cargo builds it)")
     ap.add_argument("--repeat", type=int, default=7)
     ap.add_argument("--min-time", type=float, default=0.02)
+    ap.add_argument("--no-cxx", dest="cxx", action="store_false",
+                    help="skip Pinocchio's call timed in C++ (pinocchio_chain.cpp, built with g++)")
     args = ap.parse_args()
 
     print(f"chains: inertance vs Pinocchio {pin.__version__} impulseDynamics, "
@@ -137,6 +202,7 @@ def main() -> int:
           f"{platform.python_implementation()} {platform.python_version()}, numpy {np.__version__}, "
           f"load {os.getloadavg()[0]:.1f}")
     ours = inertance_runs(args.sizes, args.example)
+    cxx, cxx_why = pinocchio_cxx_runs([n for n in args.sizes if n <= args.pin_max]) if args.cxx else ({}, "--no-cxx")
     gc.disable()
     rows, ok = [], True
     for n in args.sizes:
@@ -146,9 +212,7 @@ def main() -> int:
             continue
         model, frames = pinocchio_chain(n)
         data = model.createData()
-        q = pin.neutral(model)
-        v = np.zeros(n)
-        v[0] = -1.0
+        q, v = initial_state(model)
         J = jacobian(model, data, q, frames)
         dq = pin.impulseDynamics(model, data, q, v, J, K, 0.0).copy()
         impulse = -data.impulse_c.copy()  # Pinocchio's lambda = -P
@@ -167,16 +231,26 @@ def main() -> int:
     gc.enable()
 
     print(f"\n{'N':>6} {'inertance':>11} {'per body':>10} {'pin call':>11} {'÷ inertance':>12} "
-          f"{'pin +Jacobians':>15} {'÷ inertance':>12}  {'qdot agree':>10} {'P agree':>9}  impulses (Newton)")
+          f"{'pin +Jacobians':>15} {'÷ inertance':>12} {'pin C++ call':>13} {'÷ inertance':>12}  "
+          f"{'qdot agree':>10} {'P agree':>9}  impulses (Newton)")
     for n, t_ours, t_call, t_path, agree, p_agree, impulse, compressive in rows:
         if t_call is None:
-            print(f"{n:>6} {fmt(t_ours):>11} {fmt(t_ours / n):>10} {'—':>11} {'—':>12} {'—':>15} {'—':>12}  "
+            print(f"{n:>6} {fmt(t_ours):>11} {fmt(t_ours / n):>10} {'—':>11} {'—':>12} {'—':>15} {'—':>12} "
+                  f"{'—':>13} {'—':>12}  "
                   f"{'—':>10} {'—':>9}  {', '.join(f'{p:.6g}' for p in impulse)}  (Pinocchio not run: "
                   f"its Data for {n} joints would take ~{2.1 * (n / 300) ** 3:.0f} GB)")
             continue
         print(f"{n:>6} {fmt(t_ours):>11} {fmt(t_ours / n):>10} {fmt(t_call):>11} {t_call / t_ours:>11.2f}× "
-              f"{fmt(t_path):>15} {t_path / t_ours:>11.2f}×  {agree:>10.1e} {p_agree:>9.1e}  "
+              f"{fmt(t_path):>15} {t_path / t_ours:>11.2f}× {cxx_cols(cxx.get(n), t_ours)}  "
+              f"{agree:>10.1e} {p_agree:>9.1e}  "
               f"{', '.join(f'{p:.6g}' for p in impulse)}{'' if compressive else '  (NOT compressive)'}")
+    if cxx:
+        worst = max(c["ulps"] for c in cxx.values())
+        ok &= worst <= CXX_ULPS
+        print(f"\npin C++ call (pinocchio_chain.cpp): dq_after and impulses within {worst:.3g} ulps of the "
+              f"Python call's (bound {CXX_ULPS})" + ("" if worst <= CXX_ULPS else "  MISMATCH"))
+    else:
+        print(f"\npin C++ call not run: {cxx_why}")
     print("\nagreement:", "every chain agrees with inertance" if ok else "MISMATCH")
     return 0 if ok else 1
 

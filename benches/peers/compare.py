@@ -31,7 +31,6 @@ import math
 import os
 import platform
 import random
-import shutil
 import statistics
 import subprocess
 import sys
@@ -44,6 +43,8 @@ from pathlib import Path
 import numpy as np
 import pinocchio as pin
 import sympy as sp
+
+import pin_build  # benches/peers/pin_build.py: the C++ harnesses' build
 
 REPO = Path(__file__).resolve().parents[2]
 
@@ -495,45 +496,12 @@ class PinScene:
 # Peer 3b: Pinocchio's impulseDynamics called from C++ (pinocchio_call.cpp), so that no Python
 # sits between the clock and the call.  Built with g++ against the headers and libraries the
 # `pin` wheel installs (its cmeel prefix) and Eigen's headers (`cmeel-eigen`), with the compile
-# definitions Pinocchio's CMake package exports.
+# definitions Pinocchio's CMake package exports (pin_build.py, shared with chains.py).
 # ----------------------------------------------------------------------------------------------
-
-PIN_DEFINES = ["-DBOOST_MPL_LIMIT_LIST_SIZE=30", "-DBOOST_MPL_LIMIT_VECTOR_SIZE=30",
-               "-DBOOST_MPL_CFG_NO_PREPROCESSED_HEADERS", "-DBOOST_FUSION_INVOKE_MAX_ARITY=12",
-               "-DPINOCCHIO_ENABLE_TEMPLATE_INSTANTIATION"]
-
-
-def cmeel_prefix() -> Path | None:
-    for entry in sys.path:
-        prefix = Path(entry) / "cmeel.prefix"
-        if (prefix / "include" / "pinocchio").is_dir():
-            return prefix
-    return None
-
 
 def pinocchio_cpp_binary(cache: Path):
     """The compiled pinocchio_call, or (None, reason).  Rebuilt when the source is newer."""
-    src = Path(__file__).with_name("pinocchio_call.cpp")
-    out = cache / "pinocchio_call"
-    prefix = cmeel_prefix()
-    if prefix is None:
-        return None, "no cmeel prefix with Pinocchio's headers on sys.path (pip install pin)"
-    if not (prefix / "include" / "eigen3" / "Eigen").is_dir():
-        return None, "no Eigen headers in the cmeel prefix (pip install cmeel-eigen)"
-    if shutil.which("g++") is None:
-        return None, "no g++ on PATH"
-    if out.exists() and out.stat().st_mtime >= src.stat().st_mtime:
-        return out, None
-    cache.mkdir(parents=True, exist_ok=True)
-    cmd = ["g++", "-O3", "-DNDEBUG", "-std=c++17", *PIN_DEFINES, f"-I{prefix / 'include'}",
-           f"-I{prefix / 'include' / 'eigen3'}", str(src), f"-L{prefix / 'lib'}", "-lpinocchio_default",
-           f"-Wl,-rpath,{prefix / 'lib'}", "-o", str(out)]
-    print(f"  building {out.name} (g++ against Pinocchio's headers; about a minute) ...", flush=True)
-    p = subprocess.run(cmd, capture_output=True, text=True)
-    if p.returncode != 0:
-        errs = [l for l in p.stderr.splitlines() if "error" in l]
-        return None, f"g++ failed: {errs[0] if errs else p.stderr[-300:]}"
-    return out, None
+    return pin_build.pinocchio_binary(Path(__file__).with_name("pinocchio_call.cpp"), cache)
 
 
 def pinocchio_cpp(binary: Path, scenes: list) -> dict:
