@@ -23,6 +23,7 @@ use std::hint::black_box;
 use std::time::{Duration, Instant};
 
 use criterion::{Criterion, Throughput};
+use inertance::impact::lean_system::LeanSystem;
 use inertance::impact::restitution::Model;
 use inertance::impact::solve::{Impact, Outcome};
 use inertance::impact::unilateral::Law;
@@ -102,6 +103,16 @@ fn main() {
             if n <= 100 {
                 g.bench_function(format!("dense/{n}"), |b| b.iter(|| dense(&chain, &mut out)));
             }
+            // The lean path: the system built once, per solve its factorization, responses,
+            // basis and Newton's law (impulses and twist only; impact::lean_system).
+            let system = chain.system();
+            let mut lean = LeanSystem::new(&system).expect("a chain is a tree");
+            g.bench_function(format!("lean/{n}"), |b| {
+                b.iter(|| {
+                    lean.solve(black_box(&system), Model::Newton)
+                        .expect("solves")
+                })
+            });
         }
         g.finish();
     }

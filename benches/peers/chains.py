@@ -204,7 +204,7 @@ def main() -> int:
     ours = inertance_runs(args.sizes, args.example)
     cxx, cxx_why = pinocchio_cxx_runs([n for n in args.sizes if n <= args.pin_max]) if args.cxx else ({}, "--no-cxx")
     gc.disable()
-    rows, ok = [], True
+    rows, ok, lean_rows = [], True, {}
     for n in args.sizes:
         r = ours[n]
         if n > args.pin_max:
@@ -228,6 +228,12 @@ def main() -> int:
                                args.repeat, args.min_time)
         t_ours = r["ns_per_solve"] * 1e-9
         rows.append((n, t_ours, t_call, t_path, agree, p_agree, impulse, compressive))
+        # The lean path (impact::lean_system): its answer against Pinocchio's too.
+        lean_qdot = np.diff(np.concatenate([[0.0], np.array(r["lean_omega_z"])]))
+        lean_agree = max(float(np.max(np.abs(dq - lean_qdot)) / np.max(np.abs(lean_qdot))),
+                         float(np.max(np.abs(impulse - np.array(r["lean_impulses"]))) / np.max(np.abs(impulse))))
+        ok &= lean_agree <= rtol(n)
+        lean_rows[n] = (t_call, lean_agree)
     gc.enable()
 
     print(f"\n{'N':>6} {'inertance':>11} {'per body':>10} {'pin call':>11} {'÷ inertance':>12} "
@@ -244,6 +250,21 @@ def main() -> int:
               f"{fmt(t_path):>15} {t_path / t_ours:>11.2f}× {cxx_cols(cxx.get(n), t_ours)}  "
               f"{agree:>10.1e} {p_agree:>9.1e}  "
               f"{', '.join(f'{p:.6g}' for p in impulse)}{'' if compressive else '  (NOT compressive)'}")
+    print(f"\nThe lean path (impact::lean_system: the system built once, as Pinocchio's model and data "
+          f"are; per call the articulated factorization, the responses, the basis, Newton's law; "
+          f"impulses and twist only):\n")
+    print(f"{'N':>6} {'lean':>11} {'per body':>10} {'pin C++ call':>13} {'÷ lean':>8} {'pin call':>11} "
+          f"{'÷ lean':>8}  {'agree':>8}")
+    for n in args.sizes:
+        t_lean = ours[n]["ns_per_solve_lean"] * 1e-9
+        t_call, lean_agree = lean_rows.get(n, (None, None))
+        c = cxx.get(n)
+        t_cxx = c["ns"] * 1e-9 if c else None
+        col = lambda t: (f"{fmt(t):>13}", f"{t / t_lean:>7.2f}×") if t else (f"{'—':>13}", f"{'—':>8}")
+        cx, cr = col(t_cxx)
+        px, pr = col(t_call)
+        print(f"{n:>6} {fmt(t_lean):>11} {fmt(t_lean / n):>10} {cx} {cr} {px[2:]} {pr}  "
+              f"{'—' if lean_agree is None else f'{lean_agree:.1e}':>8}")
     if cxx:
         worst = max(c["ulps"] for c in cxx.values())
         ok &= worst <= CXX_ULPS

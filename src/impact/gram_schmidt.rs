@@ -129,9 +129,11 @@ impl<T: Scalar, S: Screws<T>> WrenchBasis<T, S> {
     }
 
     /// [`WrenchBasis::build`] from the axis screws alone (`None` for a response not already
-    /// computed): the first's response is then computed here, and every later vector is
-    /// orthogonalised twice, since its ĝ_kk for the test is not known — the lean path of a
-    /// system ([`crate::impact::lean_system`]), which so takes one response per contact.
+    /// computed): the first's response is then computed here, and a later vector's ĝ_kk for
+    /// the test is taken after its first pass as Σ r_i² d_i + d_k (Pythagoras), from the
+    /// response its wrench needs anyway — the lean path of a system
+    /// ([`crate::impact::lean_system`]), which so takes one response per contact (two for a
+    /// contact orthogonalised twice).
     pub fn build_from<'a>(
         &mut self,
         axes: impl ExactSizeIterator<Item = (&'a S, Option<&'a S>)>,
@@ -168,6 +170,7 @@ impl<T: Scalar, S: Screws<T>> WrenchBasis<T, S> {
             let (done, rest) = self.wrenches.split_at_mut(k);
             let q = &mut rest[0];
             let mut removed = T::zero();
+            let mut d = None;
             for pass in 0..2 {
                 for i in 0..k {
                     let r = q.reciprocal(&self.responses[i]) / &self.norms2[i];
@@ -177,11 +180,23 @@ impl<T: Scalar, S: Screws<T>> WrenchBasis<T, S> {
                     }
                     self.u[i * n + k] += r;
                 }
+                if k == 0 || pass == 1 {
+                    break;
+                }
                 let again = match &own {
                     Some(own) => (removed.clone() * &two).abs_gt(own),
-                    None => true,
+                    None => {
+                        // ĝ_kk = Σ r_i² d_i + d_k after one pass (Pythagoras): the test
+                        // from the response the wrench needs anyway, taken again only when
+                        // a second pass changes the wrench.
+                        mobility.response_into(q, &mut self.responses[k]);
+                        let dk = q.reciprocal(&self.responses[k]);
+                        let again = (removed.clone() * &two).abs_gt(&(removed.clone() + &dk));
+                        d = (!again).then_some(dk);
+                        again
+                    }
                 };
-                if k == 0 || !again {
+                if !again {
                     break;
                 }
             }
@@ -191,6 +206,8 @@ impl<T: Scalar, S: Screws<T>> WrenchBasis<T, S> {
                     self.responses[0].clone_from(r);
                 }
                 own.expect("the first axis's ĝ_11")
+            } else if let Some(d) = d {
+                d
             } else {
                 mobility.response_into(q, &mut self.responses[k]);
                 q.reciprocal(&self.responses[k])

@@ -21,11 +21,14 @@
 //!
 //! These are the very operations the general solve performs on a system whose float route is
 //! the orthogonalised wrenches ([`crate::impact::route`]; every system with joints): the same
-//! factorization code, the same responses, the same basis code. Two differences, both
+//! factorization code, the same responses, the same basis code. The differences are
 //! bookkeeping: the general solve forms G from a response W Ê_k of every axis before
 //! orthogonalising (for Δ and the rank), which costs one response more per contact after the
-//! first; and it forms {v} as {v⁰} plus the twist change, where this path subtracts from
-//! {v⁰} term by term (a different rounding of the same sum). So the accuracy contract of
+//! first — here ĝ_kk for the second-pass test comes from Pythagoras after the first pass
+//! ([`WrenchBasis::build_from`]); v̂⁰_ix is formed as n_i·(v_a(A_i) − v_b(A_i)) from the
+//! contact's bodies rather than as {Ê_i}ᵀ η {v⁰} over every body; and {v} is {v⁰} less the
+//! terms one by one rather than {v⁰} plus the twist change (different roundings of the same
+//! sums). So the accuracy contract of
 //! [`crate::analysis::accuracy`] applies to this path as it does to the general one (measured
 //! in `tests/lean_system.rs` against exact solves, with the general path's bounds); in exact
 //! types the two paths give the same numbers (tested for equality).
@@ -43,7 +46,6 @@
 use crate::impact::gram_schmidt::WrenchBasis;
 use crate::impact::restitution::Model;
 use crate::mechanics::body::Mobility;
-use crate::mechanics::screw::Screws;
 use crate::mechanics::system::{Articulated, Pair, ResponseScratch, System, SystemScrew};
 use crate::scalar::Scalar;
 use std::cell::RefCell;
@@ -170,12 +172,14 @@ impl<T: Scalar> LeanSystem<T> {
             });
         }
         self.accept()?;
+        // v̂⁰_ix = n_i · (v_a(A_i) − v_b(A_i)) (eq. 8), from the contact's one or two bodies
+        // rather than the dense stacks of screws.
         self.before.clear();
-        self.before.extend(
-            self.axes
-                .iter()
-                .map(|a| [a.reciprocal(v0), T::zero(), T::zero()]),
-        );
+        self.before
+            .extend(system.contacts().iter().enumerate().map(|(i, c)| {
+                let v = system.relative_velocity(i);
+                [c.normal.dot(&v), T::zero(), T::zero()]
+            }));
         self.basis.solve_velocity(
             model,
             v0,

@@ -20,6 +20,7 @@ use std::time::Duration;
 use serde_json::{Value as Json, json};
 
 use crate::impact::friction::solve_frictional;
+use crate::impact::lean_system::LeanSystem;
 use crate::impact::mechanism::Mechanism;
 use crate::impact::restitution::Model;
 use crate::impact::solve::{Impact, Outcome, SolveError};
@@ -294,6 +295,9 @@ pub struct ChainPoint {
     pub ns: f64,
     /// The log–log slope of the time against N from the previous point.
     pub slope: Option<f64>,
+    /// ns per solve of the lean path ([`crate::impact::lean_system`]: the system built once;
+    /// per solve its factorization, responses, basis and Newton's law, impulses and twist).
+    pub lean_ns: Option<f64>,
 }
 
 /// The systems section of the bench report.
@@ -347,11 +351,16 @@ pub fn chain_curve(sizes: &[usize], budget: Duration) -> Vec<ChainPoint> {
         let slope = points
             .last()
             .map(|p| (ns / p.ns).ln() / (n as f64 / p.links as f64).ln());
+        let system = chain.system();
+        let lean_ns = LeanSystem::new(&system)
+            .ok()
+            .and_then(|mut lean| time_three(budget, || lean.solve(&system, Model::Newton)).ok());
         points.push(ChainPoint {
             links: n,
             contacts: chain.contacts.len(),
             ns,
             slope,
+            lean_ns,
         });
     }
     points
@@ -380,16 +389,18 @@ impl SystemsBench {
     /// The readable tables.
     pub fn to_text(&self) -> String {
         let mut s = String::from(
-            "\nSystems: the planar chain of N hinged bars (tools::chain: tip and middle bar striking the ground), f64, one solve = System::new + assemble + Newton + Poisson, every output; slope: of log t against log N from the previous N:\n\n| N bodies | contacts | time per solve | per body | slope |\n|---|---|---|---|---|\n",
+            "\nSystems: the planar chain of N hinged bars (tools::chain: tip and middle bar striking the ground), f64, one solve = System::new + assemble + Newton + Poisson, every output; slope: of log t against log N from the previous N; lean: the lean path (impact::lean_system), the system built once, per solve its factorization and Newton's law, impulses and twist only:\n\n| N bodies | contacts | time per solve | per body | slope | lean | lean per body |\n|---|---|---|---|---|---|---|\n",
         );
         for p in &self.chain {
             s += &format!(
-                "| {} | {} | {} | {} | {} |\n",
+                "| {} | {} | {} | {} | {} | {} | {} |\n",
                 p.links,
                 p.contacts,
                 fmt_ns(p.ns),
                 fmt_ns(p.ns / p.links as f64),
-                p.slope.map_or("—".into(), |x| format!("{x:.2}"))
+                p.slope.map_or("—".into(), |x| format!("{x:.2}")),
+                p.lean_ns.map_or("—".into(), fmt_ns),
+                p.lean_ns.map_or("—".into(), |t| fmt_ns(t / p.links as f64))
             );
         }
         s += "\nSystems: the example scenes of several bodies (one solve = System::new + assemble + the scene's law, every output; time per solve / per body / per contact):\n\n| scene | bodies | contacts | law |";

@@ -235,6 +235,43 @@ impl<T: Scalar> Articulated<T> {
             }
             let n = node.free;
             let si = &s[node.at..node.at + n];
+            if n == 1 {
+                // One free screw (revolute, prismatic): the same operations, without the
+                // loops over columns and the n × n buffers.
+                let col = &si[0];
+                let y: [&T; 6] = [&col[3], &col[4], &col[5], &col[0], &col[1], &col[2]];
+                let u0: [T; 6] = std::array::from_fn(|r| {
+                    let row = &a[6 * r..6 * r + 6];
+                    let mut t = T::zero();
+                    for q in 0..6 {
+                        if T::IS_EXACT && y[q].is_zero() {
+                            continue;
+                        }
+                        t += row[q].clone() * y[q];
+                    }
+                    t
+                });
+                let mut d1 = [power(&u0, col)];
+                invert_definite(&mut d1, 1)?;
+                let [d1] = d1;
+                let kc: [T; 6] = std::array::from_fn(|r| u0[r].clone() * &d1);
+                dinv[node.square] = d1;
+                if let Some(to) = to {
+                    for r in 0..6 {
+                        for c in 0..=r {
+                            a[6 * r + c] -= kc[r].clone() * &u0[c];
+                        }
+                    }
+                    for r in 0..6 {
+                        for c in 0..r {
+                            a[6 * c + r] = a[6 * r + c].clone();
+                        }
+                    }
+                    transport(a, &node.r, to);
+                }
+                k[node.at] = kc;
+                continue;
+            }
             // U = I^A S column by column (I^A on [v; ω], S's columns [ω; v]: a wrench).
             for (c, col) in si.iter().enumerate() {
                 let y: [&T; 6] = [&col[3], &col[4], &col[5], &col[0], &col[1], &col[2]];
