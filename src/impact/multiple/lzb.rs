@@ -204,6 +204,15 @@ pub enum LzbError {
         /// The contact (0-based).
         contact: usize,
     },
+    /// A path of the program that does not run the LZB law (yet).
+    #[error(
+        "the LZB law is not run by {what}: only `inertance solve` (and the library's \
+         `solve_lzb`) runs it, in f64"
+    )]
+    Unsupported {
+        /// What was asked.
+        what: &'static str,
+    },
     /// More steps or events than any physical impact needs, or a step that underflowed.
     #[error("the LZB integration did not end within its budget ({steps} steps, {events} events)")]
     Runaway {
