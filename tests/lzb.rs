@@ -91,7 +91,13 @@ fn speeds(out: &Lzb<SystemScrew<f64>>) -> Vec<f64> {
 /// q̇ with a diagonal mass matrix `mass`, contact i's indentation rate δ̇_i = J_i q̇ (J frozen),
 /// F_i = K_i δ_i^η_i for δ_i > 0, M q̈ = −Σ_i F_i J_iᵀ; classical RK4 with the step `dt`, run
 /// until no contact is loaded and none approaches. Returns q̇ at the end.
-fn compliant(mass: &[f64], jac: &[Vec<f64>], laws: &[(f64, f64)], qdot0: &[f64], dt: f64) -> Vec<f64> {
+fn compliant(
+    mass: &[f64],
+    jac: &[Vec<f64>],
+    laws: &[(f64, f64)],
+    qdot0: &[f64],
+    dt: f64,
+) -> Vec<f64> {
     let (m, n) = (mass.len(), jac.len());
     // State: δ (n), q̇ (m).
     let rhs = |s: &[f64]| -> Vec<f64> {
@@ -192,7 +198,8 @@ fn one_contact_is_newtons_law_for_any_exponent_and_stiffness() {
         for eta in [1.0, 1.5, 2.3] {
             for k in [1e-2, 1.0, 1e4] {
                 let contact = Contact::new(v3(0.2, -0.1, 0.05), v3(0.1, -1.0, 0.2), e);
-                let problem = Problem::new(body.clone(), twist.clone(), vec![contact]).expect("valid");
+                let problem =
+                    Problem::new(body.clone(), twist.clone(), vec![contact]).expect("valid");
                 let law = ContactLaw::new(k, eta, e).expect("valid");
                 let out = solve_lzb(&problem, &[law], TOL).expect("LZB ends");
                 let (g, v0) = (out.blocks.k[0], out.blocks.v0[0]);
@@ -210,7 +217,10 @@ fn one_contact_is_newtons_law_for_any_exponent_and_stiffness() {
                 let mut sim = Outcome::default();
                 impact.solve(Model::Newton, &mut sim).expect("solves");
                 let w = out.velocity.minus(&sim.velocity).max_abs_f64();
-                assert!(w <= 4.0 * g * bound / g.min(1.0) + 64.0 * EPS, "twist off by {w:e}");
+                assert!(
+                    w <= 4.0 * g * bound / g.min(1.0) + 64.0 * EPS,
+                    "twist off by {w:e}"
+                );
             }
         }
     }
@@ -230,7 +240,10 @@ fn two_unequal_balls_and_an_unequal_chain_follow_the_compliant_dynamics() {
     for eta in [1.0, 1.5] {
         let (lzb, _) = row_against_time(&[1.0, 3.0], eta, &[2.0]);
         // One contact, e = 1: the elastic two-body collision, (m₁ − m₂)/(m₁ + m₂) v and 2m₁/(m₁ + m₂) v.
-        assert!((lzb[0] + 0.5).abs() <= 1e-9 && (lzb[1] - 0.5).abs() <= 1e-9, "{lzb:?}");
+        assert!(
+            (lzb[0] + 0.5).abs() <= 1e-9 && (lzb[1] - 0.5).abs() <= 1e-9,
+            "{lzb:?}"
+        );
         row_against_time(&[1.0, 2.0, 0.5], eta, &[1.0, 5.0]);
     }
 }
@@ -268,7 +281,10 @@ fn a_free_system_keeps_its_momentum_and_its_energy_balance() {
         let out = solve_lzb(&system, &laws, TOL).expect("LZB ends");
         let p: f64 = speeds(&out).iter().zip(&masses).map(|(v, m)| v * m).sum();
         let p0 = 1.3;
-        assert!((p - p0).abs() <= 64.0 * 4.0 * EPS * p0, "momentum {p} vs {p0}");
+        assert!(
+            (p - p0).abs() <= 64.0 * 4.0 * EPS * p0,
+            "momentum {p} vs {p0}"
+        );
         check_energy(&system, &out);
     }
 }
@@ -296,7 +312,11 @@ fn check_energy<M: Mechanism<f64>>(mechanism: &M, out: &Lzb<M::Screw>) {
             e2 * out.work_compression[i]
         );
         stored += (1.0 - e2) * out.work_compression[i];
-        assert!(out.after[i] <= speed * 1e-9, "contact {i} still approaches: {}", out.after[i]);
+        assert!(
+            out.after[i] <= speed * 1e-9,
+            "contact {i} still approaches: {}",
+            out.after[i]
+        );
     }
     assert!((out.kinetic_energy_loss - stored).abs() <= 2.0 * bound);
     if out.laws.iter().all(|l| l.restitution == 1.0) {
@@ -368,6 +388,10 @@ fn a_pitching_bar_on_unequal_supports_follows_the_compliant_dynamics() {
         }
         // Both supports stored energy, the bar leaves them both.
         assert!(out.max_energy.iter().all(|e| *e > 0.0));
-        assert!(out.events.iter().any(|e| e.kind == EventKind::ExpansionEnds));
+        assert!(
+            out.events
+                .iter()
+                .any(|e| e.kind == EventKind::ExpansionEnds)
+        );
     }
 }

@@ -23,7 +23,9 @@ pub enum LawError {
         value: f64,
     },
     /// η ≤ 0 or not finite.
-    #[error("the compliance exponent η must be a finite number > 0 (1 linear, 3/2 Hertz; got {value})")]
+    #[error(
+        "the compliance exponent η must be a finite number > 0 (1 linear, 3/2 Hertz; got {value})"
+    )]
     Exponent {
         /// The value given.
         value: f64,

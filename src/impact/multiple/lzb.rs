@@ -316,9 +316,7 @@ pub fn solve_lzb<M: Mechanism<f64>>(
     let tolerance = tolerance.max(4.0 * f64::EPSILON);
     let frames: Vec<ContactFrame<f64, M::Screw>> = (0..n)
         .map(|i| {
-            ContactFrame::normal_with(&mechanism.contacts()[i], |u| {
-                mechanism.contact_axis(i, u)
-            })
+            ContactFrame::normal_with(&mechanism.contacts()[i], |u| mechanism.contact_axis(i, u))
         })
         .collect();
     let blocks = Blocks::spatial(mechanism, &frames);
@@ -332,7 +330,9 @@ pub fn solve_lzb<M: Mechanism<f64>>(
         mechanism.kinetic_energy(mechanism.velocity()) - mechanism.kinetic_energy(&velocity);
     let work_compression = path.y[2 * n..3 * n].to_vec();
     let work_expansion = path.y[3 * n..].to_vec();
-    let dissipated: f64 = (0..n).map(|i| work_compression[i] - work_expansion[i]).sum();
+    let dissipated: f64 = (0..n)
+        .map(|i| work_compression[i] - work_expansion[i])
+        .sum();
     Ok(Lzb {
         laws: laws.to_vec(),
         impulses,
@@ -393,7 +393,7 @@ impl<'a> Run<'a> {
         let mut gmax = 0.0_f64;
         for i in 0..n {
             let gii = g[i * n + i];
-            if !(gii > 0.0) {
+            if gii.is_nan() || gii <= 0.0 {
                 return Err(LzbError::Immovable { contact: i });
             }
             gmax = gmax.max(gii);
