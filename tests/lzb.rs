@@ -395,3 +395,24 @@ fn a_pitching_bar_on_unequal_supports_follows_the_compliant_dynamics() {
         );
     }
 }
+
+/// A constrained body (`examples/pinned-rod.toml`: a rod pinned at one end, struck at the
+/// other) with its one contact: LZB gives Newton's answer for the mechanism, twist and all.
+#[test]
+fn a_pinned_rod_takes_newtons_answer() {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/pinned-rod.toml");
+    let scene = inertance::scene::Scene::load(&path).expect("loads");
+    let problem = inertance::scene::pipeline::prepare::<f64>(&scene).expect("prepares");
+    for eta in [1.0, 1.5] {
+        let e = problem.contacts()[0].k_newton;
+        let law = ContactLaw::new(7.0, eta, e).expect("valid");
+        let out = solve_lzb(&problem, &[law], TOL).expect("LZB ends");
+        let mut impact = Impact::assemble(&problem).expect("assembles");
+        let mut sim = Outcome::default();
+        impact.solve(Model::Newton, &mut sim).expect("solves");
+        let bound = velocity_bound(&out, out.blocks.v0[0].abs());
+        let w = out.velocity.minus(&sim.velocity).max_abs_f64();
+        assert!(w <= bound, "twist off by {w:e} (bound {bound:e})");
+        check_energy(&problem, &out);
+    }
+}

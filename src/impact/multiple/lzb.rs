@@ -272,11 +272,17 @@ impl<S: Screws<f64>> Lzb<S> {
         (0..self.impulses.len()).map(|i| self.dissipation(i)).sum()
     }
 
-    /// The order in which the contacts last ended their expansion (0-based).
+    /// The order in which the contacts last came to rest (0-based): the end of an expansion,
+    /// or of the compression of a plastic contact (e = 0, which has no expansion).
     pub fn ending_order(&self) -> Vec<usize> {
         let mut order: Vec<usize> = Vec::new();
         for e in self.events.iter().rev() {
-            if e.kind == EventKind::ExpansionEnds && !order.contains(&e.contact) {
+            let rests = match e.kind {
+                EventKind::ExpansionEnds => true,
+                EventKind::CompressionEnds => self.laws[e.contact].restitution == 0.0,
+                _ => false,
+            };
+            if rests && !order.contains(&e.contact) {
                 order.push(e.contact);
             }
         }
@@ -708,5 +714,89 @@ impl<'a> Run<'a> {
             }
         }
         (hi, best.0, best.1)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::impact::problem::Problem;
+    use crate::mechanics::body::RigidBody;
+    use crate::mechanics::contact::Contact;
+    use crate::mechanics::screw::{Screw, Vec3};
+
+    /// A unit point mass (with some inertia) falling at 1 m/s onto `contacts` normals −z.
+    fn falling(points: &[[f64; 3]], mu: f64) -> Problem<f64> {
+        let body = RigidBody::principal(1.0, Vec3::new(0.5, 0.5, 0.5));
+        let twist = Screw::new(Vec3::zeros(), Vec3::new(0.0, 0.0, -1.0));
+        let contacts = points
+            .iter()
+            .map(|p| {
+                Contact::new(Vec3::new(p[0], p[1], p[2]), Vec3::new(0.0, 0.0, -1.0), 0.5)
+                    .with_friction(mu)
+            })
+            .collect();
+        Problem::new(body, twist, contacts).expect("valid")
+    }
+
+    /// A plastic contact (e = 0) stops at v = 0 with P = v⁰/g and comes to rest at the end of
+    /// its compression: the compression work is all dissipated.
+    #[test]
+    fn a_plastic_contact_stops_and_rests() {
+        let p = falling(&[[0.0, 0.0, 0.0]], 0.0);
+        let law = ContactLaw::new(2.0, 1.5, 0.0).expect("valid");
+        let out = solve_lzb(&p, &[law], 1e-11).expect("ends");
+        let g = out.blocks.k[0];
+        assert!((out.impulses[0] - 1.0 / g).abs() <= 2.0 * out.error_estimate + 1e-15);
+        assert_eq!(out.work_expansion[0], 0.0);
+        assert_eq!(out.ending_order(), vec![0]);
+        assert!(
+            out.events
+                .iter()
+                .all(|e| e.kind == EventKind::CompressionEnds)
+        );
+    }
+
+    #[test]
+    fn what_the_law_does_not_take_is_refused() {
+        let law = ContactLaw::default();
+        let one = falling(&[[0.0, 0.0, 0.0]], 0.0);
+        assert_eq!(
+            solve_lzb(&one, &[law, law], 1e-9).err(),
+            Some(LzbError::LawCount {
+                contacts: 1,
+                laws: 2
+            })
+        );
+        assert_eq!(
+            solve_lzb(&falling(&[[0.0, 0.0, 0.0]], 0.3), &[law], 1e-9).err(),
+            Some(LzbError::Friction { contact: 0 })
+        );
+        for tol in [0.0, 1.0, f64::NAN] {
+            assert!(matches!(
+                solve_lzb(&one, &[law], tol).err(),
+                Some(LzbError::Tolerance { .. })
+            ));
+        }
+        let bad = ContactLaw {
+            restitution: 2.0,
+            ..law
+        };
+        assert!(matches!(
+            solve_lzb(&one, &[bad], 1e-9).err(),
+            Some(LzbError::Law { contact: 0, .. })
+        ));
+    }
+
+    /// A contact that does not approach, alone: no impulse, no step.
+    #[test]
+    fn nothing_approaches_nothing_happens() {
+        let body = RigidBody::principal(1.0, Vec3::new(0.5, 0.5, 0.5));
+        let twist = Screw::new(Vec3::zeros(), Vec3::new(0.0, 0.0, 1.0));
+        let c = Contact::new(Vec3::zeros(), Vec3::new(0.0, 0.0, -1.0), 0.5);
+        let p = Problem::new(body, twist, vec![c]).expect("valid");
+        let out = solve_lzb(&p, &[ContactLaw::default()], 1e-9).expect("ends");
+        assert_eq!(out.impulses, vec![0.0]);
+        assert_eq!(out.stats, Stats::default());
     }
 }
