@@ -264,8 +264,15 @@ fn the_cradle_striker_nearly_stops_unlike_the_simultaneous_law() {
     // LZB: the striker keeps less than a tenth of its speed, the last ball leaves with more
     // than nine tenths of it.
     assert!(lzb[0].abs() < 0.1 && lzb[2] > 0.9, "{lzb:?}");
-    // The contacts end in order, first to last.
+    // The contacts end in order, first to last; the second engages from rest (v⁰ = 0) and
+    // takes over as the primary contact (the larger energy) on the way.
     assert_eq!(out.ending_order(), vec![0, 1]);
+    let happened = |contact: usize, kind: EventKind| {
+        out.events
+            .iter()
+            .any(|e| e.contact == contact && e.kind == kind)
+    };
+    assert!(happened(1, EventKind::Engages) && happened(1, EventKind::Primary));
 }
 
 #[test]
@@ -415,4 +422,25 @@ fn a_pinned_rod_takes_newtons_answer() {
         assert!(w <= bound, "twist off by {w:e} (bound {bound:e})");
         check_energy(&problem, &out);
     }
+}
+
+/// A system with joints (`examples/double-pendulum-wall.toml`: a double pendulum striking a
+/// wall with its tip) and its one contact: LZB gives Newton's answer, every body's twist.
+#[test]
+fn a_double_pendulum_striking_a_wall_takes_newtons_answer() {
+    let path =
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/double-pendulum-wall.toml");
+    let scene = inertance::scene::Scene::load(&path).expect("loads");
+    let system = scene.system::<f64>().expect("a system");
+    assert!(!system.joints().is_empty());
+    let e = system.contacts()[0].k_newton;
+    let law = ContactLaw::new(0.3, 1.5, e).expect("valid");
+    let out = solve_lzb(&system, &[law], TOL).expect("LZB ends");
+    let mut impact = Impact::assemble(&system).expect("assembles");
+    let mut sim = Outcome::default();
+    impact.solve(Model::Newton, &mut sim).expect("solves");
+    let bound = velocity_bound(&out, out.blocks.v0[0].abs());
+    let w = out.velocity.minus(&sim.velocity).max_abs_f64();
+    assert!(w <= bound, "twist off by {w:e} (bound {bound:e})");
+    check_energy(&system, &out);
 }

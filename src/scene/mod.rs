@@ -173,7 +173,8 @@ pub struct Scene {
     /// normals, energies), not the tangential ones or the constraint impulses unless asked.
     pub outputs: Outputs,
     /// `[solve] tolerance`: the relative tolerance of the spatial frictional integration
-    /// ([`crate::impact::friction::spatial`]), in (0, 1); `None`: the scalar's default
+    /// ([`crate::impact::friction::spatial`]) and of the LZB law's ([`lzb`]), in (0, 1);
+    /// `None`: the scalar's default
     /// ([`crate::scene::pipeline::friction_tolerance`]). Planar scenes are solved event by
     /// event and do not read it.
     pub tolerance: Option<f64>,
