@@ -210,6 +210,7 @@ enum ModelArg {
 enum LawArg {
     Simultaneous,
     Unilateral,
+    Lzb,
 }
 
 impl LawArg {
@@ -217,6 +218,7 @@ impl LawArg {
         match self {
             LawArg::Simultaneous => Law::Simultaneous,
             LawArg::Unilateral => Law::Unilateral,
+            LawArg::Lzb => Law::Lzb,
         }
     }
 }
@@ -445,6 +447,15 @@ fn solve(path: PathBuf, flags: Flags, opts: &SceneOpts) -> ExitCode {
             }
         }
     }
+    if scene.law == Law::Lzb {
+        let asked = LzbFlags {
+            exact: flags.exact,
+            json: flags.json,
+            trajectory: flags.trajectory.is_some(),
+            model: flags.model.is_some(),
+        };
+        return solve_lzb(&path, &scene, asked);
+    }
     let format = match &flags.trajectory {
         None => None,
         Some(file) => match trajectory_format(&path, &scene, file) {
@@ -482,6 +493,46 @@ fn solve(path: PathBuf, flags: Flags, opts: &SceneOpts) -> ExitCode {
             }
         }
         Err(e) => fail(&path, e),
+    }
+}
+
+/// The flags of `solve` the LZB law refuses.
+struct LzbFlags {
+    exact: bool,
+    json: bool,
+    trajectory: bool,
+    model: bool,
+}
+
+/// `solve` under the LZB law: f64 only, its own table.
+fn solve_lzb(path: &std::path::Path, scene: &Scene, flags: LzbFlags) -> ExitCode {
+    let refused = if flags.exact {
+        Some(
+            "--exact: the LZB law is integrated numerically (adaptive Runge–Kutta in f64), so \
+             its result is never exact: drop --exact",
+        )
+    } else if flags.json {
+        Some("--json: the LZB report is printed as a table only for now: drop --json")
+    } else if flags.trajectory {
+        Some("--trajectory: the LZB law's impulse history is not written to a file yet")
+    } else if flags.model {
+        Some(
+            "--model: the LZB law has no Newton or Poisson model (its restitution is each \
+             contact's energetic coefficient, `k_energetic` or `k`): drop --model",
+        )
+    } else {
+        None
+    };
+    if let Some(message) = refused {
+        eprintln!("error: {}: {message}", path.display());
+        return ExitCode::from(2);
+    }
+    match inertance::scene::lzb::run_lzb(scene) {
+        Ok(report) => {
+            print!("{}", report.to_table());
+            ExitCode::SUCCESS
+        }
+        Err(e) => fail(path, e),
     }
 }
 
@@ -890,6 +941,14 @@ fn fail(path: &std::path::Path, error: RunError) -> ExitCode {
         RunError::Friction(e) => {
             eprintln!("error: {}: {e}", path.display());
             ExitCode::from(3)
+        }
+        RunError::Lzb(e @ inertance::impact::multiple::LzbError::Runaway { .. }) => {
+            eprintln!("error: {}: {e}", path.display());
+            ExitCode::from(3)
+        }
+        RunError::Lzb(e) => {
+            eprintln!("error: {}: {e}", path.display());
+            ExitCode::from(2)
         }
     }
 }

@@ -118,6 +118,7 @@ pub fn run_error(py: Python<'_>, e: &RunError) -> PyErr {
         ),
         // A friction verdict (no consistent modes, …) or a spatial scene asked for exactly.
         RunError::Friction(f) => (f.to_string(), f.status().unwrap_or("friction")),
+        RunError::Lzb(l) => (l.to_string(), "lzb"),
     };
     raise::<SolveError>(
         py,

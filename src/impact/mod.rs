@@ -13,7 +13,9 @@
 //! complementarity problems, for when the simultaneous hypothesis fails · [`admissibility`]:
 //! whether a simultaneous answer is physical (tensile, separating, still approaching, energy
 //! gain) · [`friction`]: Coulomb friction (§14), the impact integrated in impulse space —
-//! exactly, event by event, for planar scenes; adaptively in floats for spatial ones.
+//! exactly, event by event, for planar scenes; adaptively in floats for spatial ones ·
+//! [`multiple`]: multiple-impact laws (LZB), each contact's compression and expansion
+//! integrated in impulse space.
 
 pub mod admissibility;
 pub mod batch;
@@ -22,6 +24,7 @@ pub mod gram_schmidt;
 pub mod lean;
 pub mod lean_system;
 pub mod mechanism;
+pub mod multiple;
 pub mod outputs;
 pub mod problem;
 pub mod restitution;

@@ -68,6 +68,9 @@ pub enum Law {
     Simultaneous,
     /// The laws in inequality form (this module): an LCP in G.
     Unilateral,
+    /// The LZB multiple-impact law ([`crate::impact::multiple::lzb`]): each contact's own
+    /// compression and expansion, integrated in impulse space (f64).
+    Lzb,
 }
 
 impl Law {
@@ -76,14 +79,16 @@ impl Law {
         match self {
             Law::Simultaneous => "simultaneous",
             Law::Unilateral => "unilateral",
+            Law::Lzb => "lzb",
         }
     }
 
-    /// The law called `name` (`"simultaneous"` or `"unilateral"`).
+    /// The law called `name` (`"simultaneous"`, `"unilateral"` or `"lzb"`).
     pub fn from_name(name: &str) -> Option<Law> {
         match name {
             "simultaneous" => Some(Law::Simultaneous),
             "unilateral" => Some(Law::Unilateral),
+            "lzb" => Some(Law::Lzb),
             _ => None,
         }
     }

@@ -7,6 +7,11 @@
 //! would print the simultaneous answer — a pulling impulse at a contact that should separate —
 //! as the unilateral one. Until the unilateral law is integrated with friction, the
 //! combination is refused, from the scene file and from every override alike.
+//!
+//! The LZB law ([`crate::impact::multiple`]) is integrated frictionless, in f64, and only
+//! `inertance solve` runs it ([`super::lzb`]): friction or an impulse-space restitution law
+//! with it is refused here, and every other solve path refuses the law itself
+//! ([`Scene::law_applies`]) rather than answer under another law's name.
 
 use crate::impact::friction::Restitution;
 use crate::impact::unilateral::Law;
@@ -54,6 +59,46 @@ pub(super) fn unilateral_allowed(
     })
 }
 
+/// Refuse the LZB law for `contacts` when one of them has friction, or with a `[solve]
+/// restitution` (the LZB law has its own restitution: each contact's energetic coefficient).
+pub(super) fn lzb_allowed(
+    file: &str,
+    contacts: &[ContactSpec],
+    restitution: Option<Restitution>,
+    how: &str,
+) -> Result<(), SceneError> {
+    let rough = contacts.iter().position(|c| match &c.mu.exact {
+        Ok(q) => !num_traits::Zero::is_zero(q) || c.mu.tangent != 0.0,
+        Err(_) => true,
+    });
+    let (key, value, message) = match (rough, restitution) {
+        (Some(i), _) => (
+            format!("contact[{i}].mu"),
+            contacts[i].mu.text.clone(),
+            format!(
+                "{how} is integrated without friction for now (friction with LZB, its Part II, \
+                 is not implemented): set `mu = 0` at every contact, or solve with the \
+                 simultaneous law"
+            ),
+        ),
+        (None, Some(r)) => (
+            "solve.restitution".to_string(),
+            r.name().to_string(),
+            format!(
+                "{how} has its own restitution law (each contact's energetic coefficient: \
+                 `k_energetic`, else `k`): drop `[solve] restitution`"
+            ),
+        ),
+        (None, None) => return Ok(()),
+    };
+    Err(SceneError {
+        file: file.to_string(),
+        key,
+        value: Some(value),
+        message,
+    })
+}
+
 impl Scene {
     /// Solve the scene under `law` instead of its own (`--law`, Python's `law=`), refused
     /// where the law cannot be applied as named (the unilateral law with friction).
@@ -61,8 +106,12 @@ impl Scene {
     /// # Errors
     /// A [`SceneError`] naming the first rough contact's `mu`.
     pub fn set_law(&mut self, law: Law, how: &str) -> Result<(), SceneError> {
-        if law == Law::Unilateral {
-            unilateral_allowed(&self.file, &self.contacts, self.restitution, how)?;
+        match law {
+            Law::Unilateral => {
+                unilateral_allowed(&self.file, &self.contacts, self.restitution, how)?;
+            }
+            Law::Lzb => lzb_allowed(&self.file, &self.contacts, self.restitution, how)?,
+            Law::Simultaneous => {}
         }
         self.law = law;
         Ok(())
@@ -82,6 +131,15 @@ impl Scene {
                 "the unilateral law",
             ),
             Law::Simultaneous => Ok(()),
+            Law::Lzb => Err(SceneError {
+                file: self.file.clone(),
+                key: "solve.law".to_string(),
+                value: Some("lzb".to_string()),
+                message: "the LZB law is solved by `inertance solve` only, in f64 (`analyze`, \
+                          `sweep`, `bench`, `derive`, `check` and the batch and Python paths do \
+                          not run it yet): run `inertance solve`, or choose another law"
+                    .to_string(),
+            }),
         }
     }
 }

@@ -27,6 +27,11 @@
 //! paper's algebraic system; `[solve] tolerance = 1e-12` sets the relative tolerance of a
 //! spatial scene's integration.
 //!
+//! **The LZB law.** `[solve] law = "lzb"` (or `--law lzb`) solves a frictionless scene by the
+//! multiple-impact law of Liu, Zhao and Brogliato ([`crate::impact::multiple`], [`lzb`]): per
+//! contact `stiffness = 1` (K, only ratios matter), `exponent = 1.5` (η: 1 linear, 1.5 Hertz)
+//! and the energetic restitution from `k_energetic`, else `k`.
+//!
 //! Every number may be a TOML integer or float, or a string holding a fraction or an
 //! expression (`"1/3"`, `"2/sqrt(5)"`, `"cos(30 deg)"`, see [`crate::number`]). The raw text
 //! is kept, so in exact mode `0.1` is exactly 1/10; an irrational expression is refused in
@@ -51,6 +56,7 @@
 mod exact;
 mod law;
 pub mod limits;
+pub mod lzb;
 pub mod model;
 mod notes;
 mod path;
@@ -167,7 +173,8 @@ pub struct Scene {
     /// normals, energies), not the tangential ones or the constraint impulses unless asked.
     pub outputs: Outputs,
     /// `[solve] tolerance`: the relative tolerance of the spatial frictional integration
-    /// ([`crate::impact::friction::spatial`]), in (0, 1); `None`: the scalar's default
+    /// ([`crate::impact::friction::spatial`]) and of the LZB law's ([`lzb`]), in (0, 1);
+    /// `None`: the scalar's default
     /// ([`crate::scene::pipeline::friction_tolerance`]). Planar scenes are solved event by
     /// event and do not read it.
     pub tolerance: Option<f64>,

@@ -47,6 +47,9 @@ pub enum RunError {
     /// The frictional integration could not follow the impact.
     #[error("{0}")]
     Friction(#[from] FrictionError),
+    /// The LZB law gave no outcome, or was asked of a path that does not run it.
+    #[error("{0}")]
+    Lzb(#[from] crate::impact::multiple::LzbError),
 }
 
 /// A solved scene: its report, and whether the energy identity ΔE_c = −E_p + Σ P_i v_ix⁰
@@ -470,6 +473,12 @@ impl<T: Scalar> Assembled<T> {
                     energy_gain(&self.impact, &outcome).into_iter().collect(),
                     Some(a),
                 )
+            }
+            Law::Lzb => {
+                return Err(crate::impact::multiple::LzbError::Unsupported {
+                    what: "a solve by restitution model",
+                }
+                .into());
             }
         };
         Ok(ModelSolve {

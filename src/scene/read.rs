@@ -70,6 +70,9 @@ pub(super) fn scene(
             "`[solve] law = \"unilateral\"`",
         )?;
     }
+    if law == Law::Lzb {
+        super::law::lzb_allowed(file, &contacts, restitution, "`[solve] law = \"lzb\"`")?;
+    }
     let mut constraints = match root.get("constraints") {
         None => None,
         Some(item) => Some(r.constraints(item)?),

@@ -60,6 +60,12 @@ pub struct ContactSpec {
     pub k_energetic: Option<Number>,
     /// μ_i, Coulomb's coefficient of friction (`mu`, default 0).
     pub mu: Number,
+    /// K_i, the contact stiffness of the LZB law (`stiffness`, default 1; read only under
+    /// `[solve] law = "lzb"`).
+    pub stiffness: Option<Number>,
+    /// η_i, the compliance exponent of the LZB law (`exponent`, default 3/2; read only under
+    /// `[solve] law = "lzb"`).
+    pub exponent: Option<Number>,
 }
 
 /// The kinds of joint a scene may declare (see [`crate::mechanics::constraint::Joint`]).
@@ -304,7 +310,7 @@ impl Reader<'_> {
                 self.err(
                     "solve.law",
                     Some(short(l)),
-                    "unknown law; expected \"simultaneous\" (the paper's) or \"unilateral\"",
+                    "unknown law; expected \"simultaneous\" (the paper's), \"unilateral\" or \"lzb\"",
                 )
             })?,
         };
@@ -352,6 +358,8 @@ impl Reader<'_> {
                 "k_poisson",
                 "k_energetic",
                 "mu",
+                "stiffness",
+                "exponent",
                 "name",
                 "body_point",
                 "corner",
@@ -429,6 +437,11 @@ impl Reader<'_> {
                 self.friction(self.number(item, &path)?, &path)?
             }
         };
+        let lzb_of = |key: &str| -> Result<Option<Number>, SceneError> {
+            t.get(key)
+                .map(|item| self.number(item, &format!("{at}.{key}")))
+                .transpose()
+        };
         Ok(ContactSpec {
             point,
             normal,
@@ -437,6 +450,8 @@ impl Reader<'_> {
             k_poisson,
             k_energetic,
             mu,
+            stiffness: lzb_of("stiffness")?,
+            exponent: lzb_of("exponent")?,
         })
     }
 

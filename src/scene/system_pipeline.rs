@@ -166,6 +166,12 @@ fn run_as_written<T: Scalar>(
                 }
                 Err(e) => return Err(e.into()),
             },
+            Law::Lzb => {
+                return Err(crate::impact::multiple::LzbError::Unsupported {
+                    what: "a system solve by restitution model",
+                }
+                .into());
+            }
         }
         outcomes.push((m, out));
     }
@@ -231,7 +237,7 @@ pub(crate) fn obstacle_names(scene: &Scene) -> Vec<Option<String>> {
         .unwrap_or_default()
 }
 
-fn body_names(scene: &Scene) -> Vec<String> {
+pub(crate) fn body_names(scene: &Scene) -> Vec<String> {
     scene
         .system
         .as_ref()

@@ -146,6 +146,7 @@ pub(crate) fn law_name(scene: &Scene) -> String {
         let law = match scene.law {
             Law::Simultaneous => "",
             Law::Unilateral => "unilateral ",
+            Law::Lzb => "lzb ",
         };
         format!("{law}{}", models.join(" + "))
     }
@@ -223,6 +224,9 @@ pub(crate) fn time_law<T: Scalar, M: Mechanism<T>>(
             .solve_unilateral(m, out)
             .map(|_| ())
             .map_err(|e| unilateral_error(&e)),
+        Law::Lzb => Err(NotTimed::NotApplicable(
+            "the LZB law is not timed by `bench` yet".to_string(),
+        )),
     };
     let mut out = Outcome::default();
     let mut impact = Impact::assemble(&first).map_err(|e| solve_error(&e))?;

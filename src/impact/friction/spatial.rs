@@ -76,7 +76,8 @@ const QUARTER: f64 = 0.255_341_921_221_036_3;
 /// The Dormand–Prince RK5(4) tableau as fractions (p, q), built in the scalar type so that a
 /// double-double run does not inherit the f64 rounding of 3/40 or 19372/6561: rows of A (the
 /// seventh row is the fifth-order solution, FSAL), and E = fifth- minus fourth-order weights.
-const A: [[(i64, i64); 6]; 7] = [
+/// Shared with the multiple-impact integrator ([`crate::impact::multiple`]).
+pub(crate) const A: [[(i64, i64); 6]; 7] = [
     [(0, 1); 6],
     [(1, 5), (0, 1), (0, 1), (0, 1), (0, 1), (0, 1)],
     [(3, 40), (9, 40), (0, 1), (0, 1), (0, 1), (0, 1)],
@@ -106,7 +107,7 @@ const A: [[(i64, i64); 6]; 7] = [
         (11, 84),
     ],
 ];
-const E: [(i64, i64); 7] = [
+pub(crate) const E: [(i64, i64); 7] = [
     (71, 57600),
     (0, 1),
     (-71, 16695),

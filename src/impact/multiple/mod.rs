@@ -1,0 +1,18 @@
+//! Multiple-impact laws in impulse space: laws that drop the paper's simultaneous hypothesis
+//! (every normal velocity reaches its law at the same instant) and follow instead each
+//! contact's own compression and expansion through the impact, as the friction integrator of
+//! §14 ([`crate::impact::friction`]) follows stick and slip.
+//!
+//! [`law`]: a contact's parameters — stiffness K_i, compliance exponent η_i, Stronge's energetic
+//! restitution e_i (Siconos' `MultipleImpactNSL`) · [`lzb`]: the Darboux–Keller shock dynamics
+//! of Liu, Zhao and Brogliato (2008, 2009), the impulses distributed by the ratio of the
+//! contacts' forces expressed through their potential energies, integrated adaptively in f64
+//! with event location (Siconos' `OSNSMultipleImpact`, which steps in the primary impulse with
+//! a fixed step). Frictionless for now; a mechanism is one body, a constrained body or a system
+//! of bodies ([`crate::impact::mechanism::Mechanism`]).
+
+pub mod law;
+pub mod lzb;
+
+pub use law::{ContactLaw, LawError};
+pub use lzb::{Event, EventKind, Lzb, LzbError, Phase, Sample, Stats, solve_lzb};
