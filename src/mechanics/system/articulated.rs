@@ -257,17 +257,7 @@ impl<T: Scalar> Articulated<T> {
                 let kc: [T; 6] = std::array::from_fn(|r| u0[r].clone() * &d1);
                 dinv[node.square] = d1;
                 if let Some(to) = to {
-                    for r in 0..6 {
-                        for c in 0..=r {
-                            a[6 * r + c] -= kc[r].clone() * &u0[c];
-                        }
-                    }
-                    for r in 0..6 {
-                        for c in 0..r {
-                            a[6 * c + r] = a[6 * r + c].clone();
-                        }
-                    }
-                    transport(a, &node.r, to);
+                    eliminate(a, [(&kc, &u0)], &node.r, to);
                 }
                 k[node.at] = kc;
                 continue;
@@ -312,24 +302,8 @@ impl<T: Scalar> Articulated<T> {
                 }
                 k[node.at + c] = kc;
             }
-            if node.parent == NONE {
-                continue;
-            }
-            // I^a = I^A − K Uᵀ (its lower triangle, then mirrored).
-            for (kb, ub) in k[node.at..node.at + n].iter().zip(&u) {
-                for r in 0..6 {
-                    for c in 0..=r {
-                        a[6 * r + c] -= kb[r].clone() * &ub[c];
-                    }
-                }
-            }
-            for r in 0..6 {
-                for c in 0..r {
-                    a[6 * c + r] = a[6 * r + c].clone();
-                }
-            }
             if let Some(to) = to {
-                transport(a, &node.r, to);
+                eliminate(a, k[node.at..node.at + n].iter().zip(&u), &node.r, to);
             }
         }
         Some(())
@@ -576,6 +550,29 @@ fn cross<T: Scalar>(r: &[T; 3], v: [&T; 3]) -> [T; 3] {
         r[2].clone() * v[0] - r[0].clone() * v[2],
         r[0].clone() * v[1] - r[1].clone() * v[0],
     ]
+}
+
+/// I^a = I^A − Σ_c K_c U_cᵀ (eq. 7.38) in `a` (its lower triangle, then mirrored), carried to
+/// the parent's `to`.
+fn eliminate<'a, T: Scalar + 'a>(
+    a: &mut Block<T>,
+    ku: impl IntoIterator<Item = (&'a [T; 6], &'a [T; 6])>,
+    r: &[T; 3],
+    to: &mut Block<T>,
+) {
+    for (kb, ub) in ku {
+        for i in 0..6 {
+            for j in 0..=i {
+                a[6 * i + j] -= kb[i].clone() * &ub[j];
+            }
+        }
+    }
+    for i in 0..6 {
+        for j in 0..i {
+            a[6 * j + i] = a[6 * i + j].clone();
+        }
+    }
+    transport(a, r, to);
 }
 
 /// `to` += Xᵀ a X for the symmetric `a` = [[A, B], [Bᵀ, C]] (3 × 3 blocks, on [v; ω]) and
