@@ -6,7 +6,6 @@
 
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::cell::Cell;
-use std::sync::atomic::{AtomicUsize, Ordering};
 
 use inertance::impact::problem::Problem;
 use inertance::impact::restitution::Model;
@@ -27,15 +26,21 @@ fn valid<T: inertance::Scalar>(
 
 struct Counting;
 
-static ALLOCATIONS: AtomicUsize = AtomicUsize::new(0);
-
 thread_local! {
     static COUNTING: Cell<bool> = const { Cell::new(false) };
+    /// This thread's count: the tests run on threads of their own, side by side, and one
+    /// test's allocations must not be counted in another's.
+    static ALLOCATIONS: Cell<usize> = const { Cell::new(0) };
+}
+
+/// This thread's allocations counted so far.
+fn allocations() -> usize {
+    ALLOCATIONS.with(Cell::get)
 }
 
 fn count() {
     if COUNTING.try_with(Cell::get).unwrap_or(false) {
-        ALLOCATIONS.fetch_add(1, Ordering::SeqCst);
+        let _ = ALLOCATIONS.try_with(|n| n.set(n.get() + 1));
     }
 }
 
@@ -114,11 +119,11 @@ fn repeated_f64_solves_do_not_allocate() {
 
     // The counter works: one allocation on this thread is seen.
     COUNTING.with(|c| c.set(true));
-    let probe = ALLOCATIONS.load(Ordering::SeqCst);
+    let probe = allocations();
     drop(std::hint::black_box(Vec::<u8>::with_capacity(8)));
-    assert_eq!(ALLOCATIONS.load(Ordering::SeqCst) - probe, 1);
+    assert_eq!(allocations() - probe, 1);
 
-    let before = ALLOCATIONS.load(Ordering::SeqCst);
+    let before = allocations();
     let mut checksum = 0.0;
     let mut pivots = 0;
     for _ in 0..50 {
@@ -133,7 +138,7 @@ fn repeated_f64_solves_do_not_allocate() {
             pivots += a.pivots + b.pivots;
         }
     }
-    let after = ALLOCATIONS.load(Ordering::SeqCst);
+    let after = allocations();
     COUNTING.with(|c| c.set(false));
     assert!(checksum.is_finite());
     assert!(pivots > 0, "the unilateral solves did pivot");
@@ -162,7 +167,7 @@ fn repeated_lean_system_solves_do_not_allocate() {
         })
         .collect();
     COUNTING.with(|c| c.set(true));
-    let before = ALLOCATIONS.load(Ordering::SeqCst);
+    let before = allocations();
     let mut checksum = 0.0;
     for _ in 0..50 {
         for (lean, system) in leans.iter_mut().zip(&systems) {
@@ -172,7 +177,7 @@ fn repeated_lean_system_solves_do_not_allocate() {
             }
         }
     }
-    let after = ALLOCATIONS.load(Ordering::SeqCst);
+    let after = allocations();
     COUNTING.with(|c| c.set(false));
     assert!(checksum.is_finite());
     assert_eq!(after - before, 0, "allocations in 300 lean system solves");
