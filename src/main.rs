@@ -777,6 +777,16 @@ fn run_analyze(
         Ok(s) => s,
         Err(code) => return code,
     };
+    if scene.law == Law::Lzb {
+        // Never a law named but not applied silently: the analysis is of G and of the
+        // simultaneous and unilateral laws, each labelled.
+        eprintln!(
+            "warning: {}: solve.law = \"lzb\" is not analysed: analyze gives G, Δ and the \
+             simultaneous and unilateral laws' answers, each labelled; `solve` integrates the \
+             LZB law",
+            path.display()
+        );
+    }
     let models = model.map(ModelArg::models);
     let report = if exact && !scene.is_rational() {
         analyze_scene::<RatFun>(&scene, models.as_deref())

@@ -162,3 +162,28 @@ fn derive_refuses_a_one_body_scene_under_the_unilateral_law() {
     );
     assert!(out.stdout.is_empty(), "nothing printed");
 }
+
+/// `derive` on a scene under the LZB law printed the simultaneous law's closed forms
+/// ("effects: newton, poisson"), exit 0, and `analyze` the simultaneous and unilateral
+/// analyses without a word on the scene's law (found this session on
+/// `examples/cradle-3-lzb.toml`). `derive` refuses it now, naming `solve.law`; `analyze`, whose
+/// every section names its law, warns that the LZB law is not analysed.
+#[test]
+fn derive_refuses_and_analyze_warns_on_a_scene_under_the_lzb_law() {
+    let text = std::fs::read_to_string(format!(
+        "{}/examples/cradle-3-lzb.toml",
+        env!("CARGO_MANIFEST_DIR")
+    ))
+    .expect("the example");
+    let scene = SceneFile::new("derive-lzb", &text);
+    let err = refused(&scene.run(&["derive", "--symbols", "k"]));
+    assert!(err.contains("solve.law") && err.contains("lzb"), "{err}");
+
+    let out = scene.run(&["analyze"]);
+    assert_eq!(out.status.code(), Some(0));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("warning") && err.contains("\"lzb\" is not analysed"),
+        "{err}"
+    );
+}

@@ -192,16 +192,27 @@ pub fn derive(
     if let Some(refusal) = crate::scene::limits::derive_limit(scene) {
         return Err(refusal.into());
     }
-    if scene.law == crate::impact::unilateral::Law::Unilateral {
-        // Never a law named but not applied: the closed forms are the simultaneous law's, for
-        // one body as for a system.
+    // Never a law named but not applied: the closed forms are the simultaneous law's, for one
+    // body as for a system.
+    let refused = match scene.law {
+        crate::impact::unilateral::Law::Simultaneous => None,
+        crate::impact::unilateral::Law::Unilateral => Some((
+            "\"unilateral\"",
+            "derive gives the simultaneous law's closed forms; the unilateral law's answer is \
+             piecewise (which contacts separate): solve it with `solve --exact`",
+        )),
+        crate::impact::unilateral::Law::Lzb => Some((
+            "\"lzb\"",
+            "derive gives the simultaneous law's closed forms; the LZB law is integrated \
+             numerically and has none: solve it with `solve`",
+        )),
+    };
+    if let Some((value, message)) = refused {
         return Err(RunError::Scene(crate::scene::SceneError {
             file: scene.file.clone(),
             key: "solve.law".into(),
-            value: Some("\"unilateral\"".into()),
-            message: "derive gives the simultaneous law's closed forms; the unilateral law's \
-                      answer is piecewise (which contacts separate): solve it with `solve --exact`"
-                .into(),
+            value: Some(value.into()),
+            message: message.into(),
         }));
     }
     let models = models.unwrap_or(&scene.models).to_vec();
