@@ -19,6 +19,14 @@ use crate::impact::unilateral::Law;
 use super::schema::ContactSpec;
 use super::{Scene, SceneError};
 
+/// The first contact with friction (μ ≠ 0, or not known to be 0), if any.
+fn first_rough(contacts: &[ContactSpec]) -> Option<usize> {
+    contacts.iter().position(|c| match &c.mu.exact {
+        Ok(q) => !num_traits::Zero::is_zero(q) || c.mu.tangent != 0.0,
+        Err(_) => true,
+    })
+}
+
 /// Refuse the unilateral law for `contacts` when one of them has friction; `how` says how the
 /// law was asked for (`` `[solve] law = "unilateral"` ``, `` `--law unilateral` ``).
 /// An energetic restitution law (`[solve] restitution`) is integrated in impulse space too.
@@ -28,10 +36,7 @@ pub(super) fn unilateral_allowed(
     restitution: Option<Restitution>,
     how: &str,
 ) -> Result<(), SceneError> {
-    let rough = contacts.iter().position(|c| match &c.mu.exact {
-        Ok(q) => !num_traits::Zero::is_zero(q) || c.mu.tangent != 0.0,
-        Err(_) => true,
-    });
+    let rough = first_rough(contacts);
     let (key, value, what) = match (rough, restitution) {
         (Some(i), _) => (
             format!("contact[{i}].mu"),
@@ -67,10 +72,7 @@ pub(super) fn lzb_allowed(
     restitution: Option<Restitution>,
     how: &str,
 ) -> Result<(), SceneError> {
-    let rough = contacts.iter().position(|c| match &c.mu.exact {
-        Ok(q) => !num_traits::Zero::is_zero(q) || c.mu.tangent != 0.0,
-        Err(_) => true,
-    });
+    let rough = first_rough(contacts);
     let (key, value, message) = match (rough, restitution) {
         (Some(i), _) => (
             format!("contact[{i}].mu"),
