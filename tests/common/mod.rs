@@ -17,6 +17,8 @@ use num_bigint::BigInt;
 use num_traits::Zero;
 use proptest::prelude::*;
 
+pub mod row;
+
 /// n/d with n in [-lo, lo], d in [1, den].
 pub fn rational(lo: i64, den: i64) -> impl Strategy<Value = Exact> {
     (-lo..=lo, 1..=den).prop_map(|(n, d)| Exact::new(BigInt::from(n), BigInt::from(d)))
