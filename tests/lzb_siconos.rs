@@ -85,8 +85,20 @@ fn siconos_scheme(
         for j in 0..nc {
             let mut s = 0.0;
             for b in 0..n {
-                let wi = if b == i { -1.0 } else if b == i + 1 { 1.0 } else { 0.0 };
-                let wj = if b == j { -1.0 } else if b == j + 1 { 1.0 } else { 0.0 };
+                let wi = if b == i {
+                    -1.0
+                } else if b == i + 1 {
+                    1.0
+                } else {
+                    0.0
+                };
+                let wj = if b == j {
+                    -1.0
+                } else if b == j + 1 {
+                    1.0
+                } else {
+                    0.0
+                };
                 s += wi * wj / masses[b];
             }
             d[i * nc + j] = s;
@@ -131,16 +143,16 @@ fn siconos_scheme(
             let ratio_stiff = k[i].powf(1.0 / (1.0 + mu)) / k_p.powf(1.0 / (1.0 + mu_p));
             dist[i] = if !by_energy {
                 if state[i] != 0 {
-                    let ratio_vel = vc[i].abs().powf(mu / (mu + 1.0))
-                        / v_p.abs().powf(mu_p / (1.0 + mu_p));
+                    let ratio_vel =
+                        vc[i].abs().powf(mu / (mu + 1.0)) / v_p.abs().powf(mu_p / (1.0 + mu_p));
                     (ratio_mu * ratio_stiff * ratio_vel).powf(1.0 + mu)
                         * dp.powf((mu - mu_p) / (1.0 + mu_p))
                 } else {
                     0.0
                 }
             } else if state[i] == 1 {
-                let ratio_ener = (vc[i] * dp).abs().powf(mu / (mu + 1.0))
-                    / e_p.powf(mu_p / (mu_p + 1.0));
+                let ratio_ener =
+                    (vc[i] * dp).abs().powf(mu / (mu + 1.0)) / e_p.powf(mu_p / (mu_p + 1.0));
                 (ratio_mu * ratio_stiff * ratio_ener).powf(1.0 + mu)
             } else if state[i] == 2 {
                 let ratio_ener = energy[i].powf(mu / (mu + 1.0)) / e_p.powf(mu_p / (mu_p + 1.0));
@@ -229,7 +241,10 @@ fn the_transcribed_scheme_reproduces_siconos_reference_outputs() {
         DELTA_P,
     );
     let d = max_diff(&v, &TAPERED_REF);
-    assert!(d <= 1e-9, "transcription {v:?} vs ref {TAPERED_REF:?}: {d:e}");
+    assert!(
+        d <= 1e-9,
+        "transcription {v:?} vs ref {TAPERED_REF:?}: {d:e}"
+    );
 }
 
 /// One binary impact: the LZB law is Newton's law with e = 1, v₁ = (m₁ − m₂)/(m₁ + m₂),
@@ -331,6 +346,8 @@ fn the_monodisperse_chain_against_siconos_and_the_compliant_dynamics() {
     // Momentum and energy of the exact answer (equal masses, e = 1).
     let p: f64 = ours.iter().sum();
     let t: f64 = ours.iter().map(|v| v * v).sum();
-    assert!((p - 1.0).abs() <= 1e-12 && (t - 1.0).abs() <= 1e-9, "{p} {t}");
+    assert!(
+        (p - 1.0).abs() <= 1e-12 && (t - 1.0).abs() <= 1e-9,
+        "{p} {t}"
+    );
 }
-

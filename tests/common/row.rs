@@ -106,4 +106,3 @@ pub fn compliant_checked(
         .fold(0.0_f64, |m, (a, b)| m.max((a - b).abs()));
     (fine, d)
 }
-
