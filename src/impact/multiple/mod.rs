@@ -9,10 +9,13 @@
 //! contacts' forces expressed through their potential energies, integrated adaptively in f64
 //! with event location (Siconos' `OSNSMultipleImpact`, which steps in the primary impulse with
 //! a fixed step). Frictionless for now; a mechanism is one body, a constrained body or a system
-//! of bodies ([`crate::impact::mechanism::Mechanism`]).
+//! of bodies ([`crate::impact::mechanism::Mechanism`]). [`closed_form`]: the exact outcome when
+//! every contact is alike (one contact; a body landing flat on equal corners).
 
+pub mod closed_form;
 pub mod law;
 pub mod lzb;
 
+pub use closed_form::{Alike, alike};
 pub use law::{ContactLaw, LawError};
 pub use lzb::{Event, EventKind, Lzb, LzbError, Phase, Sample, Stats, solve_lzb};
