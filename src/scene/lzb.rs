@@ -3,7 +3,8 @@
 //! report.
 //!
 //! Per contact: `stiffness` K_i (default 1; only the ratios between contacts change the
-//! outcome), `exponent` η_i (default 3/2, Hertz; 1 linear) — Siconos'
+//! outcome; `"hertz"`: Hertz's (4/3) E* √R* from the shapes and `material`s that touch,
+//! [`super::model::hertz`]), `exponent` η_i (default 3/2, Hertz; 1 linear) — Siconos'
 //! `MultipleImpactNSL(e, K, η)` — and Stronge's energetic coefficient e_i, read from
 //! `k_energetic` when given, else from the contact's `k` (or `k_poisson`), as the energetic
 //! restitution of the frictional integration reads it. The scene's numbers must be plain
@@ -52,6 +53,18 @@ fn contact_law(scene: &Scene, i: usize, c: &ContactSpec) -> Result<ContactLaw, S
     };
     let stiffness = match &c.stiffness {
         Some(n) => value("stiffness", n)?,
+        None if c.hertz => {
+            return Err(SceneError {
+                file: scene.file.clone(),
+                key: format!("contact[{i}].stiffness"),
+                value: Some("\"hertz\"".to_string()),
+                message: "Hertz's stiffness comes from the shapes and materials that touch: \
+                          write the scene in the world frame (a `shape` and a `material` for \
+                          each body, and the `obstacle` or the bodies the contact joins), or \
+                          give `stiffness` as a number"
+                    .to_string(),
+            });
+        }
         None => 1.0,
     };
     let exponent = match &c.exponent {

@@ -66,6 +66,9 @@ pub struct ContactSpec {
     /// η_i, the compliance exponent of the LZB law (`exponent`, default 3/2; read only under
     /// `[solve] law = "lzb"`).
     pub exponent: Option<Number>,
+    /// `stiffness = "hertz"`: K_i is Hertz's, from the shapes and materials that touch; the
+    /// modelling layer ([`super::model::hertz`]) sets `stiffness` to it, or refuses the scene.
+    pub hertz: bool,
 }
 
 /// The kinds of joint a scene may declare (see [`crate::mechanics::constraint::Joint`]).
@@ -442,6 +445,18 @@ impl Reader<'_> {
                 .map(|item| self.number(item, &format!("{at}.{key}")))
                 .transpose()
         };
+        let hertz = match t.get("stiffness").and_then(Item::as_str) {
+            Some("hertz") => true,
+            Some(other) => {
+                return Err(self.err(
+                    &format!("{at}.stiffness"),
+                    Some(format!("\"{other}\"")),
+                    "must be a number K > 0, or \"hertz\": Hertz's stiffness from the shapes and \
+                     the `material` of the two bodies (or body and obstacle) that touch",
+                ));
+            }
+            None => false,
+        };
         Ok(ContactSpec {
             point,
             normal,
@@ -450,8 +465,9 @@ impl Reader<'_> {
             k_poisson,
             k_energetic,
             mu,
-            stiffness: lzb_of("stiffness")?,
+            stiffness: if hertz { None } else { lzb_of("stiffness")? },
             exponent: lzb_of("exponent")?,
+            hertz,
         })
     }
 

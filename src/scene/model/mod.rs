@@ -26,6 +26,7 @@
 //! parameter is a symbol for `derive` and carries its derivative in a sensitivity run. A scene
 //! that uses none of these keys is read exactly as before.
 
+pub(crate) mod hertz;
 pub(crate) mod obstacle;
 pub(crate) mod params;
 pub(crate) mod pose;
@@ -202,7 +203,7 @@ impl Reader<'_> {
     }
 
     /// The magnitude of a term in f64 (for tolerances).
-    fn magnitude(&self, t: &Term) -> f64 {
+    pub(super) fn magnitude(&self, t: &Term) -> f64 {
         let x = t.approx().abs();
         if x.is_finite() { x } else { 1.0 }
     }
@@ -227,7 +228,9 @@ impl Reader<'_> {
         let body = self.table(root, "body", "")?;
         let mut keys = vec!["mass", "inertia", "velocity", "angular_velocity"];
         keys.extend(BODY_KEYS);
+        keys.push("material");
         self.only_keys(body, "body", &keys)?;
+        let material = self.material(body, "body")?;
         let (mut props, shape) = self.mass_properties(body, "body")?;
         let degenerate = self.degenerate(&mut props, shape.as_ref(), "body")?;
         let r = self.pose(body.get("pose"), "body")?;
@@ -245,7 +248,13 @@ impl Reader<'_> {
             axes,
         };
         let obstacles = self.obstacles(root)?;
-        self.place_contacts(root, contacts, &frame, &obstacles, shape.as_ref())?;
+        self.place_contacts(
+            root,
+            contacts,
+            &frame,
+            &obstacles,
+            (shape.as_ref(), material),
+        )?;
         if let Some(c) = constraints {
             self.lower_constraints(c, &frame)?;
         }
@@ -592,7 +601,7 @@ impl Reader<'_> {
         contacts: &mut [ContactSpec],
         frame: &Frame,
         obstacles: &[Obstacle],
-        shape: Option<&Shape>,
+        (shape, material): (Option<&Shape>, Option<hertz::Material>),
     ) -> Result<(), SceneError> {
         let Some(Item::ArrayOfTables(tables)) = root.get("contact") else {
             return Ok(());
@@ -679,8 +688,28 @@ impl Reader<'_> {
                     )?;
                     heights.push(Some((i, o, h)));
                     named.push((i, o, world_point.clone()));
+                    if spec.hertz {
+                        let body = self.hertz_surface(shape, None);
+                        self.set_hertz(
+                            &at,
+                            &mut spec.stiffness,
+                            &mut spec.exponent,
+                            [
+                                (body, material, "the body"),
+                                (hertz::Surface::Flat, ob.material, &ob.label(o)),
+                            ],
+                        )?;
+                    }
                 }
                 None => {
+                    if spec.hertz {
+                        return Err(self.err(
+                            &format!("{at}.stiffness"),
+                            Some("\"hertz\"".to_string()),
+                            "Hertz's stiffness needs the surface the body strikes: name its \
+                             `obstacle` (with a `material`), or give `stiffness` as a number",
+                        ));
+                    }
                     if let Some(n) = &spec.normal {
                         spec.normal = Some(self.numbers3(
                             &frame.out(&n.each_ref().map(Term::of)),

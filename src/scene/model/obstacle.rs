@@ -25,6 +25,8 @@ pub(crate) struct Obstacle {
     pub(crate) point: Option<Vec3>,
     /// `partial = true`: the contacts may name only some of the corners that touch it.
     pub(crate) partial: bool,
+    /// `material = { young, poisson }`, for Hertz's stiffness ([`super::hertz`]).
+    pub(crate) material: Option<super::hertz::Material>,
 }
 
 impl Obstacle {
@@ -54,7 +56,7 @@ impl Reader<'_> {
         let mut out: Vec<Obstacle> = Vec::with_capacity(arr.len());
         for (i, t) in arr.iter().enumerate() {
             let at = format!("obstacle[{i}]");
-            self.only_keys(t, &at, &["name", "normal", "point", "partial"])?;
+            self.only_keys(t, &at, &["name", "normal", "point", "partial", "material"])?;
             let partial = match t.get("partial") {
                 None => false,
                 Some(item) => item.as_bool().ok_or_else(|| {
@@ -96,6 +98,7 @@ impl Reader<'_> {
                 normal: normal.each_ref().map(Term::of),
                 point,
                 partial,
+                material: self.material(t, &at)?,
             });
         }
         Ok(out)

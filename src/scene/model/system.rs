@@ -150,8 +150,9 @@ impl SystemSpec {
 }
 
 /// Keys a `[[body]]` of a system may have.
-const BODY_KEYS: [&str; 11] = [
+const BODY_KEYS: [&str; 12] = [
     "name",
+    "material",
     "shape",
     "mass",
     "density",
@@ -173,6 +174,8 @@ pub(crate) fn declared(root: &Table) -> bool {
 struct Placed {
     frame: Frame,
     shape: Option<Shape>,
+    /// `material`, for Hertz's stiffness.
+    material: Option<super::hertz::Material>,
 }
 
 impl Reader<'_> {
@@ -301,7 +304,15 @@ impl Reader<'_> {
             centre,
             axes: Axes::World,
         };
-        Ok((spec, Placed { frame, shape }))
+        let material = self.material(t, &at)?;
+        Ok((
+            spec,
+            Placed {
+                frame,
+                shape,
+                material,
+            },
+        ))
     }
 
     /// The body named by `item` at `key`.
@@ -469,6 +480,23 @@ impl Reader<'_> {
                         &at,
                     )?;
                     on_obstacles[pair.first].push((i, o, point.clone()));
+                    if spec.hertz {
+                        let faces = self.box_faces(first, &point, &at)?;
+                        let body = format!("body \"{}\"", names[pair.first]);
+                        self.set_hertz(
+                            &at,
+                            &mut spec.stiffness,
+                            &mut spec.exponent,
+                            [
+                                (
+                                    self.hertz_surface(first.shape.as_ref(), faces),
+                                    first.material,
+                                    &body,
+                                ),
+                                (super::hertz::Surface::Flat, ob.material, &ob.label(o)),
+                            ],
+                        )?;
+                    }
                 }
                 None => {
                     let Some(normal) = &spec.normal else {
@@ -489,6 +517,26 @@ impl Reader<'_> {
                             &point,
                             (&names[body], body),
                             (&format!("{at}.{written}"), item.clone()),
+                        )?;
+                    }
+                    if spec.hertz {
+                        let mut sides = Vec::with_capacity(2);
+                        for body in std::iter::once(pair.first).chain(pair.second) {
+                            let faces = self.box_faces(&placed[body], &point, &at)?;
+                            sides.push((
+                                self.hertz_surface(placed[body].shape.as_ref(), faces),
+                                placed[body].material,
+                                format!("body \"{}\"", names[body]),
+                            ));
+                        }
+                        let [a, b] = &sides[..] else {
+                            unreachable!("a contact between bodies has two")
+                        };
+                        self.set_hertz(
+                            &at,
+                            &mut spec.stiffness,
+                            &mut spec.exponent,
+                            [(a.0, a.1, &a.2), (b.0, b.1, &b.2)],
                         )?;
                     }
                     let n = normal.each_ref().map(Term::of);
@@ -646,14 +694,7 @@ impl Reader<'_> {
                     .map(|x| self.magnitude(x))
                     .fold(0.0, f64::max)
                     .max(1e-300);
-                let mut faces = Vec::new();
-                for k in 0..3 {
-                    let half = &dims[k] / &Term::int(2);
-                    let slack = &(&half * &half) - &(&local[k] * &local[k]);
-                    if self.sign_at(&slack, scale * scale, key)? == Some(0) {
-                        faces.push(k);
-                    }
-                }
+                let faces = self.faces_at(dims, &local, key)?;
                 let [k] = faces[..] else {
                     return Ok(());
                 };
@@ -701,6 +742,42 @@ impl Reader<'_> {
                 },
             ),
         ))
+    }
+
+    /// The faces of a box (of sides `dims`) that the point `local` (box axes, from its centre)
+    /// lies on: one inside a face, two on an edge, three at a corner.
+    fn faces_at(&self, dims: &Vec3, local: &Vec3, key: &str) -> Result<Vec<usize>, SceneError> {
+        let scale = local
+            .iter()
+            .map(|x| self.magnitude(x))
+            .fold(0.0, f64::max)
+            .max(1e-300);
+        let mut faces = Vec::new();
+        for k in 0..3 {
+            let half = &dims[k] / &Term::int(2);
+            let slack = &(&half * &half) - &(&local[k] * &local[k]);
+            if self.sign_at(&slack, scale * scale, key)? == Some(0) {
+                faces.push(k);
+            }
+        }
+        Ok(faces)
+    }
+
+    /// For a box-shaped body, how many of its faces the world point is on; `None` otherwise.
+    fn box_faces(
+        &self,
+        placed: &Placed,
+        point: &Vec3,
+        key: &str,
+    ) -> Result<Option<usize>, SceneError> {
+        let Some(Shape::Box(dims)) = &placed.shape else {
+            return Ok(None);
+        };
+        let local = apply(
+            &transpose(&placed.frame.r),
+            &sub(point, &placed.frame.centre),
+        );
+        Ok(Some(self.faces_at(dims, &local, key)?.len()))
     }
 
     /// Whether two points are the same (see [`Reader::sign_at`]).
