@@ -79,6 +79,8 @@ enum Command {
         tolerance: Option<String>,
         /// Write the path of a frictional impact to FILE.csv or FILE.json: per sample s, the
         /// phase and, per contact, P_i, the tangential impulse, the slip velocity and the mode.
+        /// Under the LZB law, its impulse history: per sample τ, the primary contact and per
+        /// contact P_i, v_i, E_i (FILE.csv, FILE.json), or their plot (FILE.svg).
         #[arg(long, value_name = "FILE")]
         trajectory: Option<PathBuf>,
         #[command(flatten)]
@@ -451,7 +453,7 @@ fn solve(path: PathBuf, flags: Flags, opts: &SceneOpts) -> ExitCode {
         let asked = LzbFlags {
             exact: flags.exact,
             json: flags.json,
-            trajectory: flags.trajectory.is_some(),
+            trajectory: flags.trajectory,
             model: flags.model.is_some(),
         };
         return solve_lzb(&path, &scene, asked);
@@ -496,25 +498,22 @@ fn solve(path: PathBuf, flags: Flags, opts: &SceneOpts) -> ExitCode {
     }
 }
 
-/// The flags of `solve` the LZB law refuses.
+/// The flags of `solve` under the LZB law.
 struct LzbFlags {
     exact: bool,
     json: bool,
-    trajectory: bool,
+    trajectory: Option<PathBuf>,
     model: bool,
 }
 
-/// `solve` under the LZB law: f64 only, its own table.
+/// `solve` under the LZB law: f64 only, its own table or JSON report, and its impulse history
+/// with `--trajectory FILE.csv|.json|.svg`.
 fn solve_lzb(path: &std::path::Path, scene: &Scene, flags: LzbFlags) -> ExitCode {
     let refused = if flags.exact {
         Some(
             "--exact: the LZB law is integrated numerically (adaptive Runge–Kutta in f64), so \
              its result is never exact: drop --exact",
         )
-    } else if flags.json {
-        Some("--json: the LZB report is printed as a table only for now: drop --json")
-    } else if flags.trajectory {
-        Some("--trajectory: the LZB law's impulse history is not written to a file yet")
     } else if flags.model {
         Some(
             "--model: the LZB law has no Newton or Poisson model (its restitution is each \
@@ -527,12 +526,67 @@ fn solve_lzb(path: &std::path::Path, scene: &Scene, flags: LzbFlags) -> ExitCode
         eprintln!("error: {}: {message}", path.display());
         return ExitCode::from(2);
     }
+    let history = match &flags.trajectory {
+        None => None,
+        Some(file) => match history_format(file) {
+            Ok(f) => Some((file, f)),
+            Err(code) => return code,
+        },
+    };
     match inertance::scene::lzb::run_lzb(scene) {
         Ok(report) => {
-            print!("{}", report.to_table());
-            ExitCode::SUCCESS
+            if let Some((file, format)) = history {
+                let text = match format {
+                    HistoryFormat::Csv => Ok(report.history_csv()),
+                    HistoryFormat::Json => {
+                        Ok(serde_json::to_string_pretty(&report.history_json()).unwrap_or_default()
+                            + "\n")
+                    }
+                    HistoryFormat::Svg => report.history_svg(),
+                };
+                let written = match text {
+                    Ok(text) => write_whole(file, &text),
+                    Err(e) => {
+                        eprintln!("error: --trajectory {}: cannot draw the plot: {e}", file.display());
+                        Err(ExitCode::from(1))
+                    }
+                };
+                if let Err(code) = written {
+                    return code;
+                }
+            }
+            emit(flags.json, || report.to_json(), || report.to_table())
         }
         Err(e) => fail(path, e),
+    }
+}
+
+/// How `--trajectory` writes the LZB law's impulse history.
+#[derive(Clone, Copy)]
+enum HistoryFormat {
+    Csv,
+    Json,
+    Svg,
+}
+
+/// `--trajectory FILE`'s format under the LZB law, from its extension (status 2 for another).
+fn history_format(file: &std::path::Path) -> Result<HistoryFormat, ExitCode> {
+    let ext = file
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase);
+    match ext.as_deref() {
+        Some("csv") => Ok(HistoryFormat::Csv),
+        Some("json") => Ok(HistoryFormat::Json),
+        Some("svg") => Ok(HistoryFormat::Svg),
+        _ => {
+            eprintln!(
+                "error: --trajectory {}: under the LZB law the impulse history is written to a \
+                 file ending in .csv, .json or .svg (a plot)",
+                file.display()
+            );
+            Err(ExitCode::from(2))
+        }
     }
 }
 
@@ -593,6 +647,12 @@ fn write_trajectory(
             t
         }
     };
+    write_whole(file, &text)
+}
+
+/// Write `text` to `--trajectory`'s `file`, whole or not at all: into a temporary file beside
+/// it, renamed over it once written (status 2 when it cannot be written).
+fn write_whole(file: &std::path::Path, text: &str) -> Result<(), ExitCode> {
     let name = file
         .file_name()
         .map_or_else(|| "trajectory".into(), |n| n.to_string_lossy().into_owned());

@@ -157,3 +157,179 @@ fn meaningless_lzb_parameters_name_their_key_and_value() {
     assert_eq!(out.status.code(), Some(2), "{err}");
     assert!(err.contains("solve.restitution"), "{err}");
 }
+
+/// The number in the table's row `A{i}` at column `col` (0-based after the label).
+fn table_cell(stdout: &str, contact: usize, col: usize) -> f64 {
+    let label = format!("A{contact}");
+    let line = stdout
+        .lines()
+        .find(|l| l.split_whitespace().next() == Some(label.as_str()))
+        .unwrap_or_else(|| panic!("no row {label} in\n{stdout}"));
+    line.split_whitespace().nth(col + 1).unwrap().parse().unwrap()
+}
+
+#[test]
+fn the_json_report_carries_the_tables_numbers() {
+    let path = example("cradle-3-lzb.toml");
+    let path = path.to_str().unwrap();
+    let table = run(&["solve", path]);
+    let table = String::from_utf8_lossy(&table.stdout).into_owned();
+    let out = run(&["solve", path, "--json"]);
+    assert_eq!(
+        out.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let j: serde_json::Value = serde_json::from_slice(&out.stdout).expect("JSON");
+    assert_eq!(j["law"], "lzb");
+    assert_eq!(j["scalar"], "f64");
+    let contacts = j["contacts"].as_array().unwrap();
+    assert_eq!(contacts.len(), 2);
+    // Columns: K η e v⁰ P v E_max W_c W_r dissipated, printed to 6 decimals.
+    let close = |a: f64, b: f64| (a - b).abs() <= 5e-7 * (1.0 + b.abs());
+    for (i, c) in contacts.iter().enumerate() {
+        assert_eq!(c["contact"], i + 1);
+        let at = |k: &str| c[k].as_f64().unwrap_or_else(|| panic!("{k}: {c}"));
+        assert_eq!(c["law"]["stiffness"], 1.0);
+        assert_eq!(c["law"]["exponent"], 1.5);
+        assert_eq!(c["law"]["restitution"], 1.0);
+        for (col, key) in [
+            (3, "velocity_before"),
+            (4, "impulse"),
+            (5, "velocity_after"),
+            (6, "max_potential_energy"),
+            (7, "work_compression"),
+            (8, "work_expansion"),
+        ] {
+            let printed = table_cell(&table, i + 1, col);
+            assert!(close(printed, at(key)), "{key}: {printed} vs {c}");
+        }
+        assert!((at("dissipation") - (at("work_compression") - at("work_expansion"))).abs() < 1e-15);
+    }
+    // The twist after impact, per body, and the striker nearly stops (derivations/lzb.md).
+    let twists = j["twist_after"].as_array().unwrap();
+    assert_eq!(twists.len(), 3);
+    for t in twists {
+        let name = t["body"].as_str().unwrap();
+        let vx = t["velocity"][0].as_f64().unwrap();
+        assert!((printed_vx(&table, name) - vx).abs() <= 5e-7, "{name}");
+    }
+    // Momentum: the three balls of 0.5 kg carry the striker's 0.5 kg m/s.
+    let p: f64 = twists
+        .iter()
+        .map(|t| 0.5 * t["velocity"][0].as_f64().unwrap())
+        .sum();
+    assert!((p - 0.5).abs() < 1e-9, "{p}");
+    let loss = j["kinetic_energy_loss"].as_f64().unwrap();
+    let residual = j["energy_residual"].as_f64().unwrap();
+    let dissipation = j["dissipation"].as_f64().unwrap();
+    assert!((loss - dissipation - residual).abs() < 1e-15);
+    assert!(loss.abs() < 1e-8 && residual.abs() < 1e-8, "{loss} {residual}");
+    assert_eq!(j["ending_order"], serde_json::json!([1, 2]));
+    let events = j["events"].as_array().unwrap();
+    let integration = &j["integration"];
+    assert_eq!(integration["events"].as_u64().unwrap() as usize, events.len());
+    assert!(table.contains(&format!(
+        "{} steps ({} rejected), {} events",
+        integration["accepted_steps"], integration["rejected_steps"], integration["events"]
+    )));
+    let mut last = 0.0;
+    for e in events {
+        let tau = e["tau"].as_f64().unwrap();
+        assert!(tau >= last && tau <= integration["end"].as_f64().unwrap());
+        last = tau;
+        assert!([1, 2].contains(&e["contact"].as_u64().unwrap()));
+        assert!(
+            [
+                "compression ends",
+                "expansion ends",
+                "compresses again",
+                "engages",
+                "becomes primary"
+            ]
+            .contains(&e["kind"].as_str().unwrap()),
+            "{e}"
+        );
+    }
+    assert!(integration["error_estimate"].as_f64().unwrap() < 1e-6);
+    assert!(integration["tolerance"].as_f64().unwrap() > 0.0);
+}
+
+#[test]
+fn the_impulse_history_starts_at_rest_and_ends_at_the_reports_impulses() {
+    let path = example("cradle-3-lzb.toml");
+    let path = path.to_str().unwrap();
+    let dir = std::env::temp_dir().join(format!("inertance-lzb-history-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let csv = dir.join("history.csv");
+    let out = run(&["solve", path, "--json", "--trajectory", csv.to_str().unwrap()]);
+    assert_eq!(
+        out.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let j: serde_json::Value = serde_json::from_slice(&out.stdout).expect("JSON");
+    let text = std::fs::read_to_string(&csv).unwrap();
+    let mut lines = text.lines();
+    assert_eq!(lines.next(), Some("tau,primary,P1,v1,E1,P2,v2,E2"));
+    let rows: Vec<Vec<f64>> = lines
+        .map(|l| l.split(',').map(|x| x.parse::<f64>().expect(x)).collect())
+        .collect();
+    assert!(rows.len() > 10);
+    assert!(rows.iter().all(|r| r.len() == 8));
+    let first = &rows[0];
+    assert_eq!(first[0], 0.0);
+    assert_eq!((first[2], first[5]), (0.0, 0.0), "no impulse at τ = 0");
+    assert_eq!((first[3], first[6]), (1.0, 0.0), "v⁰");
+    let last = rows.last().unwrap();
+    for (i, col) in [(0, 2), (1, 5)] {
+        assert_eq!(
+            last[col],
+            j["contacts"][i]["impulse"].as_f64().unwrap(),
+            "P{}",
+            i + 1
+        );
+        assert_eq!(last[col + 1], j["contacts"][i]["velocity_after"].as_f64().unwrap());
+    }
+    assert_eq!(last[0], j["integration"]["end"].as_f64().unwrap());
+    // τ and the impulses never decrease; the energies are never negative.
+    for w in rows.windows(2) {
+        assert!(w[1][0] >= w[0][0] && w[1][2] >= w[0][2] && w[1][5] >= w[0][5]);
+        assert!(w[1][4] >= 0.0 && w[1][7] >= 0.0);
+    }
+
+    let svg = dir.join("history.svg");
+    let out = run(&["solve", path, "--trajectory", svg.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(0));
+    let svg = std::fs::read_to_string(&svg).unwrap();
+    assert!(svg.starts_with("<svg") && svg.trim_end().ends_with("</svg>"));
+    // Every element opened is closed: as many `<tag` as `</tag>` or `/>`.
+    let opened = svg.matches('<').count() - svg.matches("</").count();
+    assert_eq!(opened, svg.matches("</").count() + svg.matches("/>").count());
+    // One line per contact in each panel (impulse above, velocity below), in its colour.
+    for colour in ["#1F77B4", "#FF7F0E"] {
+        let lines = svg
+            .matches("<polyline")
+            .zip(svg.split("<polyline").skip(1))
+            .filter(|(_, rest)| rest.split('>').next().unwrap().contains(colour))
+            .count();
+        assert_eq!(lines, 2, "{colour}");
+    }
+
+    let json = dir.join("history.json");
+    let out = run(&["solve", path, "--trajectory", json.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(0));
+    let h: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    assert_eq!(h["samples"].as_array().unwrap().len(), rows.len());
+
+    let bad = dir.join("history.txt");
+    let out = run(&["solve", path, "--trajectory", bad.to_str().unwrap()]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(err.contains("history.txt") && err.contains(".csv, .json or .svg"), "{err}");
+    assert!(out.stdout.is_empty() && !bad.exists());
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -10,7 +10,7 @@
 //! numbers (no symbols); the integration is numerical, so the result is f64 whatever the
 //! inputs (`--exact` is refused by the command line).
 
-use crate::impact::multiple::{ContactLaw, Event, LawError, Lzb, Stats, solve_lzb};
+use crate::impact::multiple::{ContactLaw, Event, LawError, Lzb, Sample, Stats, solve_lzb};
 use crate::mechanics::screw::Screws;
 use crate::number::Number;
 
@@ -116,6 +116,10 @@ pub struct LzbReport {
     pub error_estimate: f64,
     /// The relative tolerance.
     pub tolerance: f64,
+    /// τ at the end of the impact.
+    pub end: f64,
+    /// The impulse history: the path at every accepted step ([`Sample`]).
+    pub samples: Vec<Sample>,
 }
 
 /// Solve `scene` under the LZB law, in f64, to the relative `tolerance` (the scene's
@@ -166,6 +170,8 @@ fn report<S: Screws<f64>>(scene: &Scene, out: Lzb<S>, names: &[String]) -> LzbRe
         stats: out.stats,
         error_estimate: out.error_estimate,
         tolerance: out.tolerance,
+        end: out.end,
+        samples: out.samples,
     }
 }
 
