@@ -100,6 +100,11 @@ enum Command {
         /// Print the JSON report instead of the text.
         #[arg(long)]
         json: bool,
+        /// Compare the simultaneous law with the LZB law at these stiffness ratios r (contact
+        /// 1's stiffness K₁ r), comma-separated; default for a scene under the LZB law:
+        /// 0.01,0.1,0.25,0.5,1,2,4,10,100.
+        #[arg(long, value_delimiter = ',', value_name = "R,R,…")]
+        lzb_ratios: Option<Vec<String>>,
         #[command(flatten)]
         opts: SceneOpts,
     },
@@ -295,8 +300,9 @@ fn main() -> ExitCode {
             exact,
             model,
             json,
+            lzb_ratios,
             opts,
-        } => run_analyze(scene, exact, model, json, &opts),
+        } => run_analyze(scene, exact, model, json, lzb_ratios, &opts),
         Command::Check { dir, quiet } => run_check(dir, quiet),
         Command::Derive {
             scene,
@@ -831,23 +837,44 @@ fn run_analyze(
     exact: bool,
     model: Option<ModelArg>,
     json: bool,
+    lzb_ratios: Option<Vec<String>>,
     opts: &SceneOpts,
 ) -> ExitCode {
     let scene = match load_with(&path, opts, &[]) {
         Ok(s) => s,
         Err(code) => return code,
     };
-    if scene.law == Law::Lzb {
-        // Never a law named but not applied silently: the analysis is of G and of the
-        // simultaneous and unilateral laws, each labelled.
-        eprintln!(
-            "warning: {}: solve.law = \"lzb\" is not analysed: analyze gives G, Δ and the \
-             simultaneous and unilateral laws' answers, each labelled; `solve` integrates the \
-             LZB law",
-            path.display()
-        );
-    }
+    let ratios = match lzb_ratios {
+        Some(list) => {
+            let mut ratios = Vec::new();
+            for text in list {
+                match text.trim().parse::<f64>() {
+                    Ok(r) if r.is_finite() && r > 0.0 => ratios.push(r),
+                    _ => {
+                        eprintln!(
+                            "error: --lzb-ratios {text}: a stiffness ratio is a finite number > 0 \
+                             (e.g. --lzb-ratios 0.1,1,10)"
+                        );
+                        return ExitCode::from(2);
+                    }
+                }
+            }
+            Some(ratios)
+        }
+        None if scene.law == Law::Lzb => {
+            Some(inertance::tools::lzb_compare::DEFAULT_RATIOS.to_vec())
+        }
+        None => None,
+    };
+    // Under the LZB law (or asked for): the simultaneous law against it over the ratios.
     let models = model.map(ModelArg::models);
+    let comparison = match ratios {
+        Some(r) => match inertance::tools::lzb_compare::compare(&scene, &r, models.as_deref()) {
+            Ok(c) => Some(c),
+            Err(e) => return fail(&path, e),
+        },
+        None => None,
+    };
     let report = if exact && !scene.is_rational() {
         analyze_scene::<RatFun>(&scene, models.as_deref())
     } else if exact {
@@ -856,7 +883,23 @@ fn run_analyze(
         analyze_scene::<f64>(&scene, models.as_deref())
     };
     match report {
-        Ok(r) => emit(json, || r.to_json(), || r.to_text()),
+        Ok(r) => emit(
+            json,
+            || {
+                let mut j = r.to_json();
+                if let (Some(c), Some(obj)) = (&comparison, j.as_object_mut()) {
+                    obj.insert("lzb".into(), c.to_json());
+                }
+                j
+            },
+            || {
+                let mut t = r.to_text();
+                if let Some(c) = &comparison {
+                    t.push_str(&c.to_text());
+                }
+                t
+            },
+        ),
         Err(e) => fail(&path, e),
     }
 }
