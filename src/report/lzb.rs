@@ -9,10 +9,12 @@ use plotters::prelude::*;
 use serde_json::{Value as Json, json};
 
 use super::json_f64;
+use super::trajectory::cell;
 use crate::scene::lzb::LzbReport;
 
-/// Line colours, one per contact (Tableau 10, as the sweep's plot).
-const PALETTE: [(u8, u8, u8); 10] = [
+/// Line colours, one per contact (Tableau 10, as the sweep's plot), shared with the LZB sweep's
+/// plot.
+pub(crate) const PALETTE: [(u8, u8, u8); 10] = [
     (31, 119, 180),
     (255, 127, 14),
     (44, 160, 44),
@@ -27,16 +29,6 @@ const PALETTE: [(u8, u8, u8); 10] = [
 
 fn list(v: &[f64]) -> Json {
     Json::Array(v.iter().map(|&x| json_f64(x)).collect())
-}
-
-/// An f64 in a CSV cell: shortest round-trip digits, scientific when very small or large (as
-/// the frictional trajectory writes them).
-fn cell(x: f64) -> String {
-    if x == 0.0 || (1e-4..1e7).contains(&x.abs()) {
-        format!("{x}")
-    } else {
-        format!("{x:e}")
-    }
 }
 
 impl LzbReport {

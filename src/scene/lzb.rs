@@ -176,7 +176,7 @@ fn report<S: Screws<f64>>(scene: &Scene, out: Lzb<S>, names: &[String]) -> LzbRe
 }
 
 /// A number as the reports print floats: 6 decimals, or scientific below 10⁻⁴ or above 10⁶.
-fn num(x: f64) -> String {
+pub(crate) fn num(x: f64) -> String {
     let a = x.abs();
     if x == 0.0 {
         "0".to_string()

@@ -20,7 +20,7 @@ use crate::impact::solve::{Impact, Outcome};
 use crate::impact::unilateral::Law;
 use crate::mechanics::screw::Screws;
 use crate::scene::Scene;
-use crate::scene::lzb::contact_laws;
+use crate::scene::lzb::{contact_laws, num};
 use crate::scene::pipeline::{RunError, friction_tolerance, prepare};
 
 /// The ratios compared when none are given: from 1/100 to 100.
@@ -159,18 +159,6 @@ fn compare_on<M: Mechanism<f64>>(
     })
 }
 
-/// A number as the reports print floats: 6 significant decimals, scientific when small.
-fn num(x: f64) -> String {
-    if x == 0.0 {
-        "0".into()
-    } else if (1e-4..1e6).contains(&x.abs()) {
-        let t = format!("{x:.6}");
-        t.trim_end_matches('0').trim_end_matches('.').to_string()
-    } else {
-        format!("{x:.3e}")
-    }
-}
-
 impl Comparison {
     /// The largest twist gap of `model` (an index into `models`) over the ratios.
     pub fn largest_gap(&self, model: usize) -> Option<f64> {
@@ -257,18 +245,25 @@ impl Comparison {
         for (k, m) in self.models.iter().enumerate() {
             if let Some(g) = self.largest_gap(k) {
                 let verdict = if g <= 0.01 {
-                    "the simultaneous answer can be trusted over this range"
+                    "the simultaneous answer can be trusted here"
                 } else {
                     "the simultaneous answer depends on the contacts' stiffnesses here: trust it \
                      only where the gap is small, or solve with `--law lzb`"
                 };
-                let _ = writeln!(
-                    s,
-                    "  {}: largest twist gap {:.2} % over r = {}…{}: {verdict}.",
-                    m.name(),
-                    100.0 * g,
+                let (lo, hi) = (
                     num(self.rows.first().map_or(1.0, |r| r.ratio)),
                     num(self.rows.last().map_or(1.0, |r| r.ratio)),
+                );
+                let (largest, over) = if lo == hi {
+                    ("twist gap", format!("at r = {lo}"))
+                } else {
+                    ("largest twist gap", format!("over r = {lo}…{hi}"))
+                };
+                let _ = writeln!(
+                    s,
+                    "  {}: {largest} {:.2} % {over}: {verdict}.",
+                    m.name(),
+                    100.0 * g,
                 );
             }
         }

@@ -31,32 +31,20 @@ use toml_edit::DocumentMut;
 
 use super::file::Staged;
 use super::plan::{check_shard_and_files, check_varied, grid_points, read_scene};
+use super::plot::{segments, y_range};
 use super::target::Target;
 use super::text::{num, text};
 use super::{CHUNK, SweepError, SweepOptions, SweepSummary, Vary};
 use crate::impact::multiple::LzbError;
 use crate::impact::unilateral::Law;
 use crate::number::rational_to_f64;
+use crate::report::lzb::PALETTE;
 use crate::scene::Scene;
 use crate::scene::lzb::{LzbReport, contact_laws, run_lzb};
 use crate::scene::pipeline::RunError;
 
 /// The contact keys that hold the LZB law's parameters: varied even when not written.
 const LAW_KEYS: [&str; 3] = ["stiffness", "exponent", "k_energetic"];
-
-/// Line colours (Tableau 10, as the other plots).
-const PALETTE: [(u8, u8, u8); 10] = [
-    (31, 119, 180),
-    (255, 127, 14),
-    (44, 160, 44),
-    (214, 39, 40),
-    (148, 103, 189),
-    (140, 86, 75),
-    (227, 119, 194),
-    (127, 127, 127),
-    (188, 189, 34),
-    (23, 190, 207),
-];
 
 /// Whether a sweep of `opts` runs the LZB law: `--law lzb`, or the scene's law without `--law`.
 pub(super) fn runs_lzb(opts: &SweepOptions, base: &Scene) -> bool {
@@ -378,22 +366,7 @@ impl LzbPlan {
         let v0 = &self.vary[0];
         let (a, b) = (rational_to_f64(&v0.start), rational_to_f64(&v0.stop));
         let (x0, x1) = (a.min(b), a.max(b));
-        let (mut y0, mut y1) = series
-            .iter()
-            .flatten()
-            .map(|t| t.2)
-            .filter(|y| y.is_finite())
-            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), y| {
-                (lo.min(y), hi.max(y))
-            });
-        if !y0.is_finite() {
-            (y0, y1) = (-1.0, 1.0);
-        }
-        let pad = if y1 > y0 {
-            0.05 * (y1 - y0)
-        } else {
-            0.5 * y0.abs().max(1.0)
-        };
+        let (y0, y1) = y_range(series);
         let names = self.outputs();
         let mut svg = String::new();
         {
@@ -408,7 +381,7 @@ impl LzbPlan {
                 .margin(15)
                 .x_label_area_size(45)
                 .y_label_area_size(80)
-                .build_cartesian_2d(x0..x1, (y0 - pad)..(y1 + pad))
+                .build_cartesian_2d(x0..x1, y0..y1)
                 .map_err(|e| err(&e))?;
             chart
                 .configure_mesh()
@@ -419,18 +392,8 @@ impl LzbPlan {
             for (s, points) in series.iter().enumerate() {
                 let (r, g, b) = PALETTE[s % PALETTE.len()];
                 let colour = RGBColor(r, g, b);
-                let mut lines: std::collections::BTreeMap<usize, Vec<Vec<(f64, f64)>>> =
-                    std::collections::BTreeMap::new();
-                for &(j, x, y) in points {
-                    let segs = lines.entry(j).or_insert_with(|| vec![Vec::new()]);
-                    if y.is_finite() {
-                        segs.last_mut().expect("one segment").push((x, y));
-                    } else if !segs.last().expect("one segment").is_empty() {
-                        segs.push(Vec::new());
-                    }
-                }
                 let mut labelled = false;
-                for seg in lines.into_values().flatten().filter(|s| !s.is_empty()) {
+                for seg in segments(points) {
                     let drawn = chart
                         .draw_series(LineSeries::new(seg, colour.stroke_width(2)))
                         .map_err(|e| err(&e))?;
