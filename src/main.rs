@@ -544,16 +544,18 @@ fn solve_lzb(path: &std::path::Path, scene: &Scene, flags: LzbFlags) -> ExitCode
             if let Some((file, format)) = history {
                 let text = match format {
                     HistoryFormat::Csv => Ok(report.history_csv()),
-                    HistoryFormat::Json => {
-                        Ok(serde_json::to_string_pretty(&report.history_json()).unwrap_or_default()
-                            + "\n")
-                    }
+                    HistoryFormat::Json => Ok(serde_json::to_string_pretty(&report.history_json())
+                        .unwrap_or_default()
+                        + "\n"),
                     HistoryFormat::Svg => report.history_svg(),
                 };
                 let written = match text {
                     Ok(text) => write_whole(file, &text),
                     Err(e) => {
-                        eprintln!("error: --trajectory {}: cannot draw the plot: {e}", file.display());
+                        eprintln!(
+                            "error: --trajectory {}: cannot draw the plot: {e}",
+                            file.display()
+                        );
                         Err(ExitCode::from(1))
                     }
                 };

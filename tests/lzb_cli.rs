@@ -158,7 +158,11 @@ fn table_cell(stdout: &str, contact: usize, col: usize) -> f64 {
         .lines()
         .find(|l| l.split_whitespace().next() == Some(label.as_str()))
         .unwrap_or_else(|| panic!("no row {label} in\n{stdout}"));
-    line.split_whitespace().nth(col + 1).unwrap().parse().unwrap()
+    line.split_whitespace()
+        .nth(col + 1)
+        .unwrap()
+        .parse()
+        .unwrap()
 }
 
 #[test]
@@ -198,7 +202,9 @@ fn the_json_report_carries_the_tables_numbers() {
             let printed = table_cell(&table, i + 1, col);
             assert!(close(printed, at(key)), "{key}: {printed} vs {c}");
         }
-        assert!((at("dissipation") - (at("work_compression") - at("work_expansion"))).abs() < 1e-15);
+        assert!(
+            (at("dissipation") - (at("work_compression") - at("work_expansion"))).abs() < 1e-15
+        );
     }
     // The twist after impact, per body, and the striker nearly stops (derivations/lzb.md).
     let twists = j["twist_after"].as_array().unwrap();
@@ -218,11 +224,17 @@ fn the_json_report_carries_the_tables_numbers() {
     let residual = j["energy_residual"].as_f64().unwrap();
     let dissipation = j["dissipation"].as_f64().unwrap();
     assert!((loss - dissipation - residual).abs() < 1e-15);
-    assert!(loss.abs() < 1e-8 && residual.abs() < 1e-8, "{loss} {residual}");
+    assert!(
+        loss.abs() < 1e-8 && residual.abs() < 1e-8,
+        "{loss} {residual}"
+    );
     assert_eq!(j["ending_order"], serde_json::json!([1, 2]));
     let events = j["events"].as_array().unwrap();
     let integration = &j["integration"];
-    assert_eq!(integration["events"].as_u64().unwrap() as usize, events.len());
+    assert_eq!(
+        integration["events"].as_u64().unwrap() as usize,
+        events.len()
+    );
     assert!(table.contains(&format!(
         "{} steps ({} rejected), {} events",
         integration["accepted_steps"], integration["rejected_steps"], integration["events"]
@@ -256,7 +268,13 @@ fn the_impulse_history_starts_at_rest_and_ends_at_the_reports_impulses() {
     let dir = std::env::temp_dir().join(format!("inertance-lzb-history-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let csv = dir.join("history.csv");
-    let out = run(&["solve", path, "--json", "--trajectory", csv.to_str().unwrap()]);
+    let out = run(&[
+        "solve",
+        path,
+        "--json",
+        "--trajectory",
+        csv.to_str().unwrap(),
+    ]);
     assert_eq!(
         out.status.code(),
         Some(0),
@@ -284,7 +302,10 @@ fn the_impulse_history_starts_at_rest_and_ends_at_the_reports_impulses() {
             "P{}",
             i + 1
         );
-        assert_eq!(last[col + 1], j["contacts"][i]["velocity_after"].as_f64().unwrap());
+        assert_eq!(
+            last[col + 1],
+            j["contacts"][i]["velocity_after"].as_f64().unwrap()
+        );
     }
     assert_eq!(last[0], j["integration"]["end"].as_f64().unwrap());
     // τ and the impulses never decrease; the energies are never negative.
@@ -300,7 +321,10 @@ fn the_impulse_history_starts_at_rest_and_ends_at_the_reports_impulses() {
     assert!(svg.starts_with("<svg") && svg.trim_end().ends_with("</svg>"));
     // Every element opened is closed: as many `<tag` as `</tag>` or `/>`.
     let opened = svg.matches('<').count() - svg.matches("</").count();
-    assert_eq!(opened, svg.matches("</").count() + svg.matches("/>").count());
+    assert_eq!(
+        opened,
+        svg.matches("</").count() + svg.matches("/>").count()
+    );
     // One line per contact in each panel (impulse above, velocity below), in its colour.
     for colour in ["#1F77B4", "#FF7F0E"] {
         let lines = svg
@@ -322,7 +346,10 @@ fn the_impulse_history_starts_at_rest_and_ends_at_the_reports_impulses() {
     let out = run(&["solve", path, "--trajectory", bad.to_str().unwrap()]);
     let err = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(2), "{err}");
-    assert!(err.contains("history.txt") && err.contains(".csv, .json or .svg"), "{err}");
+    assert!(
+        err.contains("history.txt") && err.contains(".csv, .json or .svg"),
+        "{err}"
+    );
     assert!(out.stdout.is_empty() && !bad.exists());
     let _ = std::fs::remove_dir_all(&dir);
 }
@@ -340,7 +367,13 @@ fn sweep_rows(args: &[&str], csv: &Path) -> Vec<std::collections::HashMap<String
     let mut lines = text.lines();
     let header: Vec<String> = lines.next().unwrap().split(',').map(String::from).collect();
     lines
-        .map(|l| header.iter().cloned().zip(l.split(',').map(String::from)).collect())
+        .map(|l| {
+            header
+                .iter()
+                .cloned()
+                .zip(l.split(',').map(String::from))
+                .collect()
+        })
         .collect()
 }
 
@@ -356,8 +389,14 @@ fn a_sweep_of_the_stiffness_ratio_runs_the_lzb_law_per_point() {
     // grid is linear.
     let rows = sweep_rows(
         &[
-            "sweep", bar, "--vary", "contact[1].stiffness=0.25:4:16", "--out",
-            csv.to_str().unwrap(), "--plot", svg.to_str().unwrap(),
+            "sweep",
+            bar,
+            "--vary",
+            "contact[1].stiffness=0.25:4:16",
+            "--out",
+            csv.to_str().unwrap(),
+            "--plot",
+            svg.to_str().unwrap(),
         ],
         &csv,
     );
@@ -375,7 +414,10 @@ fn a_sweep_of_the_stiffness_ratio_runs_the_lzb_law_per_point() {
         // At K₂ = K₁ the symmetric bar takes the simultaneous Newton impulses (1 + e) v⁰/(g11
         // + g12) = 1.5/2 = 0.75 each (tests/lzb.rs); the stiffer contact takes less.
         if ratio == 1.0 {
-            assert!((p1 - 0.75).abs() < 1e-8 && (p2 - 0.75).abs() < 1e-8, "{r:?}");
+            assert!(
+                (p1 - 0.75).abs() < 1e-8 && (p2 - 0.75).abs() < 1e-8,
+                "{r:?}"
+            );
         } else if ratio > 1.0 {
             assert!(p2 < p1, "{r:?}");
         } else {
@@ -386,7 +428,11 @@ fn a_sweep_of_the_stiffness_ratio_runs_the_lzb_law_per_point() {
     let (quarter, four) = (&rows[0], &rows[15]);
     let mirrored = sweep_rows(
         &[
-            "sweep", bar, "--vary", "contact[0].stiffness=0.25:4:2", "--out",
+            "sweep",
+            bar,
+            "--vary",
+            "contact[0].stiffness=0.25:4:2",
+            "--out",
             csv.to_str().unwrap(),
         ],
         &csv,
@@ -398,7 +444,11 @@ fn a_sweep_of_the_stiffness_ratio_runs_the_lzb_law_per_point() {
     // Very unequal stiffnesses: the stiff contact ends nearly at rest on its support.
     let far = sweep_rows(
         &[
-            "sweep", bar, "--vary", "contact[1].stiffness=100000:1000000:2", "--out",
+            "sweep",
+            bar,
+            "--vary",
+            "contact[1].stiffness=100000:1000000:2",
+            "--out",
             csv.to_str().unwrap(),
         ],
         &csv,
@@ -415,7 +465,12 @@ fn a_sweep_of_the_stiffness_ratio_runs_the_lzb_law_per_point() {
         (vec!["--sensitivity"], "--sensitivity"),
     ] {
         let mut args = vec![
-            "sweep", bar, "--vary", "contact[1].stiffness=1:2:3", "--out", csv.to_str().unwrap(),
+            "sweep",
+            bar,
+            "--vary",
+            "contact[1].stiffness=1:2:3",
+            "--out",
+            csv.to_str().unwrap(),
         ];
         args.extend(extra);
         let out = run(&args);
@@ -424,11 +479,19 @@ fn a_sweep_of_the_stiffness_ratio_runs_the_lzb_law_per_point() {
         assert!(err.contains(needle), "{err}");
     }
     let out = run(&[
-        "sweep", bar, "--vary", "contact[1].stiffness=-1:2:3", "--out", csv.to_str().unwrap(),
+        "sweep",
+        bar,
+        "--vary",
+        "contact[1].stiffness=-1:2:3",
+        "--out",
+        csv.to_str().unwrap(),
     ]);
     let err = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(2), "{err}");
-    assert!(err.contains("contact[1].stiffness") && err.contains("-1"), "{err}");
+    assert!(
+        err.contains("contact[1].stiffness") && err.contains("-1"),
+        "{err}"
+    );
     let _ = std::fs::remove_dir_all(&dir);
 }
 
@@ -436,7 +499,15 @@ fn a_sweep_of_the_stiffness_ratio_runs_the_lzb_law_per_point() {
 fn analyze_says_how_far_the_simultaneous_answer_is_from_the_lzb_one() {
     let bar = example("bar-two-supports-lzb.toml");
     let bar = bar.to_str().unwrap();
-    let out = run(&["analyze", bar, "--model", "newton", "--lzb-ratios", "0.1,1,10", "--json"]);
+    let out = run(&[
+        "analyze",
+        bar,
+        "--model",
+        "newton",
+        "--lzb-ratios",
+        "0.1,1,10",
+        "--json",
+    ]);
     assert_eq!(
         out.status.code(),
         Some(0),
@@ -453,8 +524,17 @@ fn analyze_says_how_far_the_simultaneous_answer_is_from_the_lzb_one() {
     // are the same bar mirrored, the same gap.
     assert!(gap(&rows[1]) < 1e-8, "{}", rows[1]);
     assert!(gap(&rows[0]) > 0.05 && (gap(&rows[0]) - gap(&rows[2])).abs() < 1e-8);
-    assert!(rows[1]["gaps"]["newton"]["energy_gap"].as_f64().unwrap().abs() < 1e-8);
-    assert!(rows.iter().all(|r| r["gaps"].get("poisson").is_none()), "--model newton only");
+    assert!(
+        rows[1]["gaps"]["newton"]["energy_gap"]
+            .as_f64()
+            .unwrap()
+            .abs()
+            < 1e-8
+    );
+    assert!(
+        rows.iter().all(|r| r["gaps"].get("poisson").is_none()),
+        "--model newton only"
+    );
 
     // The cradle under its own law: the section by default, and the simultaneous answer far
     // from the LZB one at equal stiffnesses (the striker bounces back instead of stopping).
@@ -462,8 +542,14 @@ fn analyze_says_how_far_the_simultaneous_answer_is_from_the_lzb_one() {
     let out = run(&["analyze", cradle.to_str().unwrap(), "--model", "newton"]);
     let text = String::from_utf8_lossy(&out.stdout);
     assert_eq!(out.status.code(), Some(0));
-    assert!(text.contains("The simultaneous law against the LZB law"), "{text}");
-    assert!(text.contains("depends on the contacts' stiffnesses"), "{text}");
+    assert!(
+        text.contains("The simultaneous law against the LZB law"),
+        "{text}"
+    );
+    assert!(
+        text.contains("depends on the contacts' stiffnesses"),
+        "{text}"
+    );
 
     // Bad ratios and a rough scene are refused, naming the value and the key.
     let out = run(&["analyze", bar, "--lzb-ratios", "1,-2"]);
@@ -481,7 +567,13 @@ fn analyze_says_how_far_the_simultaneous_answer_is_from_the_lzb_one() {
 #[test]
 fn bench_times_the_lzb_solve_in_f64() {
     let cradle = example("cradle-3-lzb.toml");
-    let out = run(&["bench", "--scene", cradle.to_str().unwrap(), "--quick", "--json"]);
+    let out = run(&[
+        "bench",
+        "--scene",
+        cradle.to_str().unwrap(),
+        "--quick",
+        "--json",
+    ]);
     assert_eq!(
         out.status.code(),
         Some(0),

@@ -10,6 +10,7 @@ use serde_json::{Value as Json, json};
 
 use super::json_f64;
 use super::trajectory::cell;
+use crate::impact::multiple::Sample;
 use crate::scene::lzb::LzbReport;
 
 /// Line colours, one per contact (Tableau 10, as the sweep's plot), shared with the LZB sweep's
@@ -26,6 +27,9 @@ pub(crate) const PALETTE: [(u8, u8, u8); 10] = [
     (188, 189, 34),
     (23, 190, 207),
 ];
+
+/// What a panel of the history's plot draws of a sample.
+type Pick = fn(&Sample) -> &[f64];
 
 fn list(v: &[f64]) -> Json {
     Json::Array(v.iter().map(|&x| json_f64(x)).collect())
@@ -151,35 +155,36 @@ impl LzbReport {
         let err = |e: &dyn std::fmt::Display| e.to_string();
         let n = self.impulses.len();
         let taus: Vec<f64> = self.samples.iter().map(|s| s.tau).collect();
-        let x1 = taus.iter().copied().fold(0.0_f64, f64::max).max(f64::MIN_POSITIVE);
-        let range = |f: &dyn Fn(&crate::impact::multiple::Sample) -> &[f64]| {
+        let x1 = taus
+            .iter()
+            .copied()
+            .fold(0.0_f64, f64::max)
+            .max(f64::MIN_POSITIVE);
+        let range = |pick: Pick| {
             let (lo, hi) = self
                 .samples
                 .iter()
-                .flat_map(|s| f(s).iter().copied())
+                .flat_map(|s| pick(s).iter().copied())
                 .fold((0.0_f64, 0.0_f64), |(lo, hi), y| (lo.min(y), hi.max(y)));
             let pad = 0.05 * (hi - lo).max(f64::MIN_POSITIVE);
             (lo - pad, hi + pad)
         };
+        let impulses: Pick = |s| &s.impulses;
+        let velocities: Pick = |s| &s.velocities;
         let mut svg = String::new();
         {
             let root = SVGBackend::with_string(&mut svg, (960, 720)).into_drawing_area();
             root.fill(&WHITE).map_err(|e| err(&e))?;
             let (top, bottom) = root.split_vertically(360);
-            let panels: [(_, &str, &str, (f64, f64), fn(&crate::impact::multiple::Sample) -> &[f64]); 2] = [
-                (
-                    &top,
-                    "impulse P_i [N s]",
-                    "P",
-                    range(&|s| &s.impulses),
-                    |s| &s.impulses,
-                ),
+            // Per panel: its area, the y axis, the legend's symbol, the y range, what it draws.
+            let panels = [
+                (&top, "impulse P_i [N s]", "P", range(impulses), impulses),
                 (
                     &bottom,
                     "velocity v_i [m/s], positive approaching",
                     "v",
-                    range(&|s| &s.velocities),
-                    |s| &s.velocities,
+                    range(velocities),
+                    velocities,
                 ),
             ];
             for (k, (area, y_desc, symbol, (y0, y1), pick)) in panels.into_iter().enumerate() {

@@ -14,7 +14,8 @@ use crate::tools::bench::time_three;
 use crate::tools::system_bench::{NotTimed, SceneTiming};
 
 /// What one timed solve is.
-pub const SOLVE: &str = "solve_lzb on the prepared mechanism (G, adaptive RK5(4) steps, events), every output";
+pub const SOLVE: &str =
+    "solve_lzb on the prepared mechanism (G, adaptive RK5(4) steps, events), every output";
 
 /// Time `scene` under the LZB law, each solve within `budget`: f64, the other types not
 /// applicable.

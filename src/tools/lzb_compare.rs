@@ -235,7 +235,11 @@ impl Comparison {
         for r in &rows {
             let mut line = String::from(" ");
             for (k, cell) in r.iter().enumerate() {
-                let pad = widths.get(k).copied().unwrap_or(0).saturating_sub(cell.chars().count());
+                let pad = widths
+                    .get(k)
+                    .copied()
+                    .unwrap_or(0)
+                    .saturating_sub(cell.chars().count());
                 line.push_str("  ");
                 line.push_str(&" ".repeat(pad));
                 line.push_str(cell);

@@ -65,10 +65,7 @@ struct LzbPlan {
 }
 
 /// Run an LZB sweep (module docs).
-pub(super) fn sweep_lzb(
-    opts: &SweepOptions,
-    started: Instant,
-) -> Result<SweepSummary, SweepError> {
+pub(super) fn sweep_lzb(opts: &SweepOptions, started: Instant) -> Result<SweepSummary, SweepError> {
     check_varied(&opts.vary)?;
     check_shard_and_files(opts)?;
     if opts.exact {
