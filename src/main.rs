@@ -79,6 +79,8 @@ enum Command {
         tolerance: Option<String>,
         /// Write the path of a frictional impact to FILE.csv or FILE.json: per sample s, the
         /// phase and, per contact, P_i, the tangential impulse, the slip velocity and the mode.
+        /// Under the LZB law, its impulse history: per sample τ, the primary contact and per
+        /// contact P_i, v_i, E_i (FILE.csv, FILE.json), or their plot (FILE.svg).
         #[arg(long, value_name = "FILE")]
         trajectory: Option<PathBuf>,
         #[command(flatten)]
@@ -98,6 +100,11 @@ enum Command {
         /// Print the JSON report instead of the text.
         #[arg(long)]
         json: bool,
+        /// Compare the simultaneous law with the LZB law at these stiffness ratios r (contact
+        /// 1's stiffness K₁ r), comma-separated; default for a scene under the LZB law:
+        /// 0.01,0.1,0.25,0.5,1,2,4,10,100.
+        #[arg(long, value_delimiter = ',', value_name = "R,R,…")]
+        lzb_ratios: Option<Vec<String>>,
         #[command(flatten)]
         opts: SceneOpts,
     },
@@ -293,8 +300,9 @@ fn main() -> ExitCode {
             exact,
             model,
             json,
+            lzb_ratios,
             opts,
-        } => run_analyze(scene, exact, model, json, &opts),
+        } => run_analyze(scene, exact, model, json, lzb_ratios, &opts),
         Command::Check { dir, quiet } => run_check(dir, quiet),
         Command::Derive {
             scene,
@@ -451,7 +459,7 @@ fn solve(path: PathBuf, flags: Flags, opts: &SceneOpts) -> ExitCode {
         let asked = LzbFlags {
             exact: flags.exact,
             json: flags.json,
-            trajectory: flags.trajectory.is_some(),
+            trajectory: flags.trajectory,
             model: flags.model.is_some(),
         };
         return solve_lzb(&path, &scene, asked);
@@ -496,25 +504,22 @@ fn solve(path: PathBuf, flags: Flags, opts: &SceneOpts) -> ExitCode {
     }
 }
 
-/// The flags of `solve` the LZB law refuses.
+/// The flags of `solve` under the LZB law.
 struct LzbFlags {
     exact: bool,
     json: bool,
-    trajectory: bool,
+    trajectory: Option<PathBuf>,
     model: bool,
 }
 
-/// `solve` under the LZB law: f64 only, its own table.
+/// `solve` under the LZB law: f64 only, its own table or JSON report, and its impulse history
+/// with `--trajectory FILE.csv|.json|.svg`.
 fn solve_lzb(path: &std::path::Path, scene: &Scene, flags: LzbFlags) -> ExitCode {
     let refused = if flags.exact {
         Some(
             "--exact: the LZB law is integrated numerically (adaptive Runge–Kutta in f64), so \
              its result is never exact: drop --exact",
         )
-    } else if flags.json {
-        Some("--json: the LZB report is printed as a table only for now: drop --json")
-    } else if flags.trajectory {
-        Some("--trajectory: the LZB law's impulse history is not written to a file yet")
     } else if flags.model {
         Some(
             "--model: the LZB law has no Newton or Poisson model (its restitution is each \
@@ -527,12 +532,69 @@ fn solve_lzb(path: &std::path::Path, scene: &Scene, flags: LzbFlags) -> ExitCode
         eprintln!("error: {}: {message}", path.display());
         return ExitCode::from(2);
     }
+    let history = match &flags.trajectory {
+        None => None,
+        Some(file) => match history_format(file) {
+            Ok(f) => Some((file, f)),
+            Err(code) => return code,
+        },
+    };
     match inertance::scene::lzb::run_lzb(scene) {
         Ok(report) => {
-            print!("{}", report.to_table());
-            ExitCode::SUCCESS
+            if let Some((file, format)) = history {
+                let text = match format {
+                    HistoryFormat::Csv => Ok(report.history_csv()),
+                    HistoryFormat::Json => Ok(serde_json::to_string_pretty(&report.history_json())
+                        .unwrap_or_default()
+                        + "\n"),
+                    HistoryFormat::Svg => report.history_svg(),
+                };
+                let written = match text {
+                    Ok(text) => write_whole(file, &text),
+                    Err(e) => {
+                        eprintln!(
+                            "error: --trajectory {}: cannot draw the plot: {e}",
+                            file.display()
+                        );
+                        Err(ExitCode::from(1))
+                    }
+                };
+                if let Err(code) = written {
+                    return code;
+                }
+            }
+            emit(flags.json, || report.to_json(), || report.to_table())
         }
         Err(e) => fail(path, e),
+    }
+}
+
+/// How `--trajectory` writes the LZB law's impulse history.
+#[derive(Clone, Copy)]
+enum HistoryFormat {
+    Csv,
+    Json,
+    Svg,
+}
+
+/// `--trajectory FILE`'s format under the LZB law, from its extension (status 2 for another).
+fn history_format(file: &std::path::Path) -> Result<HistoryFormat, ExitCode> {
+    let ext = file
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase);
+    match ext.as_deref() {
+        Some("csv") => Ok(HistoryFormat::Csv),
+        Some("json") => Ok(HistoryFormat::Json),
+        Some("svg") => Ok(HistoryFormat::Svg),
+        _ => {
+            eprintln!(
+                "error: --trajectory {}: under the LZB law the impulse history is written to a \
+                 file ending in .csv, .json or .svg (a plot)",
+                file.display()
+            );
+            Err(ExitCode::from(2))
+        }
     }
 }
 
@@ -593,6 +655,12 @@ fn write_trajectory(
             t
         }
     };
+    write_whole(file, &text)
+}
+
+/// Write `text` to `--trajectory`'s `file`, whole or not at all: into a temporary file beside
+/// it, renamed over it once written (status 2 when it cannot be written).
+fn write_whole(file: &std::path::Path, text: &str) -> Result<(), ExitCode> {
     let name = file
         .file_name()
         .map_or_else(|| "trajectory".into(), |n| n.to_string_lossy().into_owned());
@@ -771,23 +839,44 @@ fn run_analyze(
     exact: bool,
     model: Option<ModelArg>,
     json: bool,
+    lzb_ratios: Option<Vec<String>>,
     opts: &SceneOpts,
 ) -> ExitCode {
     let scene = match load_with(&path, opts, &[]) {
         Ok(s) => s,
         Err(code) => return code,
     };
-    if scene.law == Law::Lzb {
-        // Never a law named but not applied silently: the analysis is of G and of the
-        // simultaneous and unilateral laws, each labelled.
-        eprintln!(
-            "warning: {}: solve.law = \"lzb\" is not analysed: analyze gives G, Δ and the \
-             simultaneous and unilateral laws' answers, each labelled; `solve` integrates the \
-             LZB law",
-            path.display()
-        );
-    }
+    let ratios = match lzb_ratios {
+        Some(list) => {
+            let mut ratios = Vec::new();
+            for text in list {
+                match text.trim().parse::<f64>() {
+                    Ok(r) if r.is_finite() && r > 0.0 => ratios.push(r),
+                    _ => {
+                        eprintln!(
+                            "error: --lzb-ratios {text}: a stiffness ratio is a finite number > 0 \
+                             (e.g. --lzb-ratios 0.1,1,10)"
+                        );
+                        return ExitCode::from(2);
+                    }
+                }
+            }
+            Some(ratios)
+        }
+        None if scene.law == Law::Lzb => {
+            Some(inertance::tools::lzb_compare::DEFAULT_RATIOS.to_vec())
+        }
+        None => None,
+    };
+    // Under the LZB law (or asked for): the simultaneous law against it over the ratios.
     let models = model.map(ModelArg::models);
+    let comparison = match ratios {
+        Some(r) => match inertance::tools::lzb_compare::compare(&scene, &r, models.as_deref()) {
+            Ok(c) => Some(c),
+            Err(e) => return fail(&path, e),
+        },
+        None => None,
+    };
     let report = if exact && !scene.is_rational() {
         analyze_scene::<RatFun>(&scene, models.as_deref())
     } else if exact {
@@ -796,7 +885,23 @@ fn run_analyze(
         analyze_scene::<f64>(&scene, models.as_deref())
     };
     match report {
-        Ok(r) => emit(json, || r.to_json(), || r.to_text()),
+        Ok(r) => emit(
+            json,
+            || {
+                let mut j = r.to_json();
+                if let (Some(c), Some(obj)) = (&comparison, j.as_object_mut()) {
+                    obj.insert("lzb".into(), c.to_json());
+                }
+                j
+            },
+            || {
+                let mut t = r.to_text();
+                if let Some(c) = &comparison {
+                    t.push_str(&c.to_text());
+                }
+                t
+            },
+        ),
         Err(e) => fail(&path, e),
     }
 }

@@ -28,6 +28,7 @@ from ._inertance import (
     __version__,
     FormatError,
     InertanceError,
+    LzbSolution,
     ModelSolution,
     Scene,
     SceneError,
@@ -40,6 +41,7 @@ from ._inertance import (
 
 __all__ = [
     "__version__", "Scene", "Solution", "ModelSolution", "SystemSolution", "SystemModelSolution",
+    "LzbSolution",
     "Derivation", "CheckResult",
     "solve", "solve_batch", "sweep", "analyze", "derive", "check",
     "InertanceError", "SceneError", "SolveError", "SweepError", "FormatError",
@@ -69,12 +71,13 @@ def _scene(scene: SceneLike, symbols: Optional[Sequence[str]] = None) -> Scene:
 def solve(scene: SceneLike, model: Union[str, Sequence[str], None] = None,
           law: Optional[str] = None, exact: bool = False,
           outputs: Union[str, Sequence[str], None] = None,
-          tolerance: Optional[float] = None) -> Union[Solution, SystemSolution]:
+          tolerance: Optional[float] = None) -> Union[Solution, SystemSolution, LzbSolution]:
     """Solve the collision of ``scene`` (as ``inertance solve --json``).
 
     ``model``: ``"newton"`` (eq. 14–20), ``"poisson"`` (eq. 21–23), ``"both"`` or ``None``
     (the scene's ``[solve] models``); ``law``: ``"simultaneous"`` (the paper's, eq. 15,
-    21–23) or ``"unilateral"`` (complementarity); ``None``: the scene's. ``exact``: in
+    21–23), ``"unilateral"`` (complementarity) or ``"lzb"`` (see below); ``None``: the
+    scene's. ``exact``: in
     rationals, or exact radicals when the scene has ``"2/sqrt(5)"``-like numbers.
     ``outputs``: a name or a list of ``"impulses"``, ``"twist"``, ``"normal-velocities"``,
     ``"tangential"``, ``"energies"``, ``"constraint-impulses"`` (or ``"all"``): only those are
@@ -99,6 +102,16 @@ def solve(scene: SceneLike, model: Union[str, Sequence[str], None] = None,
     (force and moment on the joint's first body at its anchor), ``momentum_after``,
     ``contact_velocities``, ``lost_velocity_energy``, ``kinetic_energy_loss``. ``outputs``
     does not apply to it (a system is reported whole).
+
+    Under the LZB multiple-impact law (``law="lzb"``, or a scene's ``[solve] law = "lzb"``;
+    guide/multiple-impacts.md) the result is an :class:`LzbSolution`, in f64 (``exact``,
+    ``model`` and ``outputs`` are refused): per contact (indexed from 0) ``stiffness``,
+    ``exponent``, ``restitution``, ``velocities_before``, ``impulses``, ``velocities_after``,
+    ``max_energies``, ``work_compression``, ``work_expansion``, ``dissipation``; ``bodies``,
+    ``velocities``, ``angular_velocities``, ``velocity(body)``; ``kinetic_energy_loss``,
+    ``energy_residual``, ``events``, ``ending_order``, ``error_estimate``, ``tolerance``,
+    ``stats``; ``history`` (numpy arrays per sample: ``tau``, ``primary``, ``impulses``,
+    ``velocities``, ``energies``); ``to_json()``, the report of ``inertance solve --json``.
 
     Raises :class:`SceneError` for bad input and :class:`SolveError` when there is no answer
     (``kind == "singular"``: Δ = 0, §8; ``"jammed"`` under the unilateral law).

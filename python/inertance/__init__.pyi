@@ -6,6 +6,7 @@ from ._inertance import (
     __version__ as __version__,
     FormatError as FormatError,
     InertanceError as InertanceError,
+    LzbSolution as LzbSolution,
     ModelSolution as ModelSolution,
     Scene as Scene,
     SceneError as SceneError,
@@ -21,7 +22,7 @@ ModelArg = Union[str, Sequence[str], None]
 
 def solve(scene: SceneLike, model: ModelArg = None, law: Optional[str] = None, exact: bool = False,
           outputs: Union[str, Sequence[str], None] = None,
-          tolerance: Optional[float] = None) -> Union[Solution, SystemSolution]: ...
+          tolerance: Optional[float] = None) -> Union[Solution, SystemSolution, LzbSolution]: ...
 # Per model: "impulses" (P, N); one body: "velocity", "angular_velocity" (P, 3); a system:
 # "bodies": {name: {"velocity": (P, 3), "angular_velocity": (P, 3)}}; then
 # "lost_velocity_energy", "kinetic_energy_loss" (P,) (and "friction_dissipation"); "status".

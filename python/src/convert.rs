@@ -237,8 +237,9 @@ pub fn law(law: Option<&str>) -> PyResult<Option<Law>> {
         None => Ok(None),
         Some("simultaneous") => Ok(Some(Law::Simultaneous)),
         Some("unilateral") => Ok(Some(Law::Unilateral)),
+        Some("lzb") => Ok(Some(Law::Lzb)),
         Some(other) => Err(PyValueError::new_err(format!(
-            "law {other:?}: expected \"simultaneous\" or \"unilateral\""
+            "law {other:?}: expected \"simultaneous\", \"unilateral\" or \"lzb\""
         ))),
     }
 }
@@ -404,7 +405,7 @@ pub fn column<'py>(py: Python<'py>, values: &[f64], width: usize, col: usize) ->
 }
 
 /// A sweep's CSV as columns by name: numbers as numpy arrays (an empty field as NaN, `point`
-/// as integers), `status` as strings, the `_exact` columns as `Fraction`s (radicals as strings).
+/// as integers), `status` (and an LZB sweep's `order`) as strings, the `_exact` columns as `Fraction`s (radicals as strings).
 pub fn csv_columns<'py>(py: Python<'py>, text: &str) -> PyResult<Bound<'py, PyDict>> {
     let mut reader = csv::Reader::from_reader(text.as_bytes());
     let header: Vec<String> = reader
@@ -422,7 +423,8 @@ pub fn csv_columns<'py>(py: Python<'py>, text: &str) -> PyResult<Bound<'py, PyDi
     }
     let out = PyDict::new(py);
     for (name, col) in header.iter().zip(cells) {
-        if name == "status" {
+        if name == "status" || name == "order" {
+            // `order`: an LZB sweep's contacts in the order they came to rest ("1 2").
             out.set_item(name, col)?;
         } else if name.ends_with("_exact") {
             let list = PyList::empty(py);

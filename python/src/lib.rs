@@ -7,6 +7,7 @@
 
 mod convert;
 mod errors;
+mod lzb;
 mod system;
 
 use std::path::PathBuf;
@@ -613,6 +614,13 @@ fn solve(
     let law = convert::law(law)?;
     let outputs = convert::outputs(outputs)?;
     let tolerance = convert::tolerance(tolerance)?;
+    if law.unwrap_or(scene.scene.law) == inertance::impact::unilateral::Law::Lzb {
+        lzb::refuse(exact, models.is_some(), outputs.is_some())?;
+        return Ok(lzb::solve(py, scene, tolerance)?
+            .into_pyobject(py)?
+            .into_any()
+            .unbind());
+    }
     if scene.scene.system.is_some() {
         if outputs.is_some() {
             return Err(PyValueError::new_err(
@@ -865,6 +873,7 @@ fn _inertance(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<ModelSolution>()?;
     m.add_class::<system::SystemSolution>()?;
     m.add_class::<system::SystemModelSolution>()?;
+    m.add_class::<lzb::LzbSolution>()?;
     m.add_function(wrap_pyfunction!(solve, m)?)?;
     m.add_function(wrap_pyfunction!(analyze, m)?)?;
     m.add_function(wrap_pyfunction!(check, m)?)?;

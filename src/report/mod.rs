@@ -15,6 +15,7 @@
 
 mod friction;
 mod json;
+pub mod lzb;
 pub mod system;
 pub mod system_friction;
 mod table;

@@ -85,7 +85,7 @@ pub fn trajectory<T: Scalar>(f: &Frictional<T>) -> Vec<TrajectoryPoint> {
 }
 
 /// An f64 in a CSV cell: shortest round-trip digits, scientific when very small or large.
-fn cell(x: f64) -> String {
+pub(super) fn cell(x: f64) -> String {
     if x == 0.0 || (1e-4..1e7).contains(&x.abs()) {
         format!("{x}")
     } else {

@@ -8,10 +8,11 @@
 //! as the unilateral one. Until the unilateral law is integrated with friction, the
 //! combination is refused, from the scene file and from every override alike.
 //!
-//! The LZB law ([`crate::impact::multiple`]) is integrated frictionless, in f64, and only
-//! `inertance solve` runs it ([`super::lzb`]): friction or an impulse-space restitution law
-//! with it is refused here, and every other solve path refuses the law itself
-//! ([`Scene::law_applies`]) rather than answer under another law's name.
+//! The LZB law ([`crate::impact::multiple`]) is integrated frictionless, in f64, by its own
+//! paths ([`super::lzb`]: `solve`, `sweep`, `analyze`, `bench --scene`, Python's `solve`):
+//! friction or an impulse-space restitution law with it is refused here, and the simultaneous
+//! solvers refuse the law itself ([`Scene::law_applies`]) rather than answer under another
+//! law's name.
 
 use crate::impact::friction::Restitution;
 use crate::impact::unilateral::Law;
@@ -137,9 +138,10 @@ impl Scene {
                 file: self.file.clone(),
                 key: "solve.law".to_string(),
                 value: Some("lzb".to_string()),
-                message: "the LZB law is solved by `inertance solve` only, in f64 (`analyze`, \
-                          `sweep`, `bench`, `derive`, `check` and the batch and Python paths do \
-                          not run it yet): run `inertance solve`, or choose another law"
+                message: "the LZB law is run in f64 by `inertance solve`, `sweep`, `analyze` \
+                          (against the simultaneous law), `bench --scene` and Python's `solve`; \
+                          this path (the simultaneous solvers: `derive`, `check`, the batch \
+                          API) does not run it: use one of those, or choose another law"
                     .to_string(),
             }),
         }

@@ -11,7 +11,7 @@
 //! numbers (no symbols); the integration is numerical, so the result is f64 whatever the
 //! inputs (`--exact` is refused by the command line).
 
-use crate::impact::multiple::{ContactLaw, Event, LawError, Lzb, Stats, solve_lzb};
+use crate::impact::multiple::{ContactLaw, Event, LawError, Lzb, Sample, Stats, solve_lzb};
 use crate::mechanics::screw::Screws;
 use crate::number::Number;
 
@@ -129,6 +129,10 @@ pub struct LzbReport {
     pub error_estimate: f64,
     /// The relative tolerance.
     pub tolerance: f64,
+    /// τ at the end of the impact.
+    pub end: f64,
+    /// The impulse history: the path at every accepted step ([`Sample`]).
+    pub samples: Vec<Sample>,
 }
 
 /// Solve `scene` under the LZB law, in f64, to the relative `tolerance` (the scene's
@@ -179,11 +183,13 @@ fn report<S: Screws<f64>>(scene: &Scene, out: Lzb<S>, names: &[String]) -> LzbRe
         stats: out.stats,
         error_estimate: out.error_estimate,
         tolerance: out.tolerance,
+        end: out.end,
+        samples: out.samples,
     }
 }
 
 /// A number as the reports print floats: 6 decimals, or scientific below 10⁻⁴ or above 10⁶.
-fn num(x: f64) -> String {
+pub(crate) fn num(x: f64) -> String {
     let a = x.abs();
     if x == 0.0 {
         "0".to_string()

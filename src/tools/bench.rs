@@ -695,6 +695,9 @@ fn with_problem<T: Scalar>(scene: &Scene, f: impl FnOnce(&Problem<T>) -> Timing)
 /// data ([`crate::tools::system_bench::time_system_scene`]).
 pub fn time_scene(scene: &Scene, quick: bool) -> SceneTiming {
     let budget = Duration::from_millis(if quick { 20 } else { 200 });
+    if scene.law == crate::impact::unilateral::Law::Lzb {
+        return crate::tools::lzb_bench::time_lzb_scene(scene, budget);
+    }
     if scene.system.is_some() {
         return crate::tools::system_bench::time_system_scene(scene, budget);
     }

@@ -3,7 +3,8 @@
 //! [`derive`](mod@derive) (closed forms over symbols), [`bench`](mod@bench) (accuracy against time per scalar; [`friction_bench`] its frictional part;
 //! [`accuracy`] the accuracy contract measured per output; [`system_bench`] its part on scenes
 //! of several bodies, [`chain`] the planar chain it times) and
-//! [`sweep`] (parameter sweeps).
+//! [`sweep`] (parameter sweeps); [`lzb_compare`] (the simultaneous law against the LZB law
+//! over stiffness ratios, for `analyze`).
 
 pub mod accuracy;
 pub mod analyze;
@@ -14,6 +15,8 @@ pub mod corpus;
 pub mod derive;
 pub mod friction_bench;
 pub mod lean_bench;
+pub mod lzb_bench;
+pub mod lzb_compare;
 pub mod n_curve;
 pub mod sweep;
 pub mod system_bench;

@@ -224,8 +224,10 @@ pub(crate) fn time_law<T: Scalar, M: Mechanism<T>>(
             .solve_unilateral(m, out)
             .map(|_| ())
             .map_err(|e| unilateral_error(&e)),
+        // Timed by `tools::lzb_bench` before this is reached.
         Law::Lzb => Err(NotTimed::NotApplicable(
-            "the LZB law is not timed by `bench` yet".to_string(),
+            "the LZB law is integrated, not assembled and solved: `tools::lzb_bench` times it"
+                .to_string(),
         )),
     };
     let mut out = Outcome::default();
@@ -273,6 +275,9 @@ fn time_system<T: Scalar>(scene: &Scene, budget: Duration) -> Result<f64, NotTim
 /// Time the system scene `scene` in f32, f64, double-double and exact, each solve within
 /// `budget` (module docs).
 pub fn time_system_scene(scene: &Scene, budget: Duration) -> SceneTiming {
+    if scene.law == Law::Lzb {
+        return crate::tools::lzb_bench::time_lzb_scene(scene, budget);
+    }
     SceneTiming {
         scene: scene.name.clone(),
         bodies: scene.system.as_ref().map_or(1, |s| s.bodies.len()),
@@ -315,7 +320,7 @@ pub struct SystemsBench {
 
 /// The example scenes of several bodies the report times (compiled in: the bench runs from
 /// any directory).
-const EXAMPLES: [(&str, &str); 6] = [
+const EXAMPLES: [(&str, &str); 8] = [
     (
         "examples/cradle-3.toml",
         include_str!("../../examples/cradle-3.toml"),
@@ -339,6 +344,15 @@ const EXAMPLES: [(&str, &str); 6] = [
     (
         "examples/rough-pendulum.toml",
         include_str!("../../examples/rough-pendulum.toml"),
+    ),
+    // The LZB law (f64 only): the cradle, and a bar on two supports (one body).
+    (
+        "examples/cradle-3-lzb.toml",
+        include_str!("../../examples/cradle-3-lzb.toml"),
+    ),
+    (
+        "examples/bar-two-supports-lzb.toml",
+        include_str!("../../examples/bar-two-supports-lzb.toml"),
     ),
 ];
 
@@ -407,7 +421,7 @@ impl SystemsBench {
                 p.lean_ns.map_or("—".into(), |t| fmt_ns(t / p.links as f64))
             );
         }
-        s += "\nSystems: the example scenes of several bodies (one solve = System::new + assemble + the scene's law, every output; time per solve / per body / per contact):\n\n| scene | bodies | contacts | law |";
+        s += "\nSystems: the example scenes of several bodies, and the LZB law's examples (one solve = System::new + assemble + the scene's law, every output; under the LZB law its integration, f64 only; time per solve / per body / per contact):\n\n| scene | bodies | contacts | law |";
         let names: Vec<&str> = self
             .scenes
             .first()

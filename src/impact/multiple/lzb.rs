@@ -206,8 +206,8 @@ pub enum LzbError {
     },
     /// A path of the program that does not run the LZB law (yet).
     #[error(
-        "the LZB law is not run by {what}: only `inertance solve` (and the library's \
-         `solve_lzb`) runs it, in f64"
+        "the LZB law is not run by {what}: `inertance solve`, `sweep`, `analyze`, `bench \
+         --scene` and Python's `solve` (and the library's `solve_lzb`) run it, in f64"
     )]
     Unsupported {
         /// What was asked.

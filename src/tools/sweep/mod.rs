@@ -103,6 +103,14 @@
 //! body jammed. In a 2-D sweep an x is shaded when some line there is not `ok`, with the
 //! reasons of all its lines.
 //!
+//! ## Under the LZB law
+//!
+//! A scene under the LZB law (`[solve] law = "lzb"`, `--law lzb`) is swept by its own
+//! integration, with its own columns (`P1 … PN`, `v1 … vN`, the energies and works, the twist,
+//! `dEc`, the residual, the error estimate, the order the contacts came to rest): see
+//! `lzb` (private; guide/multiple-impacts.md). A contact's `stiffness`, `exponent` and
+//! `k_energetic` can be varied even when the scene does not write them.
+//!
 //! ## Progress
 //!
 //! With `progress`, a bar is drawn to stderr once a sweep has run for more than a second; never
@@ -120,6 +128,7 @@ mod answer;
 mod axis;
 mod batch;
 mod file;
+mod lzb;
 mod outputs;
 mod plan;
 mod plot;
@@ -259,6 +268,11 @@ impl SweepError {
 /// the plot. See the module docs for the conventions.
 pub fn sweep(opts: &SweepOptions) -> Result<SweepSummary, SweepError> {
     let started = Instant::now();
+    if let Ok((_, _, base)) = plan::read_scene(opts)
+        && lzb::runs_lzb(opts, &base)
+    {
+        return lzb::sweep_lzb(opts, started);
+    }
     let plan = Plan::new(opts)?;
     let range = match opts.shard {
         Some(s) => s.range(plan.points),

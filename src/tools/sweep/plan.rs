@@ -289,7 +289,7 @@ fn specs(vary: &[Vary]) -> Vec<String> {
 }
 
 /// One or two varied inputs, of at least 2 points each, naming different numbers.
-fn check_varied(vary: &[Vary]) -> Result<(), SweepError> {
+pub(super) fn check_varied(vary: &[Vary]) -> Result<(), SweepError> {
     match vary.len() {
         0 => {
             return Err(SweepError::Options(
@@ -329,7 +329,7 @@ fn check_varied(vary: &[Vary]) -> Result<(), SweepError> {
 }
 
 /// A valid shard, and a plot that does not overwrite the CSV.
-fn check_shard_and_files(opts: &SweepOptions) -> Result<(), SweepError> {
+pub(super) fn check_shard_and_files(opts: &SweepOptions) -> Result<(), SweepError> {
     if let Some(s) = &opts.shard {
         s.check().map_err(|reason| SweepError::Shard {
             spec: format!("{}/{}", s.index, s.count),
@@ -348,7 +348,7 @@ fn check_shard_and_files(opts: &SweepOptions) -> Result<(), SweepError> {
 }
 
 /// The points of the whole grid, Π COUNT, if it can be counted.
-fn grid_points(vary: &[Vary]) -> Result<usize, SweepError> {
+pub(super) fn grid_points(vary: &[Vary]) -> Result<usize, SweepError> {
     vary.iter()
         .try_fold(1usize, |acc, v| acc.checked_mul(v.count))
         .ok_or_else(|| SweepError::Vary {
@@ -358,7 +358,7 @@ fn grid_points(vary: &[Vary]) -> Result<usize, SweepError> {
 }
 
 /// The scene file's name, its document, and the scene it validates to.
-fn read_scene(opts: &SweepOptions) -> Result<(String, DocumentMut, Scene), SweepError> {
+pub(super) fn read_scene(opts: &SweepOptions) -> Result<(String, DocumentMut, Scene), SweepError> {
     let file = opts.scene.display().to_string();
     let source = std::fs::read_to_string(&opts.scene).map_err(|e| SceneError {
         file: file.clone(),

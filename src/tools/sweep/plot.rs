@@ -314,7 +314,7 @@ fn draw_regimes(
 
 /// The y axis: every finite y with 5 % to spare (a flat line or no value at all still gets a
 /// range).
-fn y_range(plotted: &[Vec<(usize, f64, f64)>]) -> (f64, f64) {
+pub(super) fn y_range(plotted: &[Vec<(usize, f64, f64)>]) -> (f64, f64) {
     let ys = plotted
         .iter()
         .flatten()
@@ -335,7 +335,7 @@ fn y_range(plotted: &[Vec<(usize, f64, f64)>]) -> (f64, f64) {
 }
 
 /// A series as lines to draw: one per value of the second input, broken at singular points.
-fn segments(points: &[(usize, f64, f64)]) -> Vec<Vec<(f64, f64)>> {
+pub(super) fn segments(points: &[(usize, f64, f64)]) -> Vec<Vec<(f64, f64)>> {
     let mut slices: BTreeMap<usize, Vec<Vec<(f64, f64)>>> = BTreeMap::new();
     for &(j, x, y) in points {
         let segs = slices.entry(j).or_insert_with(|| vec![Vec::new()]);
