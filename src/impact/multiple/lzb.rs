@@ -91,6 +91,12 @@ const PRIMARY_MARGIN: f64 = 1e-9;
 /// it by more is retried shorter.
 const QUARTER: f64 = 0.25;
 
+/// A spatial slip that slows below this many lock speeds is stopped there: near zero slip its
+/// direction turns ever faster and the steps that follow it stall at the integration's noise
+/// (the error of stopping it early, twice its rate times the predicted time to zero slip, is
+/// added to the estimate).
+const STOP_ZONE: f64 = 1024.0;
+
 /// A contact's phase during the impact.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Phase {
@@ -851,7 +857,7 @@ impl<'a, S: Screws<f64>> Run<'a, S> {
         })
     }
 
-    /// The spatial slips that reached zero at y: below the lock speed and slowing. Each one's
+    /// The spatial slips that reached zero at y: slowing, within [`STOP_ZONE`] lock speeds. Each one's
     /// bound on the impulse error of stopping it there (twice its largest rate times the
     /// predicted time to zero slip) is added to `estimate`.
     fn stopped_slips(
@@ -875,7 +881,7 @@ impl<'a, S: Screws<f64>> Run<'a, S> {
             let o = self.b.offset[i];
             let f: Vec<f64> = (o + 1..o + 3).map(|q| r.velocity[q] / self.axis[q]).collect();
             let along = dot(u, &f);
-            if rho <= self.lock && along < 0.0 {
+            if rho <= STOP_ZONE * self.lock && along < 0.0 {
                 let rate = (o..o + 3).fold(0.0_f64, |m, q| m.max(r.lambda[q].abs()));
                 *estimate += 2.0 * rate * rho / -along;
                 out.push(i);
@@ -1184,6 +1190,9 @@ impl<'a, S: Screws<f64>> Run<'a, S> {
                     });
                 }
             }
+            // A spatial slip holds the direction of its slip at the last accepted step once it
+            // falls below the lock speed.
+            regime.modes = self.modes_at(&v, &regime);
             stopped.extend(self.stopped_slips(&y, &regime, path.tau, &mut path.estimate)?);
             let rests = (0..n)
                 .any(|j| regime.phases[j] == Phase::Rest && regime.modes[j] != Mode::Free);
