@@ -8,7 +8,9 @@
 //! `k_energetic` when given, else from the contact's `k` (or `k_poisson`), as the energetic
 //! restitution of the frictional integration reads it. The scene's numbers must be plain
 //! numbers (no symbols); the integration is numerical, so the result is f64 whatever the
-//! inputs (`--exact` is refused by the command line).
+//! inputs (`--exact` is refused by the command line). Contacts with `mu` > 0 take Coulomb
+//! friction along the path; the report then adds each contact's tangential impulse and the
+//! energy friction dissipated there (a frictionless report is unchanged).
 
 use crate::impact::multiple::{ContactLaw, Event, LawError, Lzb, Stats, solve_lzb};
 use crate::mechanics::screw::Screws;

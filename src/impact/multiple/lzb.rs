@@ -2,9 +2,9 @@
 //! expansion (Liu, Zhao & Brogliato, Proc. R. Soc. A 464 (2008) 3193, §2–3; 465 (2009) 1),
 //! integrated in f64 by an embedded Runge–Kutta pair with adaptive steps and event location.
 //!
-//! **The model.** Contact i has a law ([`ContactLaw`]: K_i, η_i, e_i), a normal impulse P_i
-//! (along its unit normal) and a normal relative velocity v_i, positive approaching. With G the
-//! inertance matrix of the unit normals (the paper's eq. 12, assembled by [`Blocks::spatial`]
+//! **The model** (frictionless; friction below). Contact i has a law ([`ContactLaw`]: K_i, η_i,
+//! e_i), a normal impulse P_i (along its unit normal) and a normal relative velocity v_i,
+//! positive approaching. With G the inertance matrix of the unit normals (the paper's eq. 12, assembled by [`Blocks::spatial`]
 //! for any [`Mechanism`]), dv = −G dP (eq. 13 in differentials). Each contact stores a
 //! potential energy E_i:
 //!
@@ -52,17 +52,52 @@
 //!
 //! **The integrator** is Dormand and Prince's RK5(4) pair with local extrapolation (the
 //! tableau of [`crate::impact::friction::spatial`]), written here over the state
-//! (P, u, W_c, W_r) because the friction integrator's steps are built around its stick/slip
+//! (Λ, u, W_c, W_r, W_f) because the friction integrator's steps are built around its stick/slip
 //! modes; what is shared is the tableau and the form of its event location (bisection of the
 //! step from its start). The step is accepted when every component's embedded error is below
 //! tol × (|y| + its scale), the scales being those of the impact: Π = max v⁰ / max g_ii for the
 //! impulses, Π max v⁰ for the works and (Π max v⁰)^(1/(η+1)) for u.
 //!
+//! **Friction** (Zhao, Liu & Brogliato, Proc. R. Soc. A 465 (2009) 2267, "Planar dynamics of a
+//! rigid body system with frictional impacts"; LZB 2009, Part II). A contact with μ_i > 0 also
+//! takes a tangential impulse τ_i, and the velocities of every axis follow the full inertance
+//! blocks K of the friction layer ([`Blocks::planar`] when the scene stays in a plane — exact
+//! hatted axes, one tangent per contact — else [`Blocks::spatial`], two unit tangents):
+//! v = v⁰ − K Λ with Λ = (P_1, τ_1, P_2, τ_2, …), so the tangential impulses change the normal
+//! velocities and through them dE_i = v_i dP_i. The normal rates are prescribed, dP_i/dτ = F_i
+//! ([`Normal::Given`]), and Coulomb's law holds at every instant:
+//!
+//! ```text
+//! sliding:   dτ_i/dτ = μ_i (v_it/|v_it|) F_i      (the impulse on the body, −τ_i, opposes slip)
+//! sticking:  dτ_i/dτ keeps v_it = 0, while |dτ_i/dτ| ≤ μ_i F_i
+//! at rest:   dτ_i/dτ = 0
+//! dW_f,i/dτ = v_it · dτ_i/dτ ≥ 0                   (the friction work)
+//! ```
+//!
+//! the rates under one assignment of modes being the friction layer's linear system
+//! ([`rates`]). The state is y = (Λ, u, W_c, W_r, W_f), and ΔE_c = Σ_i (W_c,i − W_r,i + W_f,i).
+//! Friction adds three events: a planar slip that crosses zero (bisected); a spatial slip that
+//! slows within 1024 lock speeds (16 tol max|v⁰| each) of zero, its steps capped at a turn
+//! of a quarter radian and nine tenths of the predicted time to zero slip (its direction turns
+//! ever faster there: Bhatt and Koechling's singular point); and a sticking contact whose
+//! required rate leaves its cone by more than tol relative (bisected). At each, the modes of
+//! every contact at zero slip are chosen jointly — in a plane by the friction layer's
+//! [`resolve_planar`], a contact leaving its cone sliding in the sense of the impulse it would
+//! need to stick; in space all stick if their cones allow it, a contact whose cone does not
+//! sliding along an invariant direction of its tangential block ([`invariant_directions`]). A
+//! slip that stopped is reported as [`EventKind::Sticks`] or [`EventKind::Reverses`], a stick
+//! that left its cone as [`EventKind::SlipStarts`]. With one contact the path in P does not
+//! depend on K or η, and LZB is Stronge's energetic law with friction (`tests/lzb_friction.rs`,
+//! `derivations/lzb.md`). Not handled: several spatial contacts that must leave zero slip
+//! together (their directions are found one at a time): [`LzbError::NoConsistentModes`].
+//!
 //! **Error estimate.** The sum over accepted steps of the largest embedded error estimate of
 //! an impulse (N s). It bounds the difference of the fourth- and fifth-order solutions, not
-//! the propagation of earlier errors; it is tested against closed forms (one contact: Newton's
-//! law with P = (1 + e) v⁰/g) and against an independent time integration of the compliant
-//! model (`tests/lzb.rs`).
+//! the propagation of earlier errors; each spatial slip stop adds twice its largest rate times
+//! its predicted time to zero slip. It is tested against closed forms (one contact: Newton's
+//! law with P = (1 + e) v⁰/g; with friction, the energetic law solved exactly in a plane) and
+//! against an independent time integration of the compliant model, with Coulomb's force on
+//! sliding contacts (`tests/lzb.rs`, `tests/lzb_friction.rs`).
 
 use crate::impact::friction::Blocks;
 use crate::impact::friction::departure::invariant_directions;
