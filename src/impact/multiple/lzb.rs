@@ -1353,6 +1353,31 @@ mod tests {
         ));
     }
 
+    /// A contact under the centre of mass (no coupling of normal and tangent), slipping at
+    /// 2 m/s with μ = 3/10 and e = 1/2: P = (1 + e) v⁰/g = 3/2, the slip 2 − μ P stays
+    /// positive, so |τ| = μ P and friction dissipates μ ∫ (2 − μ p) dp = μ (3 − 9μ/8).
+    #[test]
+    fn a_contact_sliding_throughout_takes_mu_times_its_normal_impulse() {
+        let body = RigidBody::principal(1.0, Vec3::new(0.5, 0.5, 0.5));
+        let twist = Screw::new(Vec3::zeros(), Vec3::new(2.0, 0.0, -1.0));
+        let c = Contact::new(Vec3::zeros(), Vec3::new(0.0, 0.0, -1.0), 0.5).with_friction(0.3);
+        let p = Problem::new(body, twist, vec![c]).expect("valid");
+        let law = ContactLaw::new(2.0, 1.5, 0.5).expect("valid");
+        let out = solve_lzb(&p, &[law], 1e-11).expect("ends");
+        assert!(out.blocks.plane.is_some(), "planar in the xz-plane");
+        let bound = 2.0 * out.error_estimate + 1e-14;
+        assert!((out.impulses[0] - 1.5).abs() <= bound, "{:?}", out.impulses);
+        assert!((out.tangential[0][0].abs() - 0.45).abs() <= bound);
+        let wf = 0.3 * (3.0 - 9.0 * 0.3 / 8.0);
+        assert!((out.friction_dissipation[0] - wf).abs() <= 8.0 * bound);
+        assert!(out.energy_residual.abs() <= 8.0 * bound);
+        assert!(
+            out.events
+                .iter()
+                .all(|e| !matches!(e.kind, EventKind::Sticks | EventKind::Reverses))
+        );
+    }
+
     /// A contact that does not approach, alone: no impulse, no step.
     #[test]
     fn nothing_approaches_nothing_happens() {
