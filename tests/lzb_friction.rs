@@ -49,9 +49,13 @@ fn v3<T: Scalar>(x: Q, y: Q, z: Q) -> Vec3<T> {
 fn rod<T: Scalar>(vx: Q, omega: Q, mu: Q, e: Q) -> Problem<T> {
     let body = RigidBody::principal(int(1), v3((1, 3), (1, 3), (1, 3)));
     let twist = Screw::new(v3((0, 1), (0, 1), omega), v3(vx, (-1, 1), (0, 1)));
-    let contact = Contact::new(v3((-3, 5), (-4, 5), (0, 1)), v3((0, 1), (-1, 1), (0, 1)), q(e))
-        .with_tangent(v3((1, 1), (0, 1), (0, 1)))
-        .with_friction(q(mu));
+    let contact = Contact::new(
+        v3((-3, 5), (-4, 5), (0, 1)),
+        v3((0, 1), (-1, 1), (0, 1)),
+        q(e),
+    )
+    .with_tangent(v3((1, 1), (0, 1), (0, 1)))
+    .with_friction(q(mu));
     Problem::new(body, twist, vec![contact]).expect("a valid rod")
 }
 
@@ -117,7 +121,11 @@ fn check_energy<M: Mechanism<f64>>(mechanism: &M, out: &Lzb<M::Screw>, what: &st
 fn against_exact(p64: &Problem<f64>, exact: &Frictional<RatFun>, laws: &[ContactLaw], what: &str) {
     let out = solve_lzb(p64, laws, TOL).expect("LZB ends");
     check_energy(p64, &out, what);
-    assert_eq!(out.blocks.len(), exact.blocks.len(), "{what}: the same axes");
+    assert_eq!(
+        out.blocks.len(),
+        exact.blocks.len(),
+        "{what}: the same axes"
+    );
     let ib = impulse_bound(&out);
     for i in 0..out.impulses.len() {
         let o = out.blocks.offset[i];
@@ -184,8 +192,8 @@ fn one_rough_contact_is_the_energetic_law_with_friction_in_a_plane() {
             .expect("the energetic law solves it");
             let history = exact.history(0);
             let stick = history.contains(&ModeLabel::Stick);
-            let reverses = history.contains(&ModeLabel::SlidePlus)
-                && history.contains(&ModeLabel::SlideMinus);
+            let reverses =
+                history.contains(&ModeLabel::SlidePlus) && history.contains(&ModeLabel::SlideMinus);
             seen[0] |= history.len() == 1;
             seen[1] |= stick;
             seen[2] |= reverses;
@@ -211,8 +219,7 @@ fn one_rough_contact_is_the_energetic_law_with_friction_in_a_plane() {
         }
     }
     assert_eq!(
-        seen,
-        [true; 3],
+        seen, [true; 3],
         "slide throughout, stick, reversal each met"
     );
 }
@@ -255,11 +262,7 @@ fn one_rough_contact_is_the_energetic_law_with_friction_in_space() {
                 let out = solve_lzb(&p, &[law], TOL).expect("LZB ends");
                 check_energy(&p, &out, &what);
                 let ib = impulse_bound(&out) + 2.0 * fr_est;
-                let lzb = [
-                    out.impulses[0],
-                    out.tangential[0][0],
-                    out.tangential[0][1],
-                ];
+                let lzb = [out.impulses[0], out.tangential[0][0], out.tangential[0][1]];
                 for (a, b) in lzb.iter().zip(&fr.impulses) {
                     assert!(
                         (a - b).abs() <= ib,
@@ -296,12 +299,9 @@ fn flat_bar<T: Scalar>(vx: Q, mu: Q, e: Q) -> Problem<T> {
 fn a_bar_landing_flat_on_equal_rough_supports_takes_the_simultaneous_energetic_impulses() {
     for (vx, mu) in [((2, 1), (1, 5)), ((1, 10), (1, 2)), ((1, 2), (1, 2))] {
         for e in [(0, 1), (1, 2), (1, 1)] {
-            let exact = solve_frictional(
-                &flat_bar::<RatFun>(vx, mu, e),
-                Restitution::Energetic,
-                0.0,
-            )
-            .expect("solves");
+            let exact =
+                solve_frictional(&flat_bar::<RatFun>(vx, mu, e), Restitution::Energetic, 0.0)
+                    .expect("solves");
             let p64 = flat_bar::<f64>(vx, mu, e);
             let law = ContactLaw::new(3.0, 1.5, q::<f64>(e)).expect("valid");
             let what = format!("v_x {vx:?}, μ {mu:?}, e {e:?}");
@@ -333,7 +333,11 @@ fn random_scene(rng: &mut Lcg, planar: bool) -> (Problem<f64>, Vec<ContactLaw>) 
     let n = 1 + (rng.next() * 4.0) as usize;
     let body = RigidBody::principal(
         rng.range(0.5, 2.0),
-        Vec3::new(rng.range(0.1, 0.5), rng.range(0.1, 0.5), rng.range(0.1, 0.5)),
+        Vec3::new(
+            rng.range(0.1, 0.5),
+            rng.range(0.1, 0.5),
+            rng.range(0.1, 0.5),
+        ),
     );
     let mut contacts = Vec::new();
     let mut laws = Vec::new();
@@ -449,8 +453,7 @@ fn vanishing_friction_gives_the_frictionless_answer() {
             let free = solve_lzb(&smooth(0.0), &laws, TOL).expect("ends");
             assert!(!free.has_friction() && rough.has_friction());
             let scale = free.impulses.iter().fold(0.0_f64, |m, x| m.max(x.abs()));
-            let bound =
-                impulse_bound(&rough) + impulse_bound(&free) + 100.0 * mu * scale.max(1.0);
+            let bound = impulse_bound(&rough) + impulse_bound(&free) + 100.0 * mu * scale.max(1.0);
             for (a, b) in rough.impulses.iter().zip(&free.impulses) {
                 assert!(
                     (a - b).abs() <= bound,
@@ -481,7 +484,9 @@ fn compliant_rough(
 ) -> Vec<f64> {
     let (m, n) = (mass.len(), normal.len());
     let slip = |s: &[f64], i: usize| (0..m).map(|a| tangent[i][a] * s[n + a]).sum::<f64>();
-    let signs: Vec<f64> = (0..n).map(|i| slip(&[vec![0.0; n], qdot0.to_vec()].concat(), i).signum()).collect();
+    let signs: Vec<f64> = (0..n)
+        .map(|i| slip(&[vec![0.0; n], qdot0.to_vec()].concat(), i).signum())
+        .collect();
     let rhs = |s: &[f64]| -> Vec<f64> {
         let mut d = vec![0.0; n + m];
         for i in 0..n {

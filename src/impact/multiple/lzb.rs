@@ -432,7 +432,9 @@ pub fn solve_lzb<M: Mechanism<f64>>(
                 .map(|i| {
                     let c = &mechanism.contacts()[i];
                     if c.mu == 0.0 {
-                        Ok(ContactFrame::normal_with(c, |u| mechanism.contact_axis(i, u)))
+                        Ok(ContactFrame::normal_with(c, |u| {
+                            mechanism.contact_axis(i, u)
+                        }))
                     } else {
                         mechanism.frame(i, true).map_err(|e| LzbError::Frame {
                             contact: i,
@@ -536,6 +538,9 @@ struct Path {
     samples: Vec<Sample>,
 }
 
+/// The velocities of every axis at a point, the modes in force there and their rates.
+type AtPoint = (Vec<f64>, Vec<Mode<f64>>, Rates<f64>);
+
 /// |x|.
 fn norm(x: &[f64]) -> f64 {
     x.iter().map(|a| a * a).sum::<f64>().sqrt()
@@ -547,11 +552,7 @@ fn dot(x: &[f64], y: &[f64]) -> f64 {
 }
 
 impl<'a, S: Screws<f64>> Run<'a, S> {
-    fn new(
-        b: &'a Blocks<f64, S>,
-        laws: &'a [ContactLaw],
-        tol: f64,
-    ) -> Result<Self, LzbError> {
+    fn new(b: &'a Blocks<f64, S>, laws: &'a [ContactLaw], tol: f64) -> Result<Self, LzbError> {
         let n = b.contacts();
         let len = b.len();
         let axis: Vec<f64> = b.directions.iter().map(|d| d.norm()).collect();
@@ -674,12 +675,7 @@ impl<'a, S: Screws<f64>> Run<'a, S> {
     }
 
     /// The velocities, the modes in force and their impulse rates dΛ/dτ at y.
-    fn rates_at(
-        &self,
-        y: &[f64],
-        regime: &Regime,
-        tau: f64,
-    ) -> Result<(Vec<f64>, Vec<Mode<f64>>, Rates<f64>), LzbError> {
+    fn rates_at(&self, y: &[f64], regime: &Regime, tau: f64) -> Result<AtPoint, LzbError> {
         let v = self.velocities(y);
         let forces: Vec<f64> = (0..self.n)
             .map(|j| self.force(y, &regime.phases, j))
@@ -717,12 +713,7 @@ impl<'a, S: Screws<f64>> Run<'a, S> {
     }
 
     /// One Dormand–Prince step of length h from y: (y_new, embedded error).
-    fn step(
-        &self,
-        y: &[f64],
-        h: f64,
-        regime: &Regime,
-    ) -> Result<(Vec<f64>, Vec<f64>), LzbError> {
+    fn step(&self, y: &[f64], h: f64, regime: &Regime) -> Result<(Vec<f64>, Vec<f64>), LzbError> {
         let len = y.len();
         let mut k: Vec<Vec<f64>> = vec![vec![0.0; len]; 7];
         let mut stage = y.to_vec();
@@ -785,10 +776,10 @@ impl<'a, S: Screws<f64>> Run<'a, S> {
             for j in 0..n {
                 let o = self.b.offset[j];
                 match &regime.modes[j] {
-                    Mode::Slide(u) if !self.spatial(j) => {
-                        if u[0] * (v[o + 1] - regime.origin[o + 1]) < 0.0 {
-                            out.push((j, EventKind::Sticks));
-                        }
+                    Mode::Slide(u)
+                        if !self.spatial(j) && u[0] * (v[o + 1] - regime.origin[o + 1]) < 0.0 =>
+                    {
+                        out.push((j, EventKind::Sticks));
                     }
                     Mode::Stick => {
                         let cone = self.b.mu[j] * r.lambda[o];
@@ -914,7 +905,9 @@ impl<'a, S: Screws<f64>> Run<'a, S> {
             }
             let rho = norm(&self.slip(&v, &regime.origin, i));
             let o = self.b.offset[i];
-            let f: Vec<f64> = (o + 1..o + 3).map(|q| r.velocity[q] / self.axis[q]).collect();
+            let f: Vec<f64> = (o + 1..o + 3)
+                .map(|q| r.velocity[q] / self.axis[q])
+                .collect();
             let along = dot(u, &f);
             if rho <= STOP_ZONE * self.lock && along < 0.0 {
                 let rate = (o..o + 3).fold(0.0_f64, |m, q| m.max(r.lambda[q].abs()));
@@ -1229,8 +1222,8 @@ impl<'a, S: Screws<f64>> Run<'a, S> {
             // falls below the lock speed.
             regime.modes = self.modes_at(&v, &regime);
             stopped.extend(self.stopped_slips(&y, &regime, path.tau, &mut path.estimate)?);
-            let rests = (0..n)
-                .any(|j| regime.phases[j] == Phase::Rest && regime.modes[j] != Mode::Free);
+            let rests =
+                (0..n).any(|j| regime.phases[j] == Phase::Rest && regime.modes[j] != Mode::Free);
             if rests || !(fresh.is_empty() && stopped.is_empty() && leaving.is_empty()) {
                 let slips = self.resolve(&y, &mut regime, &fresh, &stopped, &leaving, path.tau)?;
                 for (j, kind) in slips {
