@@ -8,11 +8,10 @@
 //! as the unilateral one. Until the unilateral law is integrated with friction, the
 //! combination is refused, from the scene file and from every override alike.
 //!
-//! The LZB law ([`crate::impact::multiple`]) is integrated frictionless, in f64, by its own
-//! paths ([`super::lzb`]: `solve`, `sweep`, `analyze`, `bench --scene`, Python's `solve`):
-//! friction or an impulse-space restitution law with it is refused here, and the simultaneous
-//! solvers refuse the law itself ([`Scene::law_applies`]) rather than answer under another
-//! law's name.
+//! The LZB law ([`crate::impact::multiple`]) is integrated in f64, with Coulomb friction, by its
+//! own paths ([`super::lzb`]: `solve`, `sweep`, `analyze`, `bench --scene`, Python's `solve`):
+//! an impulse-space restitution law with it is refused here, and the simultaneous solvers
+//! refuse the law itself ([`Scene::law_applies`]) rather than answer under another law's name.
 
 use crate::impact::friction::Restitution;
 use crate::impact::unilateral::Law;
@@ -65,40 +64,24 @@ pub(super) fn unilateral_allowed(
     })
 }
 
-/// Refuse the LZB law for `contacts` when one of them has friction, or with a `[solve]
-/// restitution` (the LZB law has its own restitution: each contact's energetic coefficient).
+/// Refuse the LZB law with a `[solve] restitution` (the LZB law has its own restitution: each
+/// contact's energetic coefficient); friction it integrates.
 pub(super) fn lzb_allowed(
     file: &str,
-    contacts: &[ContactSpec],
     restitution: Option<Restitution>,
     how: &str,
 ) -> Result<(), SceneError> {
-    let rough = first_rough(contacts);
-    let (key, value, message) = match (rough, restitution) {
-        (Some(i), _) => (
-            format!("contact[{i}].mu"),
-            contacts[i].mu.text.clone(),
-            format!(
-                "{how} is integrated without friction for now (friction with LZB, its Part II, \
-                 is not implemented): set `mu = 0` at every contact, or solve with the \
-                 simultaneous law"
-            ),
-        ),
-        (None, Some(r)) => (
-            "solve.restitution".to_string(),
-            r.name().to_string(),
-            format!(
-                "{how} has its own restitution law (each contact's energetic coefficient: \
-                 `k_energetic`, else `k`): drop `[solve] restitution`"
-            ),
-        ),
-        (None, None) => return Ok(()),
+    let Some(r) = restitution else {
+        return Ok(());
     };
     Err(SceneError {
         file: file.to_string(),
-        key,
-        value: Some(value),
-        message,
+        key: "solve.restitution".to_string(),
+        value: Some(r.name().to_string()),
+        message: format!(
+            "{how} has its own restitution law (each contact's energetic coefficient: \
+             `k_energetic`, else `k`): drop `[solve] restitution`"
+        ),
     })
 }
 
@@ -113,7 +96,7 @@ impl Scene {
             Law::Unilateral => {
                 unilateral_allowed(&self.file, &self.contacts, self.restitution, how)?;
             }
-            Law::Lzb => lzb_allowed(&self.file, &self.contacts, self.restitution, how)?,
+            Law::Lzb => lzb_allowed(&self.file, self.restitution, how)?,
             Law::Simultaneous => {}
         }
         self.law = law;

@@ -9,7 +9,9 @@
 //! `k_energetic` when given, else from the contact's `k` (or `k_poisson`), as the energetic
 //! restitution of the frictional integration reads it. The scene's numbers must be plain
 //! numbers (no symbols); the integration is numerical, so the result is f64 whatever the
-//! inputs (`--exact` is refused by the command line).
+//! inputs (`--exact` is refused by the command line). Contacts with `mu` > 0 take Coulomb
+//! friction along the path; the report then adds each contact's tangential impulse and the
+//! energy friction dissipated there (a frictionless report is unchanged).
 
 use crate::impact::multiple::{ContactLaw, Event, LawError, Lzb, Sample, Stats, solve_lzb};
 use crate::mechanics::screw::Screws;
@@ -113,11 +115,17 @@ pub struct LzbReport {
     pub work_compression: Vec<f64>,
     /// W_r,i: the energy each contact gave back.
     pub work_expansion: Vec<f64>,
+    /// τ_i per contact along its unit tangent axes (none without friction).
+    pub tangential: Vec<Vec<f64>>,
+    /// ∫ v_it · dτ_i per contact: the energy friction dissipated there.
+    pub friction_dissipation: Vec<f64>,
+    /// Whether any contact has friction (the report's tangential columns).
+    pub friction: bool,
     /// The largest potential energy each contact held.
     pub max_energy: Vec<f64>,
     /// ΔE_c = T⁰ − T.
     pub kinetic_energy_loss: f64,
-    /// ΔE_c − Σ (W_c,i − W_r,i).
+    /// ΔE_c − Σ (W_c,i − W_r,i + W_f,i).
     pub energy_residual: f64,
     /// The events, in order.
     pub events: Vec<Event>,
@@ -168,14 +176,17 @@ fn report<S: Screws<f64>>(scene: &Scene, out: Lzb<S>, names: &[String]) -> LzbRe
         .collect();
     LzbReport {
         name: scene.name.clone(),
-        before: out.blocks.v0.clone(),
+        before: out.before.clone(),
         ending_order: out.ending_order(),
+        friction: out.has_friction(),
         laws: out.laws,
         impulses: out.impulses,
         after: out.after,
         twists,
         work_compression: out.work_compression,
         work_expansion: out.work_expansion,
+        tangential: out.tangential,
+        friction_dissipation: out.friction_dissipation,
         max_energy: out.max_energy,
         kinetic_energy_loss: out.kinetic_energy_loss,
         energy_residual: out.energy_residual,
@@ -218,6 +229,14 @@ impl LzbReport {
             s,
             "Impulses along the unit normals; velocities positive approaching.\n"
         );
+        if self.friction {
+            let _ = writeln!(
+                s,
+                "Coulomb friction along the path (Zhao, Liu & Brogliato 2009): τ along the unit \
+                 tangents (in the plane, the contact's y sense), opposing the slip; W_f the \
+                 energy friction dissipated.\n"
+            );
+        }
         let mut rows = vec![vec![
             String::new(),
             "K".to_string(),
@@ -231,6 +250,10 @@ impl LzbReport {
             "W_r [J]".to_string(),
             "dissipated [J]".to_string(),
         ]];
+        if self.friction {
+            rows[0].push("τ [N s]".to_string());
+            rows[0].push("W_f [J]".to_string());
+        }
         for i in 0..n {
             let l = &self.laws[i];
             rows.push(vec![
@@ -246,6 +269,16 @@ impl LzbReport {
                 num(self.work_expansion[i]),
                 num(self.work_compression[i] - self.work_expansion[i]),
             ]);
+            if self.friction {
+                let t: Vec<String> = self.tangential[i].iter().map(|x| num(*x)).collect();
+                let row = rows.last_mut().expect("just pushed");
+                row.push(match t.len() {
+                    0 => "—".to_string(),
+                    1 => t[0].clone(),
+                    _ => format!("({})", t.join(", ")),
+                });
+                row.push(num(self.friction_dissipation[i]));
+            }
         }
         let widths: Vec<usize> = (0..rows[0].len())
             .map(|k| rows.iter().map(|r| r[k].chars().count()).max().unwrap_or(0))
@@ -276,12 +309,23 @@ impl LzbReport {
         let dissipated: f64 = (0..n)
             .map(|i| self.work_compression[i] - self.work_expansion[i])
             .sum();
-        let _ = writeln!(
-            s,
-            "  ΔE_c [J] = {} (dissipated at the contacts: {})",
-            num(self.kinetic_energy_loss),
-            num(dissipated)
-        );
+        if self.friction {
+            let friction: f64 = self.friction_dissipation.iter().sum();
+            let _ = writeln!(
+                s,
+                "  ΔE_c [J] = {} (dissipated at the contacts: {} normal, {} by friction)",
+                num(self.kinetic_energy_loss),
+                num(dissipated),
+                num(friction)
+            );
+        } else {
+            let _ = writeln!(
+                s,
+                "  ΔE_c [J] = {} (dissipated at the contacts: {})",
+                num(self.kinetic_energy_loss),
+                num(dissipated)
+            );
+        }
         let order: Vec<String> = self
             .ending_order
             .iter()

@@ -71,7 +71,7 @@ pub(super) fn scene(
         )?;
     }
     if law == Law::Lzb {
-        super::law::lzb_allowed(file, &contacts, restitution, "`[solve] law = \"lzb\"`")?;
+        super::law::lzb_allowed(file, restitution, "`[solve] law = \"lzb\"`")?;
     }
     let mut constraints = match root.get("constraints") {
         None => None,

@@ -65,16 +65,29 @@ pub struct Comparison {
 /// ε^(2/3)).
 ///
 /// # Errors
-/// [`RunError`]: the scene's bad input (friction, `[solve] restitution`, LZB parameters out of
-/// range), or an LZB
-/// error other than a runaway integration (which is a row without outcome).
+/// [`RunError`]: the scene's bad input (`[solve] restitution`, LZB parameters out of range), a
+/// contact with friction (the simultaneous side of the comparison is the paper's frictionless
+/// solve, so the two answers would not be of one physics), or an LZB error other than a runaway
+/// integration (which is a row without outcome).
 pub fn compare(
     scene: &Scene,
     ratios: &[f64],
     models: Option<&[Model]>,
 ) -> Result<Comparison, RunError> {
+    if let Some(i) = rough_contact(scene) {
+        return Err(RunError::Scene(crate::scene::SceneError {
+            file: scene.file.clone(),
+            key: format!("contact[{i}].mu"),
+            value: Some(scene.contacts[i].mu.text.clone()),
+            message: "the comparison of the LZB law with the simultaneous law is frictionless \
+                      (its simultaneous side is the paper's frictionless solve): set `mu = 0` to \
+                      compare, or solve the scene under each law (`inertance solve --law lzb`, \
+                      `--law simultaneous`)"
+                .to_string(),
+        }));
+    }
     if scene.law != Law::Lzb {
-        // Friction or `[solve] restitution` named by key, as `--law lzb` names them.
+        // `[solve] restitution` named by key, as `--law lzb` names it.
         scene
             .clone()
             .set_law(Law::Lzb, "the LZB law (`--lzb-ratios`)")?;
@@ -87,6 +100,14 @@ pub fn compare(
     } else {
         compare_on(&prepare::<f64>(scene)?, models, &laws, ratios, tolerance)
     }
+}
+
+/// The first contact with friction (μ ≠ 0, or with symbols), if any.
+pub fn rough_contact(scene: &Scene) -> Option<usize> {
+    scene
+        .contacts
+        .iter()
+        .position(|c| !c.mu.symbols.is_empty() || c.mu.approx != 0.0)
 }
 
 fn compare_on<M: Mechanism<f64>>(

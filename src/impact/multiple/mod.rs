@@ -8,9 +8,11 @@
 //! of Liu, Zhao and Brogliato (2008, 2009), the impulses distributed by the ratio of the
 //! contacts' forces expressed through their potential energies, integrated adaptively in f64
 //! with event location (Siconos' `OSNSMultipleImpact`, which steps in the primary impulse with
-//! a fixed step). Frictionless for now; a mechanism is one body, a constrained body or a system
-//! of bodies ([`crate::impact::mechanism::Mechanism`]). [`closed_form`]: the exact outcome when
-//! every contact is alike (one contact; a body landing flat on equal corners).
+//! a fixed step), with Coulomb friction at every instant of the path (Zhao, Liu & Brogliato
+//! 2009) through the friction layer's rates and mode resolution; a mechanism is one body, a
+//! constrained body or a system of bodies ([`crate::impact::mechanism::Mechanism`]).
+//! [`closed_form`]: the exact outcome when every contact is alike (one contact; a body landing
+//! flat on equal corners).
 
 pub mod closed_form;
 pub mod law;
