@@ -65,7 +65,7 @@ use crate::mechanics::screw::{Screw, Screws, Vec3};
 use crate::scalar::Scalar;
 
 pub use blocks::Blocks;
-pub use rates::{Mode, Normal};
+pub use rates::{Mode, Normal, Unilateral};
 
 /// The restitution law of a frictional impact.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -116,6 +116,28 @@ impl fmt::Display for Restitution {
     }
 }
 
+/// How the contacts' normal velocities are held during the impact.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum Hypothesis {
+    /// The paper's: every contact follows its prescribed path, whatever impulse rate that
+    /// needs; a negative one is a verdict ([`Verdict::TensileRate`]).
+    #[default]
+    Simultaneous,
+    /// The unilateral law: a contact whose path would need a tensile rate is released and
+    /// stays on the separating side of its path until it re-engages (module docs).
+    Unilateral,
+}
+
+impl Hypothesis {
+    /// The name in reports: `simultaneous`, `unilateral`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Hypothesis::Simultaneous => "simultaneous",
+            Hypothesis::Unilateral => "unilateral",
+        }
+    }
+}
+
 /// The phase of the impact a segment belongs to.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Phase {
@@ -148,10 +170,13 @@ pub enum ModeLabel {
     SlideMinus,
     /// Slip in a direction of the tangent plane (spatial).
     Slide,
+    /// Off its prescribed path under the unilateral law: no normal impulse rate, its normal
+    /// velocity free on the separating side ([`Hypothesis::Unilateral`]).
+    Released,
 }
 
 impl ModeLabel {
-    /// The name in reports: `free`, `stick`, `slide+`, `slide-`, `slide`.
+    /// The name in reports: `free`, `stick`, `slide+`, `slide-`, `slide`, `released`.
     pub fn name(self) -> &'static str {
         match self {
             ModeLabel::Free => "free",
@@ -159,6 +184,7 @@ impl ModeLabel {
             ModeLabel::SlidePlus => "slide+",
             ModeLabel::SlideMinus => "slide-",
             ModeLabel::Slide => "slide",
+            ModeLabel::Released => "released",
         }
     }
 }
@@ -376,6 +402,13 @@ pub enum FrictionError {
          (estimate this one by finite differences)"
     )]
     NotDifferentiable,
+    /// The unilateral law in a spatial scene: its events are located exactly in planar scenes
+    /// only, for now.
+    #[error(
+        "the unilateral law with friction is integrated in planar scenes only, for now: this \
+         scene is not planar (see the friction guide); solve it with the simultaneous law"
+    )]
+    UnilateralNotPlanar,
     /// More events or steps than any physical impact needs.
     #[error("the integration did not end within its event or step budget")]
     Runaway,
@@ -388,6 +421,8 @@ pub enum FrictionError {
 pub struct Frictional<T: Scalar, S: Screws<T> = Screw<T>> {
     /// The restitution law.
     pub law: Restitution,
+    /// Whether the contacts were held on their paths or could be released.
+    pub hypothesis: Hypothesis,
     /// The axes and inertances.
     pub blocks: Blocks<T, S>,
     /// Λ: the impulses along every axis at the end.
@@ -486,6 +521,7 @@ impl<T: Scalar, S: Screws<T>> Frictional<T, S> {
         let samples = linear_samples(&segments, blocks.len());
         Frictional {
             law,
+            hypothesis: Hypothesis::Simultaneous,
             blocks,
             impulses,
             compression,
@@ -598,8 +634,25 @@ pub fn solve_frictional<T: Scalar, M: Mechanism<T>>(
     law: Restitution,
     tolerance: f64,
 ) -> Result<Frictional<T, M::Screw>, FrictionError> {
+    solve_frictional_under(mechanism, law, Hypothesis::Simultaneous, tolerance)
+}
+
+/// [`solve_frictional`] under `hypothesis`: the simultaneous law, or the unilateral one
+/// (planar scenes; [`FrictionError::UnilateralNotPlanar`] otherwise).
+///
+/// # Errors
+/// As [`solve_frictional`], and [`FrictionError::UnilateralNotPlanar`].
+pub fn solve_frictional_under<T: Scalar, M: Mechanism<T>>(
+    mechanism: &M,
+    law: Restitution,
+    hypothesis: Hypothesis,
+    tolerance: f64,
+) -> Result<Frictional<T, M::Screw>, FrictionError> {
     if let Some(b) = Blocks::planar(mechanism) {
-        return planar::solve_planar(mechanism, b, law);
+        return planar::solve_planar(mechanism, b, law, hypothesis);
+    }
+    if hypothesis == Hypothesis::Unilateral {
+        return Err(FrictionError::UnilateralNotPlanar);
     }
     if T::IS_EXACT {
         return Err(FrictionError::NotPlanar);
