@@ -78,7 +78,7 @@ pub fn normal_rules<T: Scalar, S: Screws<T>>(
 ///
 /// ```text
 /// compression:        path = v_ix⁰,        base = 0          (released: dp_i/ds = 0)
-/// Newton restitution: path = k_i^N v_ix⁰,  base = 0
+/// Newton restitution: path = k_i^N max(v_ix⁰, 0),  base = 0
 /// Poisson:            path = 0,            base = k_i^P p_i^c (held at v_ix = 0 by an extra
 /// energetic:          path = 0,            base = p_i^c or 0    impulse rate ≥ 0 when needed)
 /// ```
@@ -106,15 +106,26 @@ impl<T: Scalar> Unilateral<T> {
     }
 }
 
-/// The unilateral rules of every contact in `phase` under `law` (see [`Unilateral`]), from the
-/// simultaneous ones of [`normal_rules`]: a driven rule keeps its path and gets base 0; a given
+/// The unilateral rules of every contact (see [`Unilateral`]), from the simultaneous ones of
+/// [`normal_rules`] in `phase`: a driven rule keeps its path and gets base 0 — except that in
+/// restitution a contact that was receding before impact (v_ix⁰ < 0) has the path v_ix = 0, as
+/// in Moreau's q_i = v_ix⁰ + k_i max(v_ix⁰, 0), not a rebound towards the obstacle; a given
 /// rate r becomes the base over the path v_ix = 0.
-pub fn unilateral_rules<T: Scalar>(simultaneous: &[Normal<T>]) -> Vec<Unilateral<T>> {
+pub fn unilateral_rules<T: Scalar, S: Screws<T>>(
+    simultaneous: &[Normal<T>],
+    b: &Blocks<T, S>,
+    phase: super::Phase,
+) -> Vec<Unilateral<T>> {
     simultaneous
         .iter()
-        .map(|n| match n {
+        .enumerate()
+        .map(|(i, n)| match n {
             Normal::Driven(c) => Unilateral {
-                path: c.clone(),
+                path: if phase == super::Phase::Restitution && b.v0[b.offset[i]].signum_i8() < 0 {
+                    T::zero()
+                } else {
+                    c.clone()
+                },
                 base: T::zero(),
                 prefer_driven: true,
             },
