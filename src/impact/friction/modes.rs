@@ -13,7 +13,9 @@
 //! reported, so that "none" and "several" are verdicts rather than silent choices.
 
 use crate::impact::friction::blocks::Blocks;
-use crate::impact::friction::rates::{Mode, Normal, RateFailure, Rates, Unilateral, max_abs, rates};
+use crate::impact::friction::rates::{
+    Mode, Normal, RateFailure, Rates, Unilateral, max_abs, rates,
+};
 use crate::mechanics::screw::Screws;
 use crate::scalar::Scalar;
 
@@ -95,7 +97,10 @@ pub fn resolve_planar_unilateral<T: Scalar, S: Screws<T>>(
     let engaged: Vec<usize> = (0..n).filter(|&i| on_path[i]).collect();
     let mut search = Search::default();
     for code in 0..(1usize << engaged.len()) {
-        let mut normals: Vec<Normal<T>> = rules.iter().map(|u| Normal::Given(u.base.clone())).collect();
+        let mut normals: Vec<Normal<T>> = rules
+            .iter()
+            .map(|u| Normal::Given(u.base.clone()))
+            .collect();
         let mut checks = Vec::with_capacity(engaged.len());
         for (j, &i) in engaged.iter().enumerate() {
             let choice = (code >> (engaged.len() - 1 - j)) & 1;
@@ -232,12 +237,8 @@ fn normal_consistent<T: Scalar, S: Screws<T>>(
     checks.iter().all(|(i, check)| {
         let off = b.offset[*i];
         match check {
-            Check::AtLeast(base) => {
-                nonnegative(&(r.lambda[off].clone() - base), &scale_l, n)
-            }
-            Check::Separates(path) => {
-                nonnegative(&(-path.clone() - &r.velocity[off]), &scale_v, n)
-            }
+            Check::AtLeast(base) => nonnegative(&(r.lambda[off].clone() - base), &scale_l, n),
+            Check::Separates(path) => nonnegative(&(-path.clone() - &r.velocity[off]), &scale_v, n),
         }
     })
 }

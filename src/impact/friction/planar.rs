@@ -320,7 +320,11 @@ fn no_modes<T: Scalar>(e: NoConsistentModes, st: &State<T>) -> FrictionError {
 
 /// The labels of a segment: a contact the unilateral law has released (no normal impulse
 /// rate) reads `released`.
-fn labels<T: Scalar>(hypothesis: Hypothesis, normals: &[Normal<T>], modes: &[Mode<T>]) -> Vec<ModeLabel> {
+fn labels<T: Scalar>(
+    hypothesis: Hypothesis,
+    normals: &[Normal<T>],
+    modes: &[Mode<T>],
+) -> Vec<ModeLabel> {
     normals
         .iter()
         .zip(modes)
@@ -345,9 +349,7 @@ fn close_gaps<T: Scalar, S: Screws<T>>(
     for i in 0..b.contacts() {
         st.gap[i] = match normals[i] {
             Normal::Driven(_) => T::zero(),
-            Normal::Given(_) => {
-                st.gap[i].clone() - (rules[i].path.clone() + &dv[b.offset[i]]) * h
-            }
+            Normal::Given(_) => st.gap[i].clone() - (rules[i].path.clone() + &dv[b.offset[i]]) * h,
         };
     }
 }
