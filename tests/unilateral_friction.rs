@@ -384,3 +384,57 @@ fn a_contact_released_after_compression_breaks_moreaus_complementarity() {
     let extra = f.blocks.twist_after(&out.velocity, &[int(1), ratio(-1, 4)]);
     assert_eq!(extra, f.velocity);
 }
+
+fn inertance(args: &[&str]) -> (Option<i32>, String, String) {
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_inertance"))
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .args(args)
+        .output()
+        .expect("the binary runs");
+    (
+        out.status.code(),
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+#[test]
+fn the_rocking_block_example_runs_the_unilateral_law_with_friction() {
+    let (code, out, err) = inertance(&["solve", "examples/rocking-block.toml", "--exact"]);
+    assert_eq!(code, Some(0), "{err}");
+    assert!(out.contains("(unilateral, friction, newton)"), "{out}");
+    assert!(out.contains("ω = [0, 23/50 ≈ 0.46, 0] rad/s"), "{out}");
+    assert!(out.contains("modes released"), "{out}");
+    assert!(out.contains("modes stick (sticks at the end)"), "{out}");
+    assert!(!err.contains("negative normal impulse rate"), "{err}");
+    // In f64, through the JSON report: the same law, named.
+    let (code, out, err) = inertance(&["solve", "examples/rocking-block.toml", "--json"]);
+    assert_eq!(code, Some(0), "{err}");
+    let j: serde_json::Value = serde_json::from_str(&out).expect("JSON");
+    assert_eq!(j["effects"][0], "unilateral");
+    let f = &j["friction"]["newton"];
+    assert_eq!(f["contacts"][1]["modes"][0], "released");
+    assert_eq!(f["contacts"][1]["normal_impulse"], 0.0);
+    // ω⁺ = 23/50 from a 2×2 elimination (see the f64 test above): within 1e-14.
+    let omega = f["angular_velocity"][1].as_f64().unwrap();
+    assert!((omega - 0.46).abs() < 1e-14, "{omega}");
+}
+
+#[test]
+fn the_same_scene_under_the_simultaneous_law_pulls_at_the_old_edge() {
+    let (code, out, err) = inertance(&[
+        "solve",
+        "examples/rocking-block.toml",
+        "--exact",
+        "--law",
+        "simultaneous",
+    ]);
+    assert_eq!(code, Some(0), "{err}");
+    assert!(out.contains("(friction, newton)"), "{out}");
+    assert!(
+        err.contains("contact 2: negative normal impulse rate from s = 0 (compression)"),
+        "{err}"
+    );
+    // P₂ = −(49/180) m: a pull of 1225/3 N s on the 1500 kg block.
+    assert!(out.contains("A2: P = -1225/3"), "{out}");
+}

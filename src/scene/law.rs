@@ -1,12 +1,12 @@
 //! Which impact law a scene is solved under, and the combinations that are refused rather
 //! than answered under another law's name.
 //!
-//! The frictional integration (§14, [`crate::impact::friction`]) imposes the paper's
-//! simultaneous hypothesis on every contact: each one keeps compressing until the restitution
-//! law stops it, and none may separate with a zero impulse. Run under the name "unilateral" it
-//! would print the simultaneous answer — a pulling impulse at a contact that should separate —
-//! as the unilateral one. Until the unilateral law is integrated with friction, the
-//! combination is refused, from the scene file and from every override alike.
+//! The frictional integration (§14, [`crate::impact::friction`]) runs the unilateral law too
+//! ([`crate::impact::friction::Hypothesis::Unilateral`]: a contact that would pull is released,
+//! and re-engages when its gap closes), under Newton's and Poisson's restitution, in planar
+//! scenes (a spatial scene is refused by the integration itself, naming the law). With the
+//! energetic restitution law it is not applied yet: that combination is refused here, from the
+//! scene file and from every override alike, rather than answered under another law's name.
 //!
 //! The LZB law ([`crate::impact::multiple`]) is integrated frictionless, in f64, and only
 //! `inertance solve` runs it ([`super::lzb`]): friction or an impulse-space restitution law
@@ -27,41 +27,27 @@ fn first_rough(contacts: &[ContactSpec]) -> Option<usize> {
     })
 }
 
-/// Refuse the unilateral law for `contacts` when one of them has friction; `how` says how the
-/// law was asked for (`` `[solve] law = "unilateral"` ``, `` `--law unilateral` ``).
-/// An energetic restitution law (`[solve] restitution`) is integrated in impulse space too.
+/// Refuse the unilateral law with the energetic restitution law (`[solve] restitution =
+/// "energetic"`), which it is not applied with yet; `how` says how the law was asked for
+/// (`` `[solve] law = "unilateral"` ``, `` `--law unilateral` ``).
 pub(super) fn unilateral_allowed(
     file: &str,
-    contacts: &[ContactSpec],
     restitution: Option<Restitution>,
     how: &str,
 ) -> Result<(), SceneError> {
-    let rough = first_rough(contacts);
-    let (key, value, what) = match (rough, restitution) {
-        (Some(i), _) => (
-            format!("contact[{i}].mu"),
-            contacts[i].mu.text.clone(),
-            "with friction",
-        ),
-        (None, Some(r)) => (
-            "solve.restitution".to_string(),
-            r.name().to_string(),
-            "with a restitution law integrated in impulse space",
-        ),
-        (None, None) => return Ok(()),
-    };
-    Err(SceneError {
-        file: file.to_string(),
-        key,
-        value: Some(value),
-        message: format!(
-            "{how} cannot be applied {what}: that integration (§14) imposes the simultaneous \
-             hypothesis on every contact (none may separate), so its answer would not be the \
-             unilateral law's. Solve with the simultaneous law (drop the unilateral law), or \
-             with the unilateral law frictionless (μ = 0 at every contact, no `[solve] \
-             restitution`)"
-        ),
-    })
+    match restitution {
+        Some(Restitution::Energetic) => Err(SceneError {
+            file: file.to_string(),
+            key: "solve.restitution".to_string(),
+            value: Some("energetic".to_string()),
+            message: format!(
+                "{how} is not applied with the energetic restitution law yet (it is integrated \
+                 with Newton's and Poisson's, with or without friction): choose `restitution = \
+                 \"newton\"` or `\"poisson\"`, or solve with the simultaneous law"
+            ),
+        }),
+        _ => Ok(()),
+    }
 }
 
 /// Refuse the LZB law for `contacts` when one of them has friction, or with a `[solve]
@@ -103,14 +89,15 @@ pub(super) fn lzb_allowed(
 
 impl Scene {
     /// Solve the scene under `law` instead of its own (`--law`, Python's `law=`), refused
-    /// where the law cannot be applied as named (the unilateral law with friction).
+    /// where the law cannot be applied as named (the unilateral law with the energetic
+    /// restitution law; the LZB law with friction).
     ///
     /// # Errors
-    /// A [`SceneError`] naming the first rough contact's `mu`.
+    /// A [`SceneError`] naming `solve.restitution`, or the first rough contact's `mu`.
     pub fn set_law(&mut self, law: Law, how: &str) -> Result<(), SceneError> {
         match law {
             Law::Unilateral => {
-                unilateral_allowed(&self.file, &self.contacts, self.restitution, how)?;
+                unilateral_allowed(&self.file, self.restitution, how)?;
             }
             Law::Lzb => lzb_allowed(&self.file, &self.contacts, self.restitution, how)?,
             Law::Simultaneous => {}
@@ -126,12 +113,9 @@ impl Scene {
     /// As [`Scene::set_law`].
     pub fn law_applies(&self) -> Result<(), SceneError> {
         match self.law {
-            Law::Unilateral => unilateral_allowed(
-                &self.file,
-                &self.contacts,
-                self.restitution,
-                "the unilateral law",
-            ),
+            Law::Unilateral => {
+                unilateral_allowed(&self.file, self.restitution, "the unilateral law")
+            }
             Law::Simultaneous => Ok(()),
             Law::Lzb => Err(SceneError {
                 file: self.file.clone(),

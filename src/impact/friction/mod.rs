@@ -409,6 +409,12 @@ pub enum FrictionError {
          scene is not planar (see the friction guide); solve it with the simultaneous law"
     )]
     UnilateralNotPlanar,
+    /// The unilateral law with the energetic restitution law: not applied yet.
+    #[error(
+        "the unilateral law is integrated with Newton's and Poisson's restitution; with the \
+         energetic law it is not applied yet"
+    )]
+    UnilateralEnergetic,
     /// More events or steps than any physical impact needs.
     #[error("the integration did not end within its event or step budget")]
     Runaway,
@@ -638,16 +644,20 @@ pub fn solve_frictional<T: Scalar, M: Mechanism<T>>(
 }
 
 /// [`solve_frictional`] under `hypothesis`: the simultaneous law, or the unilateral one
-/// (planar scenes; [`FrictionError::UnilateralNotPlanar`] otherwise).
+/// (planar scenes, Newton's and Poisson's restitution).
 ///
 /// # Errors
-/// As [`solve_frictional`], and [`FrictionError::UnilateralNotPlanar`].
+/// As [`solve_frictional`]; [`FrictionError::UnilateralNotPlanar`] and
+/// [`FrictionError::UnilateralEnergetic`] for what the unilateral law is not applied to yet.
 pub fn solve_frictional_under<T: Scalar, M: Mechanism<T>>(
     mechanism: &M,
     law: Restitution,
     hypothesis: Hypothesis,
     tolerance: f64,
 ) -> Result<Frictional<T, M::Screw>, FrictionError> {
+    if hypothesis == Hypothesis::Unilateral && law == Restitution::Energetic {
+        return Err(FrictionError::UnilateralEnergetic);
+    }
     if let Some(b) = Blocks::planar(mechanism) {
         return planar::solve_planar(mechanism, b, law, hypothesis);
     }
