@@ -438,3 +438,39 @@ fn the_same_scene_under_the_simultaneous_law_pulls_at_the_old_edge() {
     // P₂ = −(49/180) m: a pull of 1225/3 N s on the 1500 kg block.
     assert!(out.contains("A2: P = -1225/3"), "{out}");
 }
+
+#[test]
+fn the_rough_bar_without_continuation_under_newton_has_one_under_the_unilateral_law() {
+    // The paper's Example 3 with μ = 1 (examples/rough-bar.toml): under the simultaneous law
+    // both contacts stick from s = 2/3 and at s = 1 Newton asks A₂ for a pull no cone holds:
+    // no continuation. The unilateral law releases A₂ there; it leaves at −57/200, beyond its
+    // path's −k₂ v₂⁰ = −7/25, with the impulse it took until s = 1.
+    let c = |y: i64, k: Exact| {
+        Contact::new(v(int(0), int(y), int(0)), v(int(1), int(0), int(0)), k)
+            .with_tangent(v(int(0), int(1), int(0)))
+            .with_friction(int(1))
+    };
+    let p = Problem::new(
+        RigidBody::principal(int(1), v(int(12), ratio(8, 5), int(12))),
+        Screw::new(v(int(0), int(0), ratio(2, 5)), v(int(3), int(2), int(0))),
+        vec![c(-2, ratio(3, 10)), c(4, ratio(1, 5))],
+    )
+    .unwrap();
+    assert!(
+        solve_frictional_under(&p, Restitution::Newton, Hypothesis::Simultaneous, 0.0).is_err()
+    );
+    let f = solve(&p, Restitution::Newton, Hypothesis::Unilateral);
+    assert_eq!(
+        f.history(1),
+        vec![ModeLabel::SlidePlus, ModeLabel::Stick, ModeLabel::Released]
+    );
+    assert_eq!(f.normal_hat(0).clone(), ratio(731, 200));
+    assert_eq!(f.normal_hat(1).clone(), ratio(1, 5));
+    assert_eq!(f.compression[1], ratio(1, 5));
+    assert_eq!(f.after[2], ratio(-57, 200));
+    assert_eq!(
+        -f.blocks.v0[2].clone() * ratio::<Exact>(1, 5),
+        ratio(-7, 25)
+    );
+    assert!(f.energy_residual.is_zero());
+}
