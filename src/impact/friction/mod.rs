@@ -31,6 +31,28 @@
 //! rates under one assignment of modes are a linear system ([`rates`]); at an event the modes
 //! of every contact at zero slip are chosen jointly ([`modes`]).
 //!
+//! **The unilateral law** ([`Hypothesis::Unilateral`]; `derivations/unilateral-friction.md`).
+//! The simultaneous hypothesis drives every normal velocity along its path whatever impulse
+//! rate that needs. The unilateral law gives contact i a path rate c_i and a base impulse rate
+//! r_i ([`rates::Unilateral`]) and a gap g_i = v_i^path(s) − v_ix, dv_i^path/ds = −c_i:
+//!
+//! ```text
+//! compression:  c_i = v_ix⁰,                Newton:  c_i = k_i^N max(v_ix⁰, 0),   r_i = 0
+//! Poisson:      c_i = 0,  r_i = k_i^P p_i^c  (a contact must not approach: v_ix ≤ 0)
+//! driven   (g_i = 0):  dv_ix/ds = −c_i,  dp_i/ds ≥ r_i
+//! released (g_i ≥ 0):  dp_i/ds = r_i,    dg_i/ds ≥ 0 while g_i = 0
+//! ```
+//!
+//! At s = 0, at s = 1 and at every event the rules of the contacts on their paths are chosen
+//! jointly with stick and slip ([`modes::resolve_planar_unilateral`]), a complementarity problem
+//! on the rates; a released contact whose gap closes re-engages (an event). With μ = 0 and
+//! r = 0 it is LCP(G, −c): compression is Pfeiffer and Glocker's compression LCP (1996)
+//! exactly, and Newton's restitution with one k at every approaching contact is Moreau's LCP
+//! (1988); a contact released after taking impulse breaks Moreau's complementarity, since its
+//! impulse p_i(s) never decreases. Housner's rocking block (1963) lands on its new corner with
+//! ω⁺/ω⁻ = 1 − (3/2) sin²α exactly. Planar scenes only, for now (the events are located exactly
+//! there); not with the energetic law.
+//!
 //! **Where it differs from physics engines.** Engines solve Coulomb's law as one algebraic
 //! complementarity problem per impact (the maximal-dissipation or LCP friction laws, Stewart
 //! and Trinkle; Anitescu and Potra): the tangential impulse is the *total* one, chosen once,

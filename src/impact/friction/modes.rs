@@ -8,6 +8,10 @@
 //! slide ±:    ± v'_it > 0                          (the slip grows in the sense assumed)
 //! ```
 //!
+//! Under the unilateral law ([`resolve_planar_unilateral`]) each contact on its prescribed path
+//! is also driven along it (p'_i ≥ its base rate) or released (its gap does not close,
+//! g'_i ≥ 0): 2^n × 3^m assignments.
+//!
 //! Every assignment is tried (3^m for m contacts at zero slip); the first consistent one in the
 //! order stick, slide+, slide− per contact is taken, and the number of consistent ones is
 //! reported, so that "none" and "several" are verdicts rather than silent choices.
