@@ -147,7 +147,7 @@ enum Check<T> {
 
 /// The consistent assignments found so far: the first, and the distinct rates.
 struct Search<T: Scalar> {
-    first: Option<(Vec<Mode<T>>, Vec<Normal<T>>, Rates<T>)>,
+    first: Option<Resolution<T>>,
     distinct: Vec<Vec<T>>,
     undetermined: bool,
 }
@@ -210,17 +210,20 @@ impl<T: Scalar> Search<T> {
             self.distinct.push(r.lambda.clone());
         }
         if self.first.is_none() {
-            self.first = Some((modes.to_vec(), normals.to_vec(), r));
+            self.first = Some(Resolution {
+                modes: modes.to_vec(),
+                normals: normals.to_vec(),
+                rates: r,
+                consistent: 0,
+            });
         }
     }
 
     fn finish(self) -> Result<Resolution<T>, NoConsistentModes> {
         match self.first {
-            Some((modes, normals, rates)) => Ok(Resolution {
-                modes,
-                normals,
-                rates,
+            Some(first) => Ok(Resolution {
                 consistent: self.distinct.len(),
+                ..first
             }),
             None => Err(NoConsistentModes {
                 undetermined: self.undetermined,
