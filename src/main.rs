@@ -866,7 +866,7 @@ fn run_analyze(
         // With friction the comparison (frictionless on its simultaneous side) is not made
         // unless asked for, where it is refused by key.
         None if scene.law == Law::Lzb
-            && inertance::tools::lzb_compare::rough_contact(&scene).is_none() =>
+            && scene.first_rough_contact().is_none() =>
         {
             Some(inertance::tools::lzb_compare::DEFAULT_RATIOS.to_vec())
         }

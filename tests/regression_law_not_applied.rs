@@ -3,10 +3,11 @@
 //! With μ > 0 the frictional integration (§14) imposes the simultaneous hypothesis on every
 //! contact. A rocking block landing on its new edge, with friction, got P = −19/15 N s — a
 //! pulling impulse — at the old edge, exit 0, while the header and the JSON `effects` said
-//! "unilateral". The combination is now refused (status 2, naming the rough contact's `mu`)
-//! from the scene file, from `--law`, from the library's `Scene::set_law` and from a law set
-//! directly on a `Scene` (every solve checks it), until the unilateral law exists with friction.
-//! An energetic restitution law, integrated the same way, is refused with it.
+//! "unilateral". The combination was then refused; since issue 25, item 3, the unilateral law
+//! is integrated with friction (the old edge is released, the block turns about the new one:
+//! Housner's ω⁺/ω⁻ = 1 − (3/2) sin²α = 7/10 here), from the scene file, from `--law`, from
+//! `sweep` and from the library alike. What it is not applied with yet — the energetic
+//! restitution law — is still refused (status 2, naming `solve.restitution`), from every path.
 
 mod common;
 
@@ -55,20 +56,27 @@ fn refused(out: &std::process::Output) -> String {
 }
 
 #[test]
-fn the_unilateral_law_with_friction_is_refused_from_the_command_line() {
+fn the_unilateral_law_with_friction_is_applied_from_the_command_line() {
     let s = SceneFile::new("law-cli", ROCKING);
     for args in [
         &["solve", "--law", "unilateral"][..],
-        &["solve", "--law", "unilateral", "--json"],
         &["solve", "--law", "unilateral", "--exact"],
     ] {
-        let err = refused(&s.run(args));
-        assert!(
-            err.contains("contact[0].mu")
-                && err.contains("`--law unilateral` cannot be applied with friction"),
-            "{err}"
-        );
+        let out = s.run(args);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(out.status.success(), "{err}");
+        assert!(!err.contains("negative normal impulse rate"), "{err}");
+        let text = String::from_utf8_lossy(&out.stdout);
+        assert!(text.contains("(unilateral, friction"), "{text}");
+        assert!(text.contains("modes released"), "{text}");
     }
+    let out = s.run(&["solve", "--law", "unilateral", "--exact", "--json"]);
+    let j: serde_json::Value = serde_json::from_slice(&out.stdout).expect("JSON");
+    assert_eq!(j["effects"][0], "unilateral");
+    // Housner: b/h = 1/2, sin²α = 1/5, ω⁺ = (1 − 3/10) ω⁻.
+    let newton = &j["friction"]["newton"];
+    assert_eq!(newton["angular_velocity"][1], "7/10");
+    assert_eq!(newton["contacts"][1]["normal_impulse"], "0");
     let csv = s.dir().join("sweep.csv");
     let out = s.run(&[
         "sweep",
@@ -80,9 +88,8 @@ fn the_unilateral_law_with_friction_is_refused_from_the_command_line() {
         csv.to_str().expect("utf-8"),
     ]);
     let err = String::from_utf8_lossy(&out.stderr);
-    assert_ne!(out.status.code(), Some(0), "{err}");
-    assert!(err.contains("cannot be applied with friction"), "{err}");
-    assert!(!csv.exists(), "a refused sweep leaves no CSV");
+    assert_eq!(out.status.code(), Some(0), "{err}");
+    assert!(csv.exists(), "the sweep wrote its CSV");
     // The simultaneous law with friction is still answered, its pull named on stderr.
     let out = s.run(&["solve", "--json"]);
     let err = String::from_utf8_lossy(&out.stderr);
@@ -96,37 +103,55 @@ fn the_unilateral_law_with_friction_is_refused_from_the_command_line() {
 }
 
 #[test]
-fn the_scene_file_and_the_energetic_law_are_refused_too() {
+fn the_energetic_law_is_refused_with_it_from_the_file_and_the_command_line() {
+    let energetic = ROCKING.to_string() + "[solve]\nrestitution = \"energetic\"\n";
+    let s = SceneFile::new("law-energetic", &energetic);
+    let err = refused(&s.run(&["solve", "--law", "unilateral"]));
+    assert!(
+        err.contains("solve.restitution") && err.contains("not applied with the energetic"),
+        "{err}"
+    );
     let file = SceneFile::new(
-        "law-file",
-        &format!("{ROCKING}[solve]\nlaw = \"unilateral\"\n"),
+        "law-file-energetic",
+        &format!("{ROCKING}[solve]\nlaw = \"unilateral\"\nrestitution = \"energetic\"\n"),
     );
     let err = refused(&file.run(&["solve"]));
     assert!(err.contains("`[solve] law = \"unilateral\"`"), "{err}");
-    let energetic =
-        ROCKING.replace("mu = 0.8", "mu = 0") + "[solve]\nrestitution = \"energetic\"\n";
-    let s = SceneFile::new("law-energetic", &energetic);
+    // Frictionless, too: the energetic law is integrated in impulse space either way.
+    let smooth = ROCKING.replace("mu = 0.8", "mu = 0") + "[solve]\nrestitution = \"energetic\"\n";
+    let s = SceneFile::new("law-energetic-smooth", &smooth);
     let err = refused(&s.run(&["solve", "--law", "unilateral"]));
     assert!(err.contains("solve.restitution"), "{err}");
 }
 
 #[test]
 fn no_library_path_applies_another_law_under_its_name() {
-    let mut scene = Scene::parse(ROCKING, "rocking.toml").expect("a scene");
+    let energetic = ROCKING.to_string() + "[solve]\nrestitution = \"energetic\"\n";
+    let mut scene = Scene::parse(&energetic, "rocking.toml").expect("a scene");
     let e = scene
         .set_law(Law::Unilateral, "the unilateral law")
         .expect_err("refused");
-    assert_eq!(e.key, "contact[0].mu");
+    assert_eq!(e.key, "solve.restitution");
     assert_eq!(scene.law, Law::Simultaneous, "a refused law is not set");
     // Set directly, past the check: the solve itself refuses it, in every scalar.
     scene.law = Law::Unilateral;
     assert!(
-        matches!(run::<f64>(&scene, None), Err(RunError::Scene(e)) if e.key == "contact[0].mu")
+        matches!(run::<f64>(&scene, None), Err(RunError::Scene(e)) if e.key == "solve.restitution")
     );
     assert!(matches!(
         run::<inertance::scalar::Exact>(&scene, None),
-        Err(RunError::Scene(e)) if e.key == "contact[0].mu"
+        Err(RunError::Scene(e)) if e.key == "solve.restitution"
     ));
+    // With friction and Newton's or Poisson's law, the unilateral law is applied, and says so.
+    let mut scene = Scene::parse(ROCKING, "rocking.toml").expect("a scene");
+    scene
+        .set_law(Law::Unilateral, "the unilateral law")
+        .expect("allowed");
+    let solved = run::<inertance::scalar::Exact>(&scene, None).expect("solves");
+    assert_eq!(
+        solved.report.effects.first().map(String::as_str),
+        Some("unilateral")
+    );
     // Frictionless, the unilateral law is applied, and says so.
     let smooth = ROCKING.replace("mu = 0.8", "mu = 0");
     let mut scene = Scene::parse(&smooth, "smooth.toml").expect("a scene");

@@ -1,12 +1,12 @@
 //! Which impact law a scene is solved under, and the combinations that are refused rather
 //! than answered under another law's name.
 //!
-//! The frictional integration (§14, [`crate::impact::friction`]) imposes the paper's
-//! simultaneous hypothesis on every contact: each one keeps compressing until the restitution
-//! law stops it, and none may separate with a zero impulse. Run under the name "unilateral" it
-//! would print the simultaneous answer — a pulling impulse at a contact that should separate —
-//! as the unilateral one. Until the unilateral law is integrated with friction, the
-//! combination is refused, from the scene file and from every override alike.
+//! The frictional integration (§14, [`crate::impact::friction`]) runs the unilateral law too
+//! ([`crate::impact::friction::Hypothesis::Unilateral`]: a contact that would pull is released,
+//! and re-engages when its gap closes), under Newton's and Poisson's restitution, in planar
+//! scenes (a spatial scene is refused by the integration itself, naming the law). With the
+//! energetic restitution law it is not applied yet: that combination is refused here, from the
+//! scene file and from every override alike, rather than answered under another law's name.
 //!
 //! The LZB law ([`crate::impact::multiple`]) is integrated in f64, with Coulomb friction, by its
 //! own paths ([`super::lzb`]: `solve`, `sweep`, `analyze`, `bench --scene`, Python's `solve`):
@@ -16,52 +16,30 @@
 use crate::impact::friction::Restitution;
 use crate::impact::unilateral::Law;
 
-use super::schema::ContactSpec;
 use super::{Scene, SceneError};
 
-/// The first contact with friction (μ ≠ 0, or not known to be 0), if any.
-fn first_rough(contacts: &[ContactSpec]) -> Option<usize> {
-    contacts.iter().position(|c| match &c.mu.exact {
-        Ok(q) => !num_traits::Zero::is_zero(q) || c.mu.tangent != 0.0,
-        Err(_) => true,
-    })
-}
 
-/// Refuse the unilateral law for `contacts` when one of them has friction; `how` says how the
-/// law was asked for (`` `[solve] law = "unilateral"` ``, `` `--law unilateral` ``).
-/// An energetic restitution law (`[solve] restitution`) is integrated in impulse space too.
+/// Refuse the unilateral law with the energetic restitution law (`[solve] restitution =
+/// "energetic"`), which it is not applied with yet; `how` says how the law was asked for
+/// (`` `[solve] law = "unilateral"` ``, `` `--law unilateral` ``).
 pub(super) fn unilateral_allowed(
     file: &str,
-    contacts: &[ContactSpec],
     restitution: Option<Restitution>,
     how: &str,
 ) -> Result<(), SceneError> {
-    let rough = first_rough(contacts);
-    let (key, value, what) = match (rough, restitution) {
-        (Some(i), _) => (
-            format!("contact[{i}].mu"),
-            contacts[i].mu.text.clone(),
-            "with friction",
-        ),
-        (None, Some(r)) => (
-            "solve.restitution".to_string(),
-            r.name().to_string(),
-            "with a restitution law integrated in impulse space",
-        ),
-        (None, None) => return Ok(()),
-    };
-    Err(SceneError {
-        file: file.to_string(),
-        key,
-        value: Some(value),
-        message: format!(
-            "{how} cannot be applied {what}: that integration (§14) imposes the simultaneous \
-             hypothesis on every contact (none may separate), so its answer would not be the \
-             unilateral law's. Solve with the simultaneous law (drop the unilateral law), or \
-             with the unilateral law frictionless (μ = 0 at every contact, no `[solve] \
-             restitution`)"
-        ),
-    })
+    match restitution {
+        Some(Restitution::Energetic) => Err(SceneError {
+            file: file.to_string(),
+            key: "solve.restitution".to_string(),
+            value: Some("energetic".to_string()),
+            message: format!(
+                "{how} is not applied with the energetic restitution law yet (it is integrated \
+                 with Newton's and Poisson's, with or without friction): choose `restitution = \
+                 \"newton\"` or `\"poisson\"`, or solve with the simultaneous law"
+            ),
+        }),
+        _ => Ok(()),
+    }
 }
 
 /// Refuse the LZB law with a `[solve] restitution` (the LZB law has its own restitution: each
@@ -86,15 +64,24 @@ pub(super) fn lzb_allowed(
 }
 
 impl Scene {
+    /// The first contact with friction (μ ≠ 0, or not known to be 0), if any.
+    pub fn first_rough_contact(&self) -> Option<usize> {
+        self.contacts.iter().position(|c| match &c.mu.exact {
+            Ok(q) => !num_traits::Zero::is_zero(q) || c.mu.tangent != 0.0,
+            Err(_) => true,
+        })
+    }
+
     /// Solve the scene under `law` instead of its own (`--law`, Python's `law=`), refused
-    /// where the law cannot be applied as named (the unilateral law with friction).
+    /// where the law cannot be applied as named (the unilateral law with the energetic
+    /// restitution law; the LZB law with friction).
     ///
     /// # Errors
-    /// A [`SceneError`] naming the first rough contact's `mu`.
+    /// A [`SceneError`] naming `solve.restitution`, or the first rough contact's `mu`.
     pub fn set_law(&mut self, law: Law, how: &str) -> Result<(), SceneError> {
         match law {
             Law::Unilateral => {
-                unilateral_allowed(&self.file, &self.contacts, self.restitution, how)?;
+                unilateral_allowed(&self.file, self.restitution, how)?;
             }
             Law::Lzb => lzb_allowed(&self.file, self.restitution, how)?,
             Law::Simultaneous => {}
@@ -110,12 +97,9 @@ impl Scene {
     /// As [`Scene::set_law`].
     pub fn law_applies(&self) -> Result<(), SceneError> {
         match self.law {
-            Law::Unilateral => unilateral_allowed(
-                &self.file,
-                &self.contacts,
-                self.restitution,
-                "the unilateral law",
-            ),
+            Law::Unilateral => {
+                unilateral_allowed(&self.file, self.restitution, "the unilateral law")
+            }
             Law::Simultaneous => Ok(()),
             Law::Lzb => Err(SceneError {
                 file: self.file.clone(),

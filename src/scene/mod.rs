@@ -267,6 +267,15 @@ impl Scene {
             })
     }
 
+    /// How the frictional integration holds the contacts: the unilateral law's release and
+    /// re-engagement under `law = "unilateral"`, else the simultaneous hypothesis.
+    pub fn hypothesis(&self) -> crate::impact::friction::Hypothesis {
+        match self.law {
+            Law::Unilateral => crate::impact::friction::Hypothesis::Unilateral,
+            Law::Simultaneous | Law::Lzb => crate::impact::friction::Hypothesis::Simultaneous,
+        }
+    }
+
     /// The restitution laws of the frictional integration: `[solve] restitution`, else the
     /// models asked for (`models`, or the scene's).
     pub fn restitutions(&self, models: Option<&[Model]>) -> Vec<Restitution> {

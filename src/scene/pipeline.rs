@@ -15,7 +15,7 @@ use num_traits::Zero;
 
 use crate::analysis::wrench_space::WrenchSpace;
 use crate::impact::admissibility::{Inadmissible, energy_gain, verdicts};
-use crate::impact::friction::{FrictionError, solve_frictional};
+use crate::impact::friction::{FrictionError, solve_frictional_under};
 use crate::impact::outputs::Outputs;
 use crate::impact::problem::{Problem, Reason};
 use crate::impact::restitution::Model;
@@ -383,7 +383,7 @@ fn run_frictional<T: Scalar>(
     let mut first_failure = None;
     for law in laws {
         let tolerance = scene.tolerance.unwrap_or_else(friction_tolerance::<T>);
-        let f = match solve_frictional(problem, law, tolerance) {
+        let f = match solve_frictional_under(problem, law, scene.hypothesis(), tolerance) {
             Ok(f) => f,
             Err(e) => match e.status() {
                 // A verdict of the physics for this law: the others still answer.

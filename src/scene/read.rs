@@ -63,12 +63,7 @@ pub(super) fn scene(
     let (models, law, restitution, outputs) =
         (solve.models, solve.law, solve.restitution, solve.outputs);
     if law == Law::Unilateral {
-        super::law::unilateral_allowed(
-            file,
-            &contacts,
-            restitution,
-            "`[solve] law = \"unilateral\"`",
-        )?;
+        super::law::unilateral_allowed(file, restitution, "`[solve] law = \"unilateral\"`")?;
     }
     if law == Law::Lzb {
         super::law::lzb_allowed(file, restitution, "`[solve] law = \"lzb\"`")?;

@@ -23,7 +23,7 @@
 //! [`crate::analysis::accuracy`] (its systems paragraph).
 
 use crate::impact::admissibility::{energy_gain, verdicts};
-use crate::impact::friction::solve_frictional;
+use crate::impact::friction::solve_frictional_under;
 use crate::impact::restitution::Model;
 use crate::impact::solve::{Impact, Outcome};
 use crate::impact::unilateral::{Law, UnilateralError, active};
@@ -259,6 +259,9 @@ fn run_frictional<T: Scalar>(
     if !system.joints().is_empty() {
         effects.push("joints".to_string());
     }
+    if scene.law == Law::Unilateral {
+        effects.push("unilateral".to_string());
+    }
     effects.push("friction".to_string());
     effects.extend(laws.iter().map(|l| l.name().to_string()));
     let mut report = SystemReport::new(&scene.name, effects, &body_names(scene), &impact, &[]);
@@ -269,7 +272,7 @@ fn run_frictional<T: Scalar>(
     let mut momentum = Vec::new();
     let mut first_failure = None;
     for law in laws {
-        let f = match solve_frictional(&system, law, tolerance) {
+        let f = match solve_frictional_under(&system, law, scene.hypothesis(), tolerance) {
             Ok(f) => f,
             Err(e) => match e.status() {
                 // A verdict of the physics for this law: the others still answer.

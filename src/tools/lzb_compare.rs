@@ -74,7 +74,7 @@ pub fn compare(
     ratios: &[f64],
     models: Option<&[Model]>,
 ) -> Result<Comparison, RunError> {
-    if let Some(i) = rough_contact(scene) {
+    if let Some(i) = scene.first_rough_contact() {
         return Err(RunError::Scene(crate::scene::SceneError {
             file: scene.file.clone(),
             key: format!("contact[{i}].mu"),
@@ -100,14 +100,6 @@ pub fn compare(
     } else {
         compare_on(&prepare::<f64>(scene)?, models, &laws, ratios, tolerance)
     }
-}
-
-/// The first contact with friction (μ ≠ 0, or with symbols), if any.
-pub fn rough_contact(scene: &Scene) -> Option<usize> {
-    scene
-        .contacts
-        .iter()
-        .position(|c| !c.mu.symbols.is_empty() || c.mu.approx != 0.0)
 }
 
 fn compare_on<M: Mechanism<f64>>(

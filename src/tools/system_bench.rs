@@ -19,7 +19,7 @@ use std::time::Duration;
 
 use serde_json::{Value as Json, json};
 
-use crate::impact::friction::solve_frictional;
+use crate::impact::friction::solve_frictional_under;
 use crate::impact::lean_system::LeanSystem;
 use crate::impact::mechanism::Mechanism;
 use crate::impact::restitution::Model;
@@ -192,7 +192,7 @@ pub(crate) fn time_law<T: Scalar, M: Mechanism<T>>(
         let mut laws = Vec::new();
         let mut failure = None;
         for law in scene.restitutions(None) {
-            match solve_frictional(&first, law, tolerance) {
+            match solve_frictional_under(&first, law, scene.hypothesis(), tolerance) {
                 Ok(_) => laws.push(law),
                 Err(e) => {
                     failure.get_or_insert(match e.status() {
@@ -209,7 +209,7 @@ pub(crate) fn time_law<T: Scalar, M: Mechanism<T>>(
             let m = build()?;
             for &law in &laws {
                 std::hint::black_box(
-                    solve_frictional(&m, law, tolerance)
+                    solve_frictional_under(&m, law, scene.hypothesis(), tolerance)
                         .map_err(|e| NotTimed::NotApplicable(e.to_string()))?,
                 );
             }

@@ -31,6 +31,28 @@
 //! rates under one assignment of modes are a linear system ([`rates`]); at an event the modes
 //! of every contact at zero slip are chosen jointly ([`modes`]).
 //!
+//! **The unilateral law** ([`Hypothesis::Unilateral`]; `derivations/unilateral-friction.md`).
+//! The simultaneous hypothesis drives every normal velocity along its path whatever impulse
+//! rate that needs. The unilateral law gives contact i a path rate c_i and a base impulse rate
+//! r_i ([`rates::Unilateral`]) and a gap g_i = v_i^path(s) − v_ix, dv_i^path/ds = −c_i:
+//!
+//! ```text
+//! compression:  c_i = v_ix⁰,                Newton:  c_i = k_i^N max(v_ix⁰, 0),   r_i = 0
+//! Poisson:      c_i = 0,  r_i = k_i^P p_i^c  (a contact must not approach: v_ix ≤ 0)
+//! driven   (g_i = 0):  dv_ix/ds = −c_i,  dp_i/ds ≥ r_i
+//! released (g_i ≥ 0):  dp_i/ds = r_i,    dg_i/ds ≥ 0 while g_i = 0
+//! ```
+//!
+//! At s = 0, at s = 1 and at every event the rules of the contacts on their paths are chosen
+//! jointly with stick and slip ([`modes::resolve_planar_unilateral`]), a complementarity problem
+//! on the rates; a released contact whose gap closes re-engages (an event). With μ = 0 and
+//! r = 0 it is LCP(G, −c): compression is Pfeiffer and Glocker's compression LCP (1996)
+//! exactly, and Newton's restitution with one k at every approaching contact is Moreau's LCP
+//! (1988); a contact released after taking impulse breaks Moreau's complementarity, since its
+//! impulse p_i(s) never decreases. Housner's rocking block (1963) lands on its new corner with
+//! ω⁺/ω⁻ = 1 − (3/2) sin²α exactly. Planar scenes only, for now (the events are located exactly
+//! there); not with the energetic law.
+//!
 //! **Where it differs from physics engines.** Engines solve Coulomb's law as one algebraic
 //! complementarity problem per impact (the maximal-dissipation or LCP friction laws, Stewart
 //! and Trinkle; Anitescu and Potra): the tangential impulse is the *total* one, chosen once,
@@ -65,7 +87,7 @@ use crate::mechanics::screw::{Screw, Screws, Vec3};
 use crate::scalar::Scalar;
 
 pub use blocks::Blocks;
-pub use rates::{Mode, Normal};
+pub use rates::{Mode, Normal, Unilateral};
 
 /// The restitution law of a frictional impact.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -116,6 +138,28 @@ impl fmt::Display for Restitution {
     }
 }
 
+/// How the contacts' normal velocities are held during the impact.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum Hypothesis {
+    /// The paper's: every contact follows its prescribed path, whatever impulse rate that
+    /// needs; a negative one is a verdict ([`Verdict::TensileRate`]).
+    #[default]
+    Simultaneous,
+    /// The unilateral law: a contact whose path would need a tensile rate is released and
+    /// stays on the separating side of its path until it re-engages (module docs).
+    Unilateral,
+}
+
+impl Hypothesis {
+    /// The name in reports: `simultaneous`, `unilateral`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Hypothesis::Simultaneous => "simultaneous",
+            Hypothesis::Unilateral => "unilateral",
+        }
+    }
+}
+
 /// The phase of the impact a segment belongs to.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Phase {
@@ -148,10 +192,13 @@ pub enum ModeLabel {
     SlideMinus,
     /// Slip in a direction of the tangent plane (spatial).
     Slide,
+    /// Off its prescribed path under the unilateral law: no normal impulse rate, its normal
+    /// velocity free on the separating side ([`Hypothesis::Unilateral`]).
+    Released,
 }
 
 impl ModeLabel {
-    /// The name in reports: `free`, `stick`, `slide+`, `slide-`, `slide`.
+    /// The name in reports: `free`, `stick`, `slide+`, `slide-`, `slide`, `released`.
     pub fn name(self) -> &'static str {
         match self {
             ModeLabel::Free => "free",
@@ -159,6 +206,7 @@ impl ModeLabel {
             ModeLabel::SlidePlus => "slide+",
             ModeLabel::SlideMinus => "slide-",
             ModeLabel::Slide => "slide",
+            ModeLabel::Released => "released",
         }
     }
 }
@@ -376,6 +424,19 @@ pub enum FrictionError {
          (estimate this one by finite differences)"
     )]
     NotDifferentiable,
+    /// The unilateral law in a spatial scene: its events are located exactly in planar scenes
+    /// only, for now.
+    #[error(
+        "the unilateral law with friction is integrated in planar scenes only, for now: this \
+         scene is not planar (see the friction guide); solve it with the simultaneous law"
+    )]
+    UnilateralNotPlanar,
+    /// The unilateral law with the energetic restitution law: not applied yet.
+    #[error(
+        "the unilateral law is integrated with Newton's and Poisson's restitution; with the \
+         energetic law it is not applied yet"
+    )]
+    UnilateralEnergetic,
     /// More events or steps than any physical impact needs.
     #[error("the integration did not end within its event or step budget")]
     Runaway,
@@ -388,6 +449,8 @@ pub enum FrictionError {
 pub struct Frictional<T: Scalar, S: Screws<T> = Screw<T>> {
     /// The restitution law.
     pub law: Restitution,
+    /// Whether the contacts were held on their paths or could be released.
+    pub hypothesis: Hypothesis,
     /// The axes and inertances.
     pub blocks: Blocks<T, S>,
     /// Λ: the impulses along every axis at the end.
@@ -486,6 +549,7 @@ impl<T: Scalar, S: Screws<T>> Frictional<T, S> {
         let samples = linear_samples(&segments, blocks.len());
         Frictional {
             law,
+            hypothesis: Hypothesis::Simultaneous,
             blocks,
             impulses,
             compression,
@@ -598,8 +662,29 @@ pub fn solve_frictional<T: Scalar, M: Mechanism<T>>(
     law: Restitution,
     tolerance: f64,
 ) -> Result<Frictional<T, M::Screw>, FrictionError> {
+    solve_frictional_under(mechanism, law, Hypothesis::Simultaneous, tolerance)
+}
+
+/// [`solve_frictional`] under `hypothesis`: the simultaneous law, or the unilateral one
+/// (planar scenes, Newton's and Poisson's restitution).
+///
+/// # Errors
+/// As [`solve_frictional`]; [`FrictionError::UnilateralNotPlanar`] and
+/// [`FrictionError::UnilateralEnergetic`] for what the unilateral law is not applied to yet.
+pub fn solve_frictional_under<T: Scalar, M: Mechanism<T>>(
+    mechanism: &M,
+    law: Restitution,
+    hypothesis: Hypothesis,
+    tolerance: f64,
+) -> Result<Frictional<T, M::Screw>, FrictionError> {
+    if hypothesis == Hypothesis::Unilateral && law == Restitution::Energetic {
+        return Err(FrictionError::UnilateralEnergetic);
+    }
     if let Some(b) = Blocks::planar(mechanism) {
-        return planar::solve_planar(mechanism, b, law);
+        return planar::solve_planar(mechanism, b, law, hypothesis);
+    }
+    if hypothesis == Hypothesis::Unilateral {
+        return Err(FrictionError::UnilateralNotPlanar);
     }
     if T::IS_EXACT {
         return Err(FrictionError::NotPlanar);

@@ -8,12 +8,18 @@
 //! slide ±:    ± v'_it > 0                          (the slip grows in the sense assumed)
 //! ```
 //!
+//! Under the unilateral law ([`resolve_planar_unilateral`]) each contact on its prescribed path
+//! is also driven along it (p'_i ≥ its base rate) or released (its gap does not close,
+//! g'_i ≥ 0): 2^n × 3^m assignments.
+//!
 //! Every assignment is tried (3^m for m contacts at zero slip); the first consistent one in the
 //! order stick, slide+, slide− per contact is taken, and the number of consistent ones is
 //! reported, so that "none" and "several" are verdicts rather than silent choices.
 
 use crate::impact::friction::blocks::Blocks;
-use crate::impact::friction::rates::{Mode, Normal, RateFailure, Rates, max_abs, rates};
+use crate::impact::friction::rates::{
+    Mode, Normal, RateFailure, Rates, Unilateral, max_abs, rates,
+};
 use crate::mechanics::screw::Screws;
 use crate::scalar::Scalar;
 
@@ -22,9 +28,11 @@ use crate::scalar::Scalar;
 pub struct Resolution<T: Scalar> {
     /// The modes of every contact.
     pub modes: Vec<Mode<T>>,
+    /// The normal rule of every contact (as given, or as the unilateral law chose it).
+    pub normals: Vec<Normal<T>>,
     /// Their rates.
     pub rates: Rates<T>,
-    /// How many assignments were consistent (1: the modes are determined).
+    /// How many distinct rates the consistent assignments have (1: the rates are determined).
     pub consistent: usize,
 }
 
@@ -59,44 +67,187 @@ pub fn resolve_planar<T: Scalar, S: Screws<T>>(
     current: &[Mode<T>],
     candidates: &[usize],
 ) -> Result<Resolution<T>, NoConsistentModes> {
-    let choices = [
-        Mode::Stick,
-        Mode::Slide(vec![T::one()]),
-        Mode::Slide(vec![-T::one()]),
-    ];
-    let m = candidates.len();
-    let total = 3usize.pow(m as u32);
-    let mut first: Option<(Vec<Mode<T>>, Rates<T>)> = None;
-    let mut consistent = 0;
-    let mut undetermined = false;
-    let mut modes = current.to_vec();
-    for code in 0..total {
-        let mut c = code;
-        for &i in candidates.iter().rev() {
-            modes[i] = choices[c % 3].clone();
-            c /= 3;
+    let mut search = Search::default();
+    search.tangential(b, normals, &mut current.to_vec(), candidates, &[]);
+    search.finish()
+}
+
+/// Resolve the normal rules and the planar modes jointly under the unilateral law: every
+/// contact on its path (`on_path[i]`, gap g_i = 0) is driven along it or released
+/// ([`Unilateral::options`], the phase's own rule first); every other contact keeps its
+/// given rate. A contact that carries a normal impulse rate then sticks or slides as in
+/// [`resolve_planar`] when `zero_slip[i]`, or slides in the sense `slip[i]` (±1) otherwise;
+/// one that carries none is free. The tests, with those of the module docs:
+///
+/// ```text
+/// driven:    p'_i ≥ base_i                     (no tensile rate beyond the given one)
+/// released:  g'_i = −path_i − v'_ix ≥ 0         (it does not cross its path)
+/// ```
+///
+/// — with μ = 0 and base 0, the linear complementarity problem LCP(G, −path) on the contacts
+/// on their path. The count of consistent assignments counts distinct rates (a contact with
+/// p'_i = 0 and g'_i = 0 is both driven and released, with one set of rates).
+///
+/// # Errors
+/// [`NoConsistentModes`] when no assignment is consistent.
+pub fn resolve_planar_unilateral<T: Scalar, S: Screws<T>>(
+    b: &Blocks<T, S>,
+    rules: &[Unilateral<T>],
+    on_path: &[bool],
+    zero_slip: &[bool],
+    slip: &[T],
+) -> Result<Resolution<T>, NoConsistentModes> {
+    let n = rules.len();
+    let engaged: Vec<usize> = (0..n).filter(|&i| on_path[i]).collect();
+    let mut search = Search::default();
+    for code in 0..(1usize << engaged.len()) {
+        let mut normals: Vec<Normal<T>> = rules
+            .iter()
+            .map(|u| Normal::Given(u.base.clone()))
+            .collect();
+        let mut checks = Vec::with_capacity(engaged.len());
+        for (j, &i) in engaged.iter().enumerate() {
+            let choice = (code >> (engaged.len() - 1 - j)) & 1;
+            let rule = rules[i].options()[choice].clone();
+            checks.push(match &rule {
+                Normal::Driven(_) => (i, Check::AtLeast(rules[i].base.clone())),
+                Normal::Given(_) => (i, Check::Separates(rules[i].path.clone())),
+            });
+            normals[i] = rule;
         }
-        match rates(b, normals, &modes) {
-            Ok(r) => {
-                if planar_consistent(b, &modes, &r, candidates) {
-                    consistent += 1;
-                    if first.is_none() {
-                        first = Some((modes.clone(), r));
+        let mut modes = Vec::with_capacity(n);
+        let mut candidates = Vec::new();
+        for i in 0..n {
+            let carries = match &normals[i] {
+                Normal::Driven(_) => true,
+                Normal::Given(r) => !r.is_zero(),
+            };
+            modes.push(if b.dims[i] == 0 || !carries {
+                Mode::Free
+            } else if zero_slip[i] {
+                candidates.push(i);
+                Mode::Stick
+            } else {
+                Mode::Slide(vec![slip[i].clone()])
+            });
+        }
+        search.tangential(b, &normals, &mut modes, &candidates, &checks);
+    }
+    search.finish()
+}
+
+/// A test on a contact's normal rate in [`resolve_planar_unilateral`].
+#[derive(Clone, Debug)]
+enum Check<T> {
+    /// Driven: p'_i ≥ the given least rate.
+    AtLeast(T),
+    /// Released: −path − v'_ix ≥ 0.
+    Separates(T),
+}
+
+/// The consistent assignments found so far: the first, and the distinct rates.
+struct Search<T: Scalar> {
+    first: Option<Resolution<T>>,
+    distinct: Vec<Vec<T>>,
+    undetermined: bool,
+}
+
+impl<T: Scalar> Default for Search<T> {
+    fn default() -> Self {
+        Search {
+            first: None,
+            distinct: Vec::new(),
+            undetermined: false,
+        }
+    }
+}
+
+impl<T: Scalar> Search<T> {
+    /// Try every stick/slide+/slide− assignment of the `candidates` under `normals`.
+    fn tangential<S: Screws<T>>(
+        &mut self,
+        b: &Blocks<T, S>,
+        normals: &[Normal<T>],
+        modes: &mut [Mode<T>],
+        candidates: &[usize],
+        checks: &[(usize, Check<T>)],
+    ) {
+        let choices = [
+            Mode::Stick,
+            Mode::Slide(vec![T::one()]),
+            Mode::Slide(vec![-T::one()]),
+        ];
+        let total = 3usize.pow(candidates.len() as u32);
+        for code in 0..total {
+            let mut c = code;
+            for &i in candidates.iter().rev() {
+                modes[i] = choices[c % 3].clone();
+                c /= 3;
+            }
+            match rates(b, normals, modes) {
+                Ok(r) => {
+                    if planar_consistent(b, modes, &r, candidates)
+                        && normal_consistent(b, &r, checks)
+                    {
+                        self.found(modes, normals, r);
                     }
                 }
+                Err(RateFailure::Undetermined) => self.undetermined = true,
+                Err(RateFailure::Inconsistent) => {}
             }
-            Err(RateFailure::Undetermined) => undetermined = true,
-            Err(RateFailure::Inconsistent) => {}
         }
     }
-    match first {
-        Some((modes, rates)) => Ok(Resolution {
-            modes,
-            rates,
-            consistent,
-        }),
-        None => Err(NoConsistentModes { undetermined }),
+
+    fn found(&mut self, modes: &[Mode<T>], normals: &[Normal<T>], r: Rates<T>) {
+        let scale = max_abs(&r.lambda);
+        let n = r.lambda.len();
+        let same = |d: &Vec<T>| {
+            d.iter()
+                .zip(&r.lambda)
+                .all(|(x, y)| (x.clone() - y).is_negligible(&scale, n))
+        };
+        if !self.distinct.iter().any(same) {
+            self.distinct.push(r.lambda.clone());
+        }
+        if self.first.is_none() {
+            self.first = Some(Resolution {
+                modes: modes.to_vec(),
+                normals: normals.to_vec(),
+                rates: r,
+                consistent: 0,
+            });
+        }
     }
+
+    fn finish(self) -> Result<Resolution<T>, NoConsistentModes> {
+        match self.first {
+            Some(first) => Ok(Resolution {
+                consistent: self.distinct.len(),
+                ..first
+            }),
+            None => Err(NoConsistentModes {
+                undetermined: self.undetermined,
+            }),
+        }
+    }
+}
+
+/// The normal tests of [`resolve_planar_unilateral`].
+fn normal_consistent<T: Scalar, S: Screws<T>>(
+    b: &Blocks<T, S>,
+    r: &Rates<T>,
+    checks: &[(usize, Check<T>)],
+) -> bool {
+    let n = b.len();
+    let scale_l = max_abs(&r.lambda);
+    let scale_v = max_abs(&r.velocity);
+    checks.iter().all(|(i, check)| {
+        let off = b.offset[*i];
+        match check {
+            Check::AtLeast(base) => nonnegative(&(r.lambda[off].clone() - base), &scale_l, n),
+            Check::Separates(path) => nonnegative(&(-path.clone() - &r.velocity[off]), &scale_v, n),
+        }
+    })
 }
 
 /// The tests of the module docs for the candidates.

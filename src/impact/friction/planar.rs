@@ -9,10 +9,12 @@
 //! (∫ v dΛ of a linear v against a constant rate is the trapezoid rule, exact).
 
 use crate::impact::friction::blocks::Blocks;
-use crate::impact::friction::modes::{MAX_CANDIDATES, resolve_planar};
-use crate::impact::friction::rates::{Mode, Normal, normal_rules};
+use crate::impact::friction::modes::{
+    MAX_CANDIDATES, NoConsistentModes, Resolution, resolve_planar, resolve_planar_unilateral,
+};
+use crate::impact::friction::rates::{Mode, Normal, Unilateral, normal_rules, unilateral_rules};
 use crate::impact::friction::{
-    FrictionError, Frictional, Phase, Restitution, Segment, Verdict, label,
+    FrictionError, Frictional, Hypothesis, ModeLabel, Phase, Restitution, Segment, Verdict, label,
 };
 use crate::impact::mechanism::Mechanism;
 use crate::mechanics::contact::Contact;
@@ -34,9 +36,16 @@ struct State<T: Scalar> {
     work_compression: Vec<T>,
     work_restitution: Vec<T>,
     friction_work: T,
+    /// g_i = v_i^path(s) − v_ix per contact (unilateral law; continuous at s = 1, where every
+    /// path is at v_ix = 0).
+    gap: Vec<T>,
 }
 
-/// Solve a planar scene under `law`, event by event.
+/// Solve a planar scene under `law` and `hypothesis`, event by event.
+///
+/// Under the unilateral law the normal rules are chosen with the modes at every event
+/// ([`resolve_planar_unilateral`]), and a released contact's gap, linear between events,
+/// adds an event where it closes (the contact re-engages).
 ///
 /// # Errors
 /// [`FrictionError`] when the modes cannot be chosen, the rates are undetermined, an
@@ -45,6 +54,7 @@ pub fn solve_planar<T: Scalar, S: Screws<T>, M: Mechanism<T, Screw = S>>(
     mechanism: &M,
     b: Blocks<T, S>,
     law: Restitution,
+    hypothesis: Hypothesis,
 ) -> Result<Frictional<T, S>, FrictionError> {
     let contacts = mechanism.contacts();
     let n = b.contacts();
@@ -60,43 +70,18 @@ pub fn solve_planar<T: Scalar, S: Screws<T>, M: Mechanism<T, Screw = S>>(
         work_compression: vec![T::zero(); n],
         work_restitution: vec![T::zero(); n],
         friction_work: T::zero(),
+        gap: vec![T::zero(); n],
     };
     let mut segments = Vec::new();
     let mut verdicts = Vec::new();
     for events in 1..=MAX_EVENTS {
-        let normals = normals(contacts, &b, &st, law);
-        // Modes: slip keeps its sense; zero slip is resolved jointly.
-        let mut candidates = Vec::new();
-        for i in 0..n {
-            let off = b.offset[i];
-            let carries = match &normals[i] {
-                Normal::Driven(_) => true,
-                Normal::Given(r) => !r.is_zero(),
-            };
-            if b.dims[i] == 0 || !carries {
-                st.modes[i] = Mode::Free;
-            } else if st.v[off + 1].is_zero() {
-                candidates.push(i);
-            } else {
-                st.modes[i] = Mode::Slide(vec![sign(&st.v[off + 1])]);
-            }
-        }
-        if candidates.len() > MAX_CANDIDATES {
-            return Err(FrictionError::TooManyAtRest {
-                s: st.s.to_f64(),
-                contacts: candidates.len(),
-            });
-        }
-        let res = resolve_planar(&b, &normals, &st.modes, &candidates).map_err(|e| {
-            if e.undetermined {
-                FrictionError::Undetermined { s: st.s.to_f64() }
-            } else {
-                FrictionError::NoConsistentModes {
-                    s: st.s.to_f64(),
-                    phase: st.phase,
-                }
-            }
-        })?;
+        let simultaneous = normals(contacts, &b, &st, law);
+        let rules = unilateral_rules(&simultaneous, &b, st.phase);
+        let res = match hypothesis {
+            Hypothesis::Simultaneous => resolve_simultaneous(&b, &simultaneous, &mut st)?,
+            Hypothesis::Unilateral => resolve_unilateral(&b, &rules, &st)?,
+        };
+        let normals = res.normals.clone();
         if res.consistent > 1 {
             verdicts.push(Verdict::Ambiguous {
                 s: st.s.to_f64(),
@@ -109,7 +94,10 @@ pub fn solve_planar<T: Scalar, S: Screws<T>, M: Mechanism<T, Screw = S>>(
         st.modes = res.modes;
         let r = res.rates;
         for (i, normal) in normals.iter().enumerate() {
-            if matches!(normal, Normal::Driven(_)) && r.lambda[b.offset[i]].signum_i8() < 0 {
+            if hypothesis == Hypothesis::Simultaneous
+                && matches!(normal, Normal::Driven(_))
+                && r.lambda[b.offset[i]].signum_i8() < 0
+            {
                 verdicts.push(Verdict::TensileRate {
                     contact: i,
                     s: st.s.to_f64(),
@@ -143,6 +131,20 @@ pub fn solve_planar<T: Scalar, S: Screws<T>, M: Mechanism<T, Screw = S>>(
                 }
             }
         }
+        // A released contact whose gap closes re-engages.
+        let mut engages = Vec::new();
+        if hypothesis == Hypothesis::Unilateral {
+            for i in 0..n {
+                if let Normal::Given(_) = normals[i] {
+                    let closing = r.velocity[b.offset[i]].clone() + &rules[i].path;
+                    if closing.signum_i8() > 0 && !st.gap[i].is_zero() {
+                        let hi = st.gap[i].clone() / closing;
+                        engages.push((i, hi.clone()));
+                        take(hi, &mut h);
+                    }
+                }
+            }
+        }
         let mut stops = Vec::new();
         if st.phase == Phase::Restitution && law == Restitution::Energetic {
             for i in 0..n {
@@ -161,7 +163,15 @@ pub fn solve_planar<T: Scalar, S: Screws<T>, M: Mechanism<T, Screw = S>>(
         };
         let from = st.s.clone();
         advance(&b, &mut st, &r.lambda, &r.velocity, &h);
+        if hypothesis == Hypothesis::Unilateral {
+            close_gaps(&b, &mut st, &rules, &normals, &r.velocity, &h);
+        }
         let fired = |hi: &T| (hi.clone() - &h).is_negligible(&h, n);
+        for (i, hi) in &engages {
+            if fired(hi) {
+                st.gap[*i] = T::zero();
+            }
+        }
         for (i, hi) in &reversals {
             if fired(hi) {
                 st.v[b.offset[*i] + 1] = T::zero();
@@ -182,7 +192,7 @@ pub fn solve_planar<T: Scalar, S: Screws<T>, M: Mechanism<T, Screw = S>>(
                 from,
                 to: st.s.clone(),
                 phase: st.phase,
-                modes: st.modes.iter().map(label).collect(),
+                modes: labels(hypothesis, &normals, &st.modes),
                 rates: r.lambda,
             });
         }
@@ -217,7 +227,7 @@ pub fn solve_planar<T: Scalar, S: Screws<T>, M: Mechanism<T, Screw = S>>(
             return Err(FrictionError::Runaway);
         }
     }
-    Ok(Frictional::finish(
+    let mut out = Frictional::finish(
         mechanism,
         b,
         law,
@@ -230,7 +240,118 @@ pub fn solve_planar<T: Scalar, S: Screws<T>, M: Mechanism<T, Screw = S>>(
         segments,
         verdicts,
         st.s,
-    ))
+    );
+    out.hypothesis = hypothesis;
+    Ok(out)
+}
+
+/// The simultaneous law's modes at an event: every normal rule as the phase prescribes it;
+/// slip keeps its sense, zero slip is resolved jointly.
+fn resolve_simultaneous<T: Scalar, S: Screws<T>>(
+    b: &Blocks<T, S>,
+    normals: &[Normal<T>],
+    st: &mut State<T>,
+) -> Result<Resolution<T>, FrictionError> {
+    let mut candidates = Vec::new();
+    for i in 0..b.contacts() {
+        let off = b.offset[i];
+        let carries = match &normals[i] {
+            Normal::Driven(_) => true,
+            Normal::Given(r) => !r.is_zero(),
+        };
+        if b.dims[i] == 0 || !carries {
+            st.modes[i] = Mode::Free;
+        } else if st.v[off + 1].is_zero() {
+            candidates.push(i);
+        } else {
+            st.modes[i] = Mode::Slide(vec![sign(&st.v[off + 1])]);
+        }
+    }
+    if candidates.len() > MAX_CANDIDATES {
+        return Err(FrictionError::TooManyAtRest {
+            s: st.s.to_f64(),
+            contacts: candidates.len(),
+        });
+    }
+    resolve_planar(b, normals, &st.modes, &candidates).map_err(|e| no_modes(e, st))
+}
+
+/// The unilateral law's rules and modes at an event: every contact on its path is driven or
+/// released, jointly with stick and slip.
+fn resolve_unilateral<T: Scalar, S: Screws<T>>(
+    b: &Blocks<T, S>,
+    rules: &[Unilateral<T>],
+    st: &State<T>,
+) -> Result<Resolution<T>, FrictionError> {
+    let n = b.contacts();
+    let on_path: Vec<bool> = st.gap.iter().map(|g| g.is_zero()).collect();
+    let zero_slip: Vec<bool> = (0..n)
+        .map(|i| b.dims[i] > 0 && st.v[b.offset[i] + 1].is_zero())
+        .collect();
+    let slip: Vec<T> = (0..n)
+        .map(|i| match b.dims[i] {
+            0 => T::zero(),
+            _ if zero_slip[i] => T::zero(),
+            _ => sign(&st.v[b.offset[i] + 1]),
+        })
+        .collect();
+    // 2 rules per contact on its path, 3 modes per contact at zero slip.
+    let joint = on_path.iter().filter(|&&x| x).count() + zero_slip.iter().filter(|&&x| x).count();
+    if joint > MAX_CANDIDATES + 2 {
+        return Err(FrictionError::TooManyAtRest {
+            s: st.s.to_f64(),
+            contacts: joint,
+        });
+    }
+    resolve_planar_unilateral(b, rules, &on_path, &zero_slip, &slip).map_err(|e| no_modes(e, st))
+}
+
+/// The error of an event with no consistent assignment.
+fn no_modes<T: Scalar>(e: NoConsistentModes, st: &State<T>) -> FrictionError {
+    if e.undetermined {
+        FrictionError::Undetermined { s: st.s.to_f64() }
+    } else {
+        FrictionError::NoConsistentModes {
+            s: st.s.to_f64(),
+            phase: st.phase,
+        }
+    }
+}
+
+/// The labels of a segment: a contact the unilateral law has released (no normal impulse
+/// rate) reads `released`.
+fn labels<T: Scalar>(
+    hypothesis: Hypothesis,
+    normals: &[Normal<T>],
+    modes: &[Mode<T>],
+) -> Vec<ModeLabel> {
+    normals
+        .iter()
+        .zip(modes)
+        .map(|(nr, m)| match nr {
+            Normal::Given(r) if hypothesis == Hypothesis::Unilateral && r.is_zero() => {
+                ModeLabel::Released
+            }
+            _ => label(m),
+        })
+        .collect()
+}
+
+/// Move the gaps by `h`: g'_i = −path_i − v'_ix; a driven contact stays on its path exactly.
+fn close_gaps<T: Scalar, S: Screws<T>>(
+    b: &Blocks<T, S>,
+    st: &mut State<T>,
+    rules: &[Unilateral<T>],
+    normals: &[Normal<T>],
+    dv: &[T],
+    h: &T,
+) {
+    for i in 0..b.contacts() {
+        st.gap[i] = match normals[i] {
+            Normal::Driven(_) => T::zero(),
+            Normal::Given(_) => st.gap[i].clone() - (rules[i].path.clone() + &dv[b.offset[i]]) * h,
+        };
+    }
 }
 
 /// ±1 by the sign of `x` (x ≠ 0).

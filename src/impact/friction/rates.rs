@@ -70,6 +70,74 @@ pub fn normal_rules<T: Scalar, S: Screws<T>>(
         .collect()
 }
 
+/// Contact i's two rules under the unilateral law ([`super::Hypothesis::Unilateral`]): on its
+/// prescribed path, [`Normal::Driven`]`(path)` — dv_ix/ds = −path, its impulse rate the unknown,
+/// required to be at least `base` — or off it, [`Normal::Given`]`(base)`, its normal velocity
+/// free and required to stay on the separating side of the path: with the gap
+/// g_i = v_i^path(s) − v_ix ≥ 0, dg_i/ds = −path − dv_ix/ds ≥ 0 while g_i = 0.
+///
+/// ```text
+/// compression:        path = v_ix⁰,        base = 0          (released: dp_i/ds = 0)
+/// Newton restitution: path = k_i^N max(v_ix⁰, 0),  base = 0
+/// Poisson:            path = 0,            base = k_i^P p_i^c (held at v_ix = 0 by an extra
+/// energetic:          path = 0,            base = p_i^c or 0    impulse rate ≥ 0 when needed)
+/// ```
+#[derive(Clone, Debug, PartialEq)]
+pub struct Unilateral<T: Scalar> {
+    /// The rate of the prescribed normal velocity, dv_ix^path/ds = −path.
+    pub path: T,
+    /// The normal impulse rate off the path, and the least one on it.
+    pub base: T,
+    /// Whether the path is the rule the phase prescribes (compression, Newton): then it is
+    /// tried first; in impulse-prescribed phases the given rate is.
+    pub prefer_driven: bool,
+}
+
+impl<T: Scalar> Unilateral<T> {
+    /// The two rules, the phase's own first.
+    pub fn options(&self) -> [Normal<T>; 2] {
+        let driven = Normal::Driven(self.path.clone());
+        let given = Normal::Given(self.base.clone());
+        if self.prefer_driven {
+            [driven, given]
+        } else {
+            [given, driven]
+        }
+    }
+}
+
+/// The unilateral rules of every contact (see [`Unilateral`]), from the simultaneous ones of
+/// [`normal_rules`] in `phase`: a driven rule keeps its path and gets base 0 — except that in
+/// restitution a contact that was receding before impact (v_ix⁰ < 0) has the path v_ix = 0, as
+/// in Moreau's q_i = v_ix⁰ + k_i max(v_ix⁰, 0), not a rebound towards the obstacle; a given
+/// rate r becomes the base over the path v_ix = 0.
+pub fn unilateral_rules<T: Scalar, S: Screws<T>>(
+    simultaneous: &[Normal<T>],
+    b: &Blocks<T, S>,
+    phase: super::Phase,
+) -> Vec<Unilateral<T>> {
+    simultaneous
+        .iter()
+        .enumerate()
+        .map(|(i, n)| match n {
+            Normal::Driven(c) => Unilateral {
+                path: if phase == super::Phase::Restitution && b.v0[b.offset[i]].signum_i8() < 0 {
+                    T::zero()
+                } else {
+                    c.clone()
+                },
+                base: T::zero(),
+                prefer_driven: true,
+            },
+            Normal::Given(r) => Unilateral {
+                path: T::zero(),
+                base: r.clone(),
+                prefer_driven: false,
+            },
+        })
+        .collect()
+}
+
 /// The tangential mode of a contact over a segment.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Mode<T: Scalar> {
