@@ -513,6 +513,11 @@ struct Run<'a, S: Screws<f64>> {
     lock: f64,
     /// The first step.
     h0: f64,
+    /// The Dormand–Prince tableau in f64, rounded once ([`A`], [`E`]): converting its fractions
+    /// at every stage of every step cost more than the rest of the step.
+    a: [[f64; 6]; 7],
+    /// Its error weights.
+    e: [f64; 7],
 }
 
 /// The contacts' modes: the phase of each one's normal impulse and the friction mode of its
@@ -599,6 +604,8 @@ impl<'a, S: Screws<f64>> Run<'a, S> {
             engage: (1e-3 * tol).max(64.0 * n as f64 * f64::EPSILON) * speed,
             lock: 16.0 * tol * speed,
             h0,
+            a: A.map(|row| row.map(|(p, q)| ratio::<f64>(p, q))),
+            e: E.map(|(p, q)| ratio::<f64>(p, q)),
         })
     }
 
@@ -721,7 +728,7 @@ impl<'a, S: Screws<f64>> Run<'a, S> {
             for (q, x) in stage.iter_mut().enumerate() {
                 *x = y[q]
                     + h * (0..s)
-                        .map(|r| ratio::<f64>(A[s][r].0, A[s][r].1) * k[r][q])
+                        .map(|r| self.a[s][r] * k[r][q])
                         .sum::<f64>();
             }
             let mut d = vec![0.0; len];
@@ -732,7 +739,7 @@ impl<'a, S: Screws<f64>> Run<'a, S> {
         let err: Vec<f64> = (0..len)
             .map(|q| {
                 h * (0..7)
-                    .map(|r| ratio::<f64>(E[r].0, E[r].1) * k[r][q])
+                    .map(|r| self.e[r] * k[r][q])
                     .sum::<f64>()
             })
             .collect();
