@@ -865,9 +865,7 @@ fn run_analyze(
         }
         // With friction the comparison (frictionless on its simultaneous side) is not made
         // unless asked for, where it is refused by key.
-        None if scene.law == Law::Lzb
-            && scene.first_rough_contact().is_none() =>
-        {
+        None if scene.law == Law::Lzb && scene.first_rough_contact().is_none() => {
             Some(inertance::tools::lzb_compare::DEFAULT_RATIOS.to_vec())
         }
         None => None,

@@ -143,6 +143,19 @@ impl LzbSolution {
         array(py, &v)
     }
 
+    /// Each contact's tangential impulse τ (N s; empty for a frictionless contact, one entry in
+    /// a plane, two in space).
+    #[getter]
+    fn tangential_impulses(&self) -> Vec<Vec<f64>> {
+        self.report.tangential.clone()
+    }
+
+    /// The energy friction dissipated at each contact, W_f (J).
+    #[getter]
+    fn friction_dissipation<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        array(py, &self.report.friction_dissipation)
+    }
+
     /// The bodies' names, in the order of `velocities` (`["body"]` for one body).
     #[getter]
     fn bodies(&self) -> Vec<String> {

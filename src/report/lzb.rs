@@ -37,8 +37,10 @@ fn list(v: &[f64]) -> Json {
 
 impl LzbReport {
     /// The JSON report (keys in guide/multiple-impacts.md): per contact its law, v⁰, P, v,
-    /// E_max, W_c, W_r and the dissipation; each body's twist after impact; ΔE_c, the
-    /// dissipation and the energy residual; the events; the order in which the contacts came
+    /// E_max, W_c, W_r, the dissipation W_c − W_r, its tangential impulse τ (empty when
+    /// frictionless) and the energy friction dissipated there, W_f; each body's twist after
+    /// impact; ΔE_c, the dissipation (W_c − W_r), the friction dissipation (W_f) and the
+    /// energy residual ΔE_c − Σ (W_c − W_r + W_f); the events; the order in which the contacts came
     /// to rest; the integration's tolerance, error estimate and statistics.
     pub fn to_json(&self) -> Json {
         let contacts: Vec<Json> = (0..self.impulses.len())
@@ -58,6 +60,8 @@ impl LzbReport {
                     "work_compression": json_f64(self.work_compression[i]),
                     "work_expansion": json_f64(self.work_expansion[i]),
                     "dissipation": json_f64(self.work_compression[i] - self.work_expansion[i]),
+                    "tangential_impulse": self.tangential[i].iter().map(|x| json_f64(*x)).collect::<Vec<_>>(),
+                    "friction_dissipation": json_f64(self.friction_dissipation[i]),
                 })
             })
             .collect();
@@ -88,6 +92,7 @@ impl LzbReport {
             "twist_after": twists,
             "kinetic_energy_loss": json_f64(self.kinetic_energy_loss),
             "dissipation": json_f64(dissipation),
+            "friction_dissipation": json_f64(self.friction_dissipation.iter().sum::<f64>()),
             "energy_residual": json_f64(self.energy_residual),
             "events": events,
             "ending_order": self.ending_order.iter().map(|i| i + 1).collect::<Vec<_>>(),

@@ -18,7 +18,6 @@ use crate::impact::unilateral::Law;
 
 use super::{Scene, SceneError};
 
-
 /// Refuse the unilateral law with the energetic restitution law (`[solve] restitution =
 /// "energetic"`), which it is not applied with yet; `how` says how the law was asked for
 /// (`` `[solve] law = "unilateral"` ``, `` `--law unilateral` ``).

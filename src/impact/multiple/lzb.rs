@@ -726,10 +726,7 @@ impl<'a, S: Screws<f64>> Run<'a, S> {
         let mut stage = y.to_vec();
         for s in 0..7 {
             for (q, x) in stage.iter_mut().enumerate() {
-                *x = y[q]
-                    + h * (0..s)
-                        .map(|r| self.a[s][r] * k[r][q])
-                        .sum::<f64>();
+                *x = y[q] + h * (0..s).map(|r| self.a[s][r] * k[r][q]).sum::<f64>();
             }
             let mut d = vec![0.0; len];
             self.rhs(&stage, regime, &mut d)?;
@@ -737,11 +734,7 @@ impl<'a, S: Screws<f64>> Run<'a, S> {
         }
         // The seventh stage is evaluated at the fifth-order solution (FSAL).
         let err: Vec<f64> = (0..len)
-            .map(|q| {
-                h * (0..7)
-                    .map(|r| self.e[r] * k[r][q])
-                    .sum::<f64>()
-            })
+            .map(|q| h * (0..7).map(|r| self.e[r] * k[r][q]).sum::<f64>())
             .collect();
         Ok((stage, err))
     }
