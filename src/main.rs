@@ -1059,7 +1059,10 @@ fn fail(path: &std::path::Path, error: RunError) -> ExitCode {
             eprintln!("error: {}: {e}", path.display());
             ExitCode::from(3)
         }
-        RunError::Lzb(e @ inertance::impact::multiple::LzbError::Runaway { .. }) => {
+        RunError::Lzb(
+            e @ (inertance::impact::multiple::LzbError::Runaway { .. }
+            | inertance::impact::multiple::LzbError::NotFinite),
+        ) => {
             eprintln!("error: {}: {e}", path.display());
             ExitCode::from(3)
         }

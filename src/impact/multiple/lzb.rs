@@ -298,6 +298,14 @@ pub enum LzbError {
         /// What was asked.
         what: &'static str,
     },
+    /// A number of the outcome overflowed or is not a number (inputs at the ends of f64's
+    /// range): no answer is given rather than a NaN or an infinity.
+    #[error(
+        "the LZB integration gave a number f64 cannot hold (an impulse, a velocity or a work \
+         overflowed): scale the scene's units so that its speeds, masses and stiffnesses are \
+         nearer 1"
+    )]
+    NotFinite,
     /// More steps or events than any physical impact needs, or a step that underflowed.
     #[error("the LZB integration did not end within its budget ({steps} steps, {events} events)")]
     Runaway {
@@ -469,6 +477,9 @@ pub fn solve_lzb<M: Mechanism<f64>>(
     let dissipated: f64 = (0..n)
         .map(|i| work_compression[i] - work_expansion[i] + friction_dissipation[i])
         .sum();
+    if !(y.iter().chain(&after).all(|x| x.is_finite()) && kinetic_energy_loss.is_finite()) {
+        return Err(LzbError::NotFinite);
+    }
     Ok(Lzb {
         laws: laws.to_vec(),
         before,
@@ -1368,6 +1379,22 @@ mod tests {
             out.events
                 .iter()
                 .all(|e| !matches!(e.kind, EventKind::Sticks | EventKind::Reverses))
+        );
+    }
+
+    /// A speed whose energy overflows f64 gives no answer rather than an infinity: here the
+    /// first step's error is not finite and the step underflows (a runaway); `NotFinite` is
+    /// the backstop for an outcome that overflows after steps that did not.
+    #[test]
+    fn an_overflowing_impact_gives_no_number() {
+        let body = RigidBody::principal(1e300, Vec3::new(1e300, 1e300, 1e300));
+        let twist = Screw::new(Vec3::zeros(), Vec3::new(0.0, 0.0, -1e300));
+        let c = Contact::new(Vec3::zeros(), Vec3::new(0.0, 0.0, -1.0), 0.5);
+        let p = Problem::new(body, twist, vec![c]).expect("valid");
+        let out = solve_lzb(&p, &[ContactLaw::default()], 1e-9);
+        assert!(
+            matches!(out, Err(LzbError::Runaway { steps: 1, .. })),
+            "{out:?}"
         );
     }
 
