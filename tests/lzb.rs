@@ -24,7 +24,7 @@
 
 mod common;
 
-use common::row::{compliant_checked, row};
+use common::row::{compliant_checked, row, velocity_bound};
 use inertance::impact::mechanism::Mechanism;
 use inertance::impact::multiple::{ContactLaw, EventKind, Lzb, solve_lzb};
 use inertance::impact::problem::Problem;
@@ -40,20 +40,6 @@ const EPS: f64 = f64::EPSILON;
 
 fn v3(x: f64, y: f64, z: f64) -> Vec3<f64> {
     Vec3::new(x, y, z)
-}
-
-/// ‖G‖∞ = max_i Σ_j |g_ij|.
-fn g_norm<S: Screws<f64>>(out: &Lzb<S>) -> f64 {
-    let n = out.impulses.len();
-    (0..n)
-        .map(|i| (0..n).map(|j| out.blocks.k[i * n + j].abs()).sum::<f64>())
-        .fold(0.0, f64::max)
-}
-
-/// What a velocity after impact of scale `speed` may be off by (module docs).
-fn velocity_bound<S: Screws<f64>>(out: &Lzb<S>, speed: f64) -> f64 {
-    let n = out.impulses.len() as f64;
-    2.0 * g_norm(out) * out.error_estimate + 64.0 * n * EPS * speed
 }
 
 /// The balls' velocities along x after impact.

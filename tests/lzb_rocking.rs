@@ -30,11 +30,14 @@
 //! plastic contact's energy dropped at the end of its compression, is located by bisection). The LZB side is allowed
 //! its `velocity_bound` as in `tests/lzb.rs`: 2 ‖G‖∞ ε_P plus rounding.
 
-use inertance::impact::multiple::{ContactLaw, Lzb, solve_lzb};
+mod common;
+
+use common::row::velocity_bound;
+use inertance::impact::multiple::{ContactLaw, solve_lzb};
 use inertance::impact::problem::Problem;
 use inertance::mechanics::body::RigidBody;
 use inertance::mechanics::contact::Contact;
-use inertance::mechanics::screw::{Screw, Screws, Vec3};
+use inertance::mechanics::screw::{Screw, Vec3};
 
 const TOL: f64 = 1e-11;
 
@@ -145,15 +148,6 @@ fn in_time(mass: &[f64], jac: &[[f64; 3]], laws: &[ContactLaw], q0: &[f64], dt: 
         }
     }
     s[n..].to_vec()
-}
-
-/// ‖G‖∞ and the bound on a velocity of scale `speed` (tests/lzb.rs).
-fn velocity_bound<S: Screws<f64>>(out: &Lzb<S>, speed: f64) -> f64 {
-    let n = out.impulses.len();
-    let g = (0..n)
-        .map(|i| (0..n).map(|j| out.blocks.k[i * n + j].abs()).sum::<f64>())
-        .fold(0.0, f64::max);
-    2.0 * g * out.error_estimate + 64.0 * n as f64 * f64::EPSILON * speed
 }
 
 /// Squat and slender blocks, linear and Hertz contacts, equal and unequal stiffness, elastic,

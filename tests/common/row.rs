@@ -1,9 +1,10 @@
 //! Rows of balls and the compliant-contact dynamics in time: the independent reference of the
 //! LZB law's tests (`tests/lzb.rs`, `tests/lzb_siconos.rs`).
 
+use inertance::impact::multiple::Lzb;
 use inertance::mechanics::body::RigidBody;
 use inertance::mechanics::contact::Contact;
-use inertance::mechanics::screw::{Screw, Vec3};
+use inertance::mechanics::screw::{Screw, Screws, Vec3};
 use inertance::mechanics::system::{Pair, System, SystemBody, SystemScrew};
 
 fn v3(x: f64, y: f64, z: f64) -> Vec3<f64> {
@@ -105,4 +106,18 @@ pub fn compliant_checked(
         .zip(&fine)
         .fold(0.0_f64, |m, (a, b)| m.max((a - b).abs()));
     (fine, d)
+}
+
+/// ‖G‖∞ = max_i Σ_j |g_ij|.
+pub fn g_norm<S: Screws<f64>>(out: &Lzb<S>) -> f64 {
+    let n = out.impulses.len();
+    (0..n)
+        .map(|i| (0..n).map(|j| out.blocks.k[i * n + j].abs()).sum::<f64>())
+        .fold(0.0, f64::max)
+}
+
+/// What a velocity after impact of scale `speed` may be off by (module docs).
+pub fn velocity_bound<S: Screws<f64>>(out: &Lzb<S>, speed: f64) -> f64 {
+    let n = out.impulses.len() as f64;
+    2.0 * g_norm(out) * out.error_estimate + 64.0 * n * f64::EPSILON * speed
 }
