@@ -88,6 +88,7 @@ pub mod number;
 pub mod report;
 pub mod scalar;
 pub mod scene;
+pub mod simulate;
 pub mod tools;
 
 /// The guide's Rust examples, compiled and run by `cargo test --doc` so that they cannot go stale.

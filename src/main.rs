@@ -194,6 +194,22 @@ enum Command {
         #[arg(long, value_name = "CORPUS.txt", conflicts_with_all = ["scene", "plot"])]
         corpus: Option<PathBuf>,
     },
+    /// Simulate a body under gravity among obstacle planes through every impact, until rest
+    /// or the end of `[simulate] duration`: the impact log (guide/simulate.md).
+    Simulate {
+        /// The scene file (TOML) with a `[simulate]` table.
+        scene: PathBuf,
+        /// The impact law at every impact instead of `[simulate] law`.
+        #[arg(long, value_enum)]
+        law: Option<LawArg>,
+        /// Print the whole run as JSON instead of the log.
+        #[arg(long)]
+        json: bool,
+        /// Write the trajectory to FILE.csv (per output time: C, the angle, v, ω, the
+        /// energies) or its plot to FILE.svg (energies and angle against time, impacts marked).
+        #[arg(long, value_name = "FILE")]
+        trajectory: Option<PathBuf>,
+    },
     /// Reproduce the paper's worked examples in a derivations directory.
     Check {
         /// The directory of derivations.
@@ -304,6 +320,12 @@ fn main() -> ExitCode {
             opts,
         } => run_analyze(scene, exact, model, json, lzb_ratios, &opts),
         Command::Check { dir, quiet } => run_check(dir, quiet),
+        Command::Simulate {
+            scene,
+            law,
+            json,
+            trajectory,
+        } => run_simulate(&scene, law, json, trajectory.as_deref()),
         Command::Derive {
             scene,
             symbols,
@@ -330,6 +352,86 @@ fn main() -> ExitCode {
             }
         }
     }
+}
+
+/// `simulate`: status 0 when the run reached its end, 2 for bad input, 3 when an impact had no
+/// answer under the law or persistent contact could not be decided (the message says where).
+fn run_simulate(
+    path: &std::path::Path,
+    law: Option<LawArg>,
+    json: bool,
+    trajectory: Option<&std::path::Path>,
+) -> ExitCode {
+    use inertance::impact::friction::Restitution;
+    use inertance::report::simulation;
+    use inertance::simulate::Law as SimLaw;
+    let mut scene = match inertance::scene::SimulationScene::load(path) {
+        Ok(s) => s,
+        Err(e) => return fail_input(e.to_string()),
+    };
+    if let Some(l) = law {
+        let r = match scene.setup.law {
+            SimLaw::Simultaneous(r) | SimLaw::Unilateral(r) => r,
+            SimLaw::Lzb => Restitution::Newton,
+        };
+        scene.setup.law = match l {
+            LawArg::Simultaneous => SimLaw::Simultaneous(r),
+            LawArg::Unilateral if r == Restitution::Energetic => {
+                return fail_input(format!(
+                    "{}: --law unilateral is integrated with Newton's and Poisson's \
+                     restitution, and [simulate] restitution is \"energetic\"",
+                    path.display()
+                ));
+            }
+            LawArg::Unilateral => SimLaw::Unilateral(r),
+            LawArg::Lzb => SimLaw::Lzb,
+        };
+    }
+    let format = match trajectory {
+        None => None,
+        Some(f) => match f.extension().and_then(|e| e.to_str()) {
+            Some("csv") => Some(false),
+            Some("svg") => Some(true),
+            _ => {
+                return fail_input(format!(
+                    "--trajectory {}: write FILE.csv (the samples) or FILE.svg (their plot)",
+                    f.display()
+                ));
+            }
+        },
+    };
+    let sim = match inertance::simulate::simulate(&scene.setup) {
+        Ok(s) => s,
+        Err(e) => {
+            eprintln!("error: {}: {e}", path.display());
+            return ExitCode::from(3);
+        }
+    };
+    if let (Some(file), Some(svg)) = (trajectory, format) {
+        let text = if svg {
+            match simulation::to_svg(&scene.name, &scene.setup, &sim) {
+                Ok(t) => t,
+                Err(e) => {
+                    eprintln!("error: --trajectory {}: {e}", file.display());
+                    return ExitCode::from(2);
+                }
+            }
+        } else {
+            simulation::to_csv(&scene.setup, &sim)
+        };
+        if let Err(code) = write_whole(file, &text) {
+            return code;
+        }
+    }
+    if json {
+        let mut t = serde_json::to_string_pretty(&simulation::to_json(&scene.name, &scene.setup, &sim))
+            .unwrap_or_default();
+        t.push('\n');
+        print_out(&t);
+    } else {
+        print_out(&simulation::to_text(&scene.name, &scene.setup, &sim));
+    }
+    ExitCode::SUCCESS
 }
 
 /// Read the scene at `path` with the overrides `opts` and the `symbols`; `-` reads it from

@@ -16,6 +16,7 @@
 mod friction;
 mod json;
 pub mod lzb;
+pub mod simulation;
 pub mod system;
 pub mod system_friction;
 mod table;

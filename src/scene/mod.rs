@@ -200,6 +200,49 @@ pub struct Scene {
     pub system: Option<model::system::SystemSpec>,
 }
 
+/// A scene to simulate (`inertance simulate`, [`crate::simulate`]): its name, its file and
+/// what to run ([`model::simulation`] documents the keys).
+#[derive(Clone, Debug, PartialEq)]
+pub struct SimulationScene {
+    /// Where it came from, for messages.
+    pub file: String,
+    /// Its `name`, or the file name.
+    pub name: String,
+    /// The body, obstacles, law and options.
+    pub setup: crate::simulate::Setup,
+}
+
+impl SimulationScene {
+    /// Read the scene to simulate at `path`.
+    ///
+    /// # Errors
+    /// A [`SceneError`] naming the file, the key and the value.
+    pub fn load(path: &std::path::Path) -> Result<SimulationScene, SceneError> {
+        let file = path.display().to_string();
+        let text = std::fs::read_to_string(path).map_err(|e| SceneError {
+            file: file.clone(),
+            key: String::new(),
+            value: None,
+            message: format!("cannot read the file: {e}"),
+        })?;
+        SimulationScene::parse(&text, &file)
+    }
+
+    /// Parse scene text to simulate; `file` names it in messages.
+    ///
+    /// # Errors
+    /// As [`SimulationScene::load`].
+    pub fn parse(text: &str, file: &str) -> Result<SimulationScene, SceneError> {
+        let doc = parse_document(text, file)?;
+        let (name, setup) = read::simulation(&doc, file)?;
+        Ok(SimulationScene {
+            file: file.to_string(),
+            name,
+            setup,
+        })
+    }
+}
+
 impl Scene {
     /// Read and validate the scene file at `path`.
     pub fn load(path: &std::path::Path) -> Result<Scene, SceneError> {

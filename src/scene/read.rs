@@ -522,3 +522,33 @@ fn degree_hint(text: &str) -> Option<String> {
         "; did you mean `{number} deg`? (angles are written with `deg`; a bare number is radians)"
     ))
 }
+
+/// Read a scene to simulate ([`super::model::simulation`]): its name and its setup.
+pub(super) fn simulation(
+    doc: &DocumentMut,
+    file: &str,
+) -> Result<(String, crate::simulate::Setup), SceneError> {
+    let root = doc.as_table();
+    let r = Reader {
+        file,
+        symbols: &[],
+        params: Params::new(&[], None),
+        observed: Default::default(),
+    };
+    let mut keys: Vec<&str> = TOP_KEYS.to_vec();
+    keys.push("simulate");
+    r.only_keys(root, "", &keys)?;
+    let r = Reader {
+        params: r.params(root, None)?,
+        ..r
+    };
+    let name = r.name(root)?;
+    if model::system::declared(root) {
+        return Err(r.err(
+            "body",
+            None,
+            "`simulate` moves one body for now: a scene of several [[body]] tables is not simulated yet",
+        ));
+    }
+    Ok((name, r.simulation(root)?))
+}

@@ -31,6 +31,7 @@ pub(crate) mod obstacle;
 pub(crate) mod params;
 pub(crate) mod pose;
 pub(crate) mod shape;
+pub(crate) mod simulation;
 pub(crate) mod system;
 pub(crate) mod term;
 

@@ -1,0 +1,68 @@
+//! One step of Dormand and Prince's RK5(4) pair (the tableau of
+//! [`crate::impact::friction::spatial`], rounded to f64 once), over the packed state of
+//! [`super::body::State`]: the fifth-order solution and its embedded error estimate.
+
+use crate::impact::friction::spatial::{A, E};
+
+/// The tableau in f64: the rows of A (the seventh the fifth-order weights) and E.
+pub struct Tableau {
+    a: [[f64; 6]; 7],
+    e: [f64; 7],
+    c: [f64; 7],
+}
+
+impl Tableau {
+    /// A and E rounded once.
+    pub fn new() -> Tableau {
+        let f = |(p, q): (i64, i64)| p as f64 / q as f64;
+        let a: [[f64; 6]; 7] = std::array::from_fn(|i| std::array::from_fn(|j| f(A[i][j])));
+        let e: [f64; 7] = std::array::from_fn(|i| f(E[i]));
+        let c: [f64; 7] = std::array::from_fn(|i| a[i].iter().sum());
+        Tableau { a, e, c }
+    }
+}
+
+impl Default for Tableau {
+    fn default() -> Self {
+        Tableau::new()
+    }
+}
+
+/// y(t + h) to fifth order from y(t), and the embedded error estimate of every component;
+/// `f(t, y)` is the derivative, which may fail (the step is then abandoned).
+pub fn step<const N: usize, Err>(
+    tab: &Tableau,
+    t: f64,
+    y: &[f64; N],
+    h: f64,
+    mut f: impl FnMut(f64, &[f64; N]) -> Result<[f64; N], Err>,
+) -> Result<([f64; N], [f64; N]), Err> {
+    let mut k = [[0.0; N]; 7];
+    for i in 0..7 {
+        let mut yi = *y;
+        for j in 0..i {
+            let a = tab.a[i][j];
+            if a != 0.0 {
+                for n in 0..N {
+                    yi[n] += h * a * k[j][n];
+                }
+            }
+        }
+        k[i] = f(t + tab.c[i] * h, &yi)?;
+    }
+    // the seventh stage is evaluated at the fifth-order solution (FSAL)
+    let mut y5 = *y;
+    for j in 0..6 {
+        let a = tab.a[6][j];
+        for n in 0..N {
+            y5[n] += h * a * k[j][n];
+        }
+    }
+    let mut err = [0.0; N];
+    for (j, kj) in k.iter().enumerate() {
+        for n in 0..N {
+            err[n] += h * tab.e[j] * kj[n];
+        }
+    }
+    Ok((y5, err))
+}

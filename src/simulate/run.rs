@@ -1,0 +1,800 @@
+//! The event loop: free flight and persistent contact integrated between events, every impact
+//! solved by the scene's law, until the duration, the impact budget or rest.
+//!
+//! **Integration.** The packed state (x, q, v, ω) is stepped by Dormand–Prince RK5(4)
+//! ([`super::ode`]) with the accelerations of [`super::contact::accelerations`] (free flight
+//! when no contact is closed). Ballistic flight of C is a quadratic in t, which the fifth-order
+//! solution reproduces to rounding; the rotation (Euler's equations) and persistent contact are
+//! held to the relative `tolerance` per step, on the scales of the motion (the body's reach for
+//! positions, the speed scale for velocities). The quaternion is normalised after every step and
+//! the closed contacts are projected back onto their constraints ([`super::contact::project`]);
+//! the largest gap so corrected is reported as the drift.
+//!
+//! **Events by conservative advancement.** No step may cross an open gap: with g the gap of a
+//! feature, ġ its rate and M a bound on |g̈| over the step (twice |a| + ρ(|ω|² + |α|) at the
+//! step's start, ρ the feature's distance from C), g(t + s) ≥ g + ġ s − ½ M s², positive for
+//! s < (ġ + √(ġ² + 2 M g))/M. Each step is capped there, so a gap is approached from above at
+//! a rate that converges quadratically near a transversal crossing, and no impact between
+//! two steps is missed (a grazing one included). A gap within the gap tolerance
+//! (10⁻¹¹ of the length scale) with ġ < −`rest_speed` is an impact; with |ġ| ≤ `rest_speed`
+//! the contact closes if the accelerations press it, and is left open otherwise.
+//!
+//! **Impacts.** Every open feature approaching within the gap tolerance, and every one whose
+//! time to contact g/|ġ| is within `simultaneity`, strikes together with every closed contact:
+//! that is the one multi-point impact the law is asked (the largest time to contact joined is
+//! reported with it: it is the simultaneity the answer assumes). After it, a contact at zero
+//! gap whose normal velocity is below `rest_speed` stays closed (sticking where μ > 0 and its
+//! slip is below the same speed).
+//!
+//! **Zeno.** When the same single contact has been struck three times in a row by a body that
+//! does not turn, with its tangential velocity unchanged and rebound speeds in a constant ratio
+//! r < 1 (a bouncing ball: r = k), the remaining impacts accumulate in closed form: the next
+//! flight lasts 2u/g_n (u the rebound speed, g_n the gravity into the plane), and the sum of the
+//! geometric series gives t∞ = t + 2u/(g_n (1 − r)). The body is moved there (tangential motion
+//! ballistic, normal at zero gap and speed) and the contact persists; the log reports it.
+
+use super::body::{Body, State, V3};
+use super::contact::{Closed, ContactError, Mode, accelerations, derivative, project};
+use super::impact::{At, ImpactError, Law, solve};
+use super::ode::{Tableau, step};
+use super::world::{Plane, gap};
+
+/// How the simulation runs.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Options {
+    /// Gravity (m/s², world).
+    pub gravity: V3,
+    /// The time simulated (s).
+    pub duration: f64,
+    /// The most impacts (the run ends at the next one beyond).
+    pub max_impacts: usize,
+    /// The spacing of the trajectory's samples (s).
+    pub output_step: f64,
+    /// Contacts within this time to contact strike as one impact (s).
+    pub simultaneity: f64,
+    /// The relative tolerance of the integration and of the integrated impact laws.
+    pub tolerance: f64,
+    /// Below this normal speed after an impact a contact stays closed (m/s).
+    pub rest_speed: f64,
+}
+
+/// What to simulate.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Setup {
+    /// The body.
+    pub body: Body,
+    /// The obstacles.
+    pub planes: Vec<Plane>,
+    /// The impact law.
+    pub law: Law,
+    /// The state at t = 0.
+    pub start: State,
+    /// The options.
+    pub options: Options,
+    /// A planar motion: the unit normal (world) of its plane through the start's C. The state
+    /// is held in it after every step and impact (rounding would otherwise take it out, and
+    /// with it the exact planar solves of the impact layer).
+    pub plane: Option<V3>,
+}
+
+/// One contact of an impact, as the log reports it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Struck {
+    /// The feature's name.
+    pub feature: String,
+    /// The plane's name.
+    pub plane: String,
+    /// Its gap when struck (m): 0 but for the simultaneity window.
+    pub gap: f64,
+    /// Its normal velocity before (m/s, negative approaching; 0 for a closed contact).
+    pub before: f64,
+    /// After.
+    pub after: f64,
+    /// Its normal impulse (N s).
+    pub impulse: f64,
+    /// Whether it was closed (persisting) when struck.
+    pub persisting: bool,
+}
+
+/// One impact.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ImpactRecord {
+    /// Its number (1-based).
+    pub index: usize,
+    /// Its time (s).
+    pub t: f64,
+    /// The contacts struck together.
+    pub contacts: Vec<Struck>,
+    /// The largest time to contact joined into it (s).
+    pub spread: f64,
+    /// Kinetic energy before and after (J).
+    pub kinetic_before: f64,
+    /// After.
+    pub kinetic_after: f64,
+    /// Why the law's answer is not physical, if it is not.
+    pub verdicts: Vec<String>,
+    /// How it was solved, when that needs saying.
+    pub note: Option<String>,
+}
+
+/// An event of the log other than an impact.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Event {
+    /// Its time (s).
+    pub t: f64,
+    /// What happened.
+    pub what: String,
+}
+
+/// A sample of the trajectory.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Sample {
+    /// t (s).
+    pub t: f64,
+    /// The state.
+    pub state: State,
+    /// Kinetic energy (J).
+    pub kinetic: f64,
+    /// Potential energy −m g·x (J).
+    pub potential: f64,
+    /// The number of closed contacts.
+    pub closed: usize,
+}
+
+/// Why the run ended.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum End {
+    /// The duration was reached.
+    Duration,
+    /// The impact budget was reached.
+    Impacts,
+    /// The body came to rest on its closed contacts.
+    Rest,
+}
+
+/// The accumulation of impacts.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Zeno {
+    /// t∞ (s).
+    pub t_inf: f64,
+    /// The impact after which it was taken (1-based).
+    pub after: usize,
+    /// The ratio of successive rebound speeds.
+    pub ratio: f64,
+    /// The energy the accumulated impacts dissipated (J): the rebound's kinetic energy along
+    /// the normal.
+    pub dissipated: f64,
+}
+
+/// A whole run.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Simulation {
+    /// The impacts.
+    pub impacts: Vec<ImpactRecord>,
+    /// The other events: contacts closing, lifting off, sliding, sticking.
+    pub events: Vec<Event>,
+    /// The trajectory.
+    pub samples: Vec<Sample>,
+    /// The accumulation of impacts, if one was taken.
+    pub zeno: Option<Zeno>,
+    /// Why it ended.
+    pub end: End,
+    /// When (s).
+    pub t_end: f64,
+    /// The state then.
+    pub state: State,
+    /// Accepted and rejected steps.
+    pub steps: (usize, usize),
+    /// The largest gap the projection of closed contacts corrected (m).
+    pub drift: f64,
+}
+
+/// Why a run stopped before its end.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum SimulateError {
+    /// An impact had no answer under the law.
+    #[error("impact {index} at t = {t:.9} s ({contacts}): {error}")]
+    Impact {
+        /// Its number.
+        index: usize,
+        /// Its time.
+        t: f64,
+        /// The contacts.
+        contacts: String,
+        /// Why.
+        error: ImpactError,
+    },
+    /// Persistent contact could not be decided.
+    #[error("t = {t:.9} s: persistent contact: {error}")]
+    Contact {
+        /// When.
+        t: f64,
+        /// Why.
+        error: ContactError,
+    },
+    /// The steps shrank below what f64 resolves.
+    #[error("t = {t:.9} s: the step fell below what f64 resolves (a stiff or inconsistent contact phase)")]
+    Stalled {
+        /// When.
+        t: f64,
+    },
+    /// The run produced a value that is not finite.
+    #[error("t = {t:.9} s: the state overflowed f64")]
+    NotFinite {
+        /// When.
+        t: f64,
+    },
+}
+
+/// The most steps of one run.
+pub const MAX_STEPS: usize = 10_000_000;
+
+/// Run `setup` to its end.
+///
+/// # Errors
+/// [`SimulateError`]: the partial history is lost (the caller reports the error alone).
+pub fn simulate(setup: &Setup) -> Result<Simulation, SimulateError> {
+    Run::new(setup).go()
+}
+
+struct Run<'a> {
+    setup: &'a Setup,
+    tab: Tableau,
+    s: State,
+    t: f64,
+    closed: Vec<Closed>,
+    hint: Vec<bool>,
+    impacts: Vec<ImpactRecord>,
+    events: Vec<Event>,
+    samples: Vec<Sample>,
+    zeno: Option<Zeno>,
+    length: f64,
+    speed: f64,
+    gap_tol: f64,
+    steps: (usize, usize),
+    drift: f64,
+}
+
+impl<'a> Run<'a> {
+    fn new(setup: &'a Setup) -> Run<'a> {
+        let body = &setup.body;
+        let s = setup.start.clone();
+        let g = setup.options.gravity.norm();
+        let gaps: Vec<f64> = pairs(setup)
+            .map(|(f, p)| gap(&body.features[f], &setup.planes[p], &s).gap.abs())
+            .collect();
+        let length = gaps
+            .iter()
+            .copied()
+            .fold(body.reach(), f64::max)
+            .max(f64::MIN_POSITIVE);
+        let speed = (s.v.norm() + s.w.norm() * body.reach())
+            .max((2.0 * g * length).sqrt())
+            .max(f64::MIN_POSITIVE);
+        Run {
+            setup,
+            tab: Tableau::new(),
+            s,
+            t: 0.0,
+            closed: Vec::new(),
+            hint: Vec::new(),
+            impacts: Vec::new(),
+            events: Vec::new(),
+            samples: Vec::new(),
+            zeno: None,
+            length,
+            speed,
+            gap_tol: 1e-11 * length,
+            steps: (0, 0),
+            drift: 0.0,
+        }
+    }
+
+    fn sample(&mut self) {
+        let body = &self.setup.body;
+        self.samples.push(Sample {
+            t: self.t,
+            state: self.s.clone(),
+            kinetic: body.kinetic_energy(&self.s),
+            potential: -body.mass * self.setup.options.gravity.dot(&self.s.x),
+            closed: self.closed.len(),
+        });
+    }
+
+    fn is_closed(&self, f: usize, p: usize) -> bool {
+        self.closed.iter().any(|c| c.feature == f && c.plane == p)
+    }
+
+    fn accelerations(&mut self, s: &State) -> Result<super::contact::Accelerations, ContactError> {
+        let o = &self.setup.options;
+        accelerations(
+            &self.setup.body,
+            &self.setup.planes,
+            s,
+            &o.gravity,
+            &self.closed,
+            &mut self.hint,
+            o.rest_speed,
+        )
+    }
+
+    /// The accelerations at the current state, switching a sticking contact that leaves its
+    /// cone to sliding.
+    fn current(&mut self) -> Result<super::contact::Accelerations, SimulateError> {
+        for _ in 0..=self.closed.len() {
+            let s = self.s.clone();
+            match self.accelerations(&s) {
+                Ok(a) => return Ok(a),
+                Err(ContactError::Slips { contact, direction }) => {
+                    self.closed[contact].mode = Mode::Slide(direction);
+                    let name = self.name(self.closed[contact].feature, self.closed[contact].plane);
+                    self.events.push(Event {
+                        t: self.t,
+                        what: format!("{name} starts to slide"),
+                    });
+                }
+                Err(error) => return Err(SimulateError::Contact { t: self.t, error }),
+            }
+        }
+        Err(SimulateError::Contact {
+            t: self.t,
+            error: ContactError::NoActiveSet,
+        })
+    }
+
+    fn name(&self, f: usize, p: usize) -> String {
+        format!(
+            "{} on {}",
+            self.setup.body.features[f].label(),
+            self.setup.planes[p].name
+        )
+    }
+
+    fn go(mut self) -> Result<Simulation, SimulateError> {
+        let o = self.setup.options.clone();
+        let mut h = (o.output_step.min(o.duration) / 10.0).max(f64::MIN_POSITIVE);
+        let mut next_output = 0.0;
+        let end;
+        loop {
+            if self.t >= next_output {
+                self.sample();
+                next_output = (self.samples.len() as f64) * o.output_step;
+            }
+            if self.t >= o.duration {
+                end = End::Duration;
+                break;
+            }
+            if self.impacts.len() >= o.max_impacts {
+                end = End::Impacts;
+                break;
+            }
+            if self.steps.0 + self.steps.1 >= MAX_STEPS {
+                return Err(SimulateError::Stalled { t: self.t });
+            }
+            let acc = self.current()?;
+            // Lift-off: a closed contact the accelerations no longer press.
+            if acc.active.iter().any(|a| !a) {
+                let mut kept = Vec::new();
+                for (c, &on) in self.closed.clone().into_iter().zip(&acc.active) {
+                    if on {
+                        kept.push(c);
+                    } else {
+                        self.events.push(Event {
+                            t: self.t,
+                            what: format!("{} lifts off", self.name(c.feature, c.plane)),
+                        });
+                    }
+                }
+                self.closed = kept;
+                self.hint.clear();
+                continue;
+            }
+            // Slides that stop.
+            for k in 0..self.closed.len() {
+                if let Mode::Slide(_) = self.closed[k].mode {
+                    let c = self.closed[k].clone();
+                    let plane = &self.setup.planes[c.plane];
+                    let g = gap(&self.setup.body.features[c.feature], plane, &self.s);
+                    let u = self.s.v + self.s.w.cross(&(g.point - self.s.x));
+                    let slip = u - plane.normal * plane.normal.dot(&u);
+                    if slip.norm() <= o.rest_speed {
+                        self.closed[k].mode = Mode::Stick;
+                        let name = self.name(c.feature, c.plane);
+                        self.events.push(Event {
+                            t: self.t,
+                            what: format!("{name} sticks"),
+                        });
+                    }
+                }
+            }
+            let speed = self.s.v.norm() + self.s.w.norm() * self.setup.body.reach();
+            let accel = acc.a.norm() + acc.alpha.norm() * self.setup.body.reach();
+            if !self.closed.is_empty()
+                && speed <= o.rest_speed
+                && accel <= 1e-9 * (o.gravity.norm() + f64::MIN_POSITIVE)
+            {
+                end = End::Rest;
+                break;
+            }
+            // The open gaps: impacts, contacts closing, and the horizon of the step.
+            let mut horizon = f64::INFINITY;
+            let mut striking = false;
+            let pairs: Vec<(usize, usize)> = pairs(self.setup).collect();
+            for &(f, p) in &pairs {
+                if self.is_closed(f, p) {
+                    continue;
+                }
+                let g = gap(&self.setup.body.features[f], &self.setup.planes[p], &self.s);
+                if g.gap <= self.gap_tol {
+                    if g.rate < -o.rest_speed {
+                        striking = true;
+                    } else if g.rate <= o.rest_speed && self.presses(f, p) {
+                        self.closed.push(Closed {
+                            feature: f,
+                            plane: p,
+                            mode: self.mode_of(f, p),
+                        });
+                        self.hint.clear();
+                        self.events.push(Event {
+                            t: self.t,
+                            what: format!("{} closes", self.name(f, p)),
+                        });
+                    }
+                    continue;
+                }
+                let m = 2.0
+                    * (acc.a.norm()
+                        + g.arm * (self.s.w.norm_squared() + acc.alpha.norm()))
+                    + f64::MIN_POSITIVE;
+                let s = (g.rate + (g.rate * g.rate + 2.0 * m * g.gap).sqrt()) / m;
+                horizon = horizon.min(s);
+            }
+            if striking {
+                self.impact()?;
+                h = h.max(1e-6 * o.output_step);
+                continue;
+            }
+            // One step.
+            let cap = horizon.min(next_output - self.t).min(o.duration - self.t);
+            let mut hh = h.min(cap);
+            let floor = 64.0 * f64::EPSILON * self.t.abs().max(o.output_step);
+            if hh < floor {
+                if horizon < floor {
+                    // creeping onto a gap at the resolution of t: take it as reached
+                    hh = floor;
+                } else {
+                    hh = cap.max(floor);
+                }
+            }
+            let y = self.s.pack();
+            let t0 = self.t;
+            let tab = std::mem::take(&mut self.tab);
+            let result = {
+                let mut f = |_t: f64, y: &[f64; 13]| -> Result<[f64; 13], ContactError> {
+                    let s = State::unpack(y);
+                    let a = self.accelerations(&s)?;
+                    Ok(derivative(&s, &a))
+                };
+                step(&tab, t0, &y, hh, &mut f)
+            };
+            self.tab = tab;
+            let (y5, err) = match result {
+                Ok(r) => r,
+                Err(_) => {
+                    // a mode change inside the step: shorter
+                    self.steps.1 += 1;
+                    h = hh / 4.0;
+                    if h < floor {
+                        return Err(SimulateError::Stalled { t: self.t });
+                    }
+                    continue;
+                }
+            };
+            let scales = [
+                self.length, self.length, self.length, 1.0, 1.0, 1.0, 1.0, self.speed, self.speed,
+                self.speed, self.speed / self.length, self.speed / self.length,
+                self.speed / self.length,
+            ];
+            let ratio = (0..13)
+                .map(|k| err[k].abs() / (o.tolerance * (y5[k].abs().max(scales[k]))))
+                .fold(0.0, f64::max);
+            if !ratio.is_finite() {
+                return Err(SimulateError::NotFinite { t: self.t });
+            }
+            if ratio > 1.0 {
+                self.steps.1 += 1;
+                h = hh * (0.9 * ratio.powf(-0.2)).max(0.2);
+                continue;
+            }
+            // No open feature may end the step beyond its plane: a touching one that the step
+            // took through is located by halving the step.
+            let end_state = State::unpack(&y5);
+            let through = pairs.iter().any(|&(f, p)| {
+                !self.is_closed(f, p)
+                    && gap(&self.setup.body.features[f], &self.setup.planes[p], &end_state).gap
+                        < -self.gap_tol
+            });
+            if through && hh > floor {
+                self.steps.1 += 1;
+                h = hh / 2.0;
+                continue;
+            }
+            self.steps.0 += 1;
+            self.t = if hh == cap && cap == next_output - t0 {
+                next_output
+            } else {
+                t0 + hh
+            };
+            self.s = State::unpack(&y5);
+            if !self.closed.is_empty() {
+                let active = vec![true; self.closed.len()];
+                let d = project(
+                    &self.setup.body,
+                    &self.setup.planes,
+                    &mut self.s,
+                    &self.closed,
+                    &active,
+                );
+                self.drift = self.drift.max(d);
+            }
+            self.hold_plane();
+            if hh == h || ratio < 0.5 {
+                h = hh * (0.9 * ratio.max(1e-10).powf(-0.2)).min(5.0);
+            }
+        }
+        Ok(Simulation {
+            impacts: self.impacts,
+            events: self.events,
+            samples: self.samples,
+            zeno: self.zeno,
+            end,
+            t_end: self.t,
+            state: self.s,
+            steps: self.steps,
+            drift: self.drift,
+        })
+    }
+
+    /// A planar motion held in its plane: C on it, v in it, ω along its normal, the attitude
+    /// the twist of q about the normal (its swing, rounding, dropped).
+    fn hold_plane(&mut self) {
+        let Some(n) = self.setup.plane else {
+            return;
+        };
+        let x0 = self.setup.start.x;
+        self.s.x -= n * n.dot(&(self.s.x - x0));
+        self.s.v -= n * n.dot(&self.s.v);
+        self.s.w = n * n.dot(&self.s.w);
+        let q0 = self.setup.start.q;
+        // the rotation from the start's attitude, reduced to its twist about n
+        let d = self.s.q * q0.inverse();
+        let qd = d.quaternion();
+        let along = n * n.dot(&qd.imag());
+        let twist = nalgebra::Quaternion::new(qd.w, along.x, along.y, along.z);
+        if twist.norm() > 0.0 {
+            self.s.q = nalgebra::UnitQuaternion::from_quaternion(twist) * q0;
+        }
+    }
+
+    /// A contact's mode when it closes: sticking where μ > 0.
+    fn mode_of(&self, _f: usize, p: usize) -> Mode {
+        if self.setup.planes[p].law.mu > 0.0 {
+            Mode::Stick
+        } else {
+            Mode::Frictionless
+        }
+    }
+
+    /// Whether the accelerations press the open contact (f, p) at zero gap: with it closed,
+    /// it takes a positive normal force.
+    fn presses(&mut self, f: usize, p: usize) -> bool {
+        let mut closed = self.closed.clone();
+        closed.push(Closed {
+            feature: f,
+            plane: p,
+            mode: self.mode_of(f, p),
+        });
+        let o = &self.setup.options;
+        let mut hint = Vec::new();
+        match accelerations(
+            &self.setup.body,
+            &self.setup.planes,
+            &self.s,
+            &o.gravity,
+            &closed,
+            &mut hint,
+            o.rest_speed,
+        ) {
+            Ok(a) => a.active.last().copied().unwrap_or(false) && a.normal.last().is_some_and(|&l| l > 0.0),
+            Err(ContactError::Slips { .. }) => true,
+            Err(_) => false,
+        }
+    }
+
+    /// The impact at the current state.
+    fn impact(&mut self) -> Result<(), SimulateError> {
+        let o = self.setup.options.clone();
+        let body = &self.setup.body;
+        let planes = &self.setup.planes;
+        let mut at: Vec<At> = Vec::new();
+        let mut struck: Vec<Struck> = Vec::new();
+        let mut spread = 0.0f64;
+        for (f, p) in pairs(self.setup) {
+            let g = gap(&body.features[f], &planes[p], &self.s);
+            let persisting = self.is_closed(f, p);
+            let joins = persisting
+                || (g.rate < 0.0
+                    && (g.gap <= self.gap_tol || g.gap / -g.rate <= o.simultaneity));
+            if !joins {
+                continue;
+            }
+            if !persisting && g.gap > self.gap_tol {
+                spread = spread.max(g.gap / -g.rate);
+            }
+            at.push(At {
+                feature: f,
+                plane: p,
+                point: g.point,
+            });
+            struck.push(Struck {
+                feature: body.features[f].label().to_string(),
+                plane: planes[p].name.clone(),
+                gap: g.gap.max(0.0),
+                before: g.rate,
+                after: 0.0,
+                impulse: 0.0,
+                persisting,
+            });
+        }
+        let index = self.impacts.len() + 1;
+        let kinetic_before = body.kinetic_energy(&self.s);
+        let out = solve(body, planes, &self.s, &at, self.setup.law, o.tolerance).map_err(|error| {
+            SimulateError::Impact {
+                index,
+                t: self.t,
+                contacts: struck
+                    .iter()
+                    .map(|c| format!("{} on {}", c.feature, c.plane))
+                    .collect::<Vec<_>>()
+                    .join(", "),
+                error,
+            }
+        })?;
+        let w_before = self.s.w;
+        let v_before = self.s.v;
+        self.s.v = out.v;
+        self.s.w = out.w;
+        self.hold_plane();
+        if !(self.s.v.iter().chain(self.s.w.iter()).all(|x| x.is_finite())) {
+            return Err(SimulateError::NotFinite { t: self.t });
+        }
+        // What stays closed.
+        self.closed.clear();
+        self.hint.clear();
+        for (k, a) in at.iter().enumerate() {
+            let g = gap(&body.features[a.feature], &planes[a.plane], &self.s);
+            struck[k].after = g.rate;
+            struck[k].impulse = out.impulses[k];
+            if g.gap <= self.gap_tol && g.rate <= o.rest_speed {
+                let u = self.s.v + self.s.w.cross(&(g.point - self.s.x));
+                let n = planes[a.plane].normal;
+                let slip = u - n * n.dot(&u);
+                let mode = if planes[a.plane].law.mu == 0.0 {
+                    Mode::Frictionless
+                } else if slip.norm() <= o.rest_speed {
+                    Mode::Stick
+                } else {
+                    Mode::Slide(slip.normalize())
+                };
+                self.closed.push(Closed {
+                    feature: a.feature,
+                    plane: a.plane,
+                    mode,
+                });
+            }
+        }
+        self.impacts.push(ImpactRecord {
+            index,
+            t: self.t,
+            contacts: struck,
+            spread,
+            kinetic_before,
+            kinetic_after: body.kinetic_energy(&self.s),
+            verdicts: out.verdicts,
+            note: out.note,
+        });
+        self.zeno(w_before, v_before);
+        Ok(())
+    }
+
+    /// The accumulation of impacts of a bouncing body (module docs).
+    fn zeno(&mut self, w_before: V3, v_before: V3) {
+        let n = self.impacts.len();
+        if n < 3 || self.zeno.is_some() || self.impacts[n - 1].contacts.len() != 1 {
+            return;
+        }
+        let last = &self.impacts[n - 3..];
+        let same = last.iter().all(|r| {
+            r.contacts.len() == 1
+                && r.contacts[0].feature == last[2].contacts[0].feature
+                && r.contacts[0].plane == last[2].contacts[0].plane
+        });
+        let turning = self.s.w.norm() * self.setup.body.reach() > 1e-12 * self.speed
+            || w_before.norm() * self.setup.body.reach() > 1e-12 * self.speed;
+        let Some(p) = self
+            .setup
+            .planes
+            .iter()
+            .position(|p| p.name == last[2].contacts[0].plane)
+        else {
+            return;
+        };
+        // a sphere on a frictionless plane: its spin changes neither its gap nor its impacts
+        let f = self
+            .setup
+            .body
+            .features
+            .iter()
+            .position(|f| f.label() == last[2].contacts[0].feature)
+            .unwrap_or(0);
+        let spin_free = matches!(self.setup.body.features[f], super::body::Feature::Sphere { .. })
+            && self.setup.planes[p].law.mu == 0.0;
+        let turning = turning && !spin_free;
+        let nn = self.setup.planes[p].normal;
+        let dv = (self.s.v - v_before) - nn * nn.dot(&(self.s.v - v_before));
+        let gn = -nn.dot(&self.setup.options.gravity);
+        if !same || turning || dv.norm() > 1e-12 * self.speed || gn <= 0.0 {
+            return;
+        }
+        let u: Vec<f64> = last.iter().map(|r| r.contacts[0].after).collect();
+        let (r1, r2) = (u[1] / u[0], u[2] / u[1]);
+        // a ratio within 10⁻⁹ of 1 is an elastic bounce (rounding), not an accumulation
+        if !(r2 > 0.0 && r2 < 1.0 - 1e-9 && (r1 - r2).abs() <= 1e-9 * r2) {
+            return;
+        }
+        let dt = 2.0 * u[2] / (gn * (1.0 - r2));
+        if self.t + dt > self.setup.options.duration {
+            return;
+        }
+        let g = self.setup.options.gravity;
+        let energy = |s: &State| {
+            self.setup.body.kinetic_energy(s) - self.setup.body.mass * g.dot(&s.x)
+        };
+        let before = energy(&self.s);
+        let gt = g + nn * gn;
+        let vt = self.s.v - nn * nn.dot(&self.s.v);
+        self.s.x += vt * dt + gt * (0.5 * dt * dt);
+        // a spinning sphere turns steadily meanwhile (no torque about its centre)
+        self.s.q = nalgebra::UnitQuaternion::from_scaled_axis(self.s.w * dt) * self.s.q;
+        self.s.v = vt + gt * dt;
+        self.t += dt;
+        let g = gap(&self.setup.body.features[f], &self.setup.planes[p], &self.s);
+        self.s.x -= nn * g.gap;
+        self.closed = vec![Closed {
+            feature: f,
+            plane: p,
+            mode: self.mode_of(f, p),
+        }];
+        self.hint.clear();
+        let dissipated = before - energy(&self.s);
+        self.zeno = Some(Zeno {
+            t_inf: self.t,
+            after: n,
+            ratio: r2,
+            dissipated,
+        });
+        self.events.push(Event {
+            t: self.t,
+            what: format!(
+                "Zeno: the impacts accumulate here (rebound ratio {r2:.6}, after impact {n}), dissipating {dissipated:.6e} J; {} persists",
+                self.name(f, p)
+            ),
+        });
+    }
+}
+
+/// Every (feature, plane) pair.
+fn pairs(setup: &Setup) -> impl Iterator<Item = (usize, usize)> + '_ {
+    let planes = setup.planes.len();
+    (0..setup.body.features.len()).flat_map(move |f| (0..planes).map(move |p| (f, p)))
+}

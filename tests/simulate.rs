@@ -1,0 +1,242 @@
+//! `simulate`: sequences of impacts against closed forms we did not compute with the
+//! simulation — the bouncing ball (impact times, rebound speeds and the accumulation time in
+//! closed form), Housner's rocking block (the ratio of each landing, the first landing's speed
+//! from the energy, the rocking times from the elliptic-integral quadrature of the pendulum
+//! about an edge), and invariants (energy conserved between impacts, never gained at one).
+//!
+//! **Tolerances.** The flight of C is a quadratic in t, which the fifth-order step reproduces
+//! to rounding; an impact is located by conservative advancement to the gap tolerance
+//! 10⁻¹¹ L (L the length scale: here the drop height, ≈ 5 m) — a time error of 10⁻¹¹ L / |ġ|,
+//! 5·10⁻¹¹/2.5 = 2·10⁻¹¹ s at the slowest impact of the ball — and each later quantity inherits
+//! it times g (speeds) or is a sum of a few of them (times): the ball's bounds are 10⁻⁹ s and
+//! 10⁻⁹ m/s, 20 to 50 times that. Rotation and persistent contact are integrated to the
+//! relative tolerance 10⁻¹⁰ per step on the motion's scales; over the few hundred steps of a
+//! landing the accumulated relative error stays below 10⁻⁷, the bound the rocking block is
+//! held to.
+
+use inertance::scene::SimulationScene;
+use inertance::simulate::{End, Law, Simulation, simulate};
+use inertance::impact::friction::Restitution;
+
+fn load(file: &str) -> SimulationScene {
+    SimulationScene::load(std::path::Path::new(file)).expect("the example reads")
+}
+
+fn parse(text: &str) -> SimulationScene {
+    SimulationScene::parse(text, "test.toml").expect("the scene reads")
+}
+
+fn run(s: &SimulationScene) -> Simulation {
+    simulate(&s.setup).expect("the run ends")
+}
+
+#[test]
+fn bouncing_ball_meets_its_closed_forms_and_accumulates_at_three_seconds() {
+    // g = 10, dropped from 5 m: t₁ = 1 s at 10 m/s; k = 1/2: uₙ = 10/2ⁿ, tₙ₊₁ = tₙ + 2uₙ/g.
+    let s = load("examples/simulate/bouncing-ball.toml");
+    let sim = run(&s);
+    let (mut t, mut u) = (1.0_f64, 10.0_f64);
+    assert!(sim.impacts.len() >= 3);
+    for r in &sim.impacts {
+        let c = &r.contacts[0];
+        assert!((r.t - t).abs() <= 1e-9, "impact {} at {} ≠ {t}", r.index, r.t);
+        assert!((c.before + u).abs() <= 1e-9, "{} ≠ −{u}", c.before);
+        assert!((c.after - u / 2.0).abs() <= 1e-9);
+        // Newton's law with k: P = m (1 + k) u
+        assert!((c.impulse - 1.5 * u).abs() <= 1e-9);
+        t += 2.0 * (u / 2.0) / 10.0;
+        u /= 2.0;
+    }
+    // t∞ = t₁ + 2u₁/(g(1 − k)) = 1 + 2·5/(10·½) = 3 s.
+    let z = sim.zeno.as_ref().expect("the accumulation is taken");
+    assert!((z.t_inf - 3.0).abs() <= 1e-9, "t∞ = {}", z.t_inf);
+    assert!((z.ratio - 0.5).abs() <= 1e-9);
+    assert_eq!(sim.end, End::Rest);
+    assert!((sim.state.x.z - 0.1).abs() <= 1e-9 && sim.state.v.norm() <= 1e-9);
+}
+
+#[test]
+fn bouncing_ball_with_a_horizontal_velocity_lands_where_the_parabola_says() {
+    // The same drop with v_x = 2 m/s and a spin on a frictionless floor: the spin changes
+    // nothing, and the ball rests at x = 2 t∞ = 6 m.
+    let text = std::fs::read_to_string("examples/simulate/bouncing-ball.toml")
+        .unwrap()
+        .replace("\nvelocity = [0, 0, 0]", "\nvelocity = [2, 0, 0]")
+        .replace("angular_velocity = [0, 0, 0]", "angular_velocity = [0, 3, 0]");
+    let sim = run(&parse(&text));
+    let z = sim.zeno.as_ref().expect("Zeno");
+    assert!((z.t_inf - 3.0).abs() <= 1e-9);
+    // then it slides on, frictionless, to the end of the run at 4 s: x = 2·4 m
+    assert_eq!(sim.end, End::Duration);
+    assert!((sim.state.x.x - 8.0).abs() <= 1e-8, "x = {}", sim.state.x.x);
+    let at = sim.samples.iter().find(|s| (s.t - 3.5).abs() < 1e-9).expect("a sample at 3.5 s");
+    assert!((at.state.x.x - 7.0).abs() <= 1e-8 && (at.state.x.z - 0.1).abs() <= 1e-9);
+}
+
+#[test]
+fn elastic_ball_keeps_its_height_and_energy() {
+    // k = 1: every bounce returns to the drop height; the total energy is constant.
+    let text = std::fs::read_to_string("examples/simulate/bouncing-ball.toml")
+        .unwrap()
+        .replace("contact = { k = 0.5 }", "contact = { k = 1 }")
+        .replace("duration = 4", "duration = 9.5");
+    let sim = run(&parse(&text));
+    assert_eq!(sim.impacts.len(), 5, "impacts at t = 1, 3, 5, 7, 9");
+    for (n, r) in sim.impacts.iter().enumerate() {
+        assert!((r.t - (1.0 + 2.0 * n as f64)).abs() <= 1e-9);
+    }
+    let e0 = sim.samples[0].kinetic + sim.samples[0].potential;
+    for smp in &sim.samples {
+        assert!((smp.kinetic + smp.potential - e0).abs() <= 1e-9 * e0);
+    }
+    assert!(sim.zeno.is_none());
+}
+
+/// Housner's block: b = 0.75, h = 1, R = 5/4, sin α = 3/5, I_O = (4/3) m R².
+struct Block {
+    m: f64,
+    r: f64,
+    alpha: f64,
+    g: f64,
+}
+
+impl Block {
+    fn new() -> Block {
+        Block {
+            m: 1500.0,
+            r: 1.25,
+            alpha: (0.6f64).asin(),
+            g: 9.81,
+        }
+    }
+    fn io(&self) -> f64 {
+        4.0 / 3.0 * self.m * self.r * self.r
+    }
+    /// |ω| reaching θ = 0 from rest at the tilt θ0: ½ I_O ω² = m g R (cos(α − θ0) − cos α).
+    fn omega_at_landing(&self, theta0: f64) -> f64 {
+        (2.0 * self.m * self.g * self.r * ((self.alpha - theta0).cos() - self.alpha.cos())
+            / self.io())
+        .sqrt()
+    }
+    /// The tilt reached from θ = 0 at |ω|.
+    fn tilt_reached(&self, omega: f64) -> f64 {
+        let c = self.alpha.cos() + self.io() * omega * omega / (2.0 * self.m * self.g * self.r);
+        self.alpha - c.acos()
+    }
+    /// The time from rest at θ0 to θ = 0 about an edge: ∫₀^θ0 dθ / √(K (cos(α−θ0) − cos(α−θ))),
+    /// K = 2 m g R / I_O, with θ = θ0 − u² (the square-root singularity removed), by composite
+    /// Simpson on 4000 intervals.
+    fn quarter(&self, theta0: f64) -> f64 {
+        let k = 2.0 * self.m * self.g * self.r / self.io();
+        let c0 = (self.alpha - theta0).cos();
+        let f = |u: f64| {
+            if u == 0.0 {
+                2.0 / (k * (self.alpha - theta0).sin()).sqrt()
+            } else {
+                2.0 * u / (k * (c0 - (self.alpha - theta0 + u * u).cos())).sqrt()
+            }
+        };
+        let (a, b, n) = (0.0, theta0.sqrt(), 4000);
+        let h = (b - a) / n as f64;
+        let mut sum = f(a) + f(b);
+        for i in 1..n {
+            sum += f(a + i as f64 * h) * if i % 2 == 1 { 4.0 } else { 2.0 };
+        }
+        sum * h / 3.0
+    }
+}
+
+#[test]
+fn rocking_block_lands_at_housners_ratio_and_rocks_in_the_pendulums_time() {
+    let s = load("examples/simulate/rocking-block.toml");
+    let sim = run(&s);
+    let block = Block::new();
+    let theta0 = 0.2;
+    let ratio = 1.0 - 1.5 * 0.36; // 23/50
+    // |ω| = |ġ| / 2b at the landing edge (the other at rest: the block turns about it)
+    let omega = |g: f64| g.abs() / 1.5;
+    let first = &sim.impacts[0];
+    let landing = first.contacts.iter().find(|c| !c.persisting).expect("a new edge");
+    let expected = block.omega_at_landing(theta0);
+    assert!(
+        (omega(landing.before) - expected).abs() <= 1e-7 * expected,
+        "ω⁻ = {} ≠ {expected}",
+        omega(landing.before)
+    );
+    assert!((first.t - block.quarter(theta0)).abs() <= 1e-7, "t₁ = {} ≠ {}", first.t, block.quarter(theta0));
+    // Every landing: the old edge lifts off at 2b ω⁺ with ω⁺ = (23/50) ω⁻; the next landing
+    // comes after rocking up to the tilt the energy allows and back: twice the quarter.
+    let mut t = first.t;
+    let mut w = expected;
+    for r in sim.impacts.iter().take(8) {
+        let new = r.contacts.iter().find(|c| !c.persisting).unwrap();
+        let old = r.contacts.iter().find(|c| c.persisting).unwrap();
+        assert!((omega(new.before) - w).abs() <= 1e-7 * expected, "impact {}", r.index);
+        assert!((omega(old.after) - ratio * w).abs() <= 1e-7 * expected, "impact {}", r.index);
+        assert!(new.after.abs() <= 1e-9 * expected && old.impulse.abs() <= 1e-9 * first.contacts[1].impulse.abs());
+        assert!((r.t - t).abs() <= 1e-7, "impact {} at {} ≠ {t}", r.index, r.t);
+        w *= ratio;
+        t += 2.0 * block.quarter(block.tilt_reached(w));
+    }
+    assert_eq!(sim.end, End::Rest);
+}
+
+#[test]
+fn energy_is_conserved_between_impacts_and_never_gained_at_one() {
+    for file in [
+        "examples/simulate/rocking-block.toml",
+        "examples/simulate/bouncing-ball.toml",
+    ] {
+        let sim = run(&load(file));
+        let energy = |k: f64, p: f64| k + p;
+        let e0 = energy(sim.samples[0].kinetic, sim.samples[0].potential);
+        for r in &sim.impacts {
+            assert!(r.kinetic_after <= r.kinetic_before * (1.0 + 1e-12), "{file}: impact {}", r.index);
+        }
+        // between impacts: the energy at each sample is the last impact's energy after it
+        let mut lost = 0.0;
+        let mut k = 0;
+        let mut zeno_counted = false;
+        for smp in &sim.samples {
+            // a sample at an impact's time is taken before it
+            while k < sim.impacts.len() && sim.impacts[k].t < smp.t {
+                lost += sim.impacts[k].kinetic_before - sim.impacts[k].kinetic_after;
+                k += 1;
+            }
+            if let Some(z) = sim.zeno.as_ref().filter(|z| z.t_inf <= smp.t) {
+                // the accumulated impacts' loss, counted once
+                if !zeno_counted {
+                    lost += z.dissipated;
+                    zeno_counted = true;
+                }
+            }
+            let e = energy(smp.kinetic, smp.potential);
+            assert!((e - (e0 - lost)).abs() <= 1e-7 * e0, "{file}: t = {}: {e} ≠ {}", smp.t, e0 - lost);
+        }
+    }
+}
+
+#[test]
+fn the_rocking_block_under_the_simultaneous_law_stops_dead_with_a_tensile_verdict() {
+    // The simultaneous law holds the old edge on its path: both edges end at rest (k = 0),
+    // which needs the old edge to pull.
+    let mut s = load("examples/simulate/rocking-block.toml");
+    s.setup.law = Law::Simultaneous(Restitution::Newton);
+    let sim = run(&s);
+    assert_eq!(sim.impacts.len(), 1);
+    assert!(!sim.impacts[0].verdicts.is_empty(), "the answer is flagged");
+    assert!(sim.impacts[0].kinetic_after <= 1e-9 * sim.impacts[0].kinetic_before);
+    assert_eq!(sim.end, End::Rest);
+}
+
+#[test]
+fn the_rocking_block_under_lzb_rocks_and_loses_energy_at_every_landing() {
+    let mut s = load("examples/simulate/rocking-block.toml");
+    s.setup.law = Law::Lzb;
+    s.setup.options.duration = 1.0;
+    let sim = run(&s);
+    assert!(sim.impacts.len() >= 2);
+    for r in &sim.impacts {
+        assert!(r.kinetic_after < r.kinetic_before);
+    }
+}
