@@ -400,13 +400,8 @@ fn run_simulate(
             }
         },
     };
-    let sim = match inertance::simulate::simulate(&scene.setup) {
-        Ok(s) => s,
-        Err(e) => {
-            eprintln!("error: {}: {e}", path.display());
-            return ExitCode::from(3);
-        }
-    };
+    // A run that stopped on an error still reports its history up to there (status 3).
+    let sim = inertance::simulate::run::simulate_history(&scene.setup);
     if let (Some(file), Some(svg)) = (trajectory, format) {
         let text = if svg {
             match simulation::to_svg(&scene.name, &scene.setup, &sim) {
@@ -431,7 +426,13 @@ fn run_simulate(
     } else {
         print_out(&simulation::to_text(&scene.name, &scene.setup, &sim));
     }
-    ExitCode::SUCCESS
+    match &sim.stopped {
+        Some(e) => {
+            eprintln!("error: {}: {e}", path.display());
+            ExitCode::from(3)
+        }
+        None => ExitCode::SUCCESS,
+    }
 }
 
 /// Read the scene at `path` with the overrides `opts` and the `symbols`; `-` reads it from

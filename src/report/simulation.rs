@@ -48,6 +48,11 @@ fn end_text(sim: &Simulation) -> String {
         End::Duration => format!("the duration, t = {} s", sig(sim.t_end)),
         End::Impacts => format!("the impact budget, t = {} s", sig(sim.t_end)),
         End::Rest => format!("rest, t = {} s", sig(sim.t_end)),
+        End::Stopped => format!(
+            "an error, t = {} s ({})",
+            sig(sim.t_end),
+            sim.stopped.as_ref().map_or_else(String::new, ToString::to_string)
+        ),
     }
 }
 
@@ -173,7 +178,8 @@ pub fn to_json(name: &str, setup: &Setup, sim: &Simulation) -> Json {
         "name": name,
         "law": setup.law.name(),
         "tolerance": setup.options.tolerance,
-        "end": match sim.end { End::Duration => "duration", End::Impacts => "impacts", End::Rest => "rest" },
+        "end": match sim.end { End::Duration => "duration", End::Impacts => "impacts", End::Rest => "rest", End::Stopped => "stopped" },
+        "error": sim.stopped.as_ref().map(ToString::to_string),
         "t_end": json_f64(sim.t_end),
         "zeno": sim.zeno.as_ref().map(|z| json!({"t_inf": json_f64(z.t_inf), "after": z.after, "ratio": json_f64(z.ratio)})),
         "impacts": sim.impacts.iter().map(|r| json!({

@@ -50,6 +50,10 @@ pub struct Closed {
     pub plane: usize,
     /// Its mode.
     pub mode: Mode,
+    /// A sliding contact may stick again once its slip has exceeded the lock speed since it
+    /// started (a slide that began at zero slip, at the edge of its cone, would otherwise
+    /// chatter between the two).
+    pub armed: bool,
 }
 
 /// The accelerations at one state, and the forces that give them.

@@ -150,6 +150,8 @@ pub enum End {
     Impacts,
     /// The body came to rest on its closed contacts.
     Rest,
+    /// The run stopped on an error ([`Simulation::stopped`]): the history up to it is kept.
+    Stopped,
 }
 
 /// The accumulation of impacts.
@@ -187,6 +189,8 @@ pub struct Simulation {
     pub steps: (usize, usize),
     /// The largest gap the projection of closed contacts corrected (m).
     pub drift: f64,
+    /// Why the run stopped early ([`End::Stopped`]).
+    pub stopped: Option<SimulateError>,
 }
 
 /// Why a run stopped before its end.
@@ -232,9 +236,37 @@ pub const MAX_STEPS: usize = 10_000_000;
 /// Run `setup` to its end.
 ///
 /// # Errors
-/// [`SimulateError`]: the partial history is lost (the caller reports the error alone).
+/// [`SimulateError`] when the run stopped early; the history up to there is in
+/// [`Simulation::stopped`]'s run, which [`simulate_history`] returns whole.
 pub fn simulate(setup: &Setup) -> Result<Simulation, SimulateError> {
-    Run::new(setup).go()
+    let sim = simulate_history(setup);
+    match sim.stopped {
+        Some(e) => Err(e),
+        None => Ok(sim),
+    }
+}
+
+/// Run `setup` to its end, or to the error that stops it ([`End::Stopped`], the error in
+/// [`Simulation::stopped`]), keeping the history up to there.
+pub fn simulate_history(setup: &Setup) -> Simulation {
+    let mut run = Run::new(setup);
+    let result = run.go();
+    let (end, stopped) = match result {
+        Ok(end) => (end, None),
+        Err(e) => (End::Stopped, Some(e)),
+    };
+    Simulation {
+        impacts: run.impacts,
+        events: run.events,
+        samples: run.samples,
+        zeno: run.zeno,
+        end,
+        t_end: run.t,
+        state: run.s,
+        steps: run.steps,
+        drift: run.drift,
+        stopped,
+    }
 }
 
 struct Run<'a> {
@@ -327,6 +359,7 @@ impl<'a> Run<'a> {
                 Ok(a) => return Ok(a),
                 Err(ContactError::Slips { contact, direction }) => {
                     self.closed[contact].mode = Mode::Slide(direction);
+                    self.closed[contact].armed = false;
                     let name = self.name(self.closed[contact].feature, self.closed[contact].plane);
                     self.events.push(Event {
                         t: self.t,
@@ -350,7 +383,7 @@ impl<'a> Run<'a> {
         )
     }
 
-    fn go(mut self) -> Result<Simulation, SimulateError> {
+    fn go(&mut self) -> Result<End, SimulateError> {
         let o = self.setup.options.clone();
         let mut h = (o.output_step.min(o.duration) / 10.0).max(f64::MIN_POSITIVE);
         let mut next_output = 0.0;
@@ -397,13 +430,37 @@ impl<'a> Run<'a> {
                     let g = gap(&self.setup.body.features[c.feature], plane, &self.s);
                     let u = self.s.v + self.s.w.cross(&(g.point - self.s.x));
                     let slip = u - plane.normal * plane.normal.dot(&u);
-                    if slip.norm() <= o.rest_speed {
+                    // it sticks if its slip has stopped and sticking needs no more than its
+                    // cone allows (else it slides on: no chatter between the two)
+                    if slip.norm() > 2.0 * o.rest_speed {
+                        self.closed[k].armed = true;
+                    }
+                    if slip.norm() <= o.rest_speed && c.armed {
+                        let held = self.closed[k].mode;
                         self.closed[k].mode = Mode::Stick;
-                        let name = self.name(c.feature, c.plane);
-                        self.events.push(Event {
-                            t: self.t,
-                            what: format!("{name} sticks"),
-                        });
+                        let s = self.s.clone();
+                        let mut hint = Vec::new();
+                        let sticks = !matches!(
+                            accelerations(
+                                &self.setup.body,
+                                &self.setup.planes,
+                                &s,
+                                &o.gravity,
+                                &self.closed,
+                                &mut hint,
+                                o.rest_speed,
+                            ),
+                            Err(ContactError::Slips { contact, .. }) if contact == k
+                        );
+                        if sticks {
+                            let name = self.name(c.feature, c.plane);
+                            self.events.push(Event {
+                                t: self.t,
+                                what: format!("{name} sticks"),
+                            });
+                        } else {
+                            self.closed[k].mode = held;
+                        }
                     }
                 }
             }
@@ -433,6 +490,7 @@ impl<'a> Run<'a> {
                             feature: f,
                             plane: p,
                             mode: self.mode_of(f, p),
+            armed: true,
                         });
                         self.hint.clear();
                         self.events.push(Event {
@@ -480,11 +538,24 @@ impl<'a> Run<'a> {
             self.tab = tab;
             let (y5, err) = match result {
                 Ok(r) => r,
-                Err(_) => {
-                    // a mode change inside the step: shorter
+                Err(error) => {
+                    // A mode change inside the step: shorter, until the step is within the
+                    // resolution of t, where a sticking contact that must slip is switched.
                     self.steps.1 += 1;
                     h = hh / 4.0;
                     if h < floor {
+                        if let ContactError::Slips { contact, direction } = error {
+                            self.closed[contact].mode = Mode::Slide(direction);
+                            self.closed[contact].armed = false;
+                            let c = &self.closed[contact];
+                            let name = self.name(c.feature, c.plane);
+                            self.events.push(Event {
+                                t: self.t,
+                                what: format!("{name} starts to slide"),
+                            });
+                            h = floor * 16.0;
+                            continue;
+                        }
                         return Err(SimulateError::Stalled { t: self.t });
                     }
                     continue;
@@ -542,17 +613,7 @@ impl<'a> Run<'a> {
                 h = hh * (0.9 * ratio.max(1e-10).powf(-0.2)).min(5.0);
             }
         }
-        Ok(Simulation {
-            impacts: self.impacts,
-            events: self.events,
-            samples: self.samples,
-            zeno: self.zeno,
-            end,
-            t_end: self.t,
-            state: self.s,
-            steps: self.steps,
-            drift: self.drift,
-        })
+        Ok(end)
     }
 
     /// A planar motion held in its plane: C on it, v in it, ω along its normal, the attitude
@@ -593,6 +654,7 @@ impl<'a> Run<'a> {
             feature: f,
             plane: p,
             mode: self.mode_of(f, p),
+            armed: true,
         });
         let o = &self.setup.options;
         let mut hint = Vec::new();
@@ -690,6 +752,7 @@ impl<'a> Run<'a> {
                     feature: a.feature,
                     plane: a.plane,
                     mode,
+                    armed: true,
                 });
             }
         }
@@ -774,6 +837,7 @@ impl<'a> Run<'a> {
             feature: f,
             plane: p,
             mode: self.mode_of(f, p),
+            armed: true,
         }];
         self.hint.clear();
         let dissipated = before - energy(&self.s);
