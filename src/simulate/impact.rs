@@ -64,7 +64,7 @@ pub struct At {
 
 /// What an impact gave.
 #[derive(Clone, Debug, PartialEq)]
-pub struct Outcome1 {
+pub struct Rebound {
     /// v after (world).
     pub v: V3,
     /// ω after (world).
@@ -102,7 +102,7 @@ pub fn solve(
     at: &[At],
     law: Law,
     tolerance: f64,
-) -> Result<Outcome1, ImpactError> {
+) -> Result<Rebound, ImpactError> {
     let problem = problem(body, planes, s, at)?;
     let rough = at.iter().any(|c| planes[c.plane].law.mu > 0.0);
     match law {
@@ -120,7 +120,7 @@ pub fn solve(
                 .collect();
             let out = solve_lzb(&problem, &laws, tolerance)
                 .map_err(|e| ImpactError::NoAnswer(e.to_string()))?;
-            Ok(Outcome1 {
+            Ok(Rebound {
                 w: to_v3(&out.velocity.top()),
                 v: to_v3(&out.velocity.bottom()),
                 impulses: out.impulses.clone(),
@@ -141,11 +141,11 @@ pub fn solve(
             let impulses = (0..b.contacts())
                 .map(|i| out.impulses[b.offset[i]] * b.directions[b.offset[i]].norm())
                 .collect();
-            Ok(Outcome1 {
+            Ok(Rebound {
                 w: to_v3(&out.velocity.top()),
                 v: to_v3(&out.velocity.bottom()),
                 impulses,
-                verdicts: out.verdicts.iter().map(|v| format!("{v:?}")).collect(),
+                verdicts: out.verdicts.iter().map(ToString::to_string).collect(),
                 note: None,
             })
         }
@@ -180,8 +180,8 @@ fn to_v3(v: &Vec3<f64>) -> V3 {
     V3::new(v[0], v[1], v[2])
 }
 
-fn outcome(out: &Outcome<f64>, verdicts: Vec<String>, note: Option<String>) -> Outcome1 {
-    Outcome1 {
+fn outcome(out: &Outcome<f64>, verdicts: Vec<String>, note: Option<String>) -> Rebound {
+    Rebound {
         w: to_v3(&out.velocity.top()),
         v: to_v3(&out.velocity.bottom()),
         // the normals are unit: P = P̂
@@ -223,10 +223,10 @@ fn simultaneous(
     planes: &[Plane],
     s: &State,
     at: &[At],
-    problem: Problem<f64>,
+    whole: Problem<f64>,
     model: Model,
-) -> Result<Outcome1, ImpactError> {
-    let mut impact = Impact::assemble(&problem).map_err(no_answer)?;
+) -> Result<Rebound, ImpactError> {
+    let mut impact = Impact::assemble(&whole).map_err(no_answer)?;
     if !impact.singular() {
         let mut out = Outcome::default();
         impact.solve(model, &mut out).map_err(no_answer)?;
@@ -245,13 +245,13 @@ fn simultaneous(
         let mut trial = basis.clone();
         trial.push(i);
         let sub: Vec<At> = trial.iter().map(|&k| at[k].clone()).collect();
-        let p = problem_of(body, planes, s, &sub)?;
+        let p = problem(body, planes, s, &sub)?;
         if !Impact::assemble(&p).map_err(no_answer)?.singular() {
             basis = trial;
         }
     }
     let sub: Vec<At> = basis.iter().map(|&k| at[k].clone()).collect();
-    let p = problem_of(body, planes, s, &sub)?;
+    let p = problem(body, planes, s, &sub)?;
     let mut reduced = Impact::assemble(&p).map_err(no_answer)?;
     let mut out = Outcome::default();
     reduced.solve(model, &mut out).map_err(no_answer)?;
@@ -300,10 +300,6 @@ fn simultaneous(
         list(&basis)
     ));
     Ok(result)
-}
-
-fn problem_of(body: &Body, planes: &[Plane], s: &State, at: &[At]) -> Result<Problem<f64>, ImpactError> {
-    problem(body, planes, s, at)
 }
 
 fn list(basis: &[usize]) -> String {
