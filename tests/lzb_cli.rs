@@ -665,3 +665,50 @@ fn the_impulse_history_of_a_rough_impact_has_tangential_columns() {
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// `--precision double-double` integrates the LZB law in double-double: the JSON says so, and
+/// its impulses agree with the f64 run's within twice the f64 estimate plus the double-double
+/// one (each side's distance from the exact outcome is within twice its own); the other laws
+/// refuse it (status 2, naming the law).
+#[test]
+fn precision_double_double_runs_the_lzb_law_and_only_it() {
+    let cradle = example("cradle-3-lzb.toml");
+    let cradle = cradle.to_str().unwrap();
+    let json = |extra: &[&str]| -> serde_json::Value {
+        let mut args = vec!["solve", cradle, "--json"];
+        args.extend_from_slice(extra);
+        let out = run(&args);
+        assert_eq!(
+            out.status.code(),
+            Some(0),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        serde_json::from_slice(&out.stdout).expect("JSON")
+    };
+    let f = json(&[]);
+    let d = json(&["--precision", "double-double"]);
+    assert_eq!(f["scalar"], "f64");
+    assert_eq!(d["scalar"], "double-double");
+    let est = |j: &serde_json::Value| j["integration"]["error_estimate"].as_f64().unwrap();
+    assert!(d["integration"]["tolerance"].as_f64().unwrap() < 1e-20);
+    let bound = 2.0 * (est(&f) + est(&d)) + 4.0 * f64::EPSILON;
+    for i in 0..2 {
+        let p = |j: &serde_json::Value| j["contacts"][i]["impulse"].as_f64().unwrap();
+        assert!((p(&f) - p(&d)).abs() <= bound, "P{}: {} vs {}", i + 1, p(&f), p(&d));
+    }
+    let pitching = example("pitching-bar.toml");
+    let out = run(&[
+        "solve",
+        pitching.to_str().unwrap(),
+        "--precision",
+        "double-double",
+    ]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("--precision double-double") && err.contains("--law lzb"),
+        "{err}"
+    );
+    assert!(out.stdout.is_empty());
+}

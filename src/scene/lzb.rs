@@ -1,5 +1,6 @@
 //! A scene under the LZB law (`[solve] law = "lzb"`, `--law lzb`): each contact's law read from
-//! its keys, the impact integrated by [`crate::impact::multiple::solve_lzb`] in f64, and its
+//! its keys, the impact integrated by [`crate::impact::multiple::solve_lzb`] in f64 (or
+//! double-double, [`run_lzb_in`]), and its
 //! report.
 //!
 //! Per contact: `stiffness` K_i (default 1; only the ratios between contacts change the
@@ -8,8 +9,9 @@
 //! `MultipleImpactNSL(e, K, η)` — and Stronge's energetic coefficient e_i, read from
 //! `k_energetic` when given, else from the contact's `k` (or `k_poisson`), as the energetic
 //! restitution of the frictional integration reads it. The scene's numbers must be plain
-//! numbers (no symbols); the integration is numerical, so the result is f64 whatever the
-//! inputs (`--exact` is refused by the command line). Contacts with `mu` > 0 take Coulomb
+//! numbers (no symbols); the integration is numerical, so the result is a float (f64, or
+//! double-double with `--precision double-double`) whatever the inputs (`--exact` is refused
+//! by the command line). Contacts with `mu` > 0 take Coulomb
 //! friction along the path; the report then adds each contact's tangential impulse and the
 //! energy friction dissipated there (a frictionless report is unchanged).
 
@@ -146,8 +148,8 @@ pub struct LzbReport {
     pub samples: Vec<Sample>,
 }
 
-/// Solve `scene` under the LZB law, in f64, to the relative `tolerance` (the scene's
-/// `[solve] tolerance` when `None`, else ε^(2/3)).
+/// Solve `scene` under the LZB law, in f64, to the relative tolerance of the scene's
+/// `[solve] tolerance`, else ε^(2/3) ([`run_lzb_in`] in another float type).
 ///
 /// # Errors
 /// [`RunError`]: the scene's bad input, or the integration's [`crate::impact::multiple::LzbError`].
@@ -156,8 +158,8 @@ pub fn run_lzb(scene: &Scene) -> Result<LzbReport, RunError> {
 }
 
 /// Solve `scene` under the LZB law in the float type `T` (`f64` or double-double), to the
-/// relative `tolerance` (the scene's `[solve] tolerance` when `None`, else ε^(2/3) of `T`:
-/// 3.7·10⁻¹¹ in f64, 1.3·10⁻²¹ in double-double). The mechanism is built in `T` from the
+/// relative tolerance of the scene's `[solve] tolerance`, else ε^(2/3) of `T` (3.7·10⁻¹¹ in
+/// f64, 1.3·10⁻²¹ in double-double). The mechanism is built in `T` from the
 /// scene's exact numbers; the laws' K, η, e are their `f64` values, taken exactly into `T`.
 /// The report's numbers are the outcome's rounded to `f64`.
 ///
