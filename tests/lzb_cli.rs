@@ -695,7 +695,13 @@ fn precision_double_double_runs_the_lzb_law_and_only_it() {
     let bound = 2.0 * (est(&f) + est(&d)) + 4.0 * f64::EPSILON;
     for i in 0..2 {
         let p = |j: &serde_json::Value| j["contacts"][i]["impulse"].as_f64().unwrap();
-        assert!((p(&f) - p(&d)).abs() <= bound, "P{}: {} vs {}", i + 1, p(&f), p(&d));
+        assert!(
+            (p(&f) - p(&d)).abs() <= bound,
+            "P{}: {} vs {}",
+            i + 1,
+            p(&f),
+            p(&d)
+        );
     }
     let pitching = example("pitching-bar.toml");
     let out = run(&[

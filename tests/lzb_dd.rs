@@ -22,12 +22,12 @@ use inertance::impact::solve::Impact;
 use inertance::mechanics::body::RigidBody;
 use inertance::mechanics::contact::Contact;
 use inertance::mechanics::screw::{Screw, Vec3};
+use inertance::number::rational_to_f64;
 use inertance::scalar::dd::DoubleDouble;
 use inertance::scalar::{Exact, Scalar, ratio};
 use inertance::scene::Scene;
 use inertance::scene::lzb::contact_laws;
 use inertance::scene::pipeline::{friction_tolerance, prepare};
-use inertance::number::rational_to_f64;
 use num_rational::BigRational;
 
 /// The double-double tolerance of the closed-form tests.
@@ -95,12 +95,8 @@ fn double_double_meets_the_closed_form_far_below_f64() {
             let g = impact.g_hat();
             let gmax = (0..n).map(|i| g[i * n + i].to_f64()).fold(0.0, f64::max);
             let pi = v0[0].to_f64() / gmax;
-            let out = solve_lzb(
-                &box_landing::<DoubleDouble>(corners, k, (2, 1)),
-                &laws,
-                TOL,
-            )
-            .expect("ends");
+            let out = solve_lzb(&box_landing::<DoubleDouble>(corners, k, (2, 1)), &laws, TOL)
+                .expect("ends");
             let p = closed.impulses[0].to_f64();
             let ceiling = out.stats.accepted as f64 * TOL * (p + pi);
             assert!(
@@ -114,7 +110,8 @@ fn double_double_meets_the_closed_form_far_below_f64() {
                  f64's rounding of P",
                 out.stats.accepted
             );
-            let bound = 2.0 * out.error_estimate + 64.0 * n as f64 * DoubleDouble::epsilon_f64() * p;
+            let bound =
+                2.0 * out.error_estimate + 64.0 * n as f64 * DoubleDouble::epsilon_f64() * p;
             for i in 0..n {
                 let exact_p = closed.impulses[i].to_rational().expect("exact");
                 let d = distance(out.impulses[i], &exact_p);
@@ -132,7 +129,11 @@ fn double_double_meets_the_closed_form_far_below_f64() {
             for i in 0..n {
                 let exact_v = closed.after[i].to_rational().expect("exact");
                 let d = distance(out.after[i], &exact_v);
-                assert!(d <= row * bound + 64.0 * DoubleDouble::epsilon_f64(), "v{}: {d:e}", i + 1);
+                assert!(
+                    d <= row * bound + 64.0 * DoubleDouble::epsilon_f64(),
+                    "v{}: {d:e}",
+                    i + 1
+                );
             }
         }
     }
@@ -147,8 +148,12 @@ fn double_double_friction_meets_the_sliding_closed_form() {
     let dd = |p: i64, q: i64| ratio::<DoubleDouble>(p, q);
     let body = RigidBody::principal(dd(1, 1), Vec3::new(dd(1, 2), dd(1, 2), dd(1, 2)));
     let twist = Screw::new(Vec3::zeros(), Vec3::new(dd(2, 1), dd(0, 1), dd(-1, 1)));
-    let c = Contact::new(Vec3::zeros(), Vec3::new(dd(0, 1), dd(0, 1), dd(-1, 1)), dd(1, 2))
-        .with_friction(dd(3, 10));
+    let c = Contact::new(
+        Vec3::zeros(),
+        Vec3::new(dd(0, 1), dd(0, 1), dd(-1, 1)),
+        dd(1, 2),
+    )
+    .with_friction(dd(3, 10));
     let p = Problem::new(body, twist, vec![c]).expect("valid");
     let law = ContactLaw::new(2.0, 1.5, 0.5).expect("valid");
     let out = solve_lzb(&p, &[law], TOL).expect("ends");

@@ -348,11 +348,19 @@ mod tests {
         for x in [q(3, 7), q(-5, 2), q(40, 1), q(-1, 1000)] {
             let dd = DoubleDouble::from_rational(&x);
             let back = dd.exp().ln();
-            assert!(error(back, &x) <= 64.0 * EPSILON, "{x}: {}", error(back, &x));
+            assert!(
+                error(back, &x) <= 64.0 * EPSILON,
+                "{x}: {}",
+                error(back, &x)
+            );
         }
         let two = DoubleDouble::from_rational(&q(2, 1));
         let p = two.powf(DoubleDouble::from_rational(&q(3, 2)));
-        assert!(error(p * p, &q(8, 1)) <= 32.0 * EPSILON, "{}", error(p * p, &q(8, 1)));
+        assert!(
+            error(p * p, &q(8, 1)) <= 32.0 * EPSILON,
+            "{}",
+            error(p * p, &q(8, 1))
+        );
         let third = DoubleDouble::from_rational(&q(1, 3)).powf(two);
         assert!(error(third, &q(1, 9)) <= 32.0 * EPSILON);
         assert_eq!(DoubleDouble::zero().powf(two), DoubleDouble::zero());

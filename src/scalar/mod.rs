@@ -248,7 +248,8 @@ impl Real for dd::DoubleDouble {
         dd::DoubleDouble::powf(self, a)
     }
     fn sqrt(self) -> Self {
-        self.sqrt_value().unwrap_or_else(|| dd::DoubleDouble::new(f64::NAN, 0.0))
+        self.sqrt_value()
+            .unwrap_or_else(|| dd::DoubleDouble::new(f64::NAN, 0.0))
     }
     fn abs(self) -> Self {
         dd::DoubleDouble::abs(self)

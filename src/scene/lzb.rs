@@ -17,8 +17,8 @@
 
 use crate::impact::multiple::{ContactLaw, Event, LawError, Lzb, Sample, Stats, solve_lzb};
 use crate::mechanics::screw::Screws;
-use crate::scalar::{Real, Scalar};
 use crate::number::Number;
+use crate::scalar::{Real, Scalar};
 
 use super::pipeline::{RunError, friction_tolerance, prepare};
 use super::schema::ContactSpec;
@@ -181,7 +181,12 @@ pub fn run_lzb_in<T: Real>(scene: &Scene) -> Result<LzbReport, RunError> {
 }
 
 fn report<T: Real, S: Screws<T>>(scene: &Scene, out: Lzb<S, T>, names: &[String]) -> LzbReport {
-    let c: Vec<f64> = out.velocity.components().iter().map(Scalar::to_f64).collect();
+    let c: Vec<f64> = out
+        .velocity
+        .components()
+        .iter()
+        .map(Scalar::to_f64)
+        .collect();
     let twists = names
         .iter()
         .enumerate()

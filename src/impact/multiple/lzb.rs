@@ -607,7 +607,11 @@ impl<'a, T: Real, S: Screws<T>> Run<'a, T, S> {
     fn new(b: &'a Blocks<T, S>, laws: &'a [ContactLaw], tol: f64) -> Result<Self, LzbError> {
         let n = b.contacts();
         let len = b.len();
-        let axis: Vec<T> = b.directions.iter().map(|d| norm(&[d[0], d[1], d[2]])).collect();
+        let axis: Vec<T> = b
+            .directions
+            .iter()
+            .map(|d| norm(&[d[0], d[1], d[2]]))
+            .collect();
         let g = |i: usize| {
             let o = b.offset[i];
             (*b.at(o, o) / (axis[o] * axis[o])).to_f64()
@@ -628,10 +632,7 @@ impl<'a, T: Real, S: Screws<T>> Run<'a, T, S> {
         scale.extend(laws.iter().map(|l| energy.powf(1.0 / (l.exponent + 1.0))));
         scale.extend(std::iter::repeat_n(energy, 3 * n));
         let c: Vec<T> = laws.iter().map(ContactLaw::c).collect();
-        let power: Vec<T> = laws
-            .iter()
-            .map(|l| T::of(l.exponent) + T::one())
-            .collect();
+        let power: Vec<T> = laws.iter().map(|l| T::of(l.exponent) + T::one()).collect();
         // The duration of the fastest contact's compression alone: δ* = ((η+1) v²/(2 g K))^(1/(η+1))
         // reached at the speed v, so τ* ≈ δ*/v.
         let h0 = (0..n)
@@ -769,8 +770,8 @@ impl<'a, T: Real, S: Screws<T>> Run<'a, T, S> {
             dy[len + j] = du;
             dy[len + n + j] = dwc;
             dy[len + 2 * n + j] = dwr;
-            dy[len + 3 * n + j] = (o + 1..o + 1 + self.b.dims[j])
-                .fold(zero, |s, q| s + v[q] * r.lambda[q]);
+            dy[len + 3 * n + j] =
+                (o + 1..o + 1 + self.b.dims[j]).fold(zero, |s, q| s + v[q] * r.lambda[q]);
         }
         Ok(())
     }
@@ -973,7 +974,9 @@ impl<'a, T: Real, S: Screws<T>> Run<'a, T, S> {
             }
             let rho = norm(&self.slip(&v, &regime.origin, i)).to_f64();
             let o = self.b.offset[i];
-            let f: Vec<T> = (o + 1..o + 3).map(|q| r.velocity[q] / self.axis[q]).collect();
+            let f: Vec<T> = (o + 1..o + 3)
+                .map(|q| r.velocity[q] / self.axis[q])
+                .collect();
             let along = dot(u, &f).to_f64();
             if rho <= STOP_ZONE * self.lock && along < 0.0 {
                 let rate = (o..o + 3).fold(0.0_f64, |m, q| m.max(r.lambda[q].to_f64().abs()));
@@ -1350,7 +1353,7 @@ impl<'a, T: Real, S: Screws<T>> Run<'a, T, S> {
     ) -> Result<(T, Vec<T>, Vec<T>), LzbError> {
         let (mut lo, mut hi) = (T::zero(), h);
         let mut best = (yn, err);
-        let half = ratio::<T>(1, 2);
+        let half = T::of(0.5);
         let width = 4.0 * T::epsilon_f64();
         while (hi - lo).to_f64() > width * hi.to_f64() {
             let mid = half * (lo + hi);
