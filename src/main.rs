@@ -42,6 +42,13 @@ struct SceneOpts {
     axes: Option<AxesArg>,
 }
 
+/// `solve --precision`.
+#[derive(Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+enum PrecisionArg {
+    F64,
+    DoubleDouble,
+}
+
 #[derive(Clone, Copy, clap::ValueEnum)]
 enum AxesArg {
     World,
@@ -73,6 +80,10 @@ enum Command {
         /// `[solve] outputs`.
         #[arg(long, value_delimiter = ',', value_name = "NAMES")]
         outputs: Option<Vec<String>>,
+        /// The float type of a numerical integration: `f64` (default) or `double-double`
+        /// (about 32 digits; the LZB law only, whose default tolerance there is 1.3e-21).
+        #[arg(long, value_enum, value_name = "TYPE")]
+        precision: Option<PrecisionArg>,
         /// The relative tolerance of a spatial frictional integration, between 0 and 1;
         /// default: the scene's `[solve] tolerance`, else ε^(2/3) (3.7e-11 in f64).
         #[arg(long, value_name = "TOL")]
@@ -295,6 +306,7 @@ fn main() -> ExitCode {
             law,
             json,
             outputs,
+            precision,
             tolerance,
             trajectory,
             opts,
@@ -306,6 +318,7 @@ fn main() -> ExitCode {
                 law,
                 json,
                 outputs,
+                precision,
                 tolerance,
                 trajectory,
             },
@@ -518,6 +531,7 @@ struct Flags {
     law: Option<LawArg>,
     json: bool,
     outputs: Option<Vec<String>>,
+    precision: Option<PrecisionArg>,
     tolerance: Option<String>,
     trajectory: Option<PathBuf>,
 }
@@ -558,14 +572,25 @@ fn solve(path: PathBuf, flags: Flags, opts: &SceneOpts) -> ExitCode {
             }
         }
     }
+    let double = flags.precision == Some(PrecisionArg::DoubleDouble);
     if scene.law == Law::Lzb {
         let asked = LzbFlags {
             exact: flags.exact,
             json: flags.json,
             trajectory: flags.trajectory,
             model: flags.model.is_some(),
+            double,
         };
         return solve_lzb(&path, &scene, asked);
+    }
+    if double {
+        eprintln!(
+            "error: {}: --precision double-double: the {} law is solved in f64 or exactly \
+             (`--exact`); double-double is the LZB law's (`--law lzb`)",
+            path.display(),
+            scene.law
+        );
+        return ExitCode::from(2);
     }
     let format = match &flags.trajectory {
         None => None,
@@ -613,15 +638,18 @@ struct LzbFlags {
     json: bool,
     trajectory: Option<PathBuf>,
     model: bool,
+    /// `--precision double-double`.
+    double: bool,
 }
 
-/// `solve` under the LZB law: f64 only, its own table or JSON report, and its impulse history
+/// `solve` under the LZB law: f64 or double-double, its own table or JSON report, and its impulse history
 /// with `--trajectory FILE.csv|.json|.svg`.
 fn solve_lzb(path: &std::path::Path, scene: &Scene, flags: LzbFlags) -> ExitCode {
     let refused = if flags.exact {
         Some(
-            "--exact: the LZB law is integrated numerically (adaptive Runge–Kutta in f64), so \
-             its result is never exact: drop --exact",
+            "--exact: the LZB law is integrated numerically (adaptive Runge–Kutta in f64, or \
+             double-double with `--precision double-double`), so its result is never exact: \
+             drop --exact",
         )
     } else if flags.model {
         Some(
@@ -642,7 +670,12 @@ fn solve_lzb(path: &std::path::Path, scene: &Scene, flags: LzbFlags) -> ExitCode
             Err(code) => return code,
         },
     };
-    match inertance::scene::lzb::run_lzb(scene) {
+    let solved = if flags.double {
+        inertance::scene::lzb::run_lzb_in::<inertance::scalar::dd::DoubleDouble>(scene)
+    } else {
+        inertance::scene::lzb::run_lzb(scene)
+    };
+    match solved {
         Ok(report) => {
             if let Some((file, format)) = history {
                 let text = match format {

@@ -571,7 +571,7 @@ fn analyze_says_how_far_the_simultaneous_answer_is_from_the_lzb_one() {
 }
 
 #[test]
-fn bench_times_the_lzb_solve_in_f64() {
+fn bench_times_the_lzb_solve_in_f64_and_double_double() {
     let cradle = example("cradle-3-lzb.toml");
     let out = run(&[
         "bench",
@@ -589,6 +589,132 @@ fn bench_times_the_lzb_solve_in_f64() {
     let j: serde_json::Value = serde_json::from_slice(&out.stdout).expect("JSON");
     let text = j.to_string();
     assert!(j["ns_per_solve"]["f64"].as_f64().unwrap() > 0.0, "{text}");
+    assert!(
+        j["ns_per_solve"]["double-double"].as_f64().unwrap() > 0.0,
+        "{text}"
+    );
     assert!(j["ns_per_solve"]["exact"].is_null(), "{text}");
-    assert!(text.contains("integrated in f64 only"), "{text}");
+    assert!(
+        text.contains("integrated in f64 and double-double only"),
+        "{text}"
+    );
+}
+
+/// With friction the impulse history adds, per rough contact, its tangential impulse and its
+/// slip velocity (`tau{i}`, `vt{i}` in a plane): zero impulse at τ = 0, the report's
+/// tangential impulse at the end, and the same numbers in the JSON history.
+#[test]
+fn the_impulse_history_of_a_rough_impact_has_tangential_columns() {
+    let path = example("rough-bar.toml");
+    let path = path.to_str().unwrap();
+    let dir = std::env::temp_dir().join(format!("inertance-lzb-rough-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let csv = dir.join("history.csv");
+    let json = dir.join("history.json");
+    let out = run(&[
+        "solve",
+        path,
+        "--law",
+        "lzb",
+        "--json",
+        "--trajectory",
+        csv.to_str().unwrap(),
+    ]);
+    assert_eq!(
+        out.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let j: serde_json::Value = serde_json::from_slice(&out.stdout).expect("JSON");
+    let text = std::fs::read_to_string(&csv).unwrap();
+    let mut lines = text.lines();
+    assert_eq!(
+        lines.next(),
+        Some("tau,primary,P1,v1,E1,tau1,vt1,P2,v2,E2,tau2,vt2")
+    );
+    let rows: Vec<Vec<f64>> = lines
+        .map(|l| l.split(',').map(|x| x.parse::<f64>().expect(x)).collect())
+        .collect();
+    assert!(rows.iter().all(|r| r.len() == 12));
+    let (first, last) = (&rows[0], rows.last().unwrap());
+    for (i, col) in [(0, 5), (1, 10)] {
+        assert_eq!(first[col], 0.0, "no tangential impulse at τ = 0");
+        let reported = j["contacts"][i]["tangential_impulse"][0].as_f64().unwrap();
+        assert_eq!(last[col], reported, "τ{}", i + 1);
+        assert!(reported != 0.0, "contact {} takes friction", i + 1);
+    }
+    let out = run(&[
+        "solve",
+        path,
+        "--law",
+        "lzb",
+        "--trajectory",
+        json.to_str().unwrap(),
+    ]);
+    assert_eq!(out.status.code(), Some(0));
+    let h: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    let samples = h["samples"].as_array().unwrap();
+    assert_eq!(samples.len(), rows.len());
+    for (s, r) in samples.iter().zip(&rows) {
+        for (i, col) in [(0, 5), (1, 10)] {
+            assert_eq!(s["tangential"][i][0].as_f64().unwrap(), r[col]);
+            assert_eq!(s["slips"][i][0].as_f64().unwrap(), r[col + 1]);
+        }
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// `--precision double-double` integrates the LZB law in double-double: the JSON says so, and
+/// its impulses agree with the f64 run's within twice the f64 estimate plus the double-double
+/// one (each side's distance from the exact outcome is within twice its own); the other laws
+/// refuse it (status 2, naming the law).
+#[test]
+fn precision_double_double_runs_the_lzb_law_and_only_it() {
+    let cradle = example("cradle-3-lzb.toml");
+    let cradle = cradle.to_str().unwrap();
+    let json = |extra: &[&str]| -> serde_json::Value {
+        let mut args = vec!["solve", cradle, "--json"];
+        args.extend_from_slice(extra);
+        let out = run(&args);
+        assert_eq!(
+            out.status.code(),
+            Some(0),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        serde_json::from_slice(&out.stdout).expect("JSON")
+    };
+    let f = json(&[]);
+    let d = json(&["--precision", "double-double"]);
+    assert_eq!(f["scalar"], "f64");
+    assert_eq!(d["scalar"], "double-double");
+    let est = |j: &serde_json::Value| j["integration"]["error_estimate"].as_f64().unwrap();
+    assert!(d["integration"]["tolerance"].as_f64().unwrap() < 1e-20);
+    let bound = 2.0 * (est(&f) + est(&d)) + 4.0 * f64::EPSILON;
+    for i in 0..2 {
+        let p = |j: &serde_json::Value| j["contacts"][i]["impulse"].as_f64().unwrap();
+        assert!(
+            (p(&f) - p(&d)).abs() <= bound,
+            "P{}: {} vs {}",
+            i + 1,
+            p(&f),
+            p(&d)
+        );
+    }
+    let pitching = example("pitching-bar.toml");
+    let out = run(&[
+        "solve",
+        pitching.to_str().unwrap(),
+        "--precision",
+        "double-double",
+    ]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("--precision double-double") && err.contains("--law lzb"),
+        "{err}"
+    );
+    assert!(out.stdout.is_empty());
 }

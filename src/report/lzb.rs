@@ -86,7 +86,7 @@ impl LzbReport {
             .sum();
         json!({
             "scene": self.name,
-            "scalar": "f64",
+            "scalar": self.scalar,
             "law": "lzb",
             "contacts": contacts,
             "twist_after": twists,
@@ -109,12 +109,28 @@ impl LzbReport {
 
     /// The impulse history as CSV: one row per sample, the columns `tau`, `primary` (the
     /// primary contact, from 1), then per contact i (from 1) `P{i}` (N s), `v{i}` (m/s,
-    /// positive approaching) and `E{i}` (J, its potential energy).
+    /// positive approaching) and `E{i}` (J, its potential energy), and for a rough contact its
+    /// tangential impulse and slip velocity along its unit tangent axes: `tau{i}` and `vt{i}`
+    /// in a plane (the contact's y sense), `tau{i}y`, `tau{i}z`, `vt{i}y`, `vt{i}z` in space.
     pub fn history_csv(&self) -> String {
         let n = self.impulses.len();
+        let dims: Vec<usize> = (0..n).map(|i| self.tangential[i].len()).collect();
+        let axes = |d: usize| -> &'static [&'static str] {
+            match d {
+                0 => &[],
+                1 => &[""],
+                _ => &["y", "z"],
+            }
+        };
         let mut out = String::from("tau,primary");
         for i in 1..=n {
             out += &format!(",P{i},v{i},E{i}");
+            for a in axes(dims[i - 1]) {
+                out += &format!(",tau{i}{a}");
+            }
+            for a in axes(dims[i - 1]) {
+                out += &format!(",vt{i}{a}");
+            }
         }
         out.push('\n');
         for s in &self.samples {
@@ -126,6 +142,9 @@ impl LzbReport {
                     cell(s.velocities[i]),
                     cell(s.energies[i])
                 );
+                for x in s.tangential[i].iter().chain(&s.slips[i]) {
+                    out += &format!(",{}", cell(*x));
+                }
             }
             out.push('\n');
         }
@@ -133,7 +152,9 @@ impl LzbReport {
     }
 
     /// The impulse history as JSON: `{"law": "lzb", "samples": [{"tau", "primary",
-    /// "impulses", "velocities", "energies"}]}`, contacts numbered from 1 in `primary`.
+    /// "impulses", "velocities", "energies", "tangential", "slips"}]}`, contacts numbered from
+    /// 1 in `primary`; `tangential` and `slips` hold per contact its tangential impulse and
+    /// slip velocity along its unit tangent axes (an empty list for a frictionless contact).
     pub fn history_json(&self) -> Json {
         let samples: Vec<Json> = self
             .samples
@@ -145,10 +166,12 @@ impl LzbReport {
                     "impulses": list(&s.impulses),
                     "velocities": list(&s.velocities),
                     "energies": list(&s.energies),
+                    "tangential": s.tangential.iter().map(|t| list(t)).collect::<Vec<_>>(),
+                    "slips": s.slips.iter().map(|t| list(t)).collect::<Vec<_>>(),
                 })
             })
             .collect();
-        json!({"law": "lzb", "samples": samples})
+        json!({"law": "lzb", "scalar": self.scalar, "samples": samples})
     }
 
     /// The impulse history as an SVG: above, each contact's impulse P_i against τ; below, its

@@ -205,6 +205,57 @@ pub trait Scalar: Field {
     }
 }
 
+/// A float scalar with the real functions a numerical integration takes — the LZB law's
+/// forces u^η ([`crate::impact::multiple::lzb`]) and its slip directions' norms: `f64` and
+/// [`DoubleDouble`](dd::DoubleDouble), the two types it runs in. Every `f64` is exactly a value
+/// of the type ([`Real::of`]), so parameters given in `f64` enter without a second rounding.
+pub trait Real: Scalar + Copy {
+    /// The `f64` x, exactly.
+    fn of(x: f64) -> Self;
+    /// self^a for self ≥ 0 and a > 0 (0 at self = 0); the exponent in the type, so that
+    /// 1/(η + 1) is not rounded to `f64` first.
+    fn powf(self, a: Self) -> Self;
+    /// √self for self ≥ 0.
+    fn sqrt(self) -> Self;
+    /// |self|.
+    fn abs(self) -> Self;
+}
+
+impl Real for f64 {
+    #[inline]
+    fn of(x: f64) -> Self {
+        x
+    }
+    #[inline]
+    fn powf(self, a: Self) -> Self {
+        f64::powf(self, a)
+    }
+    #[inline]
+    fn sqrt(self) -> Self {
+        f64::sqrt(self)
+    }
+    #[inline]
+    fn abs(self) -> Self {
+        f64::abs(self)
+    }
+}
+
+impl Real for dd::DoubleDouble {
+    fn of(x: f64) -> Self {
+        dd::DoubleDouble::new(x, 0.0)
+    }
+    fn powf(self, a: Self) -> Self {
+        dd::DoubleDouble::powf(self, a)
+    }
+    fn sqrt(self) -> Self {
+        self.sqrt_value()
+            .unwrap_or_else(|| dd::DoubleDouble::new(f64::NAN, 0.0))
+    }
+    fn abs(self) -> Self {
+        dd::DoubleDouble::abs(self)
+    }
+}
+
 macro_rules! float_scalar {
     ($t:ty, $name:literal) => {
         impl Scalar for $t {

@@ -1,5 +1,6 @@
 //! A scene under the LZB law (`[solve] law = "lzb"`, `--law lzb`): each contact's law read from
-//! its keys, the impact integrated by [`crate::impact::multiple::solve_lzb`] in f64, and its
+//! its keys, the impact integrated by [`crate::impact::multiple::solve_lzb`] in f64 (or
+//! double-double, [`run_lzb_in`]), and its
 //! report.
 //!
 //! Per contact: `stiffness` K_i (default 1; only the ratios between contacts change the
@@ -8,14 +9,16 @@
 //! `MultipleImpactNSL(e, K, η)` — and Stronge's energetic coefficient e_i, read from
 //! `k_energetic` when given, else from the contact's `k` (or `k_poisson`), as the energetic
 //! restitution of the frictional integration reads it. The scene's numbers must be plain
-//! numbers (no symbols); the integration is numerical, so the result is f64 whatever the
-//! inputs (`--exact` is refused by the command line). Contacts with `mu` > 0 take Coulomb
+//! numbers (no symbols); the integration is numerical, so the result is a float (f64, or
+//! double-double with `--precision double-double`) whatever the inputs (`--exact` is refused
+//! by the command line). Contacts with `mu` > 0 take Coulomb
 //! friction along the path; the report then adds each contact's tangential impulse and the
 //! energy friction dissipated there (a frictionless report is unchanged).
 
 use crate::impact::multiple::{ContactLaw, Event, LawError, Lzb, Sample, Stats, solve_lzb};
 use crate::mechanics::screw::Screws;
 use crate::number::Number;
+use crate::scalar::{Real, Scalar};
 
 use super::pipeline::{RunError, friction_tolerance, prepare};
 use super::schema::ContactSpec;
@@ -101,6 +104,8 @@ pub type Twists = Vec<(String, [f64; 3], [f64; 3])>;
 pub struct LzbReport {
     /// The scene's name.
     pub name: String,
+    /// The float type the law was integrated in ([`Scalar::NAME`]: `"f64"`, `"double-double"`).
+    pub scalar: &'static str,
     /// The law of every contact.
     pub laws: Vec<ContactLaw>,
     /// v_i⁰ per contact (positive approaching).
@@ -143,28 +148,45 @@ pub struct LzbReport {
     pub samples: Vec<Sample>,
 }
 
-/// Solve `scene` under the LZB law, in f64, to the relative `tolerance` (the scene's
-/// `[solve] tolerance` when `None`, else ε^(2/3)).
+/// Solve `scene` under the LZB law, in f64, to the relative tolerance of the scene's
+/// `[solve] tolerance`, else ε^(2/3) ([`run_lzb_in`] in another float type).
 ///
 /// # Errors
 /// [`RunError`]: the scene's bad input, or the integration's [`crate::impact::multiple::LzbError`].
 pub fn run_lzb(scene: &Scene) -> Result<LzbReport, RunError> {
+    run_lzb_in::<f64>(scene)
+}
+
+/// Solve `scene` under the LZB law in the float type `T` (`f64` or double-double), to the
+/// relative tolerance of the scene's `[solve] tolerance`, else ε^(2/3) of `T` (3.7·10⁻¹¹ in
+/// f64, 1.3·10⁻²¹ in double-double). The mechanism is built in `T` from the
+/// scene's exact numbers; the laws' K, η, e are their `f64` values, taken exactly into `T`.
+/// The report's numbers are the outcome's rounded to `f64`.
+///
+/// # Errors
+/// As [`run_lzb`].
+pub fn run_lzb_in<T: Real>(scene: &Scene) -> Result<LzbReport, RunError> {
     let laws = contact_laws(scene)?;
-    let tolerance = scene.tolerance.unwrap_or_else(friction_tolerance::<f64>);
+    let tolerance = scene.tolerance.unwrap_or_else(friction_tolerance::<T>);
     if scene.system.is_some() {
-        let system = scene.system::<f64>()?;
+        let system = scene.system::<T>()?;
         let out = solve_lzb(&system, &laws, tolerance)?;
         let names = super::system_pipeline::body_names(scene);
         Ok(report(scene, out, &names))
     } else {
-        let problem = prepare::<f64>(scene)?;
+        let problem = prepare::<T>(scene)?;
         let out = solve_lzb(&problem, &laws, tolerance)?;
         Ok(report(scene, out, &["body".to_string()]))
     }
 }
 
-fn report<S: Screws<f64>>(scene: &Scene, out: Lzb<S>, names: &[String]) -> LzbReport {
-    let c = out.velocity.components();
+fn report<T: Real, S: Screws<T>>(scene: &Scene, out: Lzb<S, T>, names: &[String]) -> LzbReport {
+    let c: Vec<f64> = out
+        .velocity
+        .components()
+        .iter()
+        .map(Scalar::to_f64)
+        .collect();
     let twists = names
         .iter()
         .enumerate()
@@ -174,22 +196,24 @@ fn report<S: Screws<f64>>(scene: &Scene, out: Lzb<S>, names: &[String]) -> LzbRe
             (name.clone(), [at(0), at(1), at(2)], [at(3), at(4), at(5)])
         })
         .collect();
+    let f = |x: &[T]| -> Vec<f64> { x.iter().map(Scalar::to_f64).collect() };
     LzbReport {
         name: scene.name.clone(),
-        before: out.before.clone(),
+        scalar: T::NAME,
+        before: f(&out.before),
         ending_order: out.ending_order(),
         friction: out.has_friction(),
         laws: out.laws,
-        impulses: out.impulses,
-        after: out.after,
+        impulses: f(&out.impulses),
+        after: f(&out.after),
         twists,
-        work_compression: out.work_compression,
-        work_expansion: out.work_expansion,
-        tangential: out.tangential,
-        friction_dissipation: out.friction_dissipation,
-        max_energy: out.max_energy,
-        kinetic_energy_loss: out.kinetic_energy_loss,
-        energy_residual: out.energy_residual,
+        work_compression: f(&out.work_compression),
+        work_expansion: f(&out.work_expansion),
+        tangential: out.tangential.iter().map(|t| f(t)).collect(),
+        friction_dissipation: f(&out.friction_dissipation),
+        max_energy: f(&out.max_energy),
+        kinetic_energy_loss: out.kinetic_energy_loss.to_f64(),
+        energy_residual: out.energy_residual.to_f64(),
         events: out.events,
         stats: out.stats,
         error_estimate: out.error_estimate,
@@ -219,7 +243,7 @@ impl LzbReport {
         use std::fmt::Write;
         let mut s = String::new();
         let n = self.impulses.len();
-        let _ = writeln!(s, "{} — f64 (lzb)\n", self.name);
+        let _ = writeln!(s, "{} — {} (lzb)\n", self.name, self.scalar);
         let _ = writeln!(
             s,
             "LZB law (Liu, Zhao & Brogliato 2008): per contact stiffness K, exponent η, \

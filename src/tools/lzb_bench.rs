@@ -1,12 +1,15 @@
 //! The LZB law's time per solve (`inertance bench --scene` on a scene under the LZB law, and
 //! the LZB examples of the report's scene table): the mechanism prepared once, each solve the
 //! whole integration ([`crate::impact::multiple::solve_lzb`]: G, the adaptive Runge–Kutta steps,
-//! the events, every output). The law is integrated in f64 only: the other types say so.
+//! the events, every output). The law is integrated in f64 and double-double (each to its
+//! default tolerance ε^(2/3), unless the scene sets one); f32 and exact say why not.
 
 use std::time::Duration;
 
 use crate::impact::mechanism::Mechanism;
 use crate::impact::multiple::{ContactLaw, LzbError, solve_lzb};
+use crate::scalar::Real;
+use crate::scalar::dd::DoubleDouble;
 use crate::scene::Scene;
 use crate::scene::lzb::contact_laws;
 use crate::scene::pipeline::{RunError, friction_tolerance, prepare};
@@ -17,12 +20,12 @@ use crate::tools::system_bench::{NotTimed, SceneTiming};
 pub const SOLVE: &str =
     "solve_lzb on the prepared mechanism (G, adaptive RK5(4) steps, events), every output";
 
-/// Time `scene` under the LZB law, each solve within `budget`: f64, the other types not
-/// applicable.
+/// Time `scene` under the LZB law, each solve within `budget`: f64 and double-double, the
+/// other types not applicable.
 pub fn time_lzb_scene(scene: &Scene, budget: Duration) -> SceneTiming {
-    let f64_only = || {
+    let floats_only = || {
         Err(NotTimed::NotApplicable(
-            "the LZB law is integrated in f64 only".into(),
+            "the LZB law is integrated in f64 and double-double only".into(),
         ))
     };
     SceneTiming {
@@ -32,10 +35,10 @@ pub fn time_lzb_scene(scene: &Scene, budget: Duration) -> SceneTiming {
         law: "lzb".into(),
         solve: SOLVE.into(),
         rows: vec![
-            ("f32", f64_only()),
-            ("f64", time_lzb(scene, budget)),
-            ("double-double", f64_only()),
-            ("exact", f64_only()),
+            ("f32", floats_only()),
+            ("f64", time_lzb::<f64>(scene, budget)),
+            ("double-double", time_lzb::<DoubleDouble>(scene, budget)),
+            ("exact", floats_only()),
         ],
     }
 }
@@ -48,20 +51,20 @@ fn not_timed(e: RunError) -> NotTimed {
     }
 }
 
-/// ns per LZB solve of `scene`.
-fn time_lzb(scene: &Scene, budget: Duration) -> Result<f64, NotTimed> {
+/// ns per LZB solve of `scene` in `T`.
+fn time_lzb<T: Real>(scene: &Scene, budget: Duration) -> Result<f64, NotTimed> {
     let laws = contact_laws(scene).map_err(|e| not_timed(e.into()))?;
-    let tolerance = scene.tolerance.unwrap_or_else(friction_tolerance::<f64>);
+    let tolerance = scene.tolerance.unwrap_or_else(friction_tolerance::<T>);
     if scene.system.is_some() {
-        let system = scene.system::<f64>().map_err(|e| not_timed(e.into()))?;
+        let system = scene.system::<T>().map_err(|e| not_timed(e.into()))?;
         time_on(&system, &laws, tolerance, budget)
     } else {
-        let problem = prepare::<f64>(scene).map_err(not_timed)?;
+        let problem = prepare::<T>(scene).map_err(not_timed)?;
         time_on(&problem, &laws, tolerance, budget)
     }
 }
 
-fn time_on<M: Mechanism<f64>>(
+fn time_on<T: Real, M: Mechanism<T>>(
     mechanism: &M,
     laws: &[ContactLaw],
     tolerance: f64,

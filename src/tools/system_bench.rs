@@ -345,7 +345,7 @@ const EXAMPLES: [(&str, &str); 8] = [
         "examples/rough-pendulum.toml",
         include_str!("../../examples/rough-pendulum.toml"),
     ),
-    // The LZB law (f64 only): the cradle, and a bar on two supports (one body).
+    // The LZB law (f64 and double-double): the cradle, and a bar on two supports (one body).
     (
         "examples/cradle-3-lzb.toml",
         include_str!("../../examples/cradle-3-lzb.toml"),
@@ -421,7 +421,7 @@ impl SystemsBench {
                 p.lean_ns.map_or("—".into(), |t| fmt_ns(t / p.links as f64))
             );
         }
-        s += "\nSystems: the example scenes of several bodies, and the LZB law's examples (one solve = System::new + assemble + the scene's law, every output; under the LZB law its integration, f64 only; time per solve / per body / per contact):\n\n| scene | bodies | contacts | law |";
+        s += "\nSystems: the example scenes of several bodies, and the LZB law's examples (one solve = System::new + assemble + the scene's law, every output; under the LZB law its integration, in f64 and double-double, f32 and exact not applicable; time per solve / per body / per contact):\n\n| scene | bodies | contacts | law |";
         let names: Vec<&str> = self
             .scenes
             .first()

@@ -13,6 +13,8 @@
 //! The integration ([`super::lzb`]) carries u = E^(1/(η+1)) instead of E, in which the force
 //! reads F = (η+1) c u^η with c = (K/(η+1))^(1/(η+1)), and u = c δ during compression.
 
+use crate::scalar::Real;
+
 /// Why a contact's LZB parameters were refused.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum LawError {
@@ -106,18 +108,20 @@ impl ContactLaw {
         self.stiffness.powf(1.0 / m) * (m * energy.max(0.0)).powf(self.exponent / m)
     }
 
-    /// c = (K/(η+1))^(1/(η+1)): u = E^(1/(η+1)) = c δ during compression.
-    pub(crate) fn c(&self) -> f64 {
-        let m = self.exponent + 1.0;
-        (self.stiffness / m).powf(1.0 / m)
+    /// c = (K/(η+1))^(1/(η+1)): u = E^(1/(η+1)) = c δ during compression. In the
+    /// integration's type `T`, from the parameters' exact `f64` values (η + 1 and its inverse
+    /// are formed in `T`, not rounded to `f64`).
+    pub(crate) fn c<T: Real>(&self) -> T {
+        let m = T::of(self.exponent) + T::one();
+        (T::of(self.stiffness) / m).powf(T::one() / m)
     }
 
     /// F as a function of u = E^(1/(η+1)): (η+1) c u^η (zero for u ≤ 0).
-    pub(crate) fn force_of_u(&self, c: f64, u: f64) -> f64 {
-        if u <= 0.0 {
-            0.0
+    pub(crate) fn force_of_u<T: Real>(&self, c: T, u: T) -> T {
+        if u.signum_i8() <= 0 {
+            T::zero()
         } else {
-            (self.exponent + 1.0) * c * u.powf(self.exponent)
+            (T::of(self.exponent) + T::one()) * c * u.powf(T::of(self.exponent))
         }
     }
 }
@@ -135,7 +139,7 @@ mod tests {
             let e = k * delta.powf(eta + 1.0) / (eta + 1.0);
             let f = k * delta.powf(eta);
             assert!((law.force(e) - f).abs() <= 4.0 * f64::EPSILON * f);
-            let c = law.c();
+            let c: f64 = law.c();
             let u = e.powf(1.0 / (eta + 1.0));
             assert!((u - c * delta).abs() <= 4.0 * f64::EPSILON * u);
             assert!((law.force_of_u(c, u) - f).abs() <= 8.0 * f64::EPSILON * f);

@@ -1,6 +1,7 @@
 //! The LZB law: Darboux–Keller shock dynamics with each contact's own compression and
 //! expansion (Liu, Zhao & Brogliato, Proc. R. Soc. A 464 (2008) 3193, §2–3; 465 (2009) 1),
-//! integrated in f64 by an embedded Runge–Kutta pair with adaptive steps and event location.
+//! integrated in f64 or double-double ([`Real`]) by an embedded Runge–Kutta pair with adaptive
+//! steps and event location.
 //!
 //! **The model** (frictionless; friction below). Contact i has a law ([`ContactLaw`]: K_i, η_i,
 //! e_i), a normal impulse P_i (along its unit normal) and a normal relative velocity v_i,
@@ -98,6 +99,19 @@
 //! law with P = (1 + e) v⁰/g; with friction, the energetic law solved exactly in a plane) and
 //! against an independent time integration of the compliant model, with Coulomb's force on
 //! sliding contacts (`tests/lzb.rs`, `tests/lzb_friction.rs`).
+//!
+//! **The scalar.** The integration is generic over a float type `T` ([`Real`]: `f64`, and
+//! double-double, unit roundoff u = 2⁻¹⁰⁴): the state, the tableau (rounded once from its
+//! fractions to `T`, so a double-double run does not inherit f64's rounding of 3/40 or
+//! 19372/6561), the step h and τ, and the forces (u^η = e^(η ln u) in double-double, to a few u)
+//! are in `T`; what only steers the integration — the step's error ratio, the event tests'
+//! signs and thresholds, the error estimate — is read in f64. Events are bisected to
+//! 4 ε_T h, so that locating them costs no more than the tolerance asks: with f64's width a
+//! double-double run's energies would be cut at 10⁻¹⁶ of a step. The tolerance may go down to
+//! 4 ε_T (10⁻²⁵ and below in double-double, where ε_T^(2/3) = 1.3·10⁻²¹ is the default); the
+//! steps grow as tol^(−1/5), so the cradle takes 21 041 steps at 1.3·10⁻²¹ against 181 at
+//! 3.7·10⁻¹¹ in f64. `tests/lzb_dd.rs` checks double-double against the exact closed forms far
+//! below f64's rounding, and against f64 within the f64 estimate.
 
 use crate::impact::friction::Blocks;
 use crate::impact::friction::departure::invariant_directions;
@@ -107,7 +121,8 @@ use crate::impact::friction::spatial::{A, E};
 use crate::impact::mechanism::Mechanism;
 use crate::mechanics::contact::ContactFrame;
 use crate::mechanics::screw::Screws;
-use crate::scalar::ratio;
+use crate::scalar::{Real, Scalar, ratio};
+use num_traits::Zero;
 
 use super::law::{ContactLaw, LawError};
 
@@ -205,6 +220,11 @@ pub struct Sample {
     pub velocities: Vec<f64>,
     /// E_i.
     pub energies: Vec<f64>,
+    /// τ_i: each contact's tangential impulse along its unit tangent axes, as
+    /// [`Lzb::tangential`] (none for a frictionless contact, one entry in a plane, two in space).
+    pub tangential: Vec<Vec<f64>>,
+    /// v_it: each contact's slip velocity along the same axes (m/s).
+    pub slips: Vec<Vec<f64>>,
 }
 
 /// What the integration cost.
@@ -292,7 +312,8 @@ pub enum LzbError {
     /// A path of the program that does not run the LZB law (yet).
     #[error(
         "the LZB law is not run by {what}: `inertance solve`, `sweep`, `analyze`, `bench \
-         --scene` and Python's `solve` (and the library's `solve_lzb`) run it, in f64"
+         --scene` and Python's `solve` (and the library's `solve_lzb`) run it, in f64 (and \
+         double-double)"
     )]
     Unsupported {
         /// What was asked.
@@ -316,40 +337,46 @@ pub enum LzbError {
     },
 }
 
-/// The outcome of an impact under the LZB law. `S` is the mechanism's screw space.
+/// The outcome of an impact under the LZB law. `S` is the mechanism's screw space, `T` the
+/// float type the law was integrated in (`f64` or double-double, [`Real`]); the values of the
+/// outcome are in `T`, the path's samples, the events and the error estimate in `f64`.
 #[derive(Clone, Debug)]
-pub struct Lzb<S: Screws<f64>> {
+pub struct Lzb<S, T = f64>
+where
+    T: Real,
+    S: Screws<T>,
+{
     /// The law of every contact.
     pub laws: Vec<ContactLaw>,
     /// The stacked axes and their inertance matrix K ([`Blocks`]): every contact's unit normal
     /// when no contact has friction (then K = G); with friction also the tangent axes of the
     /// rough contacts — hatted (|t_i| = |n_i|) in a planar scene, unit in a spatial one.
-    pub blocks: Blocks<f64, S>,
+    pub blocks: Blocks<T, S>,
     /// v_i⁰ along the unit normals (m/s, positive approaching).
-    pub before: Vec<f64>,
+    pub before: Vec<T>,
     /// P_i along the unit normals (N s).
-    pub impulses: Vec<f64>,
+    pub impulses: Vec<T>,
     /// τ_i: each contact's tangential impulse along its unit tangent axes (N s): none without
     /// friction, one entry in a planar scene (along the in-plane tangent, in the sense of the
     /// contact's y axis), two in space (the frame's y and z). The impulse on the body is
     /// −(P_i n_i + τ_i · t_i): τ_i points along the slip it opposes.
-    pub tangential: Vec<Vec<f64>>,
+    pub tangential: Vec<Vec<T>>,
     /// v_i after impact (m/s, positive approaching).
-    pub after: Vec<f64>,
+    pub after: Vec<T>,
     /// {v} after impact: the mechanism's twist (each body's, for a system).
     pub velocity: S,
     /// ∫ v_i dP_i over the compression phases (J): the energy stored.
-    pub work_compression: Vec<f64>,
+    pub work_compression: Vec<T>,
     /// −∫ v_i dP_i over the expansion phases (J): the energy given back.
-    pub work_expansion: Vec<f64>,
+    pub work_expansion: Vec<T>,
     /// ∫ v_it · dτ_i (J): the energy friction dissipated at each contact (≥ 0).
-    pub friction_dissipation: Vec<f64>,
+    pub friction_dissipation: Vec<T>,
     /// The largest potential energy each contact held (J).
-    pub max_energy: Vec<f64>,
+    pub max_energy: Vec<T>,
     /// ΔE_c = T⁰ − T from the kinetic energies (J).
-    pub kinetic_energy_loss: f64,
+    pub kinetic_energy_loss: T,
     /// ΔE_c − Σ_i (W_c,i − W_r,i + W_f,i): zero but for the integration's error.
-    pub energy_residual: f64,
+    pub energy_residual: T,
     /// The events, in order.
     pub events: Vec<Event>,
     /// Steps and events.
@@ -364,20 +391,20 @@ pub struct Lzb<S: Screws<f64>> {
     pub samples: Vec<Sample>,
 }
 
-impl<S: Screws<f64>> Lzb<S> {
+impl<S: Screws<T>, T: Real> Lzb<S, T> {
     /// The energy dissipated in the normal direction at contact i: W_c,i − W_r,i =
     /// (1 − e_i²) W_c,i once the impact has ended (J); friction's is
     /// [`Lzb::friction_dissipation`].
-    pub fn dissipation(&self, i: usize) -> f64 {
+    pub fn dissipation(&self, i: usize) -> T {
         self.work_compression[i] - self.work_expansion[i]
     }
 
     /// Σ_i (W_c,i − W_r,i + W_f,i): the dissipation at the contacts, normal and by friction,
     /// which equals ΔE_c.
-    pub fn total_dissipation(&self) -> f64 {
-        (0..self.impulses.len())
-            .map(|i| self.dissipation(i) + self.friction_dissipation[i])
-            .sum()
+    pub fn total_dissipation(&self) -> T {
+        (0..self.impulses.len()).fold(T::zero(), |s, i| {
+            s + self.dissipation(i) + self.friction_dissipation[i]
+        })
     }
 
     /// Whether any contact has friction (the tangential columns of reports).
@@ -405,18 +432,19 @@ impl<S: Screws<f64>> Lzb<S> {
 }
 
 /// Solve the impact of `mechanism` under the LZB law, one [`ContactLaw`] per contact, the steps
-/// held to the relative `tolerance` (module docs). Contacts with μ_i > 0 take Coulomb
-/// friction along the way.
+/// held to the relative `tolerance` (module docs), in the mechanism's float type `T` (`f64` or
+/// double-double; a tolerance below 4ε of `T` is raised to it). Contacts with μ_i > 0 take
+/// Coulomb friction along the way.
 ///
 /// # Errors
 /// [`LzbError`]: a law count or parameter out of range, a tolerance outside (0, 1), a contact
 /// no impulse moves, no consistent stick/slip at a slip event, or an integration that did not
 /// end.
-pub fn solve_lzb<M: Mechanism<f64>>(
+pub fn solve_lzb<T: Real, M: Mechanism<T>>(
     mechanism: &M,
     laws: &[ContactLaw],
     tolerance: f64,
-) -> Result<Lzb<M::Screw>, LzbError> {
+) -> Result<Lzb<M::Screw, T>, LzbError> {
     let n = mechanism.contacts().len();
     if laws.len() != n {
         return Err(LzbError::LawCount {
@@ -431,15 +459,15 @@ pub fn solve_lzb<M: Mechanism<f64>>(
     if !(tolerance > 0.0 && tolerance < 1.0) {
         return Err(LzbError::Tolerance { value: tolerance });
     }
-    let tolerance = tolerance.max(4.0 * f64::EPSILON);
-    let rough = mechanism.contacts().iter().any(|c| c.mu != 0.0);
+    let tolerance = tolerance.max(4.0 * T::epsilon_f64());
+    let rough = mechanism.contacts().iter().any(|c| !c.mu.is_zero());
     let blocks = match rough.then(|| Blocks::planar(mechanism)).flatten() {
         Some(b) => b,
         None => {
             let frames = (0..n)
                 .map(|i| {
                     let c = &mechanism.contacts()[i];
-                    if c.mu == 0.0 {
+                    if c.mu.is_zero() {
                         Ok(ContactFrame::normal_with(c, |u| {
                             mechanism.contact_axis(i, u)
                         }))
@@ -450,7 +478,7 @@ pub fn solve_lzb<M: Mechanism<f64>>(
                         })
                     }
                 })
-                .collect::<Result<Vec<ContactFrame<f64, M::Screw>>, _>>()?;
+                .collect::<Result<Vec<ContactFrame<T, M::Screw>>, _>>()?;
             Blocks::spatial(mechanism, &frames)
         }
     };
@@ -458,26 +486,26 @@ pub fn solve_lzb<M: Mechanism<f64>>(
     let path = run.integrate()?;
     let (len, y) = (run.len, &path.y);
     let unit = |q: usize| y[q] * run.axis[q];
-    let impulses: Vec<f64> = blocks.offset.iter().map(|&o| unit(o)).collect();
-    let tangential: Vec<Vec<f64>> = (0..n)
+    let impulses: Vec<T> = blocks.offset.iter().map(|&o| unit(o)).collect();
+    let tangential: Vec<Vec<T>> = (0..n)
         .map(|i| {
             let o = blocks.offset[i];
             (o + 1..o + 1 + blocks.dims[i]).map(unit).collect()
         })
         .collect();
     let v = run.velocities(y);
-    let after: Vec<f64> = (0..n).map(|i| run.normal(&v, i)).collect();
-    let before: Vec<f64> = (0..n).map(|i| run.normal(&blocks.v0, i)).collect();
+    let after: Vec<T> = (0..n).map(|i| run.normal(&v, i)).collect();
+    let before: Vec<T> = (0..n).map(|i| run.normal(&blocks.v0, i)).collect();
     let velocity = blocks.twist_after(mechanism.velocity(), &y[..len]);
     let kinetic_energy_loss =
         mechanism.kinetic_energy(mechanism.velocity()) - mechanism.kinetic_energy(&velocity);
     let work_compression = y[len + n..len + 2 * n].to_vec();
     let work_expansion = y[len + 2 * n..len + 3 * n].to_vec();
     let friction_dissipation = y[len + 3 * n..].to_vec();
-    let dissipated: f64 = (0..n)
-        .map(|i| work_compression[i] - work_expansion[i] + friction_dissipation[i])
-        .sum();
-    if !(y.iter().chain(&after).all(|x| x.is_finite()) && kinetic_energy_loss.is_finite()) {
+    let dissipated = (0..n).fold(T::zero(), |s, i| {
+        s + work_compression[i] - work_expansion[i] + friction_dissipation[i]
+    });
+    if !(y.iter().chain(&after).all(Scalar::is_finite) && kinetic_energy_loss.is_finite()) {
         return Err(LzbError::NotFinite);
     }
     Ok(Lzb {
@@ -497,22 +525,24 @@ pub fn solve_lzb<M: Mechanism<f64>>(
         stats: path.stats,
         error_estimate: path.estimate,
         tolerance,
-        end: path.tau,
+        end: path.tau.to_f64(),
         samples: path.samples,
         blocks,
     })
 }
 
 /// The integration's fixed data.
-struct Run<'a, S: Screws<f64>> {
+struct Run<'a, T: Real, S: Screws<T>> {
     n: usize,
     /// The number of stacked axes.
     len: usize,
-    b: &'a Blocks<f64, S>,
+    b: &'a Blocks<T, S>,
     laws: &'a [ContactLaw],
-    c: Vec<f64>,
+    c: Vec<T>,
+    /// η_j + 1 per contact, in `T`.
+    power: Vec<T>,
     /// |direction| of every axis: 1, or |n_i| on a planar scene's hatted axes.
-    axis: Vec<f64>,
+    axis: Vec<T>,
     tol: f64,
     /// Per component of y: the scale of its absolute tolerance.
     scale: Vec<f64>,
@@ -523,31 +553,32 @@ struct Run<'a, S: Screws<f64>> {
     /// (its own direction is integration noise there), and a slip falling through it stops.
     lock: f64,
     /// The first step.
-    h0: f64,
-    /// The Dormand–Prince tableau in f64, rounded once ([`A`], [`E`]): converting its fractions
-    /// at every stage of every step cost more than the rest of the step.
-    a: [[f64; 6]; 7],
+    h0: T,
+    /// The Dormand–Prince tableau rounded to `T` once ([`A`], [`E`]): converting its
+    /// fractions at every stage of every step cost more than the rest of the step, and
+    /// rounding them to `f64` would cap a double-double run at f64's accuracy.
+    a: [[T; 6]; 7],
     /// Its error weights.
-    e: [f64; 7],
+    e: [T; 7],
 }
 
 /// The contacts' modes: the phase of each one's normal impulse and the friction mode of its
 /// tangential one.
 #[derive(Clone, Debug)]
-struct Regime {
+struct Regime<T: Real> {
     phases: Vec<Phase>,
-    modes: Vec<Mode<f64>>,
+    modes: Vec<Mode<T>>,
     /// Per axis, the slip set aside when a contact was last at zero slip (its residual, below
     /// the event's resolution): slips are measured from it, so that a slip restarting from
     /// zero is not turned by the residual's direction.
-    origin: Vec<f64>,
+    origin: Vec<T>,
 }
 
 /// Where the integration ended.
-struct Path {
-    y: Vec<f64>,
-    tau: f64,
-    max_energy: Vec<f64>,
+struct Path<T: Real> {
+    y: Vec<T>,
+    tau: T,
+    max_energy: Vec<T>,
     events: Vec<Event>,
     stats: Stats,
     estimate: f64,
@@ -555,29 +586,38 @@ struct Path {
 }
 
 /// The velocities of every axis at a point, the modes in force there and their rates.
-type AtPoint = (Vec<f64>, Vec<Mode<f64>>, Rates<f64>);
+type AtPoint<T> = (Vec<T>, Vec<Mode<T>>, Rates<T>);
 
 /// |x|.
-fn norm(x: &[f64]) -> f64 {
-    x.iter().map(|a| a * a).sum::<f64>().sqrt()
+fn norm<T: Real>(x: &[T]) -> T {
+    x.iter().fold(T::zero(), |s, a| s + *a * *a).sqrt()
 }
 
 /// x · y.
-fn dot(x: &[f64], y: &[f64]) -> f64 {
-    x.iter().zip(y).map(|(a, b)| a * b).sum()
+fn dot<T: Real>(x: &[T], y: &[T]) -> T {
+    x.iter().zip(y).fold(T::zero(), |s, (a, b)| s + *a * *b)
 }
 
-impl<'a, S: Screws<f64>> Run<'a, S> {
-    fn new(b: &'a Blocks<f64, S>, laws: &'a [ContactLaw], tol: f64) -> Result<Self, LzbError> {
+/// max(a, b) of values of `T`, compared in `f64` (ties and near-ties: either).
+fn larger<T: Real>(a: T, b: T) -> T {
+    if b.to_f64() > a.to_f64() { b } else { a }
+}
+
+impl<'a, T: Real, S: Screws<T>> Run<'a, T, S> {
+    fn new(b: &'a Blocks<T, S>, laws: &'a [ContactLaw], tol: f64) -> Result<Self, LzbError> {
         let n = b.contacts();
         let len = b.len();
-        let axis: Vec<f64> = b.directions.iter().map(|d| d.norm()).collect();
+        let axis: Vec<T> = b
+            .directions
+            .iter()
+            .map(|d| norm(&[d[0], d[1], d[2]]))
+            .collect();
         let g = |i: usize| {
             let o = b.offset[i];
-            b.at(o, o) / (axis[o] * axis[o])
+            (*b.at(o, o) / (axis[o] * axis[o])).to_f64()
         };
-        let v0 = |i: usize| b.v0[b.offset[i]] / axis[b.offset[i]];
-        let speed = (0..len).fold(0.0_f64, |m, q| m.max((b.v0[q] / axis[q]).abs()));
+        let v0 = |i: usize| (b.v0[b.offset[i]] / axis[b.offset[i]]).to_f64();
+        let speed = (0..len).fold(0.0_f64, |m, q| m.max((b.v0[q] / axis[q]).to_f64().abs()));
         let mut gmax = 0.0_f64;
         for i in 0..n {
             let gii = g(i);
@@ -588,10 +628,11 @@ impl<'a, S: Screws<f64>> Run<'a, S> {
         }
         let impulse = speed / gmax;
         let energy = impulse * speed;
-        let mut scale: Vec<f64> = axis.iter().map(|a| impulse / a).collect();
+        let mut scale: Vec<f64> = axis.iter().map(|a| impulse / a.to_f64()).collect();
         scale.extend(laws.iter().map(|l| energy.powf(1.0 / (l.exponent + 1.0))));
         scale.extend(std::iter::repeat_n(energy, 3 * n));
-        let c: Vec<f64> = laws.iter().map(ContactLaw::c).collect();
+        let c: Vec<T> = laws.iter().map(ContactLaw::c).collect();
+        let power: Vec<T> = laws.iter().map(|l| T::of(l.exponent) + T::one()).collect();
         // The duration of the fastest contact's compression alone: δ* = ((η+1) v²/(2 g K))^(1/(η+1))
         // reached at the speed v, so τ* ≈ δ*/v.
         let h0 = (0..n)
@@ -609,32 +650,33 @@ impl<'a, S: Screws<f64>> Run<'a, S> {
             b,
             laws,
             c,
+            power,
             axis,
             tol,
             scale,
-            engage: (1e-3 * tol).max(64.0 * n as f64 * f64::EPSILON) * speed,
+            engage: (1e-3 * tol).max(64.0 * n as f64 * T::epsilon_f64()) * speed,
             lock: 16.0 * tol * speed,
-            h0,
-            a: A.map(|row| row.map(|(p, q)| ratio::<f64>(p, q))),
-            e: E.map(|(p, q)| ratio::<f64>(p, q)),
+            h0: T::of(h0),
+            a: A.map(|row| row.map(|(p, q)| ratio::<T>(p, q))),
+            e: E.map(|(p, q)| ratio::<T>(p, q)),
         })
     }
 
     /// v = v⁰ − K Λ along every axis.
-    fn velocities(&self, y: &[f64]) -> Vec<f64> {
+    fn velocities(&self, y: &[T]) -> Vec<T> {
         let mut dv = Vec::with_capacity(self.len);
         self.b.velocity_change(&y[..self.len], &mut dv);
-        dv.iter().zip(&self.b.v0).map(|(d, v0)| v0 + d).collect()
+        dv.iter().zip(&self.b.v0).map(|(d, v0)| *v0 + *d).collect()
     }
 
     /// Contact i's normal velocity along its unit normal, from the axes' velocities `v`.
-    fn normal(&self, v: &[f64], i: usize) -> f64 {
+    fn normal(&self, v: &[T], i: usize) -> T {
         let o = self.b.offset[i];
         v[o] / self.axis[o]
     }
 
     /// Contact i's slip along its unit tangent axes, measured from its `origin`.
-    fn slip(&self, v: &[f64], origin: &[f64], i: usize) -> Vec<f64> {
+    fn slip(&self, v: &[T], origin: &[T], i: usize) -> Vec<T> {
         let o = self.b.offset[i] + 1;
         (o..o + self.b.dims[i])
             .map(|q| (v[q] - origin[q]) / self.axis[q])
@@ -647,20 +689,24 @@ impl<'a, S: Screws<f64>> Run<'a, S> {
     }
 
     /// E_j = u_j^(η_j+1).
-    fn energy(&self, j: usize, u: f64) -> f64 {
-        u.max(0.0).powf(self.laws[j].exponent + 1.0)
+    fn energy(&self, j: usize, u: T) -> T {
+        if u.signum_i8() <= 0 {
+            T::zero()
+        } else {
+            u.powf(self.power[j])
+        }
     }
 
     /// F_j at y (zero at rest).
-    fn force(&self, y: &[f64], phases: &[Phase], j: usize) -> f64 {
+    fn force(&self, y: &[T], phases: &[Phase], j: usize) -> T {
         match phases[j] {
-            Phase::Rest => 0.0,
+            Phase::Rest => T::zero(),
             _ => self.laws[j].force_of_u(self.c[j], y[self.len + j]),
         }
     }
 
     /// The prescribed normal rates dp_j/dτ = F_j, along the stacked normal axes.
-    fn normals(&self, forces: &[f64]) -> Vec<Normal<f64>> {
+    fn normals(&self, forces: &[T]) -> Vec<Normal<T>> {
         (0..self.n)
             .map(|j| Normal::Given(forces[j] / self.axis[self.b.offset[j]]))
             .collect()
@@ -668,14 +714,14 @@ impl<'a, S: Screws<f64>> Run<'a, S> {
 
     /// The modes at velocities `v`: a spatial slip takes the direction of its slip above the
     /// lock speed and keeps the direction it was given below it.
-    fn modes_at(&self, v: &[f64], regime: &Regime) -> Vec<Mode<f64>> {
+    fn modes_at(&self, v: &[T], regime: &Regime<T>) -> Vec<Mode<T>> {
         (0..self.n)
             .map(|i| match &regime.modes[i] {
                 Mode::Slide(u) if self.spatial(i) => {
                     let s = self.slip(v, &regime.origin, i);
                     let rho = norm(&s);
-                    if rho > self.lock {
-                        Mode::Slide(s.iter().map(|x| x / rho).collect())
+                    if rho.to_f64() > self.lock {
+                        Mode::Slide(s.iter().map(|x| *x / rho).collect())
                     } else {
                         Mode::Slide(u.clone())
                     }
@@ -693,9 +739,9 @@ impl<'a, S: Screws<f64>> Run<'a, S> {
     }
 
     /// The velocities, the modes in force and their impulse rates dΛ/dτ at y.
-    fn rates_at(&self, y: &[f64], regime: &Regime, tau: f64) -> Result<AtPoint, LzbError> {
+    fn rates_at(&self, y: &[T], regime: &Regime<T>, tau: f64) -> Result<AtPoint<T>, LzbError> {
         let v = self.velocities(y);
-        let forces: Vec<f64> = (0..self.n)
+        let forces: Vec<T> = (0..self.n)
             .map(|j| self.force(y, &regime.phases, j))
             .collect();
         let modes = self.modes_at(&v, regime);
@@ -704,7 +750,7 @@ impl<'a, S: Screws<f64>> Run<'a, S> {
     }
 
     /// dy/dτ under `regime` (module docs).
-    fn rhs(&self, y: &[f64], regime: &Regime, dy: &mut [f64]) -> Result<(), LzbError> {
+    fn rhs(&self, y: &[T], regime: &Regime<T>, dy: &mut [T]) -> Result<(), LzbError> {
         let (n, len) = (self.n, self.len);
         let (v, _, r) = self.rates_at(y, regime, f64::NAN)?;
         dy[..len].copy_from_slice(&r.lambda);
@@ -714,46 +760,49 @@ impl<'a, S: Screws<f64>> Run<'a, S> {
             let vn = self.normal(&v, j);
             // v̂ p̂' = v_j F_j along the unit normal.
             let power = v[o] * r.lambda[o];
-            let e2 = law.restitution * law.restitution;
+            let e = T::of(law.restitution);
+            let zero = T::zero();
             let (du, dwc, dwr) = match regime.phases[j] {
-                Phase::Compression => (c * vn, power, 0.0),
-                Phase::Expansion => (c * vn / e2, 0.0, -power),
-                Phase::Rest => (0.0, 0.0, 0.0),
+                Phase::Compression => (c * vn, power, zero),
+                Phase::Expansion => (c * vn / (e * e), zero, -power),
+                Phase::Rest => (zero, zero, zero),
             };
             dy[len + j] = du;
             dy[len + n + j] = dwc;
             dy[len + 2 * n + j] = dwr;
-            dy[len + 3 * n + j] = (o + 1..o + 1 + self.b.dims[j])
-                .map(|q| v[q] * r.lambda[q])
-                .sum();
+            dy[len + 3 * n + j] =
+                (o + 1..o + 1 + self.b.dims[j]).fold(zero, |s, q| s + v[q] * r.lambda[q]);
         }
         Ok(())
     }
 
     /// One Dormand–Prince step of length h from y: (y_new, embedded error).
-    fn step(&self, y: &[f64], h: f64, regime: &Regime) -> Result<(Vec<f64>, Vec<f64>), LzbError> {
+    fn step(&self, y: &[T], h: T, regime: &Regime<T>) -> Result<(Vec<T>, Vec<T>), LzbError> {
         let len = y.len();
-        let mut k: Vec<Vec<f64>> = vec![vec![0.0; len]; 7];
+        let mut k: Vec<Vec<T>> = vec![vec![T::zero(); len]; 7];
         let mut stage = y.to_vec();
         for s in 0..7 {
             for (q, x) in stage.iter_mut().enumerate() {
-                *x = y[q] + h * (0..s).map(|r| self.a[s][r] * k[r][q]).sum::<f64>();
+                *x = y[q] + h * (0..s).fold(T::zero(), |acc, r| acc + self.a[s][r] * k[r][q]);
             }
-            let mut d = vec![0.0; len];
+            let mut d = vec![T::zero(); len];
             self.rhs(&stage, regime, &mut d)?;
             k[s] = d;
         }
         // The seventh stage is evaluated at the fifth-order solution (FSAL).
-        let err: Vec<f64> = (0..len)
-            .map(|q| h * (0..7).map(|r| self.e[r] * k[r][q]).sum::<f64>())
+        let err: Vec<T> = (0..len)
+            .map(|q| h * (0..7).fold(T::zero(), |acc, r| acc + self.e[r] * k[r][q]))
             .collect();
         Ok((stage, err))
     }
 
     /// The largest error relative to what the tolerance allows.
-    fn error_ratio(&self, y: &[f64], yn: &[f64], err: &[f64]) -> f64 {
+    fn error_ratio(&self, y: &[T], yn: &[T], err: &[T]) -> f64 {
         (0..y.len())
-            .map(|q| err[q].abs() / (self.tol * (y[q].abs().max(yn[q].abs()) + self.scale[q])))
+            .map(|q| {
+                let size = y[q].to_f64().abs().max(yn[q].to_f64().abs());
+                err[q].to_f64().abs() / (self.tol * (size + self.scale[q]))
+            })
             .fold(0.0, f64::max)
     }
 
@@ -762,9 +811,9 @@ impl<'a, S: Screws<f64>> Run<'a, S> {
     /// resolved.
     fn crossings(
         &self,
-        y: &[f64],
-        yn: &[f64],
-        regime: &Regime,
+        y: &[T],
+        yn: &[T],
+        regime: &Regime<T>,
         primary: usize,
     ) -> Result<Vec<(usize, EventKind)>, LzbError> {
         let (n, len) = (self.n, self.len);
@@ -772,8 +821,8 @@ impl<'a, S: Screws<f64>> Run<'a, S> {
         let phases = &regime.phases;
         let mut out = Vec::new();
         for j in 0..n {
-            let u = yn[len + j];
-            let vj = self.normal(&v, j);
+            let u = yn[len + j].to_f64();
+            let vj = self.normal(&v, j).to_f64();
             match phases[j] {
                 Phase::Compression if vj < 0.0 => out.push((j, EventKind::CompressionEnds)),
                 Phase::Expansion if u < 0.0 => out.push((j, EventKind::ExpansionEnds)),
@@ -788,13 +837,14 @@ impl<'a, S: Screws<f64>> Run<'a, S> {
                 let o = self.b.offset[j];
                 match &regime.modes[j] {
                     Mode::Slide(u)
-                        if !self.spatial(j) && u[0] * (v[o + 1] - regime.origin[o + 1]) < 0.0 =>
+                        if !self.spatial(j)
+                            && (u[0] * (v[o + 1] - regime.origin[o + 1])).signum_i8() < 0 =>
                     {
                         out.push((j, EventKind::Sticks));
                     }
                     Mode::Stick => {
-                        let cone = self.b.mu[j] * r.lambda[o];
-                        let t = norm(&r.lambda[o + 1..o + 1 + self.b.dims[j]]);
+                        let cone = (self.b.mu[j] * r.lambda[o]).to_f64();
+                        let t = norm(&r.lambda[o + 1..o + 1 + self.b.dims[j]]).to_f64();
                         if cone - t < -self.tol * (cone + t) {
                             out.push((j, EventKind::SlipStarts));
                         }
@@ -803,11 +853,11 @@ impl<'a, S: Screws<f64>> Run<'a, S> {
                 }
             }
         }
-        if self.energy(primary, y[len + primary]) > 0.0 {
-            let ek = self.energy(primary, yn[len + primary]);
+        if self.energy(primary, y[len + primary]).signum_i8() > 0 {
+            let ek = self.energy(primary, yn[len + primary]).to_f64();
             if let Some(j) = self.largest_energy(yn)
                 && j != primary
-                && self.energy(j, yn[len + j]) > ek * (1.0 + PRIMARY_MARGIN)
+                && self.energy(j, yn[len + j]).to_f64() > ek * (1.0 + PRIMARY_MARGIN)
             {
                 out.push((j, EventKind::Primary));
             }
@@ -816,10 +866,10 @@ impl<'a, S: Screws<f64>> Run<'a, S> {
     }
 
     /// The contact with the largest positive energy, if any.
-    fn largest_energy(&self, y: &[f64]) -> Option<usize> {
+    fn largest_energy(&self, y: &[T]) -> Option<usize> {
         let (n, len) = (self.n, self.len);
         (0..n)
-            .map(|j| (j, self.energy(j, y[len + j])))
+            .map(|j| (j, self.energy(j, y[len + j]).to_f64()))
             .filter(|(_, e)| *e > 0.0)
             .max_by(|a, b| a.1.total_cmp(&b.1))
             .map(|(j, _)| j)
@@ -827,12 +877,12 @@ impl<'a, S: Screws<f64>> Run<'a, S> {
 
     /// The primary contact at y: the largest energy, kept on ties within the margin; when every
     /// energy is zero, the fastest approaching.
-    fn primary(&self, y: &[f64], current: usize) -> usize {
+    fn primary(&self, y: &[T], current: usize) -> usize {
         let len = self.len;
         match self.largest_energy(y) {
             Some(j) => {
-                let ek = self.energy(current, y[len + current]);
-                if self.energy(j, y[len + j]) > ek * (1.0 + PRIMARY_MARGIN) {
+                let ek = self.energy(current, y[len + current]).to_f64();
+                if self.energy(j, y[len + j]).to_f64() > ek * (1.0 + PRIMARY_MARGIN) {
                     j
                 } else {
                     current
@@ -841,7 +891,11 @@ impl<'a, S: Screws<f64>> Run<'a, S> {
             None => {
                 let v = self.velocities(y);
                 (0..self.n)
-                    .max_by(|&a, &b| self.normal(&v, a).total_cmp(&self.normal(&v, b)))
+                    .max_by(|&a, &b| {
+                        self.normal(&v, a)
+                            .to_f64()
+                            .total_cmp(&self.normal(&v, b).to_f64())
+                    })
                     .unwrap_or(0)
             }
         }
@@ -849,7 +903,7 @@ impl<'a, S: Screws<f64>> Run<'a, S> {
 
     /// The longest step the spatial slips allow from y: nine tenths of the predicted time to
     /// zero slip of a slip that slows, and a turn of its direction of at most [`QUARTER`].
-    fn slip_cap(&self, y: &[f64], regime: &Regime) -> Result<f64, LzbError> {
+    fn slip_cap(&self, y: &[T], regime: &Regime<T>) -> Result<f64, LzbError> {
         let mut cap = f64::INFINITY;
         if !(0..self.n).any(|i| self.spatial(i) && matches!(regime.modes[i], Mode::Slide(_))) {
             return Ok(cap);
@@ -860,17 +914,21 @@ impl<'a, S: Screws<f64>> Run<'a, S> {
             if !self.spatial(i) {
                 continue;
             }
-            let rho = norm(&self.slip(&v, &regime.origin, i));
+            let rho = norm(&self.slip(&v, &regime.origin, i)).to_f64();
             if rho <= self.lock {
                 continue;
             }
             let o = self.b.offset[i] + 1;
-            let f: Vec<f64> = (o..o + 2).map(|q| r.velocity[q] / self.axis[q]).collect();
-            let along = dot(u, &f);
+            let f: Vec<f64> = (o..o + 2)
+                .map(|q| (r.velocity[q] / self.axis[q]).to_f64())
+                .collect();
+            let u = [u[0].to_f64(), u[1].to_f64()];
+            let along = u[0] * f[0] + u[1] * f[1];
             if along < 0.0 {
                 cap = cap.min(0.9 * rho / -along);
             }
-            let turn = norm(&[f[0] - along * u[0], f[1] - along * u[1]]) / rho;
+            let (x, z) = (f[0] - along * u[0], f[1] - along * u[1]);
+            let turn = (x * x + z * z).sqrt() / rho;
             if turn > 0.0 {
                 cap = cap.min(QUARTER / turn);
             }
@@ -879,7 +937,7 @@ impl<'a, S: Screws<f64>> Run<'a, S> {
     }
 
     /// Whether a spatial slip turned by more than [`QUARTER`] from y to yn.
-    fn turned(&self, y: &[f64], yn: &[f64], regime: &Regime) -> bool {
+    fn turned(&self, y: &[T], yn: &[T], regime: &Regime<T>) -> bool {
         let (v, vn) = (self.velocities(y), self.velocities(yn));
         (0..self.n).any(|i| {
             if !self.spatial(i) || !matches!(regime.modes[i], Mode::Slide(_)) {
@@ -889,8 +947,8 @@ impl<'a, S: Screws<f64>> Run<'a, S> {
                 self.slip(&v, &regime.origin, i),
                 self.slip(&vn, &regime.origin, i),
             );
-            let (ra, rb) = (norm(&a), norm(&b));
-            ra > self.lock && rb > self.lock && dot(&a, &b) < (QUARTER.cos()) * ra * rb
+            let (ra, rb) = (norm(&a).to_f64(), norm(&b).to_f64());
+            ra > self.lock && rb > self.lock && dot(&a, &b).to_f64() < (QUARTER.cos()) * ra * rb
         })
     }
 
@@ -899,8 +957,8 @@ impl<'a, S: Screws<f64>> Run<'a, S> {
     /// predicted time to zero slip) is added to `estimate`.
     fn stopped_slips(
         &self,
-        y: &[f64],
-        regime: &Regime,
+        y: &[T],
+        regime: &Regime<T>,
         tau: f64,
         estimate: &mut f64,
     ) -> Result<Vec<usize>, LzbError> {
@@ -914,14 +972,14 @@ impl<'a, S: Screws<f64>> Run<'a, S> {
             if !self.spatial(i) {
                 continue;
             }
-            let rho = norm(&self.slip(&v, &regime.origin, i));
+            let rho = norm(&self.slip(&v, &regime.origin, i)).to_f64();
             let o = self.b.offset[i];
-            let f: Vec<f64> = (o + 1..o + 3)
+            let f: Vec<T> = (o + 1..o + 3)
                 .map(|q| r.velocity[q] / self.axis[q])
                 .collect();
-            let along = dot(u, &f);
+            let along = dot(u, &f).to_f64();
             if rho <= STOP_ZONE * self.lock && along < 0.0 {
-                let rate = (o..o + 3).fold(0.0_f64, |m, q| m.max(r.lambda[q].abs()));
+                let rate = (o..o + 3).fold(0.0_f64, |m, q| m.max(r.lambda[q].to_f64().abs()));
                 *estimate += 2.0 * rate * rho / -along;
                 out.push(i);
             }
@@ -932,14 +990,14 @@ impl<'a, S: Screws<f64>> Run<'a, S> {
     /// The normal rates with which to choose modes at y: the forces there, or, when no
     /// contact is loaded yet (the start, where every F_j = 0 while the contacts load at the
     /// ratios of their forces), the forces at u_j = c_j v_j (a unit τ of loading).
-    fn choice_normals(&self, y: &[f64], regime: &Regime, v: &[f64]) -> Vec<Normal<f64>> {
-        let mut forces: Vec<f64> = (0..self.n)
+    fn choice_normals(&self, y: &[T], regime: &Regime<T>, v: &[T]) -> Vec<Normal<T>> {
+        let mut forces: Vec<T> = (0..self.n)
             .map(|j| self.force(y, &regime.phases, j))
             .collect();
-        if forces.iter().all(|f| *f == 0.0) {
+        if forces.iter().all(Zero::is_zero) {
             for (j, f) in forces.iter_mut().enumerate() {
                 if regime.phases[j] == Phase::Compression {
-                    let u = self.c[j] * self.normal(v, j).max(0.0);
+                    let u = self.c[j] * larger(self.normal(v, j), T::zero());
                     *f = self.laws[j].force_of_u(self.c[j], u);
                 }
             }
@@ -957,8 +1015,8 @@ impl<'a, S: Screws<f64>> Run<'a, S> {
     /// the slip events.
     fn resolve(
         &self,
-        y: &[f64],
-        regime: &mut Regime,
+        y: &[T],
+        regime: &mut Regime<T>,
         fresh: &[usize],
         stopped: &[usize],
         leaving: &[usize],
@@ -978,11 +1036,11 @@ impl<'a, S: Screws<f64>> Run<'a, S> {
                 continue;
             }
             if fresh.contains(&i) {
-                regime.origin[o..o + dims].fill(0.0);
+                regime.origin[o..o + dims].fill(T::zero());
                 let s = self.slip(&v, &regime.origin, i);
                 let rho = norm(&s);
-                if rho > self.engage {
-                    regime.modes[i] = Mode::Slide(s.iter().map(|x| x / rho).collect());
+                if rho.to_f64() > self.engage {
+                    regime.modes[i] = Mode::Slide(s.iter().map(|x| *x / rho).collect());
                     continue;
                 }
             } else if !stopped.contains(&i) && regime.modes[i] != Mode::Stick {
@@ -1006,16 +1064,16 @@ impl<'a, S: Screws<f64>> Run<'a, S> {
             all[i] = Mode::Stick;
         }
         let required = rates(b, &normals, &all).ok();
-        let guess = |i: usize| -> Vec<f64> {
+        let guess = |i: usize| -> Vec<T> {
             let o = b.offset[i];
             match &required {
-                Some(r) if norm(&r.lambda[o + 1..o + 1 + b.dims[i]]) > 0.0 => {
+                Some(r) if norm(&r.lambda[o + 1..o + 1 + b.dims[i]]).signum_i8() > 0 => {
                     let t = &r.lambda[o + 1..o + 1 + b.dims[i]];
-                    t.iter().map(|x| x / norm(t)).collect()
+                    t.iter().map(|x| *x / norm(t)).collect()
                 }
                 _ => {
-                    let mut u = vec![0.0; b.dims[i]];
-                    u[0] = 1.0;
+                    let mut u = vec![T::zero(); b.dims[i]];
+                    u[0] = T::one();
                     u
                 }
             }
@@ -1051,7 +1109,7 @@ impl<'a, S: Screws<f64>> Run<'a, S> {
                         .max_by(|x, z| {
                             (x.kappa > 0.0)
                                 .cmp(&(z.kappa > 0.0))
-                                .then(dot(&x.u, &g).total_cmp(&dot(&z.u, &g)))
+                                .then(dot(&x.u, &g).to_f64().total_cmp(&dot(&z.u, &g).to_f64()))
                         })
                         .ok_or(LzbError::NoConsistentModes { tau })?;
                     regime.modes[i] = Mode::Slide(best.u.clone());
@@ -1063,8 +1121,8 @@ impl<'a, S: Screws<f64>> Run<'a, S> {
                     .filter(|&i| regime.modes[i] == Mode::Stick && !out.contains(&i))
                     .filter(|&i| {
                         let o = b.offset[i];
-                        let cone = b.mu[i] * r.lambda[o];
-                        let t = norm(&r.lambda[o + 1..o + 3]);
+                        let cone = (b.mu[i] * r.lambda[o]).to_f64();
+                        let t = norm(&r.lambda[o + 1..o + 3]).to_f64();
                         cone - t < -self.tol * (cone + t)
                     })
                     .collect();
@@ -1094,13 +1152,13 @@ impl<'a, S: Screws<f64>> Run<'a, S> {
         Ok(events)
     }
 
-    fn integrate(&self) -> Result<Path, LzbError> {
+    fn integrate(&self) -> Result<Path<T>, LzbError> {
         let (n, len) = (self.n, self.len);
-        let mut y = vec![0.0; len + 4 * n];
+        let mut y = vec![T::zero(); len + 4 * n];
         let v0 = self.velocities(&y);
         let phases: Vec<Phase> = (0..n)
             .map(|j| {
-                if self.normal(&v0, j) > self.engage {
+                if self.normal(&v0, j).to_f64() > self.engage {
                     Phase::Compression
                 } else {
                     Phase::Rest
@@ -1110,37 +1168,58 @@ impl<'a, S: Screws<f64>> Run<'a, S> {
         let mut regime = Regime {
             phases,
             modes: vec![Mode::Free; n],
-            origin: vec![0.0; len],
+            origin: vec![T::zero(); len],
         };
         let all: Vec<usize> = (0..n).collect();
         self.resolve(&y, &mut regime, &all, &[], &[], 0.0)?;
         let mut primary = self.primary(&y, 0);
         let mut path = Path {
             y: Vec::new(),
-            tau: 0.0,
-            max_energy: vec![0.0; n],
+            tau: T::zero(),
+            max_energy: vec![T::zero(); n],
             events: Vec::new(),
             stats: Stats::default(),
             estimate: 0.0,
             samples: Vec::new(),
         };
-        let record = |path: &mut Path, y: &[f64], primary: usize| {
+        let record = |path: &mut Path<T>, y: &[T], primary: usize| {
             let v = self.velocities(y);
             path.samples.push(Sample {
-                tau: path.tau,
+                tau: path.tau.to_f64(),
                 primary,
                 impulses: (0..n)
-                    .map(|j| y[self.b.offset[j]] * self.axis[self.b.offset[j]])
+                    .map(|j| (y[self.b.offset[j]] * self.axis[self.b.offset[j]]).to_f64())
                     .collect(),
-                velocities: (0..n).map(|j| self.normal(&v, j)).collect(),
-                energies: (0..n).map(|j| self.energy(j, y[len + j])).collect(),
+                velocities: (0..n).map(|j| self.normal(&v, j).to_f64()).collect(),
+                energies: (0..n)
+                    .map(|j| self.energy(j, y[len + j]).to_f64())
+                    .collect(),
+                tangential: (0..n)
+                    .map(|j| {
+                        let o = self.b.offset[j] + 1;
+                        (o..o + self.b.dims[j])
+                            .map(|q| (y[q] * self.axis[q]).to_f64())
+                            .collect()
+                    })
+                    .collect(),
+                slips: (0..n)
+                    .map(|j| {
+                        let o = self.b.offset[j] + 1;
+                        (o..o + self.b.dims[j])
+                            .map(|q| (v[q] / self.axis[q]).to_f64())
+                            .collect()
+                    })
+                    .collect(),
             });
         };
         record(&mut path, &y, primary);
         let mut h = self.h0;
         while regime.phases.iter().any(|p| *p != Phase::Rest) {
             let steps = path.stats.accepted + path.stats.rejected;
-            h = h.min(self.slip_cap(&y, &regime)?);
+            let cap = self.slip_cap(&y, &regime)?;
+            if cap < h.to_f64() {
+                h = T::of(cap);
+            }
             if steps >= MAX_STEPS || path.stats.events >= MAX_EVENTS || path.tau + h == path.tau {
                 return Err(LzbError::Runaway {
                     steps,
@@ -1151,13 +1230,13 @@ impl<'a, S: Screws<f64>> Run<'a, S> {
             let ratio = self.error_ratio(&y, &yn, &err);
             if !ratio.is_finite() || ratio > 1.0 || self.turned(&y, &yn, &regime) {
                 path.stats.rejected += 1;
-                h *= if ratio.is_finite() && ratio > 1.0 {
+                h *= T::of(if ratio.is_finite() && ratio > 1.0 {
                     (0.9 * ratio.powf(-0.2)).max(0.2)
                 } else if ratio.is_finite() {
                     0.5
                 } else {
                     0.2
-                };
+                });
                 continue;
             }
             let (taken, yn, err) = if self.crossings(&y, &yn, &regime, primary)?.is_empty() {
@@ -1171,7 +1250,7 @@ impl<'a, S: Screws<f64>> Run<'a, S> {
             path.estimate += err[..len]
                 .iter()
                 .zip(&self.axis)
-                .fold(0.0_f64, |m, (e, a)| m.max((e * a).abs()));
+                .fold(0.0_f64, |m, (e, a)| m.max((*e * *a).to_f64().abs()));
             y = yn;
             let (mut fresh, mut stopped, mut leaving) = (Vec::new(), Vec::new(), Vec::new());
             for (j, kind) in found {
@@ -1188,22 +1267,22 @@ impl<'a, S: Screws<f64>> Run<'a, S> {
                 }
                 path.stats.events += 1;
                 path.events.push(Event {
-                    tau: path.tau,
+                    tau: path.tau.to_f64(),
                     contact: j,
                     kind,
                 });
                 match kind {
                     EventKind::CompressionEnds => {
-                        path.max_energy[j] = path.max_energy[j].max(self.energy(j, y[len + j]));
+                        path.max_energy[j] = larger(path.max_energy[j], self.energy(j, y[len + j]));
                         if self.laws[j].restitution == 0.0 {
-                            y[len + j] = 0.0;
+                            y[len + j] = T::zero();
                             regime.phases[j] = Phase::Rest;
                         } else {
                             regime.phases[j] = Phase::Expansion;
                         }
                     }
                     EventKind::ExpansionEnds => {
-                        y[len + j] = 0.0;
+                        y[len + j] = T::zero();
                         regime.phases[j] = Phase::Rest;
                     }
                     EventKind::Recompresses => regime.phases[j] = Phase::Compression,
@@ -1218,12 +1297,12 @@ impl<'a, S: Screws<f64>> Run<'a, S> {
             let v = self.velocities(&y);
             // A resting contact already approaching (the end of another's expansion left it so).
             for j in 0..n {
-                if regime.phases[j] == Phase::Rest && self.normal(&v, j) > self.engage {
+                if regime.phases[j] == Phase::Rest && self.normal(&v, j).to_f64() > self.engage {
                     regime.phases[j] = Phase::Compression;
                     fresh.push(j);
                     path.stats.events += 1;
                     path.events.push(Event {
-                        tau: path.tau,
+                        tau: path.tau.to_f64(),
                         contact: j,
                         kind: EventKind::Engages,
                     });
@@ -1232,15 +1311,16 @@ impl<'a, S: Screws<f64>> Run<'a, S> {
             // A spatial slip holds the direction of its slip at the last accepted step once it
             // falls below the lock speed.
             regime.modes = self.modes_at(&v, &regime);
-            stopped.extend(self.stopped_slips(&y, &regime, path.tau, &mut path.estimate)?);
+            let tau = path.tau.to_f64();
+            stopped.extend(self.stopped_slips(&y, &regime, tau, &mut path.estimate)?);
             let rests =
                 (0..n).any(|j| regime.phases[j] == Phase::Rest && regime.modes[j] != Mode::Free);
             if rests || !(fresh.is_empty() && stopped.is_empty() && leaving.is_empty()) {
-                let slips = self.resolve(&y, &mut regime, &fresh, &stopped, &leaving, path.tau)?;
+                let slips = self.resolve(&y, &mut regime, &fresh, &stopped, &leaving, tau)?;
                 for (j, kind) in slips {
                     path.stats.events += 1;
                     path.events.push(Event {
-                        tau: path.tau,
+                        tau,
                         contact: j,
                         kind,
                     });
@@ -1249,33 +1329,35 @@ impl<'a, S: Screws<f64>> Run<'a, S> {
             primary = self.primary(&y, primary);
             record(&mut path, &y, primary);
             if taken == h {
-                h *= (0.9 * ratio.max(1e-10).powf(-0.2)).min(5.0);
+                h *= T::of((0.9 * ratio.max(1e-10).powf(-0.2)).min(5.0));
             }
         }
         for j in 0..n {
-            path.max_energy[j] = path.max_energy[j].max(self.energy(j, y[len + j]));
+            path.max_energy[j] = larger(path.max_energy[j], self.energy(j, y[len + j]));
         }
         path.y = y;
         Ok(path)
     }
 
-    /// The shortest step from y, within a few ε of it, at whose end an event has happened: the
-    /// step, its end and its error estimate.
+    /// The shortest step from y, within a few ε of `T` of it, at whose end an event has
+    /// happened: the step, its end and its error estimate.
     #[allow(clippy::type_complexity)]
     fn locate(
         &self,
-        y: &[f64],
-        h: f64,
-        yn: Vec<f64>,
-        err: Vec<f64>,
-        regime: &Regime,
+        y: &[T],
+        h: T,
+        yn: Vec<T>,
+        err: Vec<T>,
+        regime: &Regime<T>,
         primary: usize,
-    ) -> Result<(f64, Vec<f64>, Vec<f64>), LzbError> {
-        let (mut lo, mut hi) = (0.0, h);
+    ) -> Result<(T, Vec<T>, Vec<T>), LzbError> {
+        let (mut lo, mut hi) = (T::zero(), h);
         let mut best = (yn, err);
-        while hi - lo > 4.0 * f64::EPSILON * hi {
-            let mid = 0.5 * (lo + hi);
-            if mid <= lo || mid >= hi {
+        let half = T::of(0.5);
+        let width = 4.0 * T::epsilon_f64();
+        while (hi - lo).to_f64() > width * hi.to_f64() {
+            let mid = half * (lo + hi);
+            if mid == lo || mid == hi {
                 break;
             }
             let (ym, em) = self.step(y, mid, regime)?;

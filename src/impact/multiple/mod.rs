@@ -6,7 +6,7 @@
 //! [`law`]: a contact's parameters — stiffness K_i, compliance exponent η_i, Stronge's energetic
 //! restitution e_i (Siconos' `MultipleImpactNSL`) · [`lzb`]: the Darboux–Keller shock dynamics
 //! of Liu, Zhao and Brogliato (2008, 2009), the impulses distributed by the ratio of the
-//! contacts' forces expressed through their potential energies, integrated adaptively in f64
+//! contacts' forces expressed through their potential energies, integrated adaptively in f64 or double-double
 //! with event location (Siconos' `OSNSMultipleImpact`, which steps in the primary impulse with
 //! a fixed step), with Coulomb friction at every instant of the path (Zhao, Liu & Brogliato
 //! 2009) through the friction layer's rates and mode resolution; a mechanism is one body, a
