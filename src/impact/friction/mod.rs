@@ -222,6 +222,25 @@ pub fn label<T: Scalar>(m: &Mode<T>) -> ModeLabel {
     }
 }
 
+/// The labels of a segment: a contact the unilateral law has released with no normal impulse
+/// rate reads `released`; the others their mode's label.
+pub(crate) fn labels<T: Scalar>(
+    hypothesis: Hypothesis,
+    normals: &[Normal<T>],
+    modes: &[Mode<T>],
+) -> Vec<ModeLabel> {
+    normals
+        .iter()
+        .zip(modes)
+        .map(|(nr, m)| match nr {
+            Normal::Given(r) if hypothesis == Hypothesis::Unilateral && r.is_zero() => {
+                ModeLabel::Released
+            }
+            _ => label(m),
+        })
+        .collect()
+}
+
 /// One segment of the impact between two events.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Segment<T: Scalar> {
@@ -424,19 +443,6 @@ pub enum FrictionError {
          (estimate this one by finite differences)"
     )]
     NotDifferentiable,
-    /// The unilateral law in a spatial scene: its events are located exactly in planar scenes
-    /// only, for now.
-    #[error(
-        "the unilateral law with friction is integrated in planar scenes only, for now: this \
-         scene is not planar (see the friction guide); solve it with the simultaneous law"
-    )]
-    UnilateralNotPlanar,
-    /// The unilateral law with the energetic restitution law: not applied yet.
-    #[error(
-        "the unilateral law is integrated with Newton's and Poisson's restitution; with the \
-         energetic law it is not applied yet"
-    )]
-    UnilateralEnergetic,
     /// More events or steps than any physical impact needs.
     #[error("the integration did not end within its event or step budget")]
     Runaway,
@@ -665,26 +671,20 @@ pub fn solve_frictional<T: Scalar, M: Mechanism<T>>(
     solve_frictional_under(mechanism, law, Hypothesis::Simultaneous, tolerance)
 }
 
-/// [`solve_frictional`] under `hypothesis`: the simultaneous law, or the unilateral one
-/// (planar scenes, Newton's and Poisson's restitution).
+/// [`solve_frictional`] under `hypothesis`: the simultaneous law, or the unilateral one —
+/// event by event in a planar scene, by the adaptive integrator in a spatial one, under each
+/// restitution law.
 ///
 /// # Errors
-/// As [`solve_frictional`]; [`FrictionError::UnilateralNotPlanar`] and
-/// [`FrictionError::UnilateralEnergetic`] for what the unilateral law is not applied to yet.
+/// As [`solve_frictional`].
 pub fn solve_frictional_under<T: Scalar, M: Mechanism<T>>(
     mechanism: &M,
     law: Restitution,
     hypothesis: Hypothesis,
     tolerance: f64,
 ) -> Result<Frictional<T, M::Screw>, FrictionError> {
-    if hypothesis == Hypothesis::Unilateral && law == Restitution::Energetic {
-        return Err(FrictionError::UnilateralEnergetic);
-    }
     if let Some(b) = Blocks::planar(mechanism) {
         return planar::solve_planar(mechanism, b, law, hypothesis);
-    }
-    if hypothesis == Hypothesis::Unilateral {
-        return Err(FrictionError::UnilateralNotPlanar);
     }
     if T::IS_EXACT {
         return Err(FrictionError::NotPlanar);
@@ -699,10 +699,11 @@ pub fn solve_frictional_under<T: Scalar, M: Mechanism<T>>(
                 .expect("a validated problem's tangents")
         })
         .collect();
-    spatial::solve_spatial(
+    spatial::solve_spatial_under(
         mechanism,
         Blocks::spatial(mechanism, &frames),
         law,
+        hypothesis,
         tolerance,
     )
 }
