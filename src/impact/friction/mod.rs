@@ -50,8 +50,12 @@
 //! exactly, and Newton's restitution with one k at every approaching contact is Moreau's LCP
 //! (1988); a contact released after taking impulse breaks Moreau's complementarity, since its
 //! impulse p_i(s) never decreases. Housner's rocking block (1963) lands on its new corner with
-//! ω⁺/ω⁻ = 1 − (3/2) sin²α exactly. Planar scenes only, for now (the events are located exactly
-//! there); not with the energetic law.
+//! ω⁺/ω⁻ = 1 − (3/2) sin²α exactly. Planar scenes are solved event by event, exactly (a gap is
+//! linear between events); spatial ones by the adaptive integrator, whose release and
+//! re-engagement are events located as a stick leaving its cone is ([`spatial`]). Under the
+//! energetic law each contact's restitution is Stronge's: from s = 1, where every driven normal
+//! velocity vanishes, it takes p_i^c per unit s until its restitution work is k_i² times its
+//! compression work, released or held at v_ix = 0 by an extra rate as Poisson's.
 //!
 //! **Where it differs from physics engines.** Engines solve Coulomb's law as one algebraic
 //! complementarity problem per impact (the maximal-dissipation or LCP friction laws, Stewart

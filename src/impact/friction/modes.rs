@@ -278,11 +278,9 @@ pub fn normal_consistent<T: Scalar, S: Screws<T>>(
     checks.iter().all(|(i, check)| {
         let off = b.offset[*i];
         match check {
-            Check::AtLeast(base) => nonnegative(
-                &(r.lambda[off].clone() - base + slack_impulse),
-                &scale_l,
-                n,
-            ),
+            Check::AtLeast(base) => {
+                nonnegative(&(r.lambda[off].clone() - base + slack_impulse), &scale_l, n)
+            }
             Check::Separates(path) => nonnegative(
                 &(-path.clone() - &r.velocity[off] + slack_velocity),
                 &scale_v,

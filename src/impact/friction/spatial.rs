@@ -61,8 +61,8 @@ use crate::impact::friction::rates::{
     Mode, Normal, RateFailure, Rates, Unilateral, max_abs, normal_rules, rates, unilateral_rules,
 };
 use crate::impact::friction::{
-    FrictionError, Frictional, Hypothesis, ModeLabel, Phase, Restitution, Sample, Segment,
-    Verdict, labels,
+    FrictionError, Frictional, Hypothesis, ModeLabel, Phase, Restitution, Sample, Segment, Verdict,
+    labels,
 };
 use crate::impact::mechanism::Mechanism;
 use crate::mechanics::contact::Contact;
