@@ -43,6 +43,17 @@
 //! with λ = 0 and ρ ∝ (s − s*)², the pull is stiffer by 1/(s − s*) and they grow like
 //! tol^(−1/4) (10 times over four decades); [`integrate`] reports them ([`Stats`]).
 //!
+//! **The unilateral law** ([`solve_spatial_under`], `derivations/unilateral-friction.md`). At
+//! s = 0, at s = 1 and at every event the contacts on their paths — driven, or released with a
+//! gap within δ — are driven or released jointly with the modes (`choose`: the planar
+//! resolver's assignments, [`super::modes::unilateral_assignments`], each resolved as above and
+//! tested by [`super::modes::normal_consistent`] with the event slack). Two more margins are
+//! events: a driven contact's impulse rate over its base, (p'_i − base_i)/Λ-scale + tol (its
+//! path turns tensile: release), and a released contact's gap g_i = v_i^path(s) − v_ix, whose
+//! path is linear in s within a phase, over max|v⁰| (it closes: re-engagement; with the slack
+//! tol until the gap has once exceeded δ, so that a gap that stays at zero does not fire on
+//! rounding). Each such event adds the slack's impulse, tol × Λ-scale, to the estimate.
+//!
 //! **Error estimate.** The sum over accepted steps of the embedded local error estimate of the
 //! impulses and a rounding term, plus, per zero-slip stop, twice the largest rate times the
 //! predicted time to zero slip, per event the rate times the bisection width, and per held
