@@ -323,3 +323,43 @@ fn with_mu_to_zero_the_spinning_block_tends_to_moreaus_lcp() {
         last = Some(d);
     }
 }
+
+/// `inertance solve` on `examples/rocking-block.toml` given a yaw rate of 1/2 rad/s about the
+/// floor's normal: `[solve] law = "unilateral"` runs in the spatial integrator in f64 (the old
+/// edge slides, then is released), and `--exact` refuses it with status 2 naming the fix.
+#[test]
+fn the_spinning_rocking_block_runs_the_unilateral_law_from_the_command_line() {
+    let root = env!("CARGO_MANIFEST_DIR");
+    let text = std::fs::read_to_string(format!("{root}/examples/rocking-block.toml")).unwrap();
+    let spun = text.replace(
+        "angular_velocity = [0, 1, 0]",
+        "angular_velocity = [0, 1, 0.5]",
+    );
+    assert_ne!(spun, text, "the example's angular velocity line");
+    let path = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("spinning-rocking.toml");
+    std::fs::write(&path, spun).unwrap();
+    let run = |args: &[&str]| {
+        std::process::Command::new(env!("CARGO_BIN_EXE_inertance"))
+            .args(args)
+            .arg(&path)
+            .output()
+            .unwrap()
+    };
+    let out = run(&["solve", "--json"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{err}");
+    let j: serde_json::Value = serde_json::from_slice(&out.stdout).expect("JSON");
+    assert_eq!(j["effects"][0], "unilateral");
+    let f = &j["friction"]["newton"];
+    assert_eq!(f["method"], "spatial, adaptive RK5(4)", "{f}");
+    let old = &f["contacts"][1];
+    assert_eq!(old["modes"], serde_json::json!(["slide", "released"]), "{f}");
+    // Released, the old edge separates: its normal velocity after is negative (receding).
+    let vn = old["normal_velocity_after"].as_f64().unwrap();
+    assert!(vn < 0.0, "{vn}");
+    assert_eq!(f["verdicts"], serde_json::json!([]), "{f}");
+    let out = run(&["solve", "--exact"]);
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("not planar") && err.contains("drop --exact"), "{err}");
+}
