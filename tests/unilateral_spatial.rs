@@ -16,6 +16,7 @@ use inertance::impact::solve::{Impact, Outcome};
 use inertance::mechanics::body::RigidBody;
 use inertance::mechanics::contact::Contact;
 use inertance::mechanics::screw::{Screw, Vec3};
+use inertance::scalar::dd::DoubleDouble;
 use inertance::scalar::{Exact, Scalar, int, ratio};
 
 /// x turned about y by the angle whose cosine and sine are `c`, `s`.
@@ -203,6 +204,47 @@ fn a_turned_corner_re_engages_where_the_planar_one_does() {
     }
 }
 
+#[test]
+fn the_energetic_law_turned_out_of_its_plane_matches_the_planar_solve() {
+    // k = 1/2 at both corners: the energetic stops are roots of quadratics (radicals), so the
+    // planar reference is solved event by event in double-double, whose rounding (~10⁻³²
+    // relative) is far below the f64 integration's estimate; the bound is that estimate plus
+    // the rounding of the turn there and back, 4ε × max|twist|.
+    for block in [
+        Block {
+            k: [(1, 2), (1, 2)],
+            ..HOUSNER
+        },
+        Block {
+            u: (-1, 1),
+            w: (-2, 1),
+            k: [(1, 1), (1, 5)],
+            ..HOUSNER
+        },
+    ] {
+        let (one, zero) = (int::<DoubleDouble>(1), int::<DoubleDouble>(0));
+        let p = block.problem::<DoubleDouble>(&one, &zero);
+        let planar =
+            solve_frictional_under(&p, Restitution::Energetic, Hypothesis::Unilateral, 0.0)
+                .unwrap();
+        assert_eq!(planar.error_estimate, None, "the planar solver");
+        let want: Vec<f64> = planar.velocity.0.iter().map(Scalar::to_f64).collect();
+        let size = want.iter().fold(0.0f64, |a, x| a.max(x.abs()));
+        for tol in [1e-6, 1e-9] {
+            let (_, f) = block.turned(Restitution::Energetic, tol);
+            let est = f.error_estimate.unwrap();
+            let got = twist_back(&f);
+            let bound = est + 4.0 * f64::EPSILON * size;
+            for (g, x) in got.iter().zip(&want) {
+                assert!(
+                    (g - x).abs() <= bound,
+                    "tol {tol:e}: {got:?} vs {want:?} (bound {bound:e})"
+                );
+            }
+        }
+    }
+}
+
 /// The checks every outcome of the unilateral law must pass, to the estimate `est` (impulses
 /// and velocities): the energy balance ΔE_c = Σ(W_c − W_r) + E_f with E_f ≥ 0, no contact
 /// approaching after impact, every normal impulse ≥ 0 and every tangential one in its cone.
@@ -353,7 +395,11 @@ fn the_spinning_rocking_block_runs_the_unilateral_law_from_the_command_line() {
     let f = &j["friction"]["newton"];
     assert_eq!(f["method"], "spatial, adaptive RK5(4)", "{f}");
     let old = &f["contacts"][1];
-    assert_eq!(old["modes"], serde_json::json!(["slide", "released"]), "{f}");
+    assert_eq!(
+        old["modes"],
+        serde_json::json!(["slide", "released"]),
+        "{f}"
+    );
     // Released, the old edge separates: its normal velocity after is negative (receding).
     let vn = old["normal_velocity_after"].as_f64().unwrap();
     assert!(vn < 0.0, "{vn}");
@@ -361,5 +407,8 @@ fn the_spinning_rocking_block_runs_the_unilateral_law_from_the_command_line() {
     let out = run(&["solve", "--exact"]);
     assert_eq!(out.status.code(), Some(2));
     let err = String::from_utf8_lossy(&out.stderr);
-    assert!(err.contains("not planar") && err.contains("drop --exact"), "{err}");
+    assert!(
+        err.contains("not planar") && err.contains("drop --exact"),
+        "{err}"
+    );
 }
