@@ -585,7 +585,7 @@ pub fn solve_spatial<T: Scalar, S: Screws<T>, M: Mechanism<T, Screw = S>>(
 }
 
 /// [`solve_spatial`] under `hypothesis`: under the unilateral law the normal rules are chosen
-/// with the modes at s = 0, at s = 1 and at every event ([`choose`]), and a driven contact
+/// with the modes at s = 0, at s = 1 and at every event (`choose`), and a driven contact
 /// whose path turns tensile (its release margin) or a released one whose gap closes (its
 /// re-engagement margin) is an event, located as a stick leaving its cone is.
 ///
@@ -1027,6 +1027,15 @@ fn close_segment<T: Scalar>(
     });
 }
 
+/// One consistent assignment of [`choose`]: the state resolved under it, its rules and the
+/// verdicts its resolution gave.
+#[derive(Clone)]
+struct Choice<T: Scalar> {
+    st: State<T>,
+    normals: Vec<Normal<T>>,
+    said: Vec<Verdict>,
+}
+
 /// The events that fired at the state being resolved.
 #[derive(Default)]
 struct Fired {
@@ -1070,8 +1079,8 @@ fn choose<T: Scalar, S: Screws<T>>(
         .collect();
     let slack_impulse: T = of(run.tol * run.lambda_scale);
     let slack_velocity: T = of(run.delta);
-    let mut first: Option<(State<T>, Vec<Normal<T>>, Vec<Verdict>)> = None;
-    let mut honoured: Option<(State<T>, Vec<Normal<T>>, Vec<Verdict>)> = None;
+    let mut first: Option<Choice<T>> = None;
+    let mut honoured: Option<Choice<T>> = None;
     let mut distinct: Vec<Vec<T>> = Vec::new();
     let mut failure: Option<FrictionError> = None;
     for a in unilateral_assignments(&rules, &on_path) {
@@ -1115,14 +1124,24 @@ fn choose<T: Scalar, S: Screws<T>>(
                 .engaging
                 .iter()
                 .all(|&i| matches!(a.normals[i], Normal::Driven(_)));
+        let choice = Choice {
+            st: trial,
+            normals: a.normals,
+            said,
+        };
         if honours && honoured.is_none() {
-            honoured = Some((trial.clone(), a.normals.clone(), said.clone()));
+            honoured = Some(choice.clone());
         }
         if first.is_none() {
-            first = Some((trial, a.normals, said));
+            first = Some(choice);
         }
     }
-    let Some((chosen, normals, said)) = honoured.or(first) else {
+    let Some(Choice {
+        st: chosen,
+        normals,
+        said,
+    }) = honoured.or(first)
+    else {
         return Err(match failure {
             Some(e @ FrictionError::Undetermined { .. }) => e,
             _ => FrictionError::NoConsistentModes {
@@ -1178,7 +1197,7 @@ fn resolve<T: Scalar, S: Screws<T>>(
             let mut tracked = st.modes.clone();
             let holds = st.locked[i]
                 && matches!(st.modes[i], Mode::Slide(_))
-                && run.settle(&mut tracked, &normals, i);
+                && run.settle(&mut tracked, normals, i);
             if holds {
                 st.modes[i] = tracked[i].clone();
             } else {
@@ -1208,7 +1227,7 @@ fn resolve<T: Scalar, S: Screws<T>>(
         });
     }
     // All at zero slip stick, if their cones hold them.
-    let all_stick = rates(b, &normals, &st.modes);
+    let all_stick = rates(b, normals, &st.modes);
     if let Ok(r) = &all_stick
         && leaving.is_empty()
         && sticks_hold(run, st, &candidates, r)
@@ -1254,7 +1273,7 @@ fn resolve<T: Scalar, S: Screws<T>>(
             invariant_direction(
                 run,
                 st,
-                &normals,
+                normals,
                 candidates[k],
                 guesses[k].clone(),
                 verdicts,
@@ -1273,13 +1292,13 @@ fn resolve<T: Scalar, S: Screws<T>>(
                         _ => g.clone(),
                     })
                     .collect();
-                joint_directions(run, st, &normals, &candidates, &sliding, &flipped)
+                joint_directions(run, st, normals, &candidates, &sliding, &flipped)
             })
         };
         if !found {
             continue;
         }
-        let Ok(r) = rates(b, &normals, &st.modes) else {
+        let Ok(r) = rates(b, normals, &st.modes) else {
             continue;
         };
         if sticks_hold(run, st, &candidates, &r) {
