@@ -254,17 +254,6 @@ fn bad_friction_input_names_the_key_and_value() {
         err.contains("contact[0].mu") && err.contains("-0.2"),
         "{err}"
     );
-    // The unilateral law is integrated with friction, but not with the energetic law yet.
-    let s = SceneFile::new(
-        "friction-unilateral",
-        &ROUGH_BAR.replace(
-            "restitution = \"poisson\"",
-            "law = \"unilateral\"\nrestitution = \"energetic\"",
-        ),
-    );
-    let out = s.run(&["solve"]);
-    assert_eq!(out.status.code(), Some(2));
-    assert!(String::from_utf8_lossy(&out.stderr).contains("not applied with the energetic"));
     let s = SceneFile::new(
         "friction-restitution",
         &ROUGH_BAR.replace("\"poisson\"", "\"plastic\""),

@@ -6,15 +6,15 @@
 //! "unilateral". The combination was then refused; since issue 25, item 3, the unilateral law
 //! is integrated with friction (the old edge is released, the block turns about the new one:
 //! Housner's ω⁺/ω⁻ = 1 − (3/2) sin²α = 7/10 here), from the scene file, from `--law`, from
-//! `sweep` and from the library alike. What it is not applied with yet — the energetic
-//! restitution law — is still refused (status 2, naming `solve.restitution`), from every path.
+//! `sweep` and from the library alike — and, since it was applied with Stronge's energetic
+//! restitution too, that combination, once refused, is solved from every path.
 
 mod common;
 
 use common::SceneFile;
 use inertance::impact::unilateral::Law;
 use inertance::scene::Scene;
-use inertance::scene::pipeline::{RunError, run};
+use inertance::scene::pipeline::run;
 
 /// Housner's block (a × c = 1 × 2 m, 1 kg) rocking about its edge x = −a/2 at ω = 1 rad/s,
 /// landing flat: the new edge x = +a/2 approaches at ω a = 1 m/s, the old one is at rest. One
@@ -103,45 +103,46 @@ fn the_unilateral_law_with_friction_is_applied_from_the_command_line() {
 }
 
 #[test]
-fn the_energetic_law_is_refused_with_it_from_the_file_and_the_command_line() {
+fn the_energetic_law_runs_with_it_from_the_file_and_the_command_line() {
+    // Plastic (k = 0): the energetic restitution has no work to give back, so the block turns
+    // about its new edge as under Newton's law: Housner's ω⁺/ω⁻ = 7/10, exactly.
     let energetic = ROCKING.to_string() + "[solve]\nrestitution = \"energetic\"\n";
-    let s = SceneFile::new("law-energetic", &energetic);
-    let err = refused(&s.run(&["solve", "--law", "unilateral"]));
-    assert!(
-        err.contains("solve.restitution") && err.contains("not applied with the energetic"),
-        "{err}"
-    );
-    let file = SceneFile::new(
+    let from_flag = SceneFile::new("law-energetic", &energetic);
+    let from_file = SceneFile::new(
         "law-file-energetic",
         &format!("{ROCKING}[solve]\nlaw = \"unilateral\"\nrestitution = \"energetic\"\n"),
     );
-    let err = refused(&file.run(&["solve"]));
-    assert!(err.contains("`[solve] law = \"unilateral\"`"), "{err}");
-    // Frictionless, too: the energetic law is integrated in impulse space either way.
-    let smooth = ROCKING.replace("mu = 0.8", "mu = 0") + "[solve]\nrestitution = \"energetic\"\n";
-    let s = SceneFile::new("law-energetic-smooth", &smooth);
-    let err = refused(&s.run(&["solve", "--law", "unilateral"]));
-    assert!(err.contains("solve.restitution"), "{err}");
+    for out in [
+        from_flag.run(&["solve", "--exact", "--json", "--law", "unilateral"]),
+        from_file.run(&["solve", "--exact", "--json"]),
+    ] {
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(out.status.success(), "{err}");
+        let j: serde_json::Value = serde_json::from_slice(&out.stdout).expect("JSON");
+        assert_eq!(j["effects"][0], "unilateral");
+        let f = &j["friction"]["energetic"];
+        assert_eq!(f["angular_velocity"][1], "7/10", "{f}");
+        assert_eq!(f["contacts"][1]["normal_impulse"], "0", "{f}");
+        assert_eq!(f["contacts"][1]["modes"][0], "released", "{f}");
+    }
 }
 
 #[test]
 fn no_library_path_applies_another_law_under_its_name() {
+    // The energetic law under the unilateral law: set, solved, and said so.
     let energetic = ROCKING.to_string() + "[solve]\nrestitution = \"energetic\"\n";
     let mut scene = Scene::parse(&energetic, "rocking.toml").expect("a scene");
-    let e = scene
+    scene
         .set_law(Law::Unilateral, "the unilateral law")
-        .expect_err("refused");
-    assert_eq!(e.key, "solve.restitution");
-    assert_eq!(scene.law, Law::Simultaneous, "a refused law is not set");
-    // Set directly, past the check: the solve itself refuses it, in every scalar.
-    scene.law = Law::Unilateral;
-    assert!(
-        matches!(run::<f64>(&scene, None), Err(RunError::Scene(e)) if e.key == "solve.restitution")
-    );
-    assert!(matches!(
-        run::<inertance::scalar::Exact>(&scene, None),
-        Err(RunError::Scene(e)) if e.key == "solve.restitution"
-    ));
+        .expect("allowed");
+    assert_eq!(scene.law, Law::Unilateral);
+    for solved in [
+        run::<f64>(&scene, None).map(|s| s.report.effects),
+        run::<inertance::scalar::Exact>(&scene, None).map(|s| s.report.effects),
+    ] {
+        let effects = solved.expect("solves");
+        assert_eq!(effects.first().map(String::as_str), Some("unilateral"));
+    }
     // With friction and Newton's or Poisson's law, the unilateral law is applied, and says so.
     let mut scene = Scene::parse(ROCKING, "rocking.toml").expect("a scene");
     scene

@@ -3,10 +3,8 @@
 //!
 //! The frictional integration (§14, [`crate::impact::friction`]) runs the unilateral law too
 //! ([`crate::impact::friction::Hypothesis::Unilateral`]: a contact that would pull is released,
-//! and re-engages when its gap closes), under Newton's and Poisson's restitution, in planar
-//! scenes (a spatial scene is refused by the integration itself, naming the law). With the
-//! energetic restitution law it is not applied yet: that combination is refused here, from the
-//! scene file and from every override alike, rather than answered under another law's name.
+//! and re-engages when its gap closes), under Newton's, Poisson's and the energetic
+//! restitution, in planar scenes exactly and in spatial ones by the adaptive integrator.
 //!
 //! The LZB law ([`crate::impact::multiple`]) is integrated in f64, with Coulomb friction, by its
 //! own paths ([`super::lzb`]: `solve`, `sweep`, `analyze`, `bench --scene`, Python's `solve`):
@@ -17,29 +15,6 @@ use crate::impact::friction::Restitution;
 use crate::impact::unilateral::Law;
 
 use super::{Scene, SceneError};
-
-/// Refuse the unilateral law with the energetic restitution law (`[solve] restitution =
-/// "energetic"`), which it is not applied with yet; `how` says how the law was asked for
-/// (`` `[solve] law = "unilateral"` ``, `` `--law unilateral` ``).
-pub(super) fn unilateral_allowed(
-    file: &str,
-    restitution: Option<Restitution>,
-    how: &str,
-) -> Result<(), SceneError> {
-    match restitution {
-        Some(Restitution::Energetic) => Err(SceneError {
-            file: file.to_string(),
-            key: "solve.restitution".to_string(),
-            value: Some("energetic".to_string()),
-            message: format!(
-                "{how} is not applied with the energetic restitution law yet (it is integrated \
-                 with Newton's and Poisson's, with or without friction): choose `restitution = \
-                 \"newton\"` or `\"poisson\"`, or solve with the simultaneous law"
-            ),
-        }),
-        _ => Ok(()),
-    }
-}
 
 /// Refuse the LZB law with a `[solve] restitution` (the LZB law has its own restitution: each
 /// contact's energetic coefficient); friction it integrates.
@@ -72,18 +47,14 @@ impl Scene {
     }
 
     /// Solve the scene under `law` instead of its own (`--law`, Python's `law=`), refused
-    /// where the law cannot be applied as named (the unilateral law with the energetic
-    /// restitution law; the LZB law with friction).
+    /// where the law cannot be applied as named (the LZB law with a `[solve] restitution`).
     ///
     /// # Errors
     /// A [`SceneError`] naming `solve.restitution`, or the first rough contact's `mu`.
     pub fn set_law(&mut self, law: Law, how: &str) -> Result<(), SceneError> {
         match law {
-            Law::Unilateral => {
-                unilateral_allowed(&self.file, self.restitution, how)?;
-            }
             Law::Lzb => lzb_allowed(&self.file, self.restitution, how)?,
-            Law::Simultaneous => {}
+            Law::Simultaneous | Law::Unilateral => {}
         }
         self.law = law;
         Ok(())
@@ -96,10 +67,7 @@ impl Scene {
     /// As [`Scene::set_law`].
     pub fn law_applies(&self) -> Result<(), SceneError> {
         match self.law {
-            Law::Unilateral => {
-                unilateral_allowed(&self.file, self.restitution, "the unilateral law")
-            }
-            Law::Simultaneous => Ok(()),
+            Law::Simultaneous | Law::Unilateral => Ok(()),
             Law::Lzb => Err(SceneError {
                 file: self.file.clone(),
                 key: "solve.law".to_string(),

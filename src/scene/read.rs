@@ -62,9 +62,6 @@ pub(super) fn scene(
     let solve = r.solve(root)?;
     let (models, law, restitution, outputs) =
         (solve.models, solve.law, solve.restitution, solve.outputs);
-    if law == Law::Unilateral {
-        super::law::unilateral_allowed(file, restitution, "`[solve] law = \"unilateral\"`")?;
-    }
     if law == Law::Lzb {
         super::law::lzb_allowed(file, restitution, "`[solve] law = \"lzb\"`")?;
     }

@@ -50,8 +50,12 @@
 //! exactly, and Newton's restitution with one k at every approaching contact is Moreau's LCP
 //! (1988); a contact released after taking impulse breaks Moreau's complementarity, since its
 //! impulse p_i(s) never decreases. Housner's rocking block (1963) lands on its new corner with
-//! ω⁺/ω⁻ = 1 − (3/2) sin²α exactly. Planar scenes only, for now (the events are located exactly
-//! there); not with the energetic law.
+//! ω⁺/ω⁻ = 1 − (3/2) sin²α exactly. Planar scenes are solved event by event, exactly (a gap is
+//! linear between events); spatial ones by the adaptive integrator, whose release and
+//! re-engagement are events located as a stick leaving its cone is ([`spatial`]). Under the
+//! energetic law each contact's restitution is Stronge's: from s = 1, where every driven normal
+//! velocity vanishes, it takes p_i^c per unit s until its restitution work is k_i² times its
+//! compression work, released or held at v_ix = 0 by an extra rate as Poisson's.
 //!
 //! **Where it differs from physics engines.** Engines solve Coulomb's law as one algebraic
 //! complementarity problem per impact (the maximal-dissipation or LCP friction laws, Stewart
@@ -220,6 +224,25 @@ pub fn label<T: Scalar>(m: &Mode<T>) -> ModeLabel {
         Mode::Slide(u) if u.len() == 1 => ModeLabel::SlideMinus,
         Mode::Slide(_) => ModeLabel::Slide,
     }
+}
+
+/// The labels of a segment: a contact the unilateral law has released with no normal impulse
+/// rate reads `released`; the others their mode's label.
+pub(crate) fn labels<T: Scalar>(
+    hypothesis: Hypothesis,
+    normals: &[Normal<T>],
+    modes: &[Mode<T>],
+) -> Vec<ModeLabel> {
+    normals
+        .iter()
+        .zip(modes)
+        .map(|(nr, m)| match nr {
+            Normal::Given(r) if hypothesis == Hypothesis::Unilateral && r.is_zero() => {
+                ModeLabel::Released
+            }
+            _ => label(m),
+        })
+        .collect()
 }
 
 /// One segment of the impact between two events.
@@ -424,19 +447,6 @@ pub enum FrictionError {
          (estimate this one by finite differences)"
     )]
     NotDifferentiable,
-    /// The unilateral law in a spatial scene: its events are located exactly in planar scenes
-    /// only, for now.
-    #[error(
-        "the unilateral law with friction is integrated in planar scenes only, for now: this \
-         scene is not planar (see the friction guide); solve it with the simultaneous law"
-    )]
-    UnilateralNotPlanar,
-    /// The unilateral law with the energetic restitution law: not applied yet.
-    #[error(
-        "the unilateral law is integrated with Newton's and Poisson's restitution; with the \
-         energetic law it is not applied yet"
-    )]
-    UnilateralEnergetic,
     /// More events or steps than any physical impact needs.
     #[error("the integration did not end within its event or step budget")]
     Runaway,
@@ -665,26 +675,20 @@ pub fn solve_frictional<T: Scalar, M: Mechanism<T>>(
     solve_frictional_under(mechanism, law, Hypothesis::Simultaneous, tolerance)
 }
 
-/// [`solve_frictional`] under `hypothesis`: the simultaneous law, or the unilateral one
-/// (planar scenes, Newton's and Poisson's restitution).
+/// [`solve_frictional`] under `hypothesis`: the simultaneous law, or the unilateral one —
+/// event by event in a planar scene, by the adaptive integrator in a spatial one, under each
+/// restitution law.
 ///
 /// # Errors
-/// As [`solve_frictional`]; [`FrictionError::UnilateralNotPlanar`] and
-/// [`FrictionError::UnilateralEnergetic`] for what the unilateral law is not applied to yet.
+/// As [`solve_frictional`].
 pub fn solve_frictional_under<T: Scalar, M: Mechanism<T>>(
     mechanism: &M,
     law: Restitution,
     hypothesis: Hypothesis,
     tolerance: f64,
 ) -> Result<Frictional<T, M::Screw>, FrictionError> {
-    if hypothesis == Hypothesis::Unilateral && law == Restitution::Energetic {
-        return Err(FrictionError::UnilateralEnergetic);
-    }
     if let Some(b) = Blocks::planar(mechanism) {
         return planar::solve_planar(mechanism, b, law, hypothesis);
-    }
-    if hypothesis == Hypothesis::Unilateral {
-        return Err(FrictionError::UnilateralNotPlanar);
     }
     if T::IS_EXACT {
         return Err(FrictionError::NotPlanar);
@@ -699,10 +703,11 @@ pub fn solve_frictional_under<T: Scalar, M: Mechanism<T>>(
                 .expect("a validated problem's tangents")
         })
         .collect();
-    spatial::solve_spatial(
+    spatial::solve_spatial_under(
         mechanism,
         Blocks::spatial(mechanism, &frames),
         law,
+        hypothesis,
         tolerance,
     )
 }

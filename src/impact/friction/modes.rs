@@ -98,31 +98,12 @@ pub fn resolve_planar_unilateral<T: Scalar, S: Screws<T>>(
     slip: &[T],
 ) -> Result<Resolution<T>, NoConsistentModes> {
     let n = rules.len();
-    let engaged: Vec<usize> = (0..n).filter(|&i| on_path[i]).collect();
     let mut search = Search::default();
-    for code in 0..(1usize << engaged.len()) {
-        let mut normals: Vec<Normal<T>> = rules
-            .iter()
-            .map(|u| Normal::Given(u.base.clone()))
-            .collect();
-        let mut checks = Vec::with_capacity(engaged.len());
-        for (j, &i) in engaged.iter().enumerate() {
-            let choice = (code >> (engaged.len() - 1 - j)) & 1;
-            let rule = rules[i].options()[choice].clone();
-            checks.push(match &rule {
-                Normal::Driven(_) => (i, Check::AtLeast(rules[i].base.clone())),
-                Normal::Given(_) => (i, Check::Separates(rules[i].path.clone())),
-            });
-            normals[i] = rule;
-        }
+    for a in unilateral_assignments(rules, on_path) {
         let mut modes = Vec::with_capacity(n);
         let mut candidates = Vec::new();
         for i in 0..n {
-            let carries = match &normals[i] {
-                Normal::Driven(_) => true,
-                Normal::Given(r) => !r.is_zero(),
-            };
-            modes.push(if b.dims[i] == 0 || !carries {
+            modes.push(if b.dims[i] == 0 || !carries(&a.normals[i]) {
                 Mode::Free
             } else if zero_slip[i] {
                 candidates.push(i);
@@ -131,14 +112,62 @@ pub fn resolve_planar_unilateral<T: Scalar, S: Screws<T>>(
                 Mode::Slide(vec![slip[i].clone()])
             });
         }
-        search.tangential(b, &normals, &mut modes, &candidates, &checks);
+        search.tangential(b, &a.normals, &mut modes, &candidates, &a.checks);
     }
     search.finish()
 }
 
-/// A test on a contact's normal rate in [`resolve_planar_unilateral`].
+/// Whether a contact under `normal` takes a normal impulse rate (and so can carry friction).
+pub fn carries<T: Scalar>(normal: &Normal<T>) -> bool {
+    match normal {
+        Normal::Driven(_) => true,
+        Normal::Given(r) => !r.is_zero(),
+    }
+}
+
+/// One assignment of the unilateral law's normal rules: every contact on its path driven or
+/// released, the others at their base rate, with the tests the rates must pass.
 #[derive(Clone, Debug)]
-enum Check<T> {
+pub struct Assignment<T: Scalar> {
+    /// The rule of every contact.
+    pub normals: Vec<Normal<T>>,
+    /// The normal tests of the contacts on their paths.
+    pub checks: Vec<(usize, Check<T>)>,
+}
+
+/// Every assignment of driven/released to the contacts `on_path` ([`Unilateral::options`],
+/// each contact's own rule first, the first contact varying slowest): 2^k for k on their
+/// paths. The order is the preference: the planar and the spatial integrations both take the
+/// first consistent one ([`resolve_planar_unilateral`], `spatial::choose`).
+pub fn unilateral_assignments<T: Scalar>(
+    rules: &[Unilateral<T>],
+    on_path: &[bool],
+) -> Vec<Assignment<T>> {
+    let engaged: Vec<usize> = (0..rules.len()).filter(|&i| on_path[i]).collect();
+    (0..(1usize << engaged.len()))
+        .map(|code| {
+            let mut normals: Vec<Normal<T>> = rules
+                .iter()
+                .map(|u| Normal::Given(u.base.clone()))
+                .collect();
+            let mut checks = Vec::with_capacity(engaged.len());
+            for (j, &i) in engaged.iter().enumerate() {
+                let choice = (code >> (engaged.len() - 1 - j)) & 1;
+                let rule = rules[i].options()[choice].clone();
+                checks.push(match &rule {
+                    Normal::Driven(_) => (i, Check::AtLeast(rules[i].base.clone())),
+                    Normal::Given(_) => (i, Check::Separates(rules[i].path.clone())),
+                });
+                normals[i] = rule;
+            }
+            Assignment { normals, checks }
+        })
+        .collect()
+}
+
+/// A test on a contact's normal rate under the unilateral law.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Check<T> {
     /// Driven: p'_i ≥ the given least rate.
     AtLeast(T),
     /// Released: −path − v'_ix ≥ 0.
@@ -187,7 +216,7 @@ impl<T: Scalar> Search<T> {
             match rates(b, normals, modes) {
                 Ok(r) => {
                     if planar_consistent(b, modes, &r, candidates)
-                        && normal_consistent(b, &r, checks)
+                        && normal_consistent(b, &r, checks, &T::zero(), &T::zero())
                     {
                         self.found(modes, normals, r);
                     }
@@ -232,11 +261,16 @@ impl<T: Scalar> Search<T> {
     }
 }
 
-/// The normal tests of [`resolve_planar_unilateral`].
-fn normal_consistent<T: Scalar, S: Screws<T>>(
+/// The normal tests of [`resolve_planar_unilateral`] on the rates `r`: each margin p'_i − base
+/// and −path − v'_ix, plus its slack (`slack_impulse`, `slack_velocity`: zero in the planar
+/// solve, where only rounding is forgiven; the spatial integration's event slack, whose rates
+/// carry its tolerance), nonnegative to rounding.
+pub fn normal_consistent<T: Scalar, S: Screws<T>>(
     b: &Blocks<T, S>,
     r: &Rates<T>,
     checks: &[(usize, Check<T>)],
+    slack_impulse: &T,
+    slack_velocity: &T,
 ) -> bool {
     let n = b.len();
     let scale_l = max_abs(&r.lambda);
@@ -244,8 +278,14 @@ fn normal_consistent<T: Scalar, S: Screws<T>>(
     checks.iter().all(|(i, check)| {
         let off = b.offset[*i];
         match check {
-            Check::AtLeast(base) => nonnegative(&(r.lambda[off].clone() - base), &scale_l, n),
-            Check::Separates(path) => nonnegative(&(-path.clone() - &r.velocity[off]), &scale_v, n),
+            Check::AtLeast(base) => {
+                nonnegative(&(r.lambda[off].clone() - base + slack_impulse), &scale_l, n)
+            }
+            Check::Separates(path) => nonnegative(
+                &(-path.clone() - &r.velocity[off] + slack_velocity),
+                &scale_v,
+                n,
+            ),
         }
     })
 }

@@ -10,11 +10,12 @@
 
 use crate::impact::friction::blocks::Blocks;
 use crate::impact::friction::modes::{
-    MAX_CANDIDATES, NoConsistentModes, Resolution, resolve_planar, resolve_planar_unilateral,
+    MAX_CANDIDATES, NoConsistentModes, Resolution, carries, resolve_planar,
+    resolve_planar_unilateral,
 };
 use crate::impact::friction::rates::{Mode, Normal, Unilateral, normal_rules, unilateral_rules};
 use crate::impact::friction::{
-    FrictionError, Frictional, Hypothesis, ModeLabel, Phase, Restitution, Segment, Verdict, label,
+    FrictionError, Frictional, Hypothesis, Phase, Restitution, Segment, Verdict, labels,
 };
 use crate::impact::mechanism::Mechanism;
 use crate::mechanics::contact::Contact;
@@ -255,11 +256,7 @@ fn resolve_simultaneous<T: Scalar, S: Screws<T>>(
     let mut candidates = Vec::new();
     for i in 0..b.contacts() {
         let off = b.offset[i];
-        let carries = match &normals[i] {
-            Normal::Driven(_) => true,
-            Normal::Given(r) => !r.is_zero(),
-        };
-        if b.dims[i] == 0 || !carries {
+        if b.dims[i] == 0 || !carries(&normals[i]) {
             st.modes[i] = Mode::Free;
         } else if st.v[off + 1].is_zero() {
             candidates.push(i);
@@ -316,25 +313,6 @@ fn no_modes<T: Scalar>(e: NoConsistentModes, st: &State<T>) -> FrictionError {
             phase: st.phase,
         }
     }
-}
-
-/// The labels of a segment: a contact the unilateral law has released (no normal impulse
-/// rate) reads `released`.
-fn labels<T: Scalar>(
-    hypothesis: Hypothesis,
-    normals: &[Normal<T>],
-    modes: &[Mode<T>],
-) -> Vec<ModeLabel> {
-    normals
-        .iter()
-        .zip(modes)
-        .map(|(nr, m)| match nr {
-            Normal::Given(r) if hypothesis == Hypothesis::Unilateral && r.is_zero() => {
-                ModeLabel::Released
-            }
-            _ => label(m),
-        })
-        .collect()
 }
 
 /// Move the gaps by `h`: g'_i = −path_i − v'_ix; a driven contact stays on its path exactly.

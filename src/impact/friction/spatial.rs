@@ -43,6 +43,17 @@
 //! with λ = 0 and ρ ∝ (s − s*)², the pull is stiffer by 1/(s − s*) and they grow like
 //! tol^(−1/4) (10 times over four decades); [`integrate`] reports them ([`Stats`]).
 //!
+//! **The unilateral law** ([`solve_spatial_under`], `derivations/unilateral-friction.md`). At
+//! s = 0, at s = 1 and at every event the contacts on their paths — driven, or released with a
+//! gap within δ — are driven or released jointly with the modes (`choose`: the planar
+//! resolver's assignments, [`super::modes::unilateral_assignments`], each resolved as above and
+//! tested by [`super::modes::normal_consistent`] with the event slack). Two more margins are
+//! events: a driven contact's impulse rate over its base, (p'_i − base_i)/Λ-scale + tol (its
+//! path turns tensile: release), and a released contact's gap g_i = v_i^path(s) − v_ix, whose
+//! path is linear in s within a phase, over max|v⁰| (it closes: re-engagement; with the slack
+//! tol until the gap has once exceeded δ, so that a gap that stays at zero does not fire on
+//! rounding). Each such event adds the slack's impulse, tol × Λ-scale, to the estimate.
+//!
 //! **Error estimate.** The sum over accepted steps of the embedded local error estimate of the
 //! impulses and a rounding term, plus, per zero-slip stop, twice the largest rate times the
 //! predicted time to zero slip, per event the rate times the bisection width, and per held
@@ -54,12 +65,15 @@
 
 use crate::impact::friction::blocks::Blocks;
 use crate::impact::friction::departure::{self, dot, norm, of, unit};
-use crate::impact::friction::modes::nonnegative;
+use crate::impact::friction::modes::{
+    carries, nonnegative, normal_consistent, unilateral_assignments,
+};
 use crate::impact::friction::rates::{
-    Mode, Normal, RateFailure, Rates, max_abs, normal_rules, rates,
+    Mode, Normal, RateFailure, Rates, Unilateral, max_abs, normal_rules, rates, unilateral_rules,
 };
 use crate::impact::friction::{
-    FrictionError, Frictional, Phase, Restitution, Sample, Segment, Verdict, label,
+    FrictionError, Frictional, Hypothesis, ModeLabel, Phase, Restitution, Sample, Segment, Verdict,
+    labels,
 };
 use crate::impact::mechanism::Mechanism;
 use crate::mechanics::contact::Contact;
@@ -142,8 +156,12 @@ struct Run<'a, T: Scalar, S: Screws<T>> {
     contacts: &'a [Contact<T>],
     b: &'a Blocks<T, S>,
     law: Restitution,
+    hypothesis: Hypothesis,
     tol: f64,
-    /// Below this slip speed a contact is at zero slip.
+    /// max|v⁰|: the velocity scale of the gaps' margins.
+    vscale: f64,
+    /// Below this slip speed a contact is at zero slip; within this gap a released contact is
+    /// on its path.
     delta: f64,
     /// Below this slip speed (16 δ) a sliding contact keeps the direction it was given rather
     /// than the direction of its slip: near zero the slip's direction is integration noise,
@@ -160,6 +178,7 @@ struct Run<'a, T: Scalar, S: Screws<T>> {
 }
 
 /// The changing part of the integration: what the right-hand side depends on besides y.
+#[derive(Clone)]
 struct State<T: Scalar> {
     s: T,
     phase: Phase,
@@ -180,6 +199,13 @@ struct State<T: Scalar> {
     /// |dv_t| h ≤ ρ, where the step resolves that flow; each re-found direction's change Δu
     /// adds μ p' |Δu| h to the error estimate.
     locked: Vec<bool>,
+    /// Per contact, under the unilateral law: released (its rule [`Normal::Given`], its normal
+    /// velocity free on the separating side of its path).
+    released: Vec<bool>,
+    /// Per released contact: its gap has exceeded δ since it was released, so its
+    /// re-engagement margin is the gap itself; before that the margin has the slack δ, so that
+    /// a gap that stays at zero (released with g' = 0) does not fire on rounding noise.
+    armed: Vec<bool>,
 }
 
 /// A slip held on its invariant direction at the end of a step ([`Run::held`]).
@@ -254,6 +280,29 @@ impl<T: Scalar, S: Screws<T>> Run<'_, T, S> {
             &st.compression,
             &st.stopped,
         )
+    }
+
+    /// The unilateral rules of the current phase ([`unilateral_rules`]).
+    fn rules(&self, st: &State<T>) -> Vec<Unilateral<T>> {
+        unilateral_rules(&self.normals(st), self.b, st.phase)
+    }
+
+    /// The gaps g_i = v_i^path(s) − v_ix at `s`, `y` (derivations/unilateral-friction.md): each
+    /// path starts at v_ix⁰ at s = 0 and at 0 at s = 1 and falls at its rule's path rate, so
+    /// it is known in closed form; v_ix follows from Λ (eq. 144).
+    fn gaps(&self, st: &State<T>, rules: &[Unilateral<T>], s: &T, y: &[T]) -> Vec<f64> {
+        let v = self.velocities(y);
+        (0..self.n())
+            .map(|i| {
+                let off = self.b.offset[i];
+                let (start, from) = match st.phase {
+                    Phase::Compression => (self.b.v0[off].clone(), T::zero()),
+                    Phase::Restitution => (T::zero(), T::one()),
+                };
+                let path = start - rules[i].path.clone() * (s.clone() - from);
+                (path - &v[off]).to_f64()
+            })
+            .collect()
     }
 
     /// The slip of contact i along its tangent axes, measured from its `origin`, and its
@@ -463,12 +512,39 @@ impl<T: Scalar, S: Screws<T>> Run<'_, T, S> {
     /// contact's cone, (μ p' − |τ'|) / Λ-scale + tol (a stick holds until its required rate
     /// leaves the cone by more than the tolerance — without that slack a requirement grazing
     /// the cone's edge makes the contact chatter between stick and a slip of λ ≈ 0⁺), and of an energetic contact's restitution work,
-    /// (k² W_c − W_r) / work scale; +∞ where a function does not apply. An event is a margin
-    /// that was ≥ 0 and is < 0.
-    fn margins(&self, st: &State<T>, y: &[T], r: &Rates<T>) -> Vec<f64> {
+    /// (k² W_c − W_r) / work scale; under the unilateral law, of a driven contact's impulse
+    /// rate over its base, (p'_i − base_i) / Λ-scale + tol (it is released once its path needs
+    /// a pull beyond the slack, as a stick leaves its cone), and of a released contact's gap,
+    /// g_i / max|v⁰| (+ tol before it is `armed`): it re-engages where its gap closes. +∞ where
+    /// a function does not apply. An event is a margin that was ≥ 0 and is < 0. The state is
+    /// at `s`, `y`.
+    fn margins(
+        &self,
+        st: &State<T>,
+        normals: &[Normal<T>],
+        rules: &[Unilateral<T>],
+        s: &T,
+        y: &[T],
+        r: &Rates<T>,
+    ) -> Vec<f64> {
         let b = self.b;
         let (n, len) = (self.n(), self.len());
-        let mut g = vec![f64::INFINITY; 2 * n];
+        let mut g = vec![f64::INFINITY; 4 * n];
+        if self.hypothesis == Hypothesis::Unilateral {
+            let gaps = self.gaps(st, rules, s, y);
+            for i in 0..n {
+                let off = b.offset[i];
+                if let Normal::Driven(_) = normals[i] {
+                    g[2 * n + 2 * i] = (r.lambda[off].clone() - &rules[i].base).to_f64()
+                        / self.lambda_scale
+                        + self.tol;
+                }
+                if st.released[i] {
+                    let slack = if st.armed[i] { 0.0 } else { self.tol };
+                    g[2 * n + 2 * i + 1] = gaps[i] / self.vscale + slack;
+                }
+            }
+        }
         for i in 0..n {
             if st.modes[i] == Mode::Stick {
                 let off = b.offset[i];
@@ -494,7 +570,8 @@ fn crossed(before: &[f64], after: &[f64]) -> bool {
     before.iter().zip(after).any(|(a, b)| *a >= 0.0 && *b < 0.0)
 }
 
-/// Integrate a spatial scene under `law` to the relative tolerance `tol`.
+/// Integrate a spatial scene under `law` and the simultaneous hypothesis to the relative
+/// tolerance `tol`.
 ///
 /// # Errors
 /// [`FrictionError`] as for planar scenes, and [`FrictionError::Runaway`] past the step budget.
@@ -504,7 +581,24 @@ pub fn solve_spatial<T: Scalar, S: Screws<T>, M: Mechanism<T, Screw = S>>(
     law: Restitution,
     tol: f64,
 ) -> Result<Frictional<T, S>, FrictionError> {
-    integrate(mechanism, b, law, tol).map(|(out, _)| out)
+    solve_spatial_under(mechanism, b, law, Hypothesis::Simultaneous, tol)
+}
+
+/// [`solve_spatial`] under `hypothesis`: under the unilateral law the normal rules are chosen
+/// with the modes at s = 0, at s = 1 and at every event (`choose`), and a driven contact
+/// whose path turns tensile (its release margin) or a released one whose gap closes (its
+/// re-engagement margin) is an event, located as a stick leaving its cone is.
+///
+/// # Errors
+/// As [`solve_spatial`].
+pub fn solve_spatial_under<T: Scalar, S: Screws<T>, M: Mechanism<T, Screw = S>>(
+    mechanism: &M,
+    b: Blocks<T, S>,
+    law: Restitution,
+    hypothesis: Hypothesis,
+    tol: f64,
+) -> Result<Frictional<T, S>, FrictionError> {
+    integrate_under(mechanism, b, law, hypothesis, tol).map(|(out, _)| out)
 }
 
 /// [`solve_spatial`], with what the integration cost.
@@ -515,6 +609,20 @@ pub fn integrate<T: Scalar, S: Screws<T>, M: Mechanism<T, Screw = S>>(
     mechanism: &M,
     b: Blocks<T, S>,
     law: Restitution,
+    tol: f64,
+) -> Result<(Frictional<T, S>, Stats), FrictionError> {
+    integrate_under(mechanism, b, law, Hypothesis::Simultaneous, tol)
+}
+
+/// [`solve_spatial_under`], with what the integration cost.
+///
+/// # Errors
+/// As [`solve_spatial`].
+pub fn integrate_under<T: Scalar, S: Screws<T>, M: Mechanism<T, Screw = S>>(
+    mechanism: &M,
+    b: Blocks<T, S>,
+    law: Restitution,
+    hypothesis: Hypothesis,
     tol: f64,
 ) -> Result<(Frictional<T, S>, Stats), FrictionError> {
     let n = b.contacts();
@@ -532,7 +640,9 @@ pub fn integrate<T: Scalar, S: Screws<T>, M: Mechanism<T, Screw = S>>(
         contacts: mechanism.contacts(),
         b: &b,
         law,
+        hypothesis,
         tol,
+        vscale,
         delta: tol * vscale,
         lock: 16.0 * tol * vscale,
         lambda_scale: vscale / kscale,
@@ -551,6 +661,8 @@ pub fn integrate<T: Scalar, S: Screws<T>, M: Mechanism<T, Screw = S>>(
         compression: Vec::new(),
         origin: vec![T::zero(); len],
         locked: vec![false; n],
+        released: vec![false; n],
+        armed: vec![false; n],
     };
     let mut stats = Stats::default();
     let mut segments: Vec<Segment<T>> = Vec::new();
@@ -559,11 +671,10 @@ pub fn integrate<T: Scalar, S: Screws<T>, M: Mechanism<T, Screw = S>>(
     let mut error = 0.0;
     let rounding = 16.0 * (len as f64) * T::epsilon_f64();
     let mut h: f64 = 0.05;
-    resolve(&run, &mut st, &[], &[], &mut verdicts)?;
-    let mut normals = run.normals(&st);
+    let mut normals = choose(&run, &mut st, &Fired::default(), &mut verdicts)?;
     let mut k0 = run.slope(&st, &normals, &st.y)?;
     let mut seg_start = st.s.clone();
-    let mut seg_modes = st.modes.clone();
+    let mut seg_modes = labels(hypothesis, &normals, &st.modes);
     let mut samples = vec![sample(&st, &seg_modes, len)];
     let mut seg_rates = k0.rates.lambda.clone();
     loop {
@@ -577,6 +688,7 @@ pub fn integrate<T: Scalar, S: Screws<T>, M: Mechanism<T, Screw = S>>(
                     if *contact == i && *phase == st.phase)
             });
             if !known
+                && hypothesis == Hypothesis::Simultaneous
                 && matches!(normal, Normal::Driven(_))
                 && r.lambda[b.offset[i]].to_f64() < -tol * run.lambda_scale
             {
@@ -660,13 +772,15 @@ pub fn integrate<T: Scalar, S: Screws<T>, M: Mechanism<T, Screw = S>>(
                     break;
                 }
                 begin_restitution(&run, &mut st);
-                normals = run.normals(&st);
             }
-            resolve(&run, &mut st, &[], &resting, &mut verdicts)?;
+            let fired = Fired {
+                resting,
+                ..Fired::default()
+            };
+            normals = choose(&run, &mut st, &fired, &mut verdicts)?;
             k0 = run.slope(&st, &normals, &st.y)?;
-
             seg_start = st.s.clone();
-            seg_modes = st.modes.clone();
+            seg_modes = labels(hypothesis, &normals, &st.modes);
             samples.push(sample(&st, &seg_modes, len));
             seg_rates = k0.rates.lambda.clone();
             continue;
@@ -714,8 +828,10 @@ pub fn integrate<T: Scalar, S: Screws<T>, M: Mechanism<T, Screw = S>>(
             continue;
         }
         stats.accepted += 1;
-        let before = run.margins(&st, &st.y, &k0.rates);
-        let after = run.margins(&st, &trial.y, &trial.slope.rates);
+        let rules = run.rules(&st);
+        let before = run.margins(&st, &normals, &rules, &st.s, &st.y, &k0.rates);
+        let s_end = st.s.clone() + &hh;
+        let after = run.margins(&st, &normals, &rules, &s_end, &trial.y, &trial.slope.rates);
         let grow = (0.9 * trial.scaled.max(1e-10).powf(-0.2)).min(5.0);
         error += trial.impulse + rounding * (run.lambda_scale + max_abs(&trial.y[..len]).to_f64());
         if crossed(&before, &after) {
@@ -731,7 +847,8 @@ pub fn integrate<T: Scalar, S: Screws<T>, M: Mechanism<T, Screw = S>>(
                     break;
                 }
                 let tm = run.step(&st, &normals, &k0, &mid)?;
-                let gm = run.margins(&st, &tm.y, &tm.slope.rates);
+                let s_mid = st.s.clone() + &mid;
+                let gm = run.margins(&st, &normals, &rules, &s_mid, &tm.y, &tm.slope.rates);
                 if crossed(&before, &gm) {
                     hi = mid;
                     at_hi = (tm.y, tm.slope, gm);
@@ -743,21 +860,27 @@ pub fn integrate<T: Scalar, S: Screws<T>, M: Mechanism<T, Screw = S>>(
             error += (hi.clone() - &lo).to_f64() * max_abs(&slope.rates.lambda).to_f64();
             st.y = y;
             st.s += &hi;
-            let leaving: Vec<usize> = (0..n)
-                .filter(|&i| before[2 * i] >= 0.0 && g[2 * i] < 0.0)
-                .collect();
+            let fire = |k: usize| before[k] >= 0.0 && g[k] < 0.0;
+            let fired = Fired {
+                leaving: (0..n).filter(|&i| fire(2 * i)).collect(),
+                resting: Vec::new(),
+                releasing: (0..n).filter(|&i| fire(2 * n + 2 * i)).collect(),
+                engaging: (0..n).filter(|&i| fire(2 * n + 2 * i + 1)).collect(),
+            };
             for i in 0..n {
-                if before[2 * i + 1] >= 0.0 && g[2 * i + 1] < 0.0 {
+                if fire(2 * i + 1) {
                     st.stopped[i] = true;
                 }
             }
+            // A release or re-engagement located past its slack: the slack's impulse.
+            let slacked = fired.releasing.len() + fired.engaging.len();
+            error += slacked as f64 * tol * run.lambda_scale;
             close_segment(&mut segments, &seg_start, &st, &seg_modes, &seg_rates);
             samples.push(sample(&st, &seg_modes, len));
-            normals = run.normals(&st);
-            resolve(&run, &mut st, &leaving, &[], &mut verdicts)?;
+            normals = choose(&run, &mut st, &fired, &mut verdicts)?;
             k0 = run.slope(&st, &normals, &st.y)?;
             seg_start = st.s.clone();
-            seg_modes = st.modes.clone();
+            seg_modes = labels(hypothesis, &normals, &st.modes);
             samples.push(sample(&st, &seg_modes, len));
             seg_rates = k0.rates.lambda.clone();
             h = (h * grow).max(hi.to_f64());
@@ -804,6 +927,12 @@ pub fn integrate<T: Scalar, S: Screws<T>, M: Mechanism<T, Screw = S>>(
                 }
             }
             h = hh.to_f64() * grow;
+            if hypothesis == Hypothesis::Unilateral {
+                let gaps = run.gaps(&st, &rules, &st.s, &st.y);
+                for i in 0..n {
+                    st.armed[i] |= st.released[i] && gaps[i] > run.delta;
+                }
+            }
             samples.push(sample(&st, &seg_modes, len));
             if hit_end {
                 close_segment(&mut segments, &seg_start, &st, &seg_modes, &seg_rates);
@@ -811,11 +940,10 @@ pub fn integrate<T: Scalar, S: Screws<T>, M: Mechanism<T, Screw = S>>(
                     break;
                 }
                 begin_restitution(&run, &mut st);
-                normals = run.normals(&st);
-                resolve(&run, &mut st, &[], &[], &mut verdicts)?;
+                normals = choose(&run, &mut st, &Fired::default(), &mut verdicts)?;
                 k0 = run.slope(&st, &normals, &st.y)?;
                 seg_start = st.s.clone();
-                seg_modes = st.modes.clone();
+                seg_modes = labels(hypothesis, &normals, &st.modes);
                 samples.push(sample(&st, &seg_modes, len));
                 seg_rates = k0.rates.lambda.clone();
             }
@@ -848,6 +976,7 @@ pub fn integrate<T: Scalar, S: Screws<T>, M: Mechanism<T, Screw = S>>(
         verdicts,
         end,
     );
+    out.hypothesis = hypothesis;
     out.error_estimate = Some(error * response.max(1.0));
     out.tolerance = Some(tol);
     out.samples = samples;
@@ -870,12 +999,12 @@ fn begin_restitution<T: Scalar, S: Screws<T>>(run: &Run<'_, T, S>, st: &mut Stat
 }
 
 /// The path's sample at the current state, with the modes of the segment it belongs to.
-fn sample<T: Scalar>(st: &State<T>, modes: &[Mode<T>], len: usize) -> Sample<T> {
+fn sample<T: Scalar>(st: &State<T>, modes: &[ModeLabel], len: usize) -> Sample<T> {
     Sample {
         s: st.s.clone(),
         phase: st.phase,
         impulses: st.y[..len].to_vec(),
-        modes: modes.iter().map(label).collect(),
+        modes: modes.to_vec(),
     }
 }
 
@@ -883,7 +1012,7 @@ fn close_segment<T: Scalar>(
     segments: &mut Vec<Segment<T>>,
     from: &T,
     st: &State<T>,
-    modes: &[Mode<T>],
+    modes: &[ModeLabel],
     rates: &[T],
 ) {
     if (st.s.clone() - from).is_zero() {
@@ -893,9 +1022,147 @@ fn close_segment<T: Scalar>(
         from: from.clone(),
         to: st.s.clone(),
         phase: st.phase,
-        modes: modes.iter().map(label).collect(),
+        modes: modes.to_vec(),
         rates: rates.to_vec(),
     });
+}
+
+/// One consistent assignment of [`choose`]: the state resolved under it, its rules and the
+/// verdicts its resolution gave.
+#[derive(Clone)]
+struct Choice<T: Scalar> {
+    st: State<T>,
+    normals: Vec<Normal<T>>,
+    said: Vec<Verdict>,
+}
+
+/// The events that fired at the state being resolved.
+#[derive(Default)]
+struct Fired {
+    /// Sticking contacts whose required rate left the cone: they must slide.
+    leaving: Vec<usize>,
+    /// Sliding contacts just declared at zero slip.
+    resting: Vec<usize>,
+    /// Driven contacts whose path needs a pull (unilateral law).
+    releasing: Vec<usize>,
+    /// Released contacts whose gap closed (unilateral law).
+    engaging: Vec<usize>,
+}
+
+/// Choose the normal rules and the modes at the current state (s = 0, a phase's end, an event)
+/// and return the rules. Under the simultaneous law they are the phase's ([`normal_rules`]) and
+/// only the modes are chosen ([`resolve`]). Under the unilateral law every contact on its path
+/// — driven, or released with its gap within δ — is driven or released jointly with stick and
+/// slip, as in the plane: the assignments of [`unilateral_assignments`] in their order, each
+/// resolved by [`resolve`] and consistent when its rates pass [`normal_consistent`] with the
+/// slack of the event margins (tol × Λ-scale on an impulse rate, δ = tol × max|v⁰| on a gap's
+/// rate). The first consistent assignment is taken — except that one in which every contact
+/// whose release (re-engagement) margin fired is released (driven) is preferred: the event is
+/// located just past the slack, where the rule left behind may still pass within it. Distinct
+/// consistent rates (beyond twice the slack) are a verdict ([`Verdict::Ambiguous`]).
+fn choose<T: Scalar, S: Screws<T>>(
+    run: &Run<'_, T, S>,
+    st: &mut State<T>,
+    fired: &Fired,
+    verdicts: &mut Vec<Verdict>,
+) -> Result<Vec<Normal<T>>, FrictionError> {
+    let normals = run.normals(st);
+    if run.hypothesis == Hypothesis::Simultaneous {
+        resolve(run, st, &normals, &fired.leaving, &fired.resting, verdicts)?;
+        return Ok(normals);
+    }
+    let (b, n) = (run.b, run.n());
+    let rules = unilateral_rules(&normals, b, st.phase);
+    let gaps = run.gaps(st, &rules, &st.s, &st.y);
+    let on_path: Vec<bool> = (0..n)
+        .map(|i| !st.released[i] || gaps[i] <= run.delta || fired.engaging.contains(&i))
+        .collect();
+    let slack_impulse: T = of(run.tol * run.lambda_scale);
+    let slack_velocity: T = of(run.delta);
+    let mut first: Option<Choice<T>> = None;
+    let mut honoured: Option<Choice<T>> = None;
+    let mut distinct: Vec<Vec<T>> = Vec::new();
+    let mut failure: Option<FrictionError> = None;
+    for a in unilateral_assignments(&rules, &on_path) {
+        let mut trial = st.clone();
+        let mut said = Vec::new();
+        let resolved = resolve(
+            run,
+            &mut trial,
+            &a.normals,
+            &fired.leaving,
+            &fired.resting,
+            &mut said,
+        )
+        .and_then(|()| rates(b, &a.normals, &trial.modes).map_err(|e| run.fail(e, st)));
+        let r = match resolved {
+            Ok(r) => r,
+            Err(e) => {
+                if failure.is_none() || matches!(e, FrictionError::Undetermined { .. }) {
+                    failure = Some(e);
+                }
+                continue;
+            }
+        };
+        if !normal_consistent(b, &r, &a.checks, &slack_impulse, &slack_velocity) {
+            continue;
+        }
+        let near = 2.0 * (run.tol * run.lambda_scale);
+        let same = |d: &Vec<T>| {
+            d.iter()
+                .zip(&r.lambda)
+                .all(|(x, y)| (x.clone() - y).to_f64().abs() <= near)
+        };
+        if !distinct.iter().any(same) {
+            distinct.push(r.lambda.clone());
+        }
+        let honours = fired
+            .releasing
+            .iter()
+            .all(|&i| matches!(a.normals[i], Normal::Given(_)))
+            && fired
+                .engaging
+                .iter()
+                .all(|&i| matches!(a.normals[i], Normal::Driven(_)));
+        let choice = Choice {
+            st: trial,
+            normals: a.normals,
+            said,
+        };
+        if honours && honoured.is_none() {
+            honoured = Some(choice.clone());
+        }
+        if first.is_none() {
+            first = Some(choice);
+        }
+    }
+    let Some(Choice {
+        st: chosen,
+        normals,
+        said,
+    }) = honoured.or(first)
+    else {
+        return Err(match failure {
+            Some(e @ FrictionError::Undetermined { .. }) => e,
+            _ => FrictionError::NoConsistentModes {
+                s: st.s.to_f64(),
+                phase: st.phase,
+            },
+        });
+    };
+    *st = chosen;
+    verdicts.extend(said);
+    if distinct.len() > 1 {
+        verdicts.push(Verdict::Ambiguous {
+            s: st.s.to_f64(),
+            consistent: distinct.len(),
+        });
+    }
+    for i in 0..n {
+        st.released[i] = matches!(normals[i], Normal::Given(_));
+        st.armed[i] = st.released[i] && gaps[i] > run.delta;
+    }
+    Ok(normals)
 }
 
 /// Choose the modes at the current state: contacts without friction or normal impulse rate
@@ -905,21 +1172,17 @@ fn close_segment<T: Scalar>(
 fn resolve<T: Scalar, S: Screws<T>>(
     run: &Run<'_, T, S>,
     st: &mut State<T>,
+    normals: &[Normal<T>],
     leaving: &[usize],
     resting: &[usize],
     verdicts: &mut Vec<Verdict>,
 ) -> Result<(), FrictionError> {
     let b = run.b;
     let n = run.n();
-    let normals = run.normals(st);
     let v = run.velocities(&st.y);
     let mut candidates = Vec::new();
     for i in 0..n {
-        let carries = match &normals[i] {
-            Normal::Driven(_) => true,
-            Normal::Given(r) => !r.is_zero(),
-        };
-        if b.dims[i] == 0 || !carries {
+        if b.dims[i] == 0 || !carries(&normals[i]) {
             st.modes[i] = Mode::Free;
             st.locked[i] = false;
             continue;
@@ -934,7 +1197,7 @@ fn resolve<T: Scalar, S: Screws<T>>(
             let mut tracked = st.modes.clone();
             let holds = st.locked[i]
                 && matches!(st.modes[i], Mode::Slide(_))
-                && run.settle(&mut tracked, &normals, i);
+                && run.settle(&mut tracked, normals, i);
             if holds {
                 st.modes[i] = tracked[i].clone();
             } else {
@@ -950,6 +1213,12 @@ fn resolve<T: Scalar, S: Screws<T>>(
             st.locked[i] = false;
         }
     }
+    // A contact that left its cone and is released since carries no friction to slide with.
+    let leaving: Vec<usize> = leaving
+        .iter()
+        .copied()
+        .filter(|l| candidates.contains(l))
+        .collect();
     let m = candidates.len();
     if m > crate::impact::friction::modes::MAX_CANDIDATES {
         return Err(FrictionError::TooManyAtRest {
@@ -958,7 +1227,7 @@ fn resolve<T: Scalar, S: Screws<T>>(
         });
     }
     // All at zero slip stick, if their cones hold them.
-    let all_stick = rates(b, &normals, &st.modes);
+    let all_stick = rates(b, normals, &st.modes);
     if let Ok(r) = &all_stick
         && leaving.is_empty()
         && sticks_hold(run, st, &candidates, r)
@@ -1004,7 +1273,7 @@ fn resolve<T: Scalar, S: Screws<T>>(
             invariant_direction(
                 run,
                 st,
-                &normals,
+                normals,
                 candidates[k],
                 guesses[k].clone(),
                 verdicts,
@@ -1023,13 +1292,13 @@ fn resolve<T: Scalar, S: Screws<T>>(
                         _ => g.clone(),
                     })
                     .collect();
-                joint_directions(run, st, &normals, &candidates, &sliding, &flipped)
+                joint_directions(run, st, normals, &candidates, &sliding, &flipped)
             })
         };
         if !found {
             continue;
         }
-        let Ok(r) = rates(b, &normals, &st.modes) else {
+        let Ok(r) = rates(b, normals, &st.modes) else {
             continue;
         };
         if sticks_hold(run, st, &candidates, &r) {
