@@ -200,6 +200,18 @@ pub struct Scene {
     pub system: Option<model::system::SystemSpec>,
 }
 
+/// The text of the scene file at `path`, with its name for messages.
+fn read_text(path: &std::path::Path) -> Result<(String, String), SceneError> {
+    let file = path.display().to_string();
+    let text = std::fs::read_to_string(path).map_err(|e| SceneError {
+        file: file.clone(),
+        key: String::new(),
+        value: None,
+        message: format!("cannot read the file: {e}"),
+    })?;
+    Ok((file, text))
+}
+
 /// A scene to simulate (`inertance simulate`, [`crate::simulate`]): its name, its file and
 /// what to run ([`model::simulation`] documents the keys).
 #[derive(Clone, Debug, PartialEq)]
@@ -218,13 +230,7 @@ impl SimulationScene {
     /// # Errors
     /// A [`SceneError`] naming the file, the key and the value.
     pub fn load(path: &std::path::Path) -> Result<SimulationScene, SceneError> {
-        let file = path.display().to_string();
-        let text = std::fs::read_to_string(path).map_err(|e| SceneError {
-            file: file.clone(),
-            key: String::new(),
-            value: None,
-            message: format!("cannot read the file: {e}"),
-        })?;
+        let (file, text) = read_text(path)?;
         SimulationScene::parse(&text, &file)
     }
 
@@ -252,13 +258,7 @@ impl Scene {
     /// As [`Scene::load`], with values allowed to name the `symbols` (for `inertance derive`):
     /// such a value runs only in the symbolic scalar.
     pub fn load_with(path: &std::path::Path, symbols: &[String]) -> Result<Scene, SceneError> {
-        let file = path.display().to_string();
-        let text = std::fs::read_to_string(path).map_err(|e| SceneError {
-            file: file.clone(),
-            key: String::new(),
-            value: None,
-            message: format!("cannot read the file: {e}"),
-        })?;
+        let (file, text) = read_text(path)?;
         Scene::parse_with(&text, &file, symbols)
     }
 
