@@ -432,8 +432,9 @@ fn run_simulate(
         }
     }
     if json {
-        let mut t = serde_json::to_string_pretty(&simulation::to_json(&scene.name, &scene.setup, &sim))
-            .unwrap_or_default();
+        let mut t =
+            serde_json::to_string_pretty(&simulation::to_json(&scene.name, &scene.setup, &sim))
+                .unwrap_or_default();
         t.push('\n');
         print_out(&t);
     } else {

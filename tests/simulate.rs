@@ -14,9 +14,9 @@
 //! landing the accumulated relative error stays below 10⁻⁷, the bound the rocking block is
 //! held to.
 
+use inertance::impact::friction::Restitution;
 use inertance::scene::SimulationScene;
 use inertance::simulate::{End, Law, Simulation, simulate};
-use inertance::impact::friction::Restitution;
 
 fn load(file: &str) -> SimulationScene {
     SimulationScene::load(std::path::Path::new(file)).expect("the example reads")
@@ -39,7 +39,12 @@ fn bouncing_ball_meets_its_closed_forms_and_accumulates_at_three_seconds() {
     assert!(sim.impacts.len() >= 3);
     for r in &sim.impacts {
         let c = &r.contacts[0];
-        assert!((r.t - t).abs() <= 1e-9, "impact {} at {} ≠ {t}", r.index, r.t);
+        assert!(
+            (r.t - t).abs() <= 1e-9,
+            "impact {} at {} ≠ {t}",
+            r.index,
+            r.t
+        );
         assert!((c.before + u).abs() <= 1e-9, "{} ≠ −{u}", c.before);
         assert!((c.after - u / 2.0).abs() <= 1e-9);
         // Newton's law with k: P = m (1 + k) u
@@ -62,14 +67,21 @@ fn bouncing_ball_with_a_horizontal_velocity_lands_where_the_parabola_says() {
     let text = std::fs::read_to_string("examples/simulate/bouncing-ball.toml")
         .unwrap()
         .replace("\nvelocity = [0, 0, 0]", "\nvelocity = [2, 0, 0]")
-        .replace("angular_velocity = [0, 0, 0]", "angular_velocity = [0, 3, 0]");
+        .replace(
+            "angular_velocity = [0, 0, 0]",
+            "angular_velocity = [0, 3, 0]",
+        );
     let sim = run(&parse(&text));
     let z = sim.zeno.as_ref().expect("Zeno");
     assert!((z.t_inf - 3.0).abs() <= 1e-9);
     // then it slides on, frictionless, to the end of the run at 4 s: x = 2·4 m
     assert_eq!(sim.end, End::Duration);
     assert!((sim.state.x.x - 8.0).abs() <= 1e-8, "x = {}", sim.state.x.x);
-    let at = sim.samples.iter().find(|s| (s.t - 3.5).abs() < 1e-9).expect("a sample at 3.5 s");
+    let at = sim
+        .samples
+        .iter()
+        .find(|s| (s.t - 3.5).abs() < 1e-9)
+        .expect("a sample at 3.5 s");
     assert!((at.state.x.x - 7.0).abs() <= 1e-8 && (at.state.x.z - 0.1).abs() <= 1e-9);
 }
 
@@ -156,14 +168,23 @@ fn rocking_block_lands_at_housners_ratio_and_rocks_in_the_pendulums_time() {
     // |ω| = |ġ| / 2b at the landing edge (the other at rest: the block turns about it)
     let omega = |g: f64| g.abs() / 1.5;
     let first = &sim.impacts[0];
-    let landing = first.contacts.iter().find(|c| !c.persisting).expect("a new edge");
+    let landing = first
+        .contacts
+        .iter()
+        .find(|c| !c.persisting)
+        .expect("a new edge");
     let expected = block.omega_at_landing(theta0);
     assert!(
         (omega(landing.before) - expected).abs() <= 1e-7 * expected,
         "ω⁻ = {} ≠ {expected}",
         omega(landing.before)
     );
-    assert!((first.t - block.quarter(theta0)).abs() <= 1e-7, "t₁ = {} ≠ {}", first.t, block.quarter(theta0));
+    assert!(
+        (first.t - block.quarter(theta0)).abs() <= 1e-7,
+        "t₁ = {} ≠ {}",
+        first.t,
+        block.quarter(theta0)
+    );
     // Every landing: the old edge lifts off at 2b ω⁺ with ω⁺ = (23/50) ω⁻; the next landing
     // comes after rocking up to the tilt the energy allows and back: twice the quarter.
     let mut t = first.t;
@@ -171,10 +192,26 @@ fn rocking_block_lands_at_housners_ratio_and_rocks_in_the_pendulums_time() {
     for r in sim.impacts.iter().take(8) {
         let new = r.contacts.iter().find(|c| !c.persisting).unwrap();
         let old = r.contacts.iter().find(|c| c.persisting).unwrap();
-        assert!((omega(new.before) - w).abs() <= 1e-7 * expected, "impact {}", r.index);
-        assert!((omega(old.after) - ratio * w).abs() <= 1e-7 * expected, "impact {}", r.index);
-        assert!(new.after.abs() <= 1e-9 * expected && old.impulse.abs() <= 1e-9 * first.contacts[1].impulse.abs());
-        assert!((r.t - t).abs() <= 1e-7, "impact {} at {} ≠ {t}", r.index, r.t);
+        assert!(
+            (omega(new.before) - w).abs() <= 1e-7 * expected,
+            "impact {}",
+            r.index
+        );
+        assert!(
+            (omega(old.after) - ratio * w).abs() <= 1e-7 * expected,
+            "impact {}",
+            r.index
+        );
+        assert!(
+            new.after.abs() <= 1e-9 * expected
+                && old.impulse.abs() <= 1e-9 * first.contacts[1].impulse.abs()
+        );
+        assert!(
+            (r.t - t).abs() <= 1e-7,
+            "impact {} at {} ≠ {t}",
+            r.index,
+            r.t
+        );
         w *= ratio;
         t += 2.0 * block.quarter(block.tilt_reached(w));
     }
@@ -191,7 +228,11 @@ fn energy_is_conserved_between_impacts_and_never_gained_at_one() {
         let energy = |k: f64, p: f64| k + p;
         let e0 = energy(sim.samples[0].kinetic, sim.samples[0].potential);
         for r in &sim.impacts {
-            assert!(r.kinetic_after <= r.kinetic_before * (1.0 + 1e-12), "{file}: impact {}", r.index);
+            assert!(
+                r.kinetic_after <= r.kinetic_before * (1.0 + 1e-12),
+                "{file}: impact {}",
+                r.index
+            );
         }
         // between impacts: the energy at each sample is the last impact's energy after it
         let mut lost = 0.0;
@@ -211,7 +252,12 @@ fn energy_is_conserved_between_impacts_and_never_gained_at_one() {
                 }
             }
             let e = energy(smp.kinetic, smp.potential);
-            assert!((e - (e0 - lost)).abs() <= 1e-7 * e0, "{file}: t = {}: {e} ≠ {}", smp.t, e0 - lost);
+            assert!(
+                (e - (e0 - lost)).abs() <= 1e-7 * e0,
+                "{file}: t = {}: {e} ≠ {}",
+                smp.t,
+                e0 - lost
+            );
         }
     }
 }
@@ -260,13 +306,44 @@ fn write_scene(name: &str, text: &str) -> String {
 fn bad_scenes_name_the_file_the_key_and_the_value_with_status_2() {
     let ball = std::fs::read_to_string("examples/simulate/bouncing-ball.toml").unwrap();
     let cases = [
-        ("no-duration.toml", ball.replace("duration = 4\n", ""), "simulate.duration"),
-        ("bad-law.toml", ball.replace("[simulate]", "[simulate]\nlaw = \"moreau\""), "simulate.law"),
-        ("lzb-restitution.toml", ball.replace("[simulate]", "[simulate]\nlaw = \"lzb\"\nrestitution = \"newton\""), "simulate.restitution"),
-        ("inside.toml", ball.replace("position = [0, 0, 5.1]", "position = [0, 0, 0.05]"), "body.position"),
-        ("contact.toml", ball.clone() + "[[contact]]\nobstacle = \"floor\"\n", "contact"),
-        ("k.toml", ball.replace("contact = { k = 0.5 }", "contact = { k = 1.5 }"), "simulate.contact.k"),
-        ("other.toml", ball.replace("contact = { k = 0.5 }", "[simulate.obstacle.wall]\nk = 0.5"), "simulate.obstacle.wall"),
+        (
+            "no-duration.toml",
+            ball.replace("duration = 4\n", ""),
+            "simulate.duration",
+        ),
+        (
+            "bad-law.toml",
+            ball.replace("[simulate]", "[simulate]\nlaw = \"moreau\""),
+            "simulate.law",
+        ),
+        (
+            "lzb-restitution.toml",
+            ball.replace(
+                "[simulate]",
+                "[simulate]\nlaw = \"lzb\"\nrestitution = \"newton\"",
+            ),
+            "simulate.restitution",
+        ),
+        (
+            "inside.toml",
+            ball.replace("position = [0, 0, 5.1]", "position = [0, 0, 0.05]"),
+            "body.position",
+        ),
+        (
+            "contact.toml",
+            ball.clone() + "[[contact]]\nobstacle = \"floor\"\n",
+            "contact",
+        ),
+        (
+            "k.toml",
+            ball.replace("contact = { k = 0.5 }", "contact = { k = 1.5 }"),
+            "simulate.contact.k",
+        ),
+        (
+            "other.toml",
+            ball.replace("contact = { k = 0.5 }", "[simulate.obstacle.wall]\nk = 0.5"),
+            "simulate.obstacle.wall",
+        ),
     ];
     for (name, text, key) in cases {
         let path = write_scene(name, &text);
@@ -276,7 +353,12 @@ fn bad_scenes_name_the_file_the_key_and_the_value_with_status_2() {
         assert!(err.contains(&path) && err.contains(key), "{name}: {err}");
         assert!(out.stdout.is_empty(), "{name}: nothing printed");
     }
-    let out = cli(&["simulate", "examples/simulate/bouncing-ball.toml", "--trajectory", "x.png"]);
+    let out = cli(&[
+        "simulate",
+        "examples/simulate/bouncing-ball.toml",
+        "--trajectory",
+        "x.png",
+    ]);
     assert_eq!(out.status.code(), Some(2));
 }
 
@@ -295,18 +377,32 @@ fn a_run_that_stops_prints_its_history_and_exits_3() {
 fn the_trajectory_is_written_whole_as_csv_and_svg() {
     let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"));
     let csv = dir.join("ball.csv");
-    let out = cli(&["simulate", "examples/simulate/bouncing-ball.toml", "--trajectory", csv.to_str().unwrap()]);
+    let out = cli(&[
+        "simulate",
+        "examples/simulate/bouncing-ball.toml",
+        "--trajectory",
+        csv.to_str().unwrap(),
+    ]);
     assert_eq!(out.status.code(), Some(0));
     let text = std::fs::read_to_string(&csv).unwrap();
     let mut lines = text.lines();
-    assert_eq!(lines.next().unwrap(), "t,x,y,z,angle,vx,vy,vz,wx,wy,wz,kinetic,potential,energy,closed");
+    assert_eq!(
+        lines.next().unwrap(),
+        "t,x,y,z,angle,vx,vy,vz,wx,wy,wz,kinetic,potential,energy,closed"
+    );
     // every sample before the first impact is on the parabola z = 5.1 − 5 t²
     for line in lines.take(100) {
         let v: Vec<f64> = line.split(',').map(|x| x.parse().unwrap()).collect();
         assert!((v[3] - (5.1 - 5.0 * v[0] * v[0])).abs() <= 1e-12, "{line}");
     }
     let svg = dir.join("ball.svg");
-    let out = cli(&["simulate", "examples/simulate/bouncing-ball.toml", "--trajectory", svg.to_str().unwrap(), "--json"]);
+    let out = cli(&[
+        "simulate",
+        "examples/simulate/bouncing-ball.toml",
+        "--trajectory",
+        svg.to_str().unwrap(),
+        "--json",
+    ]);
     assert_eq!(out.status.code(), Some(0));
     let s = std::fs::read_to_string(&svg).unwrap();
     assert!(s.starts_with("<svg") && s.trim_end().ends_with("</svg>"));

@@ -18,7 +18,11 @@ pub fn sig(x: f64) -> String {
     if !(-5..6).contains(&e) {
         let t = format!("{x:.5e}");
         let (m, ex) = t.split_once('e').unwrap_or((&t, "0"));
-        let m = if m.contains('.') { m.trim_end_matches('0').trim_end_matches('.') } else { m };
+        let m = if m.contains('.') {
+            m.trim_end_matches('0').trim_end_matches('.')
+        } else {
+            m
+        };
         return format!("{m}e{ex}");
     }
     let decimals = (5 - e).max(0) as usize;
@@ -51,7 +55,9 @@ fn end_text(sim: &Simulation) -> String {
         End::Stopped => format!(
             "an error, t = {} s ({})",
             sig(sim.t_end),
-            sim.stopped.as_ref().map_or_else(String::new, ToString::to_string)
+            sim.stopped
+                .as_ref()
+                .map_or_else(String::new, ToString::to_string)
         ),
     }
 }
@@ -67,7 +73,11 @@ pub fn to_text(name: &str, setup: &Setup, sim: &Simulation) -> String {
     let vmax = sim
         .impacts
         .iter()
-        .flat_map(|r| r.contacts.iter().flat_map(|c| [c.before.abs(), c.after.abs()]))
+        .flat_map(|r| {
+            r.contacts
+                .iter()
+                .flat_map(|c| [c.before.abs(), c.after.abs()])
+        })
         .fold(0.0, f64::max);
     let pmax = sim
         .impacts
@@ -82,7 +92,11 @@ pub fn to_text(name: &str, setup: &Setup, sim: &Simulation) -> String {
             r.contacts.iter().enumerate().map(move |(k, c)| {
                 let first = k == 0;
                 [
-                    if first { r.index.to_string() } else { String::new() },
+                    if first {
+                        r.index.to_string()
+                    } else {
+                        String::new()
+                    },
                     if first { sig(r.t) } else { String::new() },
                     format!(
                         "{} on {}{}",
@@ -103,7 +117,13 @@ pub fn to_text(name: &str, setup: &Setup, sim: &Simulation) -> String {
         })
         .collect();
     let head = [
-        "#", "t [s]", "contacts", "ġ⁻ [m/s]", "ġ⁺ [m/s]", "P [N s]", "ΔE_c [J]",
+        "#",
+        "t [s]",
+        "contacts",
+        "ġ⁻ [m/s]",
+        "ġ⁺ [m/s]",
+        "P [N s]",
+        "ΔE_c [J]",
     ];
     let width: Vec<usize> = (0..7)
         .map(|i| {
@@ -156,7 +176,9 @@ pub fn to_text(name: &str, setup: &Setup, sim: &Simulation) -> String {
         }
     }
     let first = sim.samples.first();
-    let energy = |s: &State| setup.body.kinetic_energy(s) - setup.body.mass * setup.options.gravity.dot(&s.x);
+    let energy = |s: &State| {
+        setup.body.kinetic_energy(s) - setup.body.mass * setup.options.gravity.dot(&s.x)
+    };
     out += &format!(
         "ended at {}: {} impact{}, energy {} → {} J; {} steps ({} rejected), drift {} m\n",
         end_text(sim),
@@ -210,9 +232,7 @@ pub fn to_json(name: &str, setup: &Setup, sim: &Simulation) -> Json {
 
 /// The trajectory: per sample t, C, the angle, v, ω, the energies and the closed contacts.
 pub fn to_csv(setup: &Setup, sim: &Simulation) -> String {
-    let mut out = String::from(
-        "t,x,y,z,angle,vx,vy,vz,wx,wy,wz,kinetic,potential,energy,closed\n",
-    );
+    let mut out = String::from("t,x,y,z,angle,vx,vy,vz,wx,wy,wz,kinetic,potential,energy,closed\n");
     for s in &sim.samples {
         let st = &s.state;
         let row = [
@@ -257,7 +277,9 @@ pub fn to_svg(name: &str, setup: &Setup, sim: &Simulation) -> Result<String, Str
         .fold((base, base), |(lo, hi), y| (lo.min(y), hi.max(y)));
     let pad = 0.05 * (e1 - e0).max(f64::MIN_POSITIVE);
     let angles: Vec<f64> = sim.samples.iter().map(|s| angle(setup, &s.state)).collect();
-    let (a0, a1) = angles.iter().fold((0.0f64, 0.0f64), |(lo, hi), &y| (lo.min(y), hi.max(y)));
+    let (a0, a1) = angles
+        .iter()
+        .fold((0.0f64, 0.0f64), |(lo, hi), &y| (lo.min(y), hi.max(y)));
     let apad = 0.05 * (a1 - a0).max(1e-9);
     let mut svg = String::new();
     {
@@ -265,7 +287,10 @@ pub fn to_svg(name: &str, setup: &Setup, sim: &Simulation) -> Result<String, Str
         root.fill(&WHITE).map_err(|e| err(&e))?;
         let (top, bottom) = root.split_vertically(360);
         let mut chart = ChartBuilder::on(&top)
-            .caption(format!("{name}: energy ({})", setup.law.name()), ("sans-serif", 20))
+            .caption(
+                format!("{name}: energy ({})", setup.law.name()),
+                ("sans-serif", 20),
+            )
             .margin(15)
             .x_label_area_size(40)
             .y_label_area_size(80)
@@ -285,18 +310,25 @@ pub fn to_svg(name: &str, setup: &Setup, sim: &Simulation) -> Result<String, Str
         for (label, colour, pick) in series {
             chart
                 .draw_series(LineSeries::new(
-                    sim.samples.iter().zip(&energies).map(|(s, e)| (s.t, pick(e))),
+                    sim.samples
+                        .iter()
+                        .zip(&energies)
+                        .map(|(s, e)| (s.t, pick(e))),
                     colour.stroke_width(2),
                 ))
                 .map_err(|e| err(&e))?
                 .label(label)
-                .legend(move |(x, y)| Rectangle::new([(x, y - 2), (x + 20, y + 2)], colour.filled()));
+                .legend(move |(x, y)| {
+                    Rectangle::new([(x, y - 2), (x + 20, y + 2)], colour.filled())
+                });
         }
         let red = RGBColor(214, 39, 40);
         chart
-            .draw_series(sim.impacts.iter().map(|r| {
-                PathElement::new(vec![(r.t, e0 - pad), (r.t, e1 + pad)], red.mix(0.4))
-            }))
+            .draw_series(
+                sim.impacts.iter().map(|r| {
+                    PathElement::new(vec![(r.t, e0 - pad), (r.t, e1 + pad)], red.mix(0.4))
+                }),
+            )
             .map_err(|e| err(&e))?
             .label("impact")
             .legend(move |(x, y)| Rectangle::new([(x, y - 2), (x + 20, y + 2)], red.filled()));
@@ -316,7 +348,11 @@ pub fn to_svg(name: &str, setup: &Setup, sim: &Simulation) -> Result<String, Str
         chart
             .configure_mesh()
             .x_desc("t [s]")
-            .y_desc(if setup.plane.is_some() { "angle about the plane's normal [rad]" } else { "rotation from the start [rad]" })
+            .y_desc(if setup.plane.is_some() {
+                "angle about the plane's normal [rad]"
+            } else {
+                "rotation from the start [rad]"
+            })
             .draw()
             .map_err(|e| err(&e))?;
         chart
@@ -326,9 +362,11 @@ pub fn to_svg(name: &str, setup: &Setup, sim: &Simulation) -> Result<String, Str
             ))
             .map_err(|e| err(&e))?;
         chart
-            .draw_series(sim.impacts.iter().map(|r| {
-                PathElement::new(vec![(r.t, a0 - apad), (r.t, a1 + apad)], red.mix(0.4))
-            }))
+            .draw_series(
+                sim.impacts.iter().map(|r| {
+                    PathElement::new(vec![(r.t, a0 - apad), (r.t, a1 + apad)], red.mix(0.4))
+                }),
+            )
             .map_err(|e| err(&e))?;
         root.present().map_err(|e| err(&e))?;
     }

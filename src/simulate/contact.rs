@@ -76,7 +76,9 @@ pub struct Accelerations {
 pub enum ContactError {
     /// No active set satisfies the complementarity conditions (with friction, Painlevé's
     /// paradox can leave none).
-    #[error("no set of pressing contacts satisfies the contact conditions (Painlevé-like inconsistency)")]
+    #[error(
+        "no set of pressing contacts satisfies the contact conditions (Painlevé-like inconsistency)"
+    )]
     NoActiveSet,
     /// A sticking contact needs more friction than its cone allows: it starts to slide,
     /// opposite to the friction force it would need (the unit direction given).
@@ -199,7 +201,9 @@ pub fn accelerations(
         let cs: Vec<usize> = (0..col_of.len()).filter(|&k| set[col_of[k].0]).collect();
         let mut lambda = vec![0.0; col_of.len()];
         if !rs.is_empty() {
-            let a = DMatrix::from_fn(rs.len(), cs.len(), |p, q| entry(row_of[rs[p]], col_of[cs[q]]));
+            let a = DMatrix::from_fn(rs.len(), cs.len(), |p, q| {
+                entry(row_of[rs[p]], col_of[cs[q]])
+            });
             let rhs = DVector::from_fn(rs.len(), |p, _| -b[rs[p]]);
             let svd = a.clone().svd(true, true);
             let x = svd.solve(&rhs, 1e-12 * svd.singular_values.max()).ok()?;
@@ -299,7 +303,18 @@ pub fn derivative(s: &State, acc: &Accelerations) -> [f64; 13] {
     let dj = 0.5 * (-w.x * q.k + w.y * q.w + w.z * q.i);
     let dk = 0.5 * (w.x * q.j - w.y * q.i + w.z * q.w);
     [
-        s.v.x, s.v.y, s.v.z, dw, di, dj, dk, acc.a.x, acc.a.y, acc.a.z, acc.alpha.x, acc.alpha.y,
+        s.v.x,
+        s.v.y,
+        s.v.z,
+        dw,
+        di,
+        dj,
+        dk,
+        acc.a.x,
+        acc.a.y,
+        acc.a.z,
+        acc.alpha.x,
+        acc.alpha.y,
         acc.alpha.z,
     ]
 }
@@ -308,7 +323,13 @@ pub fn derivative(s: &State, acc: &Accelerations) -> [f64; 13] {
 /// stops every pressing contact's point along its rows (a sticking one entirely, another along
 /// its normal), and the smallest displacement of C that closes their gaps — what the integration
 /// drifted by (returned: the largest gap corrected, m).
-pub fn project(body: &Body, planes: &[Plane], s: &mut State, closed: &[Closed], active: &[bool]) -> f64 {
+pub fn project(
+    body: &Body,
+    planes: &[Plane],
+    s: &mut State,
+    closed: &[Closed],
+    active: &[bool],
+) -> f64 {
     let r: Matrix3<f64> = s.rotation();
     let inv = body.world_inverse(&r);
     let mut rows: Vec<(V3, V3, f64, f64)> = Vec::new(); // (d, arm, velocity, gap)

@@ -128,9 +128,7 @@ pub fn solve(
                 note: None,
             })
         }
-        Law::Simultaneous(r) | Law::Unilateral(r)
-            if rough || r == Restitution::Energetic =>
-        {
+        Law::Simultaneous(r) | Law::Unilateral(r) if rough || r == Restitution::Energetic => {
             let hypothesis = match law {
                 Law::Unilateral(_) => Hypothesis::Unilateral,
                 _ => Hypothesis::Simultaneous,
@@ -192,7 +190,12 @@ fn outcome(out: &Outcome<f64>, verdicts: Vec<String>, note: Option<String>) -> R
 }
 
 /// The impact problem: world axes, origin at C.
-fn problem(body: &Body, planes: &[Plane], s: &State, at: &[At]) -> Result<Problem<f64>, ImpactError> {
+fn problem(
+    body: &Body,
+    planes: &[Plane],
+    s: &State,
+    at: &[At],
+) -> Result<Problem<f64>, ImpactError> {
     let r = s.rotation();
     let j = body.world_inertia(&r);
     // symmetrise the rounding of R J Rᵀ
@@ -209,9 +212,13 @@ fn problem(body: &Body, planes: &[Plane], s: &State, at: &[At]) -> Result<Proble
             let plane = &planes[c.plane];
             let d = c.point - s.x;
             let n = -plane.normal;
-            Contact::new(Vec3::new(d.x, d.y, d.z), Vec3::new(n.x, n.y, n.z), plane.law.k)
-                .with_friction(plane.law.mu)
-                .with_energetic(plane.law.k_energetic)
+            Contact::new(
+                Vec3::new(d.x, d.y, d.z),
+                Vec3::new(n.x, n.y, n.z),
+                plane.law.k,
+            )
+            .with_friction(plane.law.mu)
+            .with_energetic(plane.law.k_energetic)
         })
         .collect();
     Problem::new(rigid, twist, contacts).map_err(|e| ImpactError::Invalid(e.to_string()))
@@ -260,7 +267,12 @@ fn simultaneous(
     // Every contact left out must meet Newton's law with the basis' answer.
     let scale = at
         .iter()
-        .map(|c| planes[c.plane].normal.dot(&(s.v + s.w.cross(&(c.point - s.x)))).abs())
+        .map(|c| {
+            planes[c.plane]
+                .normal
+                .dot(&(s.v + s.w.cross(&(c.point - s.x))))
+                .abs()
+        })
         .fold(f64::MIN_POSITIVE, f64::max);
     let mut impulses = vec![0.0; at.len()];
     for (k, &i) in basis.iter().enumerate() {

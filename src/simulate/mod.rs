@@ -22,5 +22,5 @@ pub mod world;
 
 pub use body::{Body, Feature, Shape, State};
 pub use impact::Law;
-pub use run::{End, ImpactRecord, Options, Setup, Simulation, SimulateError, simulate};
+pub use run::{End, ImpactRecord, Options, Setup, SimulateError, Simulation, simulate};
 pub use world::{ContactLaw, Plane};

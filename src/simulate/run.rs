@@ -217,7 +217,9 @@ pub enum SimulateError {
         error: ContactError,
     },
     /// The steps shrank below what f64 resolves.
-    #[error("t = {t:.9} s: the step fell below what f64 resolves (a stiff or inconsistent contact phase)")]
+    #[error(
+        "t = {t:.9} s: the step fell below what f64 resolves (a stiff or inconsistent contact phase)"
+    )]
     Stalled {
         /// When.
         t: f64,
@@ -490,7 +492,7 @@ impl<'a> Run<'a> {
                             feature: f,
                             plane: p,
                             mode: self.mode_of(f, p),
-            armed: true,
+                            armed: true,
                         });
                         self.hint.clear();
                         self.events.push(Event {
@@ -500,9 +502,7 @@ impl<'a> Run<'a> {
                     }
                     continue;
                 }
-                let m = 2.0
-                    * (acc.a.norm()
-                        + g.arm * (self.s.w.norm_squared() + acc.alpha.norm()))
+                let m = 2.0 * (acc.a.norm() + g.arm * (self.s.w.norm_squared() + acc.alpha.norm()))
                     + f64::MIN_POSITIVE;
                 let s = (g.rate + (g.rate * g.rate + 2.0 * m * g.gap).sqrt()) / m;
                 horizon = horizon.min(s);
@@ -562,8 +562,18 @@ impl<'a> Run<'a> {
                 }
             };
             let scales = [
-                self.length, self.length, self.length, 1.0, 1.0, 1.0, 1.0, self.speed, self.speed,
-                self.speed, self.speed / self.length, self.speed / self.length,
+                self.length,
+                self.length,
+                self.length,
+                1.0,
+                1.0,
+                1.0,
+                1.0,
+                self.speed,
+                self.speed,
+                self.speed,
+                self.speed / self.length,
+                self.speed / self.length,
                 self.speed / self.length,
             ];
             let ratio = (0..13)
@@ -582,8 +592,12 @@ impl<'a> Run<'a> {
             let end_state = State::unpack(&y5);
             let through = pairs.iter().any(|&(f, p)| {
                 !self.is_closed(f, p)
-                    && gap(&self.setup.body.features[f], &self.setup.planes[p], &end_state).gap
-                        < -self.gap_tol
+                    && gap(
+                        &self.setup.body.features[f],
+                        &self.setup.planes[p],
+                        &end_state,
+                    )
+                    .gap < -self.gap_tol
             });
             if through && hh > floor {
                 self.steps.1 += 1;
@@ -667,7 +681,10 @@ impl<'a> Run<'a> {
             &mut hint,
             o.rest_speed,
         ) {
-            Ok(a) => a.active.last().copied().unwrap_or(false) && a.normal.last().is_some_and(|&l| l > 0.0),
+            Ok(a) => {
+                a.active.last().copied().unwrap_or(false)
+                    && a.normal.last().is_some_and(|&l| l > 0.0)
+            }
             Err(ContactError::Slips { .. }) => true,
             Err(_) => false,
         }
@@ -685,8 +702,7 @@ impl<'a> Run<'a> {
             let g = gap(&body.features[f], &planes[p], &self.s);
             let persisting = self.is_closed(f, p);
             let joins = persisting
-                || (g.rate < 0.0
-                    && (g.gap <= self.gap_tol || g.gap / -g.rate <= o.simultaneity));
+                || (g.rate < 0.0 && (g.gap <= self.gap_tol || g.gap / -g.rate <= o.simultaneity));
             if !joins {
                 continue;
             }
@@ -710,24 +726,31 @@ impl<'a> Run<'a> {
         }
         let index = self.impacts.len() + 1;
         let kinetic_before = body.kinetic_energy(&self.s);
-        let out = solve(body, planes, &self.s, &at, self.setup.law, o.tolerance).map_err(|error| {
-            SimulateError::Impact {
-                index,
-                t: self.t,
-                contacts: struck
-                    .iter()
-                    .map(|c| format!("{} on {}", c.feature, c.plane))
-                    .collect::<Vec<_>>()
-                    .join(", "),
-                error,
-            }
-        })?;
+        let out =
+            solve(body, planes, &self.s, &at, self.setup.law, o.tolerance).map_err(|error| {
+                SimulateError::Impact {
+                    index,
+                    t: self.t,
+                    contacts: struck
+                        .iter()
+                        .map(|c| format!("{} on {}", c.feature, c.plane))
+                        .collect::<Vec<_>>()
+                        .join(", "),
+                    error,
+                }
+            })?;
         let w_before = self.s.w;
         let v_before = self.s.v;
         self.s.v = out.v;
         self.s.w = out.w;
         self.hold_plane();
-        if !(self.s.v.iter().chain(self.s.w.iter()).all(|x| x.is_finite())) {
+        if !(self
+            .s
+            .v
+            .iter()
+            .chain(self.s.w.iter())
+            .all(|x| x.is_finite()))
+        {
             return Err(SimulateError::NotFinite { t: self.t });
         }
         // What stays closed.
@@ -800,8 +823,10 @@ impl<'a> Run<'a> {
             .iter()
             .position(|f| f.label() == last[2].contacts[0].feature)
             .unwrap_or(0);
-        let spin_free = matches!(self.setup.body.features[f], super::body::Feature::Sphere { .. })
-            && self.setup.planes[p].law.mu == 0.0;
+        let spin_free = matches!(
+            self.setup.body.features[f],
+            super::body::Feature::Sphere { .. }
+        ) && self.setup.planes[p].law.mu == 0.0;
         let turning = turning && !spin_free;
         let nn = self.setup.planes[p].normal;
         let dv = (self.s.v - v_before) - nn * nn.dot(&(self.s.v - v_before));
@@ -820,9 +845,8 @@ impl<'a> Run<'a> {
             return;
         }
         let g = self.setup.options.gravity;
-        let energy = |s: &State| {
-            self.setup.body.kinetic_energy(s) - self.setup.body.mass * g.dot(&s.x)
-        };
+        let energy =
+            |s: &State| self.setup.body.kinetic_energy(s) - self.setup.body.mass * g.dot(&s.x);
         let before = energy(&self.s);
         let gt = g + nn * gn;
         let vt = self.s.v - nn * nn.dot(&self.s.v);

@@ -81,7 +81,16 @@ impl Reader<'_> {
         self.only_keys(
             body,
             "body",
-            &["shape", "mass", "density", "pose", "position", "velocity", "angular_velocity", "material"],
+            &[
+                "shape",
+                "mass",
+                "density",
+                "pose",
+                "position",
+                "velocity",
+                "angular_velocity",
+                "material",
+            ],
         )?;
         let Some(shape_item) = body.get("shape") else {
             return Err(self.err(
@@ -92,9 +101,7 @@ impl Reader<'_> {
         };
         let (props, shape) = self.mass_properties(body, "body")?;
         let shape = match shape {
-            Some(Shape::Box(d)) => SimShape::Box {
-                half: v3(&d) / 2.0,
-            },
+            Some(Shape::Box(d)) => SimShape::Box { half: v3(&d) / 2.0 },
             Some(Shape::Sphere(r)) => SimShape::Sphere { radius: r.approx() },
             Some(Shape::Rod(l)) => SimShape::Rod {
                 half_length: l.approx() / 2.0,
@@ -122,9 +129,15 @@ impl Reader<'_> {
             inertia[(2, 2)] = inertia[(0, 0)];
         }
         let mass = props.mass.approx();
-        let velocity = v3(&self.triple(self.get(body, "velocity", "body")?, "body.velocity")?.each_ref().map(Term::of));
+        let velocity = v3(&self
+            .triple(self.get(body, "velocity", "body")?, "body.velocity")?
+            .each_ref()
+            .map(Term::of));
         let omega = v3(&self
-            .triple(self.get(body, "angular_velocity", "body")?, "body.angular_velocity")?
+            .triple(
+                self.get(body, "angular_velocity", "body")?,
+                "body.angular_velocity",
+            )?
             .each_ref()
             .map(Term::of));
         let sim = self.table(root, "simulate", "")?;
@@ -177,7 +190,11 @@ impl Reader<'_> {
             }
         };
         let Some(duration) = positive("duration")? else {
-            return Err(self.err("simulate.duration", None, "how long to simulate, in seconds"));
+            return Err(self.err(
+                "simulate.duration",
+                None,
+                "how long to simulate, in seconds",
+            ));
         };
         let impacts = match sim.get("impacts") {
             None => 10_000,
@@ -219,13 +236,18 @@ impl Reader<'_> {
             None => None,
             Some(item) => {
                 let name = self.string(item, "simulate.restitution")?;
-                Some(Restitution::ALL.into_iter().find(|r| r.name() == name).ok_or_else(|| {
-                    self.err(
-                        "simulate.restitution",
-                        Some(short(item)),
-                        "one of \"newton\", \"poisson\", \"energetic\"",
-                    )
-                })?)
+                Some(
+                    Restitution::ALL
+                        .into_iter()
+                        .find(|r| r.name() == name)
+                        .ok_or_else(|| {
+                            self.err(
+                                "simulate.restitution",
+                                Some(short(item)),
+                                "one of \"newton\", \"poisson\", \"energetic\"",
+                            )
+                        })?,
+                )
             }
         };
         let law = match (law_name.as_str(), restitution) {
@@ -256,22 +278,38 @@ impl Reader<'_> {
         };
         let obstacles = self.obstacles(root)?;
         if obstacles.is_empty() {
-            return Err(self.err("obstacle", None, "a scene to simulate needs at least one [[obstacle]] plane"));
+            return Err(self.err(
+                "obstacle",
+                None,
+                "a scene to simulate needs at least one [[obstacle]] plane",
+            ));
         }
         let defaults = match sim.get("contact") {
             None => None,
             Some(item) => Some(item.as_table_like().ok_or_else(|| {
-                self.err("simulate.contact", Some(short(item)), "a table: { k = …, mu = … }")
+                self.err(
+                    "simulate.contact",
+                    Some(short(item)),
+                    "a table: { k = …, mu = … }",
+                )
             })?),
         };
         let base = self.contact_law(defaults, "simulate.contact", None)?;
         let overrides = match sim.get("obstacle") {
             None => None,
             Some(item) => Some(item.as_table_like().ok_or_else(|| {
-                self.err("simulate.obstacle", Some(short(item)), "tables [simulate.obstacle.NAME]")
+                self.err(
+                    "simulate.obstacle",
+                    Some(short(item)),
+                    "tables [simulate.obstacle.NAME]",
+                )
             })?),
         };
-        let names: Vec<String> = obstacles.iter().enumerate().map(|(i, o)| o.name.clone().unwrap_or_else(|| format!("obstacle[{i}]"))).collect();
+        let names: Vec<String> = obstacles
+            .iter()
+            .enumerate()
+            .map(|(i, o)| o.name.clone().unwrap_or_else(|| format!("obstacle[{i}]")))
+            .collect();
         if let Some(t) = overrides {
             for (name, _) in t.iter() {
                 if !names.iter().any(|n| n == name) {
@@ -289,12 +327,20 @@ impl Reader<'_> {
             let point = o.point.as_ref().map_or_else(V3::zeros, v3);
             let own = overrides.and_then(|t| t.get(&names[i])).map(|item| {
                 item.as_table_like().ok_or_else(|| {
-                    self.err(&format!("simulate.obstacle.{}", names[i]), Some(short(item)), "a table of k, mu, …")
+                    self.err(
+                        &format!("simulate.obstacle.{}", names[i]),
+                        Some(short(item)),
+                        "a table of k, mu, …",
+                    )
                 })
             });
             let law = match own {
                 None => base.clone(),
-                Some(t) => self.contact_law(Some(t?), &format!("simulate.obstacle.{}", names[i]), Some(&base))?,
+                Some(t) => self.contact_law(
+                    Some(t?),
+                    &format!("simulate.obstacle.{}", names[i]),
+                    Some(&base),
+                )?,
             };
             planes.push(Plane {
                 name: names[i].clone(),
@@ -309,7 +355,10 @@ impl Reader<'_> {
             v: velocity,
             w: omega,
         };
-        let length = body_model.reach().max(start.x.norm()).max(f64::MIN_POSITIVE);
+        let length = body_model
+            .reach()
+            .max(start.x.norm())
+            .max(f64::MIN_POSITIVE);
         for f in &body_model.features {
             for p in &planes {
                 let g = gap(f, p, &start);
@@ -329,7 +378,12 @@ impl Reader<'_> {
         }
         let rest_speed = match positive("rest_speed")? {
             Some(v) => v,
-            None => 1e-6 * (gravity.norm() * length).sqrt().max(velocity.norm()).max(f64::MIN_POSITIVE),
+            None => {
+                1e-6 * (gravity.norm() * length)
+                    .sqrt()
+                    .max(velocity.norm())
+                    .max(f64::MIN_POSITIVE)
+            }
         };
         Ok(Setup {
             body: body_model,
