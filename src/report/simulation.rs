@@ -185,7 +185,10 @@ pub fn to_text(name: &str, setup: &Setup, sim: &Simulation) -> String {
         sim.impacts.len(),
         if sim.impacts.len() == 1 { "" } else { "s" },
         first.map_or_else(String::new, |f| sig(f.kinetic + f.potential)),
-        sig(energy(&sim.state)),
+        // a run stopped by an overflow has no energy to print (never `inf` as a result)
+        Some(energy(&sim.state))
+            .filter(|e| e.is_finite())
+            .map_or_else(|| "(not finite)".to_string(), sig),
         sim.steps.0,
         sim.steps.1,
         sig(sim.drift)

@@ -17,7 +17,9 @@
 //! not, the impact has no answer under that law and the run stops, naming it.
 
 use crate::impact::admissibility::{energy_gain, verdicts};
-use crate::impact::friction::{Hypothesis, Restitution, solve_frictional_under};
+use crate::impact::friction::{
+    Hypothesis, Restitution, Verdict as FrictionVerdict, solve_frictional_under,
+};
 use crate::impact::multiple::{ContactLaw as LzbLaw, solve_lzb};
 use crate::impact::problem::Problem;
 use crate::impact::restitution::Model;
@@ -139,12 +141,13 @@ pub fn solve(
             let impulses = (0..b.contacts())
                 .map(|i| out.impulses[b.offset[i]] * b.directions[b.offset[i]].norm())
                 .collect();
+            let (faults, notes) = frictional_verdicts(&out.verdicts);
             Ok(Rebound {
                 w: to_v3(&out.velocity.top()),
                 v: to_v3(&out.velocity.bottom()),
                 impulses,
-                verdicts: out.verdicts.iter().map(ToString::to_string).collect(),
-                note: None,
+                verdicts: faults,
+                note: notes,
             })
         }
         Law::Simultaneous(r) => simultaneous(body, planes, s, at, problem, model(r)),
@@ -161,6 +164,34 @@ pub fn solve(
             Ok(outcome(&out, verdicts, None))
         }
     }
+}
+
+/// A frictional impact's verdicts split into what makes the answer not physical (a pulling
+/// rate, a contact still approaching, energy gained) and notes on an answer that is (a split of
+/// sticking impulses that only their sum determines, several consistent stick/slip assignments,
+/// an unstable slip), each kind named once per impact: the twist after is the law's either way.
+fn frictional_verdicts(verdicts: &[FrictionVerdict]) -> (Vec<String>, Option<String>) {
+    let mut faults = Vec::new();
+    let mut notes: Vec<String> = Vec::new();
+    for v in verdicts {
+        match v {
+            FrictionVerdict::TensileRate { .. }
+            | FrictionVerdict::StillApproaching { .. }
+            | FrictionVerdict::EnergyGain => faults.push(v.to_string()),
+            FrictionVerdict::SplitNotUnique { .. } => {
+                let note = "sticking contacts on one line share a tangential impulse only its \
+                            sum determines (the twist after is unique)"
+                    .to_string();
+                if !notes.contains(&note) {
+                    notes.push(note);
+                }
+            }
+            FrictionVerdict::Ambiguous { .. } | FrictionVerdict::UnstableSlip { .. } => {
+                notes.push(v.to_string());
+            }
+        }
+    }
+    (faults, (!notes.is_empty()).then(|| notes.join("; ")))
 }
 
 fn model(r: Restitution) -> Model {
@@ -210,7 +241,12 @@ fn problem(
         .iter()
         .map(|c| {
             let plane = &planes[c.plane];
-            let d = c.point - s.x;
+            // the feature's point moved onto the plane (by its gap, within the gap tolerance):
+            // contacts on one face then have exactly alike rows, so a family of stick splits is
+            // recognised as one (the rounding of the flight would otherwise make it a family
+            // that moves the body)
+            let on_plane = c.point - plane.normal * plane.normal.dot(&(c.point - plane.point));
+            let d = on_plane - s.x;
             let n = -plane.normal;
             Contact::new(
                 Vec3::new(d.x, d.y, d.z),

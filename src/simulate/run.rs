@@ -252,7 +252,7 @@ pub fn simulate(setup: &Setup) -> Result<Simulation, SimulateError> {
 /// [`Simulation::stopped`]), keeping the history up to there.
 pub fn simulate_history(setup: &Setup) -> Simulation {
     let mut run = Run::new(setup);
-    let result = run.go();
+    let result = run.go().and_then(|end| run.finite(end));
     let (end, stopped) = match result {
         Ok(end) => (end, None),
         Err(e) => (End::Stopped, Some(e)),
@@ -321,6 +321,25 @@ impl<'a> Run<'a> {
             gap_tol: 1e-11 * length,
             steps: (0, 0),
             drift: 0.0,
+        }
+    }
+
+    /// `end`, when every energy of the run and the state it ends in are finite numbers; a run
+    /// whose scales overflow f64 (an energy m g·x beyond 10³⁰⁸) stops instead of printing one.
+    fn finite(&self, end: End) -> Result<End, SimulateError> {
+        let body = &self.setup.body;
+        let energy =
+            |s: &State| body.kinetic_energy(s) - body.mass * self.setup.options.gravity.dot(&s.x);
+        let finite = self
+            .samples
+            .iter()
+            .all(|s| s.kinetic.is_finite() && s.potential.is_finite())
+            && energy(&self.s).is_finite()
+            && self.drift.is_finite();
+        if finite {
+            Ok(end)
+        } else {
+            Err(SimulateError::NotFinite { t: self.t })
         }
     }
 
