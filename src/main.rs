@@ -220,6 +220,10 @@ enum Command {
         /// energies) or its plot to FILE.svg (energies and angle against time, impacts marked).
         #[arg(long, value_name = "FILE")]
         trajectory: Option<PathBuf>,
+        /// Write an animation of the run to FILE.svg: the body at every sample and the
+        /// obstacles, played by any browser (looping).
+        #[arg(long, value_name = "FILE")]
+        animation: Option<PathBuf>,
     },
     /// Reproduce the paper's worked examples in a derivations directory.
     Check {
@@ -338,7 +342,14 @@ fn main() -> ExitCode {
             law,
             json,
             trajectory,
-        } => run_simulate(&scene, law, json, trajectory.as_deref()),
+            animation,
+        } => run_simulate(
+            &scene,
+            law,
+            json,
+            trajectory.as_deref(),
+            animation.as_deref(),
+        ),
         Command::Derive {
             scene,
             symbols,
@@ -374,6 +385,7 @@ fn run_simulate(
     law: Option<LawArg>,
     json: bool,
     trajectory: Option<&std::path::Path>,
+    animation: Option<&std::path::Path>,
 ) -> ExitCode {
     use inertance::impact::friction::Restitution;
     use inertance::report::simulation;
@@ -413,8 +425,22 @@ fn run_simulate(
             }
         },
     };
+    if let Some(f) = animation
+        && f.extension().and_then(|e| e.to_str()) != Some("svg")
+    {
+        return fail_input(format!(
+            "--animation {}: the animation is written as FILE.svg",
+            f.display()
+        ));
+    }
     // A run that stopped on an error still reports its history up to there (status 3).
     let sim = inertance::simulate::run::simulate_history(&scene.setup);
+    if let Some(file) = animation {
+        let text = inertance::report::animation::to_svg(&scene.name, &scene.setup, &sim);
+        if let Err(code) = write_whole_as("--animation", file, &text) {
+            return code;
+        }
+    }
     if let (Some(file), Some(svg)) = (trajectory, format) {
         let text = if svg {
             match simulation::to_svg(&scene.name, &scene.setup, &sim) {
@@ -798,6 +824,11 @@ fn write_trajectory(
 /// Write `text` to `--trajectory`'s `file`, whole or not at all: into a temporary file beside
 /// it, renamed over it once written (status 2 when it cannot be written).
 fn write_whole(file: &std::path::Path, text: &str) -> Result<(), ExitCode> {
+    write_whole_as("--trajectory", file, text)
+}
+
+/// [`write_whole`], the error naming the option `flag` that asked for the file.
+fn write_whole_as(flag: &str, file: &std::path::Path, text: &str) -> Result<(), ExitCode> {
     let name = file
         .file_name()
         .map_or_else(|| "trajectory".into(), |n| n.to_string_lossy().into_owned());
@@ -805,10 +836,7 @@ fn write_whole(file: &std::path::Path, text: &str) -> Result<(), ExitCode> {
     let written = std::fs::write(&temp, text).and_then(|()| std::fs::rename(&temp, file));
     if let Err(e) = written {
         let _ = std::fs::remove_file(&temp);
-        eprintln!(
-            "error: --trajectory {}: cannot write it: {e}",
-            file.display()
-        );
+        eprintln!("error: {flag} {}: cannot write it: {e}", file.display());
         return Err(ExitCode::from(2));
     }
     Ok(())

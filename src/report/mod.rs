@@ -13,6 +13,7 @@
 //! the normalisation of the solver's axes; `table` renders it for people ([`Report::to_table`]),
 //! `json` for programs ([`Report::to_json`]).
 
+pub mod animation;
 mod friction;
 mod json;
 pub mod lzb;

@@ -1,0 +1,370 @@
+//! An animation of a simulated run a person can look at: one SVG, the body drawn at every
+//! sample of the trajectory and the obstacle planes as lines, each frame shown for its share of
+//! the run's time by SMIL (`<animate attributeName="display" calcMode="discrete">`), looping.
+//! Any browser plays it; no script.
+//!
+//! **The view.** The drawing plane is the plane of motion when the run is planar
+//! (`[simulate] plane`), otherwise the vertical plane containing the world's x axis (or y
+//! when gravity lies along x). Its vertical axis e_v is "up", −g projected into the plane and
+//! normalised; its horizontal axis e_h = n × e_v (n the drawing plane's normal), so a planar
+//! run in x–z is drawn with x to the right and z up. A world point p is drawn at
+//!
+//! ```text
+//! (X, Y) = (o_x + s (e_h · p),  o_y − s (e_v · p))      (SVG pixels, y down)
+//! ```
+//!
+//! with the scale s and the origin o written on the root element (`data-scale`,
+//! `data-origin`, `data-horizontal`, `data-vertical`), so a reader (the tests) can map every
+//! drawn vertex back to the world.
+//!
+//! **What is drawn.** A box as the convex hull of its eight projected corners; a sphere as its
+//! circle with a radius drawn to a body-fixed point (so that its turning shows); a rod as the
+//! segment between its ends. An obstacle plane as its trace in the drawing plane at the body's
+//! depth, N_h X + N_v Y = N · P − N_n w, hatched on the obstacle's side (a plane parallel to the
+//! drawing plane has no trace and is not drawn). Each frame carries its time (`data-t`) and the
+//! number of impacts up to it.
+
+use std::fmt::Write as _;
+
+use nalgebra::Vector3;
+
+use crate::simulate::run::Simulation;
+use crate::simulate::{Setup, Shape, State};
+
+type V3 = Vector3<f64>;
+
+/// The most frames drawn: a longer trajectory is sampled evenly (the first and last kept).
+pub const MAX_FRAMES: usize = 1500;
+
+/// The canvas (px).
+const WIDTH: f64 = 800.0;
+const HEIGHT: f64 = 600.0;
+
+/// The drawing plane: its normal n, the horizontal and vertical axes e_h, e_v.
+#[derive(Clone, Copy, Debug)]
+pub struct View {
+    /// n.
+    pub normal: V3,
+    /// e_h = n × e_v.
+    pub horizontal: V3,
+    /// e_v: up.
+    pub vertical: V3,
+}
+
+impl View {
+    /// The view of a run: its plane of motion, or the vertical plane through x (y when gravity
+    /// lies along x).
+    pub fn of(setup: &Setup) -> View {
+        let g = setup.options.gravity;
+        let up_guess = if g.norm() > 0.0 {
+            -g / g.norm()
+        } else {
+            V3::z()
+        };
+        let normal = match setup.plane {
+            Some(n) => n.normalize(),
+            None => {
+                let candidate = V3::y();
+                if candidate.cross(&up_guess).norm() > 1e-6 {
+                    candidate
+                } else {
+                    V3::x()
+                }
+            }
+        };
+        let mut vertical = up_guess - normal * normal.dot(&up_guess);
+        if vertical.norm() < 1e-9 {
+            // gravity along the view's normal (or none): any axis of the plane
+            vertical = normal.cross(&V3::x());
+            if vertical.norm() < 1e-9 {
+                vertical = normal.cross(&V3::y());
+            }
+        }
+        let vertical = vertical.normalize();
+        View {
+            normal,
+            horizontal: normal.cross(&vertical),
+            vertical,
+        }
+    }
+
+    /// (e_h · p, e_v · p).
+    pub fn project(&self, p: &V3) -> (f64, f64) {
+        (self.horizontal.dot(p), self.vertical.dot(p))
+    }
+}
+
+/// The world points drawn for the body at `s`: a box's projected hull, a rod's two ends, a
+/// sphere's centre and a body-fixed point of its rim.
+fn outline(setup: &Setup, view: &View, s: &State) -> Vec<(f64, f64)> {
+    let r = s.rotation();
+    match &setup.body.shape {
+        Shape::Box { half } => {
+            let mut pts = Vec::with_capacity(8);
+            for i in 0..8 {
+                let c = V3::new(
+                    if i & 1 == 0 { -half.x } else { half.x },
+                    if i & 2 == 0 { -half.y } else { half.y },
+                    if i & 4 == 0 { -half.z } else { half.z },
+                );
+                pts.push(view.project(&(s.x + r * c)));
+            }
+            hull(pts)
+        }
+        Shape::Rod { half_length } => {
+            let a = r * V3::new(0.0, 0.0, *half_length);
+            vec![view.project(&(s.x - a)), view.project(&(s.x + a))]
+        }
+        Shape::Sphere { radius } => {
+            // a body-fixed point on the great circle of the drawing plane at the start
+            let start_r = setup.start.rotation();
+            let marker_body = start_r.transpose() * view.horizontal * *radius;
+            vec![view.project(&s.x), view.project(&(s.x + r * marker_body))]
+        }
+    }
+}
+
+/// The convex hull (Andrew's monotone chain), counter-clockwise, of points in the plane.
+fn hull(mut p: Vec<(f64, f64)>) -> Vec<(f64, f64)> {
+    p.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.total_cmp(&b.1)));
+    p.dedup();
+    if p.len() < 3 {
+        return p;
+    }
+    let cross = |o: (f64, f64), a: (f64, f64), b: (f64, f64)| {
+        (a.0 - o.0) * (b.1 - o.1) - (a.1 - o.1) * (b.0 - o.0)
+    };
+    let mut lower: Vec<(f64, f64)> = Vec::new();
+    for &q in &p {
+        while lower.len() >= 2 && cross(lower[lower.len() - 2], lower[lower.len() - 1], q) <= 0.0 {
+            lower.pop();
+        }
+        lower.push(q);
+    }
+    let mut upper: Vec<(f64, f64)> = Vec::new();
+    for &q in p.iter().rev() {
+        while upper.len() >= 2 && cross(upper[upper.len() - 2], upper[upper.len() - 1], q) <= 0.0 {
+            upper.pop();
+        }
+        upper.push(q);
+    }
+    lower.pop();
+    upper.pop();
+    lower.extend(upper);
+    lower
+}
+
+/// The frames drawn: every sample, or [`MAX_FRAMES`] of them evenly.
+fn frames(sim: &Simulation) -> Vec<usize> {
+    let n = sim.samples.len();
+    if n <= MAX_FRAMES {
+        return (0..n).collect();
+    }
+    let mut idx: Vec<usize> = (0..MAX_FRAMES)
+        .map(|k| k * (n - 1) / (MAX_FRAMES - 1))
+        .collect();
+    idx.dedup();
+    idx
+}
+
+fn f(x: f64) -> String {
+    format!("{x:.3}")
+}
+
+/// The animation of `sim` as one SVG document (see the module docs).
+pub fn to_svg(name: &str, setup: &Setup, sim: &Simulation) -> String {
+    let view = View::of(setup);
+    let chosen = frames(sim);
+    let outlines: Vec<Vec<(f64, f64)>> = chosen
+        .iter()
+        .map(|&k| outline(setup, &view, &sim.samples[k].state))
+        .collect();
+    // world bounds of the drawn body over the run, with its size as margin
+    let reach = match &setup.body.shape {
+        Shape::Box { half } => half.norm(),
+        Shape::Rod { half_length } => *half_length,
+        Shape::Sphere { radius } => *radius,
+    };
+    let (mut h0, mut h1, mut v0, mut v1) = (f64::MAX, f64::MIN, f64::MAX, f64::MIN);
+    for o in &outlines {
+        for &(h, v) in o {
+            h0 = h0.min(h);
+            h1 = h1.max(h);
+            v0 = v0.min(v);
+            v1 = v1.max(v);
+        }
+    }
+    if let Shape::Sphere { radius } = &setup.body.shape {
+        h0 -= radius;
+        h1 += radius;
+        v0 -= radius;
+        v1 += radius;
+    }
+    let margin = 0.5 * reach.max(1e-9);
+    let (h0, h1, v0, v1) = (h0 - margin, h1 + margin, v0 - margin, v1 + margin);
+    // the run's bounds fitted into the canvas, centred
+    let height = HEIGHT;
+    let scale = (WIDTH / (h1 - h0)).min(height / (v1 - v0));
+    let origin = (
+        (WIDTH - (h1 - h0) * scale) / 2.0 - h0 * scale,
+        (height - (v1 - v0) * scale) / 2.0 + v1 * scale,
+    );
+    let to_px = |(h, v): (f64, f64)| (origin.0 + scale * h, origin.1 - scale * v);
+    let t_total = sim.t_end.max(f64::MIN_POSITIVE);
+    let mut svg = String::new();
+    let _ = write!(
+        svg,
+        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{w}\" height=\"{h}\" \
+         viewBox=\"0 0 {w} {h}\" data-scale=\"{s:e}\" data-origin=\"{ox:e} {oy:e}\" \
+         data-horizontal=\"{eh0:e} {eh1:e} {eh2:e}\" data-vertical=\"{ev0:e} {ev1:e} {ev2:e}\" \
+         data-duration=\"{t_total:e}\" data-frames=\"{n}\">\n",
+        w = f(WIDTH),
+        h = f(height),
+        s = scale,
+        ox = origin.0,
+        oy = origin.1,
+        eh0 = view.horizontal.x,
+        eh1 = view.horizontal.y,
+        eh2 = view.horizontal.z,
+        ev0 = view.vertical.x,
+        ev1 = view.vertical.y,
+        ev2 = view.vertical.z,
+        n = chosen.len(),
+    );
+    let _ = writeln!(
+        svg,
+        "<title>{}</title>\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>",
+        escape(name)
+    );
+    // the obstacles, at the body's depth at the start
+    let depth = view.normal.dot(&setup.start.x);
+    for plane in &setup.planes {
+        let n = plane.normal;
+        let (nh, nv) = (view.horizontal.dot(&n), view.vertical.dot(&n));
+        let len = (nh * nh + nv * nv).sqrt();
+        if len < 1e-9 {
+            continue;
+        }
+        let c = n.dot(&plane.point) - view.normal.dot(&n) * depth;
+        // the trace's nearest point to the world origin, and its direction
+        let foot = (nh * c / (len * len), nv * c / (len * len));
+        let dir = (-nv / len, nh / len);
+        let span = 4.0 * (h1 - h0).max(v1 - v0);
+        let a = to_px((foot.0 - span * dir.0, foot.1 - span * dir.1));
+        let b = to_px((foot.0 + span * dir.0, foot.1 + span * dir.1));
+        let _ = writeln!(
+            svg,
+            "<g class=\"obstacle\" data-name=\"{}\"><line x1=\"{}\" y1=\"{}\" x2=\"{}\" y2=\"{}\" \
+             stroke=\"black\" stroke-width=\"2\"/>",
+            escape(&plane.name),
+            f(a.0),
+            f(a.1),
+            f(b.0),
+            f(b.1)
+        );
+        // hatching on the obstacle's side (−N), every 20 px along the trace
+        let into = (-nh / len, nv / len); // −N in pixels (y down)
+        let length = (b.0 - a.0).hypot(b.1 - a.1);
+        let along = ((b.0 - a.0) / length, (b.1 - a.1) / length);
+        // only where the drawing is: the trace's stretch inside the canvas
+        let steps = (length / 20.0).min(4000.0) as usize;
+        for k in 0..=steps {
+            let u = k as f64 / steps.max(1) as f64;
+            let p = (a.0 + u * (b.0 - a.0), a.1 + u * (b.1 - a.1));
+            if p.0 < -20.0 || p.0 > WIDTH + 20.0 || p.1 < -20.0 || p.1 > height + 20.0 {
+                continue;
+            }
+            let _ = writeln!(
+                svg,
+                "<line x1=\"{}\" y1=\"{}\" x2=\"{}\" y2=\"{}\" stroke=\"gray\"/>",
+                f(p.0),
+                f(p.1),
+                f(p.0 + 10.0 * into.0 + 6.0 * along.0),
+                f(p.1 + 10.0 * into.1 + 6.0 * along.1)
+            );
+        }
+        svg.push_str("</g>\n");
+    }
+    // the frames
+    for (j, (&k, o)) in chosen.iter().zip(&outlines).enumerate() {
+        let sample = &sim.samples[k];
+        let start = sample.t / t_total;
+        let end = chosen.get(j + 1).map(|&next| sim.samples[next].t / t_total);
+        let impacts = sim.impacts.iter().filter(|r| r.t <= sample.t).count();
+        let (values, times) = match (start > 0.0, end) {
+            (false, Some(e)) => ("inline;none".to_string(), format!("0;{e:.6}")),
+            (true, Some(e)) => (
+                "none;inline;none".to_string(),
+                format!("0;{start:.6};{e:.6}"),
+            ),
+            (false, None) => ("inline".to_string(), "0".to_string()),
+            (true, None) => ("none;inline".to_string(), format!("0;{start:.6}")),
+        };
+        let _ = write!(
+            svg,
+            "<g class=\"frame\" data-t=\"{t:e}\" display=\"{d}\">\
+             <animate attributeName=\"display\" values=\"{values}\" keyTimes=\"{times}\" \
+             dur=\"{dur:e}s\" calcMode=\"discrete\" repeatCount=\"indefinite\"/>",
+            t = sample.t,
+            d = if j == 0 { "inline" } else { "none" },
+            dur = t_total,
+        );
+        let px: Vec<(f64, f64)> = o.iter().map(|&p| to_px(p)).collect();
+        match &setup.body.shape {
+            Shape::Box { .. } => {
+                let pts: Vec<String> = px
+                    .iter()
+                    .map(|p| format!("{},{}", f(p.0), f(p.1)))
+                    .collect();
+                let _ = write!(
+                    svg,
+                    "<polygon class=\"body\" points=\"{}\" fill=\"#9ecae1\" stroke=\"#08519c\" \
+                     stroke-width=\"2\"/>",
+                    pts.join(" ")
+                );
+            }
+            Shape::Rod { .. } => {
+                let _ = write!(
+                    svg,
+                    "<line class=\"body\" x1=\"{}\" y1=\"{}\" x2=\"{}\" y2=\"{}\" \
+                     stroke=\"#08519c\" stroke-width=\"4\"/>",
+                    f(px[0].0),
+                    f(px[0].1),
+                    f(px[1].0),
+                    f(px[1].1)
+                );
+            }
+            Shape::Sphere { radius } => {
+                let _ = write!(
+                    svg,
+                    "<circle class=\"body\" cx=\"{}\" cy=\"{}\" r=\"{}\" fill=\"#9ecae1\" \
+                     stroke=\"#08519c\" stroke-width=\"2\"/><line x1=\"{}\" y1=\"{}\" x2=\"{}\" \
+                     y2=\"{}\" stroke=\"#08519c\"/>",
+                    f(px[0].0),
+                    f(px[0].1),
+                    f(radius * scale),
+                    f(px[0].0),
+                    f(px[0].1),
+                    f(px[1].0),
+                    f(px[1].1)
+                );
+            }
+        }
+        let _ = writeln!(
+            svg,
+            "<text x=\"10\" y=\"20\" font-family=\"sans-serif\" font-size=\"14\">t = {:.4} s, \
+             {impacts} impact{}</text></g>",
+            sample.t,
+            if impacts == 1 { "" } else { "s" }
+        );
+    }
+    svg.push_str("</svg>\n");
+    svg
+}
+
+fn escape(s: &str) -> String {
+    s.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+        .replace('"', "&quot;")
+}
