@@ -31,9 +31,10 @@ fn main() {
         ("slender-block-10s", "slender-block"),
         ("tumbling-box", "tumbling-box"),
     ] {
-        let scene =
-            SimulationScene::load(std::path::Path::new(&format!("examples/simulate/{file}.toml")))
-                .expect("loads");
+        let scene = SimulationScene::load(std::path::Path::new(&format!(
+            "examples/simulate/{file}.toml"
+        )))
+        .expect("loads");
         let sim = simulate(&scene.setup).expect("runs");
         eprintln!(
             "simulate/{name}: {} impacts, {} steps ({} rejected), {} s simulated",

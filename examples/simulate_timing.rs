@@ -5,7 +5,9 @@ use inertance::simulate::simulate;
 
 fn main() {
     let mut args = std::env::args().skip(1);
-    let file = args.next().unwrap_or_else(|| "examples/simulate/slender-block.toml".into());
+    let file = args
+        .next()
+        .unwrap_or_else(|| "examples/simulate/slender-block.toml".into());
     let runs: usize = args.next().and_then(|n| n.parse().ok()).unwrap_or(50);
     let scene = SimulationScene::load(std::path::Path::new(&file)).unwrap_or_else(|e| {
         eprintln!("error: {e}");
@@ -23,5 +25,9 @@ fn main() {
         }
     }
     let per = start.elapsed().as_secs_f64() / runs as f64;
-    println!("{file}: {:.3} ms per run, {} impacts per run", per * 1e3, impacts / runs);
+    println!(
+        "{file}: {:.3} ms per run, {} impacts per run",
+        per * 1e3,
+        impacts / runs
+    );
 }

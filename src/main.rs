@@ -224,6 +224,11 @@ enum Command {
         /// obstacles, played by any browser (looping).
         #[arg(long, value_name = "FILE")]
         animation: Option<PathBuf>,
+        /// Run exactly (a frictionless sphere among planes: every impact time and velocity and
+        /// the accumulation time as exact radicals, no integration); refused, status 2, for a
+        /// scene with no exact form.
+        #[arg(long, conflicts_with_all = ["trajectory", "animation", "law"])]
+        exact: bool,
     },
     /// Reproduce the paper's worked examples in a derivations directory.
     Check {
@@ -339,10 +344,19 @@ fn main() -> ExitCode {
         Command::Check { dir, quiet } => run_check(dir, quiet),
         Command::Simulate {
             scene,
+            law: _,
+            json,
+            trajectory: _,
+            animation: _,
+            exact: true,
+        } => run_simulate_exact(&scene, json),
+        Command::Simulate {
+            scene,
             law,
             json,
             trajectory,
             animation,
+            exact: false,
         } => run_simulate(
             &scene,
             law,
@@ -375,6 +389,34 @@ fn main() -> ExitCode {
                 run_bench(quick, json, plot, scene, hard_cases)
             }
         }
+    }
+}
+
+/// `simulate --exact`: the exact run of a frictionless sphere among planes
+/// ([`inertance::simulate::exact`]), in radicals. Status 0 at its end, 2 for bad input or a
+/// scene with no exact form, 3 when the run leaves the exact path (a nested radical, two
+/// planes at once) — the impacts up to there are printed.
+fn run_simulate_exact(path: &std::path::Path, json: bool) -> ExitCode {
+    use inertance::report::exact_run::{exact_json, exact_text};
+    let (scene, sphere) = match inertance::scene::SimulationScene::load_exact::<RatFun>(path) {
+        Ok(s) => s,
+        Err(e) => return fail_input(e.to_string()),
+    };
+    let (run, error) = inertance::simulate::exact::run_exact_history(&sphere);
+    if json {
+        let mut t = serde_json::to_string_pretty(&exact_json(&scene.name, &sphere, &run))
+            .unwrap_or_default();
+        t.push('\n');
+        print_out(&t);
+    } else {
+        print_out(&exact_text(&scene.name, &sphere, &run, error.as_ref()));
+    }
+    match error {
+        Some(e) => {
+            eprintln!("error: {}: {e}", path.display());
+            ExitCode::from(3)
+        }
+        None => ExitCode::SUCCESS,
     }
 }
 

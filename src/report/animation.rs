@@ -212,12 +212,12 @@ pub fn to_svg(name: &str, setup: &Setup, sim: &Simulation) -> String {
     let to_px = |(h, v): (f64, f64)| (origin.0 + scale * h, origin.1 - scale * v);
     let t_total = sim.t_end.max(f64::MIN_POSITIVE);
     let mut svg = String::new();
-    let _ = write!(
+    let _ = writeln!(
         svg,
         "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{w}\" height=\"{h}\" \
          viewBox=\"0 0 {w} {h}\" data-scale=\"{s:e}\" data-origin=\"{ox:e} {oy:e}\" \
          data-horizontal=\"{eh0:e} {eh1:e} {eh2:e}\" data-vertical=\"{ev0:e} {ev1:e} {ev2:e}\" \
-         data-duration=\"{t_total:e}\" data-frames=\"{n}\">\n",
+         data-duration=\"{t_total:e}\" data-frames=\"{n}\">",
         w = f(WIDTH),
         h = f(height),
         s = scale,

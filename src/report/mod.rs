@@ -14,6 +14,7 @@
 //! `json` for programs ([`Report::to_json`]).
 
 pub mod animation;
+pub mod exact_run;
 mod friction;
 mod json;
 pub mod lzb;

@@ -234,6 +234,22 @@ impl SimulationScene {
         SimulationScene::parse(&text, &file)
     }
 
+    /// Read the scene to simulate at `path` and its exact form: a frictionless sphere among
+    /// planes, every number exact in `T` ([`crate::simulate::exact`]).
+    ///
+    /// # Errors
+    /// As [`SimulationScene::load`], and a scene that has no exact form (not a sphere, friction,
+    /// a normal whose length is not exact in `T`).
+    pub fn load_exact<T: crate::scalar::Scalar>(
+        path: &std::path::Path,
+    ) -> Result<(SimulationScene, crate::simulate::exact::ExactSphere<T>), SceneError> {
+        let (file, text) = read_text(path)?;
+        let scene = SimulationScene::parse(&text, &file)?;
+        let doc = parse_document(&text, &file)?;
+        let exact = read::exact_sphere::<T>(&doc, &file, &scene.setup)?;
+        Ok((scene, exact))
+    }
+
     /// Parse scene text to simulate; `file` names it in messages.
     ///
     /// # Errors

@@ -520,6 +520,27 @@ fn degree_hint(text: &str) -> Option<String> {
     ))
 }
 
+/// Read the exact sphere of a scene to simulate ([`super::model::exact_sphere`]), given its
+/// setup as [`simulation`] read it.
+pub(super) fn exact_sphere<T: crate::scalar::Scalar>(
+    doc: &DocumentMut,
+    file: &str,
+    setup: &crate::simulate::Setup,
+) -> Result<crate::simulate::exact::ExactSphere<T>, SceneError> {
+    let root = doc.as_table();
+    let r = Reader {
+        file,
+        symbols: &[],
+        params: Params::new(&[], None),
+        observed: Default::default(),
+    };
+    let r = Reader {
+        params: r.params(root, None)?,
+        ..r
+    };
+    r.exact_sphere(root, setup)
+}
+
 /// Read a scene to simulate ([`super::model::simulation`]): its name and its setup.
 pub(super) fn simulation(
     doc: &DocumentMut,

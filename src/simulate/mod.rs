@@ -11,10 +11,12 @@
 //! [`body`]: the body, its features and state · [`world`]: the obstacle planes and the gaps ·
 //! [`contact`]: persistent contact, the acceleration-level complementarity problem ·
 //! [`impact`]: one impact under the chosen law · [`ode`]: the Runge–Kutta step ·
-//! [`run`]: the event loop, the log and the trajectory.
+//! [`run`]: the event loop, the log and the trajectory · [`exact`]: exact runs of a
+//! frictionless sphere among planes (no integration: the event times are roots of quadratics).
 
 pub mod body;
 pub mod contact;
+pub mod exact;
 pub mod impact;
 pub mod ode;
 pub mod run;

@@ -26,6 +26,7 @@
 //! parameter is a symbol for `derive` and carries its derivative in a sensitivity run. A scene
 //! that uses none of these keys is read exactly as before.
 
+pub(crate) mod exact_sphere;
 pub(crate) mod hertz;
 pub(crate) mod obstacle;
 pub(crate) mod params;
