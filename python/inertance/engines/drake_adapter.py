@@ -16,7 +16,7 @@ from __future__ import annotations
 import numpy as np
 
 import pydrake
-from pydrake.geometry import Box, HalfSpace, ProximityProperties, Sphere
+from pydrake.geometry import Box, Cylinder, HalfSpace, ProximityProperties, Sphere
 from pydrake.math import RigidTransform, RotationMatrix
 from pydrake.multibody.plant import AddMultibodyPlantSceneGraph, ContactModel, CoulombFriction
 from pydrake.multibody.tree import RotationalInertia, SpatialInertia
@@ -77,6 +77,8 @@ class DrakeAdapter:
                 shape = Box(*[float(x) for x in b.size])
             elif b.shape == "sphere":
                 shape = Sphere(float(b.size[0]))
+            elif b.shape == "cylinder":
+                shape = Cylinder(float(b.size[0]), float(b.size[1]))  # axis z, as the scene's
             else:
                 raise SceneUnsupported(scene.file, f"body[{i}].shape", f"the Drake adapter does not build a {b.shape} yet")
             plant.RegisterCollisionGeometry(body, RigidTransform(), shape, f"g{i}", props(mu))
