@@ -5,7 +5,8 @@ hydroelastic, not used here), solved by its discrete solver (the plant's default
 restitution, so e is ignored (as for MuJoCo's defaults) and the grade says what its defaults do
 to a rigid impact. Setup: ``MultibodyPlant`` with ``time_step`` (1 ms), gravity zero, point
 contact (``ContactModel.kPoint``), one free body per body (``SpatialInertia`` from the mass
-and the central moments, its frame at the centre of mass), half-spaces and spheres welded to
+and the central moments, its frame at the centre of mass; a box, a sphere or a cylinder, whose
+axis is z in Drake as in the scene), half-spaces and spheres welded to
 the world, the proximity properties' friction μ (static = dynamic) and Drake's default
 stiffness and dissipation. The run advances until no contact is active or ``horizon`` (0.5 s)
 and reads each body's spatial velocity in the world (the body origin = the centre of mass).
