@@ -38,7 +38,7 @@ from typing import Optional
 
 import numpy as np
 
-from .scene import rotation
+from .scene import _toml, rotation
 
 KINDS = ("box-corner", "box-edge", "box-wall", "box-face", "cylinder-rim", "cylinder-side")
 
@@ -99,9 +99,7 @@ def _draw(rng: random.Random, kind: str) -> Optional[dict]:
         pose = yaw
     else:  # cylinder-side: a quarter turn about x lays the axis (body z) horizontal
         pose = f"[{{ quaternion = [1, 1, 0, 0] }}, {yaw}]"
-    import tomllib
-
-    rot = rotation(tomllib.loads(f"p = {pose}")["p"], {})
+    rot = rotation(_toml.loads(f"p = {pose}")["p"], {})
     # the box's corners, body axes (a cylinder's lowest point is known in closed form: the tilt
     # in 10°–80° puts its bottom rim's point along +x lowest, the top rim higher by h cos 80° or
     # more; lying on its side, the line y = −r)
