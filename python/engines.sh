@@ -3,8 +3,10 @@
 # the Cargo target directory with the package and its engines from PyPI wheels (the `engines`
 # extra: MuJoCo, PyBullet, Pinocchio, Rapier; Drake where its wheel installs), the engine tests
 # of python/tests/test_engines.py (python/test.sh skips them without the engines), then the
-# whole catalogue graded by every installed engine (or by $ENGINES, comma-separated adapter
-# names) into benches/engines/results/ (or the directory given as the first argument).
+# whole catalogue, the random family (seed $SEED, default 2026; $COUNT scenes, default 60) and
+# the convergence sweeps graded by every installed engine (or by $ENGINES, comma-separated
+# adapter names) into benches/engines/results/ (or the directory given as the first argument):
+# report.md, report.json, the SVG plots, report.html and the family's scene files.
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
 root="$here/.."
@@ -19,11 +21,12 @@ out="${1:-$root/benches/engines/results}"
 PATH="$venv/bin:$PATH" CARGO_TARGET_DIR="$target" "$venv/bin/python" -m pip install --quiet --disable-pip-version-check \
     --no-build-isolation --force-reinstall --no-deps "$here"
 cd "$here/tests"
-"$venv/bin/pytest" -q -p no:cacheprovider test_engines.py
+"$venv/bin/pytest" -q -p no:cacheprovider test_engines.py test_engine_grades.py
 cd "$root"
 status=0
 "$venv/bin/python" -m inertance.engines --catalogue "$root/benches/engines/scenes" \
-    ${ENGINES:+--engines "$ENGINES"} --out "$out" || status=$?
+    ${ENGINES:+--engines "$ENGINES"} --random "${SEED:-2026}" --random-count "${COUNT:-60}" --convergence \
+    --out "$out" || status=$?
 "$venv/bin/python" - <<'PY'
 import importlib.metadata as md
 for p in ("mujoco", "pybullet", "pin", "rapier3d", "drake", "numpy"):

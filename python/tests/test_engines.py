@@ -32,7 +32,7 @@ def test_the_catalogue_has_the_scenes_of_the_brief():
     names = {p.stem for p in FILES}
     for want in ["bar-pitching-e02", "ball-floor-e0", "ball-floor-e05", "ball-floor-e1", "box-flat-e0", "box-flat-e05",
                  "box-flat-e1", "box-edge-45", "box-corner", "bar-pitching", "ball-corner",
-                 "ball-corner-rough", "rod-rough-floor", "cradle-3", "box-on-box"]:
+                 "ball-corner-rough", "rod-rough-floor", "cradle-3", "box-on-box", "rocking-block"]:
         assert want in names
     assert len([n for n in names if n.startswith("box-edge-")]) >= 3
 
@@ -109,7 +109,7 @@ def _float(x):
     return escene.evaluate(x)  # a radical string such as "1/88994*(22567 - 2448*sqrt(3))"
 
 
-@pytest.mark.parametrize("path", [p for p in FILES if "rough" not in p.stem], ids=lambda p: p.stem)
+@pytest.mark.parametrize("path", [p for p in FILES if not escene.load(p).frictional], ids=lambda p: p.stem)
 def test_the_f64_answers_are_the_exact_ones(path):
     """The graded answer is inertance's f64 solve; where the scene has an exact form (rational or
     radical poses) the exact solve agrees to 1e-12 of the velocity scale (the accuracy contract
@@ -427,3 +427,70 @@ def test_mujoco_default_runs_every_scene(scenes):
     rep = runner.run([engines.adapter("mujoco")], list(scenes.values()))
     assert not rep["failures"], rep["failures"]
     assert len(rep["grades"]) == len(scenes)
+
+
+# --- engines on the second slice's grades (symmetry, cylinders, convergence) ---------------
+
+def test_pinocchio_and_mujoco_keep_symmetry_pybullet_and_rapier_break_the_flat_box(scenes):
+    """The symmetry grade on real engines: Pinocchio's one linear solve and MuJoCo's simultaneous
+    soft contacts keep the flat box's mirrors (below 1e-12: rounding of the solve, and of MuJoCo's
+    symmetric solver); Bullet's manifold meets the corners one per step and Rapier's solver
+    sweeps them in order, and both leave the box turning (rapier #668) — flagged `!sym`."""
+    from inertance.engines import adapter
+
+    s = scenes["box-flat-e05"]
+    for name, broken in [("pinocchio", False), ("mujoco-calibrated", False), ("pybullet", True), ("rapier", True)]:
+        module = engines.ENGINE_MODULES[name]
+        pytest.importorskip(module)
+        g = grading.grade(s, name, adapter(name).run(s.engine))
+        if broken:
+            assert not g.symmetry_ok and g.symmetry_broken > 0.01, (name, g.symmetry_broken)
+        else:
+            assert g.symmetry_broken < 1e-12, (name, g.symmetry_broken)
+
+
+@pytest.fixture(scope="module")
+def cylinders(tmp_path_factory):
+    from inertance.engines import random_family
+
+    family = random_family.scenes(2026, 12, tmp_path_factory.mktemp("cylinders"))
+    return [s for s in family if "cylinder" in s.name]
+
+
+@pytest.mark.parametrize("name,bound", [("pinocchio", 1e-12), ("rapier", 0.02), ("mujoco-calibrated", 0.02),
+                                        ("pybullet", 0.1), ("drake", 1.0)])
+def test_every_engine_builds_a_cylinder(cylinders, name, bound):
+    """Each adapter builds the family's cylinders (on a rim point: one contact; on its side:
+    two) and gets a finite answer better than no impact. Bounds on the one-contact rims:
+    Pinocchio exact (1e-12: f64); Rapier and MuJoCo calibrated as on the catalogue's one-contact
+    box corner (0.016 and 0.006 there: Rapier's first-order step error, MuJoCo's soft contact;
+    here measured below 0.005) — a cylinder built on the wrong axis, with the wrong inertia or
+    radius, errs by the order of the impact; PyBullet below 0.1 (its rims err by 4–5 % although
+    the point Bullet finds is the scene's to 0.1 mm: not explained here); Drake only below 1
+    (its defaults are nearly inelastic)."""
+    from inertance.engines import adapter
+
+    pytest.importorskip(engines.ENGINE_MODULES[name])
+    a = adapter(name)
+    assert len(cylinders) == 4
+    for s in cylinders:
+        g = grading.grade(s, name, a.run(s.engine))
+        assert g.error < (bound if "rim" in s.name else 1.0), (s.name, g.error)
+
+
+def test_refining_pybullets_and_rapiers_steps(scenes):
+    """Convergence sweeps on real engines: an isolated contact is exact at every PyBullet time
+    step and iteration count; on the flat box PyBullet and Rapier settle (the error changes by
+    less than 15 % per halving): the sequence in which they meet the corners, not the step, sets
+    it."""
+    from inertance.engines import convergence
+
+    pytest.importorskip("pybullet")
+    pytest.importorskip("rapier3d")
+    for knob, values, make in convergence.SWEEPS["pybullet"]:
+        r = convergence.sweep("pybullet", knob, values, make, scenes["ball-floor-e05"])
+        assert r["verdict"] == "exact"
+    knob, values, make = convergence.SWEEPS["pybullet"][0]
+    assert convergence.sweep("pybullet", knob, values, make, scenes["box-flat-e05"])["verdict"].startswith("settles")
+    knob, values, make = convergence.SWEEPS["rapier"][0]
+    assert convergence.sweep("rapier", knob, values, make, scenes["box-flat-e05"])["verdict"].startswith("settles")

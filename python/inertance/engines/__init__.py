@@ -12,8 +12,13 @@ imported until an adapter is asked for by name):
 * :mod:`.grading` — the grades: the error of the twist after impact in the kinetic-energy metric,
   relative to the exact impact's velocity change; energy gained; contacts that should
   separate and do not;
-* :mod:`.runner` — runs adapters over scenes, tables in Markdown and JSON
-  (``python -m inertance.engines``);
+* :mod:`.runner` — runs adapters over scenes; the report in Markdown, JSON, SVG and HTML, the
+  random family's summaries (``python -m inertance.engines``);
+* :mod:`.symmetry` — the scene's mirrors and half-turns, computed, and the part of an answer
+  that breaks them (the ``!sym`` grade);
+* :mod:`.random_family` — the seeded random family of boxes and cylinders (1–4 contacts);
+* :mod:`.convergence` — the sweeps of time step and solver iterations, the observed order;
+* :mod:`.plot` — the report's SVG plots, written by hand;
 * :mod:`.reference` — two pure-Python adapters that need no engine (the exact answer, and
   "nothing happens"), the runner's own tests;
 * :mod:`.mujoco_adapter`, :mod:`.pybullet_adapter`, :mod:`.pinocchio_adapter`,

@@ -25,6 +25,7 @@ from typing import Optional, Sequence
 import numpy as np
 
 from .scene import EngineScene, load as load_engine_scene
+from .symmetry import symmetries
 
 #: The catalogue's directory in a checkout: ``benches/engines/scenes/`` (the package run from
 #: its source tree). An installed package has no catalogue: :func:`default_catalogue` then
@@ -62,7 +63,9 @@ class CatalogueScene:
     """One catalogue entry: ``name`` (the file's stem), ``engine`` (what adapters read),
     ``before`` and ``exact`` (per body, :class:`Twist`), ``law`` (the law the exact answer is
     under), ``contact_velocities`` (per contact, the exact normal velocity after impact,
-    positive = separating), ``kinetic_energy_before`` and ``kinetic_energy_after``."""
+    positive = separating), ``kinetic_energy_before`` and ``kinetic_energy_after``, and
+    ``symmetries`` (:class:`~inertance.engines.symmetry.Symmetry`, computed from the scene:
+    the exact answer keeps them, an engine's may not)."""
 
     name: str
     path: Path
@@ -73,6 +76,7 @@ class CatalogueScene:
     separating: tuple
     kinetic_energy_before: float
     kinetic_energy_after: float
+    symmetries: tuple = ()
 
 
 def _vector(x) -> np.ndarray:
@@ -141,7 +145,8 @@ def load(path) -> CatalogueScene:
         separating=tuple(bool(v > 1e-9 * max(1.0, _speed(engine, before)))
                          for v in normal_velocities(engine, after)),
         kinetic_energy_before=kinetic_energy(engine, before),
-        kinetic_energy_after=kinetic_energy(engine, after))
+        kinetic_energy_after=kinetic_energy(engine, after),
+        symmetries=tuple(symmetries(engine)))
 
 
 def _speed(engine: EngineScene, twists) -> float:

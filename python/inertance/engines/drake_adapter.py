@@ -5,7 +5,8 @@ hydroelastic, not used here), solved by its discrete solver (the plant's default
 restitution, so e is ignored (as for MuJoCo's defaults) and the grade says what its defaults do
 to a rigid impact. Setup: ``MultibodyPlant`` with ``time_step`` (1 ms), gravity zero, point
 contact (``ContactModel.kPoint``), one free body per body (``SpatialInertia`` from the mass
-and the central moments, its frame at the centre of mass), half-spaces and spheres welded to
+and the central moments, its frame at the centre of mass; a box, a sphere or a cylinder, whose
+axis is z in Drake as in the scene), half-spaces and spheres welded to
 the world, the proximity properties' friction μ (static = dynamic) and Drake's default
 stiffness and dissipation. The run advances until no contact is active or ``horizon`` (0.5 s)
 and reads each body's spatial velocity in the world (the body origin = the centre of mass).
@@ -16,7 +17,7 @@ from __future__ import annotations
 import numpy as np
 
 import pydrake
-from pydrake.geometry import Box, HalfSpace, ProximityProperties, Sphere
+from pydrake.geometry import Box, Cylinder, HalfSpace, ProximityProperties, Sphere
 from pydrake.math import RigidTransform, RotationMatrix
 from pydrake.multibody.plant import AddMultibodyPlantSceneGraph, ContactModel, CoulombFriction
 from pydrake.multibody.tree import RotationalInertia, SpatialInertia
@@ -77,6 +78,8 @@ class DrakeAdapter:
                 shape = Box(*[float(x) for x in b.size])
             elif b.shape == "sphere":
                 shape = Sphere(float(b.size[0]))
+            elif b.shape == "cylinder":
+                shape = Cylinder(float(b.size[0]), float(b.size[1]))  # axis z, as the scene's
             else:
                 raise SceneUnsupported(scene.file, f"body[{i}].shape", f"the Drake adapter does not build a {b.shape} yet")
             plant.RegisterCollisionGeometry(body, RigidTransform(), shape, f"g{i}", props(mu))

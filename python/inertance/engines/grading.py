@@ -25,20 +25,34 @@ rounding (≤ 10⁻¹² here) and far below the smallest separation speed in the
 not zero (20 % of the approach speed: bar-pitching-e02's first support, e = 0.2); an engine's
 residual velocity at a contact that stays (e = 0, or two cradle balls leaving together) counts
 as separating only beyond it.
+
+**Symmetry** (:mod:`.symmetry`): where the scene maps onto itself under a mirror or a half-turn
+(computed from the scene, listed in the catalogue), the part of the engine's answer the
+symmetry reverses, ‖ξ − Sξ‖_M / (2‖ξ* − ξ⁰‖_M), the largest over the scene's symmetries
+(``symmetry_broken``; ``None`` for an asymmetric scene). Flagged ``!sym`` above
+``SYMMETRY_TOLERANCE`` = 10⁻³ of the impact: the exact f64 answer scores ≤ 10⁻¹⁵ on the
+catalogue and an f32 engine's rounding about 10⁻⁷, so a flagged answer turns or drifts in a
+way the scene forbids by three orders more than rounding can explain (the same 0.1 % as ``+E``).
 """
+
 
 from __future__ import annotations
 
 from dataclasses import asdict, dataclass, field
-from typing import Sequence
+from typing import Optional, Sequence
 
 import numpy as np
 
 from .catalogue import CatalogueScene, Twist, kinetic_energy, normal_velocities
+from .symmetry import broken
 
 #: A contact separates when its normal velocity exceeds this fraction of the scene's largest
 #: approach speed before impact (see the module's docstring for why 1 %).
 SEPARATION_TOLERANCE = 0.01
+
+#: A symmetric scene's answer breaks its symmetry when the reversed part exceeds this fraction of
+#: the impact (see the module's docstring).
+SYMMETRY_TOLERANCE = 1e-3
 
 
 def metric_norm(scene: CatalogueScene, twists: Sequence[Twist]) -> float:
@@ -66,6 +80,14 @@ class Grade:
     normal_velocities: list
     exact_normal_velocities: list
     twists: list = field(default_factory=list)
+    symmetries: list = field(default_factory=list)
+    symmetry_broken: Optional[float] = None
+    symmetry_by: dict = field(default_factory=dict)
+
+    @property
+    def symmetry_ok(self) -> bool:
+        """No symmetry of the scene broken beyond ``SYMMETRY_TOLERANCE`` (asymmetric scene: True)."""
+        return self.symmetry_broken is None or self.symmetry_broken <= SYMMETRY_TOLERANCE
 
     @property
     def separation_ok(self) -> bool:
@@ -75,6 +97,7 @@ class Grade:
     def to_json(self) -> dict:
         d = asdict(self)
         d["separation_ok"] = self.separation_ok
+        d["symmetry_ok"] = self.symmetry_ok
         return d
 
 
@@ -94,10 +117,13 @@ def grade(scene: CatalogueScene, engine: str, twists: Sequence[Twist]) -> Grade:
     vn = normal_velocities(scene.engine, twists)
     vn_exact = normal_velocities(scene.engine, scene.exact)
     cut = SEPARATION_TOLERANCE * speed
+    by = broken(scene.engine, scene.symmetries, twists, impact)
     return Grade(
         scene=scene.name, engine=engine, law=scene.law, error=float(error),
         energy_ratio=float(t / t0), exact_energy_ratio=float(scene.kinetic_energy_after / t0),
         energy_gain=float(max(0.0, t - t0) / t0),
         should_separate=[bool(v > cut) for v in vn_exact], separates=[bool(v > cut) for v in vn],
         normal_velocities=[float(v) for v in vn], exact_normal_velocities=[float(v) for v in vn_exact],
-        twists=[{"velocity": x.velocity.tolist(), "angular_velocity": x.angular_velocity.tolist()} for x in twists])
+        twists=[{"velocity": x.velocity.tolist(), "angular_velocity": x.angular_velocity.tolist()} for x in twists],
+        symmetries=[s.name for s in scene.symmetries], symmetry_broken=max(by.values()) if by else None,
+        symmetry_by=by)

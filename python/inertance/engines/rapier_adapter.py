@@ -11,7 +11,9 @@ steps until none of the scene's contacts still touches and approaches
 (:func:`~inertance.engines._geometry.pending_contacts`; for body–body contacts the relative
 normal velocity at the contact point riding with the first body), at least one step, at most
 ``max_steps`` (scaled up when ``dt`` is smaller than the default), and reads each body's ``linvel`` (the centre of mass) and ``angvel`` (world).
-Cylinders are refused (Rapier's axis is y, the scene's z: not built yet).
+A cylinder (axis body z in the scene, y in Rapier) is built on a body turned by a quarter turn
+about x (R·Rx(90°) maps Rapier's y onto the scene's z; the twist is read in world axes, so the
+turn does not show). ``iterations`` sets ``num_solver_iterations`` (default Rapier's, 4).
 """
 
 from __future__ import annotations
@@ -22,7 +24,10 @@ import rapier3d as rp
 
 from ._geometry import pending_contacts, product_restitutions
 from .catalogue import Twist
-from .scene import EngineScene, Plane, SceneUnsupported, Support
+from .scene import EngineScene, Plane, SceneUnsupported, Support, _quaternion
+
+#: Rx(90°): Rapier's cylinder axis (y) onto the scene's (z).
+_QUARTER_X = np.array([[1.0, 0, 0], [0, 0, -1], [0, 1, 0]])
 
 
 def _vec(v) -> np.ndarray:
@@ -32,16 +37,18 @@ def _vec(v) -> np.ndarray:
 class RapierAdapter:
     name = "rapier"
 
-    def __init__(self, max_steps: int = 120, dt: float = None):
+    def __init__(self, max_steps: int = 120, dt: float = None, iterations: int = None):
         self.max_steps = max_steps
         self.dt = dt
+        self.iterations = iterations
         try:
             from importlib.metadata import version
             self.version = version("rapier3d")
         except Exception:  # pragma: no cover
             self.version = "?"
         ip = rp.PhysicsWorld().integration_parameters
-        self.settings = {"dt": dt if dt is not None else ip.dt, "num_solver_iterations": ip.num_solver_iterations, "gravity": "0",
+        self.settings = {"dt": dt if dt is not None else ip.dt,
+                         "num_solver_iterations": iterations if iterations is not None else ip.num_solver_iterations, "gravity": "0",
                          "combine rule": "MULTIPLY (restitution and friction)", "precision": "f32",
                          "stop": "no scene contact touching and approaching"}
 
@@ -54,6 +61,10 @@ class RapierAdapter:
             world.integration_parameters.dt = self.dt  # a live view of the world's parameters
             if abs(world.integration_parameters.dt - self.dt) > 1e-6 * self.dt:  # f32
                 raise RuntimeError(f"Rapier kept dt = {world.integration_parameters.dt}, not {self.dt}")
+        if self.iterations is not None:
+            world.integration_parameters.num_solver_iterations = int(self.iterations)
+            if world.integration_parameters.num_solver_iterations != int(self.iterations):
+                raise RuntimeError(f"Rapier kept {world.integration_parameters.num_solver_iterations} iterations")
 
         def material(builder, r, mu):
             return (builder.restitution(float(r)).friction(float(mu))
@@ -75,9 +86,12 @@ class RapierAdapter:
                 col = rp.Collider.cuboid(*(float(x) / 2 for x in b.size))
             elif b.shape == "sphere":
                 col = rp.Collider.ball(float(b.size[0]))
+            elif b.shape == "cylinder":
+                col = rp.Collider.cylinder(float(b.size[1]) / 2, float(b.size[0]))
             else:
                 raise SceneUnsupported(scene.file, f"body[{i}].shape", f"the Rapier adapter does not build a {b.shape} yet")
-            w, x, y, z = b.quaternion()
+            r = b.rotation @ _QUARTER_X if b.shape == "cylinder" else b.rotation
+            w, x, y, z = _quaternion(r)
             rot = rp.Rotation3.from_quaternion(float(w), float(x), float(y), float(z))
             builder = (rp.RigidBody.dynamic().translation(tuple(float(t) for t in b.position))
                        .rotation(tuple(float(t) for t in _vec(rot.scaled_axis)))
