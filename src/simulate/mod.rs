@@ -11,13 +11,15 @@
 //! [`body`]: the body, its features and state · [`world`]: the obstacle planes and the gaps ·
 //! [`contact`]: persistent contact, the acceleration-level complementarity problem ·
 //! [`impact`]: one impact under the chosen law · [`ode`]: the Runge–Kutta step ·
-//! [`run`]: the event loop, the log and the trajectory.
+//! [`run`]: the event loop, the log and the trajectory · [`system`]: several spheres, with
+//! contacts between them as well as with the planes (its own loop over the shared pieces).
 
 pub mod body;
 pub mod contact;
 pub mod impact;
 pub mod ode;
 pub mod run;
+pub mod system;
 pub mod world;
 
 pub use body::{Body, Feature, Shape, State};

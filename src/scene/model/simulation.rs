@@ -166,10 +166,7 @@ impl Reader<'_> {
         let Some(body_model) = Body::new(mass, inertia, shape, plane_normal) else {
             return Err(self.err("body", None, "the inertia tensor is singular"));
         };
-        let gravity = match sim.get("gravity") {
-            None => V3::new(0.0, 0.0, -9.81),
-            Some(g) => v3(&self.triple(g, "simulate.gravity")?.each_ref().map(Term::of)),
-        };
+        let (gravity, mut options, law) = self.simulate_options(sim)?;
         if let Some(n) = plane_normal {
             if gravity.dot(&(rm * n)).abs() > 1e-12 * gravity.norm() {
                 return Err(self.err(
@@ -179,103 +176,6 @@ impl Reader<'_> {
                 ));
             }
         }
-        let positive = |key: &str| -> Result<Option<f64>, SceneError> {
-            match sim.get(key) {
-                None => Ok(None),
-                Some(item) => {
-                    let n = self.number(item, &format!("simulate.{key}"))?;
-                    self.positive(&n, &format!("simulate.{key}"), "must be positive")?;
-                    Ok(Some(n.approx))
-                }
-            }
-        };
-        let Some(duration) = positive("duration")? else {
-            return Err(self.err(
-                "simulate.duration",
-                None,
-                "how long to simulate, in seconds",
-            ));
-        };
-        let impacts = match sim.get("impacts") {
-            None => 10_000,
-            Some(item) => match item.as_integer() {
-                Some(n) if n > 0 => n as usize,
-                _ => {
-                    return Err(self.err(
-                        "simulate.impacts",
-                        Some(short(item)),
-                        "the most impacts: a positive integer",
-                    ));
-                }
-            },
-        };
-        let output_step = positive("output_step")?.unwrap_or(duration / 500.0);
-        let simultaneity = match sim.get("simultaneity") {
-            None => 0.0,
-            Some(item) => {
-                let n = self.number(item, "simulate.simultaneity")?;
-                if !(n.approx >= 0.0 && n.approx.is_finite()) {
-                    return Err(self.err(
-                        "simulate.simultaneity",
-                        Some(short(item)),
-                        "a time ≥ 0, in seconds",
-                    ));
-                }
-                n.approx
-            }
-        };
-        let tolerance = positive("tolerance")?.unwrap_or(1e-10);
-        if tolerance >= 1.0 {
-            return Err(self.err("simulate.tolerance", None, "a relative tolerance in (0, 1)"));
-        }
-        let law_name = match sim.get("law") {
-            None => "simultaneous".to_string(),
-            Some(item) => self.string(item, "simulate.law")?,
-        };
-        let restitution = match sim.get("restitution") {
-            None => None,
-            Some(item) => {
-                let name = self.string(item, "simulate.restitution")?;
-                Some(
-                    Restitution::ALL
-                        .into_iter()
-                        .find(|r| r.name() == name)
-                        .ok_or_else(|| {
-                            self.err(
-                                "simulate.restitution",
-                                Some(short(item)),
-                                "one of \"newton\", \"poisson\", \"energetic\"",
-                            )
-                        })?,
-                )
-            }
-        };
-        let law = match (law_name.as_str(), restitution) {
-            ("simultaneous", r) => Law::Simultaneous(r.unwrap_or(Restitution::Newton)),
-            ("unilateral", Some(Restitution::Energetic)) => {
-                return Err(self.err(
-                    "simulate.restitution",
-                    Some("\"energetic\"".into()),
-                    "the unilateral law is integrated with Newton's and Poisson's restitution",
-                ));
-            }
-            ("unilateral", r) => Law::Unilateral(r.unwrap_or(Restitution::Newton)),
-            ("lzb", None) => Law::Lzb,
-            ("lzb", Some(r)) => {
-                return Err(self.err(
-                    "simulate.restitution",
-                    Some(format!("\"{}\"", r.name())),
-                    "the LZB law has its own restitution (each contact's k_energetic, else k): drop it",
-                ));
-            }
-            (other, _) => {
-                return Err(self.err(
-                    "simulate.law",
-                    Some(format!("\"{other}\"")),
-                    "one of \"simultaneous\", \"unilateral\", \"lzb\"",
-                ));
-            }
-        };
         let obstacles = self.obstacles(root)?;
         if obstacles.is_empty() {
             return Err(self.err(
@@ -376,35 +276,161 @@ impl Reader<'_> {
                 }
             }
         }
-        let rest_speed = match positive("rest_speed")? {
-            Some(v) => v,
-            None => {
-                1e-6 * (gravity.norm() * length)
-                    .sqrt()
-                    .max(velocity.norm())
-                    .max(f64::MIN_POSITIVE)
-            }
-        };
+        options.rest_speed = self.rest_speed(sim, &gravity, length, velocity.norm())?;
         Ok(Setup {
             body: body_model,
             planes,
             law,
             start,
-            options: Options {
+            options,
+            plane: world_plane,
+        })
+    }
+
+    /// `[simulate]`'s gravity, options and law, shared by one body and a system of spheres
+    /// (`rest_speed` left 0: [`Reader::rest_speed`] sets it once the scene's scales are known).
+    pub(super) fn simulate_options(&self, sim: &Table) -> Result<(V3, Options, Law), SceneError> {
+        let gravity = match sim.get("gravity") {
+            None => V3::new(0.0, 0.0, -9.81),
+            Some(g) => v3(&self.triple(g, "simulate.gravity")?.each_ref().map(Term::of)),
+        };
+        let positive = |key: &str| -> Result<Option<f64>, SceneError> {
+            match sim.get(key) {
+                None => Ok(None),
+                Some(item) => {
+                    let n = self.number(item, &format!("simulate.{key}"))?;
+                    self.positive(&n, &format!("simulate.{key}"), "must be positive")?;
+                    Ok(Some(n.approx))
+                }
+            }
+        };
+        let Some(duration) = positive("duration")? else {
+            return Err(self.err(
+                "simulate.duration",
+                None,
+                "how long to simulate, in seconds",
+            ));
+        };
+        let impacts = match sim.get("impacts") {
+            None => 10_000,
+            Some(item) => match item.as_integer() {
+                Some(n) if n > 0 => n as usize,
+                _ => {
+                    return Err(self.err(
+                        "simulate.impacts",
+                        Some(short(item)),
+                        "the most impacts: a positive integer",
+                    ));
+                }
+            },
+        };
+        let output_step = positive("output_step")?.unwrap_or(duration / 500.0);
+        let simultaneity = match sim.get("simultaneity") {
+            None => 0.0,
+            Some(item) => {
+                let n = self.number(item, "simulate.simultaneity")?;
+                if !(n.approx >= 0.0 && n.approx.is_finite()) {
+                    return Err(self.err(
+                        "simulate.simultaneity",
+                        Some(short(item)),
+                        "a time ≥ 0, in seconds",
+                    ));
+                }
+                n.approx
+            }
+        };
+        let tolerance = positive("tolerance")?.unwrap_or(1e-10);
+        if tolerance >= 1.0 {
+            return Err(self.err("simulate.tolerance", None, "a relative tolerance in (0, 1)"));
+        }
+        let law_name = match sim.get("law") {
+            None => "simultaneous".to_string(),
+            Some(item) => self.string(item, "simulate.law")?,
+        };
+        let restitution = match sim.get("restitution") {
+            None => None,
+            Some(item) => {
+                let name = self.string(item, "simulate.restitution")?;
+                Some(
+                    Restitution::ALL
+                        .into_iter()
+                        .find(|r| r.name() == name)
+                        .ok_or_else(|| {
+                            self.err(
+                                "simulate.restitution",
+                                Some(short(item)),
+                                "one of \"newton\", \"poisson\", \"energetic\"",
+                            )
+                        })?,
+                )
+            }
+        };
+        let law = match (law_name.as_str(), restitution) {
+            ("simultaneous", r) => Law::Simultaneous(r.unwrap_or(Restitution::Newton)),
+            ("unilateral", Some(Restitution::Energetic)) => {
+                return Err(self.err(
+                    "simulate.restitution",
+                    Some("\"energetic\"".into()),
+                    "the unilateral law is integrated with Newton's and Poisson's restitution",
+                ));
+            }
+            ("unilateral", r) => Law::Unilateral(r.unwrap_or(Restitution::Newton)),
+            ("lzb", None) => Law::Lzb,
+            ("lzb", Some(r)) => {
+                return Err(self.err(
+                    "simulate.restitution",
+                    Some(format!("\"{}\"", r.name())),
+                    "the LZB law has its own restitution (each contact's k_energetic, else k): drop it",
+                ));
+            }
+            (other, _) => {
+                return Err(self.err(
+                    "simulate.law",
+                    Some(format!("\"{other}\"")),
+                    "one of \"simultaneous\", \"unilateral\", \"lzb\"",
+                ));
+            }
+        };
+        Ok((
+            gravity,
+            Options {
                 gravity,
                 duration,
                 max_impacts: impacts,
                 output_step,
                 simultaneity,
                 tolerance,
-                rest_speed,
+                rest_speed: 0.0,
             },
-            plane: world_plane,
-        })
+            law,
+        ))
+    }
+
+    /// `[simulate] rest_speed`, by default 10⁻⁶ of the larger of √(|g| L) and the fastest
+    /// initial speed.
+    pub(super) fn rest_speed(
+        &self,
+        sim: &Table,
+        gravity: &V3,
+        length: f64,
+        fastest: f64,
+    ) -> Result<f64, SceneError> {
+        match sim.get("rest_speed") {
+            Some(item) => {
+                let n = self.number(item, "simulate.rest_speed")?;
+                self.positive(&n, "simulate.rest_speed", "must be positive")?;
+                Ok(n.approx)
+            }
+            None => Ok(1e-6
+                * (gravity.norm() * length)
+                    .sqrt()
+                    .max(fastest)
+                    .max(f64::MIN_POSITIVE)),
+        }
     }
 
     /// A contact law table (`k`, `mu`, `k_energetic`, `stiffness`, `exponent`) over `base`.
-    fn contact_law(
+    pub(super) fn contact_law(
         &self,
         t: Option<&dyn toml_edit::TableLike>,
         at: &str,
