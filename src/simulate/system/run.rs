@@ -12,8 +12,9 @@
 //!
 //! **Events.** No step may cross an open gap: with M a bound on |g̈| over the step (twice
 //! |a_b| for a sphere on a plane; twice |a_a| + |a_b| + |u|²/|d| for a pair), g(t + s) ≥
-//! g + ġ s − ½ M s² stays positive for s < (ġ + √(ġ² + 2 M g))/M, and each step is capped
-//! there. A gap within the gap tolerance (10⁻¹¹ of the length scale) approaching faster than
+//! g + ġ s − ½ M s² stays positive for s < (ġ + √(ġ² + 2 M g))/M = 2g/(√(ġ² + 2 M g) − ġ)
+//! (the second form for ġ < 0, where the first cancels: without gravity M is 0), and each
+//! step is capped there. A gap within the gap tolerance (10⁻¹¹ of the length scale) approaching faster than
 //! `rest_speed` is an impact; one slower closes unless the acceleration-level problem with it
 //! closed separates it (g̈ > 0); a closed contact opens when g̈ > 0 ([`super::persist`]).
 //!
@@ -314,7 +315,13 @@ impl<'a> Run<'a> {
                     }
                 } + f64::MIN_POSITIVE;
                 let reach = g.gap.max(0.0);
-                let s = (g.rate + (g.rate * g.rate + 2.0 * bound * reach).sqrt()) / bound;
+                let root = (g.rate * g.rate + 2.0 * bound * reach).sqrt();
+                // the root of g + ġ s − ½ M s², in the form that does not cancel
+                let s = if g.rate < 0.0 {
+                    2.0 * reach / (root - g.rate)
+                } else {
+                    (g.rate + root) / bound
+                };
                 horizon = horizon.min(s);
             }
             if closing {
