@@ -263,7 +263,9 @@ impl AnySimulation {
         let (name, what) = read::simulation(&doc, file)?;
         let file = file.to_string();
         Ok(match what {
-            read::Simulated::Body(setup) => AnySimulation::Body(SimulationScene { file, name, setup }),
+            read::Simulated::Body(setup) => {
+                AnySimulation::Body(SimulationScene { file, name, setup })
+            }
             read::Simulated::Spheres(setup) => {
                 AnySimulation::Spheres(SphereSystemScene { file, name, setup })
             }
@@ -293,7 +295,8 @@ impl SimulationScene {
                 file: file.to_string(),
                 key: "body".to_string(),
                 value: None,
-                message: "a scene of several [[body]] spheres: read it with AnySimulation".to_string(),
+                message: "a scene of several [[body]] spheres: read it with AnySimulation"
+                    .to_string(),
             }),
         }
     }

@@ -128,10 +128,7 @@ impl Reader<'_> {
                     .map(Term::of)),
             };
             let velocity = v3(&self
-                .triple(
-                    self.get(body, "velocity", &at)?,
-                    &format!("{at}.velocity"),
-                )?
+                .triple(self.get(body, "velocity", &at)?, &format!("{at}.velocity"))?
                 .each_ref()
                 .map(Term::of));
             if let Some(w) = body.get("angular_velocity") {
@@ -155,7 +152,11 @@ impl Reader<'_> {
             .enumerate()
             .map(|(i, o)| o.name.clone().unwrap_or_else(|| format!("obstacle[{i}]")))
             .collect();
-        let base = self.sphere_law(table_at(self, sim, "contact", "simulate.contact")?, "simulate.contact", None)?;
+        let base = self.sphere_law(
+            table_at(self, sim, "contact", "simulate.contact")?,
+            "simulate.contact",
+            None,
+        )?;
         let overrides = table_at(self, sim, "obstacle", "simulate.obstacle")?;
         if let Some(t) = overrides {
             for (name, _) in t.iter() {
@@ -356,11 +357,7 @@ impl Reader<'_> {
                 }
             }
         }
-        let law = self.contact_law(
-            t.map(|_| &plain as &dyn TableLike),
-            at,
-            base.map(|b| &b.0),
-        )?;
+        let law = self.contact_law(t.map(|_| &plain as &dyn TableLike), at, base.map(|b| &b.0))?;
         if law.mu != 0.0 {
             return Err(self.err(
                 &format!("{at}.mu"),

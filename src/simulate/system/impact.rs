@@ -94,10 +94,7 @@ pub fn system(
                     first: a,
                     second: Some(b),
                 },
-                (
-                    g.normal * spheres[a].radius,
-                    Some(g.point - s.x[b]),
-                ),
+                (g.normal * spheres[a].radius, Some(g.point - s.x[b])),
             ),
         };
         contacts.push(

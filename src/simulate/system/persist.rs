@@ -169,6 +169,9 @@ pub fn project(
         &mut s.v,
     );
     let worst = gaps.iter().map(|g| g.gap.abs()).fold(0.0, f64::max);
-    apply(DVector::from_fn(closed.len(), |p, _| -gaps[p].gap), &mut s.x);
+    apply(
+        DVector::from_fn(closed.len(), |p, _| -gaps[p].gap),
+        &mut s.x,
+    );
     worst
 }

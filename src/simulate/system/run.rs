@@ -202,7 +202,11 @@ impl<'a> Run<'a> {
         });
     }
 
-    fn accelerations_at(&self, s: &SystemState, closed: &[usize]) -> Result<Accelerations, ContactError> {
+    fn accelerations_at(
+        &self,
+        s: &SystemState,
+        closed: &[usize],
+    ) -> Result<Accelerations, ContactError> {
         let st = &self.setup;
         accelerations(
             &st.spheres,
@@ -310,9 +314,7 @@ impl<'a> Run<'a> {
                 }
                 let bound = match self.setup.candidates[k].touch {
                     Touch::Plane { body, .. } => 2.0 * acc.a[body].norm(),
-                    Touch::Pair { a, b } => {
-                        2.0 * (acc.a[a].norm() + acc.a[b].norm()) + g.curvature
-                    }
+                    Touch::Pair { a, b } => 2.0 * (acc.a[a].norm() + acc.a[b].norm()) + g.curvature,
                 } + f64::MIN_POSITIVE;
                 let reach = g.gap.max(0.0);
                 let root = (g.rate * g.rate + 2.0 * bound * reach).sqrt();
@@ -337,7 +339,11 @@ impl<'a> Run<'a> {
             let mut hh = h.min(cap);
             let floor = 64.0 * f64::EPSILON * self.t.abs().max(o.output_step);
             if hh < floor {
-                hh = if horizon < floor { floor } else { cap.max(floor) };
+                hh = if horizon < floor {
+                    floor
+                } else {
+                    cap.max(floor)
+                };
             }
             let y = self.s.pack();
             let t0 = self.t;
@@ -385,9 +391,8 @@ impl<'a> Run<'a> {
             // No open contact may end the step through its gap: one the step took through is
             // located by halving the step.
             let end_state = SystemState::unpack(&y5);
-            let through = (0..self.setup.candidates.len()).any(|k| {
-                !self.closed.contains(&k) && self.gap(k, &end_state).gap < -self.gap_tol
-            });
+            let through = (0..self.setup.candidates.len())
+                .any(|k| !self.closed.contains(&k) && self.gap(k, &end_state).gap < -self.gap_tol);
             if through && hh > floor {
                 self.steps.1 += 1;
                 h = hh / 2.0;
