@@ -451,9 +451,9 @@ fn run_simulate(
 ) -> ExitCode {
     use inertance::report::simulation;
     let scene = match inertance::scene::AnySimulation::load(path) {
-        Ok(inertance::scene::AnySimulation::Body(s)) => s,
+        Ok(inertance::scene::AnySimulation::Body(s)) => *s,
         Ok(inertance::scene::AnySimulation::Spheres(s)) => {
-            return run_simulate_spheres(path, s, law, json, trajectory);
+            return run_simulate_spheres(path, *s, law, json, trajectory);
         }
         Err(e) => return fail_input(e.to_string()),
     };

@@ -239,9 +239,9 @@ pub struct SphereSystemScene {
 #[derive(Clone, Debug, PartialEq)]
 pub enum AnySimulation {
     /// One body.
-    Body(SimulationScene),
+    Body(Box<SimulationScene>),
     /// Several spheres.
-    Spheres(SphereSystemScene),
+    Spheres(Box<SphereSystemScene>),
 }
 
 impl AnySimulation {
@@ -263,11 +263,13 @@ impl AnySimulation {
         let (name, what) = read::simulation(&doc, file)?;
         let file = file.to_string();
         Ok(match what {
-            read::Simulated::Body(setup) => {
-                AnySimulation::Body(SimulationScene { file, name, setup })
-            }
+            read::Simulated::Body(setup) => AnySimulation::Body(Box::new(SimulationScene {
+                file,
+                name,
+                setup: *setup,
+            })),
             read::Simulated::Spheres(setup) => {
-                AnySimulation::Spheres(SphereSystemScene { file, name, setup })
+                AnySimulation::Spheres(Box::new(SphereSystemScene { file, name, setup }))
             }
         })
     }
@@ -290,7 +292,7 @@ impl SimulationScene {
     /// As [`SimulationScene::load`].
     pub fn parse(text: &str, file: &str) -> Result<SimulationScene, SceneError> {
         match AnySimulation::parse(text, file)? {
-            AnySimulation::Body(s) => Ok(s),
+            AnySimulation::Body(s) => Ok(*s),
             AnySimulation::Spheres(_) => Err(SceneError {
                 file: file.to_string(),
                 key: "body".to_string(),

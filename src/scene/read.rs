@@ -541,14 +541,14 @@ pub(super) fn simulation(doc: &DocumentMut, file: &str) -> Result<(String, Simul
     if model::system::declared(root) {
         return Ok((name, Simulated::Spheres(r.sphere_system(root)?)));
     }
-    Ok((name, Simulated::Body(r.simulation(root)?)))
+    Ok((name, Simulated::Body(Box::new(r.simulation(root)?))))
 }
 
 /// What a scene to simulate runs.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Simulated {
     /// One body.
-    Body(crate::simulate::Setup),
+    Body(Box<crate::simulate::Setup>),
     /// Several spheres.
     Spheres(crate::simulate::system::SystemSetup),
 }

@@ -46,6 +46,9 @@ pub fn step<const N: usize, Err>(
     Ok((whole(y5), whole(err)))
 }
 
+/// The derivative f(t, y) of a state of any length, which may fail.
+pub type Derivative<'a, Err> = dyn FnMut(f64, &[f64]) -> Result<Vec<f64>, Err> + 'a;
+
 /// [`step`] over a state of any length (a system of bodies): the same arithmetic, in the same
 /// order, so a fixed-size state gives the same numbers through either.
 pub fn step_slice<Err>(
@@ -53,7 +56,7 @@ pub fn step_slice<Err>(
     t: f64,
     y: &[f64],
     h: f64,
-    f: &mut dyn FnMut(f64, &[f64]) -> Result<Vec<f64>, Err>,
+    f: &mut Derivative<'_, Err>,
 ) -> Result<(Vec<f64>, Vec<f64>), Err> {
     let n_y = y.len();
     let mut k: Vec<Vec<f64>> = Vec::with_capacity(7);
@@ -84,4 +87,22 @@ pub fn step_slice<Err>(
         }
     }
     Ok((y5, err))
+}
+
+/// The next step after a step `h` rejected with error ratio `ratio` > 1 (the error over its
+/// tolerance): the fifth-root rule of a fifth-order pair with the safety factor 0.9, shrinking
+/// at most fivefold.
+pub fn shrink(h: f64, ratio: f64) -> f64 {
+    h * (0.9 * ratio.powf(-0.2)).max(0.2)
+}
+
+/// The next step after a step `h` accepted with error ratio `ratio` ≤ 1: the same rule,
+/// growing at most fivefold.
+pub fn grow(h: f64, ratio: f64) -> f64 {
+    h * (0.9 * ratio.max(1e-10).powf(-0.2)).min(5.0)
+}
+
+/// The shortest step the time resolves at `t`: 64 ε max(|t|, the output step).
+pub fn floor(t: f64, output_step: f64) -> f64 {
+    64.0 * f64::EPSILON * t.abs().max(output_step)
 }

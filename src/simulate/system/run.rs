@@ -29,8 +29,10 @@
 use super::super::body::V3;
 use super::super::contact::ContactError;
 use super::super::impact::Law;
-use super::super::ode::{Tableau, step_slice};
-use super::super::run::{End, Event, ImpactRecord, MAX_STEPS, Options, SimulateError, Struck};
+use super::super::ode::{Tableau, floor, grow, shrink, step_slice};
+use super::super::run::{
+    End, Event, ImpactRecord, MAX_STEPS, Options, SimulateError, Struck, joins,
+};
 use super::super::world::Plane;
 use super::gaps::{Candidate, Touch, gap};
 use super::impact::solve;
@@ -337,7 +339,7 @@ impl<'a> Run<'a> {
             // One step.
             let cap = horizon.min(next_output - self.t).min(o.duration - self.t);
             let mut hh = h.min(cap);
-            let floor = 64.0 * f64::EPSILON * self.t.abs().max(o.output_step);
+            let floor = floor(self.t, o.output_step);
             if hh < floor {
                 hh = if horizon < floor {
                     floor
@@ -385,7 +387,7 @@ impl<'a> Run<'a> {
             }
             if ratio > 1.0 {
                 self.steps.1 += 1;
-                h = hh * (0.9 * ratio.powf(-0.2)).max(0.2);
+                h = shrink(hh, ratio);
                 continue;
             }
             // No open contact may end the step through its gap: one the step took through is
@@ -415,7 +417,7 @@ impl<'a> Run<'a> {
             );
             self.drift = self.drift.max(d);
             if hh == h || ratio < 0.5 {
-                h = hh * (0.9 * ratio.max(1e-10).powf(-0.2)).min(5.0);
+                h = grow(hh, ratio);
             }
         }
     }
@@ -431,9 +433,7 @@ impl<'a> Run<'a> {
         for k in 0..st.candidates.len() {
             let g = self.gap(k, &self.s);
             let persisting = self.closed.contains(&k);
-            let joins = persisting
-                || (g.rate < 0.0 && (g.gap <= self.gap_tol || g.gap / -g.rate <= o.simultaneity));
-            if !joins {
+            if !joins(persisting, g.gap, g.rate, self.gap_tol, o.simultaneity) {
                 continue;
             }
             if !persisting && g.gap > self.gap_tol {
