@@ -212,17 +212,7 @@ impl Reader<'_> {
             .enumerate()
             .map(|(i, o)| o.name.clone().unwrap_or_else(|| format!("obstacle[{i}]")))
             .collect();
-        if let Some(t) = overrides {
-            for (name, _) in t.iter() {
-                if !names.iter().any(|n| n == name) {
-                    return Err(self.err(
-                        &format!("simulate.obstacle.{name}"),
-                        None,
-                        format!("no such obstacle; the scene has: {}", names.join(", ")),
-                    ));
-                }
-            }
-        }
+        self.known_obstacles(overrides, &names)?;
         let mut planes = Vec::with_capacity(obstacles.len());
         for (i, o) in obstacles.iter().enumerate() {
             let normal = v3(&o.normal).normalize();
@@ -287,6 +277,24 @@ impl Reader<'_> {
             options,
             plane: world_plane,
         })
+    }
+
+    /// Every `[simulate.obstacle.NAME]` names an obstacle of `names`.
+    pub(super) fn known_obstacles(
+        &self,
+        overrides: Option<&dyn toml_edit::TableLike>,
+        names: &[String],
+    ) -> Result<(), SceneError> {
+        for (name, _) in overrides.into_iter().flat_map(|t| t.iter()) {
+            if !names.iter().any(|n| n == name) {
+                return Err(self.err(
+                    &format!("simulate.obstacle.{name}"),
+                    None,
+                    format!("no such obstacle; the scene has: {}", names.join(", ")),
+                ));
+            }
+        }
+        Ok(())
     }
 
     /// `[simulate]`'s gravity, options and law, shared by one body and a system of spheres

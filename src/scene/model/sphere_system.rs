@@ -158,17 +158,7 @@ impl Reader<'_> {
             None,
         )?;
         let overrides = table_at(self, sim, "obstacle", "simulate.obstacle")?;
-        if let Some(t) = overrides {
-            for (name, _) in t.iter() {
-                if !names.iter().any(|n| n == name) {
-                    return Err(self.err(
-                        &format!("simulate.obstacle.{name}"),
-                        None,
-                        format!("no such obstacle; the scene has: {}", names.join(", ")),
-                    ));
-                }
-            }
-        }
+        self.known_obstacles(overrides, &names)?;
         let mut planes = Vec::with_capacity(obstacles.len());
         let mut plane_laws: Vec<Law> = Vec::new();
         for (i, o) in obstacles.iter().enumerate() {

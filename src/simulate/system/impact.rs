@@ -25,7 +25,7 @@ use crate::mechanics::screw::{Screw, Vec3};
 use crate::mechanics::system::{Pair, System, SystemBody, SystemScrew};
 
 use super::super::body::V3;
-use super::super::impact::{ImpactError, Law};
+use super::super::impact::{ImpactError, Law, verdict_name};
 use super::super::world::Plane;
 use super::gaps::{Candidate, Touch, gap};
 use super::spheres::{Sphere, SystemState};
@@ -169,10 +169,7 @@ pub fn solve(
             impact.solve(model, &mut out).map_err(|e| no(&e))?;
             let v = verdicts(&impact, model, &out)
                 .iter()
-                .map(|v| match v.contact() {
-                    Some(c) => format!("{} at contact {}", v.name(), c + 1),
-                    None => v.name().to_string(),
-                })
+                .map(|v| verdict_name(v, |c| c + 1))
                 .collect();
             Ok(Rebound {
                 v: velocities(&out.velocity),
