@@ -265,3 +265,53 @@ fn column_of_beads_follows_siconos_to_the_end() {
     );
     assert!(drift <= 2e-8 * e0);
 }
+
+/// A scene of spheres with a mistake: the error names the file, the key and what to do.
+#[test]
+fn bad_sphere_systems_name_the_key_and_the_value() {
+    let scene = |body2: &str, simulate: &str| {
+        format!(
+            "[[body]]\nname = \"a\"\nshape = {{ sphere = 0.01 }}\nmass = 1\nposition = [0, 0, 0.02]\n\
+             velocity = [0, 0, 0]\nmaterial = {{ young = 2e11, poisson = 0.3 }}\n\
+             [[body]]\nname = \"b\"\nshape = {{ sphere = 0.01 }}\nmass = 1\n{body2}velocity = [0, 0, 0]\n\
+             [[obstacle]]\nname = \"floor\"\nnormal = [0, 0, 1]\n\
+             [simulate]\nduration = 1\n{simulate}"
+        )
+    };
+    let err = |text: String| {
+        AnySimulation::parse(&text, "s.toml")
+            .map(|_| ())
+            .expect_err("refused")
+            .to_string()
+    };
+    let e = err(scene(
+        "position = [0, 0, 0.04]\n",
+        "law = \"lzb\"\ncontact = { stiffness = \"hertz\" }\n",
+    ));
+    assert!(
+        e.contains("s.toml") && e.contains("simulate.contact.stiffness"),
+        "{e}"
+    );
+    // the first contact watched without both materials: the floor has none
+    assert!(e.contains("material of obstacle \"floor\""), "{e}");
+    let e = err(scene(
+        "position = [0, 0, 0.04]\n",
+        "contact = { mu = 0.3 }\n",
+    ));
+    assert!(
+        e.contains("simulate.contact.mu") && e.contains("frictionless"),
+        "{e}"
+    );
+    let e = err(scene("position = [0, 0, 0.025]\n", ""));
+    assert!(e.contains("\"a\" starts inside \"b\""), "{e}");
+    let e = err(scene(
+        "position = [0, 0, 0.04]\n",
+        "[[simulate.pair]]\nbodies = [\"a\", \"c\"]\nk = 0.5\n",
+    ));
+    assert!(
+        e.contains("simulate.pair[0].bodies") && e.contains("a, b"),
+        "{e}"
+    );
+    let e = err(scene("position = [0, 0, 0.04]\n", "plane = [0, 1, 0]\n"));
+    assert!(e.contains("simulate.plane"), "{e}");
+}

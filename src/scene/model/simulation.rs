@@ -38,7 +38,8 @@ use crate::simulate::impact::Law;
 use crate::simulate::run::{Options, Setup};
 use crate::simulate::world::{ContactLaw, Plane, gap};
 
-const SIMULATE_KEYS: &[&str] = &[
+/// The keys of `[simulate]` for one body.
+pub(super) const SIMULATE_KEYS: &[&str] = &[
     "gravity",
     "duration",
     "impacts",

@@ -25,26 +25,12 @@ use super::super::SceneError;
 use super::super::read::{Reader, short};
 use super::hertz::{Material, Surface, hertz_stiffness};
 use super::shape::Shape;
+use super::simulation::SIMULATE_KEYS;
 use super::term::Term;
 use crate::simulate::body::V3;
 use crate::simulate::system::gaps::gap;
 use crate::simulate::system::{Sphere, SystemSetup, SystemState, Touch};
 use crate::simulate::world::{ContactLaw, Plane};
-
-const SYSTEM_KEYS: &[&str] = &[
-    "gravity",
-    "duration",
-    "impacts",
-    "output_step",
-    "simultaneity",
-    "tolerance",
-    "rest_speed",
-    "law",
-    "restitution",
-    "contact",
-    "obstacle",
-    "pair",
-];
 
 fn v3(t: &[Term; 3]) -> V3 {
     V3::new(t[0].approx(), t[1].approx(), t[2].approx())
@@ -144,7 +130,14 @@ impl Reader<'_> {
             v.push(velocity);
         }
         let sim = self.table(root, "simulate", "")?;
-        self.only_keys(sim, "simulate", SYSTEM_KEYS)?;
+        // one body's keys, but `plane` (a planar motion of a box), and `pair`
+        let keys: Vec<&str> = SIMULATE_KEYS
+            .iter()
+            .copied()
+            .filter(|k| *k != "plane")
+            .chain(["pair"])
+            .collect();
+        self.only_keys(sim, "simulate", &keys)?;
         let (gravity, mut options, law) = self.simulate_options(sim)?;
         let obstacles = self.obstacles(root)?;
         let names: Vec<String> = obstacles
