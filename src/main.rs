@@ -205,8 +205,9 @@ enum Command {
         #[arg(long, value_name = "CORPUS.txt", conflicts_with_all = ["scene", "plot"])]
         corpus: Option<PathBuf>,
     },
-    /// Simulate a body under gravity among obstacle planes through every impact, until rest
-    /// or the end of `[simulate] duration`: the impact log (guide/simulate.md).
+    /// Simulate a body, or a system of spheres, under gravity among obstacle planes through
+    /// every impact, until rest or the end of `[simulate] duration`: the impact log
+    /// (guide/simulate.md).
     Simulate {
         /// The scene file (TOML) with a `[simulate]` table.
         scene: PathBuf,
@@ -420,6 +421,79 @@ fn run_simulate_exact(path: &std::path::Path, json: bool) -> ExitCode {
     }
 }
 
+/// `--law` over the scene's law: the scene's restitution kept.
+fn chosen_law(
+    path: &std::path::Path,
+    scene: inertance::simulate::Law,
+    l: LawArg,
+) -> Result<inertance::simulate::Law, ExitCode> {
+    use inertance::impact::friction::Restitution;
+    use inertance::simulate::Law as SimLaw;
+    let r = match scene {
+        SimLaw::Simultaneous(r) | SimLaw::Unilateral(r) => r,
+        SimLaw::Lzb => Restitution::Newton,
+    };
+    Ok(match l {
+        LawArg::Simultaneous => SimLaw::Simultaneous(r),
+        LawArg::Unilateral if r == Restitution::Energetic => {
+            return Err(fail_input(format!(
+                "{}: --law unilateral is integrated with Newton's and Poisson's \
+                 restitution, and [simulate] restitution is \"energetic\"",
+                path.display()
+            )));
+        }
+        LawArg::Unilateral => SimLaw::Unilateral(r),
+        LawArg::Lzb => SimLaw::Lzb,
+    })
+}
+
+/// `simulate` on a system of spheres: the log, or the trajectory as CSV; statuses as for one
+/// body.
+fn run_simulate_spheres(
+    path: &std::path::Path,
+    mut scene: inertance::scene::SphereSystemScene,
+    law: Option<LawArg>,
+    json: bool,
+    trajectory: Option<&std::path::Path>,
+) -> ExitCode {
+    use inertance::report::simulation_system;
+    if let Some(l) = law {
+        scene.setup.law = match chosen_law(path, scene.setup.law, l) {
+            Ok(l) => l,
+            Err(code) => return code,
+        };
+    }
+    if json {
+        return fail_input(format!(
+            "{}: --json is not written for systems of spheres yet: use the log or \
+             --trajectory FILE.csv",
+            path.display()
+        ));
+    }
+    if let Some(f) = trajectory
+        && f.extension().and_then(|e| e.to_str()) != Some("csv")
+    {
+        return fail_input(format!(
+            "--trajectory {}: a system of spheres writes FILE.csv (the samples)",
+            f.display()
+        ));
+    }
+    let sim = inertance::simulate::system::simulate_system(&scene.setup);
+    if let Some(file) = trajectory
+        && let Err(code) = write_whole(file, &simulation_system::to_csv(&scene.setup, &sim))
+    {
+        return code;
+    }
+    print_out(&simulation_system::to_text(&scene.name, &scene.setup, &sim));
+    match &sim.stopped {
+        Some(e) => {
+            eprintln!("error: {}: {e}", path.display());
+            ExitCode::from(3)
+        }
+        None => ExitCode::SUCCESS,
+    }
+}
+
 /// `simulate`: status 0 when the run reached its end, 2 for bad input, 3 when an impact had no
 /// answer under the law or persistent contact could not be decided (the message says where).
 fn run_simulate(
@@ -429,29 +503,26 @@ fn run_simulate(
     trajectory: Option<&std::path::Path>,
     animation: Option<&std::path::Path>,
 ) -> ExitCode {
-    use inertance::impact::friction::Restitution;
     use inertance::report::simulation;
-    use inertance::simulate::Law as SimLaw;
-    let mut scene = match inertance::scene::SimulationScene::load(path) {
-        Ok(s) => s,
-        Err(e) => return fail_input(e.to_string()),
-    };
-    if let Some(l) = law {
-        let r = match scene.setup.law {
-            SimLaw::Simultaneous(r) | SimLaw::Unilateral(r) => r,
-            SimLaw::Lzb => Restitution::Newton,
-        };
-        scene.setup.law = match l {
-            LawArg::Simultaneous => SimLaw::Simultaneous(r),
-            LawArg::Unilateral if r == Restitution::Energetic => {
+    let scene = match inertance::scene::AnySimulation::load(path) {
+        Ok(inertance::scene::AnySimulation::Body(s)) => *s,
+        Ok(inertance::scene::AnySimulation::Spheres(s)) => {
+            if let Some(f) = animation {
                 return fail_input(format!(
-                    "{}: --law unilateral is integrated with Newton's and Poisson's \
-                     restitution, and [simulate] restitution is \"energetic\"",
-                    path.display()
+                    "--animation {}: a system of spheres is not drawn yet: use the log or \
+                     --trajectory FILE.csv",
+                    f.display()
                 ));
             }
-            LawArg::Unilateral => SimLaw::Unilateral(r),
-            LawArg::Lzb => SimLaw::Lzb,
+            return run_simulate_spheres(path, *s, law, json, trajectory);
+        }
+        Err(e) => return fail_input(e.to_string()),
+    };
+    let mut scene = scene;
+    if let Some(l) = law {
+        scene.setup.law = match chosen_law(path, scene.setup.law, l) {
+            Ok(l) => l,
+            Err(code) => return code,
         };
     }
     let format = match trajectory {

@@ -19,6 +19,7 @@ mod friction;
 mod json;
 pub mod lzb;
 pub mod simulation;
+pub mod simulation_system;
 pub mod system;
 pub mod system_friction;
 mod table;

@@ -6,7 +6,7 @@ use plotters::prelude::*;
 use serde_json::{Value as Json, json};
 
 use super::json_f64;
-use crate::simulate::run::{End, Simulation};
+use crate::simulate::run::{End, Event, ImpactRecord, SimulateError, Simulation};
 use crate::simulate::{Setup, State};
 
 /// x to six significant digits, as `%g` writes it.
@@ -48,16 +48,19 @@ pub fn angle(setup: &Setup, s: &State) -> f64 {
 }
 
 fn end_text(sim: &Simulation) -> String {
-    match sim.end {
-        End::Duration => format!("the duration, t = {} s", sig(sim.t_end)),
-        End::Impacts => format!("the impact budget, t = {} s", sig(sim.t_end)),
-        End::Rest => format!("rest, t = {} s", sig(sim.t_end)),
+    end_of(sim.end, sim.t_end, sim.stopped.as_ref())
+}
+
+/// Why and when a run ended.
+pub(crate) fn end_of(end: End, t_end: f64, stopped: Option<&SimulateError>) -> String {
+    match end {
+        End::Duration => format!("the duration, t = {} s", sig(t_end)),
+        End::Impacts => format!("the impact budget, t = {} s", sig(t_end)),
+        End::Rest => format!("rest, t = {} s", sig(t_end)),
         End::Stopped => format!(
             "an error, t = {} s ({})",
-            sig(sim.t_end),
-            sim.stopped
-                .as_ref()
-                .map_or_else(String::new, ToString::to_string)
+            sig(t_end),
+            stopped.map_or_else(String::new, ToString::to_string)
         ),
     }
 }
@@ -69,9 +72,34 @@ pub fn to_text(name: &str, setup: &Setup, sim: &Simulation) -> String {
         setup.law.name(),
         sig(setup.options.tolerance)
     );
+    out += &impact_log(&sim.impacts, &sim.events);
+    let first = sim.samples.first();
+    let energy = |s: &State| {
+        setup.body.kinetic_energy(s) - setup.body.mass * setup.options.gravity.dot(&s.x)
+    };
+    out += &format!(
+        "ended at {}: {} impact{}, energy {} → {} J; {} steps ({} rejected), drift {} m\n",
+        end_text(sim),
+        sim.impacts.len(),
+        if sim.impacts.len() == 1 { "" } else { "s" },
+        first.map_or_else(String::new, |f| sig(f.kinetic + f.potential)),
+        // a run stopped by an overflow has no energy to print (never `inf` as a result)
+        Some(energy(&sim.state))
+            .filter(|e| e.is_finite())
+            .map_or_else(|| "(not finite)".to_string(), sig),
+        sim.steps.0,
+        sim.steps.1,
+        sig(sim.drift)
+    );
+    out
+}
+
+/// The impact log and the events of a run, one body's or a system's: one row per contact
+/// struck (`A on B`: a feature or sphere on a plane or sphere).
+pub(crate) fn impact_log(impacts: &[ImpactRecord], events: &[Event]) -> String {
+    let mut out = String::new();
     // Velocities and impulses below 10⁻¹² of the run's largest are rounding noise of zero.
-    let vmax = sim
-        .impacts
+    let vmax = impacts
         .iter()
         .flat_map(|r| {
             r.contacts
@@ -79,14 +107,12 @@ pub fn to_text(name: &str, setup: &Setup, sim: &Simulation) -> String {
                 .flat_map(|c| [c.before.abs(), c.after.abs()])
         })
         .fold(0.0, f64::max);
-    let pmax = sim
-        .impacts
+    let pmax = impacts
         .iter()
         .flat_map(|r| r.contacts.iter().map(|c| c.impulse.abs()))
         .fold(0.0, f64::max);
     let flush = |x: f64, scale: f64| if x.abs() <= 1e-12 * scale { 0.0 } else { x };
-    let rows: Vec<[String; 7]> = sim
-        .impacts
+    let rows: Vec<[String; 7]> = impacts
         .iter()
         .flat_map(|r| {
             r.contacts.iter().enumerate().map(move |(k, c)| {
@@ -154,7 +180,7 @@ pub fn to_text(name: &str, setup: &Setup, sim: &Simulation) -> String {
             out += &line(r);
         }
     }
-    for r in &sim.impacts {
+    for r in impacts {
         for v in &r.verdicts {
             out += &format!("  impact {}: not physical: {v}\n", r.index);
         }
@@ -169,30 +195,12 @@ pub fn to_text(name: &str, setup: &Setup, sim: &Simulation) -> String {
             );
         }
     }
-    if !sim.events.is_empty() {
+    if !events.is_empty() {
         out += "events:\n";
-        for e in &sim.events {
+        for e in events {
             out += &format!("  t = {} s: {}\n", sig(e.t), e.what);
         }
     }
-    let first = sim.samples.first();
-    let energy = |s: &State| {
-        setup.body.kinetic_energy(s) - setup.body.mass * setup.options.gravity.dot(&s.x)
-    };
-    out += &format!(
-        "ended at {}: {} impact{}, energy {} → {} J; {} steps ({} rejected), drift {} m\n",
-        end_text(sim),
-        sim.impacts.len(),
-        if sim.impacts.len() == 1 { "" } else { "s" },
-        first.map_or_else(String::new, |f| sig(f.kinetic + f.potential)),
-        // a run stopped by an overflow has no energy to print (never `inf` as a result)
-        Some(energy(&sim.state))
-            .filter(|e| e.is_finite())
-            .map_or_else(|| "(not finite)".to_string(), sig),
-        sim.steps.0,
-        sim.steps.1,
-        sig(sim.drift)
-    );
     out
 }
 

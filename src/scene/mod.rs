@@ -224,11 +224,63 @@ pub struct SimulationScene {
     pub setup: crate::simulate::Setup,
 }
 
+/// A scene of several spheres to simulate ([`model::sphere_system`] documents the keys).
+#[derive(Clone, Debug, PartialEq)]
+pub struct SphereSystemScene {
+    /// Where it came from, for messages.
+    pub file: String,
+    /// Its `name`, or the file name.
+    pub name: String,
+    /// The spheres, obstacles, contacts, law and options.
+    pub setup: crate::simulate::system::SystemSetup,
+}
+
+/// A scene to simulate: one body or several spheres.
+#[derive(Clone, Debug, PartialEq)]
+pub enum AnySimulation {
+    /// One body.
+    Body(Box<SimulationScene>),
+    /// Several spheres.
+    Spheres(Box<SphereSystemScene>),
+}
+
+impl AnySimulation {
+    /// Read the scene to simulate at `path`: one `[body]` or several `[[body]]` spheres.
+    ///
+    /// # Errors
+    /// A [`SceneError`] naming the file, the key and the value.
+    pub fn load(path: &std::path::Path) -> Result<AnySimulation, SceneError> {
+        let (file, text) = read_text(path)?;
+        AnySimulation::parse(&text, &file)
+    }
+
+    /// Parse scene text to simulate; `file` names it in messages.
+    ///
+    /// # Errors
+    /// As [`AnySimulation::load`].
+    pub fn parse(text: &str, file: &str) -> Result<AnySimulation, SceneError> {
+        let doc = parse_document(text, file)?;
+        let (name, what) = read::simulation(&doc, file)?;
+        let file = file.to_string();
+        Ok(match what {
+            read::Simulated::Body(setup) => AnySimulation::Body(Box::new(SimulationScene {
+                file,
+                name,
+                setup: *setup,
+            })),
+            read::Simulated::Spheres(setup) => {
+                AnySimulation::Spheres(Box::new(SphereSystemScene { file, name, setup }))
+            }
+        })
+    }
+}
+
 impl SimulationScene {
     /// Read the scene to simulate at `path`.
     ///
     /// # Errors
-    /// A [`SceneError`] naming the file, the key and the value.
+    /// A [`SceneError`] naming the file, the key and the value; a scene of several spheres is
+    /// refused here (read it with [`AnySimulation::load`]).
     pub fn load(path: &std::path::Path) -> Result<SimulationScene, SceneError> {
         let (file, text) = read_text(path)?;
         SimulationScene::parse(&text, &file)
@@ -255,13 +307,18 @@ impl SimulationScene {
     /// # Errors
     /// As [`SimulationScene::load`].
     pub fn parse(text: &str, file: &str) -> Result<SimulationScene, SceneError> {
-        let doc = parse_document(text, file)?;
-        let (name, setup) = read::simulation(&doc, file)?;
-        Ok(SimulationScene {
-            file: file.to_string(),
-            name,
-            setup,
-        })
+        match AnySimulation::parse(text, file)? {
+            AnySimulation::Body(s) => Ok(*s),
+            AnySimulation::Spheres(_) => Err(SceneError {
+                file: file.to_string(),
+                key: "body".to_string(),
+                value: None,
+                message: "a scene of several [[body]] spheres: it is simulated as a system \
+                          (`inertance simulate` without --exact; AnySimulation in the library), \
+                          not as one body"
+                    .to_string(),
+            }),
+        }
     }
 }
 

@@ -541,11 +541,9 @@ pub(super) fn exact_sphere<T: crate::scalar::Scalar>(
     r.exact_sphere(root, setup)
 }
 
-/// Read a scene to simulate ([`super::model::simulation`]): its name and its setup.
-pub(super) fn simulation(
-    doc: &DocumentMut,
-    file: &str,
-) -> Result<(String, crate::simulate::Setup), SceneError> {
+/// Read a scene to simulate ([`super::model::simulation`], or of several `[[body]]`
+/// [`super::model::sphere_system`]): its name and what to run.
+pub(super) fn simulation(doc: &DocumentMut, file: &str) -> Result<(String, Simulated), SceneError> {
     let root = doc.as_table();
     let r = Reader {
         file,
@@ -562,11 +560,16 @@ pub(super) fn simulation(
     };
     let name = r.name(root)?;
     if model::system::declared(root) {
-        return Err(r.err(
-            "body",
-            None,
-            "`simulate` moves one body for now: a scene of several [[body]] tables is not simulated yet",
-        ));
+        return Ok((name, Simulated::Spheres(r.sphere_system(root)?)));
     }
-    Ok((name, r.simulation(root)?))
+    Ok((name, Simulated::Body(Box::new(r.simulation(root)?))))
+}
+
+/// What a scene to simulate runs.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Simulated {
+    /// One body.
+    Body(Box<crate::simulate::Setup>),
+    /// Several spheres.
+    Spheres(crate::simulate::system::SystemSetup),
 }

@@ -275,10 +275,7 @@ fn simultaneous(
         impact.solve(model, &mut out).map_err(no_answer)?;
         let v = verdicts(&impact, model, &out)
             .iter()
-            .map(|v| match v.contact() {
-                Some(c) => format!("{} at contact {}", v.name(), c + 1),
-                None => v.name().to_string(),
-            })
+            .map(|v| verdict_name(v, |c| c + 1))
             .collect();
         return Ok(outcome(&out, v, None));
     }
@@ -348,6 +345,17 @@ fn simultaneous(
         list(&basis)
     ));
     Ok(result)
+}
+
+/// A verdict as the log names it: `tensile at contact 2`, the contact numbered by `number`.
+pub(super) fn verdict_name(
+    v: &crate::impact::admissibility::Inadmissible,
+    number: impl Fn(usize) -> usize,
+) -> String {
+    match v.contact() {
+        Some(c) => format!("{} at contact {}", v.name(), number(c)),
+        None => v.name().to_string(),
+    }
 }
 
 fn list(basis: &[usize]) -> String {

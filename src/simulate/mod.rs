@@ -12,7 +12,9 @@
 //! [`contact`]: persistent contact, the acceleration-level complementarity problem ·
 //! [`impact`]: one impact under the chosen law · [`ode`]: the Runge–Kutta step ·
 //! [`run`]: the event loop, the log and the trajectory · [`exact`]: exact runs of a
-//! frictionless sphere among planes (no integration: the event times are roots of quadratics).
+//! frictionless sphere among planes (no integration: the event times are roots of quadratics) ·
+//! [`system`]: several spheres, with contacts between them as well as with the planes (its own
+//! loop over the shared pieces).
 
 pub mod body;
 pub mod contact;
@@ -20,6 +22,7 @@ pub mod exact;
 pub mod impact;
 pub mod ode;
 pub mod run;
+pub mod system;
 pub mod world;
 
 pub use body::{Body, Feature, Shape, State};

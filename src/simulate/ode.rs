@@ -37,32 +37,72 @@ pub fn step<const N: usize, Err>(
     h: f64,
     mut f: impl FnMut(f64, &[f64; N]) -> Result<[f64; N], Err>,
 ) -> Result<([f64; N], [f64; N]), Err> {
-    let mut k = [[0.0; N]; 7];
+    let mut g = |t: f64, y: &[f64]| -> Result<Vec<f64>, Err> {
+        let y: &[f64; N] = y.try_into().expect("N components");
+        f(t, y).map(Vec::from)
+    };
+    let (y5, err) = step_slice(tab, t, y, h, &mut g)?;
+    let whole = |v: Vec<f64>| -> [f64; N] { v.try_into().expect("N components") };
+    Ok((whole(y5), whole(err)))
+}
+
+/// The derivative f(t, y) of a state of any length, which may fail.
+pub type Derivative<'a, Err> = dyn FnMut(f64, &[f64]) -> Result<Vec<f64>, Err> + 'a;
+
+/// [`step`] over a state of any length (a system of bodies): the same arithmetic, in the same
+/// order, so a fixed-size state gives the same numbers through either.
+pub fn step_slice<Err>(
+    tab: &Tableau,
+    t: f64,
+    y: &[f64],
+    h: f64,
+    f: &mut Derivative<'_, Err>,
+) -> Result<(Vec<f64>, Vec<f64>), Err> {
+    let n_y = y.len();
+    let mut k: Vec<Vec<f64>> = Vec::with_capacity(7);
     for i in 0..7 {
-        let mut yi = *y;
-        for j in 0..i {
+        let mut yi = y.to_vec();
+        for (j, kj) in k.iter().enumerate().take(i) {
             let a = tab.a[i][j];
             if a != 0.0 {
-                for n in 0..N {
-                    yi[n] += h * a * k[j][n];
+                for n in 0..n_y {
+                    yi[n] += h * a * kj[n];
                 }
             }
         }
-        k[i] = f(t + tab.c[i] * h, &yi)?;
+        k.push(f(t + tab.c[i] * h, &yi)?);
     }
     // the seventh stage is evaluated at the fifth-order solution (FSAL)
-    let mut y5 = *y;
-    for j in 0..6 {
+    let mut y5 = y.to_vec();
+    for (j, kj) in k.iter().enumerate().take(6) {
         let a = tab.a[6][j];
-        for n in 0..N {
-            y5[n] += h * a * k[j][n];
+        for n in 0..n_y {
+            y5[n] += h * a * kj[n];
         }
     }
-    let mut err = [0.0; N];
+    let mut err = vec![0.0; n_y];
     for (j, kj) in k.iter().enumerate() {
-        for n in 0..N {
+        for n in 0..n_y {
             err[n] += h * tab.e[j] * kj[n];
         }
     }
     Ok((y5, err))
+}
+
+/// The next step after a step `h` rejected with error ratio `ratio` > 1 (the error over its
+/// tolerance): the fifth-root rule of a fifth-order pair with the safety factor 0.9, shrinking
+/// at most fivefold.
+pub fn shrink(h: f64, ratio: f64) -> f64 {
+    h * (0.9 * ratio.powf(-0.2)).max(0.2)
+}
+
+/// The next step after a step `h` accepted with error ratio `ratio` ≤ 1: the same rule,
+/// growing at most fivefold.
+pub fn grow(h: f64, ratio: f64) -> f64 {
+    h * (0.9 * ratio.max(1e-10).powf(-0.2)).min(5.0)
+}
+
+/// The shortest step the time resolves at `t`: 64 ε max(|t|, the output step).
+pub fn floor(t: f64, output_step: f64) -> f64 {
+    64.0 * f64::EPSILON * t.abs().max(output_step)
 }

@@ -36,7 +36,7 @@
 use super::body::{Body, State, V3};
 use super::contact::{Closed, ContactError, Mode, accelerations, derivative, project};
 use super::impact::{At, ImpactError, Law, solve};
-use super::ode::{Tableau, step};
+use super::ode::{Tableau, floor, grow, shrink, step};
 use super::world::{Plane, gap};
 
 /// How the simulation runs.
@@ -534,7 +534,7 @@ impl<'a> Run<'a> {
             // One step.
             let cap = horizon.min(next_output - self.t).min(o.duration - self.t);
             let mut hh = h.min(cap);
-            let floor = 64.0 * f64::EPSILON * self.t.abs().max(o.output_step);
+            let floor = floor(self.t, o.output_step);
             if hh < floor {
                 if horizon < floor {
                     // creeping onto a gap at the resolution of t: take it as reached
@@ -603,7 +603,7 @@ impl<'a> Run<'a> {
             }
             if ratio > 1.0 {
                 self.steps.1 += 1;
-                h = hh * (0.9 * ratio.powf(-0.2)).max(0.2);
+                h = shrink(hh, ratio);
                 continue;
             }
             // No open feature may end the step beyond its plane: a touching one that the step
@@ -643,7 +643,7 @@ impl<'a> Run<'a> {
             }
             self.hold_plane();
             if hh == h || ratio < 0.5 {
-                h = hh * (0.9 * ratio.max(1e-10).powf(-0.2)).min(5.0);
+                h = grow(hh, ratio);
             }
         }
         Ok(end)
@@ -720,9 +720,7 @@ impl<'a> Run<'a> {
         for (f, p) in pairs(self.setup) {
             let g = gap(&body.features[f], &planes[p], &self.s);
             let persisting = self.is_closed(f, p);
-            let joins = persisting
-                || (g.rate < 0.0 && (g.gap <= self.gap_tol || g.gap / -g.rate <= o.simultaneity));
-            if !joins {
+            if !joins(persisting, g.gap, g.rate, self.gap_tol, o.simultaneity) {
                 continue;
             }
             if !persisting && g.gap > self.gap_tol {
@@ -898,6 +896,18 @@ impl<'a> Run<'a> {
             ),
         });
     }
+}
+
+/// Whether a contact of gap `gap` and rate `rate` joins an impact (module docs): a closed one
+/// always; an open one approaching within the gap tolerance, or within `simultaneity` in time.
+pub(super) fn joins(
+    persisting: bool,
+    gap: f64,
+    rate: f64,
+    gap_tol: f64,
+    simultaneity: f64,
+) -> bool {
+    persisting || (rate < 0.0 && (gap <= gap_tol || gap / -rate <= simultaneity))
 }
 
 /// Every (feature, plane) pair.

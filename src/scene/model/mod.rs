@@ -33,6 +33,7 @@ pub(crate) mod params;
 pub(crate) mod pose;
 pub(crate) mod shape;
 pub(crate) mod simulation;
+pub(crate) mod sphere_system;
 pub(crate) mod system;
 pub(crate) mod term;
 

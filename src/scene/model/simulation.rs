@@ -22,6 +22,8 @@
 //!
 //! The shapes it moves: a box (its eight corners, or in a planar motion its four edges), a
 //! sphere, a rod (its two ends). Every number is read as any scene number and used in f64.
+//! A scene of several `[[body]]` spheres is a system ([`super::sphere_system`]), read with the
+//! same `[simulate]` options and law ([`Reader::simulate_options`]).
 
 use nalgebra::{Matrix3, Rotation3, UnitQuaternion};
 use toml_edit::Table;
@@ -36,7 +38,8 @@ use crate::simulate::impact::Law;
 use crate::simulate::run::{Options, Setup};
 use crate::simulate::world::{ContactLaw, Plane, gap};
 
-const SIMULATE_KEYS: &[&str] = &[
+/// The keys of `[simulate]` for one body.
+pub(super) const SIMULATE_KEYS: &[&str] = &[
     "gravity",
     "duration",
     "impacts",
@@ -166,10 +169,7 @@ impl Reader<'_> {
         let Some(body_model) = Body::new(mass, inertia, shape, plane_normal) else {
             return Err(self.err("body", None, "the inertia tensor is singular"));
         };
-        let gravity = match sim.get("gravity") {
-            None => V3::new(0.0, 0.0, -9.81),
-            Some(g) => v3(&self.triple(g, "simulate.gravity")?.each_ref().map(Term::of)),
-        };
+        let (gravity, mut options, law) = self.simulate_options(sim)?;
         if let Some(n) = plane_normal {
             if gravity.dot(&(rm * n)).abs() > 1e-12 * gravity.norm() {
                 return Err(self.err(
@@ -179,6 +179,132 @@ impl Reader<'_> {
                 ));
             }
         }
+        let obstacles = self.obstacles(root)?;
+        if obstacles.is_empty() {
+            return Err(self.err(
+                "obstacle",
+                None,
+                "a scene to simulate needs at least one [[obstacle]] plane",
+            ));
+        }
+        let defaults = match sim.get("contact") {
+            None => None,
+            Some(item) => Some(item.as_table_like().ok_or_else(|| {
+                self.err(
+                    "simulate.contact",
+                    Some(short(item)),
+                    "a table: { k = …, mu = … }",
+                )
+            })?),
+        };
+        let base = self.contact_law(defaults, "simulate.contact", None)?;
+        let overrides = match sim.get("obstacle") {
+            None => None,
+            Some(item) => Some(item.as_table_like().ok_or_else(|| {
+                self.err(
+                    "simulate.obstacle",
+                    Some(short(item)),
+                    "tables [simulate.obstacle.NAME]",
+                )
+            })?),
+        };
+        let names: Vec<String> = obstacles
+            .iter()
+            .enumerate()
+            .map(|(i, o)| o.name.clone().unwrap_or_else(|| format!("obstacle[{i}]")))
+            .collect();
+        self.known_obstacles(overrides, &names)?;
+        let mut planes = Vec::with_capacity(obstacles.len());
+        for (i, o) in obstacles.iter().enumerate() {
+            let normal = v3(&o.normal).normalize();
+            let point = o.point.as_ref().map_or_else(V3::zeros, v3);
+            let own = overrides.and_then(|t| t.get(&names[i])).map(|item| {
+                item.as_table_like().ok_or_else(|| {
+                    self.err(
+                        &format!("simulate.obstacle.{}", names[i]),
+                        Some(short(item)),
+                        "a table of k, mu, …",
+                    )
+                })
+            });
+            let law = match own {
+                None => base.clone(),
+                Some(t) => self.contact_law(
+                    Some(t?),
+                    &format!("simulate.obstacle.{}", names[i]),
+                    Some(&base),
+                )?,
+            };
+            planes.push(Plane {
+                name: names[i].clone(),
+                normal,
+                point,
+                law,
+            });
+        }
+        let start = State {
+            x: position + rm * v3(&props.centre),
+            q,
+            v: velocity,
+            w: omega,
+        };
+        let length = body_model
+            .reach()
+            .max(start.x.norm())
+            .max(f64::MIN_POSITIVE);
+        for f in &body_model.features {
+            for p in &planes {
+                let g = gap(f, p, &start);
+                if g.gap < -1e-9 * length {
+                    return Err(self.err(
+                        "body.position",
+                        None,
+                        format!(
+                            "the body starts inside obstacle \"{}\": its {} is {:.6e} m beyond the plane",
+                            p.name,
+                            f.label(),
+                            -g.gap
+                        ),
+                    ));
+                }
+            }
+        }
+        options.rest_speed = self.rest_speed(sim, &gravity, length, velocity.norm())?;
+        Ok(Setup {
+            body: body_model,
+            planes,
+            law,
+            start,
+            options,
+            plane: world_plane,
+        })
+    }
+
+    /// Every `[simulate.obstacle.NAME]` names an obstacle of `names`.
+    pub(super) fn known_obstacles(
+        &self,
+        overrides: Option<&dyn toml_edit::TableLike>,
+        names: &[String],
+    ) -> Result<(), SceneError> {
+        for (name, _) in overrides.into_iter().flat_map(|t| t.iter()) {
+            if !names.iter().any(|n| n == name) {
+                return Err(self.err(
+                    &format!("simulate.obstacle.{name}"),
+                    None,
+                    format!("no such obstacle; the scene has: {}", names.join(", ")),
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    /// `[simulate]`'s gravity, options and law, shared by one body and a system of spheres
+    /// (`rest_speed` left 0: [`Reader::rest_speed`] sets it once the scene's scales are known).
+    pub(super) fn simulate_options(&self, sim: &Table) -> Result<(V3, Options, Law), SceneError> {
+        let gravity = match sim.get("gravity") {
+            None => V3::new(0.0, 0.0, -9.81),
+            Some(g) => v3(&self.triple(g, "simulate.gravity")?.each_ref().map(Term::of)),
+        };
         let positive = |key: &str| -> Result<Option<f64>, SceneError> {
             match sim.get(key) {
                 None => Ok(None),
@@ -276,135 +402,46 @@ impl Reader<'_> {
                 ));
             }
         };
-        let obstacles = self.obstacles(root)?;
-        if obstacles.is_empty() {
-            return Err(self.err(
-                "obstacle",
-                None,
-                "a scene to simulate needs at least one [[obstacle]] plane",
-            ));
-        }
-        let defaults = match sim.get("contact") {
-            None => None,
-            Some(item) => Some(item.as_table_like().ok_or_else(|| {
-                self.err(
-                    "simulate.contact",
-                    Some(short(item)),
-                    "a table: { k = …, mu = … }",
-                )
-            })?),
-        };
-        let base = self.contact_law(defaults, "simulate.contact", None)?;
-        let overrides = match sim.get("obstacle") {
-            None => None,
-            Some(item) => Some(item.as_table_like().ok_or_else(|| {
-                self.err(
-                    "simulate.obstacle",
-                    Some(short(item)),
-                    "tables [simulate.obstacle.NAME]",
-                )
-            })?),
-        };
-        let names: Vec<String> = obstacles
-            .iter()
-            .enumerate()
-            .map(|(i, o)| o.name.clone().unwrap_or_else(|| format!("obstacle[{i}]")))
-            .collect();
-        if let Some(t) = overrides {
-            for (name, _) in t.iter() {
-                if !names.iter().any(|n| n == name) {
-                    return Err(self.err(
-                        &format!("simulate.obstacle.{name}"),
-                        None,
-                        format!("no such obstacle; the scene has: {}", names.join(", ")),
-                    ));
-                }
-            }
-        }
-        let mut planes = Vec::with_capacity(obstacles.len());
-        for (i, o) in obstacles.iter().enumerate() {
-            let normal = v3(&o.normal).normalize();
-            let point = o.point.as_ref().map_or_else(V3::zeros, v3);
-            let own = overrides.and_then(|t| t.get(&names[i])).map(|item| {
-                item.as_table_like().ok_or_else(|| {
-                    self.err(
-                        &format!("simulate.obstacle.{}", names[i]),
-                        Some(short(item)),
-                        "a table of k, mu, …",
-                    )
-                })
-            });
-            let law = match own {
-                None => base.clone(),
-                Some(t) => self.contact_law(
-                    Some(t?),
-                    &format!("simulate.obstacle.{}", names[i]),
-                    Some(&base),
-                )?,
-            };
-            planes.push(Plane {
-                name: names[i].clone(),
-                normal,
-                point,
-                law,
-            });
-        }
-        let start = State {
-            x: position + rm * v3(&props.centre),
-            q,
-            v: velocity,
-            w: omega,
-        };
-        let length = body_model
-            .reach()
-            .max(start.x.norm())
-            .max(f64::MIN_POSITIVE);
-        for f in &body_model.features {
-            for p in &planes {
-                let g = gap(f, p, &start);
-                if g.gap < -1e-9 * length {
-                    return Err(self.err(
-                        "body.position",
-                        None,
-                        format!(
-                            "the body starts inside obstacle \"{}\": its {} is {:.6e} m beyond the plane",
-                            p.name,
-                            f.label(),
-                            -g.gap
-                        ),
-                    ));
-                }
-            }
-        }
-        let rest_speed = match positive("rest_speed")? {
-            Some(v) => v,
-            None => {
-                1e-6 * (gravity.norm() * length)
-                    .sqrt()
-                    .max(velocity.norm())
-                    .max(f64::MIN_POSITIVE)
-            }
-        };
-        Ok(Setup {
-            body: body_model,
-            planes,
-            law,
-            start,
-            options: Options {
+        Ok((
+            gravity,
+            Options {
                 gravity,
                 duration,
                 max_impacts: impacts,
                 output_step,
                 simultaneity,
                 tolerance,
-                rest_speed,
+                rest_speed: 0.0,
             },
-            plane: world_plane,
-        })
+            law,
+        ))
+    }
+
+    /// `[simulate] rest_speed`, by default 10⁻⁶ of the larger of √(|g| L) and the fastest
+    /// initial speed.
+    pub(super) fn rest_speed(
+        &self,
+        sim: &Table,
+        gravity: &V3,
+        length: f64,
+        fastest: f64,
+    ) -> Result<f64, SceneError> {
+        match sim.get("rest_speed") {
+            Some(item) => {
+                let n = self.number(item, "simulate.rest_speed")?;
+                self.positive(&n, "simulate.rest_speed", "must be positive")?;
+                Ok(n.approx)
+            }
+            None => Ok(1e-6
+                * (gravity.norm() * length)
+                    .sqrt()
+                    .max(fastest)
+                    .max(f64::MIN_POSITIVE)),
+        }
     }
 
     /// A contact law table (`k`, `mu`, `k_energetic`, `stiffness`, `exponent`) over `base`.
-    fn contact_law(
+    pub(super) fn contact_law(
         &self,
         t: Option<&dyn toml_edit::TableLike>,
         at: &str,

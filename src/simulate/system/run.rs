@@ -1,0 +1,513 @@
+//! The event loop of a sphere system: the single body's ([`crate::simulate::run`]: its
+//! integrator, conservative advancement, impact rule and log), over several spheres and the
+//! contacts between them.
+//!
+//! **Integration.** The packed state (x_b, v_b) is stepped by Dormand–Prince RK5(4)
+//! ([`crate::simulate::ode::step_slice`]) with the accelerations of
+//! [`super::persist::accelerations`]; the steps are held to the relative `tolerance` on the
+//! scales of the motion (the largest radius or gap for positions, the speed scale for
+//! velocities). Ballistic flight is a quadratic in t, which the fifth-order step reproduces to
+//! rounding. Closed contacts are projected back onto their constraints after every step
+//! ([`super::persist::project`]); the largest gap so corrected is reported as the drift.
+//!
+//! **Events.** No step may cross an open gap: with M a bound on |g̈| over the step (twice
+//! |a_b| for a sphere on a plane; twice |a_a| + |a_b| + |u|²/|d| for a pair), g(t + s) ≥
+//! g + ġ s − ½ M s² stays positive for s < (ġ + √(ġ² + 2 M g))/M = 2g/(√(ġ² + 2 M g) − ġ)
+//! (the second form for ġ < 0, where the first cancels: without gravity M is 0), and each
+//! step is capped there. A gap within the gap tolerance (10⁻¹¹ of the length scale) approaching faster than
+//! `rest_speed` is an impact; one slower closes unless the acceleration-level problem with it
+//! closed separates it (g̈ > 0); a closed contact opens when g̈ > 0 ([`super::persist`]).
+//!
+//! **Impacts.** Every open contact approaching within the gap tolerance or within
+//! `simultaneity` in time, and every closed contact, strike together: one multiple impact,
+//! solved by the law over the whole system ([`super::impact`]). After it a contact at zero gap
+//! whose normal rate is below `rest_speed` stays closed.
+//!
+//! Not here yet: friction between spheres, the closed-form accumulation (Zeno) of the single
+//! body (a system runs to its impact budget instead), bodies other than spheres.
+
+use super::super::body::V3;
+use super::super::contact::ContactError;
+use super::super::impact::Law;
+use super::super::ode::{Tableau, floor, grow, shrink, step_slice};
+use super::super::run::{
+    End, Event, ImpactRecord, MAX_STEPS, Options, SimulateError, Struck, joins,
+};
+use super::super::world::Plane;
+use super::gaps::{Candidate, Touch, gap};
+use super::impact::solve;
+use super::persist::{Accelerations, accelerations, project};
+use super::spheres::{Sphere, SystemState};
+
+/// What to simulate.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SystemSetup {
+    /// The spheres.
+    pub spheres: Vec<Sphere>,
+    /// The obstacles.
+    pub planes: Vec<Plane>,
+    /// Every contact watched (every sphere on every plane, every pair of spheres), with its law.
+    pub candidates: Vec<Candidate>,
+    /// The impact law.
+    pub law: Law,
+    /// The state at t = 0.
+    pub start: SystemState,
+    /// The options.
+    pub options: Options,
+}
+
+impl SystemSetup {
+    /// Every sphere on every plane, then every pair (a < b), each with the law `law_of` gives.
+    pub fn candidates(
+        spheres: usize,
+        planes: usize,
+        mut law_of: impl FnMut(&Touch) -> super::super::world::ContactLaw,
+    ) -> Vec<Candidate> {
+        let mut out = Vec::new();
+        for body in 0..spheres {
+            for plane in 0..planes {
+                let touch = Touch::Plane { body, plane };
+                out.push(Candidate {
+                    law: law_of(&touch),
+                    touch,
+                });
+            }
+        }
+        for a in 0..spheres {
+            for b in a + 1..spheres {
+                let touch = Touch::Pair { a, b };
+                out.push(Candidate {
+                    law: law_of(&touch),
+                    touch,
+                });
+            }
+        }
+        out
+    }
+}
+
+/// A sample of the trajectory.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SystemSample {
+    /// t (s).
+    pub t: f64,
+    /// The state.
+    pub state: SystemState,
+    /// Kinetic energy (J).
+    pub kinetic: f64,
+    /// Potential energy −Σ m g·x (J).
+    pub potential: f64,
+    /// The number of closed contacts.
+    pub closed: usize,
+}
+
+/// A whole run.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SystemSimulation {
+    /// The impacts (a contact between two spheres: `feature` the first, `plane` the second).
+    pub impacts: Vec<ImpactRecord>,
+    /// The other events: contacts closing and opening.
+    pub events: Vec<Event>,
+    /// The trajectory, every `output_step`, with the state before and after every impact.
+    pub samples: Vec<SystemSample>,
+    /// Why it ended.
+    pub end: End,
+    /// When (s).
+    pub t_end: f64,
+    /// The state then.
+    pub state: SystemState,
+    /// Accepted and rejected steps.
+    pub steps: (usize, usize),
+    /// The largest gap the projection of closed contacts corrected (m).
+    pub drift: f64,
+    /// Why the run stopped early ([`End::Stopped`]).
+    pub stopped: Option<SimulateError>,
+}
+
+/// Run `setup` to its end, or to the error that stops it ([`End::Stopped`]), keeping the
+/// history up to there.
+pub fn simulate_system(setup: &SystemSetup) -> SystemSimulation {
+    let mut run = Run::new(setup);
+    let (end, stopped) = match run.go() {
+        Ok(end) => (end, None),
+        Err(e) => (End::Stopped, Some(e)),
+    };
+    SystemSimulation {
+        impacts: run.impacts,
+        events: run.events,
+        samples: run.samples,
+        end,
+        t_end: run.t,
+        state: run.s,
+        steps: run.steps,
+        drift: run.drift,
+        stopped,
+    }
+}
+
+struct Run<'a> {
+    setup: &'a SystemSetup,
+    tab: Tableau,
+    s: SystemState,
+    t: f64,
+    closed: Vec<usize>,
+    impacts: Vec<ImpactRecord>,
+    events: Vec<Event>,
+    samples: Vec<SystemSample>,
+    length: f64,
+    speed: f64,
+    gap_tol: f64,
+    steps: (usize, usize),
+    drift: f64,
+}
+
+impl<'a> Run<'a> {
+    fn new(setup: &'a SystemSetup) -> Run<'a> {
+        let s = setup.start.clone();
+        let reach = setup.spheres.iter().map(|b| b.radius).fold(0.0, f64::max);
+        let length = setup
+            .candidates
+            .iter()
+            .map(|c| gap(&c.touch, &setup.spheres, &setup.planes, &s).gap.abs())
+            .fold(reach, f64::max)
+            .max(f64::MIN_POSITIVE);
+        let g = setup.options.gravity.norm();
+        let fastest = s.v.iter().map(|v| v.norm()).fold(0.0, f64::max);
+        let speed = fastest
+            .max((2.0 * g * length).sqrt())
+            .max(f64::MIN_POSITIVE);
+        Run {
+            setup,
+            tab: Tableau::new(),
+            s,
+            t: 0.0,
+            closed: Vec::new(),
+            impacts: Vec::new(),
+            events: Vec::new(),
+            samples: Vec::new(),
+            length,
+            speed,
+            gap_tol: 1e-11 * length,
+            steps: (0, 0),
+            drift: 0.0,
+        }
+    }
+
+    fn sample(&mut self) {
+        let st = &self.setup;
+        self.samples.push(SystemSample {
+            t: self.t,
+            state: self.s.clone(),
+            kinetic: self.s.kinetic_energy(&st.spheres),
+            potential: self.s.potential_energy(&st.spheres, &st.options.gravity),
+            closed: self.closed.len(),
+        });
+    }
+
+    fn accelerations_at(
+        &self,
+        s: &SystemState,
+        closed: &[usize],
+    ) -> Result<Accelerations, ContactError> {
+        let st = &self.setup;
+        accelerations(
+            &st.spheres,
+            &st.planes,
+            &st.candidates,
+            closed,
+            s,
+            &st.options.gravity,
+        )
+    }
+
+    fn name(&self, k: usize) -> String {
+        let (a, b) = self.setup.candidates[k]
+            .touch
+            .name(&self.setup.spheres, &self.setup.planes);
+        format!("{a} on {b}")
+    }
+
+    fn gap(&self, k: usize, s: &SystemState) -> super::gaps::Gap {
+        gap(
+            &self.setup.candidates[k].touch,
+            &self.setup.spheres,
+            &self.setup.planes,
+            s,
+        )
+    }
+
+    fn go(&mut self) -> Result<End, SimulateError> {
+        let o = self.setup.options.clone();
+        let mut h = (o.output_step.min(o.duration) / 10.0).max(f64::MIN_POSITIVE);
+        let mut next_output = 0.0;
+        let mut outputs = 0usize;
+        loop {
+            if self.t >= next_output {
+                self.sample();
+                outputs += 1;
+                next_output = outputs as f64 * o.output_step;
+            }
+            if self.t >= o.duration {
+                return Ok(End::Duration);
+            }
+            if self.impacts.len() >= o.max_impacts {
+                return Ok(End::Impacts);
+            }
+            if self.steps.0 + self.steps.1 >= MAX_STEPS {
+                return Err(SimulateError::Stalled { t: self.t });
+            }
+            let s = self.s.clone();
+            let acc = self
+                .accelerations_at(&s, &self.closed)
+                .map_err(|error| SimulateError::Contact { t: self.t, error })?;
+            let tol = 1e-9 * acc.scale.max(f64::MIN_POSITIVE);
+            // Lift-off: a closed contact the accelerations open.
+            let opening: Vec<usize> = (0..self.closed.len())
+                .filter(|&p| acc.gap_acceleration[p] > tol)
+                .collect();
+            if !opening.is_empty() {
+                for &p in opening.iter().rev() {
+                    let k = self.closed.remove(p);
+                    self.events.push(Event {
+                        t: self.t,
+                        what: format!("{} lifts off", self.name(k)),
+                    });
+                }
+                continue;
+            }
+            let fastest = self.s.v.iter().map(|v| v.norm()).fold(0.0, f64::max);
+            let accel = acc.a.iter().map(|a| a.norm()).fold(0.0, f64::max);
+            if !self.closed.is_empty()
+                && fastest <= o.rest_speed
+                && accel <= 1e-9 * (o.gravity.norm() + f64::MIN_POSITIVE)
+            {
+                return Ok(End::Rest);
+            }
+            // The open gaps: impacts, contacts closing, and the horizon of the step.
+            let mut horizon = f64::INFINITY;
+            let mut striking = false;
+            let mut closing = false;
+            for k in 0..self.setup.candidates.len() {
+                if self.closed.contains(&k) {
+                    continue;
+                }
+                let g = self.gap(k, &self.s);
+                if g.gap <= self.gap_tol {
+                    if g.rate < -o.rest_speed {
+                        striking = true;
+                        continue;
+                    } else if g.rate <= o.rest_speed {
+                        let mut trial = self.closed.clone();
+                        trial.push(k);
+                        let keeps = self
+                            .accelerations_at(&self.s, &trial)
+                            .map(|a| a.gap_acceleration[trial.len() - 1] <= 1e-9 * a.scale)
+                            .unwrap_or(false);
+                        if keeps {
+                            self.closed.push(k);
+                            self.events.push(Event {
+                                t: self.t,
+                                what: format!("{} closes", self.name(k)),
+                            });
+                            closing = true;
+                            continue;
+                        }
+                    }
+                }
+                let bound = match self.setup.candidates[k].touch {
+                    Touch::Plane { body, .. } => 2.0 * acc.a[body].norm(),
+                    Touch::Pair { a, b } => 2.0 * (acc.a[a].norm() + acc.a[b].norm()) + g.curvature,
+                } + f64::MIN_POSITIVE;
+                let reach = g.gap.max(0.0);
+                let root = (g.rate * g.rate + 2.0 * bound * reach).sqrt();
+                // the root of g + ġ s − ½ M s², in the form that does not cancel
+                let s = if g.rate < 0.0 {
+                    2.0 * reach / (root - g.rate)
+                } else {
+                    (g.rate + root) / bound
+                };
+                horizon = horizon.min(s);
+            }
+            if closing {
+                continue;
+            }
+            if striking {
+                self.impact()?;
+                h = h.max(1e-6 * o.output_step);
+                continue;
+            }
+            // One step.
+            let cap = horizon.min(next_output - self.t).min(o.duration - self.t);
+            let mut hh = h.min(cap);
+            let floor = floor(self.t, o.output_step);
+            if hh < floor {
+                hh = if horizon < floor {
+                    floor
+                } else {
+                    cap.max(floor)
+                };
+            }
+            let y = self.s.pack();
+            let t0 = self.t;
+            let tab = std::mem::take(&mut self.tab);
+            let closed = self.closed.clone();
+            let result = {
+                let mut f = |_t: f64, y: &[f64]| -> Result<Vec<f64>, ContactError> {
+                    let s = SystemState::unpack(y);
+                    let a = self.accelerations_at(&s, &closed)?;
+                    Ok(s.v
+                        .iter()
+                        .chain(&a.a)
+                        .flat_map(|p| [p.x, p.y, p.z])
+                        .collect())
+                };
+                step_slice(&tab, t0, &y, hh, &mut f)
+            };
+            self.tab = tab;
+            let (y5, err) = match result {
+                Ok(r) => r,
+                Err(_) => {
+                    self.steps.1 += 1;
+                    h = hh / 4.0;
+                    if h < floor {
+                        return Err(SimulateError::Stalled { t: self.t });
+                    }
+                    continue;
+                }
+            };
+            let half = y.len() / 2;
+            let ratio = (0..y.len())
+                .map(|k| {
+                    let scale = if k < half { self.length } else { self.speed };
+                    err[k].abs() / (o.tolerance * y5[k].abs().max(scale))
+                })
+                .fold(0.0, f64::max);
+            if !ratio.is_finite() {
+                return Err(SimulateError::NotFinite { t: self.t });
+            }
+            if ratio > 1.0 {
+                self.steps.1 += 1;
+                h = shrink(hh, ratio);
+                continue;
+            }
+            // No open contact may end the step through its gap: one the step took through is
+            // located by halving the step.
+            let end_state = SystemState::unpack(&y5);
+            let through = (0..self.setup.candidates.len())
+                .any(|k| !self.closed.contains(&k) && self.gap(k, &end_state).gap < -self.gap_tol);
+            if through && hh > floor {
+                self.steps.1 += 1;
+                h = hh / 2.0;
+                continue;
+            }
+            self.steps.0 += 1;
+            self.t = if hh == cap && cap == next_output - t0 {
+                next_output
+            } else {
+                t0 + hh
+            };
+            self.s = end_state;
+            let st = self.setup;
+            let d = project(
+                &st.spheres,
+                &st.planes,
+                &st.candidates,
+                &self.closed,
+                &mut self.s,
+            );
+            self.drift = self.drift.max(d);
+            if hh == h || ratio < 0.5 {
+                h = grow(hh, ratio);
+            }
+        }
+    }
+
+    /// The impact at the current state: the samples before and after it are kept (as Siconos'
+    /// event rows).
+    fn impact(&mut self) -> Result<(), SimulateError> {
+        let o = self.setup.options.clone();
+        let st = self.setup;
+        let mut at: Vec<usize> = Vec::new();
+        let mut struck: Vec<Struck> = Vec::new();
+        let mut spread = 0.0f64;
+        for k in 0..st.candidates.len() {
+            let g = self.gap(k, &self.s);
+            let persisting = self.closed.contains(&k);
+            if !joins(persisting, g.gap, g.rate, self.gap_tol, o.simultaneity) {
+                continue;
+            }
+            if !persisting && g.gap > self.gap_tol {
+                spread = spread.max(g.gap / -g.rate);
+            }
+            let (first, second) = st.candidates[k].touch.name(&st.spheres, &st.planes);
+            at.push(k);
+            struck.push(Struck {
+                feature: first,
+                plane: second,
+                gap: g.gap.max(0.0),
+                before: g.rate,
+                after: 0.0,
+                impulse: 0.0,
+                persisting,
+            });
+        }
+        let index = self.impacts.len() + 1;
+        let kinetic_before = self.s.kinetic_energy(&st.spheres);
+        self.sample();
+        let out = solve(
+            &st.spheres,
+            &st.planes,
+            &st.candidates,
+            &at,
+            &self.s,
+            st.law,
+            o.tolerance,
+        )
+        .map_err(|error| SimulateError::Impact {
+            index,
+            t: self.t,
+            contacts: struck
+                .iter()
+                .map(|c| format!("{} on {}", c.feature, c.plane))
+                .collect::<Vec<_>>()
+                .join(", "),
+            error,
+        })?;
+        if !out.v.iter().all(|v| v.iter().all(|x| x.is_finite())) {
+            return Err(SimulateError::NotFinite { t: self.t });
+        }
+        self.s.v = out.v;
+        self.closed.clear();
+        for (p, &k) in at.iter().enumerate() {
+            let g = self.gap(k, &self.s);
+            struck[p].after = g.rate;
+            struck[p].impulse = out.impulses[p];
+            if g.gap <= self.gap_tol && g.rate <= o.rest_speed {
+                self.closed.push(k);
+            }
+        }
+        self.impacts.push(ImpactRecord {
+            index,
+            t: self.t,
+            contacts: struck,
+            spread,
+            kinetic_before,
+            kinetic_after: self.s.kinetic_energy(&st.spheres),
+            verdicts: out.verdicts,
+            note: None,
+        });
+        self.sample();
+        Ok(())
+    }
+}
+
+/// The velocity of every sphere after the first impact of `sim`, if there was one (the
+/// sample that follows it).
+pub fn after_first_impact(sim: &SystemSimulation) -> Option<&[V3]> {
+    let t = sim.impacts.first()?.t;
+    sim.samples
+        .iter()
+        .filter(|s| s.t == t)
+        .nth(1)
+        .map(|s| s.state.v.as_slice())
+}
