@@ -1,0 +1,249 @@
+"""The conformance-suite engines over a sequence of impacts (issue 27, item 6, last clause).
+
+The reference is inertance's own history, read from ``inertance simulate SCENE --json``:
+impact times, the normal velocity of the landing contact before and after each impact, and for
+Housner's block the ratio of angular velocities at each landing, ω⁺/ω⁻ = √(K⁺/K⁻) (the block
+rotates about one edge just before a landing and about the other just after, with the same
+moment of inertia I_O about either edge, so K = I_O ω²/2 on both sides).
+
+Each engine runs the bouncing ball (examples/simulate/bouncing-ball.toml: r = 0.1 m, 1 kg, its
+lowest point 5 m above the floor, g = 10 m/s², k = 1/2) with gravity on, and its impacts are read
+off its velocity history: impact n is the step at which the ball's vertical velocity turns from
+negative to non-negative; the speed before is the highest downward speed since the last apex, the
+rebound the highest upward speed before the next apex (the velocity at lift-off, where gravity
+alone acts again). The grade after impact n is the relative error of the rebound and of the time
+against inertance's history. The engines' block is not run yet (see the guide).
+
+``python -m inertance.engines.sequences --out DIR`` writes ``sequences.md`` and ``sequences.svg``.
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import os
+import shutil
+import subprocess
+from pathlib import Path
+
+REPO = Path(__file__).resolve().parents[3]
+SCENES = REPO / "examples" / "simulate"
+GRADED = (1, 2, 5)
+
+
+def cli() -> list[str]:
+    """The ``inertance`` command: $INERTANCE_BIN, target/release, target/debug, PATH, else
+    ``cargo run`` in the workspace (how python/tests/conftest.py runs it)."""
+    env = os.environ.get("INERTANCE_BIN")
+    if env:
+        return [env]
+    for sub in ("release", "debug"):
+        p = REPO / "target" / sub / "inertance"
+        if p.exists():
+            return [str(p)]
+    found = shutil.which("inertance")
+    if found:
+        return [found]
+    return ["cargo", "run", "--quiet", "--bin", "inertance", "--"]
+
+
+def simulate_json(scene: str | Path) -> dict:
+    out = subprocess.run([*cli(), "simulate", str(scene), "--json"], cwd=REPO, check=True,
+                         capture_output=True, text=True)
+    return json.loads(out.stdout)
+
+
+def reference_history(scene: str | Path) -> list[dict]:
+    """Per impact: t, the landing contact's normal velocity before/after (the contact with the
+    largest impulse), and the kinetic-energy ratio K⁺/K⁻."""
+    hist = []
+    for imp in simulate_json(scene)["impacts"]:
+        land = max(imp["contacts"], key=lambda c: c["impulse"])
+        hist.append({"index": imp["index"], "t": imp["t"], "before": land["before"], "after": land["after"],
+                     "energy_ratio": imp["kinetic_after"] / imp["kinetic_before"]})
+    return hist
+
+
+def ball_reference(scene: str | Path, n: int = 8, g: float = 10.0) -> list[dict]:
+    """The ball's history through n impacts. inertance logs the first impacts and then reports the
+    Zeno accumulation (``zeno.after`` impacts, the ratio it measured, t∞) instead of resolving
+    infinitely many; the impacts after those are its geometric continuation: uₘ₊₁ = ratio·uₘ,
+    tₘ₊₁ = tₘ + 2uₘ/g (free flight between landings), marked ``"from": "zeno"``."""
+    run = simulate_json(scene)
+    hist = reference_history(scene)
+    for h in hist:
+        h["from"] = "log"
+    z = run.get("zeno")
+    while z and len(hist) < n:
+        last = hist[-1]
+        u = last["after"]
+        hist.append({"index": last["index"] + 1, "t": last["t"] + 2 * u / g, "before": -u,
+                     "after": z["ratio"] * u, "from": "zeno"})
+    return hist[:n]
+
+
+# ---- the ball in the engines -------------------------------------------------------------------
+
+BALL = {"radius": 0.1, "mass": 1.0, "height": 5.1, "g": 10.0, "k": 0.5, "duration": 4.0}
+
+
+# Below this landing speed (m/s) a turn of the velocity's sign is the ball jittering at rest in a
+# soft contact (MuJoCo's reach 1e-11 m/s), not an impact: the ball fell from at most
+# REST²/(2g) = 5e-14 m.
+REST = 1e-6
+
+
+def impacts_from_velocity(ts, vz) -> list[dict]:
+    """Impacts in a sampled vertical-velocity history: a turn from vz < 0 to vz >= 0, landing
+    faster than REST; before = the highest downward speed since the last apex."""
+    out = []
+    n = len(vz)
+    i = 1
+    fall = 0.0  # the highest downward speed since the last apex
+    while i < n:
+        if vz[i - 1] < 0:
+            fall = max(fall, -vz[i - 1])
+        if vz[i - 1] < 0 <= vz[i]:
+            before, fall = fall, 0.0
+            if before < REST:
+                i += 1
+                continue
+            j = i
+            best = vz[i]
+            while j + 1 < n and vz[j + 1] >= 0:
+                j += 1
+                best = max(best, vz[j])
+            out.append({"index": len(out) + 1, "t": ts[i], "before": before, "after": best})
+            i = j + 1
+        else:
+            i += 1
+    return out
+
+
+def mujoco_ball(calibrated: bool):
+    import mujoco
+    from .mujoco_adapter import MuJoCoAdapter
+    b = BALL
+    if calibrated:
+        ad = MuJoCoAdapter(tuned=True, calibrated=True)
+        k, bd = ad.solref(b["k"])
+        d = ad.impedance
+        pair = f'solref="{k!r} {bd!r}" solimp="{d} {d} 0.001 0.5 2"'
+    else:
+        ad = MuJoCoAdapter()
+        pair = ""
+    xml = (f'<mujoco><option timestep="{ad.timestep}" gravity="0 0 {-b["g"]}"/><worldbody>'
+           '<geom name="p" type="plane" size="0 0 1" contype="0" conaffinity="0"/>'
+           f'<body name="b" pos="0 0 {b["height"]}"><freejoint/><inertial pos="0 0 0" mass="{b["mass"]}" '
+           f'diaginertia="0.004 0.004 0.004"/><geom name="g" type="sphere" size="{b["radius"]}" '
+           'contype="0" conaffinity="0"/></body></worldbody>'
+           f'<contact><pair geom1="p" geom2="g" condim="1" {pair}/></contact></mujoco>')
+    model = mujoco.MjModel.from_xml_string(xml)
+    data = mujoco.MjData(model)
+    ts, vz = [0.0], [0.0]
+    for _ in range(int(round(b["duration"] / ad.timestep))):
+        mujoco.mj_step(model, data)
+        ts.append(data.time)
+        vz.append(float(data.qvel[2]))
+    name = "mujoco-calibrated" if calibrated else "mujoco"
+    return name, mujoco.__version__, ad.timestep, impacts_from_velocity(ts, vz)
+
+
+def pybullet_ball(timestep: float = 1 / 240, iterations: int = 50):
+    """The adapter's clean-restitution settings (restitution threshold 0, no warm start, split
+    impulse, no slop), restitution 1 on the floor and k on the ball (Bullet multiplies them)."""
+    import pybullet as p
+    b = BALL
+    c = p.connect(p.DIRECT)
+    try:
+        p.setGravity(0, 0, -b["g"], physicsClientId=c)
+        p.setTimeStep(timestep, physicsClientId=c)
+        p.setPhysicsEngineParameter(restitutionVelocityThreshold=0, warmStartingFactor=0, useSplitImpulse=1,
+                                    contactSlop=0, enableConeFriction=0, numSolverIterations=iterations,
+                                    physicsClientId=c)
+        floor = p.createMultiBody(0, p.createCollisionShape(p.GEOM_PLANE, planeNormal=[0, 0, 1], physicsClientId=c),
+                                  -1, basePosition=[0, 0, 0], useMaximalCoordinates=True, physicsClientId=c)
+        ball = p.createMultiBody(b["mass"], p.createCollisionShape(p.GEOM_SPHERE, radius=b["radius"], physicsClientId=c),
+                                 -1, basePosition=[0, 0, b["height"]], useMaximalCoordinates=True, physicsClientId=c)
+        for uid, r in ((floor, 1.0), (ball, b["k"])):
+            p.changeDynamics(uid, -1, restitution=r, lateralFriction=0, rollingFriction=0, spinningFriction=0,
+                             linearDamping=0, angularDamping=0, contactProcessingThreshold=0, physicsClientId=c)
+        ts, vz = [0.0], [0.0]
+        for s in range(int(round(b["duration"] / timestep))):
+            p.stepSimulation(physicsClientId=c)
+            ts.append((s + 1) * timestep)
+            vz.append(p.getBaseVelocity(ball, physicsClientId=c)[0][2])
+    finally:
+        p.disconnect(c)
+    return "pybullet", p.getAPIVersion(), timestep, impacts_from_velocity(ts, vz)
+
+
+ENGINES = {"mujoco": lambda: mujoco_ball(False), "mujoco-calibrated": lambda: mujoco_ball(True),
+           "pybullet": pybullet_ball}
+
+
+def grade(ref: list[dict], got: list[dict], n: int) -> dict | None:
+    if len(got) < n or len(ref) < n:
+        return None
+    r, g = ref[n - 1], got[n - 1]
+    return {"rebound": abs(g["after"] - r["after"]) / abs(r["after"]), "time": abs(g["t"] - r["t"]) / r["t"],
+            "ratio": g["after"] / g["before"]}
+
+
+def run(out: Path) -> dict:
+    ref = ball_reference(SCENES / "bouncing-ball.toml")
+    rows, series = [], {"exact": [h["after"] / -h["before"] for h in ref[:8]]}
+    for name, fn in ENGINES.items():
+        try:
+            eng, ver, dt, got = fn()
+        except ImportError:
+            continue
+        series[eng] = [h["after"] / h["before"] for h in got[:8]]
+        rows.append((eng, ver, dt, got, {n: grade(ref, got, n) for n in GRADED}))
+    lines = ["| engine | version | step (s) | " + " | ".join(f"rebound err after {n}" for n in GRADED) + " | "
+             + " | ".join(f"time err after {n}" for n in GRADED) + " |",
+             "|---|---|---|" + "---|" * (2 * len(GRADED))]
+    for eng, ver, dt, got, gr in rows:
+        cell = lambda n, key: "—" if gr[n] is None else f"{gr[n][key]:.2e}"
+        lines.append(f"| {eng} | {ver} | {dt:g} | " + " | ".join(cell(n, "rebound") for n in GRADED) + " | "
+                     + " | ".join(cell(n, "time") for n in GRADED) + " |")
+    out.mkdir(parents=True, exist_ok=True)
+    (out / "sequences.md").write_text("\n".join(lines) + "\n")
+    _svg(series, out / "sequences.svg")
+    return {"rows": rows, "series": series, "table": "\n".join(lines)}
+
+
+def _svg(series: dict, path: Path) -> None:
+    """The rebound ratio u⁺/u⁻ per impact, exact and each engine (a small self-contained SVG)."""
+    W, H, L, B = 560, 320, 60, 40
+    colours = ["#000", "#1f77b4", "#ff7f0e", "#2ca02c", "#d62728"]
+    nmax = max(len(v) for v in series.values())
+    x = lambda i: L + (i - 1) * (W - L - 20) / max(1, nmax - 1)
+    y = lambda r: H - B - (r - 0.0) / 1.0 * (H - B - 20)
+    parts = [f'<svg xmlns="http://www.w3.org/2000/svg" width="{W}" height="{H}" font-family="sans-serif" font-size="11">',
+             f'<line x1="{L}" y1="{H - B}" x2="{W - 20}" y2="{H - B}" stroke="#000"/>',
+             f'<line x1="{L}" y1="20" x2="{L}" y2="{H - B}" stroke="#000"/>',
+             f'<text x="{(W + L) / 2}" y="{H - 8}" text-anchor="middle">impact n (bouncing ball, k = 1/2)</text>',
+             f'<text x="14" y="{(H - B) / 2}" transform="rotate(-90 14 {(H - B) / 2})" text-anchor="middle">rebound ratio u⁺/u⁻</text>']
+    for r in (0, 0.25, 0.5, 0.75, 1.0):
+        parts.append(f'<text x="{L - 6}" y="{y(r) + 4}" text-anchor="end">{r}</text>')
+    for i in range(1, nmax + 1):
+        parts.append(f'<text x="{x(i)}" y="{H - B + 14}" text-anchor="middle">{i}</text>')
+    for k, (name, vals) in enumerate(series.items()):
+        col = colours[k % len(colours)]
+        pts = " ".join(f"{x(i + 1):.1f},{y(v):.1f}" for i, v in enumerate(vals))
+        parts.append(f'<polyline points="{pts}" fill="none" stroke="{col}" stroke-width="1.5"/>')
+        parts.append(f'<text x="{W - 150}" y="{30 + 14 * k}" fill="{col}">{name}</text>')
+    parts.append("</svg>")
+    path.write_text("\n".join(parts) + "\n")
+
+
+def main(argv=None) -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--out", type=Path, default=Path("target/engine-sequences"))
+    res = run(ap.parse_args(argv).out)
+    print(res["table"])
+
+
+if __name__ == "__main__":
+    main()
