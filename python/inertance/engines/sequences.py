@@ -175,11 +175,37 @@ def pybullet_ball(timestep: float = 1 / 240, iterations: int = 50):
             vz.append(p.getBaseVelocity(ball, physicsClientId=c)[0][2])
     finally:
         p.disconnect(c)
-    return "pybullet", p.getAPIVersion(), timestep, impacts_from_velocity(ts, vz)
+    from importlib.metadata import version
+    return "pybullet", version("pybullet"), timestep, impacts_from_velocity(ts, vz)
+
+
+def rapier_ball():
+    """Rapier (the rapier3d bindings the adapter uses): its default integration parameters (time
+    step 1/60 s), restitution k on the ball and 1 on the half-space, MULTIPLY combine rule, f32."""
+    import rapier3d as rp
+    from importlib.metadata import version
+    from .rapier_adapter import _vec
+    b = BALL
+    mul = rp.CoefficientCombineRule.MULTIPLY
+    world = rp.PhysicsWorld(gravity=(0.0, 0.0, -b["g"]))
+    dt = world.integration_parameters.dt
+
+    def material(col, r):
+        return col.restitution(float(r)).friction(0.0).restitution_combine_rule(mul).friction_combine_rule(mul)
+
+    world.add_body(rp.RigidBody.fixed().translation((0.0, 0.0, 0.0)), [material(rp.Collider.halfspace((0.0, 0.0, 1.0)), 1.0)])
+    h = world.add_body(rp.RigidBody.dynamic().translation((0.0, 0.0, b["height"])).can_sleep(False),
+                       [material(rp.Collider.ball(b["radius"]).mass(b["mass"]), b["k"])])
+    ts, vz = [0.0], [0.0]
+    for s in range(int(round(b["duration"] / dt))):
+        world.step()
+        ts.append((s + 1) * dt)
+        vz.append(float(_vec(world.rigid_bodies[h].linvel)[2]))
+    return "rapier", version("rapier3d"), dt, impacts_from_velocity(ts, vz)
 
 
 ENGINES = {"mujoco": lambda: mujoco_ball(False), "mujoco-calibrated": lambda: mujoco_ball(True),
-           "pybullet": pybullet_ball}
+           "pybullet": pybullet_ball, "rapier": rapier_ball}
 
 
 def grade(ref: list[dict], got: list[dict], n: int) -> dict | None:
