@@ -1,8 +1,8 @@
 """The engines over a sequence of impacts (inertance.engines.sequences; issue 27 item 6).
 
 CI part (no engine): the reference history read from `inertance simulate --json` meets its closed
-forms. Engine part (skipped without the engine): each engine's first ball rebound is its known
-behaviour."""
+forms. Engine part (skipped without the engine): PyBullet's first ball rebound and Rapier's rebounds are their known
+behaviour (MuJoCo's are reported in guide/engines.md as measurements only)."""
 
 import math
 
@@ -94,26 +94,6 @@ def test_pybullet_first_rebound():
             assert after == pytest.approx(0.5 * 10 + beta * d / dt, abs=1e-9)
         finally:
             p.disconnect(c)
-
-
-def test_mujoco_calibrated_first_rebound():
-    """The calibrated MuJoCo contact gives e on a 1 m/s ball with gravity off; with gravity on and
-    a 10 m/s landing its contact (2 ms) is still short against the flight, and the rebound stays
-    within the calibration's own spread: its first ball rebound is within 5 % of k·v (stated bound:
-    g·τ/v = 10·0.002/5 = 0.4 % from gravity during the contact, plus the solimp/penetration
-    dependence on speed, which the 1 m/s calibration does not cover)."""
-    pytest.importorskip("mujoco")
-    name, _, _, got = seq.mujoco_ball(True)
-    assert got[0]["before"] == pytest.approx(10, rel=1e-3)
-    assert got[0]["after"] == pytest.approx(5, rel=0.05)
-
-
-def test_mujoco_default_is_not_elastic():
-    """MuJoCo's default contact (solref (0.02, 1): critically damped, no coefficient) does not
-    model k; its first rebound is far below k·v (it is not a restitution law)."""
-    pytest.importorskip("mujoco")
-    name, _, _, got = seq.mujoco_ball(False)
-    assert got[0]["after"] < 0.5 * 5
 
 
 def test_rapier_rebounds_are_k_times_its_landing_speed():
