@@ -12,7 +12,7 @@ off its velocity history: impact n is the step at which the ball's vertical velo
 negative to non-negative; the speed before is the highest downward speed since the last apex, the
 rebound the highest upward speed before the next apex (the velocity at lift-off, where gravity
 alone acts again). The grade after impact n is the relative error of the rebound and of the time
-against inertance's history. The engines' block is not run yet (see the guide).
+against inertance's history. Housner's block runs in PyBullet only (:func:`pybullet_block`).
 
 ``python -m inertance.engines.sequences --out DIR`` writes ``sequences.md`` and ``sequences.svg``.
 """
@@ -204,6 +204,60 @@ def rapier_ball():
     return "rapier", version("rapier3d"), dt, impacts_from_velocity(ts, vz)
 
 
+# ---- Housner's block in PyBullet (a measurement; no engine-side test yet) ---------------------
+
+def block_reference(scene: str | Path = SCENES / "rocking-block.toml") -> list[dict]:
+    """Per landing: t, ω⁻ and ω⁺ about the edges, from K = I_O ω²/2 (I_O = (4/3) m (b² + h²) =
+    3125 kg m² for the 1500 kg, 1.5 × 2 m block)."""
+    i_o = 4 / 3 * 1500 * (0.75 ** 2 + 1.0 ** 2)
+    return [{"index": imp["index"], "t": imp["t"], "before": math.sqrt(2 * imp["kinetic_before"] / i_o),
+             "after": math.sqrt(2 * imp["kinetic_after"] / i_o)} for imp in simulate_json(scene)["impacts"]]
+
+
+def pybullet_block(timestep: float = 1 / 240, iterations: int = 50, duration: float = 1.5):
+    """examples/simulate/rocking-block.toml in PyBullet (g = 9.81, restitution 0, μ = 0.6, the
+    adapter's clean-restitution settings). A landing is a step at which the tilt θ changes sign;
+    ω⁻ = |ω_y| at the step before it, ω⁺ = the largest |ω_y| of the three steps after it (Bullet
+    resolves the landing within them)."""
+    import numpy as np
+    import pybullet as p
+    from importlib.metadata import version
+    th0 = 0.2
+    c = p.connect(p.DIRECT)
+    try:
+        p.setGravity(0, 0, -9.81, physicsClientId=c)
+        p.setTimeStep(timestep, physicsClientId=c)
+        p.setPhysicsEngineParameter(restitutionVelocityThreshold=0, warmStartingFactor=0, useSplitImpulse=1,
+                                    contactSlop=0, enableConeFriction=0, numSolverIterations=iterations,
+                                    physicsClientId=c)
+        floor = p.createMultiBody(0, p.createCollisionShape(p.GEOM_PLANE, planeNormal=[0, 0, 1], physicsClientId=c),
+                                  -1, [0, 0, 0], useMaximalCoordinates=True, physicsClientId=c)
+        pos = [-0.75 * math.cos(th0) + math.sin(th0), 0, 0.75 * math.sin(th0) + math.cos(th0)]
+        q = p.getQuaternionFromAxisAngle([0, 1, 0], th0)
+        block = p.createMultiBody(1500, p.createCollisionShape(p.GEOM_BOX, halfExtents=[0.75, 0.25, 1.0],
+                                                               physicsClientId=c),
+                                  -1, pos, q, useMaximalCoordinates=True, physicsClientId=c)
+        for uid in (floor, block):
+            p.changeDynamics(uid, -1, restitution=0, lateralFriction=0.6, rollingFriction=0, spinningFriction=0,
+                             linearDamping=0, angularDamping=0, contactProcessingThreshold=0, physicsClientId=c)
+        th, w, ts = [], [], []
+        for s in range(int(round(duration / timestep))):
+            p.stepSimulation(physicsClientId=c)
+            _, qq = p.getBasePositionAndOrientation(block, physicsClientId=c)
+            r = np.array(p.getMatrixFromQuaternion(qq)).reshape(3, 3)
+            th.append(math.atan2(r[0, 2], r[2, 2]))
+            w.append(p.getBaseVelocity(block, physicsClientId=c)[1][1])
+            ts.append((s + 1) * timestep)
+    finally:
+        p.disconnect(c)
+    out = []
+    for i in range(1, len(th) - 3):
+        if th[i - 1] * th[i] < 0:
+            out.append({"index": len(out) + 1, "t": ts[i], "before": abs(w[i - 1]),
+                        "after": max(abs(x) for x in w[i + 1:i + 4])})
+    return "pybullet", version("pybullet"), timestep, out
+
+
 ENGINES = {"mujoco": lambda: mujoco_ball(False), "mujoco-calibrated": lambda: mujoco_ball(True),
            "pybullet": pybullet_ball, "rapier": rapier_ball}
 
@@ -233,6 +287,17 @@ def run(out: Path) -> dict:
         cell = lambda n, key: "—" if gr[n] is None else f"{gr[n][key]:.2e}"
         lines.append(f"| {eng} | {ver} | {dt:g} | " + " | ".join(cell(n, "rebound") for n in GRADED) + " | "
                      + " | ".join(cell(n, "time") for n in GRADED) + " |")
+    try:
+        bref = block_reference()
+        eng, ver, dt, got = pybullet_block()
+        lines += ["", "Housner's block (ω after each landing; exact ratio 23/50):", "",
+                  lines[0], lines[1]]
+        gr = {n: grade(bref, got, n) for n in GRADED}
+        cell = lambda n, key: "—" if gr[n] is None else f"{gr[n][key]:.2e}"
+        lines.append(f"| {eng} | {ver} | {dt:g} | " + " | ".join(cell(n, "rebound") for n in GRADED) + " | "
+                     + " | ".join(cell(n, "time") for n in GRADED) + " |")
+    except ImportError:
+        pass
     out.mkdir(parents=True, exist_ok=True)
     (out / "sequences.md").write_text("\n".join(lines) + "\n")
     _svg(series, out / "sequences.svg")
