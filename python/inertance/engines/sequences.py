@@ -12,7 +12,7 @@ off its velocity history: impact n is the step at which the ball's vertical velo
 negative to non-negative; the speed before is the highest downward speed since the last apex, the
 rebound the highest upward speed before the next apex (the velocity at lift-off, where gravity
 alone acts again). The grade after impact n is the relative error of the rebound and of the time
-against inertance's history. Housner's block runs in PyBullet only (:func:`pybullet_block`).
+against inertance's history. Housner's block runs in PyBullet and Rapier (:func:`pybullet_block`, :func:`rapier_block`).
 
 ``python -m inertance.engines.sequences --out DIR`` writes ``sequences.md`` and ``sequences.svg``.
 """
@@ -218,7 +218,7 @@ def pybullet_block(timestep: float = 1 / 240, iterations: int = 50, duration: fl
     """examples/simulate/rocking-block.toml in PyBullet (g = 9.81, restitution 0, μ = 0.6, the
     adapter's clean-restitution settings). A landing is a step at which the tilt θ changes sign;
     ω⁻ = |ω_y| at the step before it, ω⁺ = the largest |ω_y| of the three steps after it (Bullet
-    resolves the landing within them)."""
+    resolves the landing within them; see :func:`landings`)."""
     import numpy as np
     import pybullet as p
     from importlib.metadata import version
@@ -250,12 +250,48 @@ def pybullet_block(timestep: float = 1 / 240, iterations: int = 50, duration: fl
             ts.append((s + 1) * timestep)
     finally:
         p.disconnect(c)
+    return "pybullet", version("pybullet"), timestep, landings(ts, th, w)
+
+
+def landings(ts, th, w) -> list[dict]:
+    """Landings in a sampled tilt/ω history: θ changes sign at step i; ω⁻ = the largest |ω| of
+    steps i − 1 and i (the contact may be resolved one step late), ω⁺ = the largest |ω| of the
+    three steps after i."""
     out = []
     for i in range(1, len(th) - 3):
         if th[i - 1] * th[i] < 0:
-            out.append({"index": len(out) + 1, "t": ts[i], "before": abs(w[i - 1]),
+            out.append({"index": len(out) + 1, "t": ts[i], "before": max(abs(w[i - 1]), abs(w[i])),
                         "after": max(abs(x) for x in w[i + 1:i + 4])})
-    return "pybullet", version("pybullet"), timestep, out
+    return out
+
+
+def rapier_block(duration: float = 1.5):
+    """The rocking block in Rapier: defaults (1/60 s), restitution 0 and μ = 0.6 on both (MULTIPLY)."""
+    import numpy as np
+    import rapier3d as rp
+    from importlib.metadata import version
+    from .rapier_adapter import _vec
+    th0 = 0.2
+    mul = rp.CoefficientCombineRule.MULTIPLY
+    world = rp.PhysicsWorld(gravity=(0.0, 0.0, -9.81))
+    dt = world.integration_parameters.dt
+
+    def material(col):
+        return col.restitution(0.0).friction(0.6).restitution_combine_rule(mul).friction_combine_rule(mul)
+
+    world.add_body(rp.RigidBody.fixed().translation((0.0, 0.0, 0.0)), [material(rp.Collider.halfspace((0.0, 0.0, 1.0)))])
+    pos = (-0.75 * math.cos(th0) + math.sin(th0), 0.0, 0.75 * math.sin(th0) + math.cos(th0))
+    h = world.add_body(rp.RigidBody.dynamic().translation(pos).rotation((0.0, th0, 0.0)).can_sleep(False),
+                       [material(rp.Collider.cuboid(0.75, 0.25, 1.0).mass(1500.0))])
+    th, w, ts = [], [], []
+    for s in range(int(round(duration / dt))):
+        world.step()
+        body = world.rigid_bodies[h]
+        r = np.array(body.rotation.to_matrix(), dtype=float).reshape(3, 3)
+        th.append(math.atan2(r[0, 2], r[2, 2]))
+        w.append(float(_vec(body.angvel)[1]))
+        ts.append((s + 1) * dt)
+    return "rapier", version("rapier3d"), dt, landings(ts, th, w)
 
 
 ENGINES = {"mujoco": lambda: mujoco_ball(False), "mujoco-calibrated": lambda: mujoco_ball(True),
@@ -287,17 +323,17 @@ def run(out: Path) -> dict:
         cell = lambda n, key: "—" if gr[n] is None else f"{gr[n][key]:.2e}"
         lines.append(f"| {eng} | {ver} | {dt:g} | " + " | ".join(cell(n, "rebound") for n in GRADED) + " | "
                      + " | ".join(cell(n, "time") for n in GRADED) + " |")
-    try:
-        bref = block_reference()
-        eng, ver, dt, got = pybullet_block()
-        lines += ["", "Housner's block (ω after each landing; exact ratio 23/50):", "",
-                  lines[0], lines[1]]
+    bref = block_reference()
+    lines += ["", "Housner's block (ω after each landing; exact ratio 23/50):", "", lines[0], lines[1]]
+    for fn in (pybullet_block, rapier_block):
+        try:
+            eng, ver, dt, got = fn()
+        except ImportError:
+            continue
         gr = {n: grade(bref, got, n) for n in GRADED}
         cell = lambda n, key: "—" if gr[n] is None else f"{gr[n][key]:.2e}"
         lines.append(f"| {eng} | {ver} | {dt:g} | " + " | ".join(cell(n, "rebound") for n in GRADED) + " | "
                      + " | ".join(cell(n, "time") for n in GRADED) + " |")
-    except ImportError:
-        pass
     out.mkdir(parents=True, exist_ok=True)
     (out / "sequences.md").write_text("\n".join(lines) + "\n")
     _svg(series, out / "sequences.svg")
