@@ -272,3 +272,93 @@ def test_one_command_writes_the_report_the_plots_and_the_page(tmp_path):
     bad = subprocess.run([sys.executable, "-m", "inertance.engines", "--engines", "exact", "--catalogue", str(CAT),
                           "--convergence", "--convergence-scenes", "nope"], capture_output=True, text=True)
     assert bad.returncode == 2 and "no catalogue scene nope" in bad.stderr
+
+
+# --- pull -------------------------------------------------------------------------------------
+
+class Bilateral:
+    """The simultaneous Newton law with every contact held (bilateral, as Pinocchio's
+    impulseDynamics): W p solves Wᵀ M⁻¹ W p = −(1 + e) Wᵀ ξ⁰ … in numpy; it pulls where the law is
+    tensile (the bar pitching). Returns the twists and keeps the impulses it applied."""
+
+    name = "bilateral"
+
+    def run(self, scene):
+        from inertance.engines import pull
+
+        w, normals = pull.wrench_matrix(scene)
+        w = w[:, normals]
+        m = pull.mass_matrix(scene)
+        xi0 = np.concatenate([np.concatenate([b.velocity, b.angular_velocity]) for b in scene.bodies])
+        e = np.array([c.restitution for c in scene.contacts])
+        # wᵀξ = −(normal velocity, away positive) = approach; after: approach⁺ = −e·approach⁰
+        a = w.T @ np.linalg.solve(m, w)
+        self.impulses = np.linalg.solve(a, -(1 + e) * (w.T @ xi0))
+        xi = xi0 + np.linalg.solve(m, w @ self.impulses)
+        return [Twist.of(xi[6 * i:6 * i + 3], xi[6 * i + 3:6 * i + 6]) for i in range(len(scene.bodies))]
+
+
+class Reversed:
+    """The exact impulse with its sign turned: ξ = ξ⁰ − (ξ* − ξ⁰), every contact pulling."""
+
+    name = "reversed"
+
+    def __init__(self, scenes):
+        self.by_file = {str(s.engine.file): s for s in scenes.values()}
+
+    def run(self, scene):
+        s = self.by_file[str(scene.file)]
+        return [Twist.of(2 * b.velocity - x.velocity, 2 * b.angular_velocity - x.angular_velocity)
+                for b, x in zip(s.before, s.exact)]
+
+
+def test_the_exact_answer_never_pulls_and_the_impulses_are_determined_where_w_has_full_rank(scenes):
+    """Every catalogue scene: the exact answer's derived normal impulses are ≥ −10⁻¹² P and explain
+    its twist change to rounding; they are determined with one contact, an edge, the bar, the
+    cradle, and not with four corners on a face (rank 3) nor with friction at two or more contacts
+    (more impulse components than the twist change has)."""
+    for s in scenes.values():
+        g = grading.grade(s, "exact", s.exact)
+        assert g.pull_ok, s.name
+        assert g.unexplained < 1e-12, (s.name, g.unexplained)
+        flat = s.name.startswith("box-flat") or s.name in ("box-on-box", "rocking-block", "ball-corner-rough")
+        assert (g.pull is None) == flat, s.name
+        if g.pull is not None:
+            assert g.pull < 1e-12 and min(g.normal_impulses) > -1e-12 * g.impulse_scale, s.name
+    g = grading.grade(scenes["ball-floor-e05"], "exact", scenes["ball-floor-e05"].exact)
+    # a 1 kg ball at 1 m/s, e = 1/2: p = (1 + e) m v = 1.5 N·s; P = m v = 1 N·s
+    assert g.normal_impulses == pytest.approx([1.5], abs=1e-12) and g.impulse_scale == pytest.approx(1.0)
+
+
+def test_an_adapter_that_pulls_on_purpose_is_flagged(scenes):
+    """The exact impulse reversed pulls at every contact by the exact impulse: on the ball
+    −1.5 P, on the edge both contacts −p*; flagged ``!pull`` in the grade, the Markdown and the
+    JSON; the exact adapter on the same scenes is not."""
+    chosen = [scenes[n] for n in ("ball-floor-e05", "box-edge-30", "cradle-3")]
+    report = runner.run([ExactAdapter(), Reversed(scenes)], chosen)
+    by = {(g["scene"], g["engine"]): g for g in report["grades"]}
+    assert by[("ball-floor-e05", "reversed")]["pull"] == pytest.approx(1.5, abs=1e-12)
+    for s in chosen:
+        ex, rev = by[(s.name, "exact")], by[(s.name, "reversed")]
+        assert ex["pull_ok"] and not rev["pull_ok"]
+        assert rev["normal_impulses"] == pytest.approx([-p for p in ex["normal_impulses"]], abs=1e-12)
+    md = runner.markdown(report)
+    row = next(line for line in md.splitlines() if line.startswith("| ball-floor-e05 |") and "!pull" in line)
+    assert row.count("!pull") == 1
+    json.loads(json.dumps(report))
+
+
+def test_the_impulses_an_adapter_applied_are_recovered_and_the_bilateral_law_pulls_on_the_bar(scenes):
+    """A bilateral simultaneous Newton law in numpy: on the bar (one e = 0.2, as Pinocchio takes)
+    it pulls at the second support, and the grade recovers the impulses it applied (a round trip
+    through twists); on the edge both impulses push and equal the exact ones (all contacts
+    stay active: the bilateral and the unilateral law agree)."""
+    bar = scenes["bar-pitching-e02"]
+    b = Bilateral()
+    g = grading.grade(bar, "bilateral", b.run(bar.engine))
+    assert g.normal_impulses == pytest.approx(list(b.impulses), rel=1e-12, abs=1e-14)
+    assert min(b.impulses) < 0 and not g.pull_ok
+    assert g.pull == pytest.approx(-min(b.impulses) / g.impulse_scale, rel=1e-12)
+    edge = scenes["box-edge-30"]
+    g = grading.grade(edge, "bilateral", Bilateral().run(edge.engine))
+    assert g.pull_ok and g.error < 1e-12
