@@ -8,11 +8,15 @@ bodies' mass matrix (m, and J in world axes), the impulses p solve
 
     W p = M (ξ − ξ⁰)
 
-in least squares (in the metric M⁻¹, the kinetic-energy metric of the grades). They are
-**determined** when W has full column rank (one contact; a bar on two supports; an edge),
-**not determined** when it has not (the flat box: four normals on one face, rank 3; a ball
-pressed into a corner with friction): then no pull is graded (``None``), and the report says
-"n.d." — the exact answer itself is one of infinitely many impulse sets there.
+in least squares (in the metric M⁻¹, the kinetic-energy metric of the grades). All are
+**determined** when W has full column rank (one contact; a bar on two supports; an edge). Where
+it has not, a contact's normal impulse is still determined when no impulse set in W's null
+space (impulses that change no twist) touches it — an edge with friction: the difference of
+the two corners' tangential impulses along the edge is free, their normals are not. A normal
+in the null space's support is **not determined** (``None`` in ``normal_impulses``; the flat
+box: four normals on one face, rank 3; a ball pressed into a corner with friction): no pull is
+graded there, and where no normal is determined ``pull`` is ``None`` and the report says "n.d."
+— the exact answer itself is one of infinitely many impulse sets there.
 
 ``pull`` = −min over contacts of the normal impulse / P, P the impact's impulse scale: the
 largest over the scene's contacts of the impulse that would stop that contact alone,
@@ -110,20 +114,20 @@ def derive(engine, before: Sequence, after: Sequence, exact: Sequence) -> dict:
     a = half @ w
     d = _vector(after) - _vector(before)
     b = half @ (m @ d)
-    sv = np.linalg.svd(a, compute_uv=False)
-    determined = bool(len(sv) == w.shape[1] and sv[-1] > RANK_TOLERANCE * sv[0])
+    _, sv, vt = np.linalg.svd(a)
+    rank = int(np.sum(sv > RANK_TOLERANCE * sv[0])) if len(sv) else 0
+    null = vt[rank:]  # impulse sets that change no twist: a component they touch is not determined
+    fixed = [bool(np.all(np.abs(null[:, j]) <= RANK_TOLERANCE)) for j in normals] if len(null) else [True] * len(normals)
+    determined = all(fixed)
     p, *_ = np.linalg.lstsq(a, b, rcond=None)
     impact = float(np.sqrt(max(0.0, (_vector(exact) - _vector(before)) @ m @ (_vector(exact) - _vector(before)))))
     residual = minv @ (w @ p) - d
     unexplained = float(np.sqrt(max(0.0, residual @ m @ residual)) / impact) if impact > 0 else 0.0
     scale = impulse_scale(engine, before)
     out = {"determined": determined, "scale": scale, "unexplained": unexplained,
-           "condition": float(sv[0] / sv[-1]) if sv[-1] > 0 else float("inf")}
-    if determined:
-        pn = [float(p[j]) for j in normals]
-        out["normal_impulses"] = pn
-        out["pull"] = float(max(0.0, -min(pn)) / scale) if scale > 0 else 0.0
-    else:
-        out["normal_impulses"] = None
-        out["pull"] = None
+           "condition": float(sv[0] / sv[rank - 1]) if rank else float("inf")}
+    pn = [float(p[j]) if f else None for j, f in zip(normals, fixed)]
+    known = [x for x in pn if x is not None]
+    out["normal_impulses"] = pn if known else None
+    out["pull"] = (float(max(0.0, -min(known)) / scale) if scale > 0 else 0.0) if known else None
     return out
