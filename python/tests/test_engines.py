@@ -32,7 +32,8 @@ def test_the_catalogue_has_the_scenes_of_the_brief():
     names = {p.stem for p in FILES}
     for want in ["bar-pitching-e02", "ball-floor-e0", "ball-floor-e05", "ball-floor-e1", "box-flat-e0", "box-flat-e05",
                  "box-flat-e1", "box-edge-45", "box-corner", "bar-pitching", "ball-corner",
-                 "ball-corner-rough", "rod-rough-floor", "cradle-3", "box-on-box", "rocking-block"]:
+                 "ball-corner-rough", "rod-rough-floor", "rod-slip-reverses", "rod-slip-sticks", "cradle-3",
+                 "box-on-box", "rocking-block"]:
         assert want in names
     assert len([n for n in names if n.startswith("box-edge-")]) >= 3
 
@@ -148,6 +149,63 @@ def test_closed_forms_of_the_oracle(scenes):
     assert sol.newton.impulses[1] == 0  # the unilateral law leaves the second support alone
     tensile = inertance.solve(str(bar.path), model="newton", law="simultaneous").newton
     assert tensile.impulses[1] < 0 and tensile.admissible is False
+
+
+def _planar_rod(s):
+    """The closed form of a rod landing on the edge of its end in its plane of symmetry (x–z):
+    both corners carry equal impulses, so the edge is one contact at their midpoint r with the
+    inertance matrix G of the directions t = x, n = z. Coulomb's law with Newton's restitution in
+    impulse space is then piecewise linear in the normal impulse p: sliding (slip sign σ), the
+    slip u and the normal velocity w change at du/dp = g_tn − σμ g_tt, dw/dp = g_nn − σμ g_nt
+    until u = 0; then the end sticks (dτ/dp = −g_tn/g_tt, inside the cone when |g_tn/g_tt| ≤ μ)
+    or slides back (σ → −σ); the impact ends when w = −e w⁰. Returns (sticks, μ* = |g_tn/g_tt|,
+    the slip at the end, v, ω)."""
+    b, (c1, c2) = s.engine.bodies[0], s.engine.contacts
+    e, mu = c1.restitution, c1.friction
+    r = (c1.point + c2.point) / 2 - b.position
+    jinv = np.linalg.inv(b.inertia_world)
+    x, z = np.array([1.0, 0, 0]), np.array([0, 0, 1.0])
+
+    def dv(f):
+        return f / b.mass + np.cross(jinv @ np.cross(r, f), r)
+
+    g = np.array([[dv(x) @ x, dv(z) @ x], [dv(x) @ z, dv(z) @ z]])
+    vp = b.velocity + np.cross(b.angular_velocity, r)
+    u, w = vp @ x, vp @ z
+    target, sigma = -e * w, np.sign(u)
+
+    def rates(tau_rate):
+        return g[0, 0] * tau_rate + g[0, 1], g[1, 0] * tau_rate + g[1, 1]
+
+    du, dw = rates(-sigma * mu)
+    p1 = -u / du
+    assert p1 > 0 and w + dw * p1 < target  # the slip stops during the impact
+    tau, p, w = -sigma * mu * p1, p1, w + dw * p1
+    sticks = abs(g[0, 1] / g[0, 0]) <= mu
+    tr = -g[0, 1] / g[0, 0] if sticks else sigma * mu
+    du, dw = rates(tr)
+    p2 = (target - w) / dw
+    f = (tau + tr * p2) * x + (p + p2) * z
+    return sticks, abs(g[0, 1] / g[0, 0]), du * p2, b.velocity + f / b.mass, b.angular_velocity + jinv @ np.cross(r, f)
+
+
+def test_the_rods_slip_stops_then_reverses_or_sticks_as_the_closed_form_says(scenes):
+    """rod-slip-reverses (μ = 0.6) and rod-slip-sticks (μ = 0.8) straddle the threshold μ* =
+    |g_tn/g_tt| = 0.719 of their rod: the forward slip (0.04 m/s) stops, then reverses to
+    −0.055 m/s, or sticks (0). inertance's integration (adaptive RK5(4), events at zero slip)
+    against the closed form: tolerance 10⁻⁹ m/s on v and 5·10⁻⁹ rad/s on ω — inertance's own
+    error estimate of the impulses (≤ 4.4·10⁻¹⁰ N·s, printed by ``inertance solve``) times 1/m
+    = 1/kg and times the lever arm over the inertia, r/J ≤ 10/(kg·m) (measured: 8·10⁻¹²)."""
+    rev, stick = scenes["rod-slip-reverses"], scenes["rod-slip-sticks"]
+    for s, want_stick in ((rev, False), (stick, True)):
+        sticks, threshold, slip, v, w = _planar_rod(s)
+        assert sticks == want_stick and threshold == pytest.approx(0.719, abs=1e-3)
+        np.testing.assert_allclose(s.exact[0].velocity, v, atol=1e-9, rtol=0)
+        np.testing.assert_allclose(s.exact[0].angular_velocity, w, atol=5e-9, rtol=0)
+        r = s.engine.contacts[0].point - s.engine.bodies[0].position
+        u = (s.exact[0].velocity + np.cross(s.exact[0].angular_velocity, r))[0]
+        assert u == pytest.approx(slip, abs=1e-9)
+        assert (u < -0.05) if not want_stick else abs(u) < 1e-9
 
 
 def test_the_exact_adapter_grades_zero(scenes):

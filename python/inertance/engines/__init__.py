@@ -47,12 +47,15 @@ ADAPTERS = {
     "pinocchio": ("inertance.engines.pinocchio_adapter", "PinocchioAdapter", {}),
     "rapier": ("inertance.engines.rapier_adapter", "RapierAdapter", {}),
     "drake": ("inertance.engines.drake_adapter", "DrakeAdapter", {}),
+    "drake-tuned": ("inertance.engines.drake_adapter", "DrakeAdapter", {"variant": "tuned"}),
+    "drake-calibrated": ("inertance.engines.drake_adapter", "DrakeAdapter", {"variant": "calibrated"}),
 }
 
 
 #: The engine each shipped adapter needs (a top-level module), for :func:`installed`.
 ENGINE_MODULES = {"mujoco": "mujoco", "mujoco-tuned": "mujoco", "mujoco-calibrated": "mujoco",
-                  "pybullet": "pybullet", "pinocchio": "pinocchio", "rapier": "rapier3d", "drake": "pydrake"}
+                  "pybullet": "pybullet", "pinocchio": "pinocchio", "rapier": "rapier3d", "drake": "pydrake",
+                  "drake-tuned": "pydrake", "drake-calibrated": "pydrake"}
 
 
 def installed() -> list:

@@ -66,6 +66,9 @@ SWEEPS = {
     "rapier": [("dt", [1 / 60, 1 / 120, 1 / 240, 1 / 480, 1 / 960, 1 / 1920], lambda h: _rapier(dt=h)),
                ("iterations", [1, 2, 4, 8, 16, 32], lambda n: _rapier(iterations=n))],
     "drake": [("time_step", [1e-3, 5e-4, 2.5e-4, 1.25e-4], lambda h: _drake(time_step=h))],
+    "drake-tuned": [("time_step", [4e-4, 2e-4, 1e-4, 5e-5, 2.5e-5], lambda h: _drake(variant="tuned", time_step=h))],
+    "drake-calibrated": [("time_step", [4e-4, 2e-4, 1e-4, 5e-5, 2.5e-5],
+                          lambda h: _drake(variant="calibrated", time_step=h))],
 }
 
 

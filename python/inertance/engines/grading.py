@@ -33,6 +33,12 @@ symmetry reverses, ‖ξ − Sξ‖_M / (2‖ξ* − ξ⁰‖_M), the largest ov
 ``SYMMETRY_TOLERANCE`` = 10⁻³ of the impact: the exact f64 answer scores ≤ 10⁻¹⁵ on the
 catalogue and an f32 engine's rounding about 10⁻⁷, so a flagged answer turns or drifts in a
 way the scene forbids by three orders more than rounding can explain (the same 0.1 % as ``+E``).
+
+**Pull** (:mod:`.pull`): the normal impulses the engine's twist change needs at the scene's
+contacts, solved in least squares where the contact wrench matrix has full column rank
+(``normal_impulses``; ``None``: not determined), and ``pull`` = the most negative one over the
+impact's impulse scale P (``impulse_scale``), flagged ``!pull`` above ``PULL_TOLERANCE`` = 10⁻³;
+``unexplained`` is the fraction of the twist change no impulse at the scene's contacts produces.
 """
 
 
@@ -44,6 +50,7 @@ from typing import Optional, Sequence
 import numpy as np
 
 from .catalogue import CatalogueScene, Twist, kinetic_energy, normal_velocities
+from .pull import PULL_TOLERANCE, derive as derive_impulses
 from .symmetry import broken
 
 #: A contact separates when its normal velocity exceeds this fraction of the scene's largest
@@ -83,6 +90,16 @@ class Grade:
     symmetries: list = field(default_factory=list)
     symmetry_broken: Optional[float] = None
     symmetry_by: dict = field(default_factory=dict)
+    pull: Optional[float] = None
+    normal_impulses: Optional[list] = None
+    impulse_scale: float = 0.0
+    unexplained: float = 0.0
+
+    @property
+    def pull_ok(self) -> bool:
+        """No contact needs to pull beyond ``PULL_TOLERANCE`` of the impulse scale (:mod:`.pull`;
+        True where the impulses are not determined by the twist change)."""
+        return self.pull is None or self.pull <= PULL_TOLERANCE
 
     @property
     def symmetry_ok(self) -> bool:
@@ -98,6 +115,8 @@ class Grade:
         d = asdict(self)
         d["separation_ok"] = self.separation_ok
         d["symmetry_ok"] = self.symmetry_ok
+        d["pull_ok"] = self.pull_ok
+        d["impulses_determined"] = self.pull is not None
         return d
 
 
@@ -118,6 +137,7 @@ def grade(scene: CatalogueScene, engine: str, twists: Sequence[Twist]) -> Grade:
     vn_exact = normal_velocities(scene.engine, scene.exact)
     cut = SEPARATION_TOLERANCE * speed
     by = broken(scene.engine, scene.symmetries, twists, impact)
+    imp = derive_impulses(scene.engine, scene.before, twists, scene.exact)
     return Grade(
         scene=scene.name, engine=engine, law=scene.law, error=float(error),
         energy_ratio=float(t / t0), exact_energy_ratio=float(scene.kinetic_energy_after / t0),
@@ -126,4 +146,5 @@ def grade(scene: CatalogueScene, engine: str, twists: Sequence[Twist]) -> Grade:
         normal_velocities=[float(v) for v in vn], exact_normal_velocities=[float(v) for v in vn_exact],
         twists=[{"velocity": x.velocity.tolist(), "angular_velocity": x.angular_velocity.tolist()} for x in twists],
         symmetries=[s.name for s in scene.symmetries], symmetry_broken=max(by.values()) if by else None,
-        symmetry_by=by)
+        symmetry_by=by, pull=imp["pull"], normal_impulses=imp["normal_impulses"], impulse_scale=imp["scale"],
+        unexplained=imp["unexplained"])

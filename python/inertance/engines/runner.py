@@ -65,7 +65,8 @@ def summaries(report: dict, family: str = "random") -> list:
     """Per engine over the scenes of ``family``: how many were graded (n/a and failures apart),
     the median and the worst error (and its scene), and the fractions of graded scenes that
     gain energy (``+E``: above 0.1 %), break separation (``!sep``) and break a symmetry
-    (``!sym``; random scenes are generically asymmetric)."""
+    (``!sym``; random scenes are generically asymmetric); how many graded scenes determine the
+    contact impulses (``impulses_determined``) and how many of those need a pull (``pulls``)."""
     names = {s["name"] for s in report["scenes"] if s.get("family", "catalogue") == family}
     out = []
     for e in report["engines"]:
@@ -80,7 +81,9 @@ def summaries(report: dict, family: str = "random") -> list:
                         "worst_scene": worst["scene"],
                         "gains_energy": sum(g["energy_gain"] > ENERGY_FLAG for g in gs) / len(gs),
                         "breaks_separation": sum(not g["separation_ok"] for g in gs) / len(gs),
-                        "breaks_symmetry": sum(not g["symmetry_ok"] for g in gs) / len(gs)})
+                        "breaks_symmetry": sum(not g["symmetry_ok"] for g in gs) / len(gs),
+                        "impulses_determined": sum(g.get("pull") is not None for g in gs),
+                        "pulls": sum(not g.get("pull_ok", True) for g in gs)})
         out.append(row)
     return out
 
@@ -104,7 +107,9 @@ def markdown(report: dict) -> str:
     lines.append("Error of the twist after impact, ‖ξ − ξ*‖_M / ‖ξ* − ξ⁰‖_M (0: exact; 1: as if no impact); "
                  "`!sep` marks a contact that should separate and does not, or the converse; "
                  "`+E` an energy gain above 0.1 %; `!sym` a symmetric scene's answer whose reversed part "
-                 "exceeds 0.1 % of the impact (the symmetries are in the scene table below):")
+                 "exceeds 0.1 % of the impact (the symmetries are in the scene table below); `!pull` an "
+                 "answer whose twist change needs a contact to pull (a normal impulse below −0.1 % of the "
+                 "impact's impulse scale, the impulse table below):")
     lines.append("")
     lines.append("| scene | law | " + " | ".join(engines) + " |")
     lines.append("|---|---|" + "---|" * len(engines))
@@ -123,6 +128,8 @@ def markdown(report: dict) -> str:
                 c += " +E"
             if not g.get("symmetry_ok", True):
                 c += " !sym"
+            if not g.get("pull_ok", True):
+                c += " !pull"
             cells.append(c)
         law = s["law"].split(" ")[0]
         lines.append(f"| {s['name']} | {law} | " + " | ".join(cells) + " |")
@@ -147,21 +154,45 @@ def markdown(report: dict) -> str:
                 cells.append("—" if g is None or g.get("symmetry_broken") is None else
                              _fmt(g["symmetry_broken"]) + ("" if g["symmetry_ok"] else " !sym"))
             lines.append(f"| {s['name']} | {', '.join(s['symmetries'])} | " + " | ".join(cells) + " |")
+    lines += ["", "Pull: the normal impulses derived from the engine's twist change (least squares, "
+              "W p = M Δξ, W the contact wrenches: the normal, and both tangents where μ > 0), the most "
+              "negative over P, P the largest impulse that would stop one contact alone; 0 when every "
+              "contact pushes, `n.d.` when W has not full column rank (the twist change does not "
+              "determine the impulses). In brackets, where above 1 %: the fraction of the twist change "
+              "that no impulse at the scene's contacts produces (another contact, friction where μ = 0, "
+              "contact points that moved):", ""]
+    lines.append("| scene | " + " | ".join(engines) + " |")
+    lines.append("|---|" + "---|" * len(engines))
+    for s in catalogue:
+        cells = []
+        for e in engines:
+            g = by.get((s["name"], e))
+            if g is None or "unexplained" not in g:
+                cells.append("—")
+                continue
+            c = "n.d." if g.get("pull") is None else _fmt(-g["pull"] if g["pull"] else 0.0)
+            if g.get("pull") is not None and not g["pull_ok"]:
+                c += " !pull"
+            if g["unexplained"] > 0.01:
+                c += f" ({_fmt(g['unexplained'])})"
+            cells.append(c)
+        lines.append(f"| {s['name']} | " + " | ".join(cells) + " |")
     if any(s.get("family") == "random" for s in report["scenes"]):
         n = sum(1 for s in report["scenes"] if s.get("family") == "random")
         lines += ["", f"Random family (seed {report.get('random_seed')}, {n} scenes: boxes and cylinders, 1–4 "
                   "contacts, frictionless, the unilateral law; `inertance.engines.random_family`):", ""]
-        lines.append("| engine | graded | median error | worst error (scene) | gains energy | breaks separation |")
-        lines.append("|---|---|---|---|---|---|")
+        lines.append("| engine | graded | median error | worst error (scene) | gains energy | breaks separation "
+                     "| pulls (of determined) |")
+        lines.append("|---|---|---|---|---|---|---|")
         for r in summaries(report):
             if not r["graded"]:
                 lines.append(f"| {r['engine']} | 0 of {r['scenes']} ({r['not_applicable']} n/a, {r['failed']} failed) "
-                             "| — | — | — | — |")
+                             "| — | — | — | — | — |")
                 continue
             extra = f" ({r['not_applicable']} n/a, {r['failed']} failed)" if r["not_applicable"] or r["failed"] else ""
             lines.append(f"| {r['engine']} | {r['graded']} of {r['scenes']}{extra} | {_fmt(r['median_error'])} | "
                          f"{_fmt(r['worst_error'])} ({r['worst_scene']}) | {100 * r['gains_energy']:.0f} % | "
-                         f"{100 * r['breaks_separation']:.0f} % |")
+                         f"{100 * r['breaks_separation']:.0f} % | {r['pulls']} of {r['impulses_determined']} |")
     if report.get("convergence"):
         from .convergence import markdown as convergence_markdown
 
