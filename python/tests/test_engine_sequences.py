@@ -8,7 +8,14 @@ import math
 
 import pytest
 
+import pathlib
+
 from inertance.engines import sequences as seq
+
+# the repository's scenes and binaries, wherever the package is installed
+ROOT = pathlib.Path(__file__).resolve().parents[2]
+seq.REPO = ROOT
+seq.SCENES = ROOT / "examples" / "simulate"
 
 # The simulation's stated event tolerance is 1e-10 (its JSON "tolerance"); the ball's history is
 # exact up to floating-point sums over a few impacts, and the block's ratio is stated to 1e-7

@@ -26,7 +26,17 @@ import shutil
 import subprocess
 from pathlib import Path
 
-REPO = Path(__file__).resolve().parents[3]
+def _repo() -> Path:
+    """The repository: this file's when run from the source tree, else $INERTANCE_REPO, else
+    the working directory (an installed package has no examples next to it)."""
+    here = Path(__file__).resolve().parents[3]
+    if (here / "examples" / "simulate").is_dir():
+        return here
+    env = os.environ.get("INERTANCE_REPO")
+    return Path(env) if env else Path.cwd()
+
+
+REPO = _repo()
 SCENES = REPO / "examples" / "simulate"
 GRADED = (1, 2, 5)
 
