@@ -61,6 +61,86 @@ fn bouncing_ball_meets_its_closed_forms_and_accumulates_at_three_seconds() {
 }
 
 #[test]
+fn samples_inside_steps_lie_on_the_parabola() {
+    // The samples every 0.01 s are read from the steps' continuous extension (the steps are
+    // not cut at the output times): before the first impact z = 5.1 − 5 t², v_z = −10 t, and
+    // between the first and second impacts (1 s to 2 s) z = 0.1 + 5 (t − 1) − 5 (t − 1)².
+    // The extension is of fourth order and the flight a quadratic: the bound is rounding on
+    // the scale of the drop (10⁻¹² m), a hundred times that.
+    let sim = run(&load("examples/simulate/bouncing-ball.toml"));
+    let mut inside = 0;
+    for s in &sim.samples {
+        let (z, vz) = if s.t < 1.0 - 1e-9 {
+            (5.1 - 5.0 * s.t * s.t, -10.0 * s.t)
+        } else if s.t > 1.0 + 1e-9 && s.t < 2.0 - 1e-9 {
+            let u = s.t - 1.0;
+            (0.1 + 5.0 * u - 5.0 * u * u, 5.0 - 10.0 * u)
+        } else {
+            continue;
+        };
+        inside += 1;
+        assert!(
+            (s.state.x.z - z).abs() <= 1e-10,
+            "t = {}: z = {} ≠ {z}",
+            s.t,
+            s.state.x.z
+        );
+        assert!(
+            (s.state.v.z - vz).abs() <= 1e-10,
+            "t = {}: v = {} ≠ {vz}",
+            s.t,
+            s.state.v.z
+        );
+    }
+    // 0.01 s apart over two seconds (less the impact instants)
+    assert!(inside >= 195, "{inside} samples");
+    // and the output grid is kept: every sample time a multiple of 0.01 s, increasing
+    for w in sim.samples.windows(2) {
+        assert!(w[1].t > w[0].t);
+    }
+}
+
+#[test]
+fn a_ball_without_gravity_strikes_the_wall_when_its_gap_says() {
+    // No gravity: the ball's gap to the wall closes at its speed, and the step horizon
+    // g/|ġ| (not the form (ġ + √(ġ² + 2Mg))/M, which is 0/0 at M = 0) reaches it: the impact
+    // is at (2 − 0.1)/1.9 = 1 s exactly, to the gap tolerance over the speed.
+    let text = r#"
+name = "a ball thrown at a wall in free space"
+[body]
+shape = { sphere = 0.1 }
+mass = 1
+position = [0, 0, 0]
+velocity = [1.9, 0, 0]
+angular_velocity = [0, 0, 0]
+[[obstacle]]
+name = "wall"
+normal = [-1, 0, 0]
+point = [2, 0, 0]
+[simulate]
+gravity = [0, 0, 0]
+duration = 3
+output_step = 0.1
+contact = { k = 1 }
+"#;
+    let sim = run(&parse(text));
+    assert_eq!(sim.end, End::Duration);
+    assert_eq!(sim.impacts.len(), 1);
+    assert!(
+        (sim.impacts[0].t - 1.0).abs() <= 1e-10,
+        "{}",
+        sim.impacts[0].t
+    );
+    // elastic: back at 1.9 m/s, at x = 1.9 − 1.9·2 at t = 3
+    assert!((sim.state.v.x + 1.9).abs() <= 1e-12);
+    assert!(
+        (sim.state.x.x - (1.9 - 1.9 * 2.0)).abs() <= 1e-9,
+        "{}",
+        sim.state.x.x
+    );
+}
+
+#[test]
 fn bouncing_ball_with_a_horizontal_velocity_lands_where_the_parabola_says() {
     // The same drop with v_x = 2 m/s and a spin on a frictionless floor: the spin changes
     // nothing, and the ball rests at x = 2 t∞ = 6 m.

@@ -22,6 +22,7 @@ pub mod exact;
 pub mod impact;
 pub mod ode;
 pub mod run;
+pub mod stepper;
 pub mod system;
 pub mod world;
 

@@ -8,12 +8,15 @@
 //! held to the relative `tolerance` per step, on the scales of the motion (the body's reach for
 //! positions, the speed scale for velocities). The quaternion is normalised after every step and
 //! the closed contacts are projected back onto their constraints ([`super::contact::project`]);
-//! the largest gap so corrected is reported as the drift.
+//! the largest gap so corrected is reported as the drift. The steps are not cut at the output
+//! times: the samples inside a step are read from its continuous extension (fourth order,
+//! [`super::ode::Dense`]) ([`super::stepper`], shared with the system's loop).
 //!
 //! **Events by conservative advancement.** No step may cross an open gap: with g the gap of a
 //! feature, ġ its rate and M a bound on |g̈| over the step (twice |a| + ρ(|ω|² + |α|) at the
 //! step's start, ρ the feature's distance from C), g(t + s) ≥ g + ġ s − ½ M s², positive for
-//! s < (ġ + √(ġ² + 2 M g))/M. Each step is capped there, so a gap is approached from above at
+//! s < (ġ + √(ġ² + 2 M g))/M ([`super::stepper::horizon`], in the form that does not cancel
+//! when ġ < 0). Each step is capped there, so a gap is approached from above at
 //! a rate that converges quadratically near a transversal crossing, and no impact between
 //! two steps is missed (a grazing one included). A gap within the gap tolerance
 //! (10⁻¹¹ of the length scale) with ġ < −`rest_speed` is an impact; with |ġ| ≤ `rest_speed`
@@ -36,7 +39,8 @@
 use super::body::{Body, State, V3};
 use super::contact::{Closed, ContactError, Mode, accelerations, derivative, project};
 use super::impact::{At, ImpactError, Law, solve};
-use super::ode::{Tableau, floor, grow, shrink, step};
+use super::ode::floor;
+use super::stepper::{self, Advance, Stepper};
 use super::world::{Plane, gap};
 
 /// How the simulation runs.
@@ -265,7 +269,7 @@ pub fn simulate_history(setup: &Setup) -> Simulation {
         end,
         t_end: run.t,
         state: run.s,
-        steps: run.steps,
+        steps: run.stepper.steps,
         drift: run.drift,
         stopped,
     }
@@ -273,7 +277,7 @@ pub fn simulate_history(setup: &Setup) -> Simulation {
 
 struct Run<'a> {
     setup: &'a Setup,
-    tab: Tableau,
+    stepper: Stepper,
     s: State,
     t: f64,
     closed: Vec<Closed>,
@@ -285,7 +289,6 @@ struct Run<'a> {
     length: f64,
     speed: f64,
     gap_tol: f64,
-    steps: (usize, usize),
     drift: f64,
 }
 
@@ -307,7 +310,7 @@ impl<'a> Run<'a> {
             .max(f64::MIN_POSITIVE);
         Run {
             setup,
-            tab: Tableau::new(),
+            stepper: Stepper::new(setup.options.output_step, setup.options.duration),
             s,
             t: 0.0,
             closed: Vec::new(),
@@ -319,7 +322,6 @@ impl<'a> Run<'a> {
             length,
             speed,
             gap_tol: 1e-11 * length,
-            steps: (0, 0),
             drift: 0.0,
         }
     }
@@ -344,12 +346,17 @@ impl<'a> Run<'a> {
     }
 
     fn sample(&mut self) {
+        self.sample_at(self.t, self.s.clone());
+    }
+
+    /// A sample of the state `s` at `t` (the current one, or one interpolated inside a step).
+    fn sample_at(&mut self, t: f64, s: State) {
         let body = &self.setup.body;
         self.samples.push(Sample {
-            t: self.t,
-            state: self.s.clone(),
-            kinetic: body.kinetic_energy(&self.s),
-            potential: -body.mass * self.setup.options.gravity.dot(&self.s.x),
+            t,
+            kinetic: body.kinetic_energy(&s),
+            potential: -body.mass * self.setup.options.gravity.dot(&s.x),
+            state: s,
             closed: self.closed.len(),
         });
     }
@@ -406,13 +413,12 @@ impl<'a> Run<'a> {
 
     fn go(&mut self) -> Result<End, SimulateError> {
         let o = self.setup.options.clone();
-        let mut h = (o.output_step.min(o.duration) / 10.0).max(f64::MIN_POSITIVE);
         let mut next_output = 0.0;
         let end;
         loop {
             if self.t >= next_output {
                 self.sample();
-                next_output = (self.samples.len() as f64) * o.output_step;
+                next_output = next_output_after(self.t, o.output_step);
             }
             if self.t >= o.duration {
                 end = End::Duration;
@@ -422,7 +428,7 @@ impl<'a> Run<'a> {
                 end = End::Impacts;
                 break;
             }
-            if self.steps.0 + self.steps.1 >= MAX_STEPS {
+            if self.stepper.attempts() >= MAX_STEPS {
                 return Err(SimulateError::Stalled { t: self.t });
             }
             let acc = self.current()?;
@@ -523,63 +529,16 @@ impl<'a> Run<'a> {
                 }
                 let m = 2.0 * (acc.a.norm() + g.arm * (self.s.w.norm_squared() + acc.alpha.norm()))
                     + f64::MIN_POSITIVE;
-                let s = (g.rate + (g.rate * g.rate + 2.0 * m * g.gap).sqrt()) / m;
-                horizon = horizon.min(s);
+                horizon = horizon.min(stepper::horizon(g.gap, g.rate, m));
             }
             if striking {
                 self.impact()?;
-                h = h.max(1e-6 * o.output_step);
+                self.stepper.h = self.stepper.h.max(1e-6 * o.output_step);
                 continue;
             }
             // One step.
-            let cap = horizon.min(next_output - self.t).min(o.duration - self.t);
-            let mut hh = h.min(cap);
-            let floor = floor(self.t, o.output_step);
-            if hh < floor {
-                if horizon < floor {
-                    // creeping onto a gap at the resolution of t: take it as reached
-                    hh = floor;
-                } else {
-                    hh = cap.max(floor);
-                }
-            }
             let y = self.s.pack();
             let t0 = self.t;
-            let tab = std::mem::take(&mut self.tab);
-            let result = {
-                let mut f = |_t: f64, y: &[f64; 13]| -> Result<[f64; 13], ContactError> {
-                    let s = State::unpack(y);
-                    let a = self.accelerations(&s)?;
-                    Ok(derivative(&s, &a))
-                };
-                step(&tab, t0, &y, hh, &mut f)
-            };
-            self.tab = tab;
-            let (y5, err) = match result {
-                Ok(r) => r,
-                Err(error) => {
-                    // A mode change inside the step: shorter, until the step is within the
-                    // resolution of t, where a sticking contact that must slip is switched.
-                    self.steps.1 += 1;
-                    h = hh / 4.0;
-                    if h < floor {
-                        if let ContactError::Slips { contact, direction } = error {
-                            self.closed[contact].mode = Mode::Slide(direction);
-                            self.closed[contact].armed = false;
-                            let c = &self.closed[contact];
-                            let name = self.name(c.feature, c.plane);
-                            self.events.push(Event {
-                                t: self.t,
-                                what: format!("{name} starts to slide"),
-                            });
-                            h = floor * 16.0;
-                            continue;
-                        }
-                        return Err(SimulateError::Stalled { t: self.t });
-                    }
-                    continue;
-                }
-            };
             let scales = [
                 self.length,
                 self.length,
@@ -595,41 +554,70 @@ impl<'a> Run<'a> {
                 self.speed / self.length,
                 self.speed / self.length,
             ];
-            let ratio = (0..13)
-                .map(|k| err[k].abs() / (o.tolerance * (y5[k].abs().max(scales[k]))))
-                .fold(0.0, f64::max);
-            if !ratio.is_finite() {
-                return Err(SimulateError::NotFinite { t: self.t });
-            }
-            if ratio > 1.0 {
-                self.steps.1 += 1;
-                h = shrink(hh, ratio);
-                continue;
-            }
-            // No open feature may end the step beyond its plane: a touching one that the step
-            // took through is located by halving the step.
-            let end_state = State::unpack(&y5);
-            let through = pairs.iter().any(|&(f, p)| {
-                !self.is_closed(f, p)
-                    && gap(
-                        &self.setup.body.features[f],
-                        &self.setup.planes[p],
-                        &end_state,
-                    )
-                    .gap < -self.gap_tol
-            });
-            if through && hh > floor {
-                self.steps.1 += 1;
-                h = hh / 2.0;
-                continue;
-            }
-            self.steps.0 += 1;
-            self.t = if hh == cap && cap == next_output - t0 {
-                next_output
-            } else {
-                t0 + hh
+            let mut stepper = std::mem::replace(&mut self.stepper, Stepper::new(1.0, 1.0));
+            let open: Vec<(usize, usize)> = pairs
+                .iter()
+                .copied()
+                .filter(|&(f, p)| !self.is_closed(f, p))
+                .collect();
+            let (setup, gap_tol) = (self.setup, self.gap_tol);
+            let advance = {
+                let mut f = |_t: f64, y: &[f64]| -> Result<Vec<f64>, ContactError> {
+                    let s = unpack(y);
+                    let a = self.accelerations(&s)?;
+                    Ok(derivative(&s, &a).to_vec())
+                };
+                // No open feature may end the step beyond its plane: a touching one that the
+                // step took through is located by halving the step.
+                let crosses = |y: &[f64]| {
+                    let end = unpack(y);
+                    open.iter().any(|&(f, p)| {
+                        gap(&setup.body.features[f], &setup.planes[p], &end).gap < -gap_tol
+                    })
+                };
+                stepper.advance(
+                    t0,
+                    &y,
+                    horizon,
+                    o.duration,
+                    o.output_step,
+                    o.tolerance,
+                    &scales,
+                    &mut f,
+                    crosses,
+                )
             };
-            self.s = State::unpack(&y5);
+            self.stepper = stepper;
+            let (t1, y5, dense) = match advance {
+                Advance::Accepted { t, y, dense } => (t, y, dense),
+                Advance::Retry => continue,
+                Advance::NotFinite => return Err(SimulateError::NotFinite { t: self.t }),
+                Advance::Failed(error) => {
+                    // A mode change inside a step at the resolution of t: a sticking contact
+                    // that must slip is switched.
+                    if let ContactError::Slips { contact, direction } = error {
+                        self.closed[contact].mode = Mode::Slide(direction);
+                        self.closed[contact].armed = false;
+                        let c = &self.closed[contact];
+                        let name = self.name(c.feature, c.plane);
+                        self.events.push(Event {
+                            t: self.t,
+                            what: format!("{name} starts to slide"),
+                        });
+                        self.stepper.h = floor(self.t, o.output_step) * 16.0;
+                        continue;
+                    }
+                    return Err(SimulateError::Stalled { t: self.t });
+                }
+            };
+            // The output times inside the step, from its continuous extension.
+            while next_output < t1 {
+                let s = unpack(&dense.at(next_output));
+                self.sample_at(next_output, s);
+                next_output = next_output_after(next_output, o.output_step);
+            }
+            self.t = t1;
+            self.s = unpack(&y5);
             if !self.closed.is_empty() {
                 let active = vec![true; self.closed.len()];
                 let d = project(
@@ -642,9 +630,6 @@ impl<'a> Run<'a> {
                 self.drift = self.drift.max(d);
             }
             self.hold_plane();
-            if hh == h || ratio < 0.5 {
-                h = grow(hh, ratio);
-            }
         }
         Ok(end)
     }
@@ -908,6 +893,22 @@ pub(super) fn joins(
     simultaneity: f64,
 ) -> bool {
     persisting || (rate < 0.0 && (gap <= gap_tol || gap / -rate <= simultaneity))
+}
+
+/// The first output time k·Δ after t (the grid resumes after a jump in time, such as the
+/// accumulation of a Zeno sequence).
+pub(super) fn next_output_after(t: f64, output_step: f64) -> f64 {
+    let mut k = (t / output_step).floor();
+    while k * output_step <= t {
+        k += 1.0;
+    }
+    k * output_step
+}
+
+/// The packed state y as a state.
+fn unpack(y: &[f64]) -> State {
+    let y: [f64; 13] = std::array::from_fn(|k| y[k]);
+    State::unpack(&y)
 }
 
 /// Every (feature, plane) pair.

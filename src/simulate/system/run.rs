@@ -3,7 +3,8 @@
 //! contacts between them.
 //!
 //! **Integration.** The packed state (x_b, v_b) is stepped by Dormand–Prince RK5(4)
-//! ([`crate::simulate::ode::step_slice`]) with the accelerations of
+//! ([`crate::simulate::stepper`], shared with the single body's loop, its samples read from
+//! each step's continuous extension) with the accelerations of
 //! [`super::persist::accelerations`]; the steps are held to the relative `tolerance` on the
 //! scales of the motion (the largest radius or gap for positions, the speed scale for
 //! velocities). Ballistic flight is a quadratic in t, which the fifth-order step reproduces to
@@ -11,10 +12,8 @@
 //! ([`super::persist::project`]); the largest gap so corrected is reported as the drift.
 //!
 //! **Events.** No step may cross an open gap: with M a bound on |g̈| over the step (twice
-//! |a_b| for a sphere on a plane; twice |a_a| + |a_b| + |u|²/|d| for a pair), g(t + s) ≥
-//! g + ġ s − ½ M s² stays positive for s < (ġ + √(ġ² + 2 M g))/M = 2g/(√(ġ² + 2 M g) − ġ)
-//! (the second form for ġ < 0, where the first cancels: without gravity M is 0), and each
-//! step is capped there. A gap within the gap tolerance (10⁻¹¹ of the length scale) approaching faster than
+//! |a_b| for a sphere on a plane; twice |a_a| + |a_b| + |u|²/|d| for a pair), each step is
+//! capped at the horizon of [`crate::simulate::stepper::horizon`]. A gap within the gap tolerance (10⁻¹¹ of the length scale) approaching faster than
 //! `rest_speed` is an impact; one slower closes unless the acceleration-level problem with it
 //! closed separates it (g̈ > 0); a closed contact opens when g̈ > 0 ([`super::persist`]).
 //!
@@ -29,10 +28,10 @@
 use super::super::body::V3;
 use super::super::contact::ContactError;
 use super::super::impact::Law;
-use super::super::ode::{Tableau, floor, grow, shrink, step_slice};
 use super::super::run::{
-    End, Event, ImpactRecord, MAX_STEPS, Options, SimulateError, Struck, joins,
+    End, Event, ImpactRecord, MAX_STEPS, Options, SimulateError, Struck, joins, next_output_after,
 };
+use super::super::stepper::{self, Advance, Stepper};
 use super::super::world::Plane;
 use super::gaps::{Candidate, Touch, gap};
 use super::impact::solve;
@@ -139,7 +138,7 @@ pub fn simulate_system(setup: &SystemSetup) -> SystemSimulation {
         end,
         t_end: run.t,
         state: run.s,
-        steps: run.steps,
+        steps: run.stepper.steps,
         drift: run.drift,
         stopped,
     }
@@ -147,7 +146,7 @@ pub fn simulate_system(setup: &SystemSetup) -> SystemSimulation {
 
 struct Run<'a> {
     setup: &'a SystemSetup,
-    tab: Tableau,
+    stepper: Stepper,
     s: SystemState,
     t: f64,
     closed: Vec<usize>,
@@ -157,7 +156,6 @@ struct Run<'a> {
     length: f64,
     speed: f64,
     gap_tol: f64,
-    steps: (usize, usize),
     drift: f64,
 }
 
@@ -178,7 +176,7 @@ impl<'a> Run<'a> {
             .max(f64::MIN_POSITIVE);
         Run {
             setup,
-            tab: Tableau::new(),
+            stepper: Stepper::new(setup.options.output_step, setup.options.duration),
             s,
             t: 0.0,
             closed: Vec::new(),
@@ -188,18 +186,22 @@ impl<'a> Run<'a> {
             length,
             speed,
             gap_tol: 1e-11 * length,
-            steps: (0, 0),
             drift: 0.0,
         }
     }
 
     fn sample(&mut self) {
+        self.sample_at(self.t, self.s.clone());
+    }
+
+    /// A sample of the state `s` at `t` (the current one, or one interpolated inside a step).
+    fn sample_at(&mut self, t: f64, s: SystemState) {
         let st = &self.setup;
         self.samples.push(SystemSample {
-            t: self.t,
-            state: self.s.clone(),
-            kinetic: self.s.kinetic_energy(&st.spheres),
-            potential: self.s.potential_energy(&st.spheres, &st.options.gravity),
+            t,
+            kinetic: s.kinetic_energy(&st.spheres),
+            potential: s.potential_energy(&st.spheres, &st.options.gravity),
+            state: s,
             closed: self.closed.len(),
         });
     }
@@ -238,14 +240,11 @@ impl<'a> Run<'a> {
 
     fn go(&mut self) -> Result<End, SimulateError> {
         let o = self.setup.options.clone();
-        let mut h = (o.output_step.min(o.duration) / 10.0).max(f64::MIN_POSITIVE);
         let mut next_output = 0.0;
-        let mut outputs = 0usize;
         loop {
             if self.t >= next_output {
                 self.sample();
-                outputs += 1;
-                next_output = outputs as f64 * o.output_step;
+                next_output = next_output_after(self.t, o.output_step);
             }
             if self.t >= o.duration {
                 return Ok(End::Duration);
@@ -253,7 +252,7 @@ impl<'a> Run<'a> {
             if self.impacts.len() >= o.max_impacts {
                 return Ok(End::Impacts);
             }
-            if self.steps.0 + self.steps.1 >= MAX_STEPS {
+            if self.stepper.attempts() >= MAX_STEPS {
                 return Err(SimulateError::Stalled { t: self.t });
             }
             let s = self.s.clone();
@@ -317,41 +316,30 @@ impl<'a> Run<'a> {
                 let bound = match self.setup.candidates[k].touch {
                     Touch::Plane { body, .. } => 2.0 * acc.a[body].norm(),
                     Touch::Pair { a, b } => 2.0 * (acc.a[a].norm() + acc.a[b].norm()) + g.curvature,
-                } + f64::MIN_POSITIVE;
-                let reach = g.gap.max(0.0);
-                let root = (g.rate * g.rate + 2.0 * bound * reach).sqrt();
-                // the root of g + ġ s − ½ M s², in the form that does not cancel
-                let s = if g.rate < 0.0 {
-                    2.0 * reach / (root - g.rate)
-                } else {
-                    (g.rate + root) / bound
                 };
-                horizon = horizon.min(s);
+                horizon = horizon.min(stepper::horizon(g.gap, g.rate, bound));
             }
             if closing {
                 continue;
             }
             if striking {
                 self.impact()?;
-                h = h.max(1e-6 * o.output_step);
+                self.stepper.h = self.stepper.h.max(1e-6 * o.output_step);
                 continue;
             }
             // One step.
-            let cap = horizon.min(next_output - self.t).min(o.duration - self.t);
-            let mut hh = h.min(cap);
-            let floor = floor(self.t, o.output_step);
-            if hh < floor {
-                hh = if horizon < floor {
-                    floor
-                } else {
-                    cap.max(floor)
-                };
-            }
             let y = self.s.pack();
             let t0 = self.t;
-            let tab = std::mem::take(&mut self.tab);
+            let half = y.len() / 2;
+            let scales: Vec<f64> = (0..y.len())
+                .map(|k| if k < half { self.length } else { self.speed })
+                .collect();
             let closed = self.closed.clone();
-            let result = {
+            let open: Vec<usize> = (0..self.setup.candidates.len())
+                .filter(|k| !self.closed.contains(k))
+                .collect();
+            let mut stepper = std::mem::replace(&mut self.stepper, Stepper::new(1.0, 1.0));
+            let advance = {
                 let mut f = |_t: f64, y: &[f64]| -> Result<Vec<f64>, ContactError> {
                     let s = SystemState::unpack(y);
                     let a = self.accelerations_at(&s, &closed)?;
@@ -361,52 +349,39 @@ impl<'a> Run<'a> {
                         .flat_map(|p| [p.x, p.y, p.z])
                         .collect())
                 };
-                step_slice(&tab, t0, &y, hh, &mut f)
+                // No open contact may end the step through its gap: one the step took through
+                // is located by halving the step.
+                let crosses = |y: &[f64]| {
+                    let end = SystemState::unpack(y);
+                    open.iter().any(|&k| self.gap(k, &end).gap < -self.gap_tol)
+                };
+                stepper.advance(
+                    t0,
+                    &y,
+                    horizon,
+                    o.duration,
+                    o.output_step,
+                    o.tolerance,
+                    &scales,
+                    &mut f,
+                    crosses,
+                )
             };
-            self.tab = tab;
-            let (y5, err) = match result {
-                Ok(r) => r,
-                Err(_) => {
-                    self.steps.1 += 1;
-                    h = hh / 4.0;
-                    if h < floor {
-                        return Err(SimulateError::Stalled { t: self.t });
-                    }
-                    continue;
-                }
+            self.stepper = stepper;
+            let (t1, y5, dense) = match advance {
+                Advance::Accepted { t, y, dense } => (t, y, dense),
+                Advance::Retry => continue,
+                Advance::NotFinite => return Err(SimulateError::NotFinite { t: self.t }),
+                Advance::Failed(_) => return Err(SimulateError::Stalled { t: self.t }),
             };
-            let half = y.len() / 2;
-            let ratio = (0..y.len())
-                .map(|k| {
-                    let scale = if k < half { self.length } else { self.speed };
-                    err[k].abs() / (o.tolerance * y5[k].abs().max(scale))
-                })
-                .fold(0.0, f64::max);
-            if !ratio.is_finite() {
-                return Err(SimulateError::NotFinite { t: self.t });
+            // The output times inside the step, from its continuous extension.
+            while next_output < t1 {
+                let s = SystemState::unpack(&dense.at(next_output));
+                self.sample_at(next_output, s);
+                next_output = next_output_after(next_output, o.output_step);
             }
-            if ratio > 1.0 {
-                self.steps.1 += 1;
-                h = shrink(hh, ratio);
-                continue;
-            }
-            // No open contact may end the step through its gap: one the step took through is
-            // located by halving the step.
-            let end_state = SystemState::unpack(&y5);
-            let through = (0..self.setup.candidates.len())
-                .any(|k| !self.closed.contains(&k) && self.gap(k, &end_state).gap < -self.gap_tol);
-            if through && hh > floor {
-                self.steps.1 += 1;
-                h = hh / 2.0;
-                continue;
-            }
-            self.steps.0 += 1;
-            self.t = if hh == cap && cap == next_output - t0 {
-                next_output
-            } else {
-                t0 + hh
-            };
-            self.s = end_state;
+            self.t = t1;
+            self.s = SystemState::unpack(&y5);
             let st = self.setup;
             let d = project(
                 &st.spheres,
@@ -416,9 +391,6 @@ impl<'a> Run<'a> {
                 &mut self.s,
             );
             self.drift = self.drift.max(d);
-            if hh == h || ratio < 0.5 {
-                h = grow(hh, ratio);
-            }
         }
     }
 

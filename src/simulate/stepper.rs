@@ -1,0 +1,166 @@
+//! The adaptive step both event loops take between events (one body, [`super::run`]; a sphere
+//! system, [`super::system::run`]): its size (held below the gap horizon and the end of the
+//! run, never below what t resolves), the Dormand–Prince RK5(4) pair ([`super::ode`]), the error
+//! test on the scales of the motion, a step that would cross an open gap halved, and the dense
+//! output of the accepted step, from which the output times inside it are sampled (the steps
+//! are not cut at the output times).
+//!
+//! **Step control** (Hairer, Nørsett and Wanner, *Solving ODEs I*, §II.4): with the embedded
+//! error e_k of component k, the step is accepted when max_k |e_k| / (tol · max(|y_k|, s_k)) ≤ 1
+//! (s_k the scale of component k: a length, 1 for the quaternion, a speed, a rate); the next
+//! step is h (0.9 ratio^(−1/5)), shrinking at most fivefold and growing at most fivefold.
+//!
+//! **Conservative advancement** ([`horizon`]): with M a bound on |g̈| over the step, an open gap
+//! g(t + s) ≥ g + ġ s − ½ M s² stays positive for s < (ġ + √(ġ² + 2 M g))/M, written
+//! 2g/(√(ġ² + 2 M g) − ġ) when ġ < 0, where the first form cancels (without gravity M is 0 and
+//! the first form is 0/0 or 0).
+
+use super::ode::{Dense, Derivative, Tableau, floor, grow, shrink, step_dense};
+
+/// How long an open gap g ≥ 0 approaching or leaving at ġ, its second derivative bounded by M,
+/// surely stays open: the smallest positive root of g + ġ s − ½ M s², in the form that does not
+/// cancel (∞ when nothing brings it to zero).
+pub fn horizon(gap: f64, rate: f64, bound: f64) -> f64 {
+    let reach = gap.max(0.0);
+    let bound = bound.max(0.0);
+    let root = (rate * rate + 2.0 * bound * reach).sqrt();
+    if rate < 0.0 {
+        2.0 * reach / (root - rate)
+    } else if bound > 0.0 {
+        (rate + root) / bound
+    } else {
+        f64::INFINITY
+    }
+}
+
+/// The outcome of one attempt.
+pub enum Advance<E> {
+    /// Accepted: the state at `t` and the dense output over the step.
+    Accepted {
+        /// The time at the end of the step (the end of the run exactly when the step reached it).
+        t: f64,
+        /// The fifth-order state there.
+        y: Vec<f64>,
+        /// The continuous extension over the step.
+        dense: Dense,
+    },
+    /// Rejected (error too large, or an open gap crossed): try again from the same state with
+    /// the shorter step the stepper now holds.
+    Retry,
+    /// The derivative failed (a mode change inside the step) and the step is already at the
+    /// resolution of t: the caller decides (switch the mode, or stall).
+    Failed(E),
+    /// The error estimate is not a finite number.
+    NotFinite,
+}
+
+/// The step size and the counts of accepted and rejected steps.
+pub struct Stepper {
+    tab: Tableau,
+    /// The step to try next.
+    pub h: f64,
+    /// Steps accepted, steps rejected.
+    pub steps: (usize, usize),
+}
+
+impl Stepper {
+    /// A first step of a tenth of the output step (or of the run, if shorter).
+    pub fn new(output_step: f64, duration: f64) -> Stepper {
+        Stepper {
+            tab: Tableau::new(),
+            h: (output_step.min(duration) / 10.0).max(f64::MIN_POSITIVE),
+            steps: (0, 0),
+        }
+    }
+
+    /// The total number of attempts.
+    pub fn attempts(&self) -> usize {
+        self.steps.0 + self.steps.1
+    }
+
+    /// One attempt from (t, y): the step is h, capped by the gap `horizon` and the `end` of the
+    /// run, at least the resolution of t (a gap the step creeps onto at that resolution is
+    /// taken as reached; a step the error would shrink below it is taken at it, so a motion
+    /// faster than t resolves moves on to its error instead of stalling); `scales` the scale of each component, `f` the derivative and
+    /// `crosses` whether a state has an open gap below its tolerance (the step is then halved,
+    /// down to the resolution of t, where it is accepted).
+    #[allow(clippy::too_many_arguments)]
+    pub fn advance<E>(
+        &mut self,
+        t: f64,
+        y: &[f64],
+        horizon: f64,
+        end: f64,
+        output_step: f64,
+        tolerance: f64,
+        scales: &[f64],
+        f: &mut Derivative<'_, E>,
+        crosses: impl Fn(&[f64]) -> bool,
+    ) -> Advance<E> {
+        let cap = horizon.min(end - t);
+        let mut hh = self.h.min(cap);
+        let floor = floor(t, output_step);
+        if hh < floor {
+            // the end of the run within what t resolves is stepped to exactly; anything else
+            // (a gap crept onto, a step the error shrank) at that resolution
+            hh = if end - t < floor && end - t <= horizon {
+                end - t
+            } else {
+                floor
+            };
+        }
+        let (y5, err, dense) = match step_dense(&self.tab, t, y, hh, f) {
+            Ok(r) => r,
+            Err(error) => {
+                self.steps.1 += 1;
+                self.h = hh / 4.0;
+                if self.h < floor {
+                    return Advance::Failed(error);
+                }
+                return Advance::Retry;
+            }
+        };
+        let ratio = (0..y.len())
+            .map(|k| err[k].abs() / (tolerance * y5[k].abs().max(scales[k])))
+            .fold(0.0, f64::max);
+        if !ratio.is_finite() {
+            return Advance::NotFinite;
+        }
+        if ratio > 1.0 {
+            self.steps.1 += 1;
+            self.h = shrink(hh, ratio);
+            return Advance::Retry;
+        }
+        if hh > floor && crosses(&y5) {
+            self.steps.1 += 1;
+            self.h = (hh / 2.0).max(floor);
+            return Advance::Retry;
+        }
+        self.steps.0 += 1;
+        if hh == self.h || ratio < 0.5 {
+            self.h = grow(hh, ratio);
+        }
+        let t1 = if hh == end - t { end } else { t + hh };
+        Advance::Accepted {
+            t: t1,
+            y: y5,
+            dense,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// ġ < 0 without gravity: the gap closes at g/|ġ| (the first root form would give 0).
+    #[test]
+    fn horizon_without_gravity_is_the_gap_over_the_rate() {
+        assert_eq!(horizon(2.0, -4.0, 0.0), 0.5);
+        assert_eq!(horizon(2.0, 4.0, 0.0), f64::INFINITY);
+        // with M: g + ġ s − ½ M s² = 0 at s = 1 for g = 1, ġ = 1, M = 4 (1 + 1 − 2 = 0)
+        assert_eq!(horizon(1.0, 1.0, 4.0), 1.0);
+        // approaching: g = 3, ġ = −1, M = 4: 3 − s − 2s² = 0 at s = 1
+        assert_eq!(horizon(3.0, -1.0, 4.0), 1.0);
+    }
+}
