@@ -49,13 +49,14 @@ ADAPTERS = {
     "drake": ("inertance.engines.drake_adapter", "DrakeAdapter", {}),
     "drake-tuned": ("inertance.engines.drake_adapter", "DrakeAdapter", {"variant": "tuned"}),
     "drake-calibrated": ("inertance.engines.drake_adapter", "DrakeAdapter", {"variant": "calibrated"}),
+    "drake-hydroelastic": ("inertance.engines.drake_adapter", "DrakeAdapter", {"variant": "hydroelastic"}),
 }
 
 
 #: The engine each shipped adapter needs (a top-level module), for :func:`installed`.
 ENGINE_MODULES = {"mujoco": "mujoco", "mujoco-tuned": "mujoco", "mujoco-calibrated": "mujoco",
                   "pybullet": "pybullet", "pinocchio": "pinocchio", "rapier": "rapier3d", "drake": "pydrake",
-                  "drake-tuned": "pydrake", "drake-calibrated": "pydrake"}
+                  "drake-tuned": "pydrake", "drake-calibrated": "pydrake", "drake-hydroelastic": "pydrake"}
 
 
 def installed() -> list:

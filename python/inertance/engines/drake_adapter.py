@@ -27,12 +27,15 @@ Variants (``variant=``; the adapters ``drake-tuned``, ``drake-calibrated``, ``dr
 * ``"calibrated"`` — as tuned, but y found by bisection so that a 1 kg ball at the scene's
   approach speed on a plane with these settings leaves at e times it (the discrete solver's
   own rebound; cached per (e, speed, stiffness)).
-* ``"hydroelastic"`` — ``ContactModel.kHydroelasticWithFallback``: every geometry compliant
-  hydroelastic (modulus 10⁷ Pa, resolution hint 1 cm; half-spaces as slabs 0.1 m thick), the
-  dissipation of ``"tuned"`` (the same relation holds for any elastic force f₀(x)), time step
-  0.1 ms. NOT registered as an adapter: with Drake 1.51.1 its runs report point contacts only
-  (``last_run``: hydroelastic 0 on ball-floor-e05, box-corner, box-flat-e05), so the fallback is
-  taken and it is not yet hydroelastic; to be found out before it is graded.
+* ``"hydroelastic"`` — ``ContactModel.kHydroelasticWithFallback``: the bodies compliant
+  hydroelastic (modulus 10⁷ Pa, resolution hint 1 cm), the obstacles rigid hydroelastic, the
+  dissipation of ``"tuned"`` (the same relation holds for any elastic force f₀(x), so for the
+  pressure field's), time step 0.1 ms. The obstacles are rigid because Drake (1.51) computes no
+  hydroelastic contact between a compliant half-space and a compliant body: it falls back to
+  point contact for that pair silently (``last_run`` then counts point contacts only), which is
+  why an earlier version with every geometry compliant was not hydroelastic at all. The runner
+  refuses a run in which a point contact appeared (``last_run["point"] > 0``): a grade is
+  hydroelastic or it is not given.
 """
 
 from __future__ import annotations
@@ -42,8 +45,7 @@ import numpy as np
 import pydrake
 import math
 
-from pydrake.geometry import (AddCompliantHydroelasticProperties, AddCompliantHydroelasticPropertiesForHalfSpace,
-                              AddContactMaterial, Box, Cylinder, HalfSpace, ProximityProperties, Sphere)
+from pydrake.geometry import (AddCompliantHydroelasticProperties, AddContactMaterial, AddRigidHydroelasticProperties, Box, Cylinder, HalfSpace, ProximityProperties, Sphere)
 from pydrake.math import RigidTransform, RotationMatrix
 from pydrake.multibody.plant import AddMultibodyPlantSceneGraph, ContactModel, CoulombFriction
 from pydrake.multibody.tree import RotationalInertia, SpatialInertia
@@ -58,7 +60,7 @@ from .scene import EngineScene, Plane, SceneUnsupported, Support
 #: The half period of the tuned contact's oscillation (as mujoco-tuned) and the tuned time step.
 HALF_PERIOD, TUNED_STEP = 2e-3, 1e-4
 #: The hydroelastic modulus (Pa) and the resolution hint (m) of the hydroelastic variant.
-HYDRO_MODULUS, HYDRO_RESOLUTION, HYDRO_SLAB = 1e7, 0.01, 0.1
+HYDRO_MODULUS, HYDRO_RESOLUTION = 1e7, 0.01
 #: The smallest e the tuned map aims at (e = 0 needs d = ∞).
 E_FLOOR = 0.01
 
@@ -114,9 +116,9 @@ class DrakeAdapter:
                 "restitution": f"mapped onto d (e = 0 as e = {E_FLOOR})"})
         elif variant == "hydroelastic":
             self.settings.update({
-                "contact model": f"kHydroelasticWithFallback, compliant hydroelastic everywhere (modulus "
-                                 f"{HYDRO_MODULUS:g} Pa, resolution hint {HYDRO_RESOLUTION} m, half-spaces "
-                                 f"{HYDRO_SLAB} m slabs), Hunt–Crossley d = y(e)/v⁰",
+                "contact model": f"kHydroelasticWithFallback, bodies compliant hydroelastic (modulus "
+                                 f"{HYDRO_MODULUS:g} Pa, resolution hint {HYDRO_RESOLUTION} m), obstacles rigid "
+                                 f"hydroelastic, Hunt–Crossley d = y(e)/v⁰ (no point contact allowed)",
                 "discrete approximation": "kLagged (Drake's default)",
                 "restitution": f"mapped onto d (e = 0 as e = {E_FLOOR})"})
 
@@ -171,7 +173,7 @@ class DrakeAdapter:
         plant.set_contact_model(ContactModel.kHydroelasticWithFallback if hydro else ContactModel.kPoint)
         plant.mutable_gravity_field().set_gravity_vector([0.0, 0.0, 0.0])
 
-        def props(mu: float, shape=None) -> ProximityProperties:
+        def props(mu: float, shape=None, obstacle: bool = False) -> ProximityProperties:
             p = ProximityProperties()
             if dissipation is None:
                 p.AddProperty("material", "coulomb_friction", CoulombFriction(mu, mu))
@@ -180,8 +182,8 @@ class DrakeAdapter:
                                    point_stiffness=None if stiffness is None or hydro else 2 * stiffness,
                                    friction=CoulombFriction(mu, mu))
             if hydro:
-                if isinstance(shape, HalfSpace):
-                    AddCompliantHydroelasticPropertiesForHalfSpace(HYDRO_SLAB, HYDRO_MODULUS, p)
+                if obstacle:
+                    AddRigidHydroelasticProperties(HYDRO_RESOLUTION, p)
                 else:
                     AddCompliantHydroelasticProperties(HYDRO_RESOLUTION, HYDRO_MODULUS, p)
             return p
@@ -195,10 +197,10 @@ class DrakeAdapter:
         for j, o in enumerate(scene.obstacles):
             if isinstance(o, Plane):
                 pose = HalfSpace.MakePose(np.asarray(o.normal, float), np.asarray(o.point, float))
-                plant.RegisterCollisionGeometry(plant.world_body(), pose, HalfSpace(), f"o{j}", props(mu, HalfSpace()))
+                plant.RegisterCollisionGeometry(plant.world_body(), pose, HalfSpace(), f"o{j}", props(mu, HalfSpace(), True))
             elif isinstance(o, Support):
                 plant.RegisterCollisionGeometry(plant.world_body(), RigidTransform(np.asarray(o.centre, float)),
-                                                Sphere(o.radius), f"o{j}", props(mu))
+                                                Sphere(o.radius), f"o{j}", props(mu, None, True))
             else:
                 raise SceneUnsupported(scene.file, f"obstacle[{j}]", "unknown obstacle")
         bodies = []
@@ -244,6 +246,9 @@ class DrakeAdapter:
             elif touched:
                 break
         self.last_run["duration"] = t
+        if hydro and self.last_run["point"] > 0:
+            raise SceneUnsupported(scene.file, "contact", f"Drake fell back to point contact ({self.last_run['point']} "
+                                   "point pairs): no hydroelastic grade is given for this scene")
         out = []
         for body in bodies:
             v = plant.EvalBodySpatialVelocityInWorld(pc, body)
