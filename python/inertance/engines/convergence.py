@@ -69,6 +69,8 @@ SWEEPS = {
     "drake-tuned": [("time_step", [4e-4, 2e-4, 1e-4, 5e-5, 2.5e-5], lambda h: _drake(variant="tuned", time_step=h))],
     "drake-calibrated": [("time_step", [4e-4, 2e-4, 1e-4, 5e-5, 2.5e-5],
                           lambda h: _drake(variant="calibrated", time_step=h))],
+    "drake-hydroelastic": [("time_step", [4e-4, 2e-4, 1e-4, 5e-5, 2.5e-5],
+                            lambda h: _drake(variant="hydroelastic", time_step=h))],
 }
 
 
