@@ -12,7 +12,8 @@ off its velocity history: impact n is the step at which the ball's vertical velo
 negative to non-negative; the speed before is the highest downward speed since the last apex, the
 rebound the highest upward speed before the next apex (the velocity at lift-off, where gravity
 alone acts again). The grade after impact n is the relative error of the rebound and of the time
-against inertance's history. Housner's block runs in PyBullet and Rapier (:func:`pybullet_block`, :func:`rapier_block`).
+against inertance's history. Housner's block runs in MuJoCo (defaults and the e = 0 oscillator), PyBullet and Rapier
+(:func:`mujoco_block`, :func:`pybullet_block`, :func:`rapier_block`).
 
 ``python -m inertance.engines.sequences --out DIR`` writes ``sequences.md`` and ``sequences.svg``.
 """
@@ -264,14 +265,27 @@ def pybullet_block(timestep: float = 1 / 240, iterations: int = 50, duration: fl
 
 
 def landings(ts, th, w) -> list[dict]:
-    """Landings in a sampled tilt/ω history: θ changes sign at step i; ω⁻ = the largest |ω| of
-    steps i − 1 and i (the contact may be resolved one step late), ω⁺ = the largest |ω| of the
-    three steps after i."""
+    """Landings in a sampled tilt/ω history of the rocking block: θ changes sign at step i; ω⁻ =
+    the largest |ω| of steps i − 1 and i (the contact may be resolved one step late); ω⁺ from
+    the apex θ_max that follows, by the energy of the rigid rocking about the new edge: C rises
+    from R cos α (flat) to R cos(α − |θ_max|), so ½ I_O ω⁺² = m g R (cos(α − |θ_max|) − cos α)
+    (R = √(b² + h²), α = atan(b/h), I_O = (4/3) m R²). Reading ω⁺ from what follows the
+    landing makes it independent of how long the engine's contact lasts (a soft contact
+    resolves a landing over milliseconds, many steps); the last landing, with no apex after it
+    in the run, is dropped."""
+    b, h, m, g = 0.75, 1.0, 1500.0, 9.81
+    big_r, alpha = math.hypot(b, h), math.atan2(b, h)
+    i_o = 4 / 3 * m * (b * b + h * h)
+    signs = [i for i in range(1, len(th)) if th[i - 1] * th[i] < 0]
     out = []
-    for i in range(1, len(th) - 3):
-        if th[i - 1] * th[i] < 0:
-            out.append({"index": len(out) + 1, "t": ts[i], "before": max(abs(w[i - 1]), abs(w[i])),
-                        "after": max(abs(x) for x in w[i + 1:i + 4])})
+    for k, i in enumerate(signs):
+        end = signs[k + 1] if k + 1 < len(signs) else None
+        if end is None:
+            break
+        peak = max(abs(x) for x in th[i:end])
+        rise = big_r * (math.cos(alpha - peak) - math.cos(alpha))
+        out.append({"index": len(out) + 1, "t": ts[i], "before": max(abs(w[i - 1]), abs(w[i])),
+                    "after": math.sqrt(max(0.0, 2 * m * g * rise / i_o))})
     return out
 
 
@@ -302,6 +316,48 @@ def rapier_block(duration: float = 1.5):
         w.append(float(_vec(body.angvel)[1]))
         ts.append((s + 1) * dt)
     return "rapier", version("rapier3d"), dt, landings(ts, th, w)
+
+
+def mujoco_block(tuned: bool, duration: float = 1.5):
+    """The rocking block in MuJoCo: a box geom (half sizes 0.75, 0.25, 1 m; 1500 kg, the box's
+    central moments) on a plane, g = 9.81, condim 3 with μ = 0.6 and the elliptic cone. Default:
+    MuJoCo's solref/solimp and 2 ms; tuned: the adapter's oscillator for e = 0 (ζ = 1, half period
+    2 ms, constant impedance) at 0.1 ms — MuJoCo has no restitution coefficient, so that is the
+    nearest it comes to the plastic landing asked."""
+    import numpy as np
+    import mujoco
+    from .mujoco_adapter import MuJoCoAdapter
+    th0 = 0.2
+    ad = MuJoCoAdapter(tuned=tuned)
+    pair = ""
+    if tuned:
+        k, b = ad.solref(0.0)
+        d = ad.impedance
+        pair = f'solref="{k!r} {b!r}" solimp="{d} {d} 0.001 0.5 2"'
+    m = 1500.0
+    inertia = [m / 12 * (0.5 ** 2 + 2 ** 2), m / 12 * (1.5 ** 2 + 2 ** 2), m / 12 * (1.5 ** 2 + 0.5 ** 2)]
+    pos = (-0.75 * math.cos(th0) + math.sin(th0), 0.0, 0.75 * math.sin(th0) + math.cos(th0))
+    quat = (math.cos(th0 / 2), 0.0, math.sin(th0 / 2), 0.0)
+    xml = (f'<mujoco><option timestep="{ad.timestep}" gravity="0 0 -9.81" cone="elliptic"/><worldbody>'
+           '<geom name="p" type="plane" size="0 0 1" contype="0" conaffinity="0"/>'
+           f'<body name="b" pos="{pos[0]!r} {pos[1]!r} {pos[2]!r}" quat="{quat[0]!r} 0 {quat[2]!r} 0"><freejoint/>'
+           f'<inertial pos="0 0 0" mass="{m}" diaginertia="{inertia[0]!r} {inertia[1]!r} {inertia[2]!r}"/>'
+           '<geom name="g" type="box" size="0.75 0.25 1" contype="0" conaffinity="0"/></body></worldbody>'
+           f'<contact><pair geom1="p" geom2="g" condim="3" friction="0.6 0.6 0.005 0.0001 0.0001" {pair}/></contact>'
+           '</mujoco>')
+    model = mujoco.MjModel.from_xml_string(xml)
+    data = mujoco.MjData(model)
+    th, w, ts = [], [], []
+    for _ in range(int(round(duration / ad.timestep))):
+        mujoco.mj_step(model, data)
+        r = np.zeros(9)
+        mujoco.mju_quat2Mat(r, data.qpos[3:7])
+        r = r.reshape(3, 3)
+        th.append(math.atan2(r[0, 2], r[2, 2]))
+        w.append(float(data.qvel[4]))  # ω_y (MuJoCo's free joint: angular velocity in the body frame;
+        # about y the block's own axis stays the world's in this planar motion)
+        ts.append(data.time)
+    return "mujoco-tuned" if tuned else "mujoco", mujoco.__version__, ad.timestep, landings(ts, th, w)
 
 
 ENGINES = {"mujoco": lambda: mujoco_ball(False), "mujoco-calibrated": lambda: mujoco_ball(True),
@@ -335,7 +391,7 @@ def run(out: Path) -> dict:
                      + " | ".join(cell(n, "time") for n in GRADED) + " |")
     bref = block_reference()
     lines += ["", "Housner's block (ω after each landing; exact ratio 23/50):", "", lines[0], lines[1]]
-    for fn in (pybullet_block, rapier_block):
+    for fn in (lambda: mujoco_block(False), lambda: mujoco_block(True), pybullet_block, rapier_block):
         try:
             eng, ver, dt, got = fn()
         except ImportError:
