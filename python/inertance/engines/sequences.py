@@ -13,7 +13,9 @@ negative to non-negative; the speed before is the highest downward speed since t
 rebound the highest upward speed before the next apex (the velocity at lift-off, where gravity
 alone acts again). The grade after impact n is the relative error of the rebound and of the time
 against inertance's history. Housner's block runs in MuJoCo (defaults and the e = 0 oscillator), PyBullet and Rapier
-(:func:`mujoco_block`, :func:`pybullet_block`, :func:`rapier_block`).
+(:func:`mujoco_block`, :func:`pybullet_block`, :func:`rapier_block`); the falling rod in MuJoCo and
+PyBullet (:func:`mujoco_rod`, :func:`pybullet_rod`: a capsule of radius 1 mm; an impact is an end's
+contact episode, :func:`end_impacts`).
 
 ``python -m inertance.engines.sequences --out DIR`` writes ``sequences.md`` and ``sequences.svg``.
 """
@@ -360,6 +362,163 @@ def mujoco_block(tuned: bool, duration: float = 1.5):
     return "mujoco-tuned" if tuned else "mujoco", mujoco.__version__, ad.timestep, landings(ts, th, w)
 
 
+# ---- the falling rod (examples/simulate/falling-rod.toml) --------------------------------------
+
+#: The falling rod: 1 m, 1 kg, tilted 45° about y, its lower end 0.5 m above a floor with k = 1/2,
+#: μ = 0.3, g = 9.81; in the engines a capsule of radius ROD_RADIUS (its cap's lowest point is
+#: the rod's end lowered by the radius, so the body is raised by it: the end strikes when the
+#: rod's would; the moment arms differ by r/L = 0.1 %), with the rod's inertia m L²/12.
+ROD = {"length": 1.0, "mass": 1.0, "tilt": math.pi / 4, "height": 0.5, "k": 0.5, "mu": 0.3, "g": 9.81,
+       "duration": 1.0}
+ROD_RADIUS = 1e-3
+
+
+def rod_reference(scene: str | Path = SCENES / "falling-rod.toml") -> list[dict]:
+    """Per impact: t, the end struck (+1: body +z, −1: body −z) and its normal velocity
+    before/after, from ``inertance simulate --json``."""
+    out = []
+    for imp in simulate_json(scene)["impacts"]:
+        land = max(imp["contacts"], key=lambda c: c["impulse"])
+        end = 1 if "0, 0, 1]" in land["feature"] else -1
+        out.append({"index": imp["index"], "t": imp["t"], "end": end, "before": land["before"],
+                    "after": land["after"]})
+    return out
+
+
+def rod_start():
+    """The rod's initial centre and rotation (about y by the tilt), the capsule raised by its radius."""
+    r = ROD
+    c, s_ = math.cos(r["tilt"]), math.sin(r["tilt"])
+    centre = (0.0, 0.0, r["height"] + 0.5 * r["length"] * c + ROD_RADIUS)
+    rot = ((c, 0.0, s_), (0.0, 1.0, 0.0), (-s_, 0.0, c))
+    return centre, rot
+
+
+def end_impacts(ts, ends_z, ends_vz) -> list[dict]:
+    """Impacts of either end in a sampled history (``ends_z``: per end the height of its lowest
+    point — the capsule cap's — per step; ``ends_vz`` its vertical velocity): an end's contact
+    episode is a run of steps in which that height is within 2 mm of the floor; an impact is
+    an episode in which its vertical velocity goes from below −1 mm/s to above; before = the most
+    negative vertical velocity of the episode and the step before it, after = the largest of the
+    episode and the step after it (the end's normal velocity entering and leaving the contact,
+    whatever number of steps the engine's contact takes)."""
+    events = []
+    for e, (zs, vs) in ((1, (ends_z[0], ends_vz[0])), (-1, (ends_z[1], ends_vz[1]))):
+        i = 1
+        while i < len(zs):
+            if zs[i] <= 2e-3 and (zs[i - 1] > 2e-3 or i == 1):
+                j = i
+                while j + 1 < len(zs) and zs[j + 1] <= 2e-3:
+                    j += 1
+                before = min(vs[i - 1:j + 1])
+                after = max(vs[i:min(j + 2, len(vs))])
+                if before < -1e-3 and after > 1e-3:
+                    k = min(range(i - 1, j + 1), key=lambda q: vs[q])
+                    events.append({"t": ts[k], "end": e, "before": before, "after": after})
+                i = j + 1
+            else:
+                i += 1
+    events.sort(key=lambda x: x["t"])
+    for n, ev in enumerate(events):
+        ev["index"] = n + 1
+    return events
+
+
+def _ends(x, rot, v, w):
+    """Heights and vertical velocities of the two ends (+z, −z of the body) of a body at x with
+    rotation matrix rot, velocity v and angular velocity w (world)."""
+    out_z, out_v = [], []
+    for sgn in (1, -1):
+        a = [sgn * 0.5 * ROD["length"] * rot[i][2] for i in range(3)]
+        out_z.append(x[2] + a[2] - ROD_RADIUS)
+        out_v.append(v[2] + w[0] * a[1] - w[1] * a[0])
+    return out_z, out_v
+
+
+def mujoco_rod(tuned: bool):
+    """The falling rod in MuJoCo: a capsule, condim 3 with μ = 0.3 and the elliptic cone; default
+    settings, or the calibrated oscillator for k = 1/2 (``mujoco-calibrated``)."""
+    import numpy as np
+    import mujoco
+    from .mujoco_adapter import MuJoCoAdapter
+    r = ROD
+    ad = MuJoCoAdapter(tuned=True, calibrated=True) if tuned else MuJoCoAdapter()
+    pair = ""
+    if tuned:
+        k, b = ad.solref(r["k"])
+        d = ad.impedance
+        pair = f'solref="{k!r} {b!r}" solimp="{d} {d} 0.001 0.5 2"'
+    (cx, cy, cz), _ = rod_start()
+    i_t = r["mass"] * r["length"] ** 2 / 12
+    half = r["tilt"] / 2
+    xml = (f'<mujoco><option timestep="{ad.timestep}" gravity="0 0 {-r["g"]}" cone="elliptic"/><worldbody>'
+           '<geom name="p" type="plane" size="0 0 1" contype="0" conaffinity="0"/>'
+           f'<body name="b" pos="{cx!r} {cy!r} {cz!r}" quat="{math.cos(half)!r} 0 {math.sin(half)!r} 0"><freejoint/>'
+           f'<inertial pos="0 0 0" mass="{r["mass"]}" diaginertia="{i_t!r} {i_t!r} 1e-7"/>'
+           f'<geom name="g" type="capsule" size="{ROD_RADIUS} {r["length"] / 2}" contype="0" conaffinity="0"/>'
+           '</body></worldbody>'
+           f'<contact><pair geom1="p" geom2="g" condim="3" friction="{r["mu"]} {r["mu"]} 0.005 0.0001 0.0001" {pair}/>'
+           '</contact></mujoco>')
+    model = mujoco.MjModel.from_xml_string(xml)
+    data = mujoco.MjData(model)
+    ts, zs, vs = [], ([], []), ([], [])
+    for _ in range(int(round(r["duration"] / ad.timestep))):
+        mujoco.mj_step(model, data)
+        m = np.zeros(9)
+        mujoco.mju_quat2Mat(m, data.qpos[3:7])
+        rot = m.reshape(3, 3)
+        w_world = rot @ data.qvel[3:6]  # MuJoCo's free joint: ω in the body frame
+        z, v = _ends(data.qpos[0:3], rot, data.qvel[0:3], w_world)
+        ts.append(data.time)
+        for q in range(2):
+            zs[q].append(z[q])
+            vs[q].append(v[q])
+    return "mujoco-calibrated" if tuned else "mujoco", mujoco.__version__, ad.timestep, end_impacts(ts, zs, vs)
+
+
+def pybullet_rod(timestep: float = 1 / 240, iterations: int = 50):
+    """The falling rod in PyBullet: a capsule with Bullet's own inertia for it (transverse
+    0.083667 kg m², 0.4 % above the rod's m L²/12: setting ``localInertiaDiagonal`` on this
+    maximal-coordinates body makes PyBullet 3.2.7 return NaN positions at the first step), the
+    adapter's clean-restitution settings, restitution 1 on the floor and k on the rod,
+    μ = 0.3 on the rod and 1 on the floor (Bullet multiplies them)."""
+    import numpy as np
+    import pybullet as p
+    from importlib.metadata import version
+    r = ROD
+    (cx, cy, cz), _ = rod_start()
+    c = p.connect(p.DIRECT)
+    try:
+        p.setGravity(0, 0, -r["g"], physicsClientId=c)
+        p.setTimeStep(timestep, physicsClientId=c)
+        p.setPhysicsEngineParameter(restitutionVelocityThreshold=0, warmStartingFactor=0, useSplitImpulse=1,
+                                    contactSlop=0, enableConeFriction=0, numSolverIterations=iterations,
+                                    physicsClientId=c)
+        floor = p.createMultiBody(0, p.createCollisionShape(p.GEOM_PLANE, planeNormal=[0, 0, 1], physicsClientId=c),
+                                  -1, [0, 0, 0], useMaximalCoordinates=True, physicsClientId=c)
+        q = p.getQuaternionFromAxisAngle([0, 1, 0], r["tilt"])
+        rod = p.createMultiBody(r["mass"], p.createCollisionShape(p.GEOM_CAPSULE, radius=ROD_RADIUS,
+                                                                  height=r["length"], physicsClientId=c),
+                                -1, [cx, cy, cz], q, useMaximalCoordinates=True, physicsClientId=c)
+        for uid, rest, mu in ((floor, 1.0, 1.0), (rod, r["k"], r["mu"])):
+            p.changeDynamics(uid, -1, restitution=rest, lateralFriction=mu, rollingFriction=0, spinningFriction=0,
+                             linearDamping=0, angularDamping=0, contactProcessingThreshold=0, physicsClientId=c)
+        ts, zs, vs = [], ([], []), ([], [])
+        for s in range(int(round(r["duration"] / timestep))):
+            p.stepSimulation(physicsClientId=c)
+            x, qq = p.getBasePositionAndOrientation(rod, physicsClientId=c)
+            v, w = p.getBaseVelocity(rod, physicsClientId=c)
+            rot = np.array(p.getMatrixFromQuaternion(qq)).reshape(3, 3)
+            z, vz = _ends(x, rot, v, w)
+            ts.append((s + 1) * timestep)
+            for k in range(2):
+                zs[k].append(z[k])
+                vs[k].append(vz[k])
+    finally:
+        p.disconnect(c)
+    return "pybullet", version("pybullet"), timestep, end_impacts(ts, zs, vs)
+
+
 ENGINES = {"mujoco": lambda: mujoco_ball(False), "mujoco-calibrated": lambda: mujoco_ball(True),
            "pybullet": pybullet_ball, "rapier": rapier_ball}
 
@@ -400,6 +559,20 @@ def run(out: Path) -> dict:
         cell = lambda n, key: "—" if gr[n] is None else f"{gr[n][key]:.2e}"
         lines.append(f"| {eng} | {ver} | {dt:g} | " + " | ".join(cell(n, "rebound") for n in GRADED) + " | "
                      + " | ".join(cell(n, "time") for n in GRADED) + " |")
+    rref = rod_reference()
+    lines += ["", "The falling rod (the struck end's normal velocity after each impact; exact: k = 1/2 of it "
+              "before, with friction μ = 0.3):", "", lines[0].rstrip(" |") + " | ends as exact (of the first 5) |",
+              lines[1] + "---|"]
+    for fn in (lambda: mujoco_rod(False), lambda: mujoco_rod(True), pybullet_rod):
+        try:
+            eng, ver, dt, got = fn()
+        except ImportError:
+            continue
+        gr = {n: grade(rref, got, n) for n in GRADED}
+        same = sum(1 for a, b in zip(rref[:5], got[:5]) if a["end"] == b["end"])
+        cell = lambda n, key: "—" if gr[n] is None else f"{gr[n][key]:.2e}"
+        lines.append(f"| {eng} | {ver} | {dt:g} | " + " | ".join(cell(n, "rebound") for n in GRADED) + " | "
+                     + " | ".join(cell(n, "time") for n in GRADED) + f" | {same} |")
     out.mkdir(parents=True, exist_ok=True)
     (out / "sequences.md").write_text("\n".join(lines) + "\n")
     _svg(series, out / "sequences.svg")
