@@ -2,8 +2,8 @@
 
 The points are split into contiguous chunks, one task per chunk is submitted to the executor
 (anything with ``submit(fn, *args)`` returning an object with ``result()``:
-``concurrent.futures`` pools, Dask's ``client.get_executor()``, submitit's executors, Ray's
-``RayExecutor``), and the chunks' results are joined in point order. A task carries the
+``concurrent.futures`` pools, Dask's ``client.get_executor()``, submitit's executors), and the
+chunks' results are joined in point order. A task carries the
 scene's TOML text, never the native :class:`Scene` (which does not pickle), so it runs on any
 worker with ``inertance`` installed, whether or not it sees the caller's files.
 
