@@ -815,8 +815,6 @@ fn sweep<'py>(
     convert::csv_columns(py, &csv)
 }
 
-/// A batch's arrays by model (and `status`). `offset`: the index of the first point in a
-/// larger batch this one is a chunk of, so that an error names the point by its index there.
 /// The process that first ran a sweep or batch on rayon's global pool (their threads).
 static GLOBAL_POOL_PID: OnceLock<u32> = OnceLock::new();
 
@@ -835,6 +833,8 @@ fn pool_threads(threads: Option<usize>) -> Option<usize> {
     Some(std::thread::available_parallelism().map_or(1, |n| n.get()))
 }
 
+/// A batch's arrays by model (and `status`). `offset`: the index of the first point in a
+/// larger batch this one is a chunk of, so that an error names the point by its index there.
 #[pyfunction]
 #[pyo3(signature = (scene, vary, law = None, offset = 0))]
 fn solve_batch<'py>(

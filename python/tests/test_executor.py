@@ -28,6 +28,10 @@ def assert_identical(a, b, where="result"):
     elif isinstance(a, np.ndarray):
         assert a.dtype == b.dtype and a.shape == b.shape, f"{where}: {a.dtype}{a.shape} != {b.dtype}{b.shape}"
         assert a.tobytes() == b.tobytes(), f"{where}: values differ"
+    elif isinstance(a, tuple):
+        assert len(a) == len(b), f"{where}: {len(a)} != {len(b)} items"
+        for i, (x, y) in enumerate(zip(a, b)):
+            assert_identical(x, y, f"{where}[{i}]")
     elif isinstance(a, list):
         assert len(a) == len(b), f"{where}: {len(a)} != {len(b)} items"
         for i, (x, y) in enumerate(zip(a, b)):
@@ -57,6 +61,30 @@ def processes():
     # child does not have (the bindings give it a pool of its own).
     with ProcessPoolExecutor(2) as pool:
         yield pool
+
+
+def _in_a_fork(queue):
+    """A forked child's batch and sweep, sent back to its parent."""
+    queue.put((inertance.solve_batch(BAR, {"contact[1].k": K}),
+               inertance.sweep(BAR, {"contact[1].k": (0, 1, 50)}, frame=False)))
+
+
+def test_a_process_forked_after_parallel_calls_solves_in_parallel():
+    # The parent's parallel calls start a thread pool; a forked child (a fork process pool's
+    # worker) has none of its threads, and used to wait on them forever.
+    here = (inertance.solve_batch(BAR, {"contact[1].k": K}),
+            inertance.sweep(BAR, {"contact[1].k": (0, 1, 50)}, frame=False))
+    context = multiprocessing.get_context("fork")
+    queue = context.Queue()
+    child = context.Process(target=_in_a_fork, args=(queue,))
+    child.start()
+    try:
+        there = queue.get(timeout=120)
+    finally:
+        child.join(5)
+        if child.is_alive():
+            child.terminate()
+    assert_identical(here, there)
 
 
 def test_a_forkserver_pool():
