@@ -132,6 +132,16 @@ def test_batch_of_a_system_and_of_singular_points(executor):
     assert_identical(here, there)
 
 
+def test_default_chunks_are_four_per_worker(threads):
+    before = threads.submitted
+    inertance.solve_batch(BAR, {"contact[1].k": K}, executor=threads)
+    assert threads.submitted - before == 8
+    inertance.sweep(BAR, {"contact[1].k": (0, 1, 5)}, executor=threads)
+    assert threads.submitted - before == 8 + 5  # never more chunks than points
+    inertance.sweep(BAR, {"contact[1].k": (0, 1, 50)}, executor=threads, chunk=7)
+    assert threads.submitted - before == 8 + 5 + 8  # ⌈50 / 7⌉
+
+
 def test_batch_of_no_points_submits_nothing(threads):
     before = threads.submitted
     here = inertance.solve_batch(BAR, {"contact[1].k": []})
@@ -238,8 +248,11 @@ def test_on_a_dask_local_cluster():
             distributed.Client(cluster) as client:
         executor = client.get_executor()
         vary = {"contact[1].k": K, "body.angular_velocity[2]": OMEGA}
-        assert_identical(inertance.solve_batch(BAR, vary),
-                         inertance.solve_batch(BAR, vary, executor=executor))
+        with distributed.get_task_stream(client) as tasks:
+            there = inertance.solve_batch(BAR, vary, executor=executor)
+        assert_identical(inertance.solve_batch(BAR, vary), there)
+        # By default four chunks per worker thread: 2 workers × 1 thread.
+        assert len(tasks.data) == 8
         with distributed.get_task_stream(client) as tasks:
             there = inertance.solve_batch(BAR, vary, executor=executor, chunk=9)
         assert_identical(inertance.solve_batch(BAR, vary), there)
