@@ -148,8 +148,9 @@ def solve_batch(scene: SceneLike, vary: Mapping[str, Any], law: Optional[str] = 
     task each, sent the scene's TOML text and the chunk's values; the results are joined in
     point order and equal the in-process call's bit for bit. The scene, the paths and the law
     are checked in the caller first, so bad input raises here before anything is submitted;
-    an exception in a task propagates (a :class:`SweepError` names its point by its index in
-    the whole batch). Each task runs in parallel over its worker's cores.
+    an exception in a task propagates as the executor delivers it (pools and Dask re-raise it,
+    a :class:`SweepError` naming its point by its index in the whole batch; submitit wraps it
+    in its ``FailedJobError``). Each task runs in parallel over its worker's cores.
     """
     import numpy as np
 
