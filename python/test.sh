@@ -9,7 +9,8 @@ target="${CARGO_TARGET_DIR:-$here/../target}"
 venv="$target/python-test-venv"
 python="${PYTHON:-python3}"
 [ -x "$venv/bin/python" ] || "$python" -m venv "$venv"
-"$venv/bin/python" -m pip install --quiet --disable-pip-version-check maturin pytest numpy sympy
+# dask[distributed]: test_executor.py runs solve_batch and sweep on a Dask local cluster.
+"$venv/bin/python" -m pip install --quiet --disable-pip-version-check maturin pytest numpy sympy "dask[distributed]"
 # --no-build-isolation: build with the maturin just installed, in the same target directory
 # as cargo (incremental), instead of a throwaway build environment.
 PATH="$venv/bin:$PATH" CARGO_TARGET_DIR="$target" "$venv/bin/python" -m pip install --quiet --disable-pip-version-check \

@@ -12,6 +12,8 @@ Every call converts its arguments, runs the validated Rust library and converts 
   (:class:`SystemSolution`);
 * :func:`solve_batch` — many points of one scene from arrays of numbers, in parallel;
 * :func:`sweep` — a grid of one or two varied numbers (as ``inertance sweep``);
+  both take ``executor=`` to run their points in chunks on a ``concurrent.futures``
+  executor (process pool, Dask, submitit on Slurm, …);
 * :func:`analyze` — degenerate cases (§8): Δ, ranks, families, admissibility;
 * :func:`derive` — closed forms over symbols, as SymPy expressions;
 * :func:`check` — the paper's worked examples, value by value.
@@ -121,7 +123,8 @@ def solve(scene: SceneLike, model: Union[str, Sequence[str], None] = None,
     return _native.solve(scene, model, law, exact, outputs, tolerance)
 
 
-def solve_batch(scene: SceneLike, vary: Mapping[str, Any], law: Optional[str] = None) -> dict:
+def solve_batch(scene: SceneLike, vary: Mapping[str, Any], law: Optional[str] = None,
+                executor: Any = None, chunk: Optional[int] = None) -> dict:
     """Solve ``scene`` in f64 at many points, without a Python loop (in parallel, GIL released).
 
     ``vary`` maps key paths (``"contact[1].k"``, ``"body.mass"``, ``"body.velocity[0]"``, …)
@@ -137,15 +140,34 @@ def solve_batch(scene: SceneLike, vary: Mapping[str, Any], law: Optional[str] = 
     ``{"velocity": (P, 3), "angular_velocity": (P, 3)}`` (world axes, v at the body's centre),
     and the system's ``"lost_velocity_energy"`` and ``"kinetic_energy_loss"`` (P,) — the
     numbers :func:`solve` gives at each point, bit for bit.
+
+    ``executor``: run the points as tasks on a ``concurrent.futures.Executor`` (a process or
+    thread pool, Dask's ``client.get_executor()``, …; anything whose ``submit(fn, *args)``
+    returns an object with ``result()``, e.g. submitit's executors). The points are split into
+    contiguous chunks of at most ``chunk`` points (default: about four chunks per worker), one
+    task each, sent the scene's TOML text and the chunk's values; the results are joined in
+    point order and equal the in-process call's bit for bit. The scene, the paths and the law
+    are checked in the caller first, so bad input raises here before anything is submitted;
+    an exception in a task propagates as the executor delivers it (pools and Dask re-raise it,
+    a :class:`SweepError` naming its point by its index in the whole batch; submitit wraps it
+    in its ``FailedJobError``). Each task runs in parallel over its worker's cores.
     """
     import numpy as np
 
+    if executor is not None:
+        from . import _scale
+
+        pairs = [(path, np.asarray(v, dtype=float).ravel()) for path, v in vary.items()]
+        return _scale.solve_batch(_scene(scene), pairs, law, executor, chunk)
+    if chunk is not None:
+        raise ValueError("chunk= splits the points into tasks for an executor: give executor= too")
     pairs = [(path, np.asarray(v, dtype=float).ravel().tolist()) for path, v in vary.items()]
     return _native.solve_batch(_scene(scene), pairs, law)
 
 
 def sweep(scene: SceneLike, vary: Mapping[str, Any], exact: bool = False,
-          law: Optional[str] = None, threads: Optional[int] = None, frame: Optional[bool] = None):
+          law: Optional[str] = None, threads: Optional[int] = None, frame: Optional[bool] = None,
+          executor: Any = None, chunk: Optional[int] = None):
     """Sweep one or two numbers of ``scene`` over a grid, as ``inertance sweep`` (in parallel,
     GIL released, no subprocess).
 
@@ -154,6 +176,14 @@ def sweep(scene: SceneLike, vary: Mapping[str, Any], exact: bool = False,
     (``point``, the varied paths, ``newton_P1`` …, ``newton_dEc``, ``status``; with
     ``exact``, ``…_exact`` columns as ``Fraction``) as numpy arrays — or a pandas DataFrame
     when pandas is installed (``frame=False`` forces the dict).
+
+    ``executor``: run the grid as tasks on a ``concurrent.futures.Executor`` (as for
+    :func:`solve_batch`): chunk i of n solves the points ``inertance sweep --shard i/n``
+    solves (at most ``chunk`` points each; default about four chunks per worker), with their
+    global ``point`` index; the chunks' columns are joined in point order and equal the
+    in-process sweep's bit for bit (``Fraction`` columns included). The sweep is checked in
+    the caller first (scene, paths, both ends of every range), so bad input raises here before
+    anything is submitted. ``threads`` caps each task's threads on its worker.
     """
     items = []
     for path, spec in vary.items():
@@ -162,7 +192,14 @@ def sweep(scene: SceneLike, vary: Mapping[str, Any], exact: bool = False,
         else:
             start, stop, count = spec
         items.append((path, start, stop, int(count)))
-    columns = _native.sweep(_scene(scene), items, exact, law, threads)
+    if executor is not None:
+        from . import _scale
+
+        columns = _scale.sweep(_scene(scene), items, exact, law, threads, executor, chunk)
+    elif chunk is not None:
+        raise ValueError("chunk= splits the points into tasks for an executor: give executor= too")
+    else:
+        columns = _native.sweep(_scene(scene), items, exact, law, threads)
     if frame is False:
         return columns
     try:

@@ -752,8 +752,13 @@ fn derive<'py>(
     ))
 }
 
+/// A sweep's CSV columns by name. `shard = (i, n)` solves shard i of n only, the contiguous
+/// block of global points `inertance sweep --shard i/n` solves (its `point` column global);
+/// an empty shard (n greater than the grid's points) checks the sweep, solving nothing but the
+/// corners the check solves, and gives the header's columns, empty.
 #[pyfunction]
-#[pyo3(signature = (scene, vary, exact = false, law = None, threads = None))]
+#[pyo3(signature = (scene, vary, exact = false, law = None, threads = None, shard = None))]
+#[allow(clippy::too_many_arguments)]
 fn sweep<'py>(
     py: Python<'py>,
     scene: &Scene,
@@ -761,8 +766,10 @@ fn sweep<'py>(
     exact: bool,
     law: Option<&str>,
     threads: Option<usize>,
+    shard: Option<(usize, usize)>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let law = convert::law(law)?;
+    let shard = shard.map(|(index, count)| lib_sweep::Shard { index, count });
     let vary = vary
         .iter()
         .map(|(path, a, b, n)| {
@@ -774,10 +781,13 @@ fn sweep<'py>(
             lib_sweep::Vary::parse(&spec).map_err(|e| errors::sweep_error(py, &e))
         })
         .collect::<PyResult<Vec<_>>>()?;
+    // One directory per call: calls on one scene from several threads (a thread pool's
+    // tasks) must not share it.
+    static CALLS: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
     let dir = std::env::temp_dir().join(format!(
-        "inertance-sweep-{}-{:p}",
+        "inertance-sweep-{}-{}",
         std::process::id(),
-        scene
+        CALLS.fetch_add(1, std::sync::atomic::Ordering::Relaxed)
     ));
     std::fs::create_dir_all(&dir)?;
     let scene_file = match &scene.path {
@@ -793,8 +803,9 @@ fn sweep<'py>(
         vary,
         exact,
         out: dir.join("sweep.csv"),
-        threads,
+        threads: pool_threads(threads),
         law,
+        shard,
         ..Default::default()
     };
     let done =
@@ -804,13 +815,34 @@ fn sweep<'py>(
     convert::csv_columns(py, &csv)
 }
 
+/// The process that first ran a sweep or batch on rayon's global pool (their threads).
+static GLOBAL_POOL_PID: OnceLock<u32> = OnceLock::new();
+
+/// The threads of a parallel call: `threads` when given; in a process forked from one whose
+/// global pool had started (the worker of a `fork` process pool, Linux's default before Python
+/// 3.14), a pool of its own with a thread per core — the global pool's threads did not survive
+/// the fork, and a call waiting on them would wait forever; otherwise `None`, the global pool.
+fn pool_threads(threads: Option<usize>) -> Option<usize> {
+    if threads.is_some_and(|n| n > 0) {
+        return threads;
+    }
+    let pid = std::process::id();
+    if *GLOBAL_POOL_PID.get_or_init(|| pid) == pid {
+        return None;
+    }
+    Some(std::thread::available_parallelism().map_or(1, |n| n.get()))
+}
+
+/// A batch's arrays by model (and `status`). `offset`: the index of the first point in a
+/// larger batch this one is a chunk of, so that an error names the point by its index there.
 #[pyfunction]
-#[pyo3(signature = (scene, vary, law = None))]
+#[pyo3(signature = (scene, vary, law = None, offset = 0))]
 fn solve_batch<'py>(
     py: Python<'py>,
     scene: &Scene,
     vary: Vec<(String, Vec<f64>)>,
     law: Option<&str>,
+    offset: usize,
 ) -> PyResult<Bound<'py, PyDict>> {
     let law = convert::law(law)?;
     let vary: Vec<lib_sweep::Varied> = vary
@@ -818,8 +850,27 @@ fn solve_batch<'py>(
         .map(|(path, values)| lib_sweep::Varied { path, values })
         .collect();
     let (doc, file) = (&scene.doc, &scene.scene.file);
+    let pool = pool_threads(None)
+        .map(|n| rayon::ThreadPoolBuilder::new().num_threads(n).build())
+        .transpose()
+        .map_err(|e| {
+            pyo3::exceptions::PyRuntimeError::new_err(format!(
+                "cannot start the worker threads: {e}"
+            ))
+        })?;
     let b = py
-        .allow_threads(|| lib_sweep::solve_batch(doc, file, &vary, law))
+        .allow_threads(|| match &pool {
+            Some(pool) => pool.install(|| lib_sweep::solve_batch(doc, file, &vary, law)),
+            None => lib_sweep::solve_batch(doc, file, &vary, law),
+        })
+        .map_err(|e| match e {
+            lib_sweep::SweepError::Point { point, at, message } => lib_sweep::SweepError::Point {
+                point: point + offset,
+                at,
+                message,
+            },
+            e => e,
+        })
         .map_err(|e| errors::sweep_error(py, &e))?;
     let out = PyDict::new(py);
     let w = b.outputs.len();
