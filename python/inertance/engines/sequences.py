@@ -15,7 +15,9 @@ alone acts again). The grade after impact n is the relative error of the rebound
 against inertance's history. Housner's block runs in MuJoCo (defaults and the e = 0 oscillator), PyBullet and Rapier
 (:func:`mujoco_block`, :func:`pybullet_block`, :func:`rapier_block`); the falling rod in MuJoCo and
 PyBullet (:func:`mujoco_rod`, :func:`pybullet_rod`: a capsule of radius 1 mm; an impact is an end's
-contact episode, :func:`end_impacts`).
+contact episode, :func:`end_impacts`); and Drake (tuned point contact and hydroelastic) over
+the ball and the block, tuned over the rod (:func:`drake_ball`, :func:`drake_block`,
+:func:`drake_rod`).
 
 ``python -m inertance.engines.sequences --out DIR`` writes ``sequences.md`` and ``sequences.svg``.
 """
@@ -519,8 +521,125 @@ def pybullet_rod(timestep: float = 1 / 240, iterations: int = 50):
     return "pybullet", version("pybullet"), timestep, end_impacts(ts, zs, vs)
 
 
+# ---- Drake over the three sequences ---------------------------------------------------------------
+
+def _drake_history(geometry, mass, inertia, position, rotation, e, mu, speed, g, duration, variant, observe):
+    """One free body under gravity on a floor in Drake (``drake-tuned``'s point contact, or
+    ``drake-hydroelastic``: the body compliant, the floor rigid), 0.1 ms steps, the Hunt–Crossley
+    dissipation d = y(e)/v⁰ of the adapter at the first approach speed ``speed`` (a sequence meets
+    slower landings later, which the model sees with a larger e: its own speed dependence). Calls
+    ``observe(t, x, R, v, ω)`` after every step; returns Drake's version and the step."""
+    import numpy as np
+    from importlib.metadata import version
+    from pydrake.geometry import (AddCompliantHydroelasticProperties, AddContactMaterial, AddRigidHydroelasticProperties,
+                                  HalfSpace, ProximityProperties)
+    from pydrake.math import RigidTransform, RotationMatrix
+    from pydrake.multibody.plant import AddMultibodyPlantSceneGraph, ContactModel, CoulombFriction
+    from pydrake.multibody.tree import RotationalInertia, SpatialInertia
+    from pydrake.systems.analysis import Simulator
+    from pydrake.systems.framework import DiagramBuilder
+    from .drake_adapter import HALF_PERIOD, HYDRO_MODULUS, HYDRO_RESOLUTION, TUNED_STEP, hunt_crossley_dissipation
+
+    hydro = variant == "hydroelastic"
+    d = hunt_crossley_dissipation(e, speed)
+    k = mass * (math.pi / HALF_PERIOD) ** 2
+    builder = DiagramBuilder()
+    plant, _ = AddMultibodyPlantSceneGraph(builder, time_step=TUNED_STEP)
+    plant.set_contact_model(ContactModel.kHydroelasticWithFallback if hydro else ContactModel.kPoint)
+    plant.mutable_gravity_field().set_gravity_vector([0.0, 0.0, -g])
+
+    def props(obstacle):
+        p_ = ProximityProperties()
+        AddContactMaterial(p_, dissipation=d, point_stiffness=None if hydro else 2 * k,
+                           friction=CoulombFriction(mu, mu))
+        if hydro:
+            if obstacle:
+                AddRigidHydroelasticProperties(HYDRO_RESOLUTION, p_)
+            else:
+                AddCompliantHydroelasticProperties(HYDRO_RESOLUTION, HYDRO_MODULUS, p_)
+        return p_
+
+    plant.RegisterCollisionGeometry(plant.world_body(), HalfSpace.MakePose(np.array([0.0, 0, 1]), np.zeros(3)),
+                                    HalfSpace(), "floor", props(True))
+    body = plant.AddRigidBody("b", SpatialInertia.MakeFromCentralInertia(mass, np.zeros(3),
+                                                                         RotationalInertia(*inertia)))
+    plant.RegisterCollisionGeometry(body, RigidTransform(), geometry, "g", props(False))
+    plant.Finalize()
+    diagram = builder.Build()
+    context = diagram.CreateDefaultContext()
+    pc = plant.GetMyMutableContextFromRoot(context)
+    plant.SetFreeBodyPose(pc, body, RigidTransform(RotationMatrix(np.asarray(rotation, float)), np.asarray(position, float)))
+    sim = Simulator(diagram, context)
+    sim.Initialize()
+    t, points = 0.0, 0
+    for n in range(int(round(duration / TUNED_STEP))):
+        t = (n + 1) * TUNED_STEP
+        sim.AdvanceTo(t)
+        pose = plant.EvalBodyPoseInWorld(pc, body)
+        vel = plant.EvalBodySpatialVelocityInWorld(pc, body)
+        observe(t, pose.translation(), pose.rotation().matrix(), vel.translational(), vel.rotational())
+        if hydro:
+            points = max(points, plant.get_contact_results_output_port().Eval(pc).num_point_pair_contacts())
+    if points:
+        raise RuntimeError(f"Drake fell back to point contact ({points} point pairs): not hydroelastic")
+    return version("drake"), TUNED_STEP
+
+
+def drake_ball(variant: str = "tuned"):
+    """The bouncing ball in Drake (see :func:`_drake_history`)."""
+    from pydrake.geometry import Sphere
+    b = BALL
+    ts, vz = [0.0], [0.0]
+    ver, dt = _drake_history(Sphere(b["radius"]), b["mass"], (0.004, 0.004, 0.004), (0, 0, b["height"]),
+                             ((1, 0, 0), (0, 1, 0), (0, 0, 1)), b["k"], 0.0, math.sqrt(2 * b["g"] * 5.0), b["g"],
+                             b["duration"], variant, lambda t, x, r, v, w: (ts.append(t), vz.append(float(v[2]))))
+    return f"drake-{variant}", ver, dt, impacts_from_velocity(ts, vz)
+
+
+def drake_block(variant: str = "tuned", duration: float = 1.5):
+    """The rocking block in Drake (k = 0 mapped as the adapter's e = 0.01; the landing edge's
+    speed 2b ω⁻ = 1.65 m/s as v⁰)."""
+    from pydrake.geometry import Box
+    th0, m = 0.2, 1500.0
+    inertia = (m / 12 * (0.5 ** 2 + 2 ** 2), m / 12 * (1.5 ** 2 + 2 ** 2), m / 12 * (1.5 ** 2 + 0.5 ** 2))
+    pos = (-0.75 * math.cos(th0) + math.sin(th0), 0.0, 0.75 * math.sin(th0) + math.cos(th0))
+    c, s_ = math.cos(th0), math.sin(th0)
+    ts, th, w = [], [], []
+
+    def observe(t, x, r, v, om):
+        ts.append(t)
+        th.append(math.atan2(r[0, 2], r[2, 2]))
+        w.append(float(om[1]))
+
+    ver, dt = _drake_history(Box(1.5, 0.5, 2.0), m, inertia, pos, ((c, 0, s_), (0, 1, 0), (-s_, 0, c)), 0.0, 0.6,
+                             1.65, 9.81, duration, variant, observe)
+    return f"drake-{variant}", ver, dt, landings(ts, th, w)
+
+
+def drake_rod(variant: str = "tuned"):
+    """The falling rod in Drake: a capsule (radius ROD_RADIUS) with the rod's inertia, v⁰ the first
+    landing's 3.13 m/s."""
+    from pydrake.geometry import Capsule
+    r = ROD
+    centre, rot = rod_start()
+    i_t = r["mass"] * r["length"] ** 2 / 12
+    ts, zs, vs = [], ([], []), ([], [])
+
+    def observe(t, x, rm, v, om):
+        z, vz = _ends(x, rm, v, om)
+        ts.append(t)
+        for q in range(2):
+            zs[q].append(z[q])
+            vs[q].append(vz[q])
+
+    ver, dt = _drake_history(Capsule(ROD_RADIUS, r["length"]), r["mass"], (i_t, i_t, 1e-7), centre, rot, r["k"],
+                             r["mu"], 3.13, r["g"], r["duration"], variant, observe)
+    return f"drake-{variant}", ver, dt, end_impacts(ts, zs, vs)
+
+
 ENGINES = {"mujoco": lambda: mujoco_ball(False), "mujoco-calibrated": lambda: mujoco_ball(True),
-           "pybullet": pybullet_ball, "rapier": rapier_ball}
+           "pybullet": pybullet_ball, "rapier": rapier_ball, "drake-tuned": lambda: drake_ball("tuned"),
+           "drake-hydroelastic": lambda: drake_ball("hydroelastic")}
 
 
 def grade(ref: list[dict], got: list[dict], n: int) -> dict | None:
@@ -550,7 +669,8 @@ def run(out: Path) -> dict:
                      + " | ".join(cell(n, "time") for n in GRADED) + " |")
     bref = block_reference()
     lines += ["", "Housner's block (ω after each landing; exact ratio 23/50):", "", lines[0], lines[1]]
-    for fn in (lambda: mujoco_block(False), lambda: mujoco_block(True), pybullet_block, rapier_block):
+    for fn in (lambda: mujoco_block(False), lambda: mujoco_block(True), pybullet_block, rapier_block,
+               lambda: drake_block("tuned"), lambda: drake_block("hydroelastic")):
         try:
             eng, ver, dt, got = fn()
         except ImportError:
@@ -563,7 +683,9 @@ def run(out: Path) -> dict:
     lines += ["", "The falling rod (the struck end's normal velocity after each impact; exact: k = 1/2 of it "
               "before, with friction μ = 0.3):", "", lines[0].rstrip(" |") + " | ends as exact (of the first 5) |",
               lines[1] + "---|"]
-    for fn in (lambda: mujoco_rod(False), lambda: mujoco_rod(True), pybullet_rod):
+    # Drake's hydroelastic rod is not run: a 1 mm capsule's pressure field sinks deeper than its
+    # radius at these speeds (no episode within 2 mm of the floor is an end striking)
+    for fn in (lambda: mujoco_rod(False), lambda: mujoco_rod(True), pybullet_rod, lambda: drake_rod("tuned")):
         try:
             eng, ver, dt, got = fn()
         except ImportError:
@@ -582,7 +704,7 @@ def run(out: Path) -> dict:
 def _svg(series: dict, path: Path) -> None:
     """The rebound ratio u⁺/u⁻ per impact, exact and each engine (a small self-contained SVG)."""
     W, H, L, B = 560, 320, 60, 40
-    colours = ["#000", "#1f77b4", "#ff7f0e", "#2ca02c", "#d62728"]
+    colours = ["#000", "#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd", "#8c564b"]
     nmax = max(len(v) for v in series.values())
     x = lambda i: L + (i - 1) * (W - L - 20) / max(1, nmax - 1)
     y = lambda r: H - B - (r - 0.0) / 1.0 * (H - B - 20)
