@@ -427,24 +427,14 @@ fn chosen_law(
     scene: inertance::simulate::Law,
     l: LawArg,
 ) -> Result<inertance::simulate::Law, ExitCode> {
-    use inertance::impact::friction::Restitution;
-    use inertance::simulate::Law as SimLaw;
-    let r = match scene {
-        SimLaw::Simultaneous(r) | SimLaw::Unilateral(r) => r,
-        SimLaw::Lzb => Restitution::Newton,
+    let name = match l {
+        LawArg::Simultaneous => "simultaneous",
+        LawArg::Unilateral => "unilateral",
+        LawArg::Lzb => "lzb",
     };
-    Ok(match l {
-        LawArg::Simultaneous => SimLaw::Simultaneous(r),
-        LawArg::Unilateral if r == Restitution::Energetic => {
-            return Err(fail_input(format!(
-                "{}: --law unilateral is integrated with Newton's and Poisson's \
-                 restitution, and [simulate] restitution is \"energetic\"",
-                path.display()
-            )));
-        }
-        LawArg::Unilateral => SimLaw::Unilateral(r),
-        LawArg::Lzb => SimLaw::Lzb,
-    })
+    scene
+        .chosen(name)
+        .map_err(|e| fail_input(format!("{}: --law {name}: {e}", path.display())))
 }
 
 /// `simulate` on a system of spheres: the log, or the trajectory as CSV; statuses as for one

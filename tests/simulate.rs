@@ -577,3 +577,88 @@ fn every_example_runs_to_its_end_under_every_law() {
         "a split of sticking impulses is a note, not a verdict"
     );
 }
+
+/// A ball on a rough floor, r = 0.1 m, g = 10: `velocity` and `angular_velocity` as given.
+fn ball_on_floor(v: [f64; 3], w: [f64; 3], mu: f64) -> String {
+    format!(
+        r#"
+name = "a ball on a rough floor"
+[body]
+shape = {{ sphere = 0.1 }}
+mass = 1
+position = [0, 0, 0.1]
+velocity = [{}, {}, {}]
+angular_velocity = [{}, {}, {}]
+[[obstacle]]
+name = "floor"
+normal = [0, 0, 1]
+point = [0, 0, 0]
+[simulate]
+gravity = [0, 0, -10]
+duration = 1
+output_step = 0.05
+contact = {{ k = 0.5, mu = {mu} }}
+"#,
+        v[0], v[1], v[2], w[0], w[1], w[2]
+    )
+}
+
+#[test]
+fn a_rolling_ball_rolls_on_whatever_its_spin() {
+    // Rolling without slip (v = ω r): the contact point is at rest and stays at −r N from C, so
+    // nothing changes — v, ω and the energy are constant, no impact, no lift-off — whether
+    // r ω² is below g (ω = 5: 2.5 m/s²) or above it (ω = 20: 40 m/s², where the material point's
+    // centripetal term used to lift the ball off over and over), and with a spin about the
+    // normal as well (a uniform sphere: no gyroscopic coupling). Bound: the integrator's
+    // tolerance 1e-10 on the motion's scale, over 1 s: 1e-8.
+    for (v, w) in [
+        ([0.5, 0.0, 0.0], [0.0, 5.0, 0.0]),
+        ([2.0, 0.0, 0.0], [0.0, 20.0, 0.0]),
+        ([2.0, 0.0, 0.0], [0.0, 20.0, 7.0]),
+    ] {
+        let sim = run(&parse(&ball_on_floor(v, w, 0.5)));
+        assert_eq!(sim.end, End::Duration, "{v:?} {w:?}");
+        assert!(
+            sim.impacts.is_empty(),
+            "{v:?} {w:?}: {} impacts",
+            sim.impacts.len()
+        );
+        assert!(!sim.events.iter().any(|e| e.what.contains("lifts off")));
+        // the contact closes at t = 0, after the first sample
+        for s in sim.samples.iter().skip(1) {
+            assert_eq!(s.closed, 1);
+            assert!((s.state.v.x - v[0]).abs() <= 1e-8 && s.state.v.y.abs() <= 1e-8);
+            assert!((s.state.w.y - w[1]).abs() <= 1e-8 && (s.state.w.z - w[2]).abs() <= 1e-8);
+            assert!((s.state.x.x - v[0] * s.t).abs() <= 1e-8 && (s.state.x.z - 0.1).abs() <= 1e-9);
+        }
+    }
+}
+
+#[test]
+fn a_sliding_ball_starts_to_roll_when_the_closed_form_says() {
+    // Thrown sliding (v₀ = 2 m/s, ω₀ = 0) on μ = 0.5: friction μ m g decelerates C and spins
+    // the ball up, v = v₀ − μ g t, ω = (5 μ g / (2 r)) t, until v = ω r at t* = 2 v₀/(7 μ g) =
+    // 4/35 s; then it rolls at 5 v₀/7 = 10/7 m/s. The samples at 0.05 and 0.1 s (sliding) and
+    // after t* (rolling), to 1e-8.
+    let sim = run(&parse(&ball_on_floor([2.0, 0.0, 0.0], [0.0; 3], 0.5)));
+    assert!(sim.impacts.is_empty());
+    for s in &sim.samples {
+        let (v, w) = if s.t < 4.0 / 35.0 {
+            (2.0 - 5.0 * s.t, 125.0 * s.t)
+        } else {
+            (10.0 / 7.0, 100.0 / 7.0)
+        };
+        assert!(
+            (s.state.v.x - v).abs() <= 1e-8,
+            "t = {}: v = {} ≠ {v}",
+            s.t,
+            s.state.v.x
+        );
+        assert!(
+            (s.state.w.y - w).abs() <= 1e-7,
+            "t = {}: ω = {} ≠ {w}",
+            s.t,
+            s.state.w.y
+        );
+    }
+}

@@ -10,8 +10,12 @@
 //!
 //! ```text
 //! A_(i,d),(j,e) = d·e / m + (r_i × d)ᵀ Ĩ (r_j × e)
-//! b_(i,d)       = d · (g + α₀ × r_i + ω × (ω × r_i)),     α₀ = Ĩ (−ω × R J Rᵀ ω)
+//! b_(i,d)       = d · (g + α₀ × r_i + ω × ṙ_i),     α₀ = Ĩ (−ω × R J Rᵀ ω)
 //! ```
+//!
+//! with ṙ_i the velocity of the contact point relative to C: ω × r_i for a body point (a
+//! corner, a rod's end), 0 for a sphere's nearest point, which stays at −r N from C however the
+//! sphere rolls (so a rolling ball's contact neither lifts off nor slips from its spin).
 //!
 //! so the accelerations along the rows are A λ + b. A frictionless contact has one unknown
 //! along N and one row (its normal acceleration). A sticking contact (μ > 0, no slip) has three
@@ -141,14 +145,17 @@ pub fn accelerations(
     if n > 12 {
         return Err(ContactError::TooMany { count: n });
     }
-    // Per contact: its arm, its rows (directions) and its unknowns (force directions).
+    // Per contact: its arm, its rows (directions) and its unknowns (force directions), and the
+    // acceleration of its point at zero v̇, ω̇ beyond C's (ω × ṙ: [`super::world::Gap::drift`]).
     let mut arms: Vec<V3> = Vec::with_capacity(n);
+    let mut turning: Vec<V3> = Vec::with_capacity(n);
     let mut rows: Vec<Vec<V3>> = Vec::with_capacity(n);
     let mut cols: Vec<Vec<V3>> = Vec::with_capacity(n);
     for c in closed {
         let plane = &planes[c.plane];
         let g = gap(&body.features[c.feature], plane, s);
         let arm = g.point - s.x;
+        turning.push(s.w.cross(&g.drift));
         let nn = plane.normal;
         match c.mode {
             Mode::Frictionless => {
@@ -199,10 +206,7 @@ pub fn accelerations(
     let entry = |p: usize, q: usize| -> f64 { w_full[(p, q)] };
     let b: Vec<f64> = row_of
         .iter()
-        .map(|&(i, d)| {
-            let ri = arms[i];
-            d.dot(&(gravity + alpha0.cross(&ri) + s.w.cross(&s.w.cross(&ri))))
-        })
+        .map(|&(i, d)| d.dot(&(gravity + alpha0.cross(&arms[i]) + turning[i])))
         .collect();
     let try_set = |set: &[bool]| -> Option<Vec<f64>> {
         let rs: Vec<usize> = (0..row_of.len()).filter(|&k| set[row_of[k].0]).collect();

@@ -51,6 +51,30 @@ impl Law {
             Law::Lzb => "lzb".to_string(),
         }
     }
+
+    /// The scene's law replaced by the one named `name` (`"simultaneous"`, `"unilateral"` or
+    /// `"lzb"`, as `simulate --law`), keeping the scene's restitution law; an error saying why
+    /// when the combination is not integrated (the unilateral law with energetic restitution)
+    /// or the name is unknown.
+    pub fn chosen(self, name: &str) -> Result<Law, String> {
+        let r = match self {
+            Law::Simultaneous(r) | Law::Unilateral(r) => r,
+            Law::Lzb => Restitution::Newton,
+        };
+        match name {
+            "simultaneous" => Ok(Law::Simultaneous(r)),
+            "unilateral" if r == Restitution::Energetic => Err(
+                "the unilateral law is integrated with Newton's and Poisson's restitution, and \
+                 [simulate] restitution is \"energetic\""
+                    .to_string(),
+            ),
+            "unilateral" => Ok(Law::Unilateral(r)),
+            "lzb" => Ok(Law::Lzb),
+            other => Err(format!(
+                "unknown law `{other}`: \"simultaneous\", \"unilateral\" or \"lzb\""
+            )),
+        }
+    }
 }
 
 /// A contact of an impact: a feature's point on a plane.

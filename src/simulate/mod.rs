@@ -10,7 +10,8 @@
 //!
 //! [`body`]: the body, its features and state · [`world`]: the obstacle planes and the gaps ·
 //! [`contact`]: persistent contact, the acceleration-level complementarity problem ·
-//! [`impact`]: one impact under the chosen law · [`ode`]: the Runge–Kutta step ·
+//! [`impact`]: one impact under the chosen law · [`ode`]: the Runge–Kutta step and its
+//! continuous extension · [`stepper`]: the adaptive step both loops take ·
 //! [`run`]: the event loop, the log and the trajectory · [`exact`]: exact runs of a
 //! frictionless sphere among planes (no integration: the event times are roots of quadratics) ·
 //! [`system`]: several spheres, with contacts between them as well as with the planes (its own

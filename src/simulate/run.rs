@@ -656,11 +656,22 @@ impl<'a> Run<'a> {
     }
 
     /// A contact's mode when it closes: sticking where μ > 0.
-    fn mode_of(&self, _f: usize, p: usize) -> Mode {
-        if self.setup.planes[p].law.mu > 0.0 {
-            Mode::Stick
+    /// The mode a contact (f, p) closes in at the current state: frictionless where μ = 0;
+    /// else sliding along its slip when the slip is faster than `rest_speed`, sticking when not
+    /// (a contact that closed sticking with a slip would have it cancelled by the velocity
+    /// projection of the closed contacts: an impulse no cone bounds).
+    fn mode_of(&self, f: usize, p: usize) -> Mode {
+        let plane = &self.setup.planes[p];
+        if plane.law.mu <= 0.0 {
+            return Mode::Frictionless;
+        }
+        let g = gap(&self.setup.body.features[f], plane, &self.s);
+        let u = self.s.v + self.s.w.cross(&(g.point - self.s.x));
+        let slip = u - plane.normal * plane.normal.dot(&u);
+        if slip.norm() > self.setup.options.rest_speed {
+            Mode::Slide(slip.normalize())
         } else {
-            Mode::Frictionless
+            Mode::Stick
         }
     }
 

@@ -48,6 +48,12 @@ pub struct Gap {
     pub point: V3,
     /// Its distance from C (m): what its acceleration grows with when the body turns.
     pub arm: f64,
+    /// ṙ: the velocity of the contact point relative to C (world) — ω × r for a body point,
+    /// which moves with the body; 0 for a sphere's nearest point, which stays at −r N from C
+    /// however the sphere turns. The contact point's acceleration at zero v̇ and ω̇ is ω × ṙ
+    /// (differentiate u = v + ω × r with r = p − C: u̇ = v̇ + ω̇ × r + ω × ṙ), the bias of its
+    /// rows in persistent contact ([`super::contact`]).
+    pub drift: V3,
 }
 
 /// The gap of `feature` against `plane` when the body is at `s`.
@@ -62,11 +68,16 @@ pub fn gap(feature: &Feature, plane: &Plane, s: &State) -> Gap {
     };
     let r = point - s.x;
     let u = s.v + s.w.cross(&r);
+    let drift = match feature {
+        Feature::Point { .. } => s.w.cross(&r),
+        Feature::Sphere { .. } => V3::zeros(),
+    };
     Gap {
         gap: n.dot(&(point - plane.point)),
         rate: n.dot(&u),
         point,
         arm,
+        drift,
     }
 }
 
