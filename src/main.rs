@@ -453,13 +453,6 @@ fn run_simulate_spheres(
             Err(code) => return code,
         };
     }
-    if json {
-        return fail_input(format!(
-            "{}: --json is not written for systems of spheres yet: use the log or \
-             --trajectory FILE.csv",
-            path.display()
-        ));
-    }
     if let Some(f) = trajectory
         && f.extension().and_then(|e| e.to_str()) != Some("csv")
     {
@@ -474,7 +467,18 @@ fn run_simulate_spheres(
     {
         return code;
     }
-    print_out(&simulation_system::to_text(&scene.name, &scene.setup, &sim));
+    if json {
+        let mut t = serde_json::to_string_pretty(&simulation_system::to_json(
+            &scene.name,
+            &scene.setup,
+            &sim,
+        ))
+        .unwrap_or_default();
+        t.push('\n');
+        print_out(&t);
+    } else {
+        print_out(&simulation_system::to_text(&scene.name, &scene.setup, &sim));
+    }
     match &sim.stopped {
         Some(e) => {
             eprintln!("error: {}: {e}", path.display());

@@ -318,7 +318,8 @@ fn bad_sphere_systems_name_the_key_and_the_value() {
 
 #[test]
 fn options_a_system_does_not_draw_are_refused_not_ignored() {
-    // --animation and --exact are one-body features: on a system they are refused (status 2,
+    // --animation and --exact are one-body features (--json and --trajectory are written for
+    // systems too): on a system they are refused (status 2,
     // naming the option), never silently ignored
     for args in [
         vec!["--animation", "target/never-written.svg"],
@@ -338,4 +339,43 @@ fn options_a_system_does_not_draw_are_refused_not_ignored() {
         );
     }
     assert!(!std::path::Path::new("target/never-written.svg").exists());
+}
+
+#[test]
+fn the_json_log_is_the_runs() {
+    // `--json` on a system: one body's schema with the spheres' names; every impact's time,
+    // contacts and impulses are the library's numbers (the same doubles: serde_json prints the
+    // shortest representation that reads back to the same f64), and the final state per sphere.
+    let s = setup("examples/simulate/cradle-3.toml");
+    let sim = run(&s);
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_inertance"))
+        .args(["simulate", "examples/simulate/cradle-3.toml", "--json"])
+        .output()
+        .expect("runs");
+    assert_eq!(out.status.code(), Some(0));
+    let j: serde_json::Value = serde_json::from_slice(&out.stdout).expect("JSON");
+    assert_eq!(
+        j["bodies"],
+        serde_json::json!(["striker", "ball 2", "ball 3"])
+    );
+    assert_eq!(j["end"], "duration");
+    let impacts = j["impacts"].as_array().expect("impacts");
+    assert_eq!(impacts.len(), sim.impacts.len());
+    for (a, b) in impacts.iter().zip(&sim.impacts) {
+        assert_eq!(a["t"].as_f64(), Some(b.t));
+        for (c, d) in a["contacts"]
+            .as_array()
+            .expect("contacts")
+            .iter()
+            .zip(&b.contacts)
+        {
+            assert_eq!(c["feature"], d.feature.as_str());
+            assert_eq!(c["obstacle"], d.plane.as_str());
+            assert_eq!(c["impulse"].as_f64(), Some(d.impulse));
+            assert_eq!(c["after"].as_f64(), Some(d.after));
+        }
+    }
+    for (k, v) in sim.state.v.iter().enumerate() {
+        assert_eq!(j["state"]["v"][k][0].as_f64(), Some(v.x));
+    }
 }

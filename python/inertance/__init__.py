@@ -45,7 +45,7 @@ __all__ = [
     "__version__", "Scene", "Solution", "ModelSolution", "SystemSolution", "SystemModelSolution",
     "LzbSolution",
     "Derivation", "CheckResult",
-    "solve", "solve_batch", "sweep", "analyze", "derive", "check",
+    "solve", "solve_batch", "sweep", "analyze", "derive", "check", "simulate", "Simulation",
     "InertanceError", "SceneError", "SolveError", "SweepError", "FormatError",
 ]
 
@@ -209,6 +209,72 @@ def sweep(scene: SceneLike, vary: Mapping[str, Any], exact: bool = False,
             raise
         return columns
     return pandas.DataFrame(columns)
+
+
+@dataclass
+class Simulation:
+    """A sequence of impacts (``inertance simulate``; guide/simulate.md).
+
+    ``log``: the report of ``inertance simulate --json`` as Python objects (``impacts``, each
+    with ``t``, ``contacts`` — ``feature``, ``obstacle``, ``before``, ``after``, ``impulse`` —
+    ``kinetic_before``/``kinetic_after``, ``verdicts``; ``events``; ``end``; ``error``; ``zeno``;
+    ``steps`` …). ``samples``: numpy arrays, one row per sample (every ``output_step``): one body
+    ``t`` (N,), ``x``, ``v``, ``omega`` (N, 3), ``q`` (N, 4: w, i, j, k), ``kinetic``,
+    ``potential``, ``closed`` (N,); a system of spheres ``t``, ``x`` and ``v`` (N, B, 3) in the
+    order of ``bodies``, ``kinetic``, ``potential``, ``closed``.
+    """
+
+    log: dict
+    samples: dict
+    bodies: Optional[list] = None
+
+    @property
+    def impacts(self) -> list:
+        return self.log["impacts"]
+
+    @property
+    def events(self) -> list:
+        return self.log["events"]
+
+    @property
+    def end(self) -> str:
+        """``"duration"``, ``"impacts"``, ``"rest"`` or ``"stopped"`` (then ``error`` says why)."""
+        return self.log["end"]
+
+    @property
+    def error(self) -> Optional[str]:
+        return self.log.get("error")
+
+    @property
+    def zeno(self) -> Optional[dict]:
+        return self.log.get("zeno")
+
+    def to_json(self) -> str:
+        """The log as ``inertance simulate --json`` prints it."""
+        import json
+
+        return json.dumps(self.log)
+
+
+def simulate(scene: Union[str, "os.PathLike[str]"], law: Optional[str] = None) -> Simulation:
+    """Simulate ``scene`` (a path, or TOML text with a ``[simulate]`` table) through every
+    impact, as ``inertance simulate``: one body, or a system of spheres (``[[body]]`` tables);
+    ``law`` (``"simultaneous"``, ``"unilateral"`` or ``"lzb"``) replaces the scene's, keeping its
+    restitution. A run that stops early (an impact without an answer, persistent contact
+    undecided, a state that overflows) is returned with ``end == "stopped"`` and ``error`` —
+    the history up to there kept, as the command prints it with status 3. Raises
+    :class:`SceneError` for bad input (file, key, value) and ``ValueError`` for an unknown law.
+    """
+    if isinstance(scene, os.PathLike) or (isinstance(scene, str) and "\n" not in scene and "=" not in scene):
+        text, file = None, os.fspath(scene)
+    elif isinstance(scene, str):
+        text, file = scene, "<string>"
+    else:
+        raise TypeError(f"a simulation scene is TOML text or a path, not {type(scene).__name__}")
+    import json
+
+    out = _native.simulate(text, file, law)
+    return Simulation(log=json.loads(out["log"]), samples=out["samples"], bodies=out.get("bodies"))
 
 
 def analyze(scene: SceneLike, model: Union[str, Sequence[str], None] = None,

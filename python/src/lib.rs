@@ -8,6 +8,7 @@
 mod convert;
 mod errors;
 mod lzb;
+mod simulate;
 mod system;
 
 use std::path::PathBuf;
@@ -931,6 +932,7 @@ fn _inertance(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(derive, m)?)?;
     m.add_function(wrap_pyfunction!(sweep, m)?)?;
     m.add_function(wrap_pyfunction!(solve_batch, m)?)?;
+    m.add_function(wrap_pyfunction!(simulate::simulate, m)?)?;
     errors::register(m)?;
     Ok(())
 }

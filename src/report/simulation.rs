@@ -211,34 +211,63 @@ pub fn to_json(name: &str, setup: &Setup, sim: &Simulation) -> Json {
         "name": name,
         "law": setup.law.name(),
         "tolerance": setup.options.tolerance,
-        "end": match sim.end { End::Duration => "duration", End::Impacts => "impacts", End::Rest => "rest", End::Stopped => "stopped" },
+        "end": end_name(sim.end),
         "error": sim.stopped.as_ref().map(ToString::to_string),
         "t_end": json_f64(sim.t_end),
         "zeno": sim.zeno.as_ref().map(|z| json!({"t_inf": json_f64(z.t_inf), "after": z.after, "ratio": json_f64(z.ratio)})),
-        "impacts": sim.impacts.iter().map(|r| json!({
-            "index": r.index,
-            "t": json_f64(r.t),
-            "spread": json_f64(r.spread),
-            "kinetic_before": json_f64(r.kinetic_before),
-            "kinetic_after": json_f64(r.kinetic_after),
-            "verdicts": r.verdicts,
-            "note": r.note,
-            "contacts": r.contacts.iter().map(|c| json!({
-                "feature": c.feature,
-                "obstacle": c.plane,
-                "gap": json_f64(c.gap),
-                "before": json_f64(c.before),
-                "after": json_f64(c.after),
-                "impulse": json_f64(c.impulse),
-                "closed": c.persisting,
-            })).collect::<Vec<_>>(),
-        })).collect::<Vec<_>>(),
-        "events": sim.events.iter().map(|e| json!({"t": json_f64(e.t), "what": e.what})).collect::<Vec<_>>(),
+        "impacts": impacts_json(&sim.impacts),
+        "events": events_json(&sim.events),
         "state": {"x": v3(&sim.state.x), "v": v3(&sim.state.v), "omega": v3(&sim.state.w)},
         "steps": sim.steps.0,
         "rejected": sim.steps.1,
         "drift": json_f64(sim.drift),
     })
+}
+
+/// How a run ended, as the JSON names it.
+pub fn end_name(end: End) -> &'static str {
+    match end {
+        End::Duration => "duration",
+        End::Impacts => "impacts",
+        End::Rest => "rest",
+        End::Stopped => "stopped",
+    }
+}
+
+/// The impact log for programs (one body's or a system's: a contact between two spheres names
+/// the first as its `feature` and the second as its `obstacle`).
+pub fn impacts_json(impacts: &[ImpactRecord]) -> Json {
+    impacts
+        .iter()
+        .map(|r| {
+            json!({
+                "index": r.index,
+                "t": json_f64(r.t),
+                "spread": json_f64(r.spread),
+                "kinetic_before": json_f64(r.kinetic_before),
+                "kinetic_after": json_f64(r.kinetic_after),
+                "verdicts": r.verdicts,
+                "note": r.note,
+                "contacts": r.contacts.iter().map(|c| json!({
+                    "feature": c.feature,
+                    "obstacle": c.plane,
+                    "gap": json_f64(c.gap),
+                    "before": json_f64(c.before),
+                    "after": json_f64(c.after),
+                    "impulse": json_f64(c.impulse),
+                    "closed": c.persisting,
+                })).collect::<Vec<_>>(),
+            })
+        })
+        .collect()
+}
+
+/// The other events for programs.
+pub fn events_json(events: &[Event]) -> Json {
+    events
+        .iter()
+        .map(|e| json!({"t": json_f64(e.t), "what": e.what}))
+        .collect()
 }
 
 /// The trajectory: per sample t, C, the angle, v, ω, the energies and the closed contacts.
