@@ -94,8 +94,8 @@ impl View {
     }
 }
 
-/// The world points drawn for the body at `s`: a box's projected hull, a rod's two ends, a
-/// sphere's centre and a body-fixed point of its rim.
+/// The world points drawn for the body at `s`: a box's or a cylinder's projected hull, a rod's
+/// two ends, a sphere's centre and a body-fixed point of its rim.
 fn outline(setup: &Setup, view: &View, s: &State) -> Vec<(f64, f64)> {
     let r = s.rotation();
     match &setup.body.shape {
@@ -114,6 +114,21 @@ fn outline(setup: &Setup, view: &View, s: &State) -> Vec<(f64, f64)> {
         Shape::Rod { half_length } => {
             let a = r * V3::new(0.0, 0.0, *half_length);
             vec![view.project(&(s.x - a)), view.project(&(s.x + a))]
+        }
+        Shape::Cylinder {
+            radius,
+            half_height,
+        } => {
+            // the hull of sixteen points of each rim
+            let mut pts = Vec::with_capacity(32);
+            for z in [-half_height, *half_height] {
+                for k in 0..16 {
+                    let phi = std::f64::consts::PI * k as f64 / 8.0;
+                    let c = V3::new(radius * phi.cos(), radius * phi.sin(), z);
+                    pts.push(view.project(&(s.x + r * c)));
+                }
+            }
+            hull(pts)
         }
         Shape::Sphere { radius } => {
             // a body-fixed point on the great circle of the drawing plane at the start
@@ -183,6 +198,10 @@ pub fn to_svg(name: &str, setup: &Setup, sim: &Simulation) -> String {
     let reach = match &setup.body.shape {
         Shape::Box { half } => half.norm(),
         Shape::Rod { half_length } => *half_length,
+        Shape::Cylinder {
+            radius,
+            half_height,
+        } => radius.hypot(*half_height),
         Shape::Sphere { radius } => *radius,
     };
     let (mut h0, mut h1, mut v0, mut v1) = (f64::MAX, f64::MIN, f64::MAX, f64::MIN);
@@ -311,7 +330,7 @@ pub fn to_svg(name: &str, setup: &Setup, sim: &Simulation) -> String {
         );
         let px: Vec<(f64, f64)> = o.iter().map(|&p| to_px(p)).collect();
         match &setup.body.shape {
-            Shape::Box { .. } => {
+            Shape::Box { .. } | Shape::Cylinder { .. } => {
                 let pts: Vec<String> = px
                     .iter()
                     .map(|p| format!("{},{}", f(p.0), f(p.1)))

@@ -30,6 +30,14 @@ pub enum Shape {
         /// L/2.
         half_length: f64,
     },
+    /// A solid cylinder of this radius and half height about body z: its two rims, and on
+    /// each rim four body points 90° apart (which stand for the face when it lies flat).
+    Cylinder {
+        /// r.
+        radius: f64,
+        /// h/2.
+        half_height: f64,
+    },
 }
 
 /// What can strike an obstacle plane.
@@ -47,13 +55,25 @@ pub enum Feature {
         /// r.
         radius: f64,
     },
+    /// A circle of the body (a cylinder's rim): its point nearest a plane
+    /// ([`super::world::gap`]).
+    Rim {
+        /// Its centre c (body axes, from C).
+        centre: V3,
+        /// Its axis a (body axes, unit).
+        axis: V3,
+        /// ρ.
+        radius: f64,
+        /// Its name in the log (`rim [0, 0, 1]`).
+        label: String,
+    },
 }
 
 impl Feature {
     /// Its name in the log.
     pub fn label(&self) -> &str {
         match self {
-            Feature::Point { label, .. } => label,
+            Feature::Point { label, .. } | Feature::Rim { label, .. } => label,
             Feature::Sphere { .. } => "sphere",
         }
     }
@@ -109,6 +129,7 @@ impl Body {
             .map(|f| match f {
                 Feature::Point { at, .. } => at.norm(),
                 Feature::Sphere { radius } => *radius,
+                Feature::Rim { centre, radius, .. } => centre.norm().hypot(*radius),
             })
             .fold(0.0, f64::max)
     }
@@ -132,6 +153,33 @@ fn features(shape: &Shape, plane: Option<&V3>) -> Vec<Feature> {
                 label: format!("end [0, 0, {}]", s as i64),
             })
             .collect(),
+        Shape::Cylinder {
+            radius,
+            half_height,
+        } => {
+            let mut out = Vec::new();
+            for sz in [1i64, -1] {
+                let centre = V3::new(0.0, 0.0, sz as f64 * half_height);
+                out.push(Feature::Rim {
+                    centre,
+                    axis: V3::z(),
+                    radius: *radius,
+                    label: format!("rim [0, 0, {sz}]"),
+                });
+                for (deg, (cx, cy)) in [
+                    (0, (1.0, 0.0)),
+                    (90, (0.0, 1.0)),
+                    (180, (-1.0, 0.0)),
+                    (270, (0.0, -1.0)),
+                ] {
+                    out.push(Feature::Point {
+                        at: centre + V3::new(cx, cy, 0.0) * *radius,
+                        label: format!("rim [0, 0, {sz}] at {deg}°"),
+                    });
+                }
+            }
+            out
+        }
         Shape::Box { half } => {
             let mut out: Vec<Feature> = Vec::new();
             for sx in [1i64, -1] {

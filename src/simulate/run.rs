@@ -512,7 +512,30 @@ impl<'a> Run<'a> {
                 if g.gap <= self.gap_tol {
                     if g.rate < -o.rest_speed {
                         striking = true;
-                    } else if g.rate <= o.rest_speed && self.presses(f, p) {
+                    } else if g.rate <= o.rest_speed
+                        && !self.face_carries(
+                            f,
+                            p,
+                            &self
+                                .closed
+                                .iter()
+                                .map(|c| (c.feature, c.plane))
+                                .collect::<Vec<_>>(),
+                        )
+                        && !self.closed.iter().any(|c| {
+                            c.plane == p
+                                && self.same_point(
+                                    &gap(
+                                        &self.setup.body.features[c.feature],
+                                        &self.setup.planes[p],
+                                        &self.s,
+                                    )
+                                    .point,
+                                    &g.point,
+                                )
+                        })
+                        && self.presses(f, p)
+                    {
                         self.closed.push(Closed {
                             feature: f,
                             plane: p,
@@ -656,6 +679,27 @@ impl<'a> Run<'a> {
     }
 
     /// A contact's mode when it closes: sticking where μ > 0.
+    /// Whether feature `f` is a rim whose face on plane `p` is carried by three or more of its
+    /// body points among `contacts` (feature, plane).
+    fn face_carries(&self, f: usize, p: usize, contacts: &[(usize, usize)]) -> bool {
+        let features = &self.setup.body.features;
+        let super::body::Feature::Rim { label, .. } = &features[f] else {
+            return false;
+        };
+        let prefix = format!("{label} at ");
+        contacts
+            .iter()
+            .filter(|&&(g, q)| q == p && features[g].label().starts_with(&prefix))
+            .count()
+            >= 3
+    }
+
+    /// Whether two contact points are one: within 10⁻⁶ of the length scale (a rim's nearest
+    /// point passing one of its body points, or lying on it by symmetry).
+    fn same_point(&self, a: &V3, b: &V3) -> bool {
+        (a - b).norm() <= 1e-6 * self.length
+    }
+
     /// The mode a contact (f, p) closes in at the current state: frictionless where μ = 0;
     /// else sliding along its slip when the slip is faster than `rest_speed`, sticking when not
     /// (a contact that closed sticking with a slip would have it cancelled by the velocity
@@ -719,6 +763,14 @@ impl<'a> Run<'a> {
             if !joins(persisting, g.gap, g.rate, self.gap_tol, o.simultaneity) {
                 continue;
             }
+            // a feature at another's contact point (a rim's body point where the rim is
+            // nearest) is that contact, not a second one
+            if at
+                .iter()
+                .any(|a| a.plane == p && self.same_point(&a.point, &g.point))
+            {
+                continue;
+            }
             if !persisting && g.gap > self.gap_tol {
                 spread = spread.max(g.gap / -g.rate);
             }
@@ -737,6 +789,29 @@ impl<'a> Run<'a> {
                 persisting,
             });
         }
+        // a rim whose face lands (three or more of its body points in the impact) is carried
+        // by them: its own nearest point, anywhere on the circle, would be a fourth, redundant
+        // and nearly coincident contact
+        let keep: Vec<bool> = at
+            .iter()
+            .map(|a| {
+                !self.face_carries(
+                    a.feature,
+                    a.plane,
+                    &at.iter().map(|b| (b.feature, b.plane)).collect::<Vec<_>>(),
+                )
+            })
+            .collect();
+        let mut k = 0;
+        at.retain(|_| {
+            k += 1;
+            keep[k - 1]
+        });
+        let mut k = 0;
+        struck.retain(|_| {
+            k += 1;
+            keep[k - 1]
+        });
         let index = self.impacts.len() + 1;
         let kinetic_before = body.kinetic_energy(&self.s);
         let out =

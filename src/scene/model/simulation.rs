@@ -99,7 +99,8 @@ impl Reader<'_> {
             return Err(self.err(
                 "body.shape",
                 None,
-                "a body to simulate needs a shape: { box = [a, b, c] }, { sphere = r } or { rod = L }",
+                "a body to simulate needs a shape: { box = [a, b, c] }, { sphere = r }, { rod = L } \
+                 or { cylinder = [r, h] }",
             ));
         };
         let (props, shape) = self.mass_properties(body, "body")?;
@@ -109,11 +110,15 @@ impl Reader<'_> {
             Some(Shape::Rod(l)) => SimShape::Rod {
                 half_length: l.approx() / 2.0,
             },
+            Some(Shape::Cylinder(r, h)) => SimShape::Cylinder {
+                radius: r.approx(),
+                half_height: h.approx() / 2.0,
+            },
             _ => {
                 return Err(self.err(
                     "body.shape",
                     Some(short(shape_item)),
-                    "`simulate` moves a box, a sphere or a rod (cylinders and point masses are \
+                    "`simulate` moves a box, a sphere, a rod or a cylinder (point masses are \
                      not simulated yet)",
                 ));
             }
