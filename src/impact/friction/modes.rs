@@ -18,7 +18,7 @@
 
 use crate::impact::friction::blocks::Blocks;
 use crate::impact::friction::rates::{
-    Mode, Normal, RateFailure, Rates, Unilateral, max_abs, rates,
+    Mode, Normal, RateFailure, RateWork, Rates, Unilateral, max_abs, rates_with,
 };
 use crate::mechanics::screw::Screws;
 use crate::scalar::Scalar;
@@ -67,9 +67,58 @@ pub fn resolve_planar<T: Scalar, S: Screws<T>>(
     current: &[Mode<T>],
     candidates: &[usize],
 ) -> Result<Resolution<T>, NoConsistentModes> {
-    let mut search = Search::default();
-    search.tangential(b, normals, &mut current.to_vec(), candidates, &[]);
+    let mut work = Work::default();
+    resolve_planar_with(b, normals, &mut current.to_vec(), candidates, &mut work)
+}
+
+/// [`resolve_planar`] on buffers kept from event to event (`work`), trying the assignments in
+/// `modes` itself: its candidates' entries are left at the last assignment tried, the others
+/// as they were. The rates of the assignments are solved with no allocation
+/// ([`rates_with`]); the result is [`resolve_planar`]'s, bit for bit.
+///
+/// # Errors
+/// [`NoConsistentModes`] when no assignment is consistent.
+pub fn resolve_planar_with<T: Scalar, S: Screws<T>>(
+    b: &Blocks<T, S>,
+    normals: &[Normal<T>],
+    modes: &mut [Mode<T>],
+    candidates: &[usize],
+    work: &mut Work<T>,
+) -> Result<Resolution<T>, NoConsistentModes> {
+    let mut search = Search::new(work);
+    search.tangential(b, normals, modes, candidates, &[]);
     search.finish()
+}
+
+/// The buffers of a mode search, kept from one event to the next: the rate solve's
+/// ([`RateWork`]) and the rates of the assignment being tried.
+#[derive(Clone, Debug)]
+pub struct Work<T: Scalar> {
+    solve: RateWork<T>,
+    rates: Rates<T>,
+}
+
+impl<T: Scalar> Default for Work<T> {
+    fn default() -> Self {
+        Work {
+            solve: RateWork::default(),
+            rates: Rates::default(),
+        }
+    }
+}
+
+/// Set a planar candidate's mode to choice `k` of stick, slide+, slide−, reusing a slide's
+/// direction rather than allocating a new one.
+fn assign<T: Scalar>(mode: &mut Mode<T>, k: usize) {
+    let sense = || if k == 1 { T::one() } else { -T::one() };
+    match (k, &mut *mode) {
+        (0, _) => *mode = Mode::Stick,
+        (_, Mode::Slide(u)) => {
+            u.clear();
+            u.push(sense());
+        }
+        _ => *mode = Mode::Slide(vec![sense()]),
+    }
 }
 
 /// Resolve the normal rules and the planar modes jointly under the unilateral law: every
@@ -98,7 +147,8 @@ pub fn resolve_planar_unilateral<T: Scalar, S: Screws<T>>(
     slip: &[T],
 ) -> Result<Resolution<T>, NoConsistentModes> {
     let n = rules.len();
-    let mut search = Search::default();
+    let mut work = Work::default();
+    let mut search = Search::new(&mut work);
     for a in unilateral_assignments(rules, on_path) {
         let mut modes = Vec::with_capacity(n);
         let mut candidates = Vec::new();
@@ -175,23 +225,23 @@ pub enum Check<T> {
 }
 
 /// The consistent assignments found so far: the first, and the distinct rates.
-struct Search<T: Scalar> {
+struct Search<'w, T: Scalar> {
     first: Option<Resolution<T>>,
     distinct: Vec<Vec<T>>,
     undetermined: bool,
+    work: &'w mut Work<T>,
 }
 
-impl<T: Scalar> Default for Search<T> {
-    fn default() -> Self {
+impl<'w, T: Scalar> Search<'w, T> {
+    fn new(work: &'w mut Work<T>) -> Self {
         Search {
             first: None,
             distinct: Vec::new(),
             undetermined: false,
+            work,
         }
     }
-}
 
-impl<T: Scalar> Search<T> {
     /// Try every stick/slide+/slide− assignment of the `candidates` under `normals`.
     fn tangential<S: Screws<T>>(
         &mut self,
@@ -201,24 +251,20 @@ impl<T: Scalar> Search<T> {
         candidates: &[usize],
         checks: &[(usize, Check<T>)],
     ) {
-        let choices = [
-            Mode::Stick,
-            Mode::Slide(vec![T::one()]),
-            Mode::Slide(vec![-T::one()]),
-        ];
         let total = 3usize.pow(candidates.len() as u32);
         for code in 0..total {
             let mut c = code;
             for &i in candidates.iter().rev() {
-                modes[i] = choices[c % 3].clone();
+                assign(&mut modes[i], c % 3);
                 c /= 3;
             }
-            match rates(b, normals, modes) {
-                Ok(r) => {
-                    if planar_consistent(b, modes, &r, candidates)
-                        && normal_consistent(b, &r, checks, &T::zero(), &T::zero())
+            let Work { solve, rates } = &mut *self.work;
+            match rates_with(b, normals, modes, solve, rates) {
+                Ok(()) => {
+                    if planar_consistent(b, modes, rates, candidates)
+                        && normal_consistent(b, rates, checks, &T::zero(), &T::zero())
                     {
-                        self.found(modes, normals, r);
+                        self.found(modes, normals);
                     }
                 }
                 Err(RateFailure::Undetermined) => self.undetermined = true,
@@ -227,7 +273,8 @@ impl<T: Scalar> Search<T> {
         }
     }
 
-    fn found(&mut self, modes: &[Mode<T>], normals: &[Normal<T>], r: Rates<T>) {
+    fn found(&mut self, modes: &[Mode<T>], normals: &[Normal<T>]) {
+        let r = &self.work.rates;
         let scale = max_abs(&r.lambda);
         let n = r.lambda.len();
         let same = |d: &Vec<T>| {
@@ -242,7 +289,7 @@ impl<T: Scalar> Search<T> {
             self.first = Some(Resolution {
                 modes: modes.to_vec(),
                 normals: normals.to_vec(),
-                rates: r,
+                rates: r.clone(),
                 consistent: 0,
             });
         }

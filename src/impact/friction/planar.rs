@@ -10,8 +10,8 @@
 
 use crate::impact::friction::blocks::Blocks;
 use crate::impact::friction::modes::{
-    MAX_CANDIDATES, NoConsistentModes, Resolution, carries, resolve_planar,
-    resolve_planar_unilateral,
+    MAX_CANDIDATES, NoConsistentModes, Resolution, Work, carries, resolve_planar_unilateral,
+    resolve_planar_with,
 };
 use crate::impact::friction::rates::{Mode, Normal, Unilateral, normal_rules, unilateral_rules};
 use crate::impact::friction::{
@@ -75,25 +75,35 @@ pub fn solve_planar<T: Scalar, S: Screws<T>, M: Mechanism<T, Screw = S>>(
     };
     let mut segments = Vec::new();
     let mut verdicts = Vec::new();
+    // The mode search's buffers, kept from event to event.
+    let mut work = Work::default();
     for events in 1..=MAX_EVENTS {
         let simultaneous = normals(contacts, &b, &st, law);
-        let rules = unilateral_rules(&simultaneous, &b, st.phase);
-        let res = match hypothesis {
-            Hypothesis::Simultaneous => resolve_simultaneous(&b, &simultaneous, &mut st)?,
+        let rules = match hypothesis {
+            Hypothesis::Simultaneous => Vec::new(),
+            Hypothesis::Unilateral => unilateral_rules(&simultaneous, &b, st.phase),
+        };
+        let Resolution {
+            modes,
+            normals,
+            rates: r,
+            consistent,
+        } = match hypothesis {
+            Hypothesis::Simultaneous => {
+                resolve_simultaneous(&b, &simultaneous, &mut st, &mut work)?
+            }
             Hypothesis::Unilateral => resolve_unilateral(&b, &rules, &st)?,
         };
-        let normals = res.normals.clone();
-        if res.consistent > 1 {
+        if consistent > 1 {
             verdicts.push(Verdict::Ambiguous {
                 s: st.s.to_f64(),
-                consistent: res.consistent,
+                consistent,
             });
         }
-        if !res.rates.split_unique {
+        if !r.split_unique {
             verdicts.push(Verdict::SplitNotUnique { s: st.s.to_f64() });
         }
-        st.modes = res.modes;
-        let r = res.rates;
+        st.modes = modes;
         for (i, normal) in normals.iter().enumerate() {
             if hypothesis == Hypothesis::Simultaneous
                 && matches!(normal, Normal::Driven(_))
@@ -252,6 +262,7 @@ fn resolve_simultaneous<T: Scalar, S: Screws<T>>(
     b: &Blocks<T, S>,
     normals: &[Normal<T>],
     st: &mut State<T>,
+    work: &mut Work<T>,
 ) -> Result<Resolution<T>, FrictionError> {
     let mut candidates = Vec::new();
     for i in 0..b.contacts() {
@@ -261,7 +272,14 @@ fn resolve_simultaneous<T: Scalar, S: Screws<T>>(
         } else if st.v[off + 1].is_zero() {
             candidates.push(i);
         } else {
-            st.modes[i] = Mode::Slide(vec![sign(&st.v[off + 1])]);
+            let sense = sign(&st.v[off + 1]);
+            match &mut st.modes[i] {
+                Mode::Slide(u) => {
+                    u.clear();
+                    u.push(sense);
+                }
+                m => *m = Mode::Slide(vec![sense]),
+            }
         }
     }
     if candidates.len() > MAX_CANDIDATES {
@@ -270,7 +288,7 @@ fn resolve_simultaneous<T: Scalar, S: Screws<T>>(
             contacts: candidates.len(),
         });
     }
-    resolve_planar(b, normals, &st.modes, &candidates).map_err(|e| no_modes(e, st))
+    resolve_planar_with(b, normals, &mut st.modes, &candidates, work).map_err(|e| no_modes(e, st))
 }
 
 /// The unilateral law's rules and modes at an event: every contact on its path is driven or
