@@ -83,16 +83,16 @@ pub fn solve_planar<T: Scalar, S: Screws<T>, M: Mechanism<T, Screw = S>>(
             Hypothesis::Simultaneous => Vec::new(),
             Hypothesis::Unilateral => unilateral_rules(&simultaneous, &b, st.phase),
         };
-        let Resolution {
-            modes,
-            normals,
-            rates: r,
-            consistent,
-        } = match hypothesis {
+        let (normals, r, consistent) = match hypothesis {
             Hypothesis::Simultaneous => {
-                resolve_simultaneous(&b, &simultaneous, &mut st, &mut work)?
+                let consistent = resolve_simultaneous(&b, &simultaneous, &mut st, &mut work)?;
+                (simultaneous, work.chosen.clone(), consistent)
             }
-            Hypothesis::Unilateral => resolve_unilateral(&b, &rules, &st)?,
+            Hypothesis::Unilateral => {
+                let res = resolve_unilateral(&b, &rules, &st)?;
+                st.modes = res.modes;
+                (res.normals, res.rates, res.consistent)
+            }
         };
         if consistent > 1 {
             verdicts.push(Verdict::Ambiguous {
@@ -103,7 +103,6 @@ pub fn solve_planar<T: Scalar, S: Screws<T>, M: Mechanism<T, Screw = S>>(
         if !r.split_unique {
             verdicts.push(Verdict::SplitNotUnique { s: st.s.to_f64() });
         }
-        st.modes = modes;
         for (i, normal) in normals.iter().enumerate() {
             if hypothesis == Hypothesis::Simultaneous
                 && matches!(normal, Normal::Driven(_))
@@ -256,14 +255,15 @@ pub fn solve_planar<T: Scalar, S: Screws<T>, M: Mechanism<T, Screw = S>>(
     Ok(out)
 }
 
-/// The simultaneous law's modes at an event: every normal rule as the phase prescribes it;
-/// slip keeps its sense, zero slip is resolved jointly.
+/// The simultaneous law's modes at an event, set in `st.modes`: every normal rule as the phase
+/// prescribes it; slip keeps its sense, zero slip is resolved jointly. The rates are left in
+/// `work.chosen`; returns how many distinct rates were consistent.
 fn resolve_simultaneous<T: Scalar, S: Screws<T>>(
     b: &Blocks<T, S>,
     normals: &[Normal<T>],
     st: &mut State<T>,
     work: &mut Work<T>,
-) -> Result<Resolution<T>, FrictionError> {
+) -> Result<usize, FrictionError> {
     let mut candidates = Vec::new();
     for i in 0..b.contacts() {
         let off = b.offset[i];
