@@ -42,7 +42,9 @@ fn main() {
     g.bench_function("frictional-f64", |b| {
         b.iter(|| {
             for p in &f64s {
-                black_box(solve_frictional(black_box(p), Restitution::Poisson, 0.0).expect("solves"));
+                black_box(
+                    solve_frictional(black_box(p), Restitution::Poisson, 0.0).expect("solves"),
+                );
             }
         })
     });
@@ -59,7 +61,9 @@ fn main() {
     g.bench_function("frictional-exact", |b| {
         b.iter(|| {
             for p in &exact {
-                black_box(solve_frictional(black_box(p), Restitution::Poisson, 0.0).expect("solves"));
+                black_box(
+                    solve_frictional(black_box(p), Restitution::Poisson, 0.0).expect("solves"),
+                );
             }
         })
     });

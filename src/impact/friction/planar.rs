@@ -75,23 +75,26 @@ pub fn solve_planar<T: Scalar, S: Screws<T>, M: Mechanism<T, Screw = S>>(
     };
     let mut segments = Vec::new();
     let mut verdicts = Vec::new();
-    // The mode search's buffers, kept from event to event.
+    // The mode search's buffers and the events' candidates, kept from event to event.
     let mut work = Work::default();
+    let (mut reversals, mut engages, mut stops) = (Vec::new(), Vec::new(), Vec::new());
     for events in 1..=MAX_EVENTS {
         let simultaneous = normals(contacts, &b, &st, law);
         let rules = match hypothesis {
             Hypothesis::Simultaneous => Vec::new(),
             Hypothesis::Unilateral => unilateral_rules(&simultaneous, &b, st.phase),
         };
+        let unilateral;
         let (normals, r, consistent) = match hypothesis {
             Hypothesis::Simultaneous => {
                 let consistent = resolve_simultaneous(&b, &simultaneous, &mut st, &mut work)?;
-                (simultaneous, work.chosen.clone(), consistent)
+                (simultaneous, &work.chosen, consistent)
             }
             Hypothesis::Unilateral => {
                 let res = resolve_unilateral(&b, &rules, &st)?;
                 st.modes = res.modes;
-                (res.normals, res.rates, res.consistent)
+                unilateral = res.rates;
+                (res.normals, &unilateral, res.consistent)
             }
         };
         if consistent > 1 {
@@ -129,7 +132,7 @@ pub fn solve_planar<T: Scalar, S: Screws<T>, M: Mechanism<T, Screw = S>>(
                 *h = Some(cand);
             }
         };
-        let mut reversals = Vec::new();
+        reversals.clear();
         for i in 0..n {
             if let Mode::Slide(u) = &st.modes[i] {
                 let off = b.offset[i] + 1;
@@ -142,7 +145,7 @@ pub fn solve_planar<T: Scalar, S: Screws<T>, M: Mechanism<T, Screw = S>>(
             }
         }
         // A released contact whose gap closes re-engages.
-        let mut engages = Vec::new();
+        engages.clear();
         if hypothesis == Hypothesis::Unilateral {
             for i in 0..n {
                 if let Normal::Given(_) = normals[i] {
@@ -155,7 +158,7 @@ pub fn solve_planar<T: Scalar, S: Screws<T>, M: Mechanism<T, Screw = S>>(
                 }
             }
         }
-        let mut stops = Vec::new();
+        stops.clear();
         if st.phase == Phase::Restitution && law == Restitution::Energetic {
             for i in 0..n {
                 if st.stopped[i] {
@@ -203,7 +206,7 @@ pub fn solve_planar<T: Scalar, S: Screws<T>, M: Mechanism<T, Screw = S>>(
                 to: st.s.clone(),
                 phase: st.phase,
                 modes: labels(hypothesis, &normals, &st.modes),
-                rates: r.lambda,
+                rates: r.lambda.clone(),
             });
         }
         let at_end = end.as_ref().is_some_and(fired);
