@@ -17,13 +17,28 @@ pub fn rref<T: Scalar>(
     rhs: &mut [T],
     extra: usize,
 ) -> Vec<usize> {
+    let mut pivots = Vec::new();
+    rref_in(m, rows, cols, rhs, extra, &mut pivots);
+    pivots
+}
+
+/// [`rref`], the pivot columns written into `pivots` (cleared first): no allocation once
+/// `pivots` has grown.
+pub fn rref_in<T: Scalar>(
+    m: &mut [T],
+    rows: usize,
+    cols: usize,
+    rhs: &mut [T],
+    extra: usize,
+    pivots: &mut Vec<usize>,
+) {
+    pivots.clear();
     let mut scale = T::zero();
     for x in m.iter() {
         if x.abs_gt(&scale) {
             scale = x.clone();
         }
     }
-    let mut pivots: Vec<usize> = Vec::new();
     let mut r = 0;
     for c in 0..cols {
         if r == rows {
@@ -67,12 +82,11 @@ pub fn rref<T: Scalar>(
         pivots.push(c);
         r += 1;
     }
-    pivots
 }
 
 /// The null-space basis of a matrix in reduced row echelon form with these pivot columns: one
 /// vector per free column, with a 1 in that column.
-fn basis<T: Scalar>(m: &[T], cols: usize, pivots: &[usize]) -> Vec<Vec<T>> {
+pub fn basis<T: Scalar>(m: &[T], cols: usize, pivots: &[usize]) -> Vec<Vec<T>> {
     let mut basis = Vec::new();
     for free in (0..cols).filter(|c| !pivots.contains(c)) {
         let mut x = vec![T::zero(); cols];
@@ -114,27 +128,49 @@ pub fn solve_general<T: Scalar>(
 ) -> Option<Solutions<T>> {
     let mut m: Vec<T> = a.to_vec();
     let mut rhs: Vec<T> = b.to_vec();
-    let pivots = rref(&mut m, rows, cols, &mut rhs, 1);
-    let mut scale = T::zero();
-    for x in b {
-        if x.abs_gt(&scale) {
-            scale = x.clone();
-        }
-    }
-    if rhs[pivots.len()..]
-        .iter()
-        .any(|r| !r.is_negligible(&scale, cols.max(1)))
-    {
+    let (mut pivots, mut particular) = (Vec::new(), Vec::new());
+    if !solve_general_in(&mut m, rows, cols, &mut rhs, &mut pivots, &mut particular) {
         return None;
-    }
-    let mut particular = vec![T::zero(); cols];
-    for (k, &pc) in pivots.iter().enumerate() {
-        particular[pc] = rhs[k].clone();
     }
     Some(Solutions {
         particular,
         null: basis(&m, cols, &pivots),
     })
+}
+
+/// [`solve_general`] in place, for callers that solve many small systems on buffers they keep:
+/// `a` and `b` are overwritten by the reduced row echelon form, the pivot columns are left in
+/// `pivots` and the particular solution in `particular` (no allocation once these have grown).
+/// Returns `false` when the system is inconsistent. The null space is then
+/// [`basis`]`(a, cols, pivots)`, empty when `pivots.len() == cols`. The same operations in the
+/// same order as [`solve_general`]: the same result, bit for bit.
+pub fn solve_general_in<T: Scalar>(
+    a: &mut [T],
+    rows: usize,
+    cols: usize,
+    b: &mut [T],
+    pivots: &mut Vec<usize>,
+    particular: &mut Vec<T>,
+) -> bool {
+    let mut scale = T::zero();
+    for x in b.iter() {
+        if x.abs_gt(&scale) {
+            scale = x.clone();
+        }
+    }
+    rref_in(a, rows, cols, b, 1, pivots);
+    if b[pivots.len()..]
+        .iter()
+        .any(|r| !r.is_negligible(&scale, cols.max(1)))
+    {
+        return false;
+    }
+    particular.clear();
+    particular.resize(cols, T::zero());
+    for (k, &pc) in pivots.iter().enumerate() {
+        particular[pc] = b[k].clone();
+    }
+    true
 }
 
 #[cfg(test)]

@@ -48,6 +48,13 @@ pub struct FrictionBench {
     pub spatial: FrictionGroup,
 }
 
+/// The seed of the scenes.
+const SEED: u64 = 0xf71c_7105;
+
+/// The goal of issue 29 for the planar frictional solve in f64: at most this many times the
+/// frictionless solve of the same scene.
+pub const PLANAR_GOAL: f64 = 5.0;
+
 fn median(mut v: Vec<f64>) -> f64 {
     if v.is_empty() {
         return f64::NAN;
@@ -119,6 +126,34 @@ fn relative_error(a: &(Vec<f64>, Vec<f64>), e: &(Vec<f64>, Vec<f64>)) -> f64 {
     group(&a.0, &e.0).max(group(&a.1, &e.1))
 }
 
+/// The bench's planar scenes: the first `count` from its seed (1, 2, 3 contacts in turn) whose
+/// frictional solve succeeds in f64, with their contact counts — what
+/// `examples/friction_planar.rs` times and profiles.
+pub fn planar_scenes(count: usize) -> Vec<Scene> {
+    let mut rng = Seeded(SEED);
+    let mut out = Vec::new();
+    let mut tries = 0;
+    while out.len() < count && tries < 50 * count {
+        tries += 1;
+        let Some(s) = scene(&mut rng, 1 + tries % 3, true) else {
+            continue;
+        };
+        let solves = s.problem::<f64>().is_ok_and(|p| {
+            solve_frictional(&p, Restitution::Poisson, friction_tolerance::<f64>()).is_ok()
+        });
+        if solves {
+            out.push(s);
+        }
+    }
+    out
+}
+
+/// ns per frictional solve (Poisson, f64) and per frictionless assemble + Poisson solve of the
+/// same scene, measured one after the other.
+pub fn time_planar(p: &Problem<f64>, budget: Duration) -> Option<(f64, f64)> {
+    Some((time_friction(p, budget)?, time_frictionless(p, budget)?))
+}
+
 fn time_friction<T: Scalar>(p: &Problem<T>, budget: Duration) -> Option<f64> {
     time_three(budget, || {
         solve_frictional(
@@ -145,7 +180,7 @@ fn time_frictionless(p: &Problem<f64>, budget: Duration) -> Option<f64> {
 pub fn run(quick: bool) -> FrictionBench {
     let count = if quick { 6 } else { 24 };
     let budget = Duration::from_millis(if quick { 4 } else { 40 });
-    let mut rng = Seeded(0xf71c_7105);
+    let mut rng = Seeded(SEED);
     FrictionBench {
         planar: group(&mut rng, count, budget, true),
         spatial: group(&mut rng, count, budget, false),
@@ -237,6 +272,18 @@ fn fmt_ns(ns: f64) -> String {
     }
 }
 
+impl FrictionGroup {
+    /// ns per frictional f64 solve ÷ ns per frictionless f64 solve, both measured in this run
+    /// (the ratio of the medians).
+    pub fn f64_ratio(&self) -> f64 {
+        self.ns
+            .iter()
+            .find(|(n, _)| *n == "f64")
+            .map_or(f64::NAN, |(_, t)| *t)
+            / self.frictionless_f64_ns
+    }
+}
+
 impl FrictionBench {
     /// The readable table.
     pub fn to_text(&self) -> String {
@@ -260,16 +307,17 @@ impl FrictionBench {
                 g.scenes,
                 times.join(", "),
                 fmt_ns(g.frictionless_f64_ns),
-                g.ns.iter()
-                    .find(|(n, _)| *n == "f64")
-                    .map_or(f64::NAN, |(_, t)| *t)
-                    / g.frictionless_f64_ns,
+                g.f64_ratio(),
                 errors.join(", "),
                 g.estimate
                     .map(|e| format!(" (f64 error estimate {e:.1e})"))
                     .unwrap_or_default()
             );
         }
+        s += &format!(
+            "  planar friction f64 ÷ frictionless f64: {:.1}× (goal ≤ {PLANAR_GOAL}×)\n",
+            self.planar.f64_ratio()
+        );
         s
     }
 
@@ -282,8 +330,13 @@ impl FrictionBench {
                 "median_relative_error": g.error.iter().map(|(n, e)| (n.to_string(), json!(e))).collect::<serde_json::Map<_, _>>(),
                 "frictionless_f64_ns_per_solve": g.frictionless_f64_ns,
                 "f64_error_estimate": g.estimate,
+                "f64_over_frictionless": g.f64_ratio(),
             })
         };
-        json!({ "planar": group(&self.planar), "spatial": group(&self.spatial) })
+        json!({
+            "planar": group(&self.planar),
+            "spatial": group(&self.spatial),
+            "planar_goal_f64_over_frictionless": PLANAR_GOAL,
+        })
     }
 }

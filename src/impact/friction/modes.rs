@@ -18,7 +18,7 @@
 
 use crate::impact::friction::blocks::Blocks;
 use crate::impact::friction::rates::{
-    Mode, Normal, RateFailure, Rates, Unilateral, max_abs, rates,
+    Mode, Normal, RateFailure, RateWork, Rates, Unilateral, max_abs, rates_with,
 };
 use crate::mechanics::screw::Screws;
 use crate::scalar::Scalar;
@@ -67,9 +67,89 @@ pub fn resolve_planar<T: Scalar, S: Screws<T>>(
     current: &[Mode<T>],
     candidates: &[usize],
 ) -> Result<Resolution<T>, NoConsistentModes> {
-    let mut search = Search::default();
-    search.tangential(b, normals, &mut current.to_vec(), candidates, &[]);
-    search.finish()
+    let mut work = Work::default();
+    let mut modes = current.to_vec();
+    let consistent = resolve_planar_with(b, normals, &mut modes, candidates, &mut work)?;
+    Ok(Resolution {
+        modes,
+        normals: normals.to_vec(),
+        rates: work.chosen,
+        consistent,
+    })
+}
+
+/// [`resolve_planar`] on buffers kept from event to event (`work`), in place: the assignments
+/// are tried in `modes` itself, which is left holding the one chosen, its rates in
+/// [`Work::chosen`]; returns how many distinct rates the consistent assignments have. Nothing is
+/// allocated once the buffers have grown (the rates by [`rates_with`]); the modes, rates and
+/// count are [`resolve_planar`]'s, bit for bit.
+///
+/// # Errors
+/// [`NoConsistentModes`] when no assignment is consistent (`modes` is then left at the last
+/// assignment tried).
+pub fn resolve_planar_with<T: Scalar, S: Screws<T>>(
+    b: &Blocks<T, S>,
+    normals: &[Normal<T>],
+    modes: &mut [Mode<T>],
+    candidates: &[usize],
+    work: &mut Work<T>,
+) -> Result<usize, NoConsistentModes> {
+    let mut search = Search::new(work, false);
+    search.tangential(b, normals, modes, candidates, &[]);
+    let Some(code) = search.first_code else {
+        return Err(NoConsistentModes {
+            undetermined: search.undetermined,
+        });
+    };
+    assign_all(modes, candidates, code);
+    Ok(search.distinct)
+}
+
+/// The buffers of a mode search, kept from one event to the next: the rate solve's
+/// ([`RateWork`]), the rates of the assignment being tried, those of the first consistent one,
+/// and the distinct rates found (flat, `len` entries each).
+#[derive(Clone, Debug)]
+pub struct Work<T: Scalar> {
+    solve: RateWork<T>,
+    rates: Rates<T>,
+    /// The rates of the assignment [`resolve_planar_with`] chose.
+    pub chosen: Rates<T>,
+    distinct: Vec<T>,
+}
+
+impl<T: Scalar> Default for Work<T> {
+    fn default() -> Self {
+        Work {
+            solve: RateWork::default(),
+            rates: Rates::default(),
+            chosen: Rates::default(),
+            distinct: Vec::new(),
+        }
+    }
+}
+
+/// Set the `candidates`' modes to assignment `code` (base 3, the last candidate varying
+/// fastest: stick, slide+, slide−).
+fn assign_all<T: Scalar>(modes: &mut [Mode<T>], candidates: &[usize], code: usize) {
+    let mut c = code;
+    for &i in candidates.iter().rev() {
+        assign(&mut modes[i], c % 3);
+        c /= 3;
+    }
+}
+
+/// Set a planar candidate's mode to choice `k` of stick, slide+, slide−, reusing a slide's
+/// direction rather than allocating a new one.
+fn assign<T: Scalar>(mode: &mut Mode<T>, k: usize) {
+    let sense = || if k == 1 { T::one() } else { -T::one() };
+    match (k, &mut *mode) {
+        (0, _) => *mode = Mode::Stick,
+        (_, Mode::Slide(u)) => {
+            u.clear();
+            u.push(sense());
+        }
+        _ => *mode = Mode::Slide(vec![sense()]),
+    }
 }
 
 /// Resolve the normal rules and the planar modes jointly under the unilateral law: every
@@ -98,7 +178,8 @@ pub fn resolve_planar_unilateral<T: Scalar, S: Screws<T>>(
     slip: &[T],
 ) -> Result<Resolution<T>, NoConsistentModes> {
     let n = rules.len();
-    let mut search = Search::default();
+    let mut work = Work::default();
+    let mut search = Search::new(&mut work, true);
     for a in unilateral_assignments(rules, on_path) {
         let mut modes = Vec::with_capacity(n);
         let mut candidates = Vec::new();
@@ -174,24 +255,31 @@ pub enum Check<T> {
     Separates(T),
 }
 
-/// The consistent assignments found so far: the first, and the distinct rates.
-struct Search<T: Scalar> {
+/// The consistent assignments found so far: the first (its code among the candidates', its
+/// rates in `work.chosen`, and — when `record`, for searches over several normal rules — its
+/// modes and rules), and the count of distinct rates (kept in `work.distinct`).
+struct Search<'w, T: Scalar> {
+    first_code: Option<usize>,
+    record: bool,
     first: Option<Resolution<T>>,
-    distinct: Vec<Vec<T>>,
+    distinct: usize,
     undetermined: bool,
+    work: &'w mut Work<T>,
 }
 
-impl<T: Scalar> Default for Search<T> {
-    fn default() -> Self {
+impl<'w, T: Scalar> Search<'w, T> {
+    fn new(work: &'w mut Work<T>, record: bool) -> Self {
+        work.distinct.clear();
         Search {
+            first_code: None,
+            record,
             first: None,
-            distinct: Vec::new(),
+            distinct: 0,
             undetermined: false,
+            work,
         }
     }
-}
 
-impl<T: Scalar> Search<T> {
     /// Try every stick/slide+/slide− assignment of the `candidates` under `normals`.
     fn tangential<S: Screws<T>>(
         &mut self,
@@ -201,24 +289,16 @@ impl<T: Scalar> Search<T> {
         candidates: &[usize],
         checks: &[(usize, Check<T>)],
     ) {
-        let choices = [
-            Mode::Stick,
-            Mode::Slide(vec![T::one()]),
-            Mode::Slide(vec![-T::one()]),
-        ];
         let total = 3usize.pow(candidates.len() as u32);
         for code in 0..total {
-            let mut c = code;
-            for &i in candidates.iter().rev() {
-                modes[i] = choices[c % 3].clone();
-                c /= 3;
-            }
-            match rates(b, normals, modes) {
-                Ok(r) => {
-                    if planar_consistent(b, modes, &r, candidates)
-                        && normal_consistent(b, &r, checks, &T::zero(), &T::zero())
+            assign_all(modes, candidates, code);
+            let Work { solve, rates, .. } = &mut *self.work;
+            match rates_with(b, normals, modes, solve, rates) {
+                Ok(()) => {
+                    if planar_consistent(b, modes, rates, candidates)
+                        && normal_consistent(b, rates, checks, &T::zero(), &T::zero())
                     {
-                        self.found(modes, normals, r);
+                        self.found(code, modes, normals);
                     }
                 }
                 Err(RateFailure::Undetermined) => self.undetermined = true,
@@ -227,31 +307,49 @@ impl<T: Scalar> Search<T> {
         }
     }
 
-    fn found(&mut self, modes: &[Mode<T>], normals: &[Normal<T>], r: Rates<T>) {
+    fn found(&mut self, code: usize, modes: &[Mode<T>], normals: &[Normal<T>]) {
+        let Work {
+            rates: r,
+            chosen,
+            distinct,
+            ..
+        } = &mut *self.work;
         let scale = max_abs(&r.lambda);
         let n = r.lambda.len();
-        let same = |d: &Vec<T>| {
+        let same = |d: &[T]| {
             d.iter()
                 .zip(&r.lambda)
                 .all(|(x, y)| (x.clone() - y).is_negligible(&scale, n))
         };
-        if !self.distinct.iter().any(same) {
-            self.distinct.push(r.lambda.clone());
+        let seen = if n == 0 {
+            self.distinct > 0
+        } else {
+            distinct.chunks(n).any(same)
+        };
+        if !seen {
+            distinct.extend_from_slice(&r.lambda);
+            self.distinct += 1;
         }
-        if self.first.is_none() {
-            self.first = Some(Resolution {
-                modes: modes.to_vec(),
-                normals: normals.to_vec(),
-                rates: r,
-                consistent: 0,
-            });
+        if self.first_code.is_none() {
+            self.first_code = Some(code);
+            chosen.lambda.clone_from(&r.lambda);
+            chosen.velocity.clone_from(&r.velocity);
+            chosen.split_unique = r.split_unique;
+            if self.record {
+                self.first = Some(Resolution {
+                    modes: modes.to_vec(),
+                    normals: normals.to_vec(),
+                    rates: r.clone(),
+                    consistent: 0,
+                });
+            }
         }
     }
 
     fn finish(self) -> Result<Resolution<T>, NoConsistentModes> {
         match self.first {
             Some(first) => Ok(Resolution {
-                consistent: self.distinct.len(),
+                consistent: self.distinct,
                 ..first
             }),
             None => Err(NoConsistentModes {

@@ -10,8 +10,8 @@
 
 use crate::impact::friction::blocks::Blocks;
 use crate::impact::friction::modes::{
-    MAX_CANDIDATES, NoConsistentModes, Resolution, carries, resolve_planar,
-    resolve_planar_unilateral,
+    MAX_CANDIDATES, NoConsistentModes, Resolution, Work, carries, resolve_planar_unilateral,
+    resolve_planar_with,
 };
 use crate::impact::friction::rates::{Mode, Normal, Unilateral, normal_rules, unilateral_rules};
 use crate::impact::friction::{
@@ -75,25 +75,37 @@ pub fn solve_planar<T: Scalar, S: Screws<T>, M: Mechanism<T, Screw = S>>(
     };
     let mut segments = Vec::new();
     let mut verdicts = Vec::new();
+    // The mode search's buffers and the events' candidates, kept from event to event.
+    let mut work = Work::default();
+    let (mut reversals, mut engages, mut stops) = (Vec::new(), Vec::new(), Vec::new());
     for events in 1..=MAX_EVENTS {
         let simultaneous = normals(contacts, &b, &st, law);
-        let rules = unilateral_rules(&simultaneous, &b, st.phase);
-        let res = match hypothesis {
-            Hypothesis::Simultaneous => resolve_simultaneous(&b, &simultaneous, &mut st)?,
-            Hypothesis::Unilateral => resolve_unilateral(&b, &rules, &st)?,
+        let rules = match hypothesis {
+            Hypothesis::Simultaneous => Vec::new(),
+            Hypothesis::Unilateral => unilateral_rules(&simultaneous, &b, st.phase),
         };
-        let normals = res.normals.clone();
-        if res.consistent > 1 {
+        let unilateral;
+        let (normals, r, consistent) = match hypothesis {
+            Hypothesis::Simultaneous => {
+                let consistent = resolve_simultaneous(&b, &simultaneous, &mut st, &mut work)?;
+                (simultaneous, &work.chosen, consistent)
+            }
+            Hypothesis::Unilateral => {
+                let res = resolve_unilateral(&b, &rules, &st)?;
+                st.modes = res.modes;
+                unilateral = res.rates;
+                (res.normals, &unilateral, res.consistent)
+            }
+        };
+        if consistent > 1 {
             verdicts.push(Verdict::Ambiguous {
                 s: st.s.to_f64(),
-                consistent: res.consistent,
+                consistent,
             });
         }
-        if !res.rates.split_unique {
+        if !r.split_unique {
             verdicts.push(Verdict::SplitNotUnique { s: st.s.to_f64() });
         }
-        st.modes = res.modes;
-        let r = res.rates;
         for (i, normal) in normals.iter().enumerate() {
             if hypothesis == Hypothesis::Simultaneous
                 && matches!(normal, Normal::Driven(_))
@@ -120,7 +132,7 @@ pub fn solve_planar<T: Scalar, S: Screws<T>, M: Mechanism<T, Screw = S>>(
                 *h = Some(cand);
             }
         };
-        let mut reversals = Vec::new();
+        reversals.clear();
         for i in 0..n {
             if let Mode::Slide(u) = &st.modes[i] {
                 let off = b.offset[i] + 1;
@@ -133,7 +145,7 @@ pub fn solve_planar<T: Scalar, S: Screws<T>, M: Mechanism<T, Screw = S>>(
             }
         }
         // A released contact whose gap closes re-engages.
-        let mut engages = Vec::new();
+        engages.clear();
         if hypothesis == Hypothesis::Unilateral {
             for i in 0..n {
                 if let Normal::Given(_) = normals[i] {
@@ -146,7 +158,7 @@ pub fn solve_planar<T: Scalar, S: Screws<T>, M: Mechanism<T, Screw = S>>(
                 }
             }
         }
-        let mut stops = Vec::new();
+        stops.clear();
         if st.phase == Phase::Restitution && law == Restitution::Energetic {
             for i in 0..n {
                 if st.stopped[i] {
@@ -194,7 +206,7 @@ pub fn solve_planar<T: Scalar, S: Screws<T>, M: Mechanism<T, Screw = S>>(
                 to: st.s.clone(),
                 phase: st.phase,
                 modes: labels(hypothesis, &normals, &st.modes),
-                rates: r.lambda,
+                rates: r.lambda.clone(),
             });
         }
         let at_end = end.as_ref().is_some_and(fired);
@@ -246,13 +258,15 @@ pub fn solve_planar<T: Scalar, S: Screws<T>, M: Mechanism<T, Screw = S>>(
     Ok(out)
 }
 
-/// The simultaneous law's modes at an event: every normal rule as the phase prescribes it;
-/// slip keeps its sense, zero slip is resolved jointly.
+/// The simultaneous law's modes at an event, set in `st.modes`: every normal rule as the phase
+/// prescribes it; slip keeps its sense, zero slip is resolved jointly. The rates are left in
+/// `work.chosen`; returns how many distinct rates were consistent.
 fn resolve_simultaneous<T: Scalar, S: Screws<T>>(
     b: &Blocks<T, S>,
     normals: &[Normal<T>],
     st: &mut State<T>,
-) -> Result<Resolution<T>, FrictionError> {
+    work: &mut Work<T>,
+) -> Result<usize, FrictionError> {
     let mut candidates = Vec::new();
     for i in 0..b.contacts() {
         let off = b.offset[i];
@@ -261,7 +275,14 @@ fn resolve_simultaneous<T: Scalar, S: Screws<T>>(
         } else if st.v[off + 1].is_zero() {
             candidates.push(i);
         } else {
-            st.modes[i] = Mode::Slide(vec![sign(&st.v[off + 1])]);
+            let sense = sign(&st.v[off + 1]);
+            match &mut st.modes[i] {
+                Mode::Slide(u) => {
+                    u.clear();
+                    u.push(sense);
+                }
+                m => *m = Mode::Slide(vec![sense]),
+            }
         }
     }
     if candidates.len() > MAX_CANDIDATES {
@@ -270,7 +291,7 @@ fn resolve_simultaneous<T: Scalar, S: Screws<T>>(
             contacts: candidates.len(),
         });
     }
-    resolve_planar(b, normals, &st.modes, &candidates).map_err(|e| no_modes(e, st))
+    resolve_planar_with(b, normals, &mut st.modes, &candidates, work).map_err(|e| no_modes(e, st))
 }
 
 /// The unilateral law's rules and modes at an event: every contact on its path is driven or

@@ -19,7 +19,7 @@
 //! or changes the motion leaves the rates undetermined.
 
 use crate::impact::friction::blocks::Blocks;
-use crate::linalg::solve_general;
+use crate::linalg::gauss::{basis, solve_general_in};
 use crate::mechanics::contact::Contact;
 use crate::mechanics::screw::Screws;
 use crate::scalar::Scalar;
@@ -161,6 +161,16 @@ pub struct Rates<T: Scalar> {
     pub split_unique: bool,
 }
 
+impl<T: Scalar> Default for Rates<T> {
+    fn default() -> Self {
+        Rates {
+            lambda: Vec::new(),
+            velocity: Vec::new(),
+            split_unique: true,
+        }
+    }
+}
+
 /// Why an assignment of modes has no rates.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum RateFailure {
@@ -177,6 +187,80 @@ enum Unknown {
     Stick(usize),
 }
 
+/// Each unknown's column in Λ-space, sparse: (axis, coefficient) entries, stored flat.
+#[derive(Clone, Debug)]
+struct Columns<T> {
+    unknowns: Vec<Unknown>,
+    /// Column j's entries end at `ends[j]` (and start where column j − 1's end).
+    ends: Vec<usize>,
+    entries: Vec<(usize, T)>,
+}
+
+impl<T> Columns<T> {
+    fn clear(&mut self) {
+        self.unknowns.clear();
+        self.ends.clear();
+        self.entries.clear();
+    }
+
+    /// Start the column of `unknown`.
+    fn open(&mut self, unknown: Unknown) {
+        self.unknowns.push(unknown);
+        self.ends.push(self.entries.len());
+    }
+
+    /// Add an entry to the last column opened.
+    fn entry(&mut self, axis: usize, coefficient: T) {
+        self.entries.push((axis, coefficient));
+        if let Some(end) = self.ends.last_mut() {
+            *end = self.entries.len();
+        }
+    }
+
+    /// The columns in order: (unknown, entries).
+    fn iter(&self) -> impl Iterator<Item = (Unknown, &[(usize, T)])> {
+        let starts = std::iter::once(0).chain(self.ends.iter().copied());
+        self.unknowns
+            .iter()
+            .zip(starts.zip(&self.ends))
+            .map(|(u, (a, &b))| (*u, &self.entries[a..b]))
+    }
+}
+
+/// The buffers of a rate solve, kept from one solve to the next: a planar impact solves the
+/// rates of every assignment it tries at every event ([`super::modes`]), and with a kept
+/// `RateWork` (and a kept [`Rates`] to write into) none of those solves allocates once the
+/// buffers have grown ([`rates_with`]).
+#[derive(Clone, Debug)]
+pub struct RateWork<T: Scalar> {
+    known: Vec<T>,
+    columns: Columns<T>,
+    /// One equation per unknown: (axis of its row of K, right-hand side).
+    rows: Vec<(usize, T)>,
+    a: Vec<T>,
+    rhs: Vec<T>,
+    pivots: Vec<usize>,
+    particular: Vec<T>,
+}
+
+impl<T: Scalar> Default for RateWork<T> {
+    fn default() -> Self {
+        RateWork {
+            known: Vec::new(),
+            columns: Columns {
+                unknowns: Vec::new(),
+                ends: Vec::new(),
+                entries: Vec::new(),
+            },
+            rows: Vec::new(),
+            a: Vec::new(),
+            rhs: Vec::new(),
+            pivots: Vec::new(),
+            particular: Vec::new(),
+        }
+    }
+}
+
 /// Solve for the rates of one segment.
 ///
 /// # Errors
@@ -186,11 +270,40 @@ pub fn rates<T: Scalar, S: Screws<T>>(
     normals: &[Normal<T>],
     modes: &[Mode<T>],
 ) -> Result<Rates<T>, RateFailure> {
+    let mut out = Rates::default();
+    rates_with(b, normals, modes, &mut RateWork::default(), &mut out)?;
+    Ok(out)
+}
+
+/// [`rates`] on kept buffers: the rates are written into `out`, the system is built and solved
+/// in `work`. The same operations in the same order as a fresh solve, so the same rates bit
+/// for bit; nothing is allocated once the buffers have grown, except on the rare singular
+/// systems (sticking contacts on one line), whose null space is built fresh.
+///
+/// # Errors
+/// [`RateFailure`] when the assignment admits no rates, or no determined ones (`out` is then
+/// left unspecified).
+pub fn rates_with<T: Scalar, S: Screws<T>>(
+    b: &Blocks<T, S>,
+    normals: &[Normal<T>],
+    modes: &[Mode<T>],
+    work: &mut RateWork<T>,
+    out: &mut Rates<T>,
+) -> Result<(), RateFailure> {
     let len = b.len();
-    let mut known = vec![T::zero(); len];
-    // Each unknown's column in Λ-space, sparse: (axis, coefficient).
-    let mut columns: Vec<(Unknown, Vec<(usize, T)>)> = Vec::new();
-    let mut rows: Vec<(usize, T)> = Vec::new();
+    let RateWork {
+        known,
+        columns,
+        rows,
+        a,
+        rhs,
+        pivots,
+        particular,
+    } = work;
+    known.clear();
+    known.resize(len, T::zero());
+    columns.clear();
+    rows.clear();
     for (i, (normal, mode)) in normals.iter().zip(modes).enumerate() {
         let off = b.offset[i];
         let slide = match mode {
@@ -199,13 +312,13 @@ pub fn rates<T: Scalar, S: Screws<T>>(
         };
         match normal {
             Normal::Driven(c) => {
-                let mut col = vec![(off, T::one())];
+                columns.open(Unknown::Normal(i));
+                columns.entry(off, T::one());
                 if let Some(u) = slide {
                     for (a, ua) in u.iter().enumerate() {
-                        col.push((off + 1 + a, b.mu[i].clone() * ua));
+                        columns.entry(off + 1 + a, b.mu[i].clone() * ua);
                     }
                 }
-                columns.push((Unknown::Normal(i), col));
                 rows.push((off, c.clone()));
             }
             Normal::Given(r) => {
@@ -219,16 +332,17 @@ pub fn rates<T: Scalar, S: Screws<T>>(
         }
         if *mode == Mode::Stick {
             for a in 0..b.dims[i] {
-                columns.push((Unknown::Stick(i), vec![(off + 1 + a, T::one())]));
+                columns.open(Unknown::Stick(i));
+                columns.entry(off + 1 + a, T::one());
                 rows.push((off + 1 + a, T::zero()));
             }
         }
     }
     let m = rows.len();
-    let mut a = Vec::with_capacity(m * m);
-    let mut rhs = Vec::with_capacity(m);
-    for (q, target) in &rows {
-        for (_, col) in &columns {
+    a.clear();
+    rhs.clear();
+    for (q, target) in rows.iter() {
+        for (_, col) in columns.iter() {
             let mut s = T::zero();
             for (r, c) in col {
                 s += b.at(*q, *r).clone() * c;
@@ -243,7 +357,9 @@ pub fn rates<T: Scalar, S: Screws<T>>(
         }
         rhs.push(t);
     }
-    let solutions = solve_general(&a, m, m, &rhs).ok_or(RateFailure::Inconsistent)?;
+    if !solve_general_in(a, m, m, rhs, pivots, particular) {
+        return Err(RateFailure::Inconsistent);
+    }
     let expand = |z: &[T], into: &mut Vec<T>| {
         for ((_, col), zj) in columns.iter().zip(z) {
             for (r, c) in col {
@@ -251,11 +367,13 @@ pub fn rates<T: Scalar, S: Screws<T>>(
             }
         }
     };
-    let mut lambda = known;
-    expand(&solutions.particular, &mut lambda);
-    let split_unique = solutions.null.is_empty();
-    if !split_unique {
-        for w in &solutions.null {
+    let lambda = &mut out.lambda;
+    lambda.clone_from(known);
+    expand(particular, lambda);
+    out.split_unique = pivots.len() == m;
+    if !out.split_unique {
+        let null = basis(a, m, pivots);
+        for w in &null {
             let touches_normal = columns
                 .iter()
                 .zip(w)
@@ -269,8 +387,8 @@ pub fn rates<T: Scalar, S: Screws<T>>(
                 return Err(RateFailure::Undetermined);
             }
         }
-        if let [w] = solutions.null.as_slice() {
-            let c = middle_of_cones(b, &columns, &solutions.particular, w, &lambda);
+        if let [w] = null.as_slice() {
+            let c = middle_of_cones(b, columns, particular, w, lambda);
             let mut shift = vec![T::zero(); len];
             let scaled: Vec<T> = w.iter().map(|x| x.clone() * &c).collect();
             expand(&scaled, &mut shift);
@@ -279,13 +397,8 @@ pub fn rates<T: Scalar, S: Screws<T>>(
             }
         }
     }
-    let mut velocity = Vec::new();
-    b.velocity_change(&lambda, &mut velocity);
-    Ok(Rates {
-        lambda,
-        velocity,
-        split_unique,
-    })
+    b.velocity_change(&out.lambda, &mut out.velocity);
+    Ok(())
 }
 
 /// The largest |x|.
@@ -304,7 +417,7 @@ pub(super) fn max_abs<T: Scalar>(xs: &[T]) -> T {
 /// tangential entry per contact); 0 when the interval is empty (the stick then fails its test).
 fn middle_of_cones<T: Scalar, S: Screws<T>>(
     b: &Blocks<T, S>,
-    columns: &[(Unknown, Vec<(usize, T)>)],
+    columns: &Columns<T>,
     z: &[T],
     w: &[T],
     lambda: &[T],
@@ -313,10 +426,10 @@ fn middle_of_cones<T: Scalar, S: Screws<T>>(
     let mut hi: Option<T> = None;
     for (((u, _), zj), wj) in columns.iter().zip(z).zip(w) {
         let Unknown::Stick(i) = u else { continue };
-        if wj.is_zero() || b.dims[*i] != 1 {
+        if wj.is_zero() || b.dims[i] != 1 {
             continue;
         }
-        let bound = b.mu[*i].clone() * &lambda[b.offset[*i]];
+        let bound = b.mu[i].clone() * &lambda[b.offset[i]];
         let mut ends = [
             (-bound.clone() - zj) / wj.clone(),
             (bound - zj) / wj.clone(),
