@@ -14,6 +14,8 @@
 //! `json` for programs ([`Report::to_json`]).
 
 pub mod animation;
+pub mod animation_system;
+mod plot;
 pub mod exact_run;
 mod friction;
 mod json;
