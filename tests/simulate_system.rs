@@ -315,27 +315,3 @@ fn bad_sphere_systems_name_the_key_and_the_value() {
     let e = err(scene("position = [0, 0, 0.04]\n", "plane = [0, 1, 0]\n"));
     assert!(e.contains("simulate.plane"), "{e}");
 }
-
-#[test]
-fn options_a_system_does_not_draw_are_refused_not_ignored() {
-    // --animation and --exact are one-body features: on a system they are refused (status 2,
-    // naming the option), never silently ignored
-    for args in [
-        vec!["--animation", "target/never-written.svg"],
-        vec!["--exact"],
-    ] {
-        let out = std::process::Command::new(env!("CARGO_BIN_EXE_inertance"))
-            .arg("simulate")
-            .arg("examples/simulate/cradle-3.toml")
-            .args(&args)
-            .output()
-            .expect("runs");
-        assert_eq!(out.status.code(), Some(2), "{args:?}");
-        let err = String::from_utf8_lossy(&out.stderr);
-        assert!(
-            err.contains("system") || err.contains("spheres"),
-            "{args:?}: {err}"
-        );
-    }
-    assert!(!std::path::Path::new("target/never-written.svg").exists());
-}

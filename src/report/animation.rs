@@ -270,7 +270,10 @@ impl Canvas {
 
     /// The pixel of the drawing-plane point (h, v).
     pub(crate) fn px(&self, (h, v): (f64, f64)) -> (f64, f64) {
-        (self.origin.0 + self.scale * h, self.origin.1 - self.scale * v)
+        (
+            self.origin.0 + self.scale * h,
+            self.origin.1 - self.scale * v,
+        )
     }
 
     /// The obstacle planes' traces at the depth `depth` along the view's normal, hatched on

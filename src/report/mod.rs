@@ -15,11 +15,11 @@
 
 pub mod animation;
 pub mod animation_system;
-mod plot;
 pub mod exact_run;
 mod friction;
 mod json;
 pub mod lzb;
+mod plot;
 pub mod simulation;
 pub mod simulation_system;
 pub mod system;
