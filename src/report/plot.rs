@@ -2,6 +2,7 @@
 //! potential and total energy against time on top, the run's other series below (one body's
 //! angle, each sphere's height), a vertical mark at every impact in both.
 
+use plotters::coord::Shift;
 use plotters::prelude::*;
 
 /// One line of the lower chart.
@@ -33,9 +34,81 @@ fn range(ys: impl Iterator<Item = f64>, base: f64, least: f64) -> std::ops::Rang
     (lo - pad)..(hi + pad)
 }
 
+/// One chart of the plot on `area`: the `lines` (legend, colour, points) against time over
+/// [0, `t1`], the `impacts` marked, the y axis labelled `y_label` and ranged over the lines and
+/// zero (padded by 5 %, at least `least`), the legend drawn when `legend`.
+#[allow(clippy::too_many_arguments)]
+fn panel(
+    area: &DrawingArea<SVGBackend<'_>, Shift>,
+    caption: Option<&str>,
+    t1: f64,
+    y_label: &str,
+    least: f64,
+    lines: &[(&str, RGBColor, Vec<(f64, f64)>)],
+    impacts: &[f64],
+    legend: bool,
+) -> Result<(), String> {
+    let err = |e: &dyn std::fmt::Display| e.to_string();
+    let y = range(
+        lines.iter().flat_map(|l| l.2.iter().map(|p| p.1)),
+        0.0,
+        least,
+    );
+    let mut builder = ChartBuilder::on(area);
+    if let Some(c) = caption {
+        builder.caption(c, ("sans-serif", 20));
+    }
+    let mut chart = builder
+        .margin(15)
+        .x_label_area_size(40)
+        .y_label_area_size(80)
+        .build_cartesian_2d(0.0..t1, y.clone())
+        .map_err(|e| err(&e))?;
+    chart
+        .configure_mesh()
+        .x_desc("t [s]")
+        .y_desc(y_label)
+        .draw()
+        .map_err(|e| err(&e))?;
+    let swatch = |colour: RGBColor| {
+        move |(x, y): (i32, i32)| Rectangle::new([(x, y - 2), (x + 20, y + 2)], colour.filled())
+    };
+    for (label, colour, points) in lines {
+        chart
+            .draw_series(LineSeries::new(
+                points.iter().copied(),
+                colour.stroke_width(2),
+            ))
+            .map_err(|e| err(&e))?
+            .label(*label)
+            .legend(swatch(*colour));
+    }
+    let red = RGBColor(214, 39, 40);
+    chart
+        .draw_series(
+            impacts
+                .iter()
+                .map(|&t| PathElement::new(vec![(t, y.start), (t, y.end)], red.mix(0.4))),
+        )
+        .map_err(|e| err(&e))?
+        .label("impact")
+        .legend(swatch(red));
+    if legend {
+        chart
+            .configure_series_labels()
+            .background_style(WHITE.mix(0.85))
+            .border_style(BLACK)
+            .position(SeriesLabelPosition::UpperRight)
+            .draw()
+            .map_err(|e| err(&e))?;
+    }
+    Ok(())
+}
+
 /// The plot (SVG, 960×720): `energies` as (t, kinetic, potential) per sample over
-/// [0, `t_end`], titled `caption`; `lower` against time under the axis label `lower_label`;
-/// the `impacts`' times marked. Non-finite values are left out of the axes' ranges.
+/// [0, `t_end`], titled `caption`; `lower` against time under the axis label `lower_label`
+/// (its legend drawn when it has several lines); the `impacts`' times marked. Non-finite values
+/// are left out of the axes' ranges.
 ///
 /// # Errors
 /// What the plotting library reports.
@@ -47,108 +120,52 @@ pub(crate) fn energies_and(
     lower_label: &str,
     lower: &[Series],
 ) -> Result<String, String> {
-    let err = |e: &dyn std::fmt::Display| e.to_string();
     let t1 = t_end.max(f64::MIN_POSITIVE);
-    let e = range(
-        energies.iter().flat_map(|&(_, k, p)| [k, p, k + p]),
-        0.0,
-        f64::MIN_POSITIVE,
-    );
-    let a = range(
-        lower.iter().flat_map(|s| s.points.iter().map(|p| p.1)),
-        0.0,
-        1e-9,
-    );
-    let red = RGBColor(214, 39, 40);
-    let marks = |y: &std::ops::Range<f64>| {
-        let (lo, hi) = (y.start, y.end);
-        impacts
-            .iter()
-            .map(move |&t| PathElement::new(vec![(t, lo), (t, hi)], red.mix(0.4)))
+    let energy = |pick: fn(&(f64, f64, f64)) -> f64| -> Vec<(f64, f64)> {
+        energies.iter().map(|e| (e.0, pick(e))).collect()
     };
+    let top = [
+        ("kinetic", RGBColor(31, 119, 180), energy(|e| e.1)),
+        ("potential", RGBColor(44, 160, 44), energy(|e| e.2)),
+        ("total", RGBColor(0, 0, 0), energy(|e| e.1 + e.2)),
+    ];
+    let bottom: Vec<(&str, RGBColor, Vec<(f64, f64)>)> = lower
+        .iter()
+        .enumerate()
+        .map(|(k, s)| {
+            (
+                s.label.as_str(),
+                PALETTE[k % PALETTE.len()],
+                s.points.clone(),
+            )
+        })
+        .collect();
     let mut svg = String::new();
     {
         let root = SVGBackend::with_string(&mut svg, (960, 720)).into_drawing_area();
-        root.fill(&WHITE).map_err(|e| err(&e))?;
-        let (top, bottom) = root.split_vertically(360);
-        let mut chart = ChartBuilder::on(&top)
-            .caption(caption, ("sans-serif", 20))
-            .margin(15)
-            .x_label_area_size(40)
-            .y_label_area_size(80)
-            .build_cartesian_2d(0.0..t1, e.clone())
-            .map_err(|e| err(&e))?;
-        chart
-            .configure_mesh()
-            .x_desc("t [s]")
-            .y_desc("energy [J]")
-            .draw()
-            .map_err(|e| err(&e))?;
-        let series: [(&str, RGBColor, fn(&(f64, f64, f64)) -> f64); 3] = [
-            ("kinetic", RGBColor(31, 119, 180), |e| e.1),
-            ("potential", RGBColor(44, 160, 44), |e| e.2),
-            ("total", RGBColor(0, 0, 0), |e| e.1 + e.2),
-        ];
-        for (label, colour, pick) in series {
-            chart
-                .draw_series(LineSeries::new(
-                    energies.iter().map(|s| (s.0, pick(s))),
-                    colour.stroke_width(2),
-                ))
-                .map_err(|e| err(&e))?
-                .label(label)
-                .legend(move |(x, y)| {
-                    Rectangle::new([(x, y - 2), (x + 20, y + 2)], colour.filled())
-                });
-        }
-        chart
-            .draw_series(marks(&e))
-            .map_err(|e| err(&e))?
-            .label("impact")
-            .legend(move |(x, y)| Rectangle::new([(x, y - 2), (x + 20, y + 2)], red.filled()));
-        chart
-            .configure_series_labels()
-            .background_style(WHITE.mix(0.85))
-            .border_style(BLACK)
-            .position(SeriesLabelPosition::UpperRight)
-            .draw()
-            .map_err(|e| err(&e))?;
-        let mut chart = ChartBuilder::on(&bottom)
-            .margin(15)
-            .x_label_area_size(40)
-            .y_label_area_size(80)
-            .build_cartesian_2d(0.0..t1, a.clone())
-            .map_err(|e| err(&e))?;
-        chart
-            .configure_mesh()
-            .x_desc("t [s]")
-            .y_desc(lower_label)
-            .draw()
-            .map_err(|e| err(&e))?;
-        for (k, s) in lower.iter().enumerate() {
-            let colour = PALETTE[k % PALETTE.len()];
-            chart
-                .draw_series(LineSeries::new(
-                    s.points.iter().copied(),
-                    colour.stroke_width(2),
-                ))
-                .map_err(|e| err(&e))?
-                .label(s.label.as_str())
-                .legend(move |(x, y)| {
-                    Rectangle::new([(x, y - 2), (x + 20, y + 2)], colour.filled())
-                });
-        }
-        chart.draw_series(marks(&a)).map_err(|e| err(&e))?;
-        if lower.len() > 1 {
-            chart
-                .configure_series_labels()
-                .background_style(WHITE.mix(0.85))
-                .border_style(BLACK)
-                .position(SeriesLabelPosition::UpperRight)
-                .draw()
-                .map_err(|e| err(&e))?;
-        }
-        root.present().map_err(|e| err(&e))?;
+        root.fill(&WHITE).map_err(|e| e.to_string())?;
+        let (upper, under) = root.split_vertically(360);
+        panel(
+            &upper,
+            Some(caption),
+            t1,
+            "energy [J]",
+            f64::MIN_POSITIVE,
+            &top,
+            impacts,
+            true,
+        )?;
+        panel(
+            &under,
+            None,
+            t1,
+            lower_label,
+            1e-9,
+            &bottom,
+            impacts,
+            lower.len() > 1,
+        )?;
+        root.present().map_err(|e| e.to_string())?;
     }
     Ok(svg)
 }
