@@ -20,6 +20,17 @@ fn attr_f64s(node: &roxmltree::Node, name: &str) -> Vec<f64> {
         .collect()
 }
 
+/// The root's map from the world to the canvas: the view's projection, scaled and moved to the
+/// origin written on the root (`data-scale`, `data-origin`).
+fn to_canvas(root: &roxmltree::Node, view: View) -> impl Fn(&Vector3<f64>) -> (f64, f64) {
+    let scale = attr_f64s(root, "data-scale")[0];
+    let origin = attr_f64s(root, "data-origin");
+    move |p| {
+        let (h, v) = view.project(p);
+        (origin[0] + scale * h, origin[1] - scale * v)
+    }
+}
+
 #[test]
 fn every_frame_draws_the_body_where_the_run_has_it() {
     let scene = SimulationScene::load(std::path::Path::new("examples/simulate/tumbling-box.toml"))
@@ -29,7 +40,6 @@ fn every_frame_draws_the_body_where_the_run_has_it() {
     let doc = roxmltree::Document::parse(&svg).expect("the SVG is well-formed XML");
     let root = doc.root_element();
     assert_eq!(root.tag_name().name(), "svg");
-    let scale = attr_f64s(&root, "data-scale")[0];
     let origin = attr_f64s(&root, "data-origin");
     let eh = attr_f64s(&root, "data-horizontal");
     let ev = attr_f64s(&root, "data-vertical");
@@ -37,10 +47,7 @@ fn every_frame_draws_the_body_where_the_run_has_it() {
     // the view written is the view of the run: a planar run in x–z, x right, z up
     assert_eq!(eh, vec![1.0, 0.0, 0.0]);
     assert_eq!(ev, vec![0.0, 0.0, 1.0]);
-    let px = |p: &Vector3<f64>| {
-        let (h, v) = view.project(p);
-        (origin[0] + scale * h, origin[1] - scale * v)
-    };
+    let px = to_canvas(&root, view);
     let frames: Vec<_> = root
         .children()
         .filter(|n| n.attribute("class") == Some("frame"))
@@ -208,13 +215,9 @@ fn every_frame_of_a_system_draws_each_sphere_where_the_run_has_it() {
     let doc = roxmltree::Document::parse(&svg).expect("the SVG is well-formed XML");
     let root = doc.root_element();
     let scale = attr_f64s(&root, "data-scale")[0];
-    let origin = attr_f64s(&root, "data-origin");
     let view = View::looking(setup.options.gravity, None);
     assert_eq!(attr_f64s(&root, "data-horizontal"), vec![1.0, 0.0, 0.0]);
-    let px = |p: &Vector3<f64>| {
-        let (h, v) = view.project(p);
-        (origin[0] + scale * h, origin[1] - scale * v)
-    };
+    let px = to_canvas(&root, view);
     let frames: Vec<_> = root
         .children()
         .filter(|n| n.attribute("class") == Some("frame"))
