@@ -13,6 +13,9 @@ pub(crate) struct Series {
     pub points: Vec<(f64, f64)>,
 }
 
+/// A line as a chart draws it: its legend, colour and points.
+type Line<'a> = (&'a str, RGBColor, Vec<(f64, f64)>);
+
 /// The colours of the lower chart's lines, in turn.
 const PALETTE: [RGBColor; 8] = [
     RGBColor(148, 103, 189),
@@ -44,7 +47,7 @@ fn panel(
     t1: f64,
     y_label: &str,
     least: f64,
-    lines: &[(&str, RGBColor, Vec<(f64, f64)>)],
+    lines: &[Line],
     impacts: &[f64],
     legend: bool,
 ) -> Result<(), String> {
@@ -129,7 +132,7 @@ pub(crate) fn energies_and(
         ("potential", RGBColor(44, 160, 44), energy(|e| e.2)),
         ("total", RGBColor(0, 0, 0), energy(|e| e.1 + e.2)),
     ];
-    let bottom: Vec<(&str, RGBColor, Vec<(f64, f64)>)> = lower
+    let bottom: Vec<Line> = lower
         .iter()
         .enumerate()
         .map(|(k, s)| {
