@@ -218,11 +218,12 @@ enum Command {
         #[arg(long)]
         json: bool,
         /// Write the trajectory to FILE.csv (per output time: C, the angle, v, ω, the
-        /// energies) or its plot to FILE.svg (energies and angle against time, impacts marked).
+        /// energies; for a system each sphere's centre and velocity) or its plot to FILE.svg
+        /// (energies and the angle, or each sphere's height, against time, impacts marked).
         #[arg(long, value_name = "FILE")]
         trajectory: Option<PathBuf>,
-        /// Write an animation of the run to FILE.svg: the body at every sample and the
-        /// obstacles, played by any browser (looping).
+        /// Write an animation of the run to FILE.svg: the body (or every sphere) at every
+        /// sample and the obstacles, played by any browser (looping).
         #[arg(long, value_name = "FILE")]
         animation: Option<PathBuf>,
         /// Run exactly (a frictionless sphere among planes: every impact time and velocity and
@@ -437,55 +438,127 @@ fn chosen_law(
         .map_err(|e| fail_input(format!("{}: --law {name}: {e}", path.display())))
 }
 
-/// `simulate` on a system of spheres: the log, or the trajectory as CSV; statuses as for one
-/// body.
-fn run_simulate_spheres(
-    path: &std::path::Path,
-    mut scene: inertance::scene::SphereSystemScene,
-    law: Option<LawArg>,
-    json: bool,
-    trajectory: Option<&std::path::Path>,
-) -> ExitCode {
-    use inertance::report::simulation_system;
-    if let Some(l) = law {
-        scene.setup.law = match chosen_law(path, scene.setup.law, l) {
-            Ok(l) => l,
-            Err(code) => return code,
+/// The files `simulate` writes, their extensions checked before the run (status 2 for
+/// another): the trajectory as CSV or its plot (`svg`), the animation.
+struct SimulateFiles<'a> {
+    trajectory: Option<(&'a std::path::Path, bool)>,
+    animation: Option<&'a std::path::Path>,
+}
+
+impl<'a> SimulateFiles<'a> {
+    fn checked(
+        trajectory: Option<&'a std::path::Path>,
+        animation: Option<&'a std::path::Path>,
+    ) -> Result<SimulateFiles<'a>, ExitCode> {
+        let trajectory = match trajectory {
+            None => None,
+            Some(f) => match f.extension().and_then(|e| e.to_str()) {
+                Some("csv") => Some((f, false)),
+                Some("svg") => Some((f, true)),
+                _ => {
+                    return Err(fail_input(format!(
+                        "--trajectory {}: write FILE.csv (the samples) or FILE.svg (their plot)",
+                        f.display()
+                    )));
+                }
+            },
         };
+        if let Some(f) = animation
+            && f.extension().and_then(|e| e.to_str()) != Some("svg")
+        {
+            return Err(fail_input(format!(
+                "--animation {}: the animation is written as FILE.svg",
+                f.display()
+            )));
+        }
+        Ok(SimulateFiles {
+            trajectory,
+            animation,
+        })
     }
-    if let Some(f) = trajectory
-        && f.extension().and_then(|e| e.to_str()) != Some("csv")
-    {
-        return fail_input(format!(
-            "--trajectory {}: a system of spheres writes FILE.csv (the samples)",
-            f.display()
-        ));
+
+    /// Write each file asked for, whole or not at all: the animation, then the plot or CSV.
+    fn write(
+        &self,
+        animation: impl FnOnce() -> String,
+        plot: impl FnOnce() -> Result<String, String>,
+        csv: impl FnOnce() -> String,
+    ) -> Result<(), ExitCode> {
+        if let Some(file) = self.animation {
+            write_whole_as("--animation", file, &animation())?;
+        }
+        if let Some((file, svg)) = self.trajectory {
+            let text = if svg {
+                plot().map_err(|e| {
+                    eprintln!("error: --trajectory {}: {e}", file.display());
+                    ExitCode::from(2)
+                })?
+            } else {
+                csv()
+            };
+            write_whole(file, &text)?;
+        }
+        Ok(())
     }
-    let sim = inertance::simulate::system::simulate_system(&scene.setup);
-    if let Some(file) = trajectory
-        && let Err(code) = write_whole(file, &simulation_system::to_csv(&scene.setup, &sim))
-    {
-        return code;
-    }
+}
+
+/// A run's report on stdout (JSON or the log), and its status: 0 when it reached its end, 3
+/// when it stopped on an error (said on stderr).
+fn simulate_report(
+    path: &std::path::Path,
+    json: bool,
+    to_json: impl FnOnce() -> serde_json::Value,
+    to_text: impl FnOnce() -> String,
+    stopped: Option<&inertance::simulate::SimulateError>,
+) -> ExitCode {
     if json {
-        let mut t = serde_json::to_string_pretty(&simulation_system::to_json(
-            &scene.name,
-            &scene.setup,
-            &sim,
-        ))
-        .unwrap_or_default();
+        let mut t = serde_json::to_string_pretty(&to_json()).unwrap_or_default();
         t.push('\n');
         print_out(&t);
     } else {
-        print_out(&simulation_system::to_text(&scene.name, &scene.setup, &sim));
+        print_out(&to_text());
     }
-    match &sim.stopped {
+    match stopped {
         Some(e) => {
             eprintln!("error: {}: {e}", path.display());
             ExitCode::from(3)
         }
         None => ExitCode::SUCCESS,
     }
+}
+
+/// `simulate` on a system of spheres: the log or JSON, the trajectory, its plot and the
+/// animation; statuses as for one body.
+fn run_simulate_spheres(
+    path: &std::path::Path,
+    mut scene: inertance::scene::SphereSystemScene,
+    law: Option<LawArg>,
+    json: bool,
+    files: &SimulateFiles,
+) -> ExitCode {
+    use inertance::report::{animation_system, simulation_system};
+    if let Some(l) = law {
+        scene.setup.law = match chosen_law(path, scene.setup.law, l) {
+            Ok(l) => l,
+            Err(code) => return code,
+        };
+    }
+    let (name, setup) = (&scene.name, &scene.setup);
+    let sim = inertance::simulate::system::simulate_system(setup);
+    if let Err(code) = files.write(
+        || animation_system::to_svg(name, setup, &sim),
+        || simulation_system::to_svg(name, setup, &sim),
+        || simulation_system::to_csv(setup, &sim),
+    ) {
+        return code;
+    }
+    simulate_report(
+        path,
+        json,
+        || simulation_system::to_json(name, setup, &sim),
+        || simulation_system::to_text(name, setup, &sim),
+        sim.stopped.as_ref(),
+    )
 }
 
 /// `simulate`: status 0 when the run reached its end, 2 for bad input, 3 when an impact had no
@@ -497,89 +570,44 @@ fn run_simulate(
     trajectory: Option<&std::path::Path>,
     animation: Option<&std::path::Path>,
 ) -> ExitCode {
-    use inertance::report::simulation;
+    use inertance::report::{animation, simulation};
     let scene = match inertance::scene::AnySimulation::load(path) {
-        Ok(inertance::scene::AnySimulation::Body(s)) => *s,
-        Ok(inertance::scene::AnySimulation::Spheres(s)) => {
-            if let Some(f) = animation {
-                return fail_input(format!(
-                    "--animation {}: a system of spheres is not drawn yet: use the log or \
-                     --trajectory FILE.csv",
-                    f.display()
-                ));
-            }
-            return run_simulate_spheres(path, *s, law, json, trajectory);
-        }
+        Ok(s) => s,
         Err(e) => return fail_input(e.to_string()),
     };
-    let mut scene = scene;
+    let files = match SimulateFiles::checked(trajectory, animation) {
+        Ok(f) => f,
+        Err(code) => return code,
+    };
+    let mut scene = match scene {
+        inertance::scene::AnySimulation::Body(s) => *s,
+        inertance::scene::AnySimulation::Spheres(s) => {
+            return run_simulate_spheres(path, *s, law, json, &files);
+        }
+    };
     if let Some(l) = law {
         scene.setup.law = match chosen_law(path, scene.setup.law, l) {
             Ok(l) => l,
             Err(code) => return code,
         };
     }
-    let format = match trajectory {
-        None => None,
-        Some(f) => match f.extension().and_then(|e| e.to_str()) {
-            Some("csv") => Some(false),
-            Some("svg") => Some(true),
-            _ => {
-                return fail_input(format!(
-                    "--trajectory {}: write FILE.csv (the samples) or FILE.svg (their plot)",
-                    f.display()
-                ));
-            }
-        },
-    };
-    if let Some(f) = animation
-        && f.extension().and_then(|e| e.to_str()) != Some("svg")
-    {
-        return fail_input(format!(
-            "--animation {}: the animation is written as FILE.svg",
-            f.display()
-        ));
-    }
+    let (name, setup) = (&scene.name, &scene.setup);
     // A run that stopped on an error still reports its history up to there (status 3).
-    let sim = inertance::simulate::run::simulate_history(&scene.setup);
-    if let Some(file) = animation {
-        let text = inertance::report::animation::to_svg(&scene.name, &scene.setup, &sim);
-        if let Err(code) = write_whole_as("--animation", file, &text) {
-            return code;
-        }
+    let sim = inertance::simulate::run::simulate_history(setup);
+    if let Err(code) = files.write(
+        || animation::to_svg(name, setup, &sim),
+        || simulation::to_svg(name, setup, &sim),
+        || simulation::to_csv(setup, &sim),
+    ) {
+        return code;
     }
-    if let (Some(file), Some(svg)) = (trajectory, format) {
-        let text = if svg {
-            match simulation::to_svg(&scene.name, &scene.setup, &sim) {
-                Ok(t) => t,
-                Err(e) => {
-                    eprintln!("error: --trajectory {}: {e}", file.display());
-                    return ExitCode::from(2);
-                }
-            }
-        } else {
-            simulation::to_csv(&scene.setup, &sim)
-        };
-        if let Err(code) = write_whole(file, &text) {
-            return code;
-        }
-    }
-    if json {
-        let mut t =
-            serde_json::to_string_pretty(&simulation::to_json(&scene.name, &scene.setup, &sim))
-                .unwrap_or_default();
-        t.push('\n');
-        print_out(&t);
-    } else {
-        print_out(&simulation::to_text(&scene.name, &scene.setup, &sim));
-    }
-    match &sim.stopped {
-        Some(e) => {
-            eprintln!("error: {}: {e}", path.display());
-            ExitCode::from(3)
-        }
-        None => ExitCode::SUCCESS,
-    }
+    simulate_report(
+        path,
+        json,
+        || simulation::to_json(name, setup, &sim),
+        || simulation::to_text(name, setup, &sim),
+        sim.stopped.as_ref(),
+    )
 }
 
 /// Read the scene at `path` with the overrides `opts` and the `symbols`; `-` reads it from

@@ -20,6 +20,17 @@ fn attr_f64s(node: &roxmltree::Node, name: &str) -> Vec<f64> {
         .collect()
 }
 
+/// The root's map from the world to the canvas: the view's projection, scaled and moved to the
+/// origin written on the root (`data-scale`, `data-origin`).
+fn to_canvas(root: &roxmltree::Node, view: View) -> impl Fn(&Vector3<f64>) -> (f64, f64) {
+    let scale = attr_f64s(root, "data-scale")[0];
+    let origin = attr_f64s(root, "data-origin");
+    move |p| {
+        let (h, v) = view.project(p);
+        (origin[0] + scale * h, origin[1] - scale * v)
+    }
+}
+
 #[test]
 fn every_frame_draws_the_body_where_the_run_has_it() {
     let scene = SimulationScene::load(std::path::Path::new("examples/simulate/tumbling-box.toml"))
@@ -29,7 +40,6 @@ fn every_frame_draws_the_body_where_the_run_has_it() {
     let doc = roxmltree::Document::parse(&svg).expect("the SVG is well-formed XML");
     let root = doc.root_element();
     assert_eq!(root.tag_name().name(), "svg");
-    let scale = attr_f64s(&root, "data-scale")[0];
     let origin = attr_f64s(&root, "data-origin");
     let eh = attr_f64s(&root, "data-horizontal");
     let ev = attr_f64s(&root, "data-vertical");
@@ -37,10 +47,7 @@ fn every_frame_draws_the_body_where_the_run_has_it() {
     // the view written is the view of the run: a planar run in x–z, x right, z up
     assert_eq!(eh, vec![1.0, 0.0, 0.0]);
     assert_eq!(ev, vec![0.0, 0.0, 1.0]);
-    let px = |p: &Vector3<f64>| {
-        let (h, v) = view.project(p);
-        (origin[0] + scale * h, origin[1] - scale * v)
-    };
+    let px = to_canvas(&root, view);
     let frames: Vec<_> = root
         .children()
         .filter(|n| n.attribute("class") == Some("frame"))
@@ -183,4 +190,88 @@ fn the_cli_writes_the_animation_and_refuses_another_extension() {
     assert_eq!(out.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&out.stderr).contains("--animation"));
     assert!(!dir.join("ball.gif").exists(), "nothing written");
+}
+
+/// A system of spheres: Newton's cradle under LZB, one frame per sample, every ball's circle
+/// at the projection of its centre at that sample (the view recomputed here from the run's
+/// gravity: none, so x to the right), of its radius; the striker nearly stops at the impact
+/// and the last ball carries on with nearly all of its velocity (derivations/lzb.md: −0.0710
+/// and 0.9945 m/s).
+#[test]
+fn every_frame_of_a_system_draws_each_sphere_where_the_run_has_it() {
+    use inertance::report::animation_system;
+    use inertance::scene::AnySimulation;
+    use inertance::simulate::Law;
+    use inertance::simulate::system::simulate_system;
+    let path = std::path::Path::new("examples/simulate/cradle-3.toml");
+    let (name, mut setup) = match AnySimulation::load(path).expect("reads") {
+        AnySimulation::Spheres(s) => (s.name, s.setup),
+        AnySimulation::Body(_) => unreachable!("a system"),
+    };
+    setup.law = Law::Lzb;
+    let sim = simulate_system(&setup);
+    assert!(sim.stopped.is_none());
+    let svg = animation_system::to_svg(&name, &setup, &sim);
+    let doc = roxmltree::Document::parse(&svg).expect("the SVG is well-formed XML");
+    let root = doc.root_element();
+    let scale = attr_f64s(&root, "data-scale")[0];
+    let view = View::looking(setup.options.gravity, None);
+    assert_eq!(attr_f64s(&root, "data-horizontal"), vec![1.0, 0.0, 0.0]);
+    let px = to_canvas(&root, view);
+    let frames: Vec<_> = root
+        .children()
+        .filter(|n| n.attribute("class") == Some("frame"))
+        .collect();
+    assert_eq!(frames.len(), sim.samples.len(), "one frame per sample");
+    let mut drawn_x: Vec<Vec<f64>> = Vec::new();
+    for (k, (frame, sample)) in frames.iter().zip(&sim.samples).enumerate() {
+        let t: f64 = frame.attribute("data-t").expect("t").parse().expect("t");
+        assert_eq!(t, sample.t);
+        let circles: Vec<_> = frame
+            .children()
+            .filter(|n| n.attribute("class") == Some("body"))
+            .collect();
+        assert_eq!(circles.len(), setup.spheres.len(), "frame {k}: every ball");
+        let mut xs = Vec::new();
+        for ((c, x), sphere) in circles.iter().zip(&sample.state.x).zip(&setup.spheres) {
+            assert_eq!(c.tag_name().name(), "circle");
+            assert_eq!(c.attribute("data-name"), Some(sphere.name.as_str()));
+            let (cx, cy, r) = (
+                attr_f64s(c, "cx")[0],
+                attr_f64s(c, "cy")[0],
+                attr_f64s(c, "r")[0],
+            );
+            let want = px(x);
+            assert!(
+                (cx - want.0).abs() < 2e-3 && (cy - want.1).abs() < 2e-3,
+                "frame {k}: {} at ({cx}, {cy}), the run has {want:?}",
+                sphere.name
+            );
+            assert!((r - sphere.radius * scale).abs() < 2e-3);
+            xs.push(cx);
+        }
+        drawn_x.push(xs);
+    }
+    // after the impact (the sample after it, to the end): the drawn displacements
+    let t_impact = sim.impacts[0].t;
+    let after = sim
+        .samples
+        .iter()
+        .rposition(|s| s.t == t_impact)
+        .expect("the sample after the impact");
+    let last = drawn_x.len() - 1;
+    let moved = |b: usize| drawn_x[last][b] - drawn_x[after][b];
+    let flight = (sim.t_end - t_impact) * scale;
+    assert!(
+        (moved(2) - 0.9945 * flight).abs() < 1e-3 * flight,
+        "the last ball moves on: {} px vs {} px",
+        moved(2),
+        0.9945 * flight
+    );
+    assert!(
+        moved(0).abs() < 0.08 * flight,
+        "the striker nearly stops: {} px",
+        moved(0)
+    );
+    assert!(moved(0) < 0.0, "and recoils a little");
 }

@@ -103,7 +103,7 @@ fn siconos_rocking_block_is_reproduced_impact_by_impact() {
     // (the top corners are not in its model, and the block turns past 90° before 2 s).
     scene.setup.body.features.retain(|f| match f {
         Feature::Point { at, .. } => at.z < 0.0,
-        Feature::Sphere { .. } => false,
+        Feature::Sphere { .. } | Feature::Rim { .. } => false,
     });
     assert_eq!(scene.setup.body.features.len(), 2);
     let sim = simulate(&scene.setup).expect("the run ends");

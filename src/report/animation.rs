@@ -29,6 +29,7 @@ use std::fmt::Write as _;
 use nalgebra::Vector3;
 
 use crate::simulate::run::Simulation;
+use crate::simulate::world::Plane;
 use crate::simulate::{Setup, Shape, State};
 
 type V3 = Vector3<f64>;
@@ -55,13 +56,19 @@ impl View {
     /// The view of a run: its plane of motion, or the vertical plane through x (y when gravity
     /// lies along x).
     pub fn of(setup: &Setup) -> View {
-        let g = setup.options.gravity;
+        View::looking(setup.options.gravity, setup.plane)
+    }
+
+    /// The view of a run under `gravity` in the plane of motion `plane` (none: the vertical
+    /// plane through x, or y when gravity lies along x).
+    pub fn looking(gravity: V3, plane: Option<V3>) -> View {
+        let g = gravity;
         let up_guess = if g.norm() > 0.0 {
             -g / g.norm()
         } else {
             V3::z()
         };
-        let normal = match setup.plane {
+        let normal = match plane {
             Some(n) => n.normalize(),
             None => {
                 let candidate = V3::y();
@@ -169,9 +176,8 @@ fn hull(mut p: Vec<(f64, f64)>) -> Vec<(f64, f64)> {
     lower
 }
 
-/// The frames drawn: every sample, or [`MAX_FRAMES`] of them evenly.
-fn frames(sim: &Simulation) -> Vec<usize> {
-    let n = sim.samples.len();
+/// The frames drawn of `n` samples: every one, or [`MAX_FRAMES`] of them evenly.
+pub(crate) fn frames(n: usize) -> Vec<usize> {
     if n <= MAX_FRAMES {
         return (0..n).collect();
     }
@@ -182,135 +188,168 @@ fn frames(sim: &Simulation) -> Vec<usize> {
     idx
 }
 
-fn f(x: f64) -> String {
+pub(crate) fn f(x: f64) -> String {
     format!("{x:.3}")
 }
 
-/// The animation of `sim` as one SVG document (see the module docs).
-pub fn to_svg(name: &str, setup: &Setup, sim: &Simulation) -> String {
-    let view = View::of(setup);
-    let chosen = frames(sim);
-    let outlines: Vec<Vec<(f64, f64)>> = chosen
-        .iter()
-        .map(|&k| outline(setup, &view, &sim.samples[k].state))
-        .collect();
-    // world bounds of the drawn body over the run, with its size as margin
-    let reach = match &setup.body.shape {
-        Shape::Box { half } => half.norm(),
-        Shape::Rod { half_length } => *half_length,
-        Shape::Cylinder {
-            radius,
-            half_height,
-        } => radius.hypot(*half_height),
-        Shape::Sphere { radius } => *radius,
-    };
-    let (mut h0, mut h1, mut v0, mut v1) = (f64::MAX, f64::MIN, f64::MAX, f64::MIN);
-    for o in &outlines {
-        for &(h, v) in o {
-            h0 = h0.min(h);
-            h1 = h1.max(h);
-            v0 = v0.min(v);
-            v1 = v1.max(v);
+/// World bounds (h₀, h₁, v₀, v₁) in the drawing plane.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Bounds {
+    h0: f64,
+    h1: f64,
+    v0: f64,
+    v1: f64,
+}
+
+impl Bounds {
+    /// Nothing yet.
+    pub(crate) fn empty() -> Bounds {
+        Bounds {
+            h0: f64::MAX,
+            h1: f64::MIN,
+            v0: f64::MAX,
+            v1: f64::MIN,
         }
     }
-    if let Shape::Sphere { radius } = &setup.body.shape {
-        h0 -= radius;
-        h1 += radius;
-        v0 -= radius;
-        v1 += radius;
+
+    /// Grown to hold the disc of radius `r` about (h, v) (a point: r = 0).
+    pub(crate) fn hold(&mut self, (h, v): (f64, f64), r: f64) {
+        self.h0 = self.h0.min(h - r);
+        self.h1 = self.h1.max(h + r);
+        self.v0 = self.v0.min(v - r);
+        self.v1 = self.v1.max(v + r);
     }
-    let margin = 0.5 * reach.max(1e-9);
-    let (h0, h1, v0, v1) = (h0 - margin, h1 + margin, v0 - margin, v1 + margin);
-    // the run's bounds fitted into the canvas, centred
-    let height = HEIGHT;
-    let scale = (WIDTH / (h1 - h0)).min(height / (v1 - v0));
-    let origin = (
-        (WIDTH - (h1 - h0) * scale) / 2.0 - h0 * scale,
-        (height - (v1 - v0) * scale) / 2.0 + v1 * scale,
-    );
-    let to_px = |(h, v): (f64, f64)| (origin.0 + scale * h, origin.1 - scale * v);
-    let t_total = sim.t_end.max(f64::MIN_POSITIVE);
-    let mut svg = String::new();
-    let _ = writeln!(
-        svg,
-        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{w}\" height=\"{h}\" \
-         viewBox=\"0 0 {w} {h}\" data-scale=\"{s:e}\" data-origin=\"{ox:e} {oy:e}\" \
-         data-horizontal=\"{eh0:e} {eh1:e} {eh2:e}\" data-vertical=\"{ev0:e} {ev1:e} {ev2:e}\" \
-         data-duration=\"{t_total:e}\" data-frames=\"{n}\">",
-        w = f(WIDTH),
-        h = f(height),
-        s = scale,
-        ox = origin.0,
-        oy = origin.1,
-        eh0 = view.horizontal.x,
-        eh1 = view.horizontal.y,
-        eh2 = view.horizontal.z,
-        ev0 = view.vertical.x,
-        ev1 = view.vertical.y,
-        ev2 = view.vertical.z,
-        n = chosen.len(),
-    );
-    let _ = writeln!(
-        svg,
-        "<title>{}</title>\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>",
-        escape(name)
-    );
-    // the obstacles, at the body's depth at the start
-    let depth = view.normal.dot(&setup.start.x);
-    for plane in &setup.planes {
-        let n = plane.normal;
-        let (nh, nv) = (view.horizontal.dot(&n), view.vertical.dot(&n));
-        let len = (nh * nh + nv * nv).sqrt();
-        if len < 1e-9 {
-            continue;
+
+    /// Grown by `m` on every side.
+    pub(crate) fn grown(self, m: f64) -> Bounds {
+        Bounds {
+            h0: self.h0 - m,
+            h1: self.h1 + m,
+            v0: self.v0 - m,
+            v1: self.v1 + m,
         }
-        let c = n.dot(&plane.point) - view.normal.dot(&n) * depth;
-        // the trace's nearest point to the world origin, and its direction
-        let foot = (nh * c / (len * len), nv * c / (len * len));
-        let dir = (-nv / len, nh / len);
-        let span = 4.0 * (h1 - h0).max(v1 - v0);
-        let a = to_px((foot.0 - span * dir.0, foot.1 - span * dir.1));
-        let b = to_px((foot.0 + span * dir.0, foot.1 + span * dir.1));
+    }
+}
+
+/// The canvas: a run's bounds fitted into it, centred, and the SVG being written.
+pub(crate) struct Canvas {
+    /// s (px per m).
+    pub scale: f64,
+    origin: (f64, f64),
+    bounds: Bounds,
+    view: View,
+    /// The document so far.
+    pub svg: String,
+}
+
+impl Canvas {
+    /// The root element (with the view, the scale and the origin a reader maps the drawing
+    /// back with), the title and the background, for `frames` frames over `t_total` seconds.
+    pub(crate) fn open(name: &str, view: View, b: Bounds, t_total: f64, frames: usize) -> Canvas {
+        let scale = (WIDTH / (b.h1 - b.h0)).min(HEIGHT / (b.v1 - b.v0));
+        let origin = (
+            (WIDTH - (b.h1 - b.h0) * scale) / 2.0 - b.h0 * scale,
+            (HEIGHT - (b.v1 - b.v0) * scale) / 2.0 + b.v1 * scale,
+        );
+        let mut svg = String::new();
         let _ = writeln!(
             svg,
-            "<g class=\"obstacle\" data-name=\"{}\"><line x1=\"{}\" y1=\"{}\" x2=\"{}\" y2=\"{}\" \
-             stroke=\"black\" stroke-width=\"2\"/>",
-            escape(&plane.name),
-            f(a.0),
-            f(a.1),
-            f(b.0),
-            f(b.1)
+            "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{w}\" height=\"{h}\" \
+             viewBox=\"0 0 {w} {h}\" data-scale=\"{scale:e}\" data-origin=\"{ox:e} {oy:e}\" \
+             data-horizontal=\"{eh0:e} {eh1:e} {eh2:e}\" data-vertical=\"{ev0:e} {ev1:e} {ev2:e}\" \
+             data-duration=\"{t_total:e}\" data-frames=\"{frames}\">",
+            w = f(WIDTH),
+            h = f(HEIGHT),
+            ox = origin.0,
+            oy = origin.1,
+            eh0 = view.horizontal.x,
+            eh1 = view.horizontal.y,
+            eh2 = view.horizontal.z,
+            ev0 = view.vertical.x,
+            ev1 = view.vertical.y,
+            ev2 = view.vertical.z,
         );
-        // hatching on the obstacle's side (−N), every 20 px along the trace
-        let into = (-nh / len, nv / len); // −N in pixels (y down)
-        let length = (b.0 - a.0).hypot(b.1 - a.1);
-        let along = ((b.0 - a.0) / length, (b.1 - a.1) / length);
-        // only where the drawing is: the trace's stretch inside the canvas
-        let steps = (length / 20.0).min(4000.0) as usize;
-        for k in 0..=steps {
-            let u = k as f64 / steps.max(1) as f64;
-            let p = (a.0 + u * (b.0 - a.0), a.1 + u * (b.1 - a.1));
-            if p.0 < -20.0 || p.0 > WIDTH + 20.0 || p.1 < -20.0 || p.1 > height + 20.0 {
+        let _ = writeln!(
+            svg,
+            "<title>{}</title>\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>",
+            escape(name)
+        );
+        Canvas {
+            scale,
+            origin,
+            bounds: b,
+            view,
+            svg,
+        }
+    }
+
+    /// The pixel of the drawing-plane point (h, v).
+    pub(crate) fn px(&self, (h, v): (f64, f64)) -> (f64, f64) {
+        (
+            self.origin.0 + self.scale * h,
+            self.origin.1 - self.scale * v,
+        )
+    }
+
+    /// The obstacle planes' traces at the depth `depth` along the view's normal, hatched on
+    /// the obstacle's side.
+    pub(crate) fn obstacles(&mut self, planes: &[Plane], depth: f64) {
+        let view = self.view;
+        let b = self.bounds;
+        for plane in planes {
+            let n = plane.normal;
+            let (nh, nv) = (view.horizontal.dot(&n), view.vertical.dot(&n));
+            let len = (nh * nh + nv * nv).sqrt();
+            if len < 1e-9 {
                 continue;
             }
+            let c = n.dot(&plane.point) - view.normal.dot(&n) * depth;
+            // the trace's nearest point to the world origin, and its direction
+            let foot = (nh * c / (len * len), nv * c / (len * len));
+            let dir = (-nv / len, nh / len);
+            let span = 4.0 * (b.h1 - b.h0).max(b.v1 - b.v0);
+            let a = self.px((foot.0 - span * dir.0, foot.1 - span * dir.1));
+            let e = self.px((foot.0 + span * dir.0, foot.1 + span * dir.1));
             let _ = writeln!(
-                svg,
-                "<line x1=\"{}\" y1=\"{}\" x2=\"{}\" y2=\"{}\" stroke=\"gray\"/>",
-                f(p.0),
-                f(p.1),
-                f(p.0 + 10.0 * into.0 + 6.0 * along.0),
-                f(p.1 + 10.0 * into.1 + 6.0 * along.1)
+                self.svg,
+                "<g class=\"obstacle\" data-name=\"{}\"><line x1=\"{}\" y1=\"{}\" x2=\"{}\" \
+                 y2=\"{}\" stroke=\"black\" stroke-width=\"2\"/>",
+                escape(&plane.name),
+                f(a.0),
+                f(a.1),
+                f(e.0),
+                f(e.1)
             );
+            // hatching on the obstacle's side (−N), every 20 px along the trace
+            let into = (-nh / len, nv / len); // −N in pixels (y down)
+            let length = (e.0 - a.0).hypot(e.1 - a.1);
+            let along = ((e.0 - a.0) / length, (e.1 - a.1) / length);
+            // only where the drawing is: the trace's stretch inside the canvas
+            let steps = (length / 20.0).min(4000.0) as usize;
+            for k in 0..=steps {
+                let u = k as f64 / steps.max(1) as f64;
+                let p = (a.0 + u * (e.0 - a.0), a.1 + u * (e.1 - a.1));
+                if p.0 < -20.0 || p.0 > WIDTH + 20.0 || p.1 < -20.0 || p.1 > HEIGHT + 20.0 {
+                    continue;
+                }
+                let _ = writeln!(
+                    self.svg,
+                    "<line x1=\"{}\" y1=\"{}\" x2=\"{}\" y2=\"{}\" stroke=\"gray\"/>",
+                    f(p.0),
+                    f(p.1),
+                    f(p.0 + 10.0 * into.0 + 6.0 * along.0),
+                    f(p.1 + 10.0 * into.1 + 6.0 * along.1)
+                );
+            }
+            self.svg.push_str("</g>\n");
         }
-        svg.push_str("</g>\n");
     }
-    // the frames
-    for (j, (&k, o)) in chosen.iter().zip(&outlines).enumerate() {
-        let sample = &sim.samples[k];
-        let start = sample.t / t_total;
-        let end = chosen.get(j + 1).map(|&next| sim.samples[next].t / t_total);
-        let impacts = sim.impacts.iter().filter(|r| r.t <= sample.t).count();
-        let (values, times) = match (start > 0.0, end) {
+
+    /// Open the `j`-th frame, the sample at `t`, shown from `t` to `next` (the next frame's
+    /// time; none: to the end) of a run of `t_total` seconds.
+    pub(crate) fn open_frame(&mut self, j: usize, t: f64, next: Option<f64>, t_total: f64) {
+        let start = t / t_total;
+        let (values, times) = match (start > 0.0, next.map(|n| n / t_total)) {
             (false, Some(e)) => ("inline;none".to_string(), format!("0;{e:.6}")),
             (true, Some(e)) => (
                 "none;inline;none".to_string(),
@@ -320,15 +359,68 @@ pub fn to_svg(name: &str, setup: &Setup, sim: &Simulation) -> String {
             (true, None) => ("none;inline".to_string(), format!("0;{start:.6}")),
         };
         let _ = write!(
-            svg,
+            self.svg,
             "<g class=\"frame\" data-t=\"{t:e}\" display=\"{d}\">\
              <animate attributeName=\"display\" values=\"{values}\" keyTimes=\"{times}\" \
-             dur=\"{dur:e}s\" calcMode=\"discrete\" repeatCount=\"indefinite\"/>",
-            t = sample.t,
+             dur=\"{t_total:e}s\" calcMode=\"discrete\" repeatCount=\"indefinite\"/>",
             d = if j == 0 { "inline" } else { "none" },
-            dur = t_total,
         );
-        let px: Vec<(f64, f64)> = o.iter().map(|&p| to_px(p)).collect();
+    }
+
+    /// Close a frame at `t` with its caption: the time and the impacts up to it.
+    pub(crate) fn close_frame(&mut self, t: f64, impacts: usize) {
+        let _ = writeln!(
+            self.svg,
+            "<text x=\"10\" y=\"20\" font-family=\"sans-serif\" font-size=\"14\">t = {t:.4} s, \
+             {impacts} impact{}</text></g>",
+            if impacts == 1 { "" } else { "s" }
+        );
+    }
+
+    /// The finished document.
+    pub(crate) fn close(mut self) -> String {
+        self.svg.push_str("</svg>\n");
+        self.svg
+    }
+}
+
+/// The animation of `sim` as one SVG document (see the module docs).
+pub fn to_svg(name: &str, setup: &Setup, sim: &Simulation) -> String {
+    let view = View::of(setup);
+    let chosen = frames(sim.samples.len());
+    let outlines: Vec<Vec<(f64, f64)>> = chosen
+        .iter()
+        .map(|&k| outline(setup, &view, &sim.samples[k].state))
+        .collect();
+    // world bounds of the drawn body over the run, with its size as margin
+    let mut bounds = Bounds::empty();
+    let reach = match &setup.body.shape {
+        Shape::Box { half } => half.norm(),
+        Shape::Rod { half_length } => *half_length,
+        Shape::Cylinder {
+            radius,
+            half_height,
+        } => radius.hypot(*half_height),
+        Shape::Sphere { radius } => *radius,
+    };
+    for o in &outlines {
+        match &setup.body.shape {
+            // its circle about the centre (the rim's marker on it)
+            Shape::Sphere { radius } => bounds.hold(o[0], *radius),
+            _ => o.iter().for_each(|&p| bounds.hold(p, 0.0)),
+        }
+    }
+    let bounds = bounds.grown(0.5 * reach.max(1e-9));
+    let t_total = sim.t_end.max(f64::MIN_POSITIVE);
+    let mut canvas = Canvas::open(name, view, bounds, t_total, chosen.len());
+    // the obstacles, at the body's depth at the start
+    canvas.obstacles(&setup.planes, view.normal.dot(&setup.start.x));
+    for (j, (&k, o)) in chosen.iter().zip(&outlines).enumerate() {
+        let sample = &sim.samples[k];
+        let next = chosen.get(j + 1).map(|&n| sim.samples[n].t);
+        canvas.open_frame(j, sample.t, next, t_total);
+        let px: Vec<(f64, f64)> = o.iter().map(|&p| canvas.px(p)).collect();
+        let svg = &mut canvas.svg;
         match &setup.body.shape {
             Shape::Box { .. } | Shape::Cylinder { .. } => {
                 let pts: Vec<String> = px
@@ -361,7 +453,7 @@ pub fn to_svg(name: &str, setup: &Setup, sim: &Simulation) -> String {
                      y2=\"{}\" stroke=\"#08519c\"/>",
                     f(px[0].0),
                     f(px[0].1),
-                    f(radius * scale),
+                    f(radius * canvas.scale),
                     f(px[0].0),
                     f(px[0].1),
                     f(px[1].0),
@@ -369,19 +461,13 @@ pub fn to_svg(name: &str, setup: &Setup, sim: &Simulation) -> String {
                 );
             }
         }
-        let _ = writeln!(
-            svg,
-            "<text x=\"10\" y=\"20\" font-family=\"sans-serif\" font-size=\"14\">t = {:.4} s, \
-             {impacts} impact{}</text></g>",
-            sample.t,
-            if impacts == 1 { "" } else { "s" }
-        );
+        let impacts = sim.impacts.iter().filter(|r| r.t <= sample.t).count();
+        canvas.close_frame(sample.t, impacts);
     }
-    svg.push_str("</svg>\n");
-    svg
+    canvas.close()
 }
 
-fn escape(s: &str) -> String {
+pub(crate) fn escape(s: &str) -> String {
     s.replace('&', "&amp;")
         .replace('<', "&lt;")
         .replace('>', "&gt;")

@@ -14,10 +14,12 @@
 //! `json` for programs ([`Report::to_json`]).
 
 pub mod animation;
+pub mod animation_system;
 pub mod exact_run;
 mod friction;
 mod json;
 pub mod lzb;
+mod plot;
 pub mod simulation;
 pub mod simulation_system;
 pub mod system;

@@ -2,10 +2,10 @@
 //! trajectory as CSV, and its plot (SVG: the energies and the body's angle against time, the
 //! impacts marked).
 
-use plotters::prelude::*;
 use serde_json::{Value as Json, json};
 
 use super::json_f64;
+use super::plot::{Series, energies_and};
 use crate::simulate::run::{End, Event, ImpactRecord, SimulateError, Simulation};
 use crate::simulate::{Setup, State};
 
@@ -206,7 +206,6 @@ pub(crate) fn impact_log(impacts: &[ImpactRecord], events: &[Event]) -> String {
 
 /// The whole run, for programs.
 pub fn to_json(name: &str, setup: &Setup, sim: &Simulation) -> Json {
-    let v3 = |v: &nalgebra::Vector3<f64>| json!([json_f64(v.x), json_f64(v.y), json_f64(v.z)]);
     json!({
         "name": name,
         "law": setup.law.name(),
@@ -224,8 +223,13 @@ pub fn to_json(name: &str, setup: &Setup, sim: &Simulation) -> Json {
     })
 }
 
-/// How a run ended, as the JSON names it.
-pub fn end_name(end: End) -> &'static str {
+/// A vector as JSON (a non-finite component as null).
+pub(crate) fn v3(v: &nalgebra::Vector3<f64>) -> Json {
+    json!([json_f64(v.x), json_f64(v.y), json_f64(v.z)])
+}
+
+/// Why a run ended, as the JSON names it.
+pub(crate) fn end_name(end: End) -> &'static str {
     match end {
         End::Duration => "duration",
         End::Impacts => "impacts",
@@ -234,9 +238,11 @@ pub fn end_name(end: End) -> &'static str {
     }
 }
 
-/// The impact log for programs (one body's or a system's: a contact between two spheres names
-/// the first as its `feature` and the second as its `obstacle`).
-pub fn impacts_json(impacts: &[ImpactRecord]) -> Json {
+/// The impacts of a run, one body's or a system's, as JSON: per impact its time, spread,
+/// kinetic energies, verdicts and note, and per contact struck the two sides (`feature` on
+/// `obstacle`: for two spheres the first and the second), the gap, the normal rates before
+/// and after, the impulse and whether it was closed.
+pub(crate) fn impacts_json(impacts: &[ImpactRecord]) -> Json {
     impacts
         .iter()
         .map(|r| {
@@ -262,8 +268,8 @@ pub fn impacts_json(impacts: &[ImpactRecord]) -> Json {
         .collect()
 }
 
-/// The other events for programs.
-pub fn events_json(events: &[Event]) -> Json {
+/// The events of a run as JSON.
+pub(crate) fn events_json(events: &[Event]) -> Json {
     events
         .iter()
         .map(|e| json!({"t": json_f64(e.t), "what": e.what}))
@@ -298,117 +304,35 @@ pub fn to_csv(setup: &Setup, sim: &Simulation) -> String {
 }
 
 /// The plot: kinetic, potential and total energy against time (top), the angle (bottom), a
-/// vertical mark at every impact.
+/// vertical mark at every impact ([`super::plot`]).
 ///
 /// # Errors
 /// What the plotting library reports.
 pub fn to_svg(name: &str, setup: &Setup, sim: &Simulation) -> Result<String, String> {
-    let err = |e: &dyn std::fmt::Display| e.to_string();
-    let t1 = sim.t_end.max(f64::MIN_POSITIVE);
     let energies: Vec<(f64, f64, f64)> = sim
         .samples
         .iter()
-        .map(|s| (s.kinetic, s.potential, s.kinetic + s.potential))
+        .map(|s| (s.t, s.kinetic, s.potential))
         .collect();
-    let base = 0.0_f64;
-    let (e0, e1) = energies
-        .iter()
-        .flat_map(|&(k, p, e)| [k, p, e])
-        .fold((base, base), |(lo, hi), y| (lo.min(y), hi.max(y)));
-    let pad = 0.05 * (e1 - e0).max(f64::MIN_POSITIVE);
-    let angles: Vec<f64> = sim.samples.iter().map(|s| angle(setup, &s.state)).collect();
-    let (a0, a1) = angles
-        .iter()
-        .fold((0.0f64, 0.0f64), |(lo, hi), &y| (lo.min(y), hi.max(y)));
-    let apad = 0.05 * (a1 - a0).max(1e-9);
-    let mut svg = String::new();
-    {
-        let root = SVGBackend::with_string(&mut svg, (960, 720)).into_drawing_area();
-        root.fill(&WHITE).map_err(|e| err(&e))?;
-        let (top, bottom) = root.split_vertically(360);
-        let mut chart = ChartBuilder::on(&top)
-            .caption(
-                format!("{name}: energy ({})", setup.law.name()),
-                ("sans-serif", 20),
-            )
-            .margin(15)
-            .x_label_area_size(40)
-            .y_label_area_size(80)
-            .build_cartesian_2d(0.0..t1, (e0 - pad)..(e1 + pad))
-            .map_err(|e| err(&e))?;
-        chart
-            .configure_mesh()
-            .x_desc("t [s]")
-            .y_desc("energy [J]")
-            .draw()
-            .map_err(|e| err(&e))?;
-        let series: [(&str, RGBColor, fn(&(f64, f64, f64)) -> f64); 3] = [
-            ("kinetic", RGBColor(31, 119, 180), |e| e.0),
-            ("potential", RGBColor(44, 160, 44), |e| e.1),
-            ("total", RGBColor(0, 0, 0), |e| e.2),
-        ];
-        for (label, colour, pick) in series {
-            chart
-                .draw_series(LineSeries::new(
-                    sim.samples
-                        .iter()
-                        .zip(&energies)
-                        .map(|(s, e)| (s.t, pick(e))),
-                    colour.stroke_width(2),
-                ))
-                .map_err(|e| err(&e))?
-                .label(label)
-                .legend(move |(x, y)| {
-                    Rectangle::new([(x, y - 2), (x + 20, y + 2)], colour.filled())
-                });
-        }
-        let red = RGBColor(214, 39, 40);
-        chart
-            .draw_series(
-                sim.impacts.iter().map(|r| {
-                    PathElement::new(vec![(r.t, e0 - pad), (r.t, e1 + pad)], red.mix(0.4))
-                }),
-            )
-            .map_err(|e| err(&e))?
-            .label("impact")
-            .legend(move |(x, y)| Rectangle::new([(x, y - 2), (x + 20, y + 2)], red.filled()));
-        chart
-            .configure_series_labels()
-            .background_style(WHITE.mix(0.85))
-            .border_style(BLACK)
-            .position(SeriesLabelPosition::UpperRight)
-            .draw()
-            .map_err(|e| err(&e))?;
-        let mut chart = ChartBuilder::on(&bottom)
-            .margin(15)
-            .x_label_area_size(40)
-            .y_label_area_size(80)
-            .build_cartesian_2d(0.0..t1, (a0 - apad)..(a1 + apad))
-            .map_err(|e| err(&e))?;
-        chart
-            .configure_mesh()
-            .x_desc("t [s]")
-            .y_desc(if setup.plane.is_some() {
-                "angle about the plane's normal [rad]"
-            } else {
-                "rotation from the start [rad]"
-            })
-            .draw()
-            .map_err(|e| err(&e))?;
-        chart
-            .draw_series(LineSeries::new(
-                sim.samples.iter().zip(&angles).map(|(s, &a)| (s.t, a)),
-                RGBColor(148, 103, 189).stroke_width(2),
-            ))
-            .map_err(|e| err(&e))?;
-        chart
-            .draw_series(
-                sim.impacts.iter().map(|r| {
-                    PathElement::new(vec![(r.t, a0 - apad), (r.t, a1 + apad)], red.mix(0.4))
-                }),
-            )
-            .map_err(|e| err(&e))?;
-        root.present().map_err(|e| err(&e))?;
-    }
-    Ok(svg)
+    let angles = Series {
+        label: "angle".to_string(),
+        points: sim
+            .samples
+            .iter()
+            .map(|s| (s.t, angle(setup, &s.state)))
+            .collect(),
+    };
+    let impacts: Vec<f64> = sim.impacts.iter().map(|r| r.t).collect();
+    energies_and(
+        &format!("{name}: energy ({})", setup.law.name()),
+        sim.t_end,
+        &energies,
+        &impacts,
+        if setup.plane.is_some() {
+            "angle about the plane's normal [rad]"
+        } else {
+            "rotation from the start [rad]"
+        },
+        &[angles],
+    )
 }

@@ -1,13 +1,17 @@
 //! The report of a simulated system of spheres (`inertance simulate` on several `[[body]]`):
-//! the impact log as one body's ([`super::simulation::impact_log`]), its JSON (one body's
-//! schema, [`to_json`]), and the trajectory as CSV
-//! — per sample t, every sphere's centre and velocity, the energies and the closed contacts
-//! (an impact gives two rows at its time: before and after, as Siconos' event rows).
+//! the impact log as one body's ([`super::simulation::impact_log`]); the whole run as JSON, in
+//! the one body's schema with per-sphere arrays; the trajectory as CSV — per sample t, every
+//! sphere's centre and velocity, the energies and the closed contacts (an impact gives two rows
+//! at its time: before and after, as Siconos' event rows) — and its plot (SVG: the energies and
+//! every sphere's height against time, the impacts marked). The animation is
+//! [`super::animation_system`].
 
 use serde_json::{Value as Json, json};
 
 use super::json_f64;
-use super::simulation::{end_name, end_of, events_json, impact_log, impacts_json, sig};
+use super::plot::{Series, energies_and};
+use super::simulation::{end_name, end_of, events_json, impact_log, impacts_json, sig, v3};
+use crate::simulate::body::V3;
 use crate::simulate::system::{SystemSetup, SystemSimulation};
 
 /// The log.
@@ -30,39 +34,20 @@ pub fn to_text(name: &str, setup: &SystemSetup, sim: &SystemSimulation) -> Strin
         sim.impacts.len(),
         if sim.impacts.len() == 1 { "" } else { "s" },
         energy(0),
-        sig(sim.state.kinetic_energy(&setup.spheres)
-            + sim
-                .state
-                .potential_energy(&setup.spheres, &setup.options.gravity)),
+        // a run stopped by an overflow has no energy to print (never `inf` as a result)
+        Some(
+            sim.state.kinetic_energy(&setup.spheres)
+                + sim
+                    .state
+                    .potential_energy(&setup.spheres, &setup.options.gravity)
+        )
+        .filter(|e| e.is_finite())
+        .map_or_else(|| "(not finite)".to_string(), sig),
         sim.steps.0,
         sim.steps.1,
         sig(sim.drift)
     );
     out
-}
-
-/// The whole run, for programs: one body's schema ([`super::simulation::to_json`]) with the
-/// spheres' names, their final state per sphere, and no Zeno (a system runs to its budget).
-pub fn to_json(name: &str, setup: &SystemSetup, sim: &SystemSimulation) -> Json {
-    let v3 = |v: &nalgebra::Vector3<f64>| json!([json_f64(v.x), json_f64(v.y), json_f64(v.z)]);
-    json!({
-        "name": name,
-        "law": setup.law.name(),
-        "tolerance": setup.options.tolerance,
-        "bodies": setup.spheres.iter().map(|s| s.name.clone()).collect::<Vec<_>>(),
-        "end": end_name(sim.end),
-        "error": sim.stopped.as_ref().map(ToString::to_string),
-        "t_end": json_f64(sim.t_end),
-        "impacts": impacts_json(&sim.impacts),
-        "events": events_json(&sim.events),
-        "state": {
-            "x": sim.state.x.iter().map(v3).collect::<Vec<_>>(),
-            "v": sim.state.v.iter().map(v3).collect::<Vec<_>>(),
-        },
-        "steps": sim.steps.0,
-        "rejected": sim.steps.1,
-        "drift": json_f64(sim.drift),
-    })
 }
 
 /// The trajectory as CSV.
@@ -84,4 +69,92 @@ pub fn to_csv(setup: &SystemSetup, sim: &SystemSimulation) -> String {
         out += &format!(",{:e},{:e},{}\n", s.kinetic, s.potential, s.closed);
     }
     out
+}
+
+/// The whole run, for programs: the one body's keys ([`super::simulation::to_json`]; `zeno`
+/// is null, a system does not find accumulations yet), the spheres (`bodies`), the options,
+/// and the final `state` as one `[x, y, z]` per sphere. An impact between two spheres names
+/// the first as `feature` and the second as `obstacle`, as the log's `a on b`.
+pub fn to_json(name: &str, setup: &SystemSetup, sim: &SystemSimulation) -> Json {
+    let o = &setup.options;
+    json!({
+        "name": name,
+        "law": setup.law.name(),
+        "tolerance": json_f64(o.tolerance),
+        "bodies": setup.spheres.iter().map(|s| json!({
+            "name": s.name,
+            "mass": json_f64(s.mass),
+            "radius": json_f64(s.radius),
+        })).collect::<Vec<_>>(),
+        "obstacles": setup.planes.iter().map(|p| p.name.as_str()).collect::<Vec<_>>(),
+        "options": {
+            "gravity": v3(&o.gravity),
+            "duration": json_f64(o.duration),
+            "output_step": json_f64(o.output_step),
+            "max_impacts": o.max_impacts,
+            "simultaneity": json_f64(o.simultaneity),
+            "rest_speed": json_f64(o.rest_speed),
+        },
+        "end": end_name(sim.end),
+        "error": sim.stopped.as_ref().map(ToString::to_string),
+        "t_end": json_f64(sim.t_end),
+        "zeno": Json::Null,
+        "impacts": impacts_json(&sim.impacts),
+        "events": events_json(&sim.events),
+        "state": {
+            "x": sim.state.x.iter().map(v3).collect::<Vec<_>>(),
+            "v": sim.state.v.iter().map(v3).collect::<Vec<_>>(),
+        },
+        "steps": sim.steps.0,
+        "rejected": sim.steps.1,
+        "drift": json_f64(sim.drift),
+    })
+}
+
+/// The direction the plot's lower chart follows each sphere along, and its label: up (−g)
+/// under gravity, else the animation's horizontal axis (x for a run without gravity).
+fn plotted_axis(setup: &SystemSetup) -> (V3, &'static str) {
+    let view = super::animation_system::view(setup);
+    if setup.options.gravity.norm() > 0.0 {
+        (view.vertical, "height (along −g) [m]")
+    } else {
+        (view.horizontal, "position along x [m]")
+    }
+}
+
+/// The plot: kinetic, potential and total energy against time (top), every sphere's height
+/// (bottom; without gravity its position along the view's horizontal axis), a vertical mark at
+/// every impact ([`super::plot`]).
+///
+/// # Errors
+/// What the plotting library reports.
+pub fn to_svg(name: &str, setup: &SystemSetup, sim: &SystemSimulation) -> Result<String, String> {
+    let energies: Vec<(f64, f64, f64)> = sim
+        .samples
+        .iter()
+        .map(|s| (s.t, s.kinetic, s.potential))
+        .collect();
+    let (axis, label) = plotted_axis(setup);
+    let paths: Vec<Series> = setup
+        .spheres
+        .iter()
+        .enumerate()
+        .map(|(b, s)| Series {
+            label: s.name.clone(),
+            points: sim
+                .samples
+                .iter()
+                .map(|p| (p.t, axis.dot(&p.state.x[b])))
+                .collect(),
+        })
+        .collect();
+    let impacts: Vec<f64> = sim.impacts.iter().map(|r| r.t).collect();
+    energies_and(
+        &format!("{name}: energy ({})", setup.law.name()),
+        sim.t_end,
+        &energies,
+        &impacts,
+        label,
+        &paths,
+    )
 }
