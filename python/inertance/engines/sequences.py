@@ -164,20 +164,28 @@ def mujoco_ball(calibrated: bool):
     return name, mujoco.__version__, ad.timestep, impacts_from_velocity(ts, vz)
 
 
+def _pybullet_world(p, g: float, timestep: float, iterations: int):
+    """A PyBullet client with the adapter's clean-restitution settings (restitution threshold 0,
+    no warm start, split impulse, no slop, no cone friction) and a floor plane at z = 0: (client,
+    floor)."""
+    c = p.connect(p.DIRECT)
+    p.setGravity(0, 0, -g, physicsClientId=c)
+    p.setTimeStep(timestep, physicsClientId=c)
+    p.setPhysicsEngineParameter(restitutionVelocityThreshold=0, warmStartingFactor=0, useSplitImpulse=1,
+                                contactSlop=0, enableConeFriction=0, numSolverIterations=iterations,
+                                physicsClientId=c)
+    floor = p.createMultiBody(0, p.createCollisionShape(p.GEOM_PLANE, planeNormal=[0, 0, 1], physicsClientId=c),
+                              -1, [0, 0, 0], useMaximalCoordinates=True, physicsClientId=c)
+    return c, floor
+
+
 def pybullet_ball(timestep: float = 1 / 240, iterations: int = 50):
     """The adapter's clean-restitution settings (restitution threshold 0, no warm start, split
     impulse, no slop), restitution 1 on the floor and k on the ball (Bullet multiplies them)."""
     import pybullet as p
     b = BALL
-    c = p.connect(p.DIRECT)
+    c, floor = _pybullet_world(p, b["g"], timestep, iterations)
     try:
-        p.setGravity(0, 0, -b["g"], physicsClientId=c)
-        p.setTimeStep(timestep, physicsClientId=c)
-        p.setPhysicsEngineParameter(restitutionVelocityThreshold=0, warmStartingFactor=0, useSplitImpulse=1,
-                                    contactSlop=0, enableConeFriction=0, numSolverIterations=iterations,
-                                    physicsClientId=c)
-        floor = p.createMultiBody(0, p.createCollisionShape(p.GEOM_PLANE, planeNormal=[0, 0, 1], physicsClientId=c),
-                                  -1, basePosition=[0, 0, 0], useMaximalCoordinates=True, physicsClientId=c)
         ball = p.createMultiBody(b["mass"], p.createCollisionShape(p.GEOM_SPHERE, radius=b["radius"], physicsClientId=c),
                                  -1, basePosition=[0, 0, b["height"]], useMaximalCoordinates=True, physicsClientId=c)
         for uid, r in ((floor, 1.0), (ball, b["k"])):
@@ -238,15 +246,8 @@ def pybullet_block(timestep: float = 1 / 240, iterations: int = 50, duration: fl
     import pybullet as p
     from importlib.metadata import version
     th0 = 0.2
-    c = p.connect(p.DIRECT)
+    c, floor = _pybullet_world(p, 9.81, timestep, iterations)
     try:
-        p.setGravity(0, 0, -9.81, physicsClientId=c)
-        p.setTimeStep(timestep, physicsClientId=c)
-        p.setPhysicsEngineParameter(restitutionVelocityThreshold=0, warmStartingFactor=0, useSplitImpulse=1,
-                                    contactSlop=0, enableConeFriction=0, numSolverIterations=iterations,
-                                    physicsClientId=c)
-        floor = p.createMultiBody(0, p.createCollisionShape(p.GEOM_PLANE, planeNormal=[0, 0, 1], physicsClientId=c),
-                                  -1, [0, 0, 0], useMaximalCoordinates=True, physicsClientId=c)
         pos = [-0.75 * math.cos(th0) + math.sin(th0), 0, 0.75 * math.sin(th0) + math.cos(th0)]
         q = p.getQuaternionFromAxisAngle([0, 1, 0], th0)
         block = p.createMultiBody(1500, p.createCollisionShape(p.GEOM_BOX, halfExtents=[0.75, 0.25, 1.0],
@@ -489,15 +490,8 @@ def pybullet_rod(timestep: float = 1 / 240, iterations: int = 50):
     from importlib.metadata import version
     r = ROD
     (cx, cy, cz), _ = rod_start()
-    c = p.connect(p.DIRECT)
+    c, floor = _pybullet_world(p, r["g"], timestep, iterations)
     try:
-        p.setGravity(0, 0, -r["g"], physicsClientId=c)
-        p.setTimeStep(timestep, physicsClientId=c)
-        p.setPhysicsEngineParameter(restitutionVelocityThreshold=0, warmStartingFactor=0, useSplitImpulse=1,
-                                    contactSlop=0, enableConeFriction=0, numSolverIterations=iterations,
-                                    physicsClientId=c)
-        floor = p.createMultiBody(0, p.createCollisionShape(p.GEOM_PLANE, planeNormal=[0, 0, 1], physicsClientId=c),
-                                  -1, [0, 0, 0], useMaximalCoordinates=True, physicsClientId=c)
         q = p.getQuaternionFromAxisAngle([0, 1, 0], r["tilt"])
         rod = p.createMultiBody(r["mass"], p.createCollisionShape(p.GEOM_CAPSULE, radius=ROD_RADIUS,
                                                                   height=r["length"], physicsClientId=c),
