@@ -315,3 +315,26 @@ fn bad_sphere_systems_name_the_key_and_the_value() {
     let e = err(scene("position = [0, 0, 0.04]\n", "plane = [0, 1, 0]\n"));
     assert!(e.contains("simulate.plane"), "{e}");
 }
+
+#[test]
+fn a_system_whose_energy_overflows_stops_with_status_3() {
+    // a striker at 1e200 m/s: ½ m v² overflows f64; the run stops (status 3, "overflowed"),
+    // never "ended at rest" with an `inf` energy and status 0
+    let text = std::fs::read_to_string("examples/simulate/cradle-3.toml")
+        .expect("reads")
+        .replacen("velocity = [1, 0, 0]", "velocity = [1e200, 0, 0]", 1);
+    let path = std::env::temp_dir().join("inertance-overflowing-cradle.toml");
+    std::fs::write(&path, text).expect("writes");
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_inertance"))
+        .arg("simulate")
+        .arg(&path)
+        .output()
+        .expect("runs");
+    assert_eq!(out.status.code(), Some(3));
+    let log = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        log.contains("ended at an error") && !log.contains("inf"),
+        "{log}"
+    );
+    assert!(String::from_utf8_lossy(&out.stderr).contains("overflowed f64"));
+}

@@ -24,9 +24,14 @@ pub fn to_text(name: &str, setup: &SystemSetup, sim: &SystemSimulation) -> Strin
     );
     out += &impact_log(&sim.impacts, &sim.events);
     let energy = |k: usize| {
-        sim.samples
-            .get(k)
-            .map_or_else(String::new, |s| sig(s.kinetic + s.potential))
+        sim.samples.get(k).map_or_else(String::new, |s| {
+            let e = s.kinetic + s.potential;
+            if e.is_finite() {
+                sig(e)
+            } else {
+                "(not finite)".to_string()
+            }
+        })
     };
     out += &format!(
         "ended at {}: {} impact{}, energy {} → {} J; {} steps ({} rejected), drift {} m\n",

@@ -127,7 +127,7 @@ pub struct SystemSimulation {
 /// history up to there.
 pub fn simulate_system(setup: &SystemSetup) -> SystemSimulation {
     let mut run = Run::new(setup);
-    let (end, stopped) = match run.go() {
+    let (end, stopped) = match run.go().and_then(|end| run.finite(end)) {
         Ok(end) => (end, None),
         Err(e) => (End::Stopped, Some(e)),
     };
@@ -187,6 +187,25 @@ impl<'a> Run<'a> {
             speed,
             gap_tol: 1e-11 * length,
             drift: 0.0,
+        }
+    }
+
+    /// `end`, when every energy of the run and the state it ends in are finite numbers; a run
+    /// whose scales overflow f64 stops instead of printing one (as the single body's).
+    fn finite(&self, end: End) -> Result<End, SimulateError> {
+        let st = &self.setup;
+        let finite = self
+            .samples
+            .iter()
+            .all(|s| s.kinetic.is_finite() && s.potential.is_finite())
+            && (self.s.kinetic_energy(&st.spheres)
+                + self.s.potential_energy(&st.spheres, &st.options.gravity))
+            .is_finite()
+            && self.drift.is_finite();
+        if finite {
+            Ok(end)
+        } else {
+            Err(SimulateError::NotFinite { t: self.t })
         }
     }
 
