@@ -141,6 +141,20 @@ mod tests {
     use crate::simulate::body::{Body, Shape};
     use nalgebra::{Matrix3, UnitQuaternion};
 
+    /// A cylinder r = 0.3, h = 0.4 of unit mass and inertia.
+    fn can() -> Body {
+        Body::new(
+            1.0,
+            Matrix3::identity(),
+            Shape::Cylinder {
+                radius: 0.3,
+                half_height: 0.2,
+            },
+            None,
+        )
+        .expect("body")
+    }
+
     fn floor() -> Plane {
         Plane {
             name: "floor".into(),
@@ -162,16 +176,7 @@ mod tests {
     /// tilts from 0.2 to 1.2 rad); the gap's rate against the gap's difference quotient likewise.
     #[test]
     fn a_rims_nearest_point_moves_as_its_drift_says() {
-        let body = Body::new(
-            1.0,
-            Matrix3::identity(),
-            Shape::Cylinder {
-                radius: 0.3,
-                half_height: 0.2,
-            },
-            None,
-        )
-        .expect("body");
+        let body = can();
         let rim = &body.features[0];
         let w = V3::new(1.3, -2.1, 0.7);
         for tilt in [0.2, 0.7, 1.2] {
@@ -204,16 +209,7 @@ mod tests {
     /// lower rim's nearest point is at height z − h cos θ − ρ sin θ.
     #[test]
     fn a_tilted_rims_gap_is_the_closed_form() {
-        let body = Body::new(
-            1.0,
-            Matrix3::identity(),
-            Shape::Cylinder {
-                radius: 0.3,
-                half_height: 0.2,
-            },
-            None,
-        )
-        .expect("body");
+        let body = can();
         let lower = body
             .features
             .iter()
