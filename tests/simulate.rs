@@ -539,6 +539,7 @@ fn every_example_runs_to_its_end_under_every_law() {
         "rocking-block",
         "falling-rod",
         "tumbling-box",
+        "tumbling-can",
     ] {
         for law in [
             Law::Simultaneous(Restitution::Newton),
@@ -660,5 +661,71 @@ fn a_sliding_ball_starts_to_roll_when_the_closed_form_says() {
             s.t,
             s.state.w.y
         );
+    }
+}
+
+/// The can of examples/simulate/tumbling-can.toml (r = 0.05, h = 0.12, m = 0.4, tilted 30°, a
+/// smooth floor): under every law it bounces on its rim, lands on its face and rests upright —
+/// C at h/2 and its energy m g h/2 = 0.4 · 9.81 · 0.06 = 0.23544 J, from whichever side it
+/// lands (the drift of the contacts' projection, ~10⁻¹¹ m, is the bound's scale: 10⁻⁹).
+#[test]
+fn a_can_tumbles_to_rest_upright_on_its_face_under_every_law() {
+    for law in [
+        Law::Simultaneous(Restitution::Newton),
+        Law::Unilateral(Restitution::Newton),
+        Law::Lzb,
+    ] {
+        let mut s = load("examples/simulate/tumbling-can.toml");
+        s.setup.law = law;
+        let sim = simulate(&s.setup).unwrap_or_else(|e| panic!("under {}: {e}", law.name()));
+        let name = law.name();
+        assert_eq!(sim.end, End::Rest, "under {name}");
+        let axis = sim.state.q * nalgebra::Vector3::z();
+        assert!(axis.z >= 1.0 - 1e-9, "under {name}: upright, axis {axis:?}");
+        assert!(
+            (sim.state.x.z - 0.06).abs() <= 1e-9,
+            "under {name}: C at {}",
+            sim.state.x.z
+        );
+        let energy = s.setup.body.kinetic_energy(&sim.state) + 0.4 * 9.81 * sim.state.x.z;
+        assert!((energy - 0.23544).abs() <= 1e-9, "under {name}: {energy} J");
+        // the first strike is on the rim's lowest point (a body point, 270°, by symmetry), and
+        // the face lands on its four body points, never with the rim beside them
+        assert_eq!(sim.impacts[0].contacts[0].feature, "rim [0, 0, -1] at 270°");
+        let face = |r: &inertance::simulate::ImpactRecord| {
+            r.contacts
+                .iter()
+                .filter(|c| c.feature.starts_with("rim [0, 0, -1] at "))
+                .count()
+        };
+        assert!(
+            sim.impacts.iter().any(|r| face(r) == 4),
+            "under {name}: a face landing"
+        );
+        assert!(
+            sim.impacts
+                .iter()
+                .filter(|r| face(r) >= 3)
+                .all(|r| r.contacts.iter().all(|c| c.feature != "rim [0, 0, -1]")),
+            "under {name}: a landing face carries its rim"
+        );
+    }
+}
+
+/// A run that could only move on at the resolution of t — the can of tumbling-can.toml on a
+/// floor with μ = 0.2, whose rim's nearest point sweeps around the face as it slides flat —
+/// stops with [`SimulateError::Stalled`] within a window of 10⁴ attempts instead of taking the
+/// 10⁷ attempts of the step budget (about a minute).
+#[test]
+fn a_run_that_cannot_move_on_stops_as_stalled() {
+    let text = std::fs::read_to_string("examples/simulate/tumbling-can.toml")
+        .unwrap()
+        .replace("contact = { k = 0.3 }", "contact = { k = 0.3, mu = 0.2 }");
+    let s = parse(&text);
+    match simulate(&s.setup) {
+        Err(inertance::simulate::SimulateError::Stalled { t }) => {
+            assert!(t > 0.3 && t < 0.31, "stalled at {t}")
+        }
+        other => panic!("expected a stall, got {:?}", other.map(|s| s.end)),
     }
 }

@@ -220,9 +220,10 @@ pub enum SimulateError {
         /// Why.
         error: ContactError,
     },
-    /// The steps shrank below what f64 resolves.
+    /// The steps shrank to what f64 resolves in t and stayed there ([`super::stepper::WINDOW`]).
     #[error(
-        "t = {t:.9} s: the step fell below what f64 resolves (a stiff or inconsistent contact phase)"
+        "t = {t:.9} s: the run stalled — its steps fell to what f64 resolves in t and stayed \
+         there (a stiff, singular or inconsistent contact phase)"
     )]
     Stalled {
         /// When.
@@ -428,7 +429,7 @@ impl<'a> Run<'a> {
                 end = End::Impacts;
                 break;
             }
-            if self.stepper.attempts() >= MAX_STEPS {
+            if self.stepper.attempts() >= MAX_STEPS || self.stepper.stalled() {
                 return Err(SimulateError::Stalled { t: self.t });
             }
             let acc = self.current()?;
@@ -757,7 +758,12 @@ impl<'a> Run<'a> {
         let mut at: Vec<At> = Vec::new();
         let mut struck: Vec<Struck> = Vec::new();
         let mut spread = 0.0f64;
-        for (f, p) in pairs(self.setup) {
+        // body points before rims: a rim nearest at one of its body points is that point's
+        // contact (and the face's when it lands flat), not the other way round
+        let mut candidates: Vec<(usize, usize)> = pairs(self.setup).collect();
+        candidates
+            .sort_by_key(|&(f, _)| matches!(body.features[f], super::body::Feature::Rim { .. }));
+        for (f, p) in candidates {
             let g = gap(&body.features[f], &planes[p], &self.s);
             let persisting = self.is_closed(f, p);
             if !joins(persisting, g.gap, g.rate, self.gap_tol, o.simultaneity) {

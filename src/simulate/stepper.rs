@@ -61,7 +61,18 @@ pub struct Stepper {
     pub h: f64,
     /// Steps accepted, steps rejected.
     pub steps: (usize, usize),
+    /// Where the current window of [`WINDOW`] attempts started: (attempts, t).
+    window: (usize, f64),
+    /// Whether the last window advanced t by less than [`WINDOW`] · 100 resolutions of t.
+    stalled: bool,
 }
+
+/// The attempts over which a run's progress is judged: a run whose steps average less than
+/// a hundred times the resolution of t over this many attempts is stalled — a motion that
+/// moves on only at that resolution (a rim's contact point sweeping around a face landing
+/// flat, a mode chattering) would take 10¹²–10¹⁵ steps to reach the end of the run, while the
+/// few such steps an event needs (a gap crept onto, a mode switched) are far fewer.
+pub const WINDOW: usize = 10_000;
 
 impl Stepper {
     /// A first step of a tenth of the output step (or of the run, if shorter).
@@ -70,7 +81,15 @@ impl Stepper {
             tab: Tableau::new(),
             h: (output_step.min(duration) / 10.0).max(f64::MIN_POSITIVE),
             steps: (0, 0),
+            window: (0, 0.0),
+            stalled: false,
         }
+    }
+
+    /// Whether the last window of [`WINDOW`] attempts advanced t by less than a hundred
+    /// resolutions of t per attempt.
+    pub fn stalled(&self) -> bool {
+        self.stalled
     }
 
     /// The total number of attempts.
@@ -108,6 +127,11 @@ impl Stepper {
             } else {
                 floor
             };
+        }
+        let attempts = self.attempts();
+        if attempts >= self.window.0 + WINDOW {
+            self.stalled = t - self.window.1 < 100.0 * WINDOW as f64 * floor;
+            self.window = (attempts, t);
         }
         let (y5, err, dense) = match step_dense(&self.tab, t, y, hh, f) {
             Ok(r) => r,

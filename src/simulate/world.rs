@@ -57,8 +57,14 @@ pub struct Gap {
 }
 
 /// Below this sine of the tilt between a rim's plane and an obstacle plane, √(1 − s²), the rim
-/// lies flat on it: every point of it is nearest, and its four body points stand for it.
-pub const FLAT: f64 = 1e-6;
+/// lies flat on it: its four body points stand for it, and its own nearest point is taken as
+/// the one at 0° (a body point: the same contact). Its true nearest point is then at most
+/// ρ · 10⁻⁴ · (1 − cos 45°) ≈ 3·10⁻⁵ ρ lower than the lowest of the four — the bound on what
+/// a rim landing flat may sink between them. The bound is not smaller because the nearest
+/// point's velocity grows as 1/tilt (u̇ below): nearer flat, a face that slaps down or lifts
+/// off by a rounding's tilt swings it around the rim faster than the steps can follow
+/// (derivations/cylinder-rim-kinematics.md).
+pub const FLAT: f64 = 1e-4;
 
 /// The gap of `feature` against `plane` when the body is at `s`.
 ///

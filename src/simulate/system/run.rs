@@ -271,7 +271,7 @@ impl<'a> Run<'a> {
             if self.impacts.len() >= o.max_impacts {
                 return Ok(End::Impacts);
             }
-            if self.stepper.attempts() >= MAX_STEPS {
+            if self.stepper.attempts() >= MAX_STEPS || self.stepper.stalled() {
                 return Err(SimulateError::Stalled { t: self.t });
             }
             let s = self.s.clone();
