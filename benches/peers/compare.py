@@ -378,6 +378,103 @@ def sympy_closed_form(x: SympyInputs) -> dict:
     return {"G": sp.Matrix(G), "det": det, "newton": after(PN), "poisson": poisson}
 
 
+# ----------------------------------------------------------------------------------------------
+# Peer 2b: python-flint (FLINT's fmpq), exact rationals, the same closed form
+# ----------------------------------------------------------------------------------------------
+
+try:
+    import flint
+except ImportError:  # optional: benches/peers/requirements.txt installs it
+    flint = None
+
+
+class FlintInputs:
+    """The scene in FLINT rationals; the unit normals n/|n| (rational for the corpus's normals)
+    are divided out here, before timing, as the numbers a caller passes."""
+
+    def __init__(self, s: Scene):
+        Q = lambda x: flint.fmpq(x.numerator, x.denominator)  # noqa: E731
+        self.m = Q(s.mass)
+        self.J = [Q(x) for x in s.inertia]
+        self.vC = [Q(x) for x in s.velocity]
+        self.w = [Q(x) for x in s.angular_velocity]
+        self.pts = [[Q(x) for x in c.point] for c in s.contacts]
+        self.X = []
+        for c in s.contacts:
+            n2 = sum(x * x for x in c.normal)
+            r = math.isqrt(n2.numerator), math.isqrt(n2.denominator)
+            assert F(r[0] * r[0], r[1] * r[1]) == n2, "the corpus's normals have rational lengths"
+            self.X.append([Q(x / F(*r)) for x in c.normal])
+        self.kN = [Q(c.k_newton) for c in s.contacts]
+        self.kP = [Q(c.k_poisson) for c in s.contacts]
+
+
+def flint_closed_form(x: FlintInputs) -> dict:
+    """`sympy_closed_form`'s equations (eq. 57, 8, 20, 22-24, 28, 32; Cramer's rule, two contacts)
+    in FLINT's fmpq: the strongest exact peer (GMP integers, canonical fractions)."""
+    m, J, vC, w, X = x.m, x.J, x.vC, x.w, x.X
+    P = x.pts
+    D = [[p[1] * a[2] - p[2] * a[1], p[2] * a[0] - p[0] * a[2], p[0] * a[1] - p[1] * a[0]]
+         for p, a in zip(P, X)]
+
+    def dot(a, b):
+        return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+
+    G = [[dot(X[i], X[j]) / m + D[i][0] * D[j][0] / J[0] + D[i][1] * D[j][1] / J[1]
+          + D[i][2] * D[j][2] / J[2] for j in range(2)] for i in range(2)]
+    v0 = [dot(X[i], vC) + dot(D[i], w) for i in range(2)]
+    det = G[0][0] * G[1][1] - G[0][1] * G[1][0]
+
+    def cramer(b):
+        return [(b[0] * G[1][1] - G[0][1] * b[1]) / det, (G[0][0] * b[1] - b[0] * G[1][0]) / det]
+
+    T0 = (m * dot(vC, vC) + J[0] * w[0] ** 2 + J[1] * w[1] ** 2 + J[2] * w[2] ** 2) / 2
+
+    def after(Pi):
+        dv = [-(Pi[0] * X[0][k] + Pi[1] * X[1][k]) / m for k in range(3)]
+        dw = [-(Pi[0] * D[0][k] + Pi[1] * D[1][k]) / J[k] for k in range(3)]
+        v1 = [vC[k] + dv[k] for k in range(3)]
+        w1 = [w[k] + dw[k] for k in range(3)]
+        Ep = (m * dot(dv, dv) + J[0] * dw[0] ** 2 + J[1] * dw[1] ** 2 + J[2] * dw[2] ** 2) / 2
+        dEc = T0 - (m * dot(v1, v1) + J[0] * w1[0] ** 2 + J[1] * w1[1] ** 2 + J[2] * w1[2] ** 2) / 2
+        return {"impulses": Pi, "velocity": v1, "angular_velocity": w1,
+                "lost_velocity_energy": Ep, "kinetic_energy_loss": dEc}
+
+    one = flint.fmpq(1)
+    PN = cramer([(one + x.kN[i]) * v0[i] for i in range(2)])
+    PC = cramer(v0)
+    poisson = after([(one + x.kP[i]) * PC[i] for i in range(2)])
+    poisson["compression_impulses"] = PC
+    return {"G": G, "det": det, "newton": after(PN), "poisson": poisson}
+
+
+def flint_as_sympy(out: dict) -> dict:
+    """A `flint_closed_form` result in SymPy Rationals, for `compare_exact`."""
+    R = lambda q: sp.Rational(int(q.p), int(q.q))  # noqa: E731
+
+    def conv(v):
+        if isinstance(v, dict):
+            return {k: conv(x) for k, x in v.items()}
+        if isinstance(v, list):
+            return [conv(x) for x in v]
+        return R(v)
+
+    res = conv(out)
+    res["G"] = sp.Matrix(res["G"])
+    return res
+
+
+def as_doubles(s: Scene) -> Scene:
+    """The scene with every input but the normals replaced by the exact value of its nearest
+    double (what a measured decimal becomes: denominators up to 2^60 and more); the normals stay
+    the corpus's, whose lengths are rational."""
+    D = lambda x: F(float(x))  # noqa: E731
+    cs = [Contact(tuple(D(x) for x in c.point), c.normal, D(c.k_newton), D(c.k_poisson)) for c in s.contacts]
+    return Scene(s.name + "-doubles", s.description + " (inputs: exact values of doubles)", D(s.mass),
+                 tuple(D(x) for x in s.inertia), tuple(D(x) for x in s.velocity),
+                 tuple(D(x) for x in s.angular_velocity), cs)
+
+
 def sympy_no_slip(s: Scene, ex: dict) -> bool:
     """True when Pinocchio's 3-D contacts reproduce the frictionless solution exactly: for the
     frictionless (normal-only) Newton solution, every contact point's whole velocity after impact
@@ -842,18 +939,28 @@ def batch_compare(py, binary: Path, points: int, rounds: int) -> None:
     print()
 
 
-def corpus_compare(py, binary: Path, corpus: Path, n: int, rounds: int, outdir: Path) -> bool:
+def corpus_compare(py, binary: Path, corpus: Path, n: int, rounds: int, outdir: Path,
+                   doubles: bool = False) -> bool:
     """Issue 15, item 4: the exact solve on the peer corpus (the first `n` scenes of `corpus`),
     side by side with SymPy: rounds alternate between `inertance bench --corpus` (Rust in-process:
     Exact, plain BigRational, f64, each the median of 5 passes over the corpus) and one timed pass
     of `sympy_solve` over every scene (inputs built beforehand); medians over the rounds, per
-    scene.  Every scene is first checked: `inertance solve --exact --json` equals SymPy exactly."""
+    scene.  Every scene is first checked: `inertance solve --exact --json` equals SymPy exactly.
+    Issue 29, item 4: python-flint's closed form beside them (agreement and time), and with
+    `doubles` the same scenes with their inputs replaced by the exact values of doubles
+    (`as_doubles`: what measured data become)."""
     scenes = read_corpus(corpus, n)
-    sub = outdir / "corpus.txt"
+    if doubles:
+        scenes = [as_doubles(s) for s in scenes]
+    sub = outdir / ("corpus-doubles.txt" if doubles else "corpus.txt")
     sub.write_text("\n".join(corpus_line(s) for s in scenes) + "\n")
-    print(f"── exact corpus: {len(scenes)} random two-contact scenes of {corpus.relative_to(REPO)} "
-          f"(assemble + Newton + Poisson, every output; SymPy: G, Δ, both models)")
+    print(f"── exact corpus: {len(scenes)} random two-contact scenes of {corpus.relative_to(REPO)}"
+          + (", every input but the normals the exact value of its double" if doubles else "")
+          + " (assemble + Newton + Poisson, every output; SymPy and python-flint: G, Δ, both models)")
     xs = [SympyInputs(s) for s in scenes]
+    fx = [FlintInputs(s) for s in scenes] if flint else []
+    if not flint:
+        print("   python-flint not installed (pip install python-flint): its column is left out")
     bad = []
     for s, x in zip(scenes, xs):
         path = outdir / f"{s.name}.toml"
@@ -861,10 +968,13 @@ def corpus_compare(py, binary: Path, corpus: Path, n: int, rounds: int, outdir: 
         refex = from_inertance(run_json([binary, "solve", path, "--json", "--exact"]), sp.sympify)
         if compare_exact(sympy_solve(x), refex) or compare_exact(sympy_closed_form(x), refex):
             bad.append(s.name)
-    print(f"   agreement: inertance --exact == SymPy (both methods) on {len(scenes) - len(bad)} of {len(scenes)} scenes"
+        elif flint and compare_exact(flint_as_sympy(flint_closed_form(FlintInputs(s))), refex):
+            bad.append(s.name + " (flint)")
+    print(f"   agreement: inertance --exact == SymPy (both methods)" + (" == python-flint" if flint else "")
+          + f" on {len(scenes) - len(bad)} of {len(scenes)} scenes"
           + (f"; DIFFERS on {', '.join(bad[:5])}" if bad else ""))
     py_scenes = [py.Scene.load(str(outdir / f"{s.name}.toml")) for s in scenes] if py else []
-    rust, sym, closed, pyx = [], [], [], []
+    rust, sym, closed, pyx, fl = [], [], [], [], []
     for r in range(rounds):
         try:
             j = run_json([binary, "bench", "--corpus", sub, "--json"])
@@ -883,6 +993,11 @@ def corpus_compare(py, binary: Path, corpus: Path, n: int, rounds: int, outdir: 
             for x in xs:
                 sympy_closed_form(x)
             closed.append((timeit.default_timer() - t) / len(xs))
+            if flint:
+                t = timeit.default_timer()
+                for x in fx:
+                    flint_closed_form(x)
+                fl.append((timeit.default_timer() - t) / len(fx))
             if py:
                 t = timeit.default_timer()
                 for sc in py_scenes:
@@ -894,6 +1009,7 @@ def corpus_compare(py, binary: Path, corpus: Path, n: int, rounds: int, outdir: 
         print(f"   round {r + 1}: Rust exact {fmt_time(rust[-1].get('exact'))}, "
               f"BigRational {fmt_time(rust[-1].get('bigrational'))}, SymPy LU {fmt_time(sym[-1])}, "
               f"SymPy closed form {fmt_time(closed[-1])} per scene"
+              + (f", python-flint closed form {fmt_time(fl[-1])}" if flint else "")
               + (f", Python exact {fmt_time(pyx[-1])}" if py else ""))
     med = {k: statistics.median(t[k] for t in rust) for k in ("exact", "bigrational", "f64") if all(k in t for t in rust)}
     s_med, c_med = statistics.median(sym), statistics.median(closed)
@@ -904,10 +1020,16 @@ def corpus_compare(py, binary: Path, corpus: Path, n: int, rounds: int, outdir: 
         rows.append(("inertance.solve(scene, exact=True), Python", statistics.median(pyx)))
     rows.append(("SymPy exact (Rational, LUsolve)", s_med))
     rows.append(("SymPy exact closed form (Rational, Cramer)", c_med))
-    print(f"   {'method':<48} {'per scene':>11} {'LU ÷ it':>11} {'closed ÷ it':>11}")
+    f_med = statistics.median(fl) if fl else None
+    if f_med:
+        rows.append(("python-flint closed form (fmpq, Cramer)", f_med))
+    print(f"   {'method':<48} {'per scene':>11} {'LU ÷ it':>11} {'closed ÷ it':>11} {'it ÷ flint':>11}")
     for label, t in rows:
         print(f"   {label:<48} {fmt_time(t):>11} {fmt_ratio(s_med / t if t else None):>11} "
-              f"{fmt_ratio(c_med / t if t else None):>11}")
+              f"{fmt_ratio(c_med / t if t else None):>11} {fmt_ratio(t / f_med if t and f_med else None):>11}")
+    if f_med and med.get("exact"):
+        print(f"   goal (issue 29, item 4): inertance exact within 2× of python-flint's closed form — "
+              f"measured {med['exact'] / f_med:.1f}×")
     if med.get("exact") and med.get("bigrational"):
         print(f"   BigRational ÷ Exact: {med['bigrational'] / med['exact']:.1f}×; SymPy ÷ inertance exact: "
               f"{s_med / med['exact']:.1f}× (LU), {c_med / med['exact']:.1f}× (closed form); "
@@ -937,6 +1059,9 @@ def main() -> int:
                          "1000; 0 skips it)")
     ap.add_argument("--corpus-rounds", type=int, default=3,
                     help="alternating Rust / SymPy rounds of the exact corpus comparison (default 3)")
+    ap.add_argument("--doubles-scenes", type=int, default=200,
+                    help="scenes of the corpus run again with their inputs the exact values of doubles "
+                         "(default 200; 0 skips it)")
     ap.add_argument("--corpus-only", action="store_true",
                     help="run only the exact corpus comparison (no Pinocchio or numpy, no batch)")
     ap.add_argument("--write-corpus", type=int, metavar="N",
@@ -964,6 +1089,9 @@ def main() -> int:
     outdir.mkdir(parents=True, exist_ok=True)
     if args.corpus_only:
         ok = corpus_compare(py, binary, CORPUS, args.corpus_scenes, max(1, args.corpus_rounds), outdir)
+        if args.doubles_scenes:
+            ok &= corpus_compare(py, binary, CORPUS, args.doubles_scenes, max(1, args.corpus_rounds), outdir,
+                                 doubles=True)
         tmp.cleanup()
         return 0 if ok else 1
     scenes = build_scenes(args.seed, args.random)
@@ -1128,6 +1256,9 @@ def main() -> int:
     print()
     if args.corpus_scenes > 0:
         all_ok &= corpus_compare(py, binary, CORPUS, args.corpus_scenes, max(1, args.corpus_rounds), outdir)
+        if args.doubles_scenes:
+            all_ok &= corpus_compare(py, binary, CORPUS, args.doubles_scenes, max(1, args.corpus_rounds), outdir,
+                                     doubles=True)
     if py and args.batch_points > 1:
         batch_compare(py, binary, args.batch_points, max(1, args.batch_rounds))
     if args.keep:
