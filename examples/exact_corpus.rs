@@ -36,8 +36,11 @@ fn solve_all<T: Scalar>(scenes: &[Scene]) -> f64 {
 }
 
 fn main() {
-    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/benches/peers/corpus.txt");
-    let text = std::fs::read_to_string(path).expect("benches/peers/corpus.txt");
+    // INERTANCE_CORPUS names another corpus file (compare.py's doubles corpus, say)
+    let path = std::env::var("INERTANCE_CORPUS").unwrap_or_else(|_| {
+        concat!(env!("CARGO_MANIFEST_DIR"), "/benches/peers/corpus.txt").to_string()
+    });
+    let text = std::fs::read_to_string(&path).expect("the corpus file");
     let scenes = inertance::tools::corpus::parse(&text).expect("a valid corpus");
     let (name, checksum) = match std::env::args().nth(1).as_deref() {
         Some("bigrational") => ("BigRational", solve_all::<BigRational>(&scenes)),
