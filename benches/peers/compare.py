@@ -345,6 +345,15 @@ def sympy_closed_form(x: SympyInputs) -> dict:
         s = sp.sqrt(nr[0] * nr[0] + nr[1] * nr[1] + nr[2] * nr[2])  # rational for these normals
         X.append([c / s for c in nr])
     P = [list(p) for p in x.pts]
+    out = cramer_closed_form(m, J, vC, w, X, P, x.kN, x.kP, sp.Integer(1))
+    out["G"] = sp.Matrix(out["G"])
+    return out
+
+
+def cramer_closed_form(m, J, vC, w, X, P, kN, kP, one) -> dict:
+    """The numpy closed form's equations (eq. 57, 8, 20, 22-24, 28, 32: Cramer's rule on the 2x2,
+    every product written out) in whatever exact scalar the inputs are (SymPy `Rational`, FLINT
+    `fmpq`): X the unit normals, P the contact points, `one` the scalar's 1."""
     D = [[p[1] * a[2] - p[2] * a[1], p[2] * a[0] - p[0] * a[2], p[0] * a[1] - p[1] * a[0]]
          for p, a in zip(P, X)]
 
@@ -371,11 +380,11 @@ def sympy_closed_form(x: SympyInputs) -> dict:
         return {"impulses": Pi, "velocity": v1, "angular_velocity": w1,
                 "lost_velocity_energy": Ep, "kinetic_energy_loss": dEc}
 
-    PN = cramer([(1 + x.kN[i]) * v0[i] for i in range(2)])
+    PN = cramer([(one + kN[i]) * v0[i] for i in range(2)])
     PC = cramer(v0)
-    poisson = after([(1 + x.kP[i]) * PC[i] for i in range(2)])
+    poisson = after([(one + kP[i]) * PC[i] for i in range(2)])
     poisson["compression_impulses"] = PC
-    return {"G": sp.Matrix(G), "det": det, "newton": after(PN), "poisson": poisson}
+    return {"G": G, "det": det, "newton": after(PN), "poisson": poisson}
 
 
 # ----------------------------------------------------------------------------------------------
@@ -412,40 +421,7 @@ class FlintInputs:
 def flint_closed_form(x: FlintInputs) -> dict:
     """`sympy_closed_form`'s equations (eq. 57, 8, 20, 22-24, 28, 32; Cramer's rule, two contacts)
     in FLINT's fmpq: the strongest exact peer (GMP integers, canonical fractions)."""
-    m, J, vC, w, X = x.m, x.J, x.vC, x.w, x.X
-    P = x.pts
-    D = [[p[1] * a[2] - p[2] * a[1], p[2] * a[0] - p[0] * a[2], p[0] * a[1] - p[1] * a[0]]
-         for p, a in zip(P, X)]
-
-    def dot(a, b):
-        return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-
-    G = [[dot(X[i], X[j]) / m + D[i][0] * D[j][0] / J[0] + D[i][1] * D[j][1] / J[1]
-          + D[i][2] * D[j][2] / J[2] for j in range(2)] for i in range(2)]
-    v0 = [dot(X[i], vC) + dot(D[i], w) for i in range(2)]
-    det = G[0][0] * G[1][1] - G[0][1] * G[1][0]
-
-    def cramer(b):
-        return [(b[0] * G[1][1] - G[0][1] * b[1]) / det, (G[0][0] * b[1] - b[0] * G[1][0]) / det]
-
-    T0 = (m * dot(vC, vC) + J[0] * w[0] ** 2 + J[1] * w[1] ** 2 + J[2] * w[2] ** 2) / 2
-
-    def after(Pi):
-        dv = [-(Pi[0] * X[0][k] + Pi[1] * X[1][k]) / m for k in range(3)]
-        dw = [-(Pi[0] * D[0][k] + Pi[1] * D[1][k]) / J[k] for k in range(3)]
-        v1 = [vC[k] + dv[k] for k in range(3)]
-        w1 = [w[k] + dw[k] for k in range(3)]
-        Ep = (m * dot(dv, dv) + J[0] * dw[0] ** 2 + J[1] * dw[1] ** 2 + J[2] * dw[2] ** 2) / 2
-        dEc = T0 - (m * dot(v1, v1) + J[0] * w1[0] ** 2 + J[1] * w1[1] ** 2 + J[2] * w1[2] ** 2) / 2
-        return {"impulses": Pi, "velocity": v1, "angular_velocity": w1,
-                "lost_velocity_energy": Ep, "kinetic_energy_loss": dEc}
-
-    one = flint.fmpq(1)
-    PN = cramer([(one + x.kN[i]) * v0[i] for i in range(2)])
-    PC = cramer(v0)
-    poisson = after([(one + x.kP[i]) * PC[i] for i in range(2)])
-    poisson["compression_impulses"] = PC
-    return {"G": G, "det": det, "newton": after(PN), "poisson": poisson}
+    return cramer_closed_form(x.m, x.J, x.vC, x.w, x.X, x.pts, x.kN, x.kP, flint.fmpq(1))
 
 
 def flint_as_sympy(out: dict) -> dict:
