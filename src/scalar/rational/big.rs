@@ -6,7 +6,6 @@
 //! gcd costs one remainder of the big argument by a word, then a word gcd ([`gcd`]).
 
 use num_bigint::{BigInt, BigUint, Sign};
-use num_integer::Integer;
 use num_traits::{One, ToPrimitive, Zero};
 
 use super::word;
@@ -177,6 +176,7 @@ pub(super) fn sqrt_exact(x: &BigInt) -> Option<BigInt> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use num_integer::Integer;
 
     fn b(x: i128) -> BigInt {
         BigInt::from(x)
