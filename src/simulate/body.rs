@@ -31,7 +31,8 @@ pub enum Shape {
         half_length: f64,
     },
     /// A solid cylinder of this radius and half height about body z: its two rims, and on
-    /// each rim four body points 90° apart (which stand for the face when it lies flat).
+    /// each rim four body points 90° apart (which stand for the face when it lies flat), each
+    /// rim's points before it.
     Cylinder {
         /// r.
         radius: f64,
@@ -160,12 +161,6 @@ fn features(shape: &Shape, plane: Option<&V3>) -> Vec<Feature> {
             let mut out = Vec::new();
             for sz in [1i64, -1] {
                 let centre = V3::new(0.0, 0.0, sz as f64 * half_height);
-                out.push(Feature::Rim {
-                    centre,
-                    axis: V3::z(),
-                    radius: *radius,
-                    label: format!("rim [0, 0, {sz}]"),
-                });
                 for (deg, (cx, cy)) in [
                     (0, (1.0, 0.0)),
                     (90, (0.0, 1.0)),
@@ -177,6 +172,14 @@ fn features(shape: &Shape, plane: Option<&V3>) -> Vec<Feature> {
                         label: format!("rim [0, 0, {sz}] at {deg}°"),
                     });
                 }
+                // after its body points: a rim nearest at one of them is that point's contact
+                // (the first feature at a point is the contact), and a landing face its four
+                out.push(Feature::Rim {
+                    centre,
+                    axis: V3::z(),
+                    radius: *radius,
+                    label: format!("rim [0, 0, {sz}]"),
+                });
             }
             out
         }

@@ -210,6 +210,20 @@ fn frictional_verdicts(verdicts: &[FrictionVerdict]) -> (Vec<String>, Option<Str
                     notes.push(note);
                 }
             }
+            FrictionVerdict::NormalSplitNotUnique { decided, .. } => {
+                let note = if *decided {
+                    "contacts of one face share a normal impulse only its resultant determines \
+                     (the least-norm member was taken; the twist after is unique)"
+                } else {
+                    "contacts of one face share a normal impulse only its resultant determines \
+                     (the least-norm member was taken; under this restitution law the twist \
+                     after may depend on it)"
+                }
+                .to_string();
+                if !notes.contains(&note) {
+                    notes.push(note);
+                }
+            }
             FrictionVerdict::Ambiguous { .. } | FrictionVerdict::UnstableSlip { .. } => {
                 notes.push(v.to_string());
             }

@@ -758,12 +758,9 @@ impl<'a> Run<'a> {
         let mut at: Vec<At> = Vec::new();
         let mut struck: Vec<Struck> = Vec::new();
         let mut spread = 0.0f64;
-        // body points before rims: a rim nearest at one of its body points is that point's
-        // contact (and the face's when it lands flat), not the other way round
-        let mut candidates: Vec<(usize, usize)> = pairs(self.setup).collect();
-        candidates
-            .sort_by_key(|&(f, _)| matches!(body.features[f], super::body::Feature::Rim { .. }));
-        for (f, p) in candidates {
+        // (a rim's body points come before it in the features: one it is nearest at is the
+        // contact, and a landing face is its four points)
+        for (f, p) in pairs(self.setup) {
             let g = gap(&body.features[f], &planes[p], &self.s);
             let persisting = self.is_closed(f, p);
             if !joins(persisting, g.gap, g.rate, self.gap_tol, o.simultaneity) {

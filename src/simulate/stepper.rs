@@ -187,4 +187,50 @@ mod tests {
         // approaching: g = 3, ġ = −1, M = 4: 3 − s − 2s² = 0 at s = 1
         assert_eq!(horizon(3.0, -1.0, 4.0), 1.0);
     }
+
+    /// Steps of y' = 0 from t = 0.3, each capped by `horizon`, for two windows of attempts:
+    /// whether the stepper then says the run stalled, and where t got to.
+    fn two_windows(horizon: f64) -> (bool, f64) {
+        let mut stepper = Stepper::new(0.01, 1.0e6);
+        let mut f = |_t: f64, y: &[f64]| -> Result<Vec<f64>, ()> { Ok(vec![0.0; y.len()]) };
+        let (mut t, y) = (0.3, vec![1.0]);
+        for _ in 0..=2 * WINDOW {
+            match stepper.advance(t, &y, horizon, 1.0e6, 0.01, 1e-10, &[1.0], &mut f, |_| {
+                false
+            }) {
+                Advance::Accepted { t: next, .. } => t = next,
+                _ => panic!("y' = 0 has no error to reject a step for"),
+            }
+        }
+        (stepper.stalled(), t)
+    }
+
+    /// A gap crept onto at every step holds each step at the resolution of t (64 ε t): two
+    /// windows of such steps advance t by 2 · 10⁴ resolutions, less than the hundred per
+    /// attempt a moving run makes, and the stepper says the run stalled; so do steps of fifty
+    /// resolutions.
+    #[test]
+    fn steps_held_near_the_resolution_of_t_are_a_stall() {
+        let resolution = 64.0 * f64::EPSILON * 0.3;
+        let (stalled, t) = two_windows(0.0);
+        assert!(stalled);
+        assert!(
+            t - 0.3 < 1.01 * (2 * WINDOW + 1) as f64 * resolution,
+            "t = {t}"
+        );
+        assert!(two_windows(50.0 * resolution).0);
+    }
+
+    /// Steps of two hundred resolutions of t, or of a microsecond, move on: no stall.
+    #[test]
+    fn steps_that_move_on_are_no_stall() {
+        let resolution = 64.0 * f64::EPSILON * 0.3;
+        assert!(!two_windows(200.0 * resolution).0);
+        let (stalled, t) = two_windows(1e-6);
+        assert!(!stalled);
+        assert!(
+            (t - 0.3 - (2 * WINDOW + 1) as f64 * 1e-6).abs() < 1e-9,
+            "t = {t}"
+        );
+    }
 }

@@ -183,7 +183,11 @@ mod tests {
     #[test]
     fn a_rims_nearest_point_moves_as_its_drift_says() {
         let body = can();
-        let rim = &body.features[0];
+        let rim = body
+            .features
+            .iter()
+            .find(|f| matches!(f, Feature::Rim { .. }))
+            .expect("a can has rims");
         let w = V3::new(1.3, -2.1, 0.7);
         for tilt in [0.2, 0.7, 1.2] {
             let q0 = UnitQuaternion::from_scaled_axis(V3::new(tilt, 0.3, 0.1));

@@ -303,6 +303,17 @@ pub enum Verdict {
         /// Where.
         s: f64,
     },
+    /// Driven contacts share a normal impulse only its resultant determines (three or more
+    /// contacts of one face): the rates taken are the least-norm member with no negative
+    /// normal rate. The twist after is the law's under Newton's law and under Poisson's with
+    /// one k^P; per-contact restitution (Poisson's with differing k^P, the energetic law) may
+    /// depend on the member — then `decided` is false.
+    NormalSplitNotUnique {
+        /// Where.
+        s: f64,
+        /// Whether the twist after is decided whatever the member.
+        decided: bool,
+    },
     /// A contact still approaches after the impact (v_ix > 0).
     StillApproaching {
         /// The contact.
@@ -323,17 +334,44 @@ pub enum Verdict {
 
 impl Verdict {
     /// A short name for tables and sweep statuses: `tensile-rate`, `ambiguous`,
-    /// `split-not-unique`, `still-approaching`, `energy-gain`.
+    /// `split-not-unique`, `normal-split-not-unique`, `still-approaching`, `energy-gain`,
+    /// `unstable-slip`.
     pub fn name(&self) -> &'static str {
         match self {
             Verdict::TensileRate { .. } => "tensile-rate",
             Verdict::Ambiguous { .. } => "ambiguous",
             Verdict::SplitNotUnique { .. } => "split-not-unique",
+            Verdict::NormalSplitNotUnique { .. } => "normal-split-not-unique",
             Verdict::StillApproaching { .. } => "still-approaching",
             Verdict::EnergyGain => "energy-gain",
             Verdict::UnstableSlip { .. } => "unstable-slip",
         }
     }
+}
+
+/// The verdict on rates whose split is not unique, if any: [`Verdict::NormalSplitNotUnique`]
+/// when the family moves normal rates (decided under Newton's law and under Poisson's with one
+/// k^P among the `contacts`), else [`Verdict::SplitNotUnique`].
+pub(crate) fn split_verdict<T: Scalar>(
+    r: &rates::Rates<T>,
+    s: f64,
+    law: Restitution,
+    contacts: &[crate::mechanics::contact::Contact<T>],
+) -> Option<Verdict> {
+    if r.split_unique {
+        return None;
+    }
+    if r.normals_unique {
+        return Some(Verdict::SplitNotUnique { s });
+    }
+    let decided = match law {
+        Restitution::Newton => true,
+        Restitution::Poisson => contacts
+            .windows(2)
+            .all(|w| (w[0].k_poisson.clone() - &w[1].k_poisson).is_zero()),
+        Restitution::Energetic => false,
+    };
+    Some(Verdict::NormalSplitNotUnique { s, decided })
 }
 
 impl FrictionError {
@@ -367,6 +405,21 @@ impl fmt::Display for Verdict {
                 "s = {s}: sticking contacts share a tangential impulse only their sum \
                  determines; the split shown is one member of a family"
             ),
+            Verdict::NormalSplitNotUnique { s, decided } => {
+                write!(
+                    f,
+                    "s = {s}: contacts of one face share a normal impulse only its resultant \
+                     determines; the least-norm member with no pulling contact was taken"
+                )?;
+                if *decided {
+                    write!(f, " (the twist after is the same for every member)")
+                } else {
+                    write!(
+                        f,
+                        " — under this restitution law the twist after may depend on the member"
+                    )
+                }
+            }
             Verdict::StillApproaching { contact } => {
                 write!(f, "contact {}: still approaching after impact", contact + 1)
             }
@@ -398,7 +451,9 @@ pub enum FrictionError {
     /// The rates are not determined (G singular on the contacts that take impulses).
     #[error(
         "at s = {s} the impulse rates are not determined: the inertance matrix is singular on \
-         the contacts that take impulses (see `inertance analyze`)"
+         the contacts that take impulses, and how they share the impulse changes the motion \
+         (sliding friction that follows a statically indeterminate split; see \
+         `inertance analyze`)"
     )]
     Undetermined {
         /// Where.

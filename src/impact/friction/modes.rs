@@ -335,6 +335,7 @@ impl<'w, T: Scalar> Search<'w, T> {
             chosen.lambda.clone_from(&r.lambda);
             chosen.velocity.clone_from(&r.velocity);
             chosen.split_unique = r.split_unique;
+            chosen.normals_unique = r.normals_unique;
             if self.record {
                 self.first = Some(Resolution {
                     modes: modes.to_vec(),

@@ -103,8 +103,8 @@ pub fn solve_planar<T: Scalar, S: Screws<T>, M: Mechanism<T, Screw = S>>(
                 consistent,
             });
         }
-        if !r.split_unique {
-            verdicts.push(Verdict::SplitNotUnique { s: st.s.to_f64() });
+        if let Some(v) = super::split_verdict(r, st.s.to_f64(), law, contacts) {
+            verdicts.push(v);
         }
         for (i, normal) in normals.iter().enumerate() {
             if hypothesis == Hypothesis::Simultaneous

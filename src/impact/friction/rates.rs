@@ -13,10 +13,22 @@
 //! ```
 //!
 //! A singular system has a family of solutions. When every member moves the body alike
-//! (K w = 0 for every null vector w — sticking contacts on one line, whose tangential impulses
-//! only their sum determines) the split is reported as not unique and, in the plane, the member
-//! in the middle of the interval the cones allow is taken; a family that touches a normal rate
-//! or changes the motion leaves the rates undetermined.
+//! (K w = 0 for every null vector w) the split is reported as not unique and one member is
+//! taken:
+//!
+//! * sticking contacts on one line in the plane, whose tangential impulses only their sum
+//!   determines (one null direction): the member in the middle of the interval the cones allow;
+//! * driven contacts whose normal impulses only their resultant determines — three or more
+//!   points of one face, statically indeterminate as a table on four legs: the least-norm
+//!   member (for a face landing flat, the impulse shared as evenly as the moments allow), moved
+//!   the least needed to make no normal rate negative ([`Rates::normals_unique`]);
+//! * then, and for every other family of tangential rates, the member that loads each
+//!   sticking contact in proportion to its cone μ_i p'_i (the least Σ |τ'_i|² / (μ_i p'_i)).
+//!
+//! The member changes the body's motion only through restitution laid down contact by contact
+//! (Poisson's with differing k^P, the energetic law), which the verdict says. A family that
+//! changes the motion — sliding contacts whose friction follows a normal split, slips in
+//! different directions — leaves the rates undetermined: the rigid model does not decide them.
 
 use crate::impact::friction::blocks::Blocks;
 use crate::linalg::gauss::{basis, solve_general_in};
@@ -159,6 +171,10 @@ pub struct Rates<T: Scalar> {
     pub velocity: Vec<T>,
     /// `false` when sticking contacts share a tangential impulse whose split is not determined.
     pub split_unique: bool,
+    /// `false` when driven contacts share a normal impulse rate only its resultant determines
+    /// (three or more contacts of one face, four corners of a box landing flat): the member
+    /// taken is the least-norm one, moved the least needed to make no normal rate negative.
+    pub normals_unique: bool,
 }
 
 impl<T: Scalar> Default for Rates<T> {
@@ -167,6 +183,7 @@ impl<T: Scalar> Default for Rates<T> {
             lambda: Vec::new(),
             velocity: Vec::new(),
             split_unique: true,
+            normals_unique: true,
         }
     }
 }
@@ -371,6 +388,7 @@ pub fn rates_with<T: Scalar, S: Screws<T>>(
     lambda.clone_from(known);
     expand(particular, lambda);
     out.split_unique = pivots.len() == m;
+    out.normals_unique = true;
     if !out.split_unique {
         let null = basis(a, m, pivots);
         for w in &null {
@@ -378,16 +396,38 @@ pub fn rates_with<T: Scalar, S: Screws<T>>(
                 .iter()
                 .zip(w)
                 .any(|((u, _), wj)| matches!(u, Unknown::Normal(_)) && !wj.is_zero());
+            out.normals_unique &= !touches_normal;
             let mut dir = vec![T::zero(); len];
             expand(w, &mut dir);
             let mut moved = Vec::new();
             b.velocity_change(&dir, &mut moved);
             let scale = max_abs(&b.k) * max_abs(&dir);
-            if touches_normal || moved.iter().any(|x| !x.is_negligible(&scale, len)) {
+            if moved.iter().any(|x| !x.is_negligible(&scale, len)) {
                 return Err(RateFailure::Undetermined);
             }
         }
-        if let [w] = null.as_slice() {
+        let planar_pair = null.len() == 1
+            && columns
+                .iter()
+                .all(|(u, _)| !matches!(u, Unknown::Stick(i) if b.dims[i] != 1));
+        if !out.normals_unique || !planar_pair {
+            // Every member moves the body alike. Normal rates that are a family too (three or
+            // more contacts of one face) take the least-norm member, then the nearest one with
+            // no negative normal rate; the tangential rates then the member that loads each
+            // sticking contact in proportion to its cone (see `cone_weighted_shift`).
+            if !out.normals_unique {
+                let shift = least_norm_member(particular, &null);
+                add(particular, &shift);
+                let nonnegative = nonnegative_shift(columns, particular, &null);
+                add(particular, &nonnegative);
+            }
+            lambda.clone_from(known);
+            expand(particular, lambda);
+            let shift = cone_weighted_shift(b, columns, particular, &null, lambda);
+            add(particular, &shift);
+            lambda.clone_from(known);
+            expand(particular, lambda);
+        } else if let [w] = null.as_slice() {
             let c = middle_of_cones(b, columns, particular, w, lambda);
             let mut shift = vec![T::zero(); len];
             let scaled: Vec<T> = w.iter().map(|x| x.clone() * &c).collect();
@@ -449,4 +489,195 @@ fn middle_of_cones<T: Scalar, S: Screws<T>>(
         (Some(l), Some(h)) if (h.clone() - &l).signum_i8() >= 0 => (l + h) / (T::one() + T::one()),
         _ => T::zero(),
     }
+}
+
+/// The shift N c that takes z to the least-norm member z + N c of its family (the columns of
+/// N, the `null` directions, independent): c solves NᵀN c = −Nᵀz. Empty when NᵀN is singular
+/// in the scalar's arithmetic.
+fn least_norm_member<T: Scalar>(z: &[T], null: &[Vec<T>]) -> Vec<T> {
+    let k = null.len();
+    let mut gram: Vec<T> = Vec::with_capacity(k * k);
+    for p in null {
+        for q in null {
+            gram.push(dot(p, q));
+        }
+    }
+    let mut rhs: Vec<T> = null.iter().map(|p| -dot(p, z)).collect();
+    let (mut pivots, mut c) = (Vec::new(), Vec::new());
+    let mut out = vec![T::zero(); z.len()];
+    if solve_general_in(&mut gram, k, k, &mut rhs, &mut pivots, &mut c) && pivots.len() == k {
+        for (w, cj) in null.iter().zip(&c) {
+            for (o, wj) in out.iter_mut().zip(w) {
+                *o += wj.clone() * cj;
+            }
+        }
+    }
+    out
+}
+
+/// With one null direction w that moves the normal rates (the usual face: four points, one
+/// way to shift impulse between its diagonals), the further shift c·w from z to the
+/// nearest member whose normal rates are all nonnegative — the interval of c where
+/// p_j + c w_j ≥ 0 for every normal unknown j, clamped at 0; empty when no shift is needed,
+/// the interval is empty (the tensile rate is then reported), or the family is wider.
+fn nonnegative_shift<T: Scalar>(columns: &Columns<T>, z: &[T], null: &[Vec<T>]) -> Vec<T> {
+    let normal_null: Vec<&Vec<T>> = null
+        .iter()
+        .filter(|w| {
+            columns
+                .iter()
+                .zip(w.iter())
+                .any(|((u, _), wj)| matches!(u, Unknown::Normal(_)) && !wj.is_zero())
+        })
+        .collect();
+    let [w] = normal_null.as_slice() else {
+        return Vec::new();
+    };
+    let mut lo: Option<T> = None;
+    let mut hi: Option<T> = None;
+    for (((u, _), zj), wj) in columns.iter().zip(z).zip(w.iter()) {
+        if !matches!(u, Unknown::Normal(_)) || wj.is_zero() {
+            continue;
+        }
+        // p_j + c w_j ≥ 0: c ≥ −p_j/w_j when w_j > 0, c ≤ −p_j/w_j when w_j < 0
+        let end = -zj.clone() / wj.clone();
+        if wj.signum_i8() > 0 {
+            if lo
+                .as_ref()
+                .is_none_or(|x| (end.clone() - x).signum_i8() > 0)
+            {
+                lo = Some(end);
+            }
+        } else if hi
+            .as_ref()
+            .is_none_or(|x| (end.clone() - x).signum_i8() < 0)
+        {
+            hi = Some(end);
+        }
+    }
+    let c = match (lo, hi) {
+        (Some(l), Some(h)) if (h.clone() - &l).signum_i8() < 0 => return Vec::new(),
+        (Some(l), _) if l.signum_i8() > 0 => l,
+        (_, Some(h)) if h.signum_i8() < 0 => h,
+        _ => return Vec::new(),
+    };
+    w.iter().map(|wj| wj.clone() * &c).collect()
+}
+
+fn dot<T: Scalar>(x: &[T], y: &[T]) -> T {
+    let mut s = T::zero();
+    for (a, b) in x.iter().zip(y) {
+        s += a.clone() * b;
+    }
+    s
+}
+
+/// z += d, entry by entry (nothing when d is empty).
+fn add<T: Scalar>(z: &mut [T], d: &[T]) {
+    for (zj, dj) in z.iter_mut().zip(d) {
+        *zj += dj.clone();
+    }
+}
+
+/// The shift, along the directions of the family that leave every normal rate alone, to the
+/// member that loads the sticking contacts in proportion to their cones: the least
+/// Σ_i |τ'_i|² / (μ_i p'_i) over the sticking contacts i (p'_i their normal rates in
+/// `lambda`). A force shared by contacts that stand for one another is then split in proportion
+/// to μ_i p'_i, each at the same fraction of its cone — the member most likely inside every
+/// cone, which is what [`super::modes`] checks next. A sticking contact with no normal rate is
+/// weighted as one with 10⁻⁹ of the largest cone (its tangential rate is kept near zero).
+/// Empty when no sticking contact shares an impulse.
+fn cone_weighted_shift<T: Scalar, S: Screws<T>>(
+    b: &Blocks<T, S>,
+    columns: &Columns<T>,
+    z: &[T],
+    null: &[Vec<T>],
+    lambda: &[T],
+) -> Vec<T> {
+    let unknowns: Vec<Unknown> = columns.iter().map(|(u, _)| u).collect();
+    let normal_rows: Vec<usize> = (0..unknowns.len())
+        .filter(|&j| matches!(unknowns[j], Unknown::Normal(_)))
+        .collect();
+    // combinations of the null directions with no normal entry
+    let k = null.len();
+    let mut a = Vec::with_capacity(normal_rows.len() * k);
+    for &j in &normal_rows {
+        a.extend(null.iter().map(|w| w[j].clone()));
+    }
+    let (_, combinations) = crate::linalg::gauss::null_space(&a, normal_rows.len(), k);
+    let dirs: Vec<Vec<T>> = combinations
+        .iter()
+        .map(|c| {
+            let mut d = vec![T::zero(); z.len()];
+            for (w, cl) in null.iter().zip(c) {
+                if !cl.is_zero() {
+                    add(
+                        &mut d,
+                        &w.iter().map(|x| x.clone() * cl).collect::<Vec<T>>(),
+                    );
+                }
+            }
+            d
+        })
+        .collect();
+    // the cone of each sticking unknown's contact
+    let cone = |j: usize| match unknowns[j] {
+        Unknown::Stick(i) => Some(b.mu[i].clone() * &lambda[b.offset[i]]),
+        Unknown::Normal(_) => None,
+    };
+    let largest = max_abs(&(0..z.len()).filter_map(cone).collect::<Vec<T>>());
+    let Some(floor) = T::from_f64(1e-9).map(|f| f * &largest) else {
+        return Vec::new();
+    };
+    if dirs.is_empty() || largest.is_zero() {
+        return Vec::new();
+    }
+    let weight = |j: usize| {
+        cone(j).map(|c| {
+            let c = if (c.clone() - &floor).signum_i8() > 0 {
+                c
+            } else {
+                floor.clone()
+            };
+            T::one() / c
+        })
+    };
+    let weights: Vec<Option<T>> = (0..z.len()).map(weight).collect();
+    let m = dirs.len();
+    let mut gram = Vec::with_capacity(m * m);
+    for p in &dirs {
+        for q in &dirs {
+            let mut s = T::zero();
+            for (j, wj) in weights.iter().enumerate() {
+                if let Some(wj) = wj {
+                    s += p[j].clone() * &q[j] * wj;
+                }
+            }
+            gram.push(s);
+        }
+    }
+    let mut rhs: Vec<T> = dirs
+        .iter()
+        .map(|p| {
+            let mut s = T::zero();
+            for (j, wj) in weights.iter().enumerate() {
+                if let Some(wj) = wj {
+                    s -= p[j].clone() * &z[j] * wj;
+                }
+            }
+            s
+        })
+        .collect();
+    let (mut pivots, mut c) = (Vec::new(), Vec::new());
+    if !solve_general_in(&mut gram, m, m, &mut rhs, &mut pivots, &mut c) || pivots.len() != m {
+        return Vec::new();
+    }
+    let mut out = vec![T::zero(); z.len()];
+    for (d, cl) in dirs.iter().zip(&c) {
+        add(
+            &mut out,
+            &d.iter().map(|x| x.clone() * cl).collect::<Vec<T>>(),
+        );
+    }
+    out
 }

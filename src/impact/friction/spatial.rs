@@ -1232,8 +1232,8 @@ fn resolve<T: Scalar, S: Screws<T>>(
         && leaving.is_empty()
         && sticks_hold(run, st, &candidates, r)
     {
-        if !r.split_unique {
-            verdicts.push(Verdict::SplitNotUnique { s: st.s.to_f64() });
+        if let Some(v) = super::split_verdict(r, st.s.to_f64(), run.law, run.contacts) {
+            verdicts.push(v);
         }
         return Ok(());
     }
@@ -1302,8 +1302,8 @@ fn resolve<T: Scalar, S: Screws<T>>(
             continue;
         };
         if sticks_hold(run, st, &candidates, &r) {
-            if !r.split_unique {
-                verdicts.push(Verdict::SplitNotUnique { s: st.s.to_f64() });
+            if let Some(v) = super::split_verdict(&r, st.s.to_f64(), run.law, run.contacts) {
+                verdicts.push(v);
             }
             for &k in &sliding {
                 st.locked[candidates[k]] = true;
