@@ -25,7 +25,9 @@
 //! that press) is found by trying the last one first and then every subset, largest first:
 //! λ_S solves A_SS λ_S = −b_S in the least-squares sense of smallest norm (a body resting on
 //! four corners has a family of forces and one acceleration; by LU when A_SS is regular, the
-//! SVD otherwise: `solve_square_or_least_squares`), and S is accepted when the
+//! SVD otherwise: `solve_square_or_least_squares`) — of such a family, the member that shares
+//! the friction among sticking contacts in proportion to their cones (`cone_scales`) — and S
+//! is accepted when the
 //! system is consistent, every λ_n ≥ 0 and every other contact's normal acceleration ≥ 0, each
 //! to 10⁻⁹ of the scale of the accelerations (|g| + |ω|² ρ, ρ the body's reach).
 
@@ -144,6 +146,8 @@ struct Rows<const M: usize> {
     row_arm: [V3; M],
     col_arm: [V3; M],
     b: [f64; M],
+    /// Contact i's μ when it sticks (its rows after the first are then tangential), else 0.
+    stick_mu: [f64; M],
 }
 
 /// The accelerations of `body` at `s` under `gravity` with the `closed` contacts on `planes`;
@@ -222,6 +226,7 @@ fn accelerations_in<const M: usize>(
         row_arm: [V3::zeros(); M],
         col_arm: [V3::zeros(); M],
         b: [0.0; M],
+        stick_mu: [0.0; M],
     };
     for (i, c) in closed.iter().enumerate() {
         let plane = &planes[c.plane];
@@ -244,6 +249,7 @@ fn accelerations_in<const M: usize>(
         match c.mode {
             Mode::Frictionless => push(nn, nn),
             Mode::Stick => {
+                rows.stick_mu[i] = plane.law.mu;
                 let (t1, t2) = tangents(&nn);
                 push(nn, nn);
                 push(t1, t1);
@@ -343,11 +349,28 @@ fn decide<const M: usize>(
         lambda[..m].fill(0.0);
         if k > 0 {
             let mut x = [0.0; M];
-            let Some(residual) =
+            let Some((mut residual, singular)) =
                 solve_system::<M>(k, |p, q| w[idx[p]][idx[q]], |p| -rows.b[idx[p]], &mut x)
             else {
                 return false;
             };
+            if singular && let Some(sc) = cone_scales(rows, &idx[..k], &x) {
+                // the family's member that loads each sticking contact in proportion to its
+                // cone: λ = S y with y of least norm, S² the cones (see `cone_scales`)
+                let mut y = [0.0; M];
+                if let Some((r, _)) = solve_system::<M>(
+                    k,
+                    |p, q| w[idx[p]][idx[q]] * sc[q],
+                    |p| -rows.b[idx[p]],
+                    &mut y,
+                ) && r <= tol
+                {
+                    for q in 0..k {
+                        x[q] = sc[q] * y[q];
+                    }
+                    residual = r;
+                }
+            }
             if residual > tol {
                 return false;
             }
@@ -388,14 +411,50 @@ fn decide<const M: usize>(
     None
 }
 
-/// x with A x = b for the k × k system `a(p, q)`, `b(p)` (k ≤ M), and the largest residual
-/// |A x − b|; `None` when no x was found ([`solve_square_or_least_squares`]).
+/// The column scales s_q of the rows `idx` of an active set whose forces `x` (the least-norm
+/// member) are a family: 1 on a normal row, √(μ_i λ_n,i / max λ_n) on a sticking contact's
+/// tangential row (floored at 10⁻⁹ of the largest cone). The least-norm y of W S y = −b is
+/// then the member λ = S y of least Σ_normal λ² + Σ_tangential λ² / c_i — friction shared among
+/// contacts that stand for one another (four corners of a face) in proportion to their cones,
+/// each at the same fraction of it, where the plain least-norm member can overload a lightly
+/// pressed corner and make it slide at zero slip. `None` when no sticking contact is active.
+fn cone_scales<const M: usize>(rows: &Rows<M>, idx: &[usize], x: &[f64; M]) -> Option<[f64; M]> {
+    let normal = |p: usize| rows.start[rows.contact[p]] == p;
+    let largest = idx
+        .iter()
+        .enumerate()
+        .filter(|&(_, &p)| normal(p))
+        .map(|(q, _)| x[q])
+        .fold(0.0f64, f64::max);
+    if !idx.iter().any(|&p| !normal(p)) || largest <= 0.0 {
+        return None;
+    }
+    let mut sc = [1.0; M];
+    for (q, &p) in idx.iter().enumerate() {
+        if normal(p) {
+            continue;
+        }
+        let j = rows.contact[p];
+        // the normal force of contact j: its first row's entry in x
+        let n = idx
+            .iter()
+            .position(|&r| r == rows.start[j])
+            .map_or(0.0, |qn| x[qn]);
+        let cone = rows.stick_mu[j] * n.max(0.0) / largest;
+        sc[q] = cone.max(1e-9 * rows.stick_mu[j]).sqrt();
+    }
+    Some(sc)
+}
+
+/// x with A x = b for the k × k system `a(p, q)`, `b(p)` (k ≤ M), the largest residual
+/// |A x − b|, and whether A was singular (x then the least-norm member); `None` when no x was
+/// found ([`solve_square_or_least_squares`]).
 fn solve_system<const M: usize>(
     k: usize,
     a: impl Fn(usize, usize) -> f64,
     b: impl Fn(usize) -> f64,
     x: &mut [f64; M],
-) -> Option<f64> {
+) -> Option<(f64, bool)> {
     let mut am = [[0.0; M]; M];
     let mut rhs = [0.0; M];
     for p in 0..k {
@@ -404,9 +463,7 @@ fn solve_system<const M: usize>(
         }
         rhs[p] = b(p);
     }
-    if !solve_square_or_least_squares(&am, &rhs, k, x) {
-        return None;
-    }
+    let singular = solve_square_or_least_squares(&am, &rhs, k, x)?;
     let mut worst = 0.0f64;
     for p in 0..k {
         let mut ax = am[p][0] * x[0];
@@ -418,7 +475,7 @@ fn solve_system<const M: usize>(
             worst = r;
         }
     }
-    Some(worst)
+    Some((worst, singular))
 }
 
 /// x with A x = b, A k × k (the leading block of `a`): by LU with partial pivoting when its
@@ -429,26 +486,23 @@ fn solve_system<const M: usize>(
 /// residual. (The LU is about five times cheaper than the SVD on the 1–6 unknowns of a
 /// persistent contact, and the SVD was half the time of a rocking run: benches/simulate.rs.)
 /// The LU is nalgebra's, step for step (the first largest pivot of the column, the column
-/// scaled by the pivot's reciprocal, the rows swapped whole), on the stack.
+/// scaled by the pivot's reciprocal, the rows swapped whole), on the stack. `Some(singular)`
+/// when x was found: whether the SVD was needed.
 fn solve_square_or_least_squares<const M: usize>(
     a: &[[f64; M]; M],
     b: &[f64; M],
     k: usize,
     x: &mut [f64; M],
-) -> bool {
+) -> Option<bool> {
     if lu_solve(a, b, k, x) {
-        return true;
+        return Some(false);
     }
     let am = DMatrix::from_fn(k, k, |p, q| a[p][q]);
     let rhs = DVector::from_fn(k, |p, _| b[p]);
     let svd = am.svd(true, true);
-    match svd.solve(&rhs, 1e-12 * svd.singular_values.max()) {
-        Ok(sol) => {
-            x[..k].copy_from_slice(sol.as_slice());
-            true
-        }
-        Err(_) => false,
-    }
+    let sol = svd.solve(&rhs, 1e-12 * svd.singular_values.max()).ok()?;
+    x[..k].copy_from_slice(sol.as_slice());
+    Some(true)
 }
 
 /// The LU solve of [`solve_square_or_least_squares`]: false when a pivot is below 10⁻¹⁰ of

@@ -40,7 +40,7 @@ use super::body::{Body, State, V3};
 use super::contact::{Closed, ContactError, Mode, accelerations, derivative, project};
 use super::impact::{At, ImpactError, Law, solve};
 use super::ode::floor;
-use super::stepper::{self, Advance, Stepper};
+use super::stepper::{self, Advance, Stall, Stepper};
 use super::world::{Plane, gap};
 
 /// How the simulation runs.
@@ -220,14 +220,14 @@ pub enum SimulateError {
         /// Why.
         error: ContactError,
     },
-    /// The steps shrank to what f64 resolves in t and stayed there ([`super::stepper::WINDOW`]).
-    #[error(
-        "t = {t:.9} s: the run stalled — its steps fell to what f64 resolves in t and stayed \
-         there (a stiff, singular or inconsistent contact phase)"
-    )]
+    /// The run could not move on: its steps shrank to what f64 resolves in t, or to a pace
+    /// that would not reach the end ([`super::stepper::Stall`]).
+    #[error("t = {t:.9} s: the run stalled — {why}")]
     Stalled {
         /// When.
         t: f64,
+        /// How.
+        why: Stall,
     },
     /// The run produced a value that is not finite.
     #[error("t = {t:.9} s: the state overflowed f64")]
@@ -404,6 +404,43 @@ impl<'a> Run<'a> {
         })
     }
 
+    /// Whether the body, slower than the rest speed, would stay put with every sliding
+    /// contact stuck: the accelerations with them sticking are consistent (every friction force
+    /// within its cone) and below `still`. A slide that began at zero slip at the edge of its
+    /// cone may never speed up enough to be let stick again ([`Closed::armed`]), and would then
+    /// chatter about zero slip at a body that is at rest.
+    fn holds_when_stuck(&self, still: f64) -> bool {
+        if !self.closed.iter().any(|c| matches!(c.mode, Mode::Slide(_))) {
+            return false;
+        }
+        let stuck: Vec<Closed> = self
+            .closed
+            .iter()
+            .map(|c| Closed {
+                mode: match c.mode {
+                    Mode::Slide(_) => Mode::Stick,
+                    m => m,
+                },
+                ..c.clone()
+            })
+            .collect();
+        let o = &self.setup.options;
+        let mut hint = Vec::new();
+        accelerations(
+            &self.setup.body,
+            &self.setup.planes,
+            &self.s,
+            &o.gravity,
+            &stuck,
+            &mut hint,
+            o.rest_speed,
+        )
+        .is_ok_and(|a| {
+            a.active.iter().all(|&on| on)
+                && a.a.norm() + a.alpha.norm() * self.setup.body.reach() <= still
+        })
+    }
+
     fn name(&self, f: usize, p: usize) -> String {
         format!(
             "{} on {}",
@@ -429,8 +466,8 @@ impl<'a> Run<'a> {
                 end = End::Impacts;
                 break;
             }
-            if self.stepper.attempts() >= MAX_STEPS || self.stepper.stalled() {
-                return Err(SimulateError::Stalled { t: self.t });
+            if let Some(why) = self.stepper.stall(MAX_STEPS) {
+                return Err(SimulateError::Stalled { t: self.t, why });
             }
             let acc = self.current()?;
             // Lift-off: a closed contact the accelerations no longer press.
@@ -494,9 +531,10 @@ impl<'a> Run<'a> {
             }
             let speed = self.s.v.norm() + self.s.w.norm() * self.setup.body.reach();
             let accel = acc.a.norm() + acc.alpha.norm() * self.setup.body.reach();
+            let still = 1e-9 * (o.gravity.norm() + f64::MIN_POSITIVE);
             if !self.closed.is_empty()
                 && speed <= o.rest_speed
-                && accel <= 1e-9 * (o.gravity.norm() + f64::MIN_POSITIVE)
+                && (accel <= still || self.holds_when_stuck(still))
             {
                 end = End::Rest;
                 break;
@@ -631,7 +669,10 @@ impl<'a> Run<'a> {
                         self.stepper.h = floor(self.t, o.output_step) * 16.0;
                         continue;
                     }
-                    return Err(SimulateError::Stalled { t: self.t });
+                    return Err(SimulateError::Stalled {
+                        t: self.t,
+                        why: Stall::Resolution,
+                    });
                 }
             };
             // The output times inside the step, from its continuous extension.

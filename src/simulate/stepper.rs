@@ -63,9 +63,50 @@ pub struct Stepper {
     pub steps: (usize, usize),
     /// Where the current window of [`WINDOW`] attempts started: (attempts, t).
     window: (usize, f64),
-    /// Whether the last window advanced t by less than [`WINDOW`] · 100 resolutions of t.
-    stalled: bool,
+    /// How the last window of [`WINDOW`] attempts stalled, if it did.
+    stalled: Option<Stall>,
 }
+
+/// How a run stalled.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Stall {
+    /// A window of [`WINDOW`] attempts advanced t by less than a hundred resolutions of t per
+    /// attempt.
+    Resolution,
+    /// At the pace of its last window the run would need more than [`PACE`] further attempts
+    /// to reach its end.
+    Pace {
+        /// The attempts it would need.
+        needed: f64,
+    },
+    /// The step budget is spent.
+    Budget {
+        /// The budget, in attempts.
+        attempts: usize,
+    },
+}
+
+impl std::fmt::Display for Stall {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Stall::Resolution => f.write_str(
+                "its steps fell to what f64 resolves in t and stayed there (a stiff, singular or \
+                 inconsistent contact phase)",
+            ),
+            Stall::Pace { needed } => write!(
+                f,
+                "at the pace of its last {WINDOW} attempts it would need {needed:.1e} more to \
+                 reach its end (a contact phase chattering at the edge of a cone or of lift-off)"
+            ),
+            Stall::Budget { attempts } => write!(f, "it spent its budget of {attempts} attempts"),
+        }
+    }
+}
+
+/// The most further attempts a run's pace may call for: a window whose pace would take more
+/// (ten times the step budget of [`super::run::MAX_STEPS`]) to reach the end of the run stops it
+/// as stalled then, rather than after the budget — minutes later — with the same answer.
+pub const PACE: f64 = 1.0e8;
 
 /// The attempts over which a run's progress is judged: a run whose steps average less than
 /// a hundred times the resolution of t over this many attempts is stalled — a motion that
@@ -82,13 +123,17 @@ impl Stepper {
             h: (output_step.min(duration) / 10.0).max(f64::MIN_POSITIVE),
             steps: (0, 0),
             window: (0, 0.0),
-            stalled: false,
+            stalled: None,
         }
     }
 
-    /// Whether the last window of [`WINDOW`] attempts advanced t by less than a hundred
-    /// resolutions of t per attempt.
-    pub fn stalled(&self) -> bool {
+    /// How the run has stalled, if it has: the last window of [`WINDOW`] attempts advanced t by
+    /// less than a hundred resolutions of t per attempt, or at a pace that would need more than
+    /// [`PACE`] further attempts; or `budget` attempts are spent.
+    pub fn stall(&self, budget: usize) -> Option<Stall> {
+        if self.attempts() >= budget {
+            return Some(Stall::Budget { attempts: budget });
+        }
         self.stalled
     }
 
@@ -130,7 +175,15 @@ impl Stepper {
         }
         let attempts = self.attempts();
         if attempts >= self.window.0 + WINDOW {
-            self.stalled = t - self.window.1 < 100.0 * WINDOW as f64 * floor;
+            let advanced = t - self.window.1;
+            let needed = (end - t) / advanced * WINDOW as f64;
+            self.stalled = if advanced < 100.0 * WINDOW as f64 * floor {
+                Some(Stall::Resolution)
+            } else if needed > PACE {
+                Some(Stall::Pace { needed })
+            } else {
+                None
+            };
             self.window = (attempts, t);
         }
         let (y5, err, dense) = match step_dense(&self.tab, t, y, hh, f) {
@@ -190,8 +243,13 @@ mod tests {
 
     /// Steps of y' = 0 from t = 0.3, each capped by `horizon`, for two windows of attempts:
     /// whether the stepper then says the run stalled, and where t got to.
-    fn two_windows(horizon: f64) -> (bool, f64) {
-        let mut stepper = Stepper::new(0.01, 1.0e6);
+    fn two_windows(horizon: f64) -> (Option<Stall>, f64) {
+        two_windows_to(horizon, 1.0)
+    }
+
+    /// As [`two_windows`], for a run that ends at `end`.
+    fn two_windows_to(horizon: f64, end: f64) -> (Option<Stall>, f64) {
+        let mut stepper = Stepper::new(0.01, end);
         let mut f = |_t: f64, y: &[f64]| -> Result<Vec<f64>, ()> { Ok(vec![0.0; y.len()]) };
         let (mut t, y) = (0.3, vec![1.0]);
         for _ in 0..=2 * WINDOW {
@@ -202,7 +260,7 @@ mod tests {
                 _ => panic!("y' = 0 has no error to reject a step for"),
             }
         }
-        (stepper.stalled(), t)
+        (stepper.stall(usize::MAX), t)
     }
 
     /// A gap crept onto at every step holds each step at the resolution of t (64 ε t): two
@@ -212,25 +270,50 @@ mod tests {
     #[test]
     fn steps_held_near_the_resolution_of_t_are_a_stall() {
         let resolution = 64.0 * f64::EPSILON * 0.3;
-        let (stalled, t) = two_windows(0.0);
-        assert!(stalled);
+        let (stall, t) = two_windows(0.0);
+        assert_eq!(stall, Some(Stall::Resolution));
         assert!(
             t - 0.3 < 1.01 * (2 * WINDOW + 1) as f64 * resolution,
             "t = {t}"
         );
-        assert!(two_windows(50.0 * resolution).0);
+        assert_eq!(two_windows(50.0 * resolution).0, Some(Stall::Resolution));
     }
 
-    /// Steps of two hundred resolutions of t, or of a microsecond, move on: no stall.
+    /// Steps of a nanosecond are far above the resolution of t, but a run 1 s from its end
+    /// would need 7 · 10⁸ more of them: stalled at its pace (10⁴ attempts advanced 10⁻⁵ s).
+    #[test]
+    fn steps_too_slow_to_reach_the_end_are_a_stall() {
+        let (stall, _) = two_windows_to(1e-9, 1.0);
+        let Some(Stall::Pace { needed }) = stall else {
+            panic!("expected a stall at its pace, got {stall:?}");
+        };
+        assert!((needed - 0.69998 / 1e-9).abs() < 1e3, "needed {needed}");
+    }
+
+    /// Steps of a microsecond 0.7 s from the end need 7 · 10⁵ more, and steps of two hundred
+    /// resolutions of t 5 · 10⁻⁵ s from the end 6 · 10⁷: no stall.
     #[test]
     fn steps_that_move_on_are_no_stall() {
         let resolution = 64.0 * f64::EPSILON * 0.3;
-        assert!(!two_windows(200.0 * resolution).0);
-        let (stalled, t) = two_windows(1e-6);
-        assert!(!stalled);
+        assert_eq!(two_windows_to(200.0 * resolution, 0.30005).0, None);
+        let (stall, t) = two_windows(1e-6);
+        assert_eq!(stall, None);
         assert!(
             (t - 0.3 - (2 * WINDOW + 1) as f64 * 1e-6).abs() < 1e-9,
             "t = {t}"
         );
+    }
+
+    /// A run whose attempts reach the budget has stalled, whatever its pace.
+    #[test]
+    fn a_spent_budget_is_a_stall() {
+        let mut stepper = Stepper::new(0.01, 1.0);
+        let mut f = |_t: f64, y: &[f64]| -> Result<Vec<f64>, ()> { Ok(vec![0.0; y.len()]) };
+        let advance = stepper.advance(0.3, &[1.0], 1.0, 1.0, 0.01, 1e-10, &[1.0], &mut f, |_| {
+            false
+        });
+        assert!(matches!(advance, Advance::Accepted { .. }));
+        assert_eq!(stepper.stall(1), Some(Stall::Budget { attempts: 1 }));
+        assert_eq!(stepper.stall(2), None);
     }
 }

@@ -31,7 +31,7 @@ use super::super::impact::Law;
 use super::super::run::{
     End, Event, ImpactRecord, MAX_STEPS, Options, SimulateError, Struck, joins, next_output_after,
 };
-use super::super::stepper::{self, Advance, Stepper};
+use super::super::stepper::{self, Advance, Stall, Stepper};
 use super::super::world::Plane;
 use super::gaps::{Candidate, Touch, gap};
 use super::impact::solve;
@@ -271,8 +271,8 @@ impl<'a> Run<'a> {
             if self.impacts.len() >= o.max_impacts {
                 return Ok(End::Impacts);
             }
-            if self.stepper.attempts() >= MAX_STEPS || self.stepper.stalled() {
-                return Err(SimulateError::Stalled { t: self.t });
+            if let Some(why) = self.stepper.stall(MAX_STEPS) {
+                return Err(SimulateError::Stalled { t: self.t, why });
             }
             let s = self.s.clone();
             let acc = self
@@ -391,7 +391,12 @@ impl<'a> Run<'a> {
                 Advance::Accepted { t, y, dense } => (t, y, dense),
                 Advance::Retry => continue,
                 Advance::NotFinite => return Err(SimulateError::NotFinite { t: self.t }),
-                Advance::Failed(_) => return Err(SimulateError::Stalled { t: self.t }),
+                Advance::Failed(_) => {
+                    return Err(SimulateError::Stalled {
+                        t: self.t,
+                        why: Stall::Resolution,
+                    });
+                }
             };
             // The output times inside the step, from its continuous extension.
             while next_output < t1 {
