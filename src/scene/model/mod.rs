@@ -195,6 +195,38 @@ impl Reader<'_> {
         }))
     }
 
+    /// The sign of a − b (see [`Reader::sign_at`]), 0 at once when a and b are the [same
+    /// term](same): reading `(a) - (a)` back would decide it only after parsing and evaluating
+    /// the text (and, for an irrational a, trying its radical form) — most of the cost of
+    /// reading a posed box, whose corners at one height have one text.
+    pub(super) fn sign_of_difference(
+        &self,
+        a: &Term,
+        b: &Term,
+        scale: f64,
+        key: &str,
+    ) -> Result<Option<i8>, SceneError> {
+        if same(a, b) {
+            return Ok(Some(0));
+        }
+        self.sign_at(&(a - b), scale, key)
+    }
+
+    /// The sign of (a − b)·n (see [`Reader::sign_at`]), 0 at once when each component of a − b
+    /// is a difference of the [same term](same) or meets a zero component of n.
+    fn sign_of_height(
+        &self,
+        (a, b): (&Vec3, &Vec3),
+        n: &Vec3,
+        scale: f64,
+        key: &str,
+    ) -> Result<Option<i8>, SceneError> {
+        if (0..3).all(|i| same(&a[i], &b[i]) || n[i].is_zero()) {
+            return Ok(Some(0));
+        }
+        self.sign_at(&dot(&sub(a, b), n), scale, key)
+    }
+
     /// [`Reader::sign_at`] with the scale 1.
     pub(super) fn sign(&self, t: &Term, key: &str) -> Result<Option<i8>, SceneError> {
         self.sign_at(t, 1.0, key)
@@ -797,8 +829,7 @@ impl Reader<'_> {
                         .iter()
                         .map(|x| self.magnitude(x))
                         .fold(0.0, f64::max);
-                let height = dot(&sub(&corner, plane), &ob.normal);
-                if self.sign_at(&height, scale, &at)? == Some(0) {
+                if self.sign_of_height((&corner, plane), &ob.normal, scale, &at)? == Some(0) {
                     touching.push(*s);
                     corners.push(corner);
                 }
@@ -817,7 +848,7 @@ impl Reader<'_> {
                 for (_, _, p) in &on {
                     let mut same = true;
                     for (a, b) in p.iter().zip(corner) {
-                        same &= self.sign_at(&(a - b), scale, &at)? == Some(0);
+                        same &= self.sign_of_difference(a, b, scale, &at)? == Some(0);
                     }
                     found |= same;
                 }
@@ -939,7 +970,7 @@ impl Reader<'_> {
         let mut failure = None;
         let mut undecided = false;
         let result = touching_corners(dims, &frame.r, n, |a, b| {
-            match self.sign_at(&(a - b), scale, at) {
+            match self.sign_of_difference(a, b, scale, at) {
                 Ok(Some(s)) => Some(s.cmp(&0)),
                 Ok(None) => {
                     undecided = true;
@@ -1011,8 +1042,11 @@ impl Reader<'_> {
             let lowest = self.touching(dims, frame, n, at)?.unwrap_or_default();
             if let Some(s) = lowest.first() {
                 let min = dot(&apply(&frame.r, &Shape::corner(dims, *s)), n);
-                let gap = &h_here - &min;
-                if self.sign_at(&gap, scale, at)?.is_some_and(|s| s > 0) {
+                if self
+                    .sign_of_difference(&h_here, &min, scale, at)?
+                    .is_some_and(|s| s > 0)
+                {
+                    let gap = &h_here - &min;
                     // Lowest along −N instead: the normal points the wrong way.
                     let down = n.each_ref().map(|x| -x);
                     let highest = self.touching(dims, frame, &down, at)?.unwrap_or_default();
@@ -1092,6 +1126,13 @@ impl Reader<'_> {
         }
         Ok(())
     }
+}
+
+/// Whether two terms are the same: one exact rational, or one text with one finite value — so
+/// that their difference is exactly zero. A text naming a symbol (its value NaN) is not the
+/// same as itself here: its sign is the reader's to assume, as [`Reader::sign_at`] leaves it.
+pub(super) fn same(a: &Term, b: &Term) -> bool {
+    a == b && a.approx().is_finite()
 }
 
 fn sign_of(q: &num_rational::BigRational) -> i8 {
