@@ -101,6 +101,20 @@ pub(crate) struct Lowered {
     pub(crate) axes: Axes,
 }
 
+/// The touching corners a read has found, by box, pose and plane normal: each contact on an
+/// obstacle and the check that every touching corner is named ask again (three times for a box
+/// on two corners), and each time the eight corners' heights were combined and compared anew.
+/// Only answers are kept: a comparison that fails fails again, naming its own contact.
+#[derive(Default)]
+pub(crate) struct LowestCorners(std::cell::RefCell<Vec<(LowestKey, Option<Vec<[i64; 3]>>)>>);
+
+/// The touching corners a read keeps at most (the last found): a scene of many boxes asks
+/// about each once or twice in a row, and a longer list would only lengthen the search.
+const LOWEST_KEPT: usize = 16;
+
+/// What the touching corners depend on: the box's edges, its pose R and the plane's normal.
+type LowestKey = (Vec3, Mat3, Vec3);
+
 /// A body whose central inertia tensor is singular.
 enum Degenerate {
     /// No moment about the line through C along u (body axes).
@@ -959,6 +973,34 @@ impl Reader<'_> {
     /// A box's touching corners against the plane normal `n`; `None` when a comparison
     /// depends on symbols (then the reader of the derived formulas answers for it).
     fn touching(
+        &self,
+        dims: &Vec3,
+        frame: &Frame,
+        n: &Vec3,
+        at: &str,
+    ) -> Result<Option<Vec<[i64; 3]>>, SceneError> {
+        let found = self
+            .lowest
+            .0
+            .borrow()
+            .iter()
+            .find_map(|((d, r, m), lowest)| {
+                (d == dims && *r == frame.r && m == n).then(|| lowest.clone())
+            });
+        if let Some(lowest) = found {
+            return Ok(lowest);
+        }
+        let lowest = self.touching_anew(dims, frame, n, at)?;
+        let mut kept = self.lowest.0.borrow_mut();
+        if kept.len() == LOWEST_KEPT {
+            kept.remove(0);
+        }
+        kept.push(((dims.clone(), frame.r.clone(), n.clone()), lowest.clone()));
+        Ok(lowest)
+    }
+
+    /// [`Reader::touching`], comparing the corners' heights.
+    fn touching_anew(
         &self,
         dims: &Vec3,
         frame: &Frame,
