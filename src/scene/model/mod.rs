@@ -106,7 +106,10 @@ pub(crate) struct Lowered {
 /// on two corners), and each time the eight corners' heights were combined and compared anew.
 /// Only answers are kept: a comparison that fails fails again, naming its own contact.
 #[derive(Default)]
-pub(crate) struct LowestCorners(std::cell::RefCell<Vec<(LowestKey, Option<Vec<[i64; 3]>>)>>);
+pub(crate) struct LowestCorners(std::cell::RefCell<Vec<(LowestKey, Lowest)>>);
+
+/// The touching corners found: their sign patterns, `None` when a comparison depends on symbols.
+type Lowest = Option<Vec<[i64; 3]>>;
 
 /// The touching corners a read keeps at most (the last found): a scene of many boxes asks
 /// about each once or twice in a row, and a longer list would only lengthen the search.

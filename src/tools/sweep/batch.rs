@@ -111,10 +111,12 @@ pub fn solve_batch(
             });
         }
     }
+    // Values are not checked up front: a modelled scene re-reads the document even for a
+    // coefficient, so that an invalid one is named by the reader as it always was.
     let slots = Slot::all(
         vary.iter().map(|v| v.path.as_str()),
         &base,
-        targets.iter().any(|t| t.param),
+        base.axes.is_some() || targets.iter().any(|t| t.param),
     );
     let (models, friction) = sweep_laws(&base, vary.iter().map(|v| v.path.as_str()));
     let bodies = body_names(&base);

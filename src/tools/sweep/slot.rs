@@ -28,15 +28,16 @@ pub(super) enum Slot {
 
 impl Slot {
     /// The slots of the varied `paths` in `scene` when every one is directly settable, else
-    /// `None` and each point re-reads the document: a parameter (`params`) may feed many
-    /// numbers, a system's body numbers feed its shapes' moments and its contacts' points, and
-    /// in a modelled scene only the numbers it keeps [as written](Slot::as_written) are slots.
+    /// `None` and each point re-reads the document: when `reread` (a path names a parameter,
+    /// which may feed many numbers, or the caller wants the reader's own messages), for a
+    /// system (its body numbers feed its shapes' moments and its contacts' points), and for a
+    /// modelled scene unless every path is one it keeps [as written](Slot::as_written).
     pub(super) fn all<'a>(
         paths: impl Iterator<Item = &'a str>,
         scene: &Scene,
-        params: bool,
+        reread: bool,
     ) -> Option<Vec<Slot>> {
-        if params || scene.system.is_some() {
+        if reread || scene.system.is_some() {
             return None;
         }
         let slots: Option<Vec<Slot>> = paths.map(|p| Slot::find(p, scene)).collect();
