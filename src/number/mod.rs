@@ -594,6 +594,23 @@ impl Eval<'_> {
 
 /// f64 radians of q*pi after exact reduction of q into (-1, 1], so large angles lose no accuracy.
 fn reduced_radians(q: &BigRational) -> f64 {
+    // Parts of a word (an angle in degrees as written, over 180): the same reduction in
+    // machine integers, the remainder then rounded once as `rational_to_f64` rounds it.
+    if let (Some(n), Some(d)) = (q.numer().to_i64(), q.denom().to_i64())
+        && d > 0
+    {
+        let (n, d) = (i128::from(n), i128::from(d));
+        let mut r = n - n.div_euclid(2 * d) * 2 * d;
+        if r > d {
+            r -= 2 * d;
+        }
+        return rational_to_f64(&BigRational::new_raw(BigInt::from(r), BigInt::from(d))) * PI;
+    }
+    reduced_radians_big(q)
+}
+
+/// [`reduced_radians`] in big rationals.
+fn reduced_radians_big(q: &BigRational) -> f64 {
     let two = int(2);
     let mut r = q - (q / &two).floor() * &two;
     if r > BigRational::one() {
@@ -611,6 +628,10 @@ enum Trig {
 /// sin/cos/tan at a rational number of degrees. By Niven's theorem their only rational values
 /// at rational degrees are 0, ±1/2, ±1 (sin, cos) and 0, ±1 (tan), taken at the angles listed here.
 fn trig_at_degrees(func: Func, degrees: &BigRational) -> Trig {
+    // Only whole degrees are listed, and a whole number of turns keeps a fraction one.
+    if !degrees.is_integer() {
+        return Trig::Irrational;
+    }
     let full = int(360);
     let d = degrees - (degrees / &full).floor() * &full;
     let Some(d) = d.is_integer().then(|| d.to_integer().to_i64()).flatten() else {
@@ -801,6 +822,39 @@ mod tests {
         is_not_finite("sqrt(0 - sqrt(2))");
         // The documented limitation: invisible cancellations are not found.
         assert!(inexact("sqrt(2)*sqrt(2)").0.contains("sqrt(2)"));
+    }
+
+    #[test]
+    fn angles_reduce_in_words_as_in_big_rationals() {
+        let big = BigRational::new(BigInt::from(10).pow(30) + 7, BigInt::from(3));
+        let mut qs = vec![big.clone(), -big];
+        for n in [
+            -721,
+            -360,
+            -181,
+            -180,
+            -1,
+            0,
+            1,
+            179,
+            180,
+            181,
+            359,
+            360,
+            10059,
+            i64::MAX,
+        ] {
+            for d in [1, 2, 7, 180, 1_800_000, i64::MAX] {
+                qs.push(BigRational::new(n.into(), d.into()));
+            }
+        }
+        for q in qs {
+            assert_eq!(
+                reduced_radians(&q).to_bits(),
+                reduced_radians_big(&q).to_bits(),
+                "{q}"
+            );
+        }
     }
 
     #[test]

@@ -121,6 +121,20 @@ pub fn rational_to_f64(q: &BigRational) -> f64 {
 
 /// n/d for n, d > 0, correctly rounded.
 fn positive_ratio_to_f64(n: &BigUint, d: &BigUint) -> f64 {
+    // Both held exactly by an f64 (below 2^53): IEEE division is correctly rounded, ties to
+    // even, and cannot leave [2^-53, 2^53] — the scene's fractions (1/5, 3/10), which a posed
+    // scene converts at every step of combining its numbers.
+    if n.bits() <= 53
+        && d.bits() <= 53
+        && let (Some(a), Some(b)) = (n.to_u64(), d.to_u64())
+    {
+        return a as f64 / b as f64;
+    }
+    positive_ratio_by_division(n, d)
+}
+
+/// n/d for n, d > 0, correctly rounded: one integer division to 66 significant bits.
+fn positive_ratio_by_division(n: &BigUint, d: &BigUint) -> f64 {
     // The value lies in [2^(k-1), 2^(k+1)).
     let k = n.bits() as i64 - d.bits() as i64;
     if k >= 1025 {
@@ -364,6 +378,25 @@ mod tests {
         // The largest prime ≤ 10 000 divides the primorial, the next prime does not.
         assert!((primorial() % 9_973u32).is_zero());
         assert!(!(primorial() % 10_007u32).is_zero());
+    }
+
+    proptest! {
+        /// The shortcut for word-sized parts is the integer division's rounding.
+        #[test]
+        fn small_ratios_round_as_the_division_does(
+            n in 1u64..(1 << 53),
+            d in 1u64..(1 << 53),
+            shift in 0u32..53,
+        ) {
+            for (n, d) in [(n, d), (n >> shift | 1, d), (n, d >> shift | 1), ((1 << 53) - 1, d)] {
+                let (bn, bd) = (BigUint::from(n), BigUint::from(d));
+                prop_assert_eq!(
+                    positive_ratio_to_f64(&bn, &bd).to_bits(),
+                    positive_ratio_by_division(&bn, &bd).to_bits(),
+                    "{}/{}", n, d
+                );
+            }
+        }
     }
 
     #[test]

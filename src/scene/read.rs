@@ -35,6 +35,7 @@ pub(super) fn scene(
         symbols,
         params: Params::new(symbols, seed),
         observed: Default::default(),
+        lowest: Default::default(),
     };
     r.only_keys(root, "", TOP_KEYS)?;
     let r = Reader {
@@ -255,6 +256,8 @@ pub(super) struct Reader<'a> {
     pub(super) params: Params,
     /// What the reading saw that the scene keeps for its notes and messages.
     pub(super) observed: std::cell::RefCell<Observed>,
+    /// A box's touching corners found so far ([`model::LowestCorners`]).
+    pub(super) lowest: model::LowestCorners,
 }
 
 /// What reading a scene saw besides its values: the pose angles (for the radian note and the
@@ -533,6 +536,7 @@ pub(super) fn exact_sphere<T: crate::scalar::Scalar>(
         symbols: &[],
         params: Params::new(&[], None),
         observed: Default::default(),
+        lowest: Default::default(),
     };
     let r = Reader {
         params: r.params(root, None)?,
@@ -550,6 +554,7 @@ pub(super) fn simulation(doc: &DocumentMut, file: &str) -> Result<(String, Simul
         symbols: &[],
         params: Params::new(&[], None),
         observed: Default::default(),
+        lowest: Default::default(),
     };
     let mut keys: Vec<&str> = TOP_KEYS.to_vec();
     keys.push("simulate");

@@ -101,6 +101,23 @@ pub(crate) struct Lowered {
     pub(crate) axes: Axes,
 }
 
+/// The touching corners a read has found, by box, pose and plane normal: each contact on an
+/// obstacle and the check that every touching corner is named ask again (three times for a box
+/// on two corners), and each time the eight corners' heights were combined and compared anew.
+/// Only answers are kept: a comparison that fails fails again, naming its own contact.
+#[derive(Default)]
+pub(crate) struct LowestCorners(std::cell::RefCell<Vec<(LowestKey, Lowest)>>);
+
+/// The touching corners found: their sign patterns, `None` when a comparison depends on symbols.
+type Lowest = Option<Vec<[i64; 3]>>;
+
+/// The touching corners a read keeps at most (the last found): a scene of many boxes asks
+/// about each once or twice in a row, and a longer list would only lengthen the search.
+const LOWEST_KEPT: usize = 16;
+
+/// What the touching corners depend on: the box's edges, its pose R and the plane's normal.
+type LowestKey = (Vec3, Mat3, Vec3);
+
 /// A body whose central inertia tensor is singular.
 enum Degenerate {
     /// No moment about the line through C along u (body axes).
@@ -193,6 +210,38 @@ impl Reader<'_> {
         } else {
             -1
         }))
+    }
+
+    /// The sign of a − b (see [`Reader::sign_at`]), 0 at once when a and b are the [same
+    /// term](same): reading `(a) - (a)` back would decide it only after parsing and evaluating
+    /// the text (and, for an irrational a, trying its radical form) — most of the cost of
+    /// reading a posed box, whose corners at one height have one text.
+    pub(super) fn sign_of_difference(
+        &self,
+        a: &Term,
+        b: &Term,
+        scale: f64,
+        key: &str,
+    ) -> Result<Option<i8>, SceneError> {
+        if same(a, b) {
+            return Ok(Some(0));
+        }
+        self.sign_at(&(a - b), scale, key)
+    }
+
+    /// The sign of (a − b)·n (see [`Reader::sign_at`]), 0 at once when each component of a − b
+    /// is a difference of the [same term](same) or meets a zero component of n.
+    fn sign_of_height(
+        &self,
+        (a, b): (&Vec3, &Vec3),
+        n: &Vec3,
+        scale: f64,
+        key: &str,
+    ) -> Result<Option<i8>, SceneError> {
+        if (0..3).all(|i| same(&a[i], &b[i]) || n[i].is_zero()) {
+            return Ok(Some(0));
+        }
+        self.sign_at(&dot(&sub(a, b), n), scale, key)
     }
 
     /// [`Reader::sign_at`] with the scale 1.
@@ -797,8 +846,7 @@ impl Reader<'_> {
                         .iter()
                         .map(|x| self.magnitude(x))
                         .fold(0.0, f64::max);
-                let height = dot(&sub(&corner, plane), &ob.normal);
-                if self.sign_at(&height, scale, &at)? == Some(0) {
+                if self.sign_of_height((&corner, plane), &ob.normal, scale, &at)? == Some(0) {
                     touching.push(*s);
                     corners.push(corner);
                 }
@@ -817,7 +865,7 @@ impl Reader<'_> {
                 for (_, _, p) in &on {
                     let mut same = true;
                     for (a, b) in p.iter().zip(corner) {
-                        same &= self.sign_at(&(a - b), scale, &at)? == Some(0);
+                        same &= self.sign_of_difference(a, b, scale, &at)? == Some(0);
                     }
                     found |= same;
                 }
@@ -934,12 +982,40 @@ impl Reader<'_> {
         n: &Vec3,
         at: &str,
     ) -> Result<Option<Vec<[i64; 3]>>, SceneError> {
+        let found = self
+            .lowest
+            .0
+            .borrow()
+            .iter()
+            .find_map(|((d, r, m), lowest)| {
+                (d == dims && *r == frame.r && m == n).then(|| lowest.clone())
+            });
+        if let Some(lowest) = found {
+            return Ok(lowest);
+        }
+        let lowest = self.touching_anew(dims, frame, n, at)?;
+        let mut kept = self.lowest.0.borrow_mut();
+        if kept.len() == LOWEST_KEPT {
+            kept.remove(0);
+        }
+        kept.push(((dims.clone(), frame.r.clone(), n.clone()), lowest.clone()));
+        Ok(lowest)
+    }
+
+    /// [`Reader::touching`], comparing the corners' heights.
+    fn touching_anew(
+        &self,
+        dims: &Vec3,
+        frame: &Frame,
+        n: &Vec3,
+        at: &str,
+    ) -> Result<Option<Vec<[i64; 3]>>, SceneError> {
         let scale = dims.iter().map(|d| self.magnitude(d)).fold(0.0, f64::max)
             * n.iter().map(|d| self.magnitude(d)).fold(0.0, f64::max);
         let mut failure = None;
         let mut undecided = false;
         let result = touching_corners(dims, &frame.r, n, |a, b| {
-            match self.sign_at(&(a - b), scale, at) {
+            match self.sign_of_difference(a, b, scale, at) {
                 Ok(Some(s)) => Some(s.cmp(&0)),
                 Ok(None) => {
                     undecided = true;
@@ -1011,8 +1087,11 @@ impl Reader<'_> {
             let lowest = self.touching(dims, frame, n, at)?.unwrap_or_default();
             if let Some(s) = lowest.first() {
                 let min = dot(&apply(&frame.r, &Shape::corner(dims, *s)), n);
-                let gap = &h_here - &min;
-                if self.sign_at(&gap, scale, at)?.is_some_and(|s| s > 0) {
+                if self
+                    .sign_of_difference(&h_here, &min, scale, at)?
+                    .is_some_and(|s| s > 0)
+                {
+                    let gap = &h_here - &min;
                     // Lowest along −N instead: the normal points the wrong way.
                     let down = n.each_ref().map(|x| -x);
                     let highest = self.touching(dims, frame, &down, at)?.unwrap_or_default();
@@ -1092,6 +1171,13 @@ impl Reader<'_> {
         }
         Ok(())
     }
+}
+
+/// Whether two terms are the same: one exact rational, or one text with one finite value — so
+/// that their difference is exactly zero. A text naming a symbol (its value NaN) is not the
+/// same as itself here: its sign is the reader's to assume, as [`Reader::sign_at`] leaves it.
+pub(super) fn same(a: &Term, b: &Term) -> bool {
+    a == b && a.approx().is_finite()
 }
 
 fn sign_of(q: &num_rational::BigRational) -> i8 {

@@ -789,7 +789,7 @@ impl Reader<'_> {
             .fold(0.0, f64::max)
             .max(1e-300);
         for (a, b) in p.iter().zip(q) {
-            if self.sign_at(&(a - b), scale, key)? != Some(0) {
+            if self.sign_of_difference(a, b, scale, key)? != Some(0) {
                 return Ok(false);
             }
         }

@@ -111,15 +111,13 @@ pub fn solve_batch(
             });
         }
     }
-    // Modelled scenes and parameters re-read the document (see `Plan`).
-    // So do systems, as in a sweep: a body's numbers feed its shape's moments and the
-    // contacts' points.
-    let slots: Option<Vec<Slot>> =
-        if base.axes.is_some() || base.system.is_some() || targets.iter().any(|t| t.param) {
-            None
-        } else {
-            vary.iter().map(|v| Slot::find(&v.path, &base)).collect()
-        };
+    // Values are not checked up front: a modelled scene re-reads the document even for a
+    // coefficient, so that an invalid one is named by the reader as it always was.
+    let slots = Slot::all(
+        vary.iter().map(|v| v.path.as_str()),
+        &base,
+        base.axes.is_some() || targets.iter().any(|t| t.param),
+    );
     let (models, friction) = sweep_laws(&base, vary.iter().map(|v| v.path.as_str()));
     let bodies = body_names(&base);
     let outputs = output_names(base.contacts.len(), friction, &bodies);

@@ -102,17 +102,11 @@ impl Plan {
         } else {
             Vec::new()
         };
-        // A modelled scene's numbers are computed from what was written (a shape's mass
-        // gives its moments), and a parameter may feed many: those re-read the document.
-        let slots =
-            if base.axes.is_some() || base.system.is_some() || targets.iter().any(|t| t.param) {
-                None
-            } else {
-                opts.vary
-                    .iter()
-                    .map(|v| Slot::find(&v.path, &base))
-                    .collect::<Option<Vec<_>>>()
-            };
+        let slots = Slot::all(
+            opts.vary.iter().map(|v| v.path.as_str()),
+            &base,
+            targets.iter().any(|t| t.param),
+        );
         let plan = Plan {
             file,
             name: base.name.clone(),

@@ -27,6 +27,23 @@ pub(super) enum Slot {
 }
 
 impl Slot {
+    /// The slots of the varied `paths` in `scene` when every one is directly settable, else
+    /// `None` and each point re-reads the document: when `reread` (a path names a parameter,
+    /// which may feed many numbers, or the caller wants the reader's own messages), for a
+    /// system (its body numbers feed its shapes' moments and its contacts' points), and for a
+    /// modelled scene unless every path is one it keeps [as written](Slot::as_written).
+    pub(super) fn all<'a>(
+        paths: impl Iterator<Item = &'a str>,
+        scene: &Scene,
+        reread: bool,
+    ) -> Option<Vec<Slot>> {
+        if reread || scene.system.is_some() {
+            return None;
+        }
+        let slots: Option<Vec<Slot>> = paths.map(|p| Slot::find(p, scene)).collect();
+        slots.filter(|s| scene.axes.is_none() || s.iter().all(|s| s.as_written()))
+    }
+
     /// The slot of `path` in `scene`, if it is one of the directly settable numbers.
     pub(super) fn find(path: &str, scene: &Scene) -> Option<Slot> {
         let index = |s: &str, limit: usize| -> Option<usize> {
@@ -59,6 +76,18 @@ impl Slot {
                 Some(Slot::Point(c, i))
             }
         }
+    }
+
+    /// Whether a modelled scene (world frame, pose, shape: [`crate::scene::model`]) keeps the
+    /// number as written: a contact's coefficients (k, μ) are read as in the paper's form and
+    /// never brought to the solver's frame, while its points, the body's mass, moments and
+    /// velocities are computed from the pose and the shape, so varying those re-reads the
+    /// document.
+    pub(super) fn as_written(self) -> bool {
+        matches!(
+            self,
+            Slot::K(_) | Slot::KNewton(_) | Slot::KPoisson(_) | Slot::Mu(_)
+        )
     }
 
     /// Set the number to q, as [`set_value`] and [`Scene::from_document`] would.
@@ -150,6 +179,64 @@ mod tests {
             "name",
         ] {
             assert_eq!(Slot::find(path, &base), None, "{path}");
+        }
+    }
+
+    /// A modelled scene (world frame, shape, pose, obstacles) keeps a contact's coefficients as
+    /// written: setting them in the scene read once is re-reading the document with them set.
+    #[test]
+    fn coefficients_of_modelled_scenes_agree_with_rereading_the_document() {
+        let scenes = [
+            (
+                "tilted-box.toml",
+                include_str!("../../../examples/tilted-box.toml"),
+            ),
+            (
+                "flat-box.toml",
+                include_str!("../../../examples/flat-box.toml"),
+            ),
+            (
+                "rocking-block.toml",
+                include_str!("../../../examples/rocking-block.toml"),
+            ),
+            (
+                "ball-in-corner.toml",
+                include_str!("../../../examples/ball-in-corner.toml"),
+            ),
+        ];
+        for (file, text) in scenes {
+            let doc = parse_document(text, file).unwrap();
+            let base = Scene::from_document(&doc, file).unwrap();
+            assert!(base.axes.is_some(), "{file} is modelled");
+            for c in 0..base.contacts.len().min(3) {
+                for key in ["k", "k_newton", "k_poisson", "mu"] {
+                    let path = format!("contact[{c}].{key}");
+                    let slots = Slot::all([path.as_str()].into_iter(), &base, false)
+                        .unwrap_or_else(|| panic!("{file}: {path}"));
+                    for x in [q(0, 1), q(1, 3), q(1, 100), q(1, 1), q(5, 8)] {
+                        let mut d = doc.clone();
+                        set_value(&mut d, &path, &toml_text(&x)).unwrap();
+                        let reread = Scene::from_document(&d, file).unwrap();
+                        let mut direct = base.clone();
+                        slots[0].set(&mut direct, &x);
+                        assert_eq!(direct, reread, "{file}: {path} = {x}");
+                    }
+                }
+            }
+            // Numbers the lowering computes from the pose and the shape are re-read.
+            for path in ["body.mass", "body.velocity[2]", "contact[0].point[0]"] {
+                assert_eq!(
+                    Slot::all([path].into_iter(), &base, false),
+                    None,
+                    "{file}: {path}"
+                );
+                assert_eq!(
+                    Slot::all(["contact[0].k", path].into_iter(), &base, false),
+                    None,
+                    "{file}: {path}"
+                );
+            }
+            assert_eq!(Slot::all(["contact[0].k"].into_iter(), &base, true), None);
         }
     }
 }
