@@ -253,9 +253,7 @@ mod tests {
         let mut f = |_t: f64, y: &[f64]| -> Result<Vec<f64>, ()> { Ok(vec![0.0; y.len()]) };
         let (mut t, y) = (0.3, vec![1.0]);
         for _ in 0..=2 * WINDOW {
-            match stepper.advance(t, &y, horizon, 1.0e6, 0.01, 1e-10, &[1.0], &mut f, |_| {
-                false
-            }) {
+            match stepper.advance(t, &y, horizon, end, 0.01, 1e-10, &[1.0], &mut f, |_| false) {
                 Advance::Accepted { t: next, .. } => t = next,
                 _ => panic!("y' = 0 has no error to reject a step for"),
             }
