@@ -391,3 +391,70 @@ axis = [1, 0, 0]
         assert!(p == "9" || p == 9.0, "{p}");
     }
 }
+
+/// A bar (m = 1) landing square at 1 m/s on three rough supports at y = −1, 0, 2 (μ = 1): four
+/// unknowns of a rigid body in the plane and three normals, so the normal impulses are a family
+/// with one resultant (1 + k) m v. The member taken is the least-norm one: with the supports at
+/// y_i, least |p| subject to Σ p_i = M and Σ p_i y_i = 0 is p_i = M (5 − y_i)/14 (Aᵀ(AAᵀ)⁻¹b
+/// with A = [1 1 1; −1 0 2], AAᵀ = [3 1; 1 5]) — compression (6, 5, 3)/14, exactly. The twist
+/// after is the frictionless one (v = −k, no turn) for every member, and the verdict says so under
+/// Newton's law and under Poisson's with one k; with differing k^P it says the twist may depend
+/// on the member.
+#[test]
+fn a_normal_split_takes_the_least_norm_member_exactly() {
+    let bar = |kp: [Exact; 3]| {
+        let c = |y: i64, kp: Exact| {
+            Contact::new(
+                v(int(0), int(y), int(0)),
+                v(int(1), int(0), int(0)),
+                ratio(1, 2),
+            )
+            .with_coefficients(ratio(1, 2), kp)
+            .with_tangent(v(int(0), int(1), int(0)))
+            .with_friction(int(1))
+        };
+        let [a, b, d] = kp;
+        Problem::new(
+            RigidBody::principal(int(1), v(int(12), ratio(8, 5), int(12))),
+            Screw::new(v(int(0), int(0), int(0)), v(int(1), int(0), int(0))),
+            vec![c(-1, a), c(0, b), c(2, d)],
+        )
+        .unwrap()
+    };
+    let half = || [ratio(1, 2), ratio(1, 2), ratio(1, 2)];
+    for law in [Restitution::Newton, Restitution::Poisson] {
+        let out = solve_frictional(&bar(half()), law, 0.0).unwrap();
+        assert_eq!(
+            out.compression,
+            vec![ratio(6, 14), ratio(5, 14), ratio(3, 14)],
+            "{law:?}"
+        );
+        assert_eq!(
+            out.velocity,
+            Screw::new(v(int(0), int(0), int(0)), v(ratio(-1, 2), int(0), int(0))),
+            "{law:?}"
+        );
+        assert!(
+            out.verdicts.contains(&Verdict::NormalSplitNotUnique {
+                s: 0.0,
+                decided: true
+            }),
+            "{law:?}: {:?}",
+            out.verdicts
+        );
+    }
+    let out = solve_frictional(
+        &bar([ratio(1, 2), ratio(1, 4), ratio(3, 4)]),
+        Restitution::Poisson,
+        0.0,
+    )
+    .unwrap();
+    assert!(
+        out.verdicts.contains(&Verdict::NormalSplitNotUnique {
+            s: 0.0,
+            decided: false
+        }),
+        "{:?}",
+        out.verdicts
+    );
+}
