@@ -31,6 +31,7 @@
 //! different directions — leaves the rates undetermined: the rigid model does not decide them.
 
 use crate::impact::friction::blocks::Blocks;
+use crate::impact::friction::departure::dot;
 use crate::linalg::gauss::{basis, solve_general_in};
 use crate::mechanics::contact::Contact;
 use crate::mechanics::screw::Screws;
@@ -562,14 +563,6 @@ fn nonnegative_shift<T: Scalar>(columns: &Columns<T>, z: &[T], null: &[Vec<T>]) 
         _ => return Vec::new(),
     };
     w.iter().map(|wj| wj.clone() * &c).collect()
-}
-
-fn dot<T: Scalar>(x: &[T], y: &[T]) -> T {
-    let mut s = T::zero();
-    for (a, b) in x.iter().zip(y) {
-        s += a.clone() * b;
-    }
-    s
 }
 
 /// z += d, entry by entry (nothing when d is empty).
