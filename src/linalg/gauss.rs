@@ -117,9 +117,14 @@ pub struct Solutions<T: Scalar> {
     pub null: Vec<Vec<T>>,
 }
 
+/// |x|.
+fn magnitude<T: Scalar>(x: T) -> T {
+    if x.signum_i8() < 0 { -x } else { x }
+}
+
 /// Solve the `rows × cols` system A x = b (row-major). `None` when it is inconsistent (some
-/// zero row of the echelon form meets a nonzero right-hand side, relative to max|b| in
-/// floats).
+/// zero row of the echelon form meets a nonzero right-hand side; in floats, one above
+/// cols·ε (max|b| + max|a| Σ|x_j|), the rounding of elimination).
 pub fn solve_general<T: Scalar>(
     a: &[T],
     rows: usize,
@@ -152,13 +157,34 @@ pub fn solve_general_in<T: Scalar>(
     pivots: &mut Vec<usize>,
     particular: &mut Vec<T>,
 ) -> bool {
-    let mut scale = T::zero();
-    for x in b.iter() {
-        if x.abs_gt(&scale) {
-            scale = x.clone();
+    let largest = |xs: &[T]| {
+        let mut m = T::zero();
+        for x in xs {
+            if x.abs_gt(&m) {
+                m = x.clone();
+            }
         }
-    }
+        magnitude(m)
+    };
+    let floats = T::epsilon_f64() > 0.0;
+    let (scale_b, scale_a) = match floats {
+        true => (largest(b), largest(a)),
+        false => (T::zero(), T::zero()),
+    };
     rref_in(a, rows, cols, b, 1, pivots);
+    // The residual of a consistent system is rounding of the size of the terms it cancels:
+    // the backward error of elimination bounds it by a multiple of ε (max|b| + max|a| Σ|x_j|)
+    // (Higham, Accuracy and Stability of Numerical Algorithms, §9.3). Exact types: zero.
+    let scale = match floats {
+        true => {
+            let mut sum = T::zero();
+            for x in &b[..pivots.len()] {
+                sum += magnitude(x.clone());
+            }
+            scale_b + scale_a * sum
+        }
+        false => T::zero(),
+    };
     if b[pivots.len()..]
         .iter()
         .any(|r| !r.is_negligible(&scale, cols.max(1)))

@@ -317,8 +317,16 @@ impl<T: Scalar, S: Screws<T>> Run<'_, T, S> {
     /// The modes at velocities `v`: a sliding contact takes the direction of its slip above δ
     /// and keeps the direction it was given at or below (where the slip is rounding and the
     /// direction chosen at zero slip governs).
+    ///
+    /// Slips of contacts with the same tangent axes that agree to within δ, the velocity
+    /// tolerance, are one slip and take one direction, the first one's ([`Run::shared`]): a
+    /// face sliding in translation slips alike at every corner in exact arithmetic, and the
+    /// integration's error in the twist (δ) turns each corner's direction by a different
+    /// δ/ρ, which would make the statically indeterminate split of its normal impulses change
+    /// the motion — the rank of the rate system would be decided on that error.
     fn modes_at(&self, v: &[T], st: &State<T>) -> Vec<Mode<T>> {
-        st.modes
+        let mut modes: Vec<Mode<T>> = st
+            .modes
             .iter()
             .enumerate()
             .map(|(i, m)| match m {
@@ -332,7 +340,67 @@ impl<T: Scalar, S: Screws<T>> Run<'_, T, S> {
                 }
                 other => other.clone(),
             })
-            .collect()
+            .collect();
+        for (j, i) in self.shared(v, st, &modes) {
+            modes[j] = modes[i].clone();
+        }
+        modes
+    }
+
+    /// The pairs (j, i), i < j the first such, of free sliding contacts ([`Run::modes_at`])
+    /// with the same tangent axes whose slips differ by at most δ.
+    fn shared(&self, v: &[T], st: &State<T>, modes: &[Mode<T>]) -> Vec<(usize, usize)> {
+        let free =
+            |i: usize| matches!(modes[i], Mode::Slide(_)) && !st.locked[i] && self.b.dims[i] == 2;
+        let mut pairs = Vec::new();
+        for j in (1..self.n()).filter(|&j| free(j)) {
+            let (vj, _) = self.slip(v, &st.origin, j);
+            let same = (0..j).filter(|&i| free(i)).find(|&i| {
+                let (vi, _) = self.slip(v, &st.origin, i);
+                self.same_axes(i, j)
+                    && vi
+                        .iter()
+                        .zip(&vj)
+                        .all(|(a, c)| (a.clone() - c).to_f64().abs() <= self.delta)
+            });
+            if let Some(i) = same {
+                pairs.push((j, i));
+            }
+        }
+        pairs
+    }
+
+    /// The impulse error of sharing directions over a step of length h ending at velocities
+    /// `v` with rates `r`: Σ μ_j |p'_j| |u_j − u_i| h over the pairs of [`Run::shared`], u_j
+    /// contact j's own slip direction.
+    fn shared_lag(&self, v: &[T], st: &State<T>, r: &Rates<T>, h: f64) -> f64 {
+        self.shared(v, st, &st.modes)
+            .into_iter()
+            .map(|(j, i)| {
+                let (vj, rj) = self.slip(v, &st.origin, j);
+                let (vi, ri) = self.slip(v, &st.origin, i);
+                if rj <= self.lock || ri <= self.lock {
+                    return 0.0;
+                }
+                let (uj, ui) = (unit(&vj), unit(&vi));
+                let turn = uj
+                    .iter()
+                    .zip(&ui)
+                    .map(|(a, c)| (a.clone() - c).to_f64().abs())
+                    .fold(0.0, f64::max);
+                let p = r.lambda[self.b.offset[j]].to_f64().abs();
+                self.b.mu[j].to_f64() * p * turn * h
+            })
+            .sum()
+    }
+
+    /// Whether contacts i and j have the same tangent directions.
+    fn same_axes(&self, i: usize, j: usize) -> bool {
+        let (oi, oj) = (self.b.offset[i], self.b.offset[j]);
+        (1..3).all(|a| {
+            let (di, dj) = (&self.b.directions[oi + a], &self.b.directions[oj + a]);
+            (0..3).all(|k| (di[k].clone() - &dj[k]).to_f64().abs() <= 4.0 * T::epsilon_f64())
+        })
     }
 
     /// dy/ds at `y`.
@@ -892,7 +960,9 @@ pub fn integrate_under<T: Scalar, S: Screws<T>, M: Mechanism<T, Screw = S>>(
                 st.s.clone() + &hh
             };
             k0 = trial.slope;
-            st.modes = run.modes_at(&run.velocities(&st.y), &st);
+            let v_end = run.velocities(&st.y);
+            error += run.shared_lag(&v_end, &st, &k0.rates, hh.to_f64());
+            st.modes = run.modes_at(&v_end, &st);
             // Locked slips: hold the direction tracked at the new state, add its lag to the
             // estimate, and release once the next step resolves the pull, κ h ≤ ρ.
             let next_h = hh.to_f64() * grow;
