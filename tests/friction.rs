@@ -437,7 +437,8 @@ fn a_normal_split_takes_the_least_norm_member_exactly() {
         assert!(
             out.verdicts.contains(&Verdict::NormalSplitNotUnique {
                 s: 0.0,
-                decided: true
+                decided: true,
+                friction: false
             }),
             "{law:?}: {:?}",
             out.verdicts
@@ -452,7 +453,8 @@ fn a_normal_split_takes_the_least_norm_member_exactly() {
     assert!(
         out.verdicts.contains(&Verdict::NormalSplitNotUnique {
             s: 0.0,
-            decided: false
+            decided: false,
+            friction: false
         }),
         "{:?}",
         out.verdicts

@@ -771,16 +771,27 @@ fn a_can_on_a_rough_floor_tumbles_to_rest_upright_under_every_law() {
 /// come to rest sticking. Under the unilateral law its last corners to close slid from zero
 /// slip at the edge of their cones, were never let stick again, and chattered about zero slip
 /// for over ten minutes before the run asked whether the body would hold with them stuck.
+///
+/// With μ = 0.5 the simultaneous law stopped at its 65th impact, the face landing while it
+/// slid and turned: its corners' friction followed the statically indeterminate split of the
+/// normal impulses, so the rigid model does not decide the motion. The least-norm member (the
+/// split of equal compliances) is taken and the log says so; the box rests flat all the same.
 #[test]
 fn a_box_dropped_on_a_rough_floor_rests_flat_under_every_law() {
-    for law in [
-        Law::Simultaneous(Restitution::Newton),
-        Law::Unilateral(Restitution::Newton),
-        Law::Lzb,
-    ] {
+    for (mu, law) in [0.2, 0.5].into_iter().flat_map(|mu| {
+        [
+            Law::Simultaneous(Restitution::Newton),
+            Law::Unilateral(Restitution::Newton),
+            Law::Lzb,
+        ]
+        .map(|law| (mu, law))
+    }) {
         let mut s = load("examples/simulate/dropped-box.toml");
         s.setup.law = law;
-        let name = law.name();
+        for plane in &mut s.setup.planes {
+            plane.law.mu = mu;
+        }
+        let name = format!("{} with μ = {mu}", law.name());
         let sim = simulate(&s.setup).unwrap_or_else(|e| panic!("under {name}: {e}"));
         assert_eq!(sim.end, End::Rest, "under {name}");
         let up = sim.state.q * nalgebra::Vector3::z();

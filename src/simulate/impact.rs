@@ -210,8 +210,15 @@ fn frictional_verdicts(verdicts: &[FrictionVerdict]) -> (Vec<String>, Option<Str
                     notes.push(note);
                 }
             }
-            FrictionVerdict::NormalSplitNotUnique { decided, .. } => {
-                let note = if *decided {
+            FrictionVerdict::NormalSplitNotUnique {
+                decided, friction, ..
+            } => {
+                let note = if *friction {
+                    "contacts of one face share a normal impulse only its resultant determines, \
+                     and their sliding friction follows the split: the rigid model does not \
+                     decide the twist after (the least-norm member, the split of equal \
+                     compliances, was taken)"
+                } else if *decided {
                     "contacts of one face share a normal impulse only its resultant determines \
                      (the least-norm member was taken; the twist after is unique)"
                 } else {

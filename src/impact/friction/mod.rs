@@ -313,6 +313,9 @@ pub enum Verdict {
         s: f64,
         /// Whether the twist after is decided whatever the member.
         decided: bool,
+        /// Whether sliding friction follows the split, so that the member changes the motion
+        /// during the impact (a face sliding while it turns): then `decided` is false.
+        friction: bool,
     },
     /// A contact still approaches after the impact (v_ix > 0).
     StillApproaching {
@@ -364,14 +367,20 @@ pub(crate) fn split_verdict<T: Scalar>(
     if r.normals_unique {
         return Some(Verdict::SplitNotUnique { s });
     }
-    let decided = match law {
-        Restitution::Newton => true,
-        Restitution::Poisson => contacts
-            .windows(2)
-            .all(|w| (w[0].k_poisson.clone() - &w[1].k_poisson).is_zero()),
-        Restitution::Energetic => false,
-    };
-    Some(Verdict::NormalSplitNotUnique { s, decided })
+    let friction = r.split_moves_body;
+    let decided = !friction
+        && match law {
+            Restitution::Newton => true,
+            Restitution::Poisson => contacts
+                .windows(2)
+                .all(|w| (w[0].k_poisson.clone() - &w[1].k_poisson).is_zero()),
+            Restitution::Energetic => false,
+        };
+    Some(Verdict::NormalSplitNotUnique {
+        s,
+        decided,
+        friction,
+    })
 }
 
 impl FrictionError {
@@ -405,13 +414,24 @@ impl fmt::Display for Verdict {
                 "s = {s}: sticking contacts share a tangential impulse only their sum \
                  determines; the split shown is one member of a family"
             ),
-            Verdict::NormalSplitNotUnique { s, decided } => {
+            Verdict::NormalSplitNotUnique {
+                s,
+                decided,
+                friction,
+            } => {
                 write!(
                     f,
                     "s = {s}: contacts of one face share a normal impulse only its resultant \
                      determines; the least-norm member with no pulling contact was taken"
                 )?;
-                if *decided {
+                if *friction {
+                    write!(
+                        f,
+                        " — their sliding friction follows the split, so the twist after \
+                         depends on the member: the rigid model does not decide it (the \
+                         least-norm member is the split of equal, independent compliances)"
+                    )
+                } else if *decided {
                     write!(f, " (the twist after is the same for every member)")
                 } else {
                     write!(

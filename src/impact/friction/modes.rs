@@ -336,6 +336,7 @@ impl<'w, T: Scalar> Search<'w, T> {
             chosen.velocity.clone_from(&r.velocity);
             chosen.split_unique = r.split_unique;
             chosen.normals_unique = r.normals_unique;
+            chosen.split_moves_body = r.split_moves_body;
             if self.record {
                 self.first = Some(Resolution {
                     modes: modes.to_vec(),

@@ -26,13 +26,17 @@
 //!   sticking contact in proportion to its cone μ_i p'_i (the least Σ |τ'_i|² / (μ_i p'_i)).
 //!
 //! The member changes the body's motion only through restitution laid down contact by contact
-//! (Poisson's with differing k^P, the energetic law), which the verdict says. A family that
-//! changes the motion — sliding contacts whose friction follows a normal split, slips in
-//! different directions — leaves the rates undetermined: the rigid model does not decide them.
+//! (Poisson's with differing k^P, the energetic law), which the verdict says — or through
+//! sliding friction that follows a normal split (a face sliding while it turns, its slips in
+//! different directions). The rigid model does not decide that one: the least-norm member is
+//! still taken — the split of a face on equal, independent compliances, which minimises
+//! Σ p_i² — the cone weighting is restricted to the directions of the family that leave the
+//! motion alone, and [`Rates::split_moves_body`] says so. Any other family that changes the
+//! motion leaves the rates undetermined.
 
 use crate::impact::friction::blocks::Blocks;
 use crate::impact::friction::departure::dot;
-use crate::linalg::gauss::{basis, solve_general_in};
+use crate::linalg::gauss::{basis, null_space, solve_general_in};
 use crate::mechanics::contact::Contact;
 use crate::mechanics::screw::Screws;
 use crate::scalar::Scalar;
@@ -176,6 +180,11 @@ pub struct Rates<T: Scalar> {
     /// (three or more contacts of one face, four corners of a box landing flat): the member
     /// taken is the least-norm one, moved the least needed to make no normal rate negative.
     pub normals_unique: bool,
+    /// `true` when the member taken of such a normal family changes the motion: sliding
+    /// contacts whose friction follows the split (a face sliding while it turns). The rigid
+    /// model does not decide it; the least-norm member is the split of equal, independent
+    /// compliances.
+    pub split_moves_body: bool,
 }
 
 impl<T: Scalar> Default for Rates<T> {
@@ -185,6 +194,7 @@ impl<T: Scalar> Default for Rates<T> {
             velocity: Vec::new(),
             split_unique: true,
             normals_unique: true,
+            split_moves_body: false,
         }
     }
 }
@@ -390,9 +400,14 @@ pub fn rates_with<T: Scalar, S: Screws<T>>(
     expand(particular, lambda);
     out.split_unique = pivots.len() == m;
     out.normals_unique = true;
+    out.split_moves_body = false;
     if !out.split_unique {
         let null = basis(a, m, pivots);
-        for w in &null {
+        // Per null direction, the twist change it makes (columns of `moves`, len × k).
+        let k = null.len();
+        let mut moves = vec![T::zero(); len * k];
+        let mut moving = false;
+        for (col, w) in null.iter().enumerate() {
             let touches_normal = columns
                 .iter()
                 .zip(w)
@@ -404,10 +419,39 @@ pub fn rates_with<T: Scalar, S: Screws<T>>(
             b.velocity_change(&dir, &mut moved);
             let scale = max_abs(&b.k) * max_abs(&dir);
             if moved.iter().any(|x| !x.is_negligible(&scale, len)) {
-                return Err(RateFailure::Undetermined);
+                moving = true;
+            }
+            for (q, x) in moved.into_iter().enumerate() {
+                moves[q * k + col] = x;
             }
         }
+        // A family that changes the motion is taken only where it splits a normal impulse
+        // among the contacts of one face (sliding friction following the split): the member
+        // of least norm, the split of equal independent compliances. Otherwise the rigid model
+        // leaves the rates undetermined.
+        if moving && out.normals_unique {
+            return Err(RateFailure::Undetermined);
+        }
+        out.split_moves_body = moving;
+        // The directions of the family that leave the motion alone: for the cone weighting.
+        let still: Vec<Vec<T>> = match moving {
+            false => null.clone(),
+            true => null_space(&moves, len, k)
+                .1
+                .into_iter()
+                .map(|c| {
+                    let mut w = vec![T::zero(); m];
+                    for (wj, cj) in null.iter().zip(&c) {
+                        for (x, y) in w.iter_mut().zip(wj) {
+                            *x += y.clone() * cj;
+                        }
+                    }
+                    w
+                })
+                .collect(),
+        };
         let planar_pair = null.len() == 1
+            && !moving
             && columns
                 .iter()
                 .all(|(u, _)| !matches!(u, Unknown::Stick(i) if b.dims[i] != 1));
@@ -424,8 +468,15 @@ pub fn rates_with<T: Scalar, S: Screws<T>>(
             }
             lambda.clone_from(known);
             expand(particular, lambda);
-            let shift = cone_weighted_shift(b, columns, particular, &null, lambda);
+            let shift = cone_weighted_shift(b, columns, particular, &still, lambda);
             add(particular, &shift);
+            // The cone weighting leaves the normal rates alone up to its own rounding, which a
+            // contact weighted near zero magnifies: a rate left at zero by the nonnegative shift
+            // is put back on the boundary.
+            if !out.normals_unique && !shift.is_empty() {
+                let nonnegative = nonnegative_shift(columns, particular, &null);
+                add(particular, &nonnegative);
+            }
             lambda.clone_from(known);
             expand(particular, lambda);
         } else if let [w] = null.as_slice() {
@@ -516,7 +567,7 @@ fn least_norm_member<T: Scalar>(z: &[T], null: &[Vec<T>]) -> Vec<T> {
     out
 }
 
-/// With one null direction w that moves the normal rates (the usual face: four points, one
+/// With null directions whose normal parts lie on one line (the usual face: four points, one
 /// way to shift impulse between its diagonals), the further shift c·w from z to the
 /// nearest member whose normal rates are all nonnegative — the interval of c where
 /// p_j + c w_j ≥ 0 for every normal unknown j, clamped at 0; empty when no shift is needed,
@@ -531,9 +582,38 @@ fn nonnegative_shift<T: Scalar>(columns: &Columns<T>, z: &[T], null: &[Vec<T>]) 
                 .any(|((u, _), wj)| matches!(u, Unknown::Normal(_)) && !wj.is_zero())
         })
         .collect();
-    let [w] = normal_null.as_slice() else {
+    // Their normal parts: one line for a face (four points, one way to shift impulse between
+    // its diagonals), however many basis directions touch it (sticking contacts add
+    // tangential unknowns to each). The direction with the largest normal part stands for it.
+    let normal_part = |w: &[T]| -> Vec<T> {
+        columns
+            .iter()
+            .zip(w)
+            .filter(|((u, _), _)| matches!(u, Unknown::Normal(_)))
+            .map(|(_, wj)| wj.clone())
+            .collect()
+    };
+    let Some(w) = normal_null.iter().copied().reduce(|a, c| {
+        match max_abs(&normal_part(c)).abs_gt(&max_abs(&normal_part(a))) {
+            true => c,
+            false => a,
+        }
+    }) else {
         return Vec::new();
     };
+    let wn = normal_part(w);
+    let ww = dot(&wn, &wn);
+    let on_one_line = normal_null.iter().all(|v| {
+        let vn = normal_part(v);
+        let alpha = dot(&vn, &wn) / ww.clone();
+        let scale = max_abs(&vn);
+        vn.iter().zip(&wn).all(|(a, c)| {
+            (a.clone() - alpha.clone() * c).is_negligible(&scale, vn.len() * vn.len())
+        })
+    });
+    if !on_one_line {
+        return Vec::new();
+    }
     let mut lo: Option<T> = None;
     let mut hi: Option<T> = None;
     for (((u, _), zj), wj) in columns.iter().zip(z).zip(w.iter()) {
