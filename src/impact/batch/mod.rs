@@ -20,13 +20,17 @@
 //! `#[inline(always)]` over `Lanes<L>`, so L f64 become one register there and the compiler
 //! emits the vector instructions — no hand-written intrinsics, no `unsafe` here. `pulp` over
 //! `wide`: `wide` picks its instructions when the crate is compiled (a default build would get
-//! SSE2 only), `pulp` when the program runs. Measured 2026-11-28 (AMD EPYC, Zen 4, AVX-512,
-//! both laws, `inertance bench`, criterion `batch-256/*`): see `guide/accuracy.md`.
+//! SSE2 only), `pulp` when the program runs.
 //!
-//! **Why the two-lane batch was slower than the loop.** Wider lanes compiled for the default
-//! target (SSE2) split every `Lanes<8>` operation into four and spill: no gain. And on random
-//! scenes much of the batch's time went to the scenes the lean route refuses, solved by the
-//! generic route once per law, which the one-by-one loop it was compared with skipped.
+//! **What it costs** (2026-11-28, AMD EPYC Zen 4, eight AVX-512 lanes, both laws; numbers and
+//! profile in `guide/accuracy.md`): about what the lean path costs one scene at a time —
+//! 0.9–1.3× its speed in `inertance bench` (64 scenes), 1.6–1.8× slower in criterion (256
+//! scenes: 16.0 µs against 9.4 µs on Example-3-class scenes) — not the 4× of issue 29. Half the
+//! kernel's time goes to moving lanes between registers and the stack: the field-generic lean
+//! code keeps its arrays of `Lanes<8>` in memory. Before, at two lanes on the default target,
+//! the batch took 24.6 µs per 256; on random scenes it lost most on the scenes the lean route
+//! refuses, which it built and reassembled once per law (now once for both) while the loop it
+//! was compared with skipped them.
 
 pub mod lanes;
 mod sweep;
