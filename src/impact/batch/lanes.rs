@@ -28,7 +28,7 @@ impl<const L: usize> Lanes<L> {
 }
 
 macro_rules! lanewise {
-    ($op:ident, $f:ident, $assign:ident, $fa:ident, $sym:tt) => {
+    ($op:ident, $f:ident, $assign:ident, $fa:ident) => {
         impl<const L: usize> $op for Lanes<L> {
             type Output = Self;
             #[inline(always)]
@@ -36,7 +36,7 @@ macro_rules! lanewise {
                 // A plain loop on a copy (not `array::from_fn`): the optimiser keeps it in
                 // one register.
                 for (a, b) in self.0.iter_mut().zip(o.0) {
-                    *a = *a $sym b;
+                    <f64 as $assign>::$fa(a, b);
                 }
                 self
             }
@@ -63,10 +63,10 @@ macro_rules! lanewise {
     };
 }
 
-lanewise!(Add, add, AddAssign, add_assign, +);
-lanewise!(Sub, sub, SubAssign, sub_assign, -);
-lanewise!(Mul, mul, MulAssign, mul_assign, *);
-lanewise!(Div, div, DivAssign, div_assign, /);
+lanewise!(Add, add, AddAssign, add_assign);
+lanewise!(Sub, sub, SubAssign, sub_assign);
+lanewise!(Mul, mul, MulAssign, mul_assign);
+lanewise!(Div, div, DivAssign, div_assign);
 
 impl<const L: usize> Neg for Lanes<L> {
     type Output = Self;
