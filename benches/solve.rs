@@ -27,6 +27,7 @@ use inertance::impact::solve::{Impact, Outcome};
 use inertance::scalar::dd::DoubleDouble;
 use inertance::scalar::{Exact, Scalar};
 use inertance::scene::Scene;
+use inertance::tools::lean_bench::{example_3_class, random_boxes};
 
 const EXAMPLE_3: &str = r#"
 [body]
@@ -438,20 +439,9 @@ fn benches(c: &mut Criterion) {
     bench_constrained::<f64>(c);
     bench_constrained::<DoubleDouble>(c);
     bench_constrained::<Exact>(c);
-    // A batch: 256 different scenes solved one after another, buffers reused.
-    let batch: Vec<Problem<f64>> = (0..256)
-        .map(|i| {
-            Scene::parse(
-                &EXAMPLE_3
-                    .replace("k = 0.3", &format!("k = 0.{}", i % 10))
-                    .replace("[3, 2, 0]", &format!("[3, {}, 0]", i % 7)),
-                "batch",
-            )
-            .unwrap()
-            .problem::<f64>()
-            .unwrap()
-        })
-        .collect();
+    // A batch: 256 Example-3-class scenes (k₁ and v_y varied) solved one after another,
+    // buffers reused.
+    let batch = example_3_class(256);
     let (mut impact, mut n, mut q) = (
         Impact::assemble(&batch[0]).unwrap(),
         Outcome::default(),
@@ -465,20 +455,69 @@ fn benches(c: &mut Criterion) {
         })
     });
     // The same 256 scenes, impulses and twist only: one by one on the lean path, and as one
-    // structure-of-arrays batch (impact::batch).
-    c.bench_function("batch-256/lean-f64", |b| {
+    // structure-of-arrays batch (impact::batch, lanes of the machine's width).
+    bench_lean_and_batch(c, "batch-256", &batch);
+    // 256 random boxes (tools::lean_bench::random_boxes, cond G ≤ 100): the lean path and the
+    // batch on the scenes the lean route accepts, then every scene one by one (lean, else
+    // generic) and as one batch (which does the same).
+    let random = random_boxes(256, 0x1ea2_ba7c);
+    let accepted: Vec<Problem<f64>> = random
+        .iter()
+        .filter(|p| Lean::<f64, 2>::new(p).is_ok())
+        .cloned()
+        .collect();
+    bench_lean_and_batch(c, "random-accepted", &accepted);
+    c.bench_function("random-256/lean-or-generic-f64", |b| {
         b.iter(|| {
-            for p in &batch {
+            for p in &random {
+                match Lean::<f64, 2>::new(black_box(p)) {
+                    Ok(lean) => {
+                        black_box((
+                            lean.solve(Model::Newton).unwrap(),
+                            lean.solve(Model::Poisson).unwrap(),
+                        ));
+                    }
+                    Err(_) => {
+                        impact.reassemble(p).unwrap();
+                        impact.solve(Model::Newton, &mut n).unwrap();
+                        impact.solve(Model::Poisson, &mut q).unwrap();
+                        black_box((&n.impulses_hat, &q.impulses_hat));
+                    }
+                }
+            }
+        })
+    });
+    let scenes = soa(&random);
+    let (mut newton, mut poisson) = (Outcomes::default(), Outcomes::default());
+    c.bench_function("random-256/soa-lanes-f64", |b| {
+        b.iter(|| {
+            batch::solve_both(black_box(&scenes), &mut newton, &mut poisson).unwrap();
+        })
+    });
+}
+
+/// `problems` as structure of arrays.
+fn soa(problems: &[Problem<f64>]) -> Scenes<2> {
+    let mut scenes = Scenes::<2>::default();
+    for p in problems {
+        scenes.push(p).unwrap();
+    }
+    scenes
+}
+
+/// `{group}/lean-f64` (one by one on the lean path) and `{group}/soa-lanes-f64` (one batch)
+/// over `problems`, every one of which the lean route accepts.
+fn bench_lean_and_batch(c: &mut Criterion, group: &str, problems: &[Problem<f64>]) {
+    c.bench_function(&format!("{group}/lean-f64"), |b| {
+        b.iter(|| {
+            for p in problems {
                 black_box(lean_both(black_box(p)));
             }
         })
     });
-    let mut scenes = Scenes::<2>::default();
-    for p in &batch {
-        scenes.push(p).unwrap();
-    }
+    let scenes = soa(problems);
     let (mut newton, mut poisson) = (Outcomes::default(), Outcomes::default());
-    c.bench_function("batch-256/soa-lanes-f64", |b| {
+    c.bench_function(&format!("{group}/soa-lanes-f64"), |b| {
         b.iter(|| {
             batch::solve_both(black_box(&scenes), &mut newton, &mut poisson).unwrap();
         })

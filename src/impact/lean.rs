@@ -60,7 +60,7 @@ use crate::mechanics::screw::Screw;
 use crate::scalar::{Field, Scalar};
 
 /// s*(N)², the route test's bound (module docs; [`route::correlation_limit`]).
-fn limit2<const N: usize>() -> f64 {
+pub(crate) fn limit2<const N: usize>() -> f64 {
     let s = route::correlation_limit(N);
     s * s
 }
@@ -169,6 +169,12 @@ pub(crate) struct Factored<F, const N: usize> {
     k_poisson: [F; N],
 }
 
+/// An array of zeros, to be filled.
+#[inline(always)]
+fn zeros<F: Field, const K: usize>() -> [F; K] {
+    array::from_fn(|_| F::zero())
+}
+
 /// x × y.
 #[inline(always)]
 fn cross<F: Field>(x: &[F; 3], y: &[F; 3]) -> [F; 3] {
@@ -196,42 +202,54 @@ impl<F: Field, const N: usize> Data<F, N> {
     /// route test) and its L D Lᵀ (module docs; eq. 3–4, 8, 11, 12).
     #[inline(always)]
     pub(crate) fn factor(&self) -> (Factored<F, N>, [[F; N]; N]) {
-        let axes: [[F; 6]; N] = array::from_fn(|j| {
-            let n = &self.normals[j];
-            let mu = cross(&self.points[j], n);
-            [
+        // Arrays of zeros filled by loops rather than `array::from_fn` with these closures:
+        // on the batch's lanes the closures were not inlined and every lane went through
+        // memory (impact::batch). The operations and their order are the same.
+        let mut axes: [[F; 6]; N] = array::from_fn(|_| zeros());
+        for (e, (r, n)) in axes.iter_mut().zip(self.points.iter().zip(&self.normals)) {
+            let mu = cross(r, n);
+            *e = [
                 n[0].clone(),
                 n[1].clone(),
                 n[2].clone(),
                 mu[0].clone(),
                 mu[1].clone(),
                 mu[2].clone(),
-            ]
-        });
+            ];
+        }
         // 1/m and 1/J_k once, then products: four divisions instead of six per contact (a
         // division costs several multiplications' throughput).
         let inv_mass = F::one() / &self.mass;
         let inv_moments: Option<[F; 3]> = match &self.inertia {
-            InverseInertia::Principal(j) => Some(array::from_fn(|k| F::one() / &j[k])),
+            InverseInertia::Principal(j) => {
+                Some([F::one() / &j[0], F::one() / &j[1], F::one() / &j[2]])
+            }
             InverseInertia::Inverse(_) => None,
         };
-        let responses: [[F; 6]; N] = array::from_fn(|j| {
-            let e = &axes[j];
+        let mut responses: [[F; 6]; N] = array::from_fn(|_| zeros());
+        for (w, e) in responses.iter_mut().zip(&axes) {
             let mu = [e[3].clone(), e[4].clone(), e[5].clone()];
-            let w = match &inv_moments {
-                Some(inv) => array::from_fn(|k| mu[k].clone() * &inv[k]),
+            let [w0, w1, w2] = match &inv_moments {
+                Some(inv) => [
+                    mu[0].clone() * &inv[0],
+                    mu[1].clone() * &inv[1],
+                    mu[2].clone() * &inv[2],
+                ],
                 None => self.inertia.apply(&mu),
             };
-            [
-                w[0].clone(),
-                w[1].clone(),
-                w[2].clone(),
+            *w = [
+                w0,
+                w1,
+                w2,
                 e[0].clone() * &inv_mass,
                 e[1].clone() * &inv_mass,
                 e[2].clone() * &inv_mass,
-            ]
-        });
-        let before: [F; N] = array::from_fn(|j| reciprocal(&axes[j], &self.velocity));
+            ];
+        }
+        let mut before: [F; N] = zeros();
+        for (b, e) in before.iter_mut().zip(&axes) {
+            *b = reciprocal(e, &self.velocity);
+        }
         let mut g: [[F; N]; N] = array::from_fn(|_| array::from_fn(|_| F::zero()));
         for i in 0..N {
             for j in 0..=i {
@@ -292,10 +310,12 @@ impl<F: Field, const N: usize> Factored<F, N> {
     pub(crate) fn solve(&self, model: Model) -> ([F; N], [F; 6]) {
         let one = F::one();
         // L y = b, then z = D⁻¹ y, then Lᵀ x = z.
-        let mut x: [F; N] = array::from_fn(|i| match model {
-            Model::Newton => (one.clone() + &self.k_newton[i]) * &self.before[i],
-            Model::Poisson => self.before[i].clone(),
-        });
+        let mut x: [F; N] = self.before.clone();
+        if model == Model::Newton {
+            for (x, k) in x.iter_mut().zip(&self.k_newton) {
+                *x = (one.clone() + k) * &*x;
+            }
+        }
         for i in 1..N {
             for k in 0..i {
                 let t = self.l[i][k].clone() * &x[k];

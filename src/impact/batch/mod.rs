@@ -2,20 +2,44 @@
 //! the twist after impact.
 //!
 //! The scenes are held as structure of arrays ([`Scenes`]: one `Vec<f64>` per input
-//! coordinate, scene s at index s of each), read [`LANES`] scenes at a time into
+//! coordinate, scene s at index s of each), read [`width()`] scenes at a time into
 //! [`lanes::Lanes`] and solved by the lean path's own arithmetic ([`crate::impact::lean`]),
-//! every operation applied to the lanes together: the compiler emits vector instructions for
-//! it. Each lane computes what [`crate::impact::lean::Lean`] computes for that scene alone,
-//! bit for bit (tested). A scene the lean route refuses — too nearly dependent contacts for
-//! the normal equations (the accuracy contract), or invalid input — is solved by the generic
-//! path ([`crate::impact::solve::Impact`]) instead, and [`Outcomes::routes`] says which
-//! route answered, [`Outcomes::reasons`] why the others did not take the lean one.
+//! every operation applied to the lanes together ([`sweep`]). Each lane computes what
+//! [`crate::impact::lean::Lean`] computes for that scene alone, bit for bit (tested at every
+//! width): IEEE 754 operations are correctly rounded lane by lane, and nothing is contracted
+//! into a fused multiply-add (Rust never contracts, even where FMA is enabled). A scene the
+//! lean route refuses — too nearly dependent contacts for the normal equations (the accuracy
+//! contract), or invalid input — is solved by the generic path
+//! ([`crate::impact::solve::Impact`]) instead, and [`Outcomes::routes`] says which route
+//! answered, [`Outcomes::reasons`] why the others did not take the lean one.
+//!
+//! **Width and dispatch.** The lanes are as wide as the machine's vectors, chosen when the
+//! program runs: eight f64 where the CPU has AVX-512 (x86-64-v4), four with AVX2 (x86-64-v3),
+//! two (SSE2, the default target) otherwise. The `pulp` crate detects the instruction set and
+//! runs the sweep inside a function compiled for it (`pulp::Simd::vectorize`); the sweep is
+//! `#[inline(always)]` over `Lanes<L>`, so L f64 become one register there and the compiler
+//! emits the vector instructions — no hand-written intrinsics, no `unsafe` here. `pulp` over
+//! `wide`: `wide` picks its instructions when the crate is compiled (a default build would get
+//! SSE2 only), `pulp` when the program runs.
+//!
+//! **What it costs** (2026-11-28, AMD EPYC Zen 4, eight AVX-512 lanes, both laws; numbers and
+//! profile in `guide/accuracy.md`): about what the lean path costs one scene at a time —
+//! 0.9–1.3× its speed in `inertance bench` (64 scenes), 1.6–1.8× slower in criterion (256
+//! scenes: 16.0 µs against 9.4 µs on Example-3-class scenes) — not the 4× of issue 29. Half the
+//! kernel's time goes to moving lanes between registers and the stack: the field-generic lean
+//! code keeps its arrays of `Lanes<8>` in memory. Before, at two lanes on the default target,
+//! the batch took 24.6 µs per 256; on random scenes it lost most on the scenes the lean route
+//! refuses, which it built and reassembled once per law (now once for both) while the loop it
+//! was compared with skipped them.
 
 pub mod lanes;
+mod sweep;
+#[cfg(test)]
+mod tests;
 
 use std::array;
 
-use crate::impact::lean::{Data, InverseInertia, LeanError, route_test};
+use crate::impact::lean::LeanError;
 use crate::impact::problem::{InvalidProblem, Problem};
 use crate::impact::restitution::Model;
 use crate::impact::solve::{Impact, Outcome, SolveError};
@@ -23,14 +47,16 @@ use crate::mechanics::body::{Inertia, RigidBody};
 use crate::mechanics::contact::Contact;
 use crate::mechanics::screw::{Screw, Vec3};
 
-use lanes::Lanes;
-
-/// Scenes per vector step: two f64 lanes, one SSE2 register per operation. Measured on the
-/// default x86-64 target (criterion, `batch-256/soa-lanes-f64`): 24.6 µs per 256 scenes with
-/// two lanes, 36.5 µs with four, 36.7 µs with eight — wider lanes made the inliner give up on
-/// the field-generic code.
-pub const LANES: usize = 2;
-const _: () = assert!(LANES == 2, "`at` reads two lanes");
+/// Scenes per vector step on this machine (module docs): 8 with AVX-512, 4 with AVX2, else 2.
+pub fn width() -> usize {
+    match pulp::Arch::new() {
+        #[cfg(any(target_arch = "x86", target_arch = "x86_64"))]
+        pulp::Arch::V4(_) => 8,
+        #[cfg(any(target_arch = "x86", target_arch = "x86_64"))]
+        pulp::Arch::V3(_) => 4,
+        _ => 2,
+    }
+}
 
 /// Free bodies in central principal axes, each hit at N contacts, as structure of arrays:
 /// scene s is index s of every vector (all of one length).
@@ -240,81 +266,6 @@ impl<const N: usize> Scenes<N> {
             .collect();
         Problem::new(body, velocity, contacts)
     }
-
-    /// Scenes `start ..` `start + LANES` as lanes; past the end, lanes repeat the last scene.
-    #[inline(always)]
-    fn lanes(&self, start: usize) -> Data<Lanes<LANES>, N> {
-        let three = |a: &[Vec<f64>; 3]| [at(&a[0], start), at(&a[1], start), at(&a[2], start)];
-        Data {
-            mass: at(&self.mass, start),
-            inertia: InverseInertia::Principal(three(&self.inertia)),
-            velocity: array::from_fn(|k| at(&self.velocity[k], start)),
-            points: array::from_fn(|i| three(&self.points[i])),
-            normals: array::from_fn(|i| three(&self.normals[i])),
-            k_newton: array::from_fn(|i| at(&self.k_newton[i], start)),
-            k_poisson: array::from_fn(|i| at(&self.k_poisson[i], start)),
-        }
-    }
-}
-
-/// `v[start .. start + LANES]` as lanes; past the end, the last entry repeated.
-#[inline(always)]
-fn at(v: &[f64], start: usize) -> Lanes<LANES> {
-    match v.get(start..start + LANES) {
-        Some(&[a, b]) => Lanes([a, b]),
-        _ => {
-            let last = v.len() - 1;
-            Lanes([v[start.min(last)], v[(start + 1).min(last)]])
-        }
-    }
-}
-
-/// Lane by lane, whether `x` lies in `lo ..= hi` (`false` for NaN).
-#[inline(always)]
-fn within(ok: &mut [bool; LANES], x: &Lanes<LANES>, lo: f64, hi: f64) {
-    for (o, x) in ok.iter_mut().zip(x.0) {
-        *o &= x >= lo && x <= hi;
-    }
-}
-
-/// Lane by lane, whether every value of `xs` is finite: Σ 0·x is 0 then, NaN otherwise.
-#[inline(always)]
-fn finite(ok: &mut [bool; LANES], xs: &[Lanes<LANES>]) {
-    let zero = Lanes::<LANES>::splat(0.0);
-    let mut sum = zero;
-    for x in xs {
-        sum += zero * x;
-    }
-    for (o, s) in ok.iter_mut().zip(sum.0) {
-        *o &= s == 0.0;
-    }
-}
-
-/// Which lanes of `data` pass [`Problem::new`]'s checks: m, J_k > 0, every number finite,
-/// normals nonzero, k ∈ [0, 1] (decided lane by lane, without building a problem).
-#[inline(always)]
-fn valid<const N: usize>(data: &Data<Lanes<LANES>, N>) -> [bool; LANES] {
-    let mut ok = [true; LANES];
-    let InverseInertia::Principal(j) = &data.inertia else {
-        return [false; LANES];
-    };
-    let tiny = f64::MIN_POSITIVE * f64::EPSILON; // the least positive f64
-    within(&mut ok, &data.mass, tiny, f64::MAX);
-    for j in j {
-        within(&mut ok, j, tiny, f64::MAX);
-    }
-    finite(&mut ok, &data.velocity);
-    for i in 0..N {
-        finite(&mut ok, &data.points[i]);
-        finite(&mut ok, &data.normals[i]);
-        within(&mut ok, &data.k_newton[i], 0.0, 1.0);
-        within(&mut ok, &data.k_poisson[i], 0.0, 1.0);
-        let n = &data.normals[i];
-        for (l, o) in ok.iter_mut().enumerate() {
-            *o &= n[0].0[l] != 0.0 || n[1].0[l] != 0.0 || n[2].0[l] != 0.0;
-        }
-    }
-    ok
 }
 
 /// Solve every scene of `scenes` under `model` into `out` (its vectors are reused).
@@ -345,7 +296,7 @@ pub fn solve_both<const N: usize>(
     )
 }
 
-/// Every model of `outs` into its outcomes.
+/// Every model of `outs` into its outcomes, at the machine's width (module docs).
 fn solve_models<const N: usize>(
     scenes: &Scenes<N>,
     outs: &mut [(Model, &mut Outcomes<N>)],
@@ -361,100 +312,89 @@ fn solve_models<const N: usize>(
     for (_, out) in outs.iter_mut() {
         out.reset(n);
     }
-    let mut generic = None;
-    for start in (0..n).step_by(LANES) {
-        let data = scenes.lanes(start);
-        let valid = valid(&data);
-        let (factored, g) = data.factor();
-        let d = factored.pivots();
-        let count = LANES.min(n - start);
-        for (model, out) in outs.iter_mut() {
-            let (p, v) = factored.solve(*model);
-            let mut ok = valid;
-            finite(&mut ok, &p);
-            finite(&mut ok, &v);
-            // The common case, every lane valid and accepted: whole lanes out at once.
-            if count == LANES
-                && ok.iter().all(|o| *o)
-                && (0..LANES).all(|l| route_test::<N>(|i, j| g[i][j].0[l], |j| d[j].0[l]).is_ok())
-            {
-                let range = start..start + LANES;
-                for (o, x) in out.impulses_hat.iter_mut().zip(&p) {
-                    o[range.clone()].copy_from_slice(&x.0);
-                }
-                for (o, x) in out.velocity.iter_mut().zip(&v) {
-                    o[range.clone()].copy_from_slice(&x.0);
-                }
-                continue;
-            }
-            for (l, ok) in ok.into_iter().enumerate().take(count) {
-                let s = start + l;
-                let route = match ok {
-                    true => route_test::<N>(|i, j| g[i][j].0[l], |j| d[j].0[l]),
-                    false => Err(LeanError::NotFinite),
-                };
-                match route {
-                    Ok(()) => {
-                        for (o, x) in out.impulses_hat.iter_mut().zip(&p) {
-                            o[s] = x.0[l];
-                        }
-                        for (o, x) in out.velocity.iter_mut().zip(&v) {
-                            o[s] = x.0[l];
-                        }
-                    }
-                    Err(why) => solve_generic(scenes, s, *model, why, out, &mut generic),
-                }
-            }
-        }
+    match pulp::Arch::new() {
+        #[cfg(any(target_arch = "x86", target_arch = "x86_64"))]
+        pulp::Arch::V4(simd) => pulp::Simd::vectorize(simd, Sweep::<8, N>(scenes, outs)),
+        #[cfg(any(target_arch = "x86", target_arch = "x86_64"))]
+        pulp::Arch::V3(simd) => pulp::Simd::vectorize(simd, Sweep::<4, N>(scenes, outs)),
+        _ => sweep::sweep::<2, N>(scenes, outs),
     }
     Ok(())
 }
 
-/// Scene `s` by the generic route, into `out`; `work` keeps the generic solve's buffers for
-/// the next refused scene.
+/// [`sweep::sweep`] at L lanes, as the operation `pulp` runs compiled for an instruction set.
+struct Sweep<'a, 'o, const L: usize, const N: usize>(
+    &'a Scenes<N>,
+    &'a mut [(Model, &'o mut Outcomes<N>)],
+);
+
+impl<const L: usize, const N: usize> pulp::WithSimd for Sweep<'_, '_, L, N> {
+    type Output = ();
+
+    #[inline(always)]
+    fn with_simd<S: pulp::Simd>(self, _: S) {
+        sweep::sweep::<L, N>(self.0, self.1)
+    }
+}
+
+/// The generic solve's buffers, kept from one refused scene to the next.
+type Work = Option<(Impact<f64>, Outcome<f64>)>;
+
+/// Scene `s` by the generic route under the models `outs[m]` of `refused` (m, and why the
+/// lean route did not answer that model): assembled once, solved per model, written into
+/// `outs[m]`.
 fn solve_generic<const N: usize>(
     scenes: &Scenes<N>,
     s: usize,
-    model: Model,
-    why: LeanError,
-    out: &mut Outcomes<N>,
-    work: &mut Option<(Impact<f64>, Outcome<f64>)>,
+    refused: &[(usize, LeanError)],
+    outs: &mut [(Model, &mut Outcomes<N>)],
+    work: &mut Work,
 ) {
-    let (route, reason) = match generic(scenes, s, model, work) {
-        Ok(o) => {
-            for (j, p) in o.impulses_hat.iter().enumerate() {
-                out.impulses_hat[j][s] = *p;
+    let mut assembled = assemble(scenes, s, work);
+    for (m, why) in refused {
+        let (model, out) = &mut outs[*m];
+        let solved = match &mut assembled {
+            Ok(w) => {
+                let (impact, o) = &mut **w;
+                match impact.solve(*model, o) {
+                    Ok(_) => Ok(&*o),
+                    Err(e) => Err(Reason::Unsolvable(e)),
+                }
             }
-            for (k, x) in o.velocity.as_slice().iter().enumerate() {
-                out.velocity[k][s] = *x;
+            Err(reason) => Err(reason.clone()),
+        };
+        let (route, reason) = match solved {
+            Ok(o) => {
+                for (j, p) in o.impulses_hat.iter().enumerate() {
+                    out.impulses_hat[j][s] = *p;
+                }
+                for (k, x) in o.velocity.as_slice().iter().enumerate() {
+                    out.velocity[k][s] = *x;
+                }
+                (Route::Generic, Reason::Lean(why.clone()))
             }
-            (Route::Generic, Reason::Lean(why))
-        }
-        Err(reason) => (Route::Refused, reason),
-    };
-    out.routes[s] = route;
-    out.reasons.push((s, reason));
+            Err(reason) => (Route::Refused, reason),
+        };
+        out.routes[s] = route;
+        out.reasons.push((s, reason));
+    }
 }
 
-/// The generic solve of scene `s`, reusing `work`.
-fn generic<'w, const N: usize>(
+/// Scene `s` built, validated and assembled for the generic solve, reusing `work`.
+fn assemble<'w, const N: usize>(
     scenes: &Scenes<N>,
     s: usize,
-    model: Model,
-    work: &'w mut Option<(Impact<f64>, Outcome<f64>)>,
-) -> Result<&'w Outcome<f64>, Reason> {
+    work: &'w mut Work,
+) -> Result<&'w mut (Impact<f64>, Outcome<f64>), Reason> {
     let problem = scenes.problem(s).map_err(Reason::Invalid)?;
-    let (impact, o) = match work {
-        Some((impact, o)) => {
-            impact.reassemble(&problem).map_err(Reason::Unsolvable)?;
-            (impact, o)
+    match work {
+        Some(w) => {
+            w.0.reassemble(&problem).map_err(Reason::Unsolvable)?;
+            Ok(w)
         }
         None => {
             let impact = Impact::assemble(&problem).map_err(Reason::Unsolvable)?;
-            let w = work.insert((impact, Outcome::default()));
-            (&mut w.0, &mut w.1)
+            Ok(work.insert((impact, Outcome::default())))
         }
-    };
-    impact.solve(model, o).map_err(Reason::Unsolvable)?;
-    Ok(o)
+    }
 }
