@@ -353,15 +353,25 @@ impl<T: Scalar, S: Screws<T>> Run<'_, T, S> {
         let free =
             |i: usize| matches!(modes[i], Mode::Slide(_)) && !st.locked[i] && self.b.dims[i] == 2;
         let mut pairs = Vec::new();
-        for j in (1..self.n()).filter(|&j| free(j)) {
-            let (vj, _) = self.slip(v, &st.origin, j);
-            let same = (0..j).filter(|&i| free(i)).find(|&i| {
-                let (vi, _) = self.slip(v, &st.origin, i);
-                self.same_axes(i, j)
-                    && vi
-                        .iter()
-                        .zip(&vj)
-                        .all(|(a, c)| (a.clone() - c).to_f64().abs() <= self.delta)
+        if (0..self.n()).filter(|&i| free(i)).nth(1).is_none() {
+            return pairs;
+        }
+        // Each free contact's slip once (this runs at every stage of every step).
+        let slips: Vec<Option<Vec<T>>> = (0..self.n())
+            .map(|i| free(i).then(|| self.slip(v, &st.origin, i).0))
+            .collect();
+        for (j, vj) in slips.iter().enumerate().skip(1) {
+            let Some(vj) = vj else {
+                continue;
+            };
+            let same = (0..j).find(|&i| {
+                slips[i].as_ref().is_some_and(|vi| {
+                    self.same_axes(i, j)
+                        && vi
+                            .iter()
+                            .zip(vj)
+                            .all(|(a, c)| (a.clone() - c).to_f64().abs() <= self.delta)
+                })
             });
             if let Some(i) = same {
                 pairs.push((j, i));
