@@ -81,6 +81,7 @@ pub mod modes;
 pub mod planar;
 pub mod rates;
 pub mod spatial;
+pub mod tresca;
 
 use std::fmt;
 

@@ -118,6 +118,7 @@ use crate::impact::friction::departure::invariant_directions;
 use crate::impact::friction::modes::{MAX_CANDIDATES, resolve_planar};
 use crate::impact::friction::rates::{Mode, Normal, RateFailure, Rates, rates};
 use crate::impact::friction::spatial::{A, E};
+use crate::impact::friction::tresca::tresca_modes;
 use crate::impact::mechanism::Mechanism;
 use crate::mechanics::contact::ContactFrame;
 use crate::mechanics::screw::Screws;
@@ -832,7 +833,8 @@ impl<'a, T: Real, S: Screws<T>> Run<'a, T, S> {
             }
         }
         if regime.modes.iter().any(|m| *m != Mode::Free) {
-            let (_, _, r) = self.rates_at(yn, regime, f64::NAN)?;
+            let (_, modes, r) = self.rates_at(yn, regime, f64::NAN)?;
+            let mut leaving = Vec::new();
             for j in 0..n {
                 let o = self.b.offset[j];
                 match &regime.modes[j] {
@@ -842,15 +844,13 @@ impl<'a, T: Real, S: Screws<T>> Run<'a, T, S> {
                     {
                         out.push((j, EventKind::Sticks));
                     }
-                    Mode::Stick => {
-                        let cone = (self.b.mu[j] * r.lambda[o]).to_f64();
-                        let t = norm(&r.lambda[o + 1..o + 1 + self.b.dims[j]]).to_f64();
-                        if cone - t < -self.tol * (cone + t) {
-                            out.push((j, EventKind::SlipStarts));
-                        }
-                    }
+                    Mode::Stick if self.leaves_cone(&r, j) => leaving.push(j),
                     _ => {}
                 }
+            }
+            let forces: Vec<T> = (0..n).map(|j| self.force(yn, phases, j)).collect();
+            if leaving.is_empty() || !self.sticks_hold(&r, &self.normals(&forces), &modes) {
+                out.extend(leaving.into_iter().map(|j| (j, EventKind::SlipStarts)));
             }
         }
         if self.energy(primary, y[len + primary]).signum_i8() > 0 {
@@ -1078,62 +1078,74 @@ impl<'a, T: Real, S: Screws<T>> Run<'a, T, S> {
                 }
             }
         };
-        if b.plane.is_some() {
-            for &i in &out {
-                regime.modes[i] = Mode::Slide(guess(i));
-            }
-            if !candidates.is_empty() {
-                let res = resolve_planar(b, &normals, &regime.modes, &candidates).map_err(|e| {
-                    if e.undetermined {
-                        LzbError::Undetermined { tau }
-                    } else {
-                        LzbError::NoConsistentModes { tau }
-                    }
-                })?;
-                regime.modes = res.modes;
-            }
-        } else {
-            let mut assigned: Vec<usize> = Vec::new();
-            loop {
+        let zero_slip: Vec<usize> = candidates.iter().chain(&out).copied().collect();
+        let held = regime.modes.clone();
+        let mut search = || -> Result<(), LzbError> {
+            if b.plane.is_some() {
                 for &i in &out {
-                    if assigned.contains(&i) {
-                        continue;
+                    regime.modes[i] = Mode::Slide(guess(i));
+                }
+                if !candidates.is_empty() {
+                    let res =
+                        resolve_planar(b, &normals, &regime.modes, &candidates).map_err(|e| {
+                            if e.undetermined {
+                                LzbError::Undetermined { tau }
+                            } else {
+                                LzbError::NoConsistentModes { tau }
+                            }
+                        })?;
+                    regime.modes = res.modes;
+                }
+            } else {
+                let mut assigned: Vec<usize> = Vec::new();
+                loop {
+                    for &i in &out {
+                        if assigned.contains(&i) {
+                            continue;
+                        }
+                        assigned.push(i);
+                        let mut modes = regime.modes.clone();
+                        let roots = invariant_directions(b, &normals, &mut modes, i)
+                            .map_err(|e| Self::fail(e, tau))?;
+                        let g = guess(i);
+                        let best = roots
+                            .iter()
+                            .max_by(|x, z| {
+                                (x.kappa > 0.0)
+                                    .cmp(&(z.kappa > 0.0))
+                                    .then(dot(&x.u, &g).to_f64().total_cmp(&dot(&z.u, &g).to_f64()))
+                            })
+                            .ok_or(LzbError::NoConsistentModes { tau })?;
+                        regime.modes[i] = Mode::Slide(best.u.clone());
                     }
-                    assigned.push(i);
-                    let mut modes = regime.modes.clone();
-                    let roots = invariant_directions(b, &normals, &mut modes, i)
-                        .map_err(|e| Self::fail(e, tau))?;
-                    let g = guess(i);
-                    let best = roots
+                    let r = rates(b, &normals, &regime.modes).map_err(|e| Self::fail(e, tau))?;
+                    let failing: Vec<usize> = candidates
                         .iter()
-                        .max_by(|x, z| {
-                            (x.kappa > 0.0)
-                                .cmp(&(z.kappa > 0.0))
-                                .then(dot(&x.u, &g).to_f64().total_cmp(&dot(&z.u, &g).to_f64()))
-                        })
-                        .ok_or(LzbError::NoConsistentModes { tau })?;
-                    regime.modes[i] = Mode::Slide(best.u.clone());
-                }
-                let r = rates(b, &normals, &regime.modes).map_err(|e| Self::fail(e, tau))?;
-                let failing: Vec<usize> = candidates
-                    .iter()
-                    .copied()
-                    .filter(|&i| regime.modes[i] == Mode::Stick && !out.contains(&i))
-                    .filter(|&i| {
-                        let o = b.offset[i];
-                        let cone = (b.mu[i] * r.lambda[o]).to_f64();
-                        let t = norm(&r.lambda[o + 1..o + 3]).to_f64();
-                        cone - t < -self.tol * (cone + t)
-                    })
-                    .collect();
-                if failing.is_empty() {
-                    break;
-                }
-                for i in failing {
-                    regime.modes[i] = Mode::Stick;
-                    out.push(i);
+                        .copied()
+                        .filter(|&i| regime.modes[i] == Mode::Stick && !out.contains(&i))
+                        .filter(|&i| self.leaves_cone(&r, i))
+                        .collect();
+                    if failing.is_empty() || self.sticks_hold(&r, &normals, &regime.modes) {
+                        break;
+                    }
+                    for i in failing {
+                        regime.modes[i] = Mode::Stick;
+                        out.push(i);
+                    }
                 }
             }
+            Ok(())
+        };
+        if let Err(e) = search() {
+            // The search of assignments found none consistent: Tresca's problem, which always
+            // has a minimiser when every normal rate is given (every LZB rate is).
+            if !matches!(
+                e,
+                LzbError::NoConsistentModes { .. } | LzbError::Undetermined { .. }
+            ) {
+                return Err(e);
+            }
+            regime.modes = self.tresca(&normals, &held, &zero_slip).ok_or(e)?;
         }
         let mut events = Vec::new();
         for i in 0..self.n {
@@ -1150,6 +1162,53 @@ impl<'a, T: Real, S: Screws<T>> Run<'a, T, S> {
             events.push((i, kind));
         }
         Ok(events)
+    }
+
+    /// Whether contact j's sticking rates in `r` leave its cone |τ'_j| ≤ μ_j p'_j by more than
+    /// tol relative to the largest rate of the impact (the rates' rounding scale: a contact
+    /// that carries next to no normal impulse is judged as finely as the others are computed,
+    /// not relative to its own vanishing cone).
+    fn leaves_cone(&self, r: &Rates<T>, j: usize) -> bool {
+        let o = self.b.offset[j];
+        let cone = (self.b.mu[j] * r.lambda[o]).to_f64();
+        let t = norm(&r.lambda[o + 1..o + 1 + self.b.dims[j]]).to_f64();
+        let scale = r
+            .lambda
+            .iter()
+            .fold(cone + t, |m, x| m.max(x.to_f64().abs()));
+        cone - t < -self.tol * scale
+    }
+
+    /// The modes of the contacts at `zero_slip` by Tresca's problem ([`tresca_modes`]), if
+    /// they have rates and every stick's required impulse lies in its cone to `tol` relative.
+    fn tresca(
+        &self,
+        normals: &[Normal<T>],
+        modes: &[Mode<T>],
+        zero_slip: &[usize],
+    ) -> Option<Vec<Mode<T>>> {
+        let b = self.b;
+        let modes = tresca_modes(b, normals, modes, zero_slip, self.tol)?;
+        let r = rates(b, normals, &modes).ok()?;
+        let in_cones = zero_slip
+            .iter()
+            .filter(|&&i| modes[i] == Mode::Stick)
+            .all(|&i| !self.leaves_cone(&r, i));
+        (in_cones || !r.split_unique).then_some(modes)
+    }
+
+    /// Whether the sticking contacts of `modes` can all stay stuck where the member of their
+    /// rates `r` taken leaves a cone: when their split is not unique ([`Rates::split_unique`])
+    /// another member may lie in every cone, and Tresca's problem ([`tresca_modes`]) finds
+    /// one if there is one (its minimiser keeps every slip rate at zero exactly when a member
+    /// of the family lies in every cone).
+    fn sticks_hold(&self, r: &Rates<T>, normals: &[Normal<T>], modes: &[Mode<T>]) -> bool {
+        if r.split_unique {
+            return false;
+        }
+        let sticks: Vec<usize> = (0..self.n).filter(|&i| modes[i] == Mode::Stick).collect();
+        tresca_modes(self.b, normals, modes, &sticks, self.tol)
+            .is_some_and(|m| sticks.iter().all(|&i| m[i] == Mode::Stick))
     }
 
     fn integrate(&self) -> Result<Path<T>, LzbError> {

@@ -1,0 +1,274 @@
+//! The modes at zero slip when every normal rate is given: Coulomb's law is then Tresca's, the
+//! minimum of a convex function, and always has an answer.
+//!
+//! Where every contact's normal impulse rate p'_i is prescribed ([`Normal::Given`]: a
+//! compliant contact's force under LZB, Poisson's or the energetic restitution), the friction
+//! bound μ_i p'_i of each contact is a number, not an unknown: Coulomb's law with a known
+//! normal force is Tresca's friction law (Duvaut and Lions 1976, ch. 5; Moreau 1988, §8). Let
+//! the contacts at zero slip be c, their tangential rates τ'_c the unknowns, every other rate
+//! known (its normal one, and the tangential one of a contact sliding along u, μ p' u). The
+//! slip rates at c are affine in τ'_c (eq. 144):
+//!
+//! ```text
+//! v'_c = a − M τ'_c,   a = −K_c,known Λ'_known,   M = K_cc  (symmetric, positive semidefinite)
+//! ```
+//!
+//! Coulomb at each contact of c — τ'_i inside its disc |τ'_i| ≤ μ_i p'_i with v'_i = 0 (stick),
+//! or on its rim with v'_i = λ_i τ'_i/|τ'_i|, λ_i ≥ 0 (a slip starting along its friction's
+//! direction, [`Mode::Slide`]) — is exactly the optimality condition of
+//!
+//! ```text
+//! minimise  f(τ') = ½ τ'ᵀ M τ' − aᵀ τ'   over the product of the discs
+//! ```
+//!
+//! since −∇f = a − M τ' = v' must lie in the discs' normal cone at τ'. f is convex and the
+//! discs compact, so a minimiser exists, and v' there is unique (f is strictly convex along
+//! M's range). Where a search over stick and slide assignments finds none consistent — slips
+//! stopping at their friction's limit, where a consistent assignment is marginal and rounding
+//! decides which the tests see — this one finds it. It is solved by block Gauss–Seidel over the
+//! contacts (each block the exact minimum over one disc, a trust-region problem in one or two
+//! unknowns), which converges for a positive semidefinite M (Cottle, Pang and Stone 1992,
+//! §5.3); floats only (a disc's rim is a square root).
+
+use crate::impact::friction::blocks::Blocks;
+use crate::impact::friction::rates::{Mode, Normal};
+use crate::mechanics::screw::Screws;
+use crate::scalar::Real;
+
+/// The most block sweeps; a sweep that moves no τ'_i by more than 10⁻¹⁴ of the largest disc
+/// ends it.
+const SWEEPS: usize = 20_000;
+
+/// The modes of the contacts `at_zero_slip` under Tresca's law (module docs), every other
+/// contact keeping its mode in `modes`: stick where the minimiser's slip rate is within
+/// `tol` (relative to the largest slip rate the known rates or the friction cause) of zero,
+/// else a slide along the minimiser's τ'_i. `None` when a normal rate is not given, or a
+/// contact not at zero slip sticks.
+pub fn tresca_modes<T: Real, S: Screws<T>>(
+    b: &Blocks<T, S>,
+    normals: &[Normal<T>],
+    modes: &[Mode<T>],
+    at_zero_slip: &[usize],
+    tol: f64,
+) -> Option<Vec<Mode<T>>> {
+    let len = b.len();
+    let mut given = vec![0.0; b.contacts()];
+    for (i, n) in normals.iter().enumerate() {
+        match n {
+            Normal::Given(p) => given[i] = p.to_f64(),
+            Normal::Driven(_) => return None,
+        }
+    }
+    // The known rates Λ'.
+    let mut known = vec![0.0; len];
+    for i in 0..b.contacts() {
+        let o = b.offset[i];
+        known[o] = given[i];
+        if at_zero_slip.contains(&i) {
+            continue;
+        }
+        match &modes[i] {
+            Mode::Free => {}
+            Mode::Slide(u) => {
+                let bound = b.mu[i].to_f64() * given[i];
+                for (k, uk) in u.iter().enumerate() {
+                    known[o + 1 + k] = bound * uk.to_f64();
+                }
+            }
+            Mode::Stick => return None,
+        }
+    }
+    // The unknowns: every tangential axis of the contacts at zero slip.
+    let axes: Vec<usize> = at_zero_slip
+        .iter()
+        .flat_map(|&i| (b.offset[i] + 1..b.offset[i] + 1 + b.dims[i]).collect::<Vec<_>>())
+        .collect();
+    let k = |q: usize, r: usize| b.at(q, r).to_f64();
+    let a: Vec<f64> = axes
+        .iter()
+        .map(|&q| -(0..len).map(|r| k(q, r) * known[r]).sum::<f64>())
+        .collect();
+    let radius: Vec<f64> = at_zero_slip
+        .iter()
+        .map(|&i| (b.mu[i].to_f64() * given[i]).max(0.0))
+        .collect();
+    // Block j of the unknowns: at_zero_slip[j]'s axes, from start[j].
+    let mut start = Vec::with_capacity(at_zero_slip.len());
+    let mut at = 0;
+    for &i in at_zero_slip {
+        start.push(at);
+        at += b.dims[i];
+    }
+    let m = |x: usize, y: usize| k(axes[x], axes[y]);
+    let mut tau = vec![0.0; axes.len()];
+    let largest = radius.iter().fold(0.0_f64, |x, r| x.max(*r));
+    for _ in 0..SWEEPS {
+        let mut moved = 0.0_f64;
+        for (j, &i) in at_zero_slip.iter().enumerate() {
+            let (s, d) = (start[j], b.dims[i]);
+            // c = a_j − Σ_{other blocks} M τ
+            let c: Vec<f64> = (s..s + d)
+                .map(|x| {
+                    a[x] - (0..axes.len())
+                        .filter(|y| *y < s || *y >= s + d)
+                        .map(|y| m(x, y) * tau[y])
+                        .sum::<f64>()
+                })
+                .collect();
+            let block: Vec<Vec<f64>> = (s..s + d)
+                .map(|x| (s..s + d).map(|y| m(x, y)).collect())
+                .collect();
+            let new = disc_minimum(&block, &c, radius[j]);
+            for (x, t) in new.into_iter().enumerate() {
+                moved = moved.max((t - tau[s + x]).abs());
+                tau[s + x] = t;
+            }
+        }
+        if moved <= 1e-14 * largest {
+            break;
+        }
+    }
+    // The slip rates at the minimiser, and the modes.
+    let slip: Vec<f64> = (0..axes.len())
+        .map(|x| a[x] - (0..axes.len()).map(|y| m(x, y) * tau[y]).sum::<f64>())
+        .collect();
+    let scale = a
+        .iter()
+        .chain(slip.iter())
+        .fold(f64::MIN_POSITIVE, |x, v| x.max(v.abs()));
+    let mut out = modes.to_vec();
+    for (j, &i) in at_zero_slip.iter().enumerate() {
+        let (s, d) = (start[j], b.dims[i]);
+        let v = &slip[s..s + d];
+        let t = &tau[s..s + d];
+        let (nv, nt) = (norm(v), norm(t));
+        out[i] = if nv <= tol * scale || d == 0 {
+            Mode::Stick
+        } else if nt > 0.0 {
+            Mode::Slide(t.iter().map(|x| T::of(x / nt)).collect())
+        } else {
+            Mode::Slide(v.iter().map(|x| T::of(x / nv)).collect())
+        };
+    }
+    Some(out)
+}
+
+fn norm(x: &[f64]) -> f64 {
+    x.iter().map(|v| v * v).sum::<f64>().sqrt()
+}
+
+/// The minimiser of ½ τᵀ B τ − cᵀ τ over |τ| ≤ r, B symmetric positive semidefinite, in one
+/// or two unknowns: B⁻¹c when it lies in the disc, else the τ on the rim with
+/// (B + λ I) τ = c, λ ≥ 0 (the trust-region condition; Moré and Sorensen 1983), λ found by
+/// bisection on |τ(λ)| = r in B's eigenbasis.
+fn disc_minimum(block: &[Vec<f64>], c: &[f64], r: f64) -> Vec<f64> {
+    if r <= 0.0 {
+        return vec![0.0; c.len()];
+    }
+    if c.len() == 1 {
+        let (m, c) = (block[0][0], c[0]);
+        let t = if m > 0.0 { c / m } else { c.signum() * r };
+        return vec![t.clamp(-r, r)];
+    }
+    // B = Q diag(e) Qᵀ, e[0] ≤ e[1]; columns of Q by the angle φ.
+    let (p, q, s) = (block[0][0], block[0][1], block[1][1]);
+    let mean = 0.5 * (p + s);
+    let half = (0.25 * (p - s) * (p - s) + q * q).sqrt();
+    let e = [mean - half, mean + half];
+    let phi = 0.5 * (2.0 * q).atan2(p - s);
+    // the eigenvector of e[1] is (cos φ, sin φ); of e[0], (−sin φ, cos φ)
+    let v1 = [phi.cos(), phi.sin()];
+    let v0 = [-v1[1], v1[0]];
+    let cc = [v0[0] * c[0] + v0[1] * c[1], v1[0] * c[0] + v1[1] * c[1]];
+    let at = |lambda: f64| -> [f64; 2] {
+        std::array::from_fn(|k| {
+            let d = e[k] + lambda;
+            if d > 0.0 { cc[k] / d } else { 0.0 }
+        })
+    };
+    let length = |y: [f64; 2]| (y[0] * y[0] + y[1] * y[1]).sqrt();
+    let back = |y: [f64; 2]| vec![v0[0] * y[0] + v1[0] * y[1], v0[1] * y[0] + v1[1] * y[1]];
+    let floor = 1e-13 * e[1].abs().max(f64::MIN_POSITIVE);
+    if e[0] > floor {
+        let free = at(0.0);
+        if length(free) <= r {
+            return back(free);
+        }
+    } else if cc[0].abs() <= 1e-13 * cc[0].hypot(cc[1]) {
+        // B singular and c in its range: the least-norm minimiser, if it lies in the disc
+        let free = [0.0, if e[1] > floor { cc[1] / e[1] } else { 0.0 }];
+        if length(free) <= r {
+            return back(free);
+        }
+    }
+    // |τ(λ)| decreases in λ; at λ_hi = |c|/r − e[0] it is ≤ r.
+    let mut lo = (-e[0]).max(0.0);
+    let mut hi = lo + (cc[0].hypot(cc[1]) / r).max(f64::MIN_POSITIVE);
+    for _ in 0..200 {
+        let mid = 0.5 * (lo + hi);
+        if mid <= lo || mid >= hi {
+            break;
+        }
+        if length(at(mid)) > r {
+            lo = mid
+        } else {
+            hi = mid
+        }
+    }
+    let y = at(hi);
+    let l = length(y);
+    // on the rim (the bisection leaves |τ| ≤ r by at most its last step)
+    if l > 0.0 {
+        back([y[0] * r / l, y[1] * r / l])
+    } else {
+        back(y)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::disc_minimum;
+
+    /// The minimiser of the disc problem meets its optimality condition: inside, Bτ = c; on
+    /// the rim, c − Bτ = λ τ with λ ≥ 0.
+    fn optimal(b: &[Vec<f64>], c: &[f64], r: f64) {
+        let t = disc_minimum(b, c, r);
+        let g = [
+            c[0] - b[0][0] * t[0] - b[0][1] * t[1],
+            c[1] - b[1][0] * t[0] - b[1][1] * t[1],
+        ];
+        let nt = (t[0] * t[0] + t[1] * t[1]).sqrt();
+        assert!(nt <= r * (1.0 + 1e-12), "|τ| = {nt} outside r = {r}");
+        let scale = c[0].hypot(c[1]);
+        if nt < r * (1.0 - 1e-9) {
+            assert!(g[0].hypot(g[1]) <= 1e-12 * scale, "inside, gradient {g:?}");
+        } else {
+            // g parallel to τ and along it
+            let cross = g[0] * t[1] - g[1] * t[0];
+            assert!(cross.abs() <= 1e-9 * scale * r, "cross {cross}");
+            assert!(g[0] * t[0] + g[1] * t[1] >= -1e-12 * scale * r);
+        }
+    }
+
+    #[test]
+    fn the_disc_minimum_meets_its_optimality_conditions() {
+        let b = vec![vec![2.0, 0.5], vec![0.5, 1.0]];
+        optimal(&b, &[1.0, 0.2], 10.0); // inside
+        optimal(&b, &[1.0, 0.2], 0.1); // on the rim
+        optimal(&b, &[-3.0, 4.0], 0.5);
+        // positive semidefinite: rank one
+        let s = vec![vec![1.0, 1.0], vec![1.0, 1.0]];
+        optimal(&s, &[1.0, -0.5], 0.3);
+        optimal(&s, &[1.0, 1.0], 100.0);
+        // a block diagonal, the inside point exactly
+        let d = vec![vec![4.0, 0.0], vec![0.0, 2.0]];
+        assert_eq!(disc_minimum(&d, &[2.0, 1.0], 1.0), vec![0.5, 0.5]);
+    }
+
+    #[test]
+    fn one_unknown_is_clamped() {
+        assert_eq!(disc_minimum(&[vec![2.0]], &[1.0], 1.0), vec![0.5]);
+        assert_eq!(disc_minimum(&[vec![2.0]], &[-8.0], 1.0), vec![-1.0]);
+        assert_eq!(disc_minimum(&[vec![2.0]], &[8.0], 0.0), vec![0.0]);
+    }
+}
