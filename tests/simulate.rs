@@ -765,6 +765,42 @@ fn a_can_on_a_rough_floor_tumbles_to_rest_upright_under_every_law() {
     }
 }
 
+/// The can on a floor with μ = 0.9 (its rim points stick where μ = 0.2 lets them slide). Under
+/// the simultaneous law its face lands while it pivots on one rim point at zero normal
+/// velocity: the law holds that point on its path with a pull, which no assignment of
+/// Coulomb's law holds (status 3 before); it now carries no friction while it pulls, the
+/// impact's verdict says the answer is not physical, and the run goes on. Under LZB the rim
+/// points at zero slip stopped with no consistent assignment (status 3 before); Tresca's
+/// problem gives their modes. Every law brings it to rest upright.
+#[test]
+fn a_can_on_a_very_rough_floor_tumbles_to_rest_upright_under_every_law() {
+    let text = std::fs::read_to_string("examples/simulate/tumbling-can.toml")
+        .unwrap()
+        .replace("contact = { k = 0.3 }", "contact = { k = 0.3, mu = 0.9 }");
+    for law in [
+        Law::Simultaneous(Restitution::Newton),
+        Law::Unilateral(Restitution::Newton),
+        Law::Lzb,
+    ] {
+        let mut s = parse(&text);
+        s.setup.law = law;
+        let sim = simulate(&s.setup).unwrap_or_else(|e| panic!("under {}: {e}", law.name()));
+        assert_rests_upright_on_its_face(&s, &sim, &law.name());
+        if law == Law::Simultaneous(Restitution::Newton) {
+            let pulled = sim
+                .impacts
+                .iter()
+                .filter(|r| {
+                    r.verdicts
+                        .iter()
+                        .any(|v| v.contains("negative normal impulse rate"))
+                })
+                .count();
+            assert!(pulled > 0, "no impact where the law pulls");
+        }
+    }
+}
+
 /// A box dropped spinning about all three axes onto a rough floor, in space
 /// (examples/simulate/dropped-box.toml, μ = 0.2): it lands flat and rests under every law —
 /// C at h/2 = 0.05 m, its energy m g h/2 = 2 · 9.81 · 0.05 = 0.981 J to 10⁻⁹ — and its corners

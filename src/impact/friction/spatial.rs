@@ -23,6 +23,16 @@
 //! by bisection, a direction that attracts the slips around it preferred; for several by a
 //! joint fixed-point iteration from every combination of senses.
 //!
+//! **A contact the simultaneous law makes pull.** The paper's hypothesis holds every normal
+//! velocity on its path, whatever impulse rate that needs; a contact at zero slip whose path
+//! needs a pull (a can pivoting on one rim point as its face lands: the pivot, at zero normal
+//! velocity, is held there) has no Coulomb assignment — no cone to stick in, and a slide's
+//! friction μ p' u would act along the slip. It carries no friction while it pulls
+//! ([`State::pulling`], the verdict [`Verdict::TensileRate`]): the frictionless simultaneous
+//! law's own answer at that contact, the rest of the impact under Coulomb's law. A contact
+//! already sliding when it starts to pull keeps its slide, as in the plane, whose exact
+//! integrator lets a pulling contact at zero slip slide too where the slide's test passes.
+//!
 //! **Bhatt and Koechling's singular point.** Near zero slip, the slip direction u = v_t/|v_t|
 //! turns at |dv_t⊥/ds| / |v_t|, ever faster — a stiff flow. A step turns the direction by at
 //! most a quarter radian and is never longer than nine tenths of the predicted time to zero
@@ -206,6 +216,12 @@ struct State<T: Scalar> {
     /// re-engagement margin is the gap itself; before that the margin has the slack δ, so that
     /// a gap that stays at zero (released with g' = 0) does not fire on rounding noise.
     armed: Vec<bool>,
+    /// Per contact, under the simultaneous hypothesis: held on its path by a pull (a negative
+    /// normal impulse rate, [`Verdict::TensileRate`]). Coulomb's law has no cone for a pulling
+    /// contact — no stick, and a slide's friction μ p' u would push along the slip, doing
+    /// work on the body — so it carries no friction while it pulls ([`Mode::Free`]); a
+    /// margin ([`Run::margins`]) ends that where its rate turns positive again.
+    pulling: Vec<bool>,
 }
 
 /// A slip held on its invariant direction at the end of a step ([`Run::held`]).
@@ -594,8 +610,9 @@ impl<T: Scalar, S: Screws<T>> Run<'_, T, S> {
     /// rate over its base, (p'_i − base_i) / Λ-scale + tol (it is released once its path needs
     /// a pull beyond the slack, as a stick leaves its cone), and of a released contact's gap,
     /// g_i / max|v⁰| (+ tol before it is `armed`): it re-engages where its gap closes. +∞ where
-    /// a function does not apply. An event is a margin that was ≥ 0 and is < 0. The state is
-    /// at `s`, `y`.
+    /// a function does not apply; under the simultaneous law, of a contact freed of friction
+    /// while it pulls ([`State::pulling`]), tol − p'_i / Λ-scale: it pulls until its rate turns
+    /// positive. An event is a margin that was ≥ 0 and is < 0. The state is at `s`, `y`.
     fn margins(
         &self,
         st: &State<T>,
@@ -620,6 +637,16 @@ impl<T: Scalar, S: Screws<T>> Run<'_, T, S> {
                 if st.released[i] {
                     let slack = if st.armed[i] { 0.0 } else { self.tol };
                     g[2 * n + 2 * i + 1] = gaps[i] / self.vscale + slack;
+                }
+            }
+        }
+        if self.hypothesis == Hypothesis::Simultaneous {
+            for i in 0..n {
+                if st.pulling[i] {
+                    // it pulls until its rate turns positive (a stick that starts to pull
+                    // leaves its cone: that margin's event)
+                    g[2 * n + 2 * i] =
+                        self.tol - r.lambda[b.offset[i]].to_f64() / self.lambda_scale;
                 }
             }
         }
@@ -741,6 +768,7 @@ pub fn integrate_under<T: Scalar, S: Screws<T>, M: Mechanism<T, Screw = S>>(
         locked: vec![false; n],
         released: vec![false; n],
         armed: vec![false; n],
+        pulling: vec![false; n],
     };
     let mut stats = Stats::default();
     let mut segments: Vec<Segment<T>> = Vec::new();
@@ -1260,9 +1288,12 @@ fn resolve<T: Scalar, S: Screws<T>>(
     let b = run.b;
     let n = run.n();
     let v = run.velocities(&st.y);
+    if run.hypothesis == Hypothesis::Simultaneous {
+        find_pulling(run, st, normals, &v);
+    }
     let mut candidates = Vec::new();
     for i in 0..n {
-        if b.dims[i] == 0 || !carries(&normals[i]) {
+        if b.dims[i] == 0 || !carries(&normals[i]) || st.pulling[i] {
             st.modes[i] = Mode::Free;
             st.locked[i] = false;
             continue;
@@ -1395,6 +1426,61 @@ fn resolve<T: Scalar, S: Screws<T>>(
         s: st.s.to_f64(),
         phase: st.phase,
     })
+}
+
+/// Which frictional contacts at zero slip the simultaneous hypothesis holds on their paths by a
+/// pull ([`State::pulling`]): with every contact at zero slip sticking and every other sliding
+/// along its slip, the one whose normal rate is the most negative beyond the tolerance is
+/// freed of friction — if it still pulls once free (else the pull is friction's own doing, as
+/// in a slide whose friction drives the contact into the surface, and the contact is left to
+/// the search of modes) — and the rates are found again, until none is. A contact sliding
+/// when it pulls keeps its slide (its friction μ p' u then acts along the slip, the verdict
+/// [`Verdict::TensileRate`] says so), as in the plane.
+fn find_pulling<T: Scalar, S: Screws<T>>(
+    run: &Run<'_, T, S>,
+    st: &mut State<T>,
+    normals: &[Normal<T>],
+    v: &[T],
+) {
+    let b = run.b;
+    let n = run.n();
+    st.pulling.fill(false);
+    let slack = -run.tol * run.lambda_scale;
+    let at_zero_slip: Vec<bool> = (0..n)
+        .map(|i| run.slip(v, &st.origin, i).1 <= run.delta)
+        .collect();
+    let rates_now = |pulling: &[bool]| {
+        let modes: Vec<Mode<T>> = (0..n)
+            .map(|i| {
+                if b.dims[i] == 0 || !carries(&normals[i]) || pulling[i] {
+                    Mode::Free
+                } else if at_zero_slip[i] {
+                    Mode::Stick
+                } else {
+                    Mode::Slide(unit(&run.slip(v, &st.origin, i).0))
+                }
+            })
+            .collect();
+        rates(b, normals, &modes).ok().map(|r| (modes, r))
+    };
+    for _ in 0..n {
+        let Some((modes, r)) = rates_now(&st.pulling) else {
+            return;
+        };
+        let most = (0..n)
+            .filter(|&i| modes[i] == Mode::Stick && matches!(normals[i], Normal::Driven(_)))
+            .map(|i| (i, r.lambda[b.offset[i]].to_f64()))
+            .filter(|(_, p)| *p < slack)
+            .min_by(|x, y| x.1.total_cmp(&y.1));
+        let Some((i, _)) = most else { return };
+        st.pulling[i] = true;
+        let still =
+            rates_now(&st.pulling).is_some_and(|(_, r)| r.lambda[b.offset[i]].to_f64() < slack);
+        if !still {
+            st.pulling[i] = false;
+            return;
+        }
+    }
 }
 
 /// Whether every sticking candidate's required rate lies in its cone (to the tolerance's
