@@ -88,12 +88,26 @@ impl Vary {
     }
 
     /// The i-th value, start + (stop − start)·i/(count − 1), exactly.
+    ///
+    /// Formed as one fraction over the common denominator, with start = a/b, stop = c/d and
+    /// n = count − 1,
+    ///
+    /// ```text
+    /// (a·d·(n − i) + c·b·i) / (b·d·n)
+    /// ```
+    ///
+    /// and reduced once: the same rational, one gcd instead of the four of the sum of
+    /// products (a sweep point of Example 3 spent a fifth of its time here).
     pub fn value(&self, i: usize) -> BigRational {
         if self.count < 2 {
             return self.start.clone();
         }
-        let t = BigRational::new(BigInt::from(i), BigInt::from(self.count - 1));
-        &self.start + (&self.stop - &self.start) * t
+        let n = self.count - 1;
+        let (a, b) = (self.start.numer(), self.start.denom());
+        let (c, d) = (self.stop.numer(), self.stop.denom());
+        let (n, i) = (BigInt::from(n), BigInt::from(i));
+        let numer = a * d * (&n - &i) + c * b * i;
+        BigRational::new(numer, b * d * n)
     }
 }
 
@@ -190,6 +204,26 @@ mod tests {
         let e = Vary::parse("body.velocity[0]=-2:1e-1:2").unwrap();
         assert_eq!(e.start, q(-2, 1));
         assert_eq!(e.stop, q(1, 10));
+    }
+
+    /// The one-fraction form of [`Vary::value`] is start + (stop − start)·i/(count − 1).
+    #[test]
+    fn values_are_the_points_of_the_range() {
+        for spec in [
+            "k=0:1:101",
+            "k=1:0:7",
+            "k=1/3:0.7:13",
+            "k=-2/7:5/3:10",
+            "k=-1e-3:-4/9:6",
+        ] {
+            let v = Vary::parse(spec).unwrap();
+            let n = BigRational::from_integer(BigInt::from(v.count - 1));
+            for i in 0..v.count + 2 {
+                let t = BigRational::from_integer(BigInt::from(i)) / &n;
+                let want = &v.start + (&v.stop - &v.start) * t;
+                assert_eq!(v.value(i), want, "{spec}: point {i}");
+            }
+        }
     }
 
     #[test]

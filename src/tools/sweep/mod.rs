@@ -127,6 +127,8 @@
 mod answer;
 mod axis;
 mod batch;
+mod cells;
+mod coefficients;
 mod file;
 mod lzb;
 mod outputs;
