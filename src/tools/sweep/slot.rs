@@ -3,6 +3,7 @@
 //! more than the solve.
 
 use num_rational::BigRational;
+use num_traits::Zero;
 
 use super::text::text;
 use crate::mechanics::contact::Contact;
@@ -103,20 +104,24 @@ impl Slot {
     /// Set a coefficient of restitution to q in a prepared problem's `contacts`, as
     /// [`Scene::contact`] reads it from the scene with [`Slot::set`] applied: Stronge's k_E
     /// follows k_P where the scene does not write `k_energetic`. Other slots are left alone
-    /// ([`Slot::restitution`] says which are set).
+    /// ([`Slot::restitution`] says which are set). `None` where the reader refuses q: a
+    /// nonzero q that `T` rounds to zero (below 2⁻¹⁰⁷⁴ in f64) is out of its range, not 0.
     pub(super) fn set_restitution<T: Scalar>(
         self,
         contacts: &mut [Contact<T>],
         scene: &Scene,
         q: &BigRational,
-    ) {
+    ) -> Option<()> {
         let (c, newton, poisson) = match self {
             Slot::K(c) => (c, true, true),
             Slot::KNewton(c) => (c, true, false),
             Slot::KPoisson(c) => (c, false, true),
-            _ => return,
+            _ => return Some(()),
         };
         let x = T::from_rational(q);
+        if !q.is_zero() && (x.is_zero() || !x.is_finite()) {
+            return None;
+        }
         let contact = &mut contacts[c];
         if poisson && scene.contacts[c].k_energetic.is_none() {
             contact.k_energetic = x.clone();
@@ -127,6 +132,7 @@ impl Slot {
         if newton {
             contact.k_newton = x;
         }
+        Some(())
     }
 
     /// Set the number to q, as [`set_value`] and [`Scene::from_document`] would.
