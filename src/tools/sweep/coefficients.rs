@@ -192,7 +192,14 @@ mod tests {
         let c = Coefficients::new(first.clone(), &slots, false).unwrap();
         let tiny = BigRational::new(1.into(), num_bigint::BigInt::from(10).pow(400));
         assert!(c.solve(std::slice::from_ref(&tiny)).is_none());
-        assert!(Answer::solve::<f64>(&reread(text, &["contact[1].k"], &[tiny.clone()])).is_err());
+        assert!(
+            Answer::solve::<f64>(&reread(
+                text,
+                &["contact[1].k"],
+                std::slice::from_ref(&tiny)
+            ))
+            .is_err()
+        );
         let c = Coefficients::new(first, &slots, true).unwrap();
         assert!(
             c.solve(&[tiny]).is_some(),
