@@ -14,9 +14,9 @@
 //! gives no answer (singular, jammed, a refusal) is solved again the usual way, so its status
 //! or its error is the one the scene itself gives.
 //!
-//! Measured 2026-11-28 20:38 UTC (guide/sweeps.md; one thread, release, a 2-core VM under
-//! another build): Example 3 over `contact[1].k`, 35 → 6.7 µs a point, the tilted box over
-//! `contact[1].k` 28 → 6.6 µs. Under callgrind a point of Example 3 was 357 k instructions:
+//! Measured 2026-11-28 20:57 UTC (guide/sweeps.md; one thread, release, a shared 2-core VM,
+//! load 1.5–1.7): Example 3 over `contact[1].k`, 35 → 6.4 µs a point, the tilted box over
+//! `contact[1].k` 28 → 6.5 µs. Under callgrind a point of Example 3 was 357 k instructions:
 //! 46 % scaling the scene, 11 % reading it into f64, 12 % copying it, 10 % writing the row,
 //! about 2 % assembling and solving; preparing once removes the first three (with the row
 //! written into one buffer and the grid value formed as one fraction, 66 k remain, a third of
