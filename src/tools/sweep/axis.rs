@@ -88,12 +88,68 @@ impl Vary {
     }
 
     /// The i-th value, start + (stop − start)·i/(count − 1), exactly.
+    ///
+    /// Formed as one fraction over the common denominator, with start = a/b, stop = c/d and
+    /// n = count − 1,
+    ///
+    /// ```text
+    /// (a·d·(n − i) + c·b·i) / (b·d·n)
+    /// ```
+    ///
+    /// and reduced once: the same rational, one gcd instead of the four of the sum of
+    /// products (a sweep point of Example 3 spent a fifth of its time here).
     pub fn value(&self, i: usize) -> BigRational {
         if self.count < 2 {
             return self.start.clone();
         }
-        let t = BigRational::new(BigInt::from(i), BigInt::from(self.count - 1));
-        &self.start + (&self.stop - &self.start) * t
+        let n = self.count - 1;
+        let (a, b) = (self.start.numer(), self.start.denom());
+        let (c, d) = (self.stop.numer(), self.stop.denom());
+        if let Some(q) = small_value([a, b, c, d], n, i) {
+            return q;
+        }
+        let (n, i) = (BigInt::from(n), BigInt::from(i));
+        let numer = a * d * (&n - &i) + c * b * i;
+        BigRational::new(numer, b * d * n)
+    }
+}
+
+/// [`Vary::value`] in machine integers when a, b, c, d fit in 32 bits and n, i in 31 (the
+/// usual grid, `0:1:100001`): the products then fit in `i128` and the reduction is one binary
+/// gcd of two `u128`, with the same reduced fraction as [`BigRational::new`] (denominator
+/// positive, gcd 1). `None` otherwise.
+fn small_value([a, b, c, d]: [&BigInt; 4], n: usize, i: usize) -> Option<BigRational> {
+    let small = |x: &BigInt| i32::try_from(x).ok().map(i128::from);
+    let (a, b, c, d) = (small(a)?, small(b)?, small(c)?, small(d)?);
+    let (n, i) = (
+        i128::from(i32::try_from(n).ok()?),
+        i128::from(i32::try_from(i).ok()?),
+    );
+    let numer = a * d * (n - i) + c * b * i;
+    let denom = b * d * n;
+    let g = binary_gcd(numer.unsigned_abs(), denom.unsigned_abs()) as i128;
+    Some(BigRational::new_raw(
+        BigInt::from(numer / g),
+        BigInt::from(denom / g),
+    ))
+}
+
+/// gcd(x, y) by Stein's binary algorithm; y > 0.
+fn binary_gcd(mut x: u128, mut y: u128) -> u128 {
+    if x == 0 {
+        return y;
+    }
+    let shift = (x | y).trailing_zeros();
+    x >>= x.trailing_zeros();
+    loop {
+        y >>= y.trailing_zeros();
+        if x > y {
+            std::mem::swap(&mut x, &mut y);
+        }
+        y -= x;
+        if y == 0 {
+            return x << shift;
+        }
     }
 }
 
@@ -190,6 +246,35 @@ mod tests {
         let e = Vary::parse("body.velocity[0]=-2:1e-1:2").unwrap();
         assert_eq!(e.start, q(-2, 1));
         assert_eq!(e.stop, q(1, 10));
+    }
+
+    /// The one-fraction form of [`Vary::value`] is start + (stop − start)·i/(count − 1).
+    #[test]
+    fn values_are_the_points_of_the_range() {
+        for spec in [
+            "k=0:1:101",
+            "k=1:0:7",
+            "k=1/3:0.7:13",
+            "k=-2/7:5/3:10",
+            "k=-1e-3:-4/9:6",
+            "k=1e-30:1/3:7",
+            "k=-2147483648:2147483647:5",
+            "k=1/2147483647:-7/3:100001",
+        ] {
+            let v = Vary::parse(spec).unwrap();
+            let n = BigRational::from_integer(BigInt::from(v.count - 1));
+            for i in (0..v.count + 2).filter(|i| v.count < 1000 || i % 997 < 3) {
+                let t = BigRational::from_integer(BigInt::from(i)) / &n;
+                let want = &v.start + (&v.stop - &v.start) * t;
+                // Equal as fractions written: reduced, the denominator positive.
+                let got = v.value(i);
+                assert_eq!(
+                    (got.numer(), got.denom()),
+                    (want.numer(), want.denom()),
+                    "{spec}: point {i}"
+                );
+            }
+        }
     }
 
     #[test]

@@ -120,13 +120,17 @@
 //!
 //! `axis` reads `--vary` and `--shard`; `plan` checks a sweep before anything is solved and
 //! gives the scene and the solve at each point, with `slot` setting varied numbers straight
-//! into the scene; `outputs` names the columns and the plotted series and builds a point's
-//! row; `stream` solves the points in chunks and writes them through `file`, which never
-//! leaves a file half-written; `plot` draws the SVG; `text` writes exact values.
+//! into the scene and `coefficients` setting coefficients of restitution straight into a
+//! problem prepared once; `outputs` names the columns and the plotted series and builds a
+//! point's row in `cells`, one buffer; `stream` solves the points in chunks and writes them
+//! through `file`, which never leaves a file half-written; `plot` draws the SVG; `text`
+//! writes exact values.
 
 mod answer;
 mod axis;
 mod batch;
+mod cells;
+mod coefficients;
 mod file;
 mod lzb;
 mod outputs;

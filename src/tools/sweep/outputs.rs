@@ -3,9 +3,11 @@
 
 use super::SweepError;
 use super::answer::Answer;
+use super::cells::Cells;
 use super::plan::Plan;
 use super::text::num;
 use crate::impact::friction::Restitution;
+use crate::impact::outputs::Outputs;
 use crate::impact::restitution::Model;
 use crate::impact::solve::SolveError;
 use crate::impact::unilateral::UnilateralError;
@@ -35,6 +37,15 @@ pub(super) fn output_names(contacts: usize, friction: bool, bodies: &[String]) -
         v.push("Ef".into());
     }
     v
+}
+
+/// What the solve computes for a sweep: the outputs its columns hold (impulses, the twist,
+/// E_p and ΔE_c), whatever the scene's `[solve] outputs` print. The tangent frames and the
+/// tangential inertances and velocities, which no column holds, were about a third of the
+/// assembly; an output asked for is bit for bit the one every output gives
+/// ([`crate::impact::outputs`]).
+pub(super) fn written_outputs() -> Outputs {
+    Outputs::IMPULSES | Outputs::TWIST | Outputs::ENERGIES
 }
 
 /// The laws a sweep solves and whether it integrates friction: a frictional sweep (some
@@ -81,7 +92,7 @@ pub(super) struct Series {
 /// One solved point.
 pub(super) struct Row {
     /// The CSV fields, in [`Plan::header`] order.
-    pub(super) fields: Vec<String>,
+    pub(super) fields: Cells,
     /// The first varied value, the plot's x.
     pub(super) x: f64,
     /// The index of the second varied value (0 for a 1-D sweep): which line of the plot.
@@ -407,14 +418,14 @@ impl Plan {
         };
         let report = solved.report.as_ref().ok();
         let keys = if self.sensitivity { self.vary.len() } else { 0 };
-        let mut fields = Vec::with_capacity(
+        let mut fields = Cells::with_capacity(
             2 + 2 * values.len() + (1 + keys) * self.models.len() * self.model_width(),
         );
-        fields.push(p.to_string());
+        fields.push_usize(p);
         for q in values {
-            fields.push(num(rational_to_f64(q)));
+            fields.push_f64(rational_to_f64(q));
             if self.exact {
-                fields.push(format_rational(q));
+                fields.push(&format_rational(q));
             }
         }
         let outputs: Vec<Option<Vec<Value>>> = self
@@ -424,14 +435,15 @@ impl Plan {
             .collect();
         for v in &outputs {
             match v {
-                None => fields.extend(std::iter::repeat_n(String::new(), self.model_width())),
+                None => fields.push_empty(self.model_width()),
                 Some(v) => {
-                    fields.extend(v.iter().map(|x| num(x.f64)));
+                    for x in v {
+                        fields.push_f64(x.f64);
+                    }
                     if self.exact {
-                        fields.extend(
-                            exact_outputs(self.contacts, self.bodies.len())
-                                .map(|k| v[k].exact.clone().unwrap_or_default()),
-                        );
+                        for k in exact_outputs(self.contacts, self.bodies.len()) {
+                            fields.push(v[k].exact.as_deref().unwrap_or_default());
+                        }
                     }
                 }
             }
@@ -447,14 +459,15 @@ impl Plan {
                     _ => None,
                 };
                 match &d {
-                    None => fields.extend(std::iter::repeat_n(String::new(), self.model_width())),
+                    None => fields.push_empty(self.model_width()),
                     Some(d) => {
-                        fields.extend(d.iter().map(|x| derivative_cell(x).0));
+                        for x in d {
+                            fields.push(&derivative_cell(x).0);
+                        }
                         if self.exact {
-                            fields.extend(
-                                exact_outputs(self.contacts, self.bodies.len())
-                                    .map(|k| derivative_exact(&d[k])),
-                            );
+                            for k in exact_outputs(self.contacts, self.bodies.len()) {
+                                fields.push(&derivative_exact(&d[k]));
+                            }
                         }
                     }
                 }
@@ -462,7 +475,7 @@ impl Plan {
             }
             slopes.push(per_model);
         }
-        fields.push(status.clone());
+        fields.push(&status);
         let ys = self
             .series
             .iter()

@@ -7,7 +7,8 @@ use num_rational::BigRational;
 use toml_edit::DocumentMut;
 
 use super::answer::{Answer, body_names};
-use super::outputs::{Series, point_status, resolve_outputs, sweep_laws};
+use super::coefficients::Coefficients;
+use super::outputs::{Series, point_status, resolve_outputs, sweep_laws, written_outputs};
 use super::slot::Slot;
 use super::target::{SEED, Target};
 use super::text::text;
@@ -44,6 +45,9 @@ pub(super) struct Plan {
     /// can be set directly (see [`Slot`]); otherwise each point re-reads the document.
     base: Scene,
     slots: Option<Vec<Slot>>,
+    /// The problem prepared once, when every varied number is a coefficient of restitution
+    /// and no derivative is asked for ([`Coefficients`]).
+    coefficients: Option<Coefficients>,
     /// The varied inputs, outer first.
     pub(super) vary: Vec<Vary>,
     /// Whether points are solved in exact rationals.
@@ -107,12 +111,13 @@ impl Plan {
             &base,
             targets.iter().any(|t| t.param),
         );
-        let plan = Plan {
+        let mut plan = Plan {
             file,
             name: base.name.clone(),
             doc,
             base,
             slots,
+            coefficients: None,
             vary: opts.vary.clone(),
             exact: opts.exact,
             models,
@@ -125,8 +130,17 @@ impl Plan {
             sensitivity: opts.sensitivity,
             targets,
         };
+        plan.coefficients = plan.prepare_coefficients();
         plan.solve_corners()?;
         Ok(plan)
+    }
+
+    /// The problem prepared once for a sweep over coefficients of restitution (without
+    /// `--sensitivity`, whose dual runs read the scene), from the scene at the first point.
+    fn prepare_coefficients(&self) -> Option<Coefficients> {
+        let slots = self.slots.as_ref().filter(|_| !self.sensitivity)?;
+        let scene = self.scene_at(&self.values(0)).ok()?;
+        Coefficients::new(scene, slots, self.exact)
     }
 
     /// Solve the grid's corners once: irrational numbers in exact mode, constraints and
@@ -204,10 +218,12 @@ impl Plan {
         let mut s =
             Scene::from_document_seeded(&doc, &self.file, &[], SEED).map_err(|e| e.to_string())?;
         s.law = scene.law;
+        s.outputs = scene.outputs;
         Ok(s)
     }
 
-    /// The scene at the varied values (under `--law`, when given).
+    /// The scene at the varied values (under `--law`, when given), asking the solve for the
+    /// outputs the CSV writes only ([`written_outputs`]).
     fn scene_at(&self, values: &[BigRational]) -> Result<Scene, String> {
         let mut scene = match &self.slots {
             Some(slots) => {
@@ -223,6 +239,7 @@ impl Plan {
         if let Some(law) = self.law {
             scene.law = law;
         }
+        scene.outputs = written_outputs();
         Ok(scene)
     }
 
@@ -232,6 +249,13 @@ impl Plan {
     pub(super) fn solve(&self, p: usize) -> Result<Solved, SweepError> {
         let values = self.values(p);
         let fail = |message: String| self.point_error(p, &values, message);
+        if let Some(answer) = self.coefficients.as_ref().and_then(|c| c.solve(&values)) {
+            return Ok(Solved {
+                values,
+                report: Ok(answer),
+                derivatives: Vec::new(),
+            });
+        }
         let scene = self.scene_at(&values).map_err(fail)?;
         let solved = if self.exact {
             Answer::solve::<Exact>(&scene)

@@ -3,9 +3,12 @@
 //! more than the solve.
 
 use num_rational::BigRational;
+use num_traits::Zero;
 
 use super::text::text;
+use crate::mechanics::contact::Contact;
 use crate::number::{Number, rational_to_f64};
+use crate::scalar::Scalar;
 use crate::scene::Scene;
 
 /// A varied number that can be set in a validated [`Scene`] directly, without re-reading the
@@ -88,6 +91,48 @@ impl Slot {
             self,
             Slot::K(_) | Slot::KNewton(_) | Slot::KPoisson(_) | Slot::Mu(_)
         )
+    }
+
+    /// Whether the number is a coefficient of restitution (`k`, `k_newton`, `k_poisson`): a
+    /// dimensionless number that the scaling of [`crate::scene::scale`] neither changes nor
+    /// reads and that the solve reads from one contact only, so a problem prepared once can
+    /// take it directly ([`super::coefficients`]).
+    pub(super) fn restitution(self) -> bool {
+        matches!(self, Slot::K(_) | Slot::KNewton(_) | Slot::KPoisson(_))
+    }
+
+    /// Set a coefficient of restitution to q in a prepared problem's `contacts`, as
+    /// [`Scene::contact`] reads it from the scene with [`Slot::set`] applied: Stronge's k_E
+    /// follows k_P where the scene does not write `k_energetic`. Other slots are left alone
+    /// ([`Slot::restitution`] says which are set). `None` where the reader refuses q: a
+    /// nonzero q that `T` rounds to zero (below 2⁻¹⁰⁷⁴ in f64) is out of its range, not 0.
+    pub(super) fn set_restitution<T: Scalar>(
+        self,
+        contacts: &mut [Contact<T>],
+        scene: &Scene,
+        q: &BigRational,
+    ) -> Option<()> {
+        let (c, newton, poisson) = match self {
+            Slot::K(c) => (c, true, true),
+            Slot::KNewton(c) => (c, true, false),
+            Slot::KPoisson(c) => (c, false, true),
+            _ => return Some(()),
+        };
+        let x = T::from_rational(q);
+        if !q.is_zero() && (x.is_zero() || !x.is_finite()) {
+            return None;
+        }
+        let contact = &mut contacts[c];
+        if poisson && scene.contacts[c].k_energetic.is_none() {
+            contact.k_energetic = x.clone();
+        }
+        if poisson {
+            contact.k_poisson = x.clone();
+        }
+        if newton {
+            contact.k_newton = x;
+        }
+        Some(())
     }
 
     /// Set the number to q, as [`set_value`] and [`Scene::from_document`] would.

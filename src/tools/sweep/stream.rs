@@ -79,7 +79,9 @@ impl Plan {
                 })
                 .collect::<Result<Vec<Row>, SweepError>>()?;
             for row in rows {
-                writer.write_record(&row.fields).map_err(|e| io_err(&e))?;
+                writer
+                    .write_record(row.fields.iter())
+                    .map_err(|e| io_err(&e))?;
                 singular += usize::from(row.singular);
                 for (s, y) in row.ys.iter().enumerate() {
                     plotted.series[s].push((row.j, row.x, *y));
