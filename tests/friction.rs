@@ -5,7 +5,9 @@
 mod common;
 
 use common::SceneFile;
-use inertance::impact::friction::{FrictionError, Phase, Restitution, Verdict, solve_frictional};
+use inertance::impact::friction::{
+    FrictionError, ModeLabel, Phase, Restitution, Verdict, solve_frictional,
+};
 use inertance::impact::problem::Problem;
 use inertance::impact::restitution::Model;
 use inertance::impact::solve::{Impact, Outcome};
@@ -55,17 +57,41 @@ fn mu_zero_reproduces_example_3_and_flags_the_negative_restitution_rate() {
 }
 
 #[test]
-fn newton_with_mu_1_has_no_consistent_stick_slip_assignment() {
+fn newton_with_mu_1_frees_the_pulling_contact_of_friction() {
     // Both contacts stick from s = 2/3; at s = 1 Newton asks A₂ for a negative rate, which no
-    // cone holds and neither sense of slip is consistent with (derivations/friction-example-3.md).
-    let err = solve_frictional(&example_3::<Exact>(int(1)), Restitution::Newton, 0.0).unwrap_err();
+    // cone holds and neither sense of slip is consistent with: A₂ carries no friction while
+    // it pulls, A₁ sticks with no tangential rate (nothing drives v_Cy), and the impulses are
+    // the frictionless ones with the tangential impulses of s = 2/3
+    // (derivations/friction-example-3.md, "μ = 1 under Newton").
+    let out = solve_frictional(&example_3::<Exact>(int(1)), Restitution::Newton, 0.0).unwrap();
     assert_eq!(
-        err,
-        FrictionError::NoConsistentModes {
-            s: 1.0,
-            phase: Phase::Restitution
-        }
+        out.impulses,
+        // Λ = (p₁, τ₁, p₂, τ₂): the impulse on the body is −τ along the tangent
+        vec![ratio(329, 90), ratio(28, 15), ratio(89, 450), ratio(2, 15)]
     );
+    assert_eq!(
+        out.velocity.as_slice(),
+        &[
+            int(0),
+            int(0),
+            ratio(-43, 300),
+            ratio(-64, 75),
+            int(0),
+            int(0)
+        ][..]
+    );
+    assert_eq!(out.friction_dissipation, int(2));
+    assert_eq!(out.kinetic_energy_loss, ratio(313769, 45000));
+    assert!(out.energy_residual.is_zero());
+    assert_eq!(
+        out.history(1),
+        vec![ModeLabel::SlidePlus, ModeLabel::Stick, ModeLabel::Free]
+    );
+    assert!(out.verdicts.contains(&Verdict::TensileRate {
+        contact: 1,
+        s: 1.0,
+        phase: Phase::Restitution
+    }));
 }
 
 #[test]
@@ -230,15 +256,21 @@ fn the_cli_reports_modes_events_and_verdicts() {
     );
     // The split of the shared tangential impulse is a verdict, said on stderr too.
     assert!(String::from_utf8_lossy(&out.stderr).contains("split shown is one member"));
-    // Newton has no continuation: a verdict, exit 3, nothing on stdout.
+    // Under Newton A₂ pulls from s = 1 and carries no friction then: the answer, with the
+    // verdict on stderr and A₂'s modes ending free.
     let newton = SceneFile::new(
         "friction-cli-newton",
         &ROUGH_BAR.replace("poisson", "newton"),
     );
     let out = newton.run(&["solve", "--exact"]);
-    assert_eq!(out.status.code(), Some(3));
-    assert!(out.stdout.is_empty());
-    assert!(String::from_utf8_lossy(&out.stderr).contains("no assignment of stick and slip"));
+    assert_eq!(out.status.code(), Some(0));
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(stdout.contains("P = 329/90"), "{stdout}");
+    assert!(stdout.contains("modes slide+ → stick → free"), "{stdout}");
+    assert!(
+        String::from_utf8_lossy(&out.stderr)
+            .contains("contact 2: negative normal impulse rate from s = 1 (restitution)")
+    );
 }
 
 #[test]
@@ -302,14 +334,14 @@ fn a_sweep_of_mu_integrates_every_point_and_says_which_have_no_answer() {
     let rows: Vec<Vec<&str>> = text.lines().map(|l| l.split(',').collect()).collect();
     let col = |name: &str| rows[0].iter().position(|h| *h == name).unwrap();
     // Friction along the bar leaves the normal impulses at the paper's values (P₁ = 91/25
-    // under Poisson) wherever the law has an answer; Newton with μ₁ = 1 has none once A₂
-    // sticks (derivations/friction-example-3.md), so its columns are empty and status says so.
+    // under Poisson, 329/90 under Newton); with μ₁ = 1 Newton's A₂ pulls from s = 1 and is
+    // freed of friction there (derivations/friction-example-3.md): status says it pulls.
     for r in &rows[1..] {
         assert_eq!(r[col("poisson_P1_exact")], "91/25");
+        assert_eq!(r[col("newton_P1_exact")], "329/90");
     }
     assert_eq!(rows[1][col("contact[1].mu_exact")], "0");
-    assert!(rows[5][col("newton_P1")].is_empty());
-    assert!(rows[5][col("status")].contains("no-continuation"));
+    assert!(rows[5][col("status")].contains("tensile"), "{:?}", rows[5]);
     assert!(!rows[1][col("poisson_Ef")].is_empty());
 }
 

@@ -150,7 +150,7 @@ mu = 1
 
 def test_friction_readout_per_law(tmp_path):
     # derivations/friction-example-3.md: under Poisson the slip stops at s = 2/3 and both
-    # contacts stick; Newton has no consistent continuation at s = 1.
+    # contacts stick; under Newton A₂ pulls from s = 1 and carries no friction then.
     r = inertance.solve(ROUGH, exact=True)
     assert r.effects == ["friction", "newton", "poisson"]
     p = r.friction["poisson"]
@@ -158,7 +158,10 @@ def test_friction_readout_per_law(tmp_path):
     assert p["contacts"][0]["modes"] == ["slide+", "stick"]
     assert p["contacts"][0]["tangential_impulse"][1] == Fraction(-28, 15)
     assert p["friction_dissipation"] == 2
-    assert r.friction["newton"]["status"] == "no-continuation"
+    n = r.friction["newton"]
+    assert n["contacts"][1]["modes"] == ["slide+", "stick", "free"]
+    assert n["kinetic_energy_loss"] == Fraction(313769, 45000)
+    assert any("contact 2: negative normal impulse rate" in v for v in n["verdicts"])
     path = tmp_path / "rough.toml"
     path.write_text(ROUGH)
     assert r.to_json()["friction"] == cli_json("solve", path, "--exact")["friction"]

@@ -40,6 +40,9 @@ struct State<T: Scalar> {
     /// g_i = v_i^path(s) − v_ix per contact (unilateral law; continuous at s = 1, where every
     /// path is at v_ix = 0).
     gap: Vec<T>,
+    /// Per contact, under the simultaneous hypothesis: held on its path by a pull at zero slip,
+    /// freed of friction ([`resolve_simultaneous`]).
+    pulling: Vec<bool>,
 }
 
 /// Solve a planar scene under `law` and `hypothesis`, event by event.
@@ -72,6 +75,7 @@ pub fn solve_planar<T: Scalar, S: Screws<T>, M: Mechanism<T, Screw = S>>(
         work_restitution: vec![T::zero(); n],
         friction_work: T::zero(),
         gap: vec![T::zero(); n],
+        pulling: vec![false; n],
     };
     let mut segments = Vec::new();
     let mut verdicts = Vec::new();
@@ -258,19 +262,77 @@ pub fn solve_planar<T: Scalar, S: Screws<T>, M: Mechanism<T, Screw = S>>(
     Ok(out)
 }
 
-/// The simultaneous law's modes at an event, set in `st.modes`: every normal rule as the phase
-/// prescribes it; slip keeps its sense, zero slip is resolved jointly. The rates are left in
-/// `work.chosen`; returns how many distinct rates were consistent.
+/// The simultaneous law's modes at an event: contacts at zero slip stick or slide jointly
+/// ([`resolve_planar_with`]), the others slide in the sense of their slip. A contact at zero
+/// slip that its path makes pull has no Coulomb assignment (no cone to stick in; a slide's
+/// friction μ p' u would act along the slip): where no assignment is consistent, the first
+/// such contact (in order) whose freeing of friction leaves a consistent assignment in which
+/// it still pulls carries no friction while it pulls — checked at every event, the rates being
+/// constant between events (the spatial integrator's rule, [`super::spatial`]).
 fn resolve_simultaneous<T: Scalar, S: Screws<T>>(
     b: &Blocks<T, S>,
     normals: &[Normal<T>],
     st: &mut State<T>,
     work: &mut Work<T>,
 ) -> Result<usize, FrictionError> {
+    let n = b.contacts();
+    let pulls = |i: usize, work: &Work<T>| work.chosen.lambda[b.offset[i]].signum_i8() < 0;
+    let mut pulling = st.pulling.clone();
+    for _ in 0..=n {
+        let (found, candidates) = assign_simultaneous(b, normals, st, &pulling, work)?;
+        match found {
+            Ok(count) => {
+                // a contact freed that no longer pulls takes Coulomb's law again
+                if let Some(i) = (0..n).find(|&i| pulling[i] && !pulls(i, work)) {
+                    pulling[i] = false;
+                    continue;
+                }
+                st.pulling = pulling;
+                return Ok(count);
+            }
+            Err(e) => {
+                for &i in &candidates {
+                    if !matches!(normals[i], Normal::Driven(_)) {
+                        continue;
+                    }
+                    let mut trial = pulling.clone();
+                    trial[i] = true;
+                    let (found, _) = assign_simultaneous(b, normals, st, &trial, work)?;
+                    if let Ok(count) = found
+                        && (0..n).all(|j| !trial[j] || pulls(j, work))
+                    {
+                        st.pulling = trial;
+                        return Ok(count);
+                    }
+                }
+                // leave the modes as the failed search left them
+                let _ = assign_simultaneous(b, normals, st, &pulling, work)?;
+                return Err(no_modes(e, st));
+            }
+        }
+    }
+    Err(no_modes(
+        NoConsistentModes {
+            undetermined: false,
+        },
+        st,
+    ))
+}
+
+/// One search of [`resolve_simultaneous`] with the contacts `pulling` freed: the search's
+/// result and the contacts at zero slip it chose modes for.
+#[allow(clippy::type_complexity)]
+fn assign_simultaneous<T: Scalar, S: Screws<T>>(
+    b: &Blocks<T, S>,
+    normals: &[Normal<T>],
+    st: &mut State<T>,
+    pulling: &[bool],
+    work: &mut Work<T>,
+) -> Result<(Result<usize, NoConsistentModes>, Vec<usize>), FrictionError> {
     let mut candidates = Vec::new();
     for i in 0..b.contacts() {
         let off = b.offset[i];
-        if b.dims[i] == 0 || !carries(&normals[i]) {
+        if b.dims[i] == 0 || !carries(&normals[i]) || pulling[i] {
             st.modes[i] = Mode::Free;
         } else if st.v[off + 1].is_zero() {
             candidates.push(i);
@@ -291,7 +353,8 @@ fn resolve_simultaneous<T: Scalar, S: Screws<T>>(
             contacts: candidates.len(),
         });
     }
-    resolve_planar_with(b, normals, &mut st.modes, &candidates, work).map_err(|e| no_modes(e, st))
+    let found = resolve_planar_with(b, normals, &mut st.modes, &candidates, work);
+    Ok((found, candidates))
 }
 
 /// The unilateral law's rules and modes at an event: every contact on its path is driven or

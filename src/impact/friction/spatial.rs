@@ -1429,7 +1429,8 @@ fn resolve<T: Scalar, S: Screws<T>>(
 }
 
 /// Which frictional contacts at zero slip the simultaneous hypothesis holds on their paths by a
-/// pull ([`State::pulling`]): with every contact at zero slip sticking and every other sliding
+/// pull ([`State::pulling`]): a contact freed before stays free while, free, it still pulls;
+/// then, with every contact at zero slip sticking and every other sliding
 /// along its slip, the one whose normal rate is the most negative beyond the tolerance is
 /// freed of friction — if it still pulls once free (else the pull is friction's own doing, as
 /// in a slide whose friction drives the contact into the surface, and the contact is left to
@@ -1444,10 +1445,10 @@ fn find_pulling<T: Scalar, S: Screws<T>>(
 ) {
     let b = run.b;
     let n = run.n();
-    st.pulling.fill(false);
+    let was = std::mem::replace(&mut st.pulling, vec![false; n]);
     let slack = -run.tol * run.lambda_scale;
     let at_zero_slip: Vec<bool> = (0..n)
-        .map(|i| run.slip(v, &st.origin, i).1 <= run.delta)
+        .map(|i| b.dims[i] > 0 && run.slip(v, &st.origin, i).1 <= run.delta)
         .collect();
     let rates_now = |pulling: &[bool]| {
         let modes: Vec<Mode<T>> = (0..n)
@@ -1463,6 +1464,15 @@ fn find_pulling<T: Scalar, S: Screws<T>>(
             .collect();
         rates(b, normals, &modes).ok().map(|r| (modes, r))
     };
+    // A contact freed before stays free while it still pulls so.
+    st.pulling.clone_from(&was);
+    for i in 0..n {
+        if was[i]
+            && !rates_now(&st.pulling).is_some_and(|(_, r)| r.lambda[b.offset[i]].to_f64() < slack)
+        {
+            st.pulling[i] = false;
+        }
+    }
     for _ in 0..n {
         let Some((modes, r)) = rates_now(&st.pulling) else {
             return;

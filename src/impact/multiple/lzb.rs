@@ -89,8 +89,16 @@
 //! slip that stopped is reported as [`EventKind::Sticks`] or [`EventKind::Reverses`], a stick
 //! that left its cone as [`EventKind::SlipStarts`]. With one contact the path in P does not
 //! depend on K or η, and LZB is Stronge's energetic law with friction (`tests/lzb_friction.rs`,
-//! `derivations/lzb.md`). Not handled: several spatial contacts that must leave zero slip
-//! together (their directions are found one at a time): [`LzbError::NoConsistentModes`].
+//! `derivations/lzb.md`). Several spatial contacts that must leave zero slip together (the
+//! search finds their directions one at a time), and slips stopping at their cones' edges
+//! (where a consistent assignment is marginal and rounding decides what the search sees),
+//! take their modes from Tresca's problem instead: every normal rate here is given, so
+//! Coulomb's law at the contacts at zero slip is the minimum of a convex function, which always
+//! exists ([`tresca_modes`]). Sticking contacts whose tangential split is not unique stay stuck
+//! while Tresca's minimiser keeps them so (a member of the family lies in every cone), whatever
+//! the member the rates took; a stick leaves its cone by more than tol relative to the
+//! impact's largest rate. [`LzbError::NoConsistentModes`] remains where neither finds modes
+//! with rates.
 //!
 //! **Error estimate.** The sum over accepted steps of the largest embedded error estimate of
 //! an impulse (N s). It bounds the difference of the fourth- and fifth-order solutions, not
