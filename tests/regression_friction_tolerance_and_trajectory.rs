@@ -410,33 +410,30 @@ fn no_trajectory_is_written_when_it_cannot_be_whole() {
         err.contains("missing/p.csv") && err.contains("cannot write"),
         "{err}"
     );
-    // No answer (status 3): Example 3 with μ = 1 under Newton has no consistent modes at s = 1
-    // (derivations/friction-example-3.md).
+    // No answer (status 3): Painlevé's rod under the unilateral law — sliding, friction asks
+    // the floor for a pull (μ K_nt < −K_nn along the slip) and no rule continues
+    // (tests/unilateral_friction.rs). (Example 3 with μ = 1 under Newton served here until
+    // 2026-11-28, when its pulling contact was freed of friction and it got an answer.)
     let none = SceneFile::new(
         "traj-none",
         r#"[body]
 mass = 1
-inertia = [12, "8/5", 12]
-velocity = [3, 2, 0]
-angular_velocity = [0, 0, "2/5"]
+inertia = ["3/10", "3/10", "3/10"]
+velocity = ["1/2", -1, 0]
+angular_velocity = [0, 0, 0]
 [[contact]]
-point = [0, -2, 0]
-normal = [1, 0, 0]
-tangent = [0, 1, 0]
-k = 0.3
-mu = 1
-[[contact]]
-point = [0, 4, 0]
-normal = [1, 0, 0]
-tangent = [0, 1, 0]
-k = 0.2
-mu = 1
+point = ["3/5", "-4/5", 0]
+normal = [0, -1, 0]
+k = 0.5
+mu = 2
 [solve]
-restitution = "newton"
+restitution = "energetic"
 "#,
     );
     let out = none.run(&[
         "solve",
+        "--law",
+        "unilateral",
         "--trajectory",
         none.dir().join("p.csv").to_str().unwrap(),
     ]);

@@ -2,6 +2,7 @@
 //! slice of the grid an array job solves (`--shard I/N`, [`Shard`]).
 
 use num_bigint::BigInt;
+use num_integer::Integer;
 use num_rational::BigRational;
 
 use super::SweepError;
@@ -127,30 +128,12 @@ fn small_value([a, b, c, d]: [&BigInt; 4], n: usize, i: usize) -> Option<BigRati
     );
     let numer = a * d * (n - i) + c * b * i;
     let denom = b * d * n;
-    let g = binary_gcd(numer.unsigned_abs(), denom.unsigned_abs()) as i128;
+    // num-integer's gcd of machine integers is Stein's binary algorithm
+    let g = numer.unsigned_abs().gcd(&denom.unsigned_abs()) as i128;
     Some(BigRational::new_raw(
         BigInt::from(numer / g),
         BigInt::from(denom / g),
     ))
-}
-
-/// gcd(x, y) by Stein's binary algorithm; y > 0.
-fn binary_gcd(mut x: u128, mut y: u128) -> u128 {
-    if x == 0 {
-        return y;
-    }
-    let shift = (x | y).trailing_zeros();
-    x >>= x.trailing_zeros();
-    loop {
-        y >>= y.trailing_zeros();
-        if x > y {
-            std::mem::swap(&mut x, &mut y);
-        }
-        y -= x;
-        if y == 0 {
-            return x << shift;
-        }
-    }
 }
 
 /// A slice of a sweep, `I/N` with 1 ≤ I ≤ N: 1-based, as Slurm's `--array=1-N` indices

@@ -58,40 +58,31 @@ mod tests {
     use super::super::text::num;
     use super::*;
 
+    /// Zeros of both signs, decimals, the edges of the exponent range, subnormals.
+    const FLOATS: [f64; 8] = [
+        0.0,
+        -0.0,
+        0.1,
+        1e-7,
+        1e16,
+        123456789012.5,
+        f64::MIN_POSITIVE,
+        5e-324,
+    ];
+
     #[test]
     fn fields_read_back_as_written() {
         let mut c = Cells::with_capacity(2);
         c.push_usize(17);
         c.push_empty(2);
-        for x in [
-            0.0,
-            -0.0,
-            0.1,
-            1e-7,
-            1e16,
-            123456789012.5,
-            f64::MIN_POSITIVE,
-            5e-324,
-        ] {
+        for x in FLOATS {
             c.push_f64(x);
         }
         c.push("1/3");
         c.push("");
         c.push("ok");
         let mut want = vec!["17".to_string(), String::new(), String::new()];
-        want.extend(
-            [
-                0.0,
-                -0.0,
-                0.1,
-                1e-7,
-                1e16,
-                123456789012.5,
-                f64::MIN_POSITIVE,
-                5e-324,
-            ]
-            .map(num),
-        );
+        want.extend(FLOATS.map(num));
         want.extend(["1/3".to_string(), String::new(), "ok".to_string()]);
         assert_eq!(c.iter().collect::<Vec<_>>(), want);
     }
