@@ -31,6 +31,7 @@
 //! §5.3); floats only (a disc's rim is a square root).
 
 use crate::impact::friction::blocks::Blocks;
+use crate::impact::friction::departure::norm;
 use crate::impact::friction::rates::{Mode, Normal};
 use crate::mechanics::screw::Screws;
 use crate::scalar::Real;
@@ -42,8 +43,8 @@ const SWEEPS: usize = 20_000;
 /// The modes of the contacts `at_zero_slip` under Tresca's law (module docs), every other
 /// contact keeping its mode in `modes`: stick where the minimiser's slip rate is within
 /// `tol` (relative to the largest slip rate the known rates or the friction cause) of zero,
-/// else a slide along the minimiser's τ'_i. `None` when a normal rate is not given, or a
-/// contact not at zero slip sticks.
+/// else a slide along the minimiser's τ'_i. `None` when a normal rate is not given, a
+/// contact not at zero slip sticks, or the minimiser is not finite.
 pub fn tresca_modes<T: Real, S: Screws<T>>(
     b: &Blocks<T, S>,
     normals: &[Normal<T>],
@@ -132,6 +133,9 @@ pub fn tresca_modes<T: Real, S: Screws<T>>(
     let slip: Vec<f64> = (0..axes.len())
         .map(|x| a[x] - (0..axes.len()).map(|y| m(x, y) * tau[y]).sum::<f64>())
         .collect();
+    if !tau.iter().chain(&slip).all(|x| x.is_finite()) {
+        return None;
+    }
     let scale = a
         .iter()
         .chain(slip.iter())
@@ -151,10 +155,6 @@ pub fn tresca_modes<T: Real, S: Screws<T>>(
         };
     }
     Some(out)
-}
-
-fn norm(x: &[f64]) -> f64 {
-    x.iter().map(|v| v * v).sum::<f64>().sqrt()
 }
 
 /// The minimiser of ½ τᵀ B τ − cᵀ τ over |τ| ≤ r, B symmetric positive semidefinite, in one
