@@ -191,12 +191,35 @@ pub fn solve_general_in<T: Scalar>(
     {
         return false;
     }
+    fill_particular(cols, b, pivots, particular);
+    true
+}
+
+/// [`solve_general_in`] for a system consistent by construction (a principal submatrix of a
+/// positive semidefinite matrix against a right-hand side in its range): the rows the
+/// elimination leaves below its pivots hold rounding, not a contradiction, and are not
+/// tested — in floats a nearly singular system leaves them above the backward-error bound
+/// that [`solve_general_in`] tests, by its conditioning. The particular solution is the same.
+pub fn solve_consistent_in<T: Scalar>(
+    a: &mut [T],
+    rows: usize,
+    cols: usize,
+    b: &mut [T],
+    pivots: &mut Vec<usize>,
+    particular: &mut Vec<T>,
+) {
+    rref_in(a, rows, cols, b, 1, pivots);
+    fill_particular(cols, b, pivots, particular);
+}
+
+/// The particular solution of a reduced system: each pivot column's right-hand side, the free
+/// columns zero.
+fn fill_particular<T: Scalar>(cols: usize, b: &[T], pivots: &[usize], particular: &mut Vec<T>) {
     particular.clear();
     particular.resize(cols, T::zero());
     for (k, &pc) in pivots.iter().enumerate() {
         particular[pc] = b[k].clone();
     }
-    true
 }
 
 #[cfg(test)]

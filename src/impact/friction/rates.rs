@@ -36,7 +36,7 @@
 
 use crate::impact::friction::blocks::Blocks;
 use crate::impact::friction::departure::dot;
-use crate::linalg::gauss::{basis, null_space, solve_general_in};
+use crate::linalg::gauss::{basis, null_space, solve_consistent_in, solve_general_in};
 use crate::mechanics::contact::Contact;
 use crate::mechanics::screw::Screws;
 use crate::scalar::Scalar;
@@ -385,7 +385,17 @@ pub fn rates_with<T: Scalar, S: Screws<T>>(
         }
         rhs.push(t);
     }
-    if !solve_general_in(a, m, m, rhs, pivots, particular) {
+    // With every unknown a stick's (every normal rate given), the matrix is K_SS, a principal
+    // submatrix of the positive semidefinite K = J M⁻¹ Jᵀ, and the right-hand side
+    // −K_S,known Λ'_known = −J_S M⁻¹ J_knownᵀ Λ'_known lies in its range (that of J_S M⁻¹ J_Sᵀ,
+    // M positive definite): the system is consistent, and a family of its solutions moves
+    // no body (K_SS w = 0 gives wᵀ K_SS w = |M^(-1/2) J_Sᵀ w|² = 0). What a nearly singular
+    // elimination says otherwise in floats (a face flat on the floor to the events'
+    // tolerance) is its rounding.
+    let only_sticks = columns.iter().all(|(u, _)| matches!(u, Unknown::Stick(_)));
+    if only_sticks {
+        solve_consistent_in(a, m, m, rhs, pivots, particular);
+    } else if !solve_general_in(a, m, m, rhs, pivots, particular) {
         return Err(RateFailure::Inconsistent);
     }
     let expand = |z: &[T], into: &mut Vec<T>| {
@@ -406,6 +416,8 @@ pub fn rates_with<T: Scalar, S: Screws<T>>(
         // Per null direction, the twist change it makes (columns of `moves`, len × k).
         let k = null.len();
         let mut moves = vec![T::zero(); len * k];
+        // Only sticks: no member moves the body (above), whatever the rounding of the
+        // computed null directions says.
         let mut moving = false;
         for (col, w) in null.iter().enumerate() {
             let touches_normal = columns
@@ -418,7 +430,7 @@ pub fn rates_with<T: Scalar, S: Screws<T>>(
             let mut moved = Vec::new();
             b.velocity_change(&dir, &mut moved);
             let scale = max_abs(&b.k) * max_abs(&dir);
-            if moved.iter().any(|x| !x.is_negligible(&scale, len)) {
+            if !only_sticks && moved.iter().any(|x| !x.is_negligible(&scale, len)) {
                 moving = true;
             }
             for (q, x) in moved.into_iter().enumerate() {

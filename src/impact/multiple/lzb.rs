@@ -346,6 +346,20 @@ pub enum LzbError {
     },
 }
 
+impl LzbError {
+    /// The error located at `tau` where the rates it came from did not know where they were
+    /// evaluated (inside a step: the step's start).
+    fn at(self, tau: f64) -> Self {
+        match self {
+            LzbError::NoConsistentModes { tau: t } if t.is_nan() => {
+                LzbError::NoConsistentModes { tau }
+            }
+            LzbError::Undetermined { tau: t } if t.is_nan() => LzbError::Undetermined { tau },
+            e => e,
+        }
+    }
+}
+
 /// The outcome of an impact under the LZB law. `S` is the mechanism's screw space, `T` the
 /// float type the law was integrated in (`f64` or double-double, [`Real`]); the values of the
 /// outcome are in `T`, the path's samples, the events and the error estimate in `f64`.
@@ -729,7 +743,7 @@ impl<'a, T: Real, S: Screws<T>> Run<'a, T, S> {
                 Mode::Slide(u) if self.spatial(i) => {
                     let s = self.slip(v, &regime.origin, i);
                     let rho = norm(&s);
-                    if rho.to_f64() > self.lock {
+                    if rho.to_f64() > STOP_ZONE * self.lock {
                         Mode::Slide(s.iter().map(|x| *x / rho).collect())
                     } else {
                         Mode::Slide(u.clone())
@@ -937,7 +951,7 @@ impl<'a, T: Real, S: Screws<T>> Run<'a, T, S> {
             }
             let (x, z) = (f[0] - along * u[0], f[1] - along * u[1]);
             let turn = (x * x + z * z).sqrt() / rho;
-            if turn > 0.0 {
+            if turn > 0.0 && rho > STOP_ZONE * self.lock {
                 cap = cap.min(QUARTER / turn);
             }
         }
@@ -956,7 +970,9 @@ impl<'a, T: Real, S: Screws<T>> Run<'a, T, S> {
                 self.slip(&vn, &regime.origin, i),
             );
             let (ra, rb) = (norm(&a).to_f64(), norm(&b).to_f64());
-            ra > self.lock && rb > self.lock && dot(&a, &b).to_f64() < (QUARTER.cos()) * ra * rb
+            ra > STOP_ZONE * self.lock
+                && rb > STOP_ZONE * self.lock
+                && dot(&a, &b).to_f64() < (QUARTER.cos()) * ra * rb
         })
     }
 
@@ -1283,7 +1299,9 @@ impl<'a, T: Real, S: Screws<T>> Run<'a, T, S> {
         let mut h = self.h0;
         while regime.phases.iter().any(|p| *p != Phase::Rest) {
             let steps = path.stats.accepted + path.stats.rejected;
-            let cap = self.slip_cap(&y, &regime)?;
+            let cap = self
+                .slip_cap(&y, &regime)
+                .map_err(|e| e.at(path.tau.to_f64()))?;
             if cap < h.to_f64() {
                 h = T::of(cap);
             }
@@ -1293,7 +1311,9 @@ impl<'a, T: Real, S: Screws<T>> Run<'a, T, S> {
                     events: path.stats.events,
                 });
             }
-            let (yn, err) = self.step(&y, h, &regime)?;
+            let (yn, err) = self
+                .step(&y, h, &regime)
+                .map_err(|e| e.at(path.tau.to_f64()))?;
             let ratio = self.error_ratio(&y, &yn, &err);
             if !ratio.is_finite() || ratio > 1.0 || self.turned(&y, &yn, &regime) {
                 path.stats.rejected += 1;
@@ -1306,12 +1326,19 @@ impl<'a, T: Real, S: Screws<T>> Run<'a, T, S> {
                 });
                 continue;
             }
-            let (taken, yn, err) = if self.crossings(&y, &yn, &regime, primary)?.is_empty() {
+            let (taken, yn, err) = if self
+                .crossings(&y, &yn, &regime, primary)
+                .map_err(|e| e.at(path.tau.to_f64()))?
+                .is_empty()
+            {
                 (h, yn, err)
             } else {
-                self.locate(&y, h, yn, err, &regime, primary)?
+                self.locate(&y, h, yn, err, &regime, primary)
+                    .map_err(|e| e.at(path.tau.to_f64()))?
             };
-            let found = self.crossings(&y, &yn, &regime, primary)?;
+            let found = self
+                .crossings(&y, &yn, &regime, primary)
+                .map_err(|e| e.at(path.tau.to_f64()))?;
             path.stats.accepted += 1;
             path.tau += taken;
             path.estimate += err[..len]
