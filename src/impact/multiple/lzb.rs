@@ -80,7 +80,10 @@
 //! Friction adds three events: a planar slip that crosses zero (bisected); a spatial slip that
 //! slows within 1024 lock speeds (16 tol max|v⁰| each) of zero, its steps capped at a turn
 //! of a quarter radian and nine tenths of the predicted time to zero slip (its direction turns
-//! ever faster there: Bhatt and Koechling's singular point); and a sticking contact whose
+//! ever faster there: Bhatt and Koechling's singular point) — within that zone a slip that
+//! does not slow keeps the direction it had on entering it or was started along (a slide
+//! started at a cone's edge grows at the rates' rounding, and followed its noise-level slip
+//! round and round at ever shorter steps); and a sticking contact whose
 //! required rate leaves its cone by more than tol relative (bisected). At each, the modes of
 //! every contact at zero slip are chosen jointly — in a plane by the friction layer's
 //! [`resolve_planar`], a contact leaving its cone sliding in the sense of the impulse it would
@@ -153,7 +156,7 @@ const QUARTER: f64 = 0.25;
 /// A spatial slip that slows below this many lock speeds is stopped there: near zero slip its
 /// direction turns ever faster and the steps that follow it stall at the integration's noise
 /// (the error of stopping it early, twice its rate times the predicted time to zero slip, is
-/// added to the estimate).
+/// added to the estimate). One that does not slow keeps its direction below it.
 const STOP_ZONE: f64 = 1024.0;
 
 /// A contact's phase during the impact.
@@ -735,8 +738,9 @@ impl<'a, T: Real, S: Screws<T>> Run<'a, T, S> {
             .collect()
     }
 
-    /// The modes at velocities `v`: a spatial slip takes the direction of its slip above the
-    /// lock speed and keeps the direction it was given below it.
+    /// The modes at velocities `v`: a spatial slip takes the direction of its slip above
+    /// [`STOP_ZONE`] lock speeds and keeps the direction it was given within them (one that
+    /// slows there is stopped, `stopped_slips`).
     fn modes_at(&self, v: &[T], regime: &Regime<T>) -> Vec<Mode<T>> {
         (0..self.n)
             .map(|i| match &regime.modes[i] {
