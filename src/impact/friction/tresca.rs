@@ -115,6 +115,10 @@ pub fn tresca_modes<T: Real, S: Screws<T>>(
         .fold(0.0_f64, |z, (x, y)| z.max(m(x, y).abs()));
     let slip_scale = a.iter().fold(m_largest * largest, |z, x| z.max(x.abs()));
     let mut slip = a.clone();
+    let mm: Vec<f64> = (0..axes.len())
+        .flat_map(|x| (0..axes.len()).map(move |y| (x, y)))
+        .map(|(x, y)| m(x, y))
+        .collect();
     for sweep in 0..SWEEPS {
         if sweep == KKT_AFTER {
             // Slow sweeps (M nearly singular: two corners of one edge): the optimality
@@ -128,15 +132,9 @@ pub fn tresca_modes<T: Real, S: Screws<T>>(
                     radius: radius[j],
                 })
                 .collect();
-            let mm: Vec<f64> = (0..axes.len())
-                .flat_map(|x| (0..axes.len()).map(move |y| (x, y)))
-                .map(|(x, y)| m(x, y))
-                .collect();
             if let Some(t) = kkt_minimiser(&mm, &a, &discs, &tau, slip_scale) {
                 tau = t;
-                slip = (0..axes.len())
-                    .map(|x| a[x] - (0..axes.len()).map(|y| m(x, y) * tau[y]).sum::<f64>())
-                    .collect();
+                slip = slips(&mm, &a, &tau);
                 break;
             }
         }
@@ -163,9 +161,7 @@ pub fn tresca_modes<T: Real, S: Screws<T>>(
         }
         // v' = a − M τ' is unique at the minimisers (τ' is not where M is singular, and the
         // sweeps then crawl along the set of minimisers): the sweeps end when v' has settled.
-        let now: Vec<f64> = (0..axes.len())
-            .map(|x| a[x] - (0..axes.len()).map(|y| m(x, y) * tau[y]).sum::<f64>())
-            .collect();
+        let now = slips(&mm, &a, &tau);
         let settled = now
             .iter()
             .zip(&slip)
@@ -200,6 +196,14 @@ pub fn tresca_modes<T: Real, S: Screws<T>>(
     Some(out)
 }
 
+/// The slip rates v' = a − M τ' (M row-major, n × n).
+fn slips(m: &[f64], a: &[f64], t: &[f64]) -> Vec<f64> {
+    let n = a.len();
+    (0..n)
+        .map(|x| a[x] - (0..n).map(|y| m[x * n + y] * t[y]).sum::<f64>())
+        .collect()
+}
+
 /// One contact's disc among the unknowns: its first unknown, how many (1 in a plane, 2 in
 /// space), and its radius μ_i p'_i.
 struct Disc {
@@ -230,11 +234,7 @@ fn kkt_minimiser(
     if k > KKT_CONTACTS || discs.iter().any(|d| d.radius <= 0.0 || d.dim == 0) {
         return None;
     }
-    let slip = |t: &[f64]| -> Vec<f64> {
-        (0..n)
-            .map(|x| a[x] - (0..n).map(|y| m[x * n + y] * t[y]).sum::<f64>())
-            .collect()
-    };
+    let slip = |t: &[f64]| slips(m, a, t);
     let on_rim: Vec<bool> = discs
         .iter()
         .map(|d| norm(&guess[d.start..d.start + d.dim]) >= d.radius * (1.0 - 1e-6))
