@@ -33,6 +33,7 @@
 //! was compared with skipped them.
 
 pub mod lanes;
+mod pair;
 mod sweep;
 #[cfg(test)]
 mod tests;
