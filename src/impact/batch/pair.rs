@@ -28,7 +28,7 @@ use num_traits::Zero;
 
 use super::Scenes;
 use super::lanes::{Lanes, Mask};
-use super::sweep::{Kernel, load, valid_parts};
+use super::sweep::{Kernel, load, load3, valid_parts};
 use crate::impact::lean::{LeanError, limit2, route_test};
 use crate::impact::restitution::Model;
 
@@ -109,29 +109,37 @@ fn inverse<const L: usize>(d: Lanes<L>) -> Lanes<L> {
     }
 }
 
-impl<const L: usize> Pair<L> {
+impl<const L: usize, const N: usize> Kernel<L, N> for Pair<L> {
     /// Scenes `start .. start + L` of `scenes` (past the end, the last repeated), which has
     /// N = 2 contacts: read, checked and factored.
     #[inline(always)]
-    pub(super) fn read<const N: usize>(scenes: &Scenes<N>, start: usize) -> Self {
+    fn read(scenes: &Scenes<N>, start: usize) -> Self {
         debug_assert_eq!(N, 2);
-        let lane = |v: &Vec<f64>| load::<L>(v, start);
-        let xyz = |a: &[Vec<f64>; 3]| [lane(&a[0]), lane(&a[1]), lane(&a[2])];
-        let mass = lane(&scenes.mass);
-        let moments = xyz(&scenes.inertia);
+        // Direct calls, not closures: a closure here was not inlined, and each lane came back
+        // through memory.
+        let mass = load::<L>(&scenes.mass, start);
+        let moments = load3::<L>(&scenes.inertia, start);
         let v = &scenes.velocity;
         let velocity = [
-            lane(&v[0]),
-            lane(&v[1]),
-            lane(&v[2]),
-            lane(&v[3]),
-            lane(&v[4]),
-            lane(&v[5]),
+            load::<L>(&v[0], start),
+            load::<L>(&v[1], start),
+            load::<L>(&v[2], start),
+            load::<L>(&v[3], start),
+            load::<L>(&v[4], start),
+            load::<L>(&v[5], start),
         ];
-        let (r1, r2) = (xyz(&scenes.points[0]), xyz(&scenes.points[1]));
-        let (n1, n2) = (xyz(&scenes.normals[0]), xyz(&scenes.normals[1]));
-        let k_newton = [lane(&scenes.k_newton[0]), lane(&scenes.k_newton[1])];
-        let k_poisson = [lane(&scenes.k_poisson[0]), lane(&scenes.k_poisson[1])];
+        let r1 = load3::<L>(&scenes.points[0], start);
+        let r2 = load3::<L>(&scenes.points[1], start);
+        let n1 = load3::<L>(&scenes.normals[0], start);
+        let n2 = load3::<L>(&scenes.normals[1], start);
+        let k_newton = [
+            load::<L>(&scenes.k_newton[0], start),
+            load::<L>(&scenes.k_newton[1], start),
+        ];
+        let k_poisson = [
+            load::<L>(&scenes.k_poisson[0], start),
+            load::<L>(&scenes.k_poisson[1], start),
+        ];
         let valid = valid_parts(
             &mass,
             &moments,
@@ -176,9 +184,7 @@ impl<const L: usize> Pair<L> {
             k_poisson,
         }
     }
-}
 
-impl<const L: usize, const N: usize> Kernel<L, N> for Pair<L> {
     #[inline(always)]
     fn valid(&self) -> Mask<L> {
         self.valid

@@ -39,7 +39,7 @@ pub(super) fn load<const L: usize>(v: &[f64], start: usize) -> Lanes<L> {
 
 /// x, y and z of `a` (see [`load`]).
 #[inline(always)]
-fn load3<const L: usize>(a: &[Vec<f64>; 3], start: usize) -> [Lanes<L>; 3] {
+pub(super) fn load3<const L: usize>(a: &[Vec<f64>; 3], start: usize) -> [Lanes<L>; 3] {
     [load(&a[0], start), load(&a[1], start), load(&a[2], start)]
 }
 
@@ -155,7 +155,12 @@ fn routed<const L: usize, const N: usize>(g: &[[Lanes<L>; N]; N], d: &[Lanes<L>;
 
 /// L scenes read, checked and factored, ready to solve under either model: what [`sweep`]
 /// needs of a kernel.
-pub(super) trait Kernel<const L: usize, const N: usize> {
+pub(super) trait Kernel<const L: usize, const N: usize>: Sized {
+    /// Scenes `start .. start + L` of `scenes` (past the end, the last repeated), read,
+    /// checked and factored. An associated function rather than a closure handed to
+    /// [`sweep`]: called through `Fn::call` it was not inlined into the function `pulp`
+    /// compiles for AVX-512, and ran as SSE2 code outside it.
+    fn read(scenes: &Scenes<N>, start: usize) -> Self;
     /// Lanes whose input is a valid problem.
     fn valid(&self) -> Mask<L>;
     /// Lanes the route test accepts (the operations of [`route_test`], on lanes).
@@ -174,7 +179,7 @@ struct Generic<const L: usize, const N: usize> {
     g: [[Lanes<L>; N]; N],
 }
 
-impl<const L: usize, const N: usize> Generic<L, N> {
+impl<const L: usize, const N: usize> Kernel<L, N> for Generic<L, N> {
     #[inline(always)]
     fn read(scenes: &Scenes<N>, start: usize) -> Self {
         let data = gather::<L, N>(scenes, start);
@@ -185,9 +190,7 @@ impl<const L: usize, const N: usize> Generic<L, N> {
             g,
         }
     }
-}
 
-impl<const L: usize, const N: usize> Kernel<L, N> for Generic<L, N> {
     #[inline(always)]
     fn valid(&self) -> Mask<L> {
         self.valid
@@ -219,9 +222,9 @@ pub(super) fn sweep<const L: usize, const N: usize>(
     outs: &mut [(Model, &mut Outcomes<N>)],
 ) {
     if N == 2 {
-        sweep_with(scenes, outs, Pair::<L>::read::<N>)
+        sweep_with::<L, N, Pair<L>>(scenes, outs)
     } else {
-        sweep_with(scenes, outs, Generic::<L, N>::read)
+        sweep_with::<L, N, Generic<L, N>>(scenes, outs)
     }
 }
 
@@ -231,15 +234,14 @@ pub(super) fn sweep_generic<const L: usize, const N: usize>(
     scenes: &Scenes<N>,
     outs: &mut [(Model, &mut Outcomes<N>)],
 ) {
-    sweep_with(scenes, outs, Generic::<L, N>::read)
+    sweep_with::<L, N, Generic<L, N>>(scenes, outs)
 }
 
-/// Every chunk of `scenes` by the kernel `read` gives, under each model of `outs`.
+/// Every chunk of `scenes` by the kernel K, under each model of `outs`.
 #[inline(always)]
 fn sweep_with<const L: usize, const N: usize, K: Kernel<L, N>>(
     scenes: &Scenes<N>,
     outs: &mut [(Model, &mut Outcomes<N>)],
-    read: impl Fn(&Scenes<N>, usize) -> K,
 ) {
     let n = scenes.len();
     let mut work = None;
@@ -247,7 +249,7 @@ fn sweep_with<const L: usize, const N: usize, K: Kernel<L, N>>(
     let mut refused: Vec<(usize, usize, LeanError)> = Vec::new();
     let mut by_scene: Vec<(usize, LeanError)> = Vec::new();
     for start in (0..n).step_by(L) {
-        let kernel = read(scenes, start);
+        let kernel = K::read(scenes, start);
         let valid = kernel.valid();
         let accepted = valid & kernel.routed();
         let count = L.min(n - start);
