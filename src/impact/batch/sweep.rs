@@ -9,6 +9,10 @@
 //! lane: there the scalar route test decides each lane again (the same operations, hence the
 //! same decision) and names the reason, and the generic route answers the refused lanes.
 //!
+//! Two kernels compute a chunk: [`super::pair`] for N = 2, written out on named lanes so they
+//! stay in registers, and the field-generic lean code on `Lanes<L>` for every other N; both
+//! perform the lean path's operations in its order ([`Kernel`]).
+//!
 //! The function here is generic over L and marked `#[inline(always)]`: [`super`] instantiates
 //! it inside functions compiled for AVX-512 or AVX2 (chosen when the program runs), and L f64
 //! of `Lanes<L>` become one register there.
@@ -16,13 +20,14 @@
 use std::array;
 
 use super::lanes::{Lanes, Mask};
+use super::pair::Pair;
 use super::{Outcomes, Scenes, solve_generic};
-use crate::impact::lean::{Data, InverseInertia, LeanError, limit2, route_test};
+use crate::impact::lean::{Data, Factored, InverseInertia, LeanError, limit2, route_test};
 use crate::impact::restitution::Model;
 
 /// Scenes `start .. start + L` of `v` as lanes; past the end, the last scene repeated.
 #[inline(always)]
-fn load<const L: usize>(v: &[f64], start: usize) -> Lanes<L> {
+pub(super) fn load<const L: usize>(v: &[f64], start: usize) -> Lanes<L> {
     match v.get(start..start + L).map(<[f64; L]>::try_from) {
         Some(Ok(chunk)) => Lanes(chunk),
         _ => {
@@ -34,7 +39,7 @@ fn load<const L: usize>(v: &[f64], start: usize) -> Lanes<L> {
 
 /// x, y and z of `a` (see [`load`]).
 #[inline(always)]
-fn load3<const L: usize>(a: &[Vec<f64>; 3], start: usize) -> [Lanes<L>; 3] {
+pub(super) fn load3<const L: usize>(a: &[Vec<f64>; 3], start: usize) -> [Lanes<L>; 3] {
     [load(&a[0], start), load(&a[1], start), load(&a[2], start)]
 }
 
@@ -64,7 +69,7 @@ fn gather<const L: usize, const N: usize>(scenes: &Scenes<N>, start: usize) -> D
 /// NaN. (The same decision as the lean path's Σ 0·x = 0, without its chain of dependent
 /// additions.)
 #[inline(always)]
-fn finite<const L: usize>(xs: &[Lanes<L>]) -> Mask<L> {
+pub(super) fn finite<const L: usize>(xs: &[Lanes<L>]) -> Mask<L> {
     let max = Lanes::<L>::splat(f64::MAX);
     let mut ok = Mask::all_true();
     for x in xs {
@@ -73,23 +78,47 @@ fn finite<const L: usize>(xs: &[Lanes<L>]) -> Mask<L> {
     ok
 }
 
-/// Which lanes of `data` pass [`crate::impact::problem::Problem::new`]'s checks: m, J_k > 0,
-/// every number finite, normals nonzero, k ∈ [0, 1] (decided lane by lane, without building a
-/// problem; NaN fails every comparison).
+/// Which lanes of `data` pass [`crate::impact::problem::Problem::new`]'s checks
+/// ([`valid_parts`]).
 #[inline(always)]
 fn valid<const L: usize, const N: usize>(data: &Data<Lanes<L>, N>) -> Mask<L> {
     let InverseInertia::Principal(j) = &data.inertia else {
         return Mask([0; L]);
     };
+    valid_parts(
+        &data.mass,
+        j,
+        &data.velocity,
+        &data.points,
+        &data.normals,
+        &data.k_newton,
+        &data.k_poisson,
+    )
+}
+
+/// Which lanes of a scene (m, principal moments J_k, {v⁰}, r_j, n_j, k_j^N, k_j^P) pass
+/// [`crate::impact::problem::Problem::new`]'s checks: m, J_k > 0, every number finite,
+/// normals nonzero, k ∈ [0, 1] (decided lane by lane, without building a problem; NaN fails
+/// every comparison).
+#[inline(always)]
+pub(super) fn valid_parts<const L: usize, const N: usize>(
+    mass: &Lanes<L>,
+    j: &[Lanes<L>; 3],
+    velocity: &[Lanes<L>; 6],
+    points: &[[Lanes<L>; 3]; N],
+    normals: &[[Lanes<L>; 3]; N],
+    k_newton: &[Lanes<L>; N],
+    k_poisson: &[Lanes<L>; N],
+) -> Mask<L> {
     let (zero, one, max) = (Lanes::splat(0.0), Lanes::splat(1.0), Lanes::splat(f64::MAX));
     let positive = |x: &Lanes<L>| x.test(&zero, |x, z| x > z) & x.test(&max, |x, m| x <= m);
     let coefficient = |x: &Lanes<L>| x.test(&zero, |x, z| x >= z) & x.test(&one, |x, o| x <= o);
-    let mut ok = positive(&data.mass) & positive(&j[0]) & positive(&j[1]) & positive(&j[2]);
-    ok &= finite(&data.velocity);
+    let mut ok = positive(mass) & positive(&j[0]) & positive(&j[1]) & positive(&j[2]);
+    ok &= finite(velocity);
     for i in 0..N {
-        let n = &data.normals[i];
-        ok &= finite(&data.points[i]) & finite(n);
-        ok &= coefficient(&data.k_newton[i]) & coefficient(&data.k_poisson[i]);
+        let n = &normals[i];
+        ok &= finite(&points[i]) & finite(n);
+        ok &= coefficient(&k_newton[i]) & coefficient(&k_poisson[i]);
         let nonzero = |x: &Lanes<L>| x.test(&zero, |x, z| x != z);
         ok &= nonzero(&n[0]) | nonzero(&n[1]) | nonzero(&n[2]);
     }
@@ -124,10 +153,93 @@ fn routed<const L: usize, const N: usize>(g: &[[Lanes<L>; N]; N], d: &[Lanes<L>;
     ok
 }
 
-/// Solve every scene of `scenes` under each model of `outs`, L at a time (module docs).
+/// L scenes read, checked and factored, ready to solve under either model: what [`sweep`]
+/// needs of a kernel.
+pub(super) trait Kernel<const L: usize, const N: usize>: Sized {
+    /// Scenes `start .. start + L` of `scenes` (past the end, the last repeated), read,
+    /// checked and factored. An associated function rather than a closure handed to
+    /// [`sweep`]: called through `Fn::call` it was not inlined into the function `pulp`
+    /// compiles for AVX-512, and ran as SSE2 code outside it.
+    fn read(scenes: &Scenes<N>, start: usize) -> Self;
+    /// Lanes whose input is a valid problem.
+    fn valid(&self) -> Mask<L>;
+    /// Lanes the route test accepts (the operations of [`route_test`], on lanes).
+    fn routed(&self) -> Mask<L>;
+    /// The impulses P̂ and the twist after impact under `model`, every lane.
+    fn solve(&self, model: Model) -> ([Lanes<L>; N], [Lanes<L>; 6]);
+    /// The scalar route test on lane `l` (the same decision as [`Kernel::routed`], with the
+    /// reason).
+    fn route(&self, l: usize) -> Result<(), LeanError>;
+}
+
+/// The field-generic lean code on lanes, for any N.
+struct Generic<const L: usize, const N: usize> {
+    valid: Mask<L>,
+    factored: Factored<Lanes<L>, N>,
+    g: [[Lanes<L>; N]; N],
+}
+
+impl<const L: usize, const N: usize> Kernel<L, N> for Generic<L, N> {
+    #[inline(always)]
+    fn read(scenes: &Scenes<N>, start: usize) -> Self {
+        let data = gather::<L, N>(scenes, start);
+        let (factored, g) = data.factor();
+        Generic {
+            valid: valid(&data),
+            factored,
+            g,
+        }
+    }
+
+    #[inline(always)]
+    fn valid(&self) -> Mask<L> {
+        self.valid
+    }
+
+    #[inline(always)]
+    fn routed(&self) -> Mask<L> {
+        routed(&self.g, self.factored.pivots())
+    }
+
+    #[inline(always)]
+    fn solve(&self, model: Model) -> ([Lanes<L>; N], [Lanes<L>; 6]) {
+        self.factored.solve(model)
+    }
+
+    #[inline]
+    fn route(&self, l: usize) -> Result<(), LeanError> {
+        let d = self.factored.pivots();
+        route_test::<N>(|i, j| self.g[i][j].0[l], |j| d[j].0[l])
+    }
+}
+
+/// Solve every scene of `scenes` under each model of `outs`, L at a time (module docs):
+/// by [`Pair`] for two contacts, else by the generic lean code on lanes.
 /// `outs` are sized for the scenes; their routes start as [`super::Route::Lean`].
 #[inline(always)]
 pub(super) fn sweep<const L: usize, const N: usize>(
+    scenes: &Scenes<N>,
+    outs: &mut [(Model, &mut Outcomes<N>)],
+) {
+    if N == 2 {
+        sweep_with::<L, N, Pair<L>>(scenes, outs)
+    } else {
+        sweep_with::<L, N, Generic<L, N>>(scenes, outs)
+    }
+}
+
+/// [`sweep`] by the generic lean code on lanes at every N (for the tests: [`Pair`] against it).
+#[cfg(test)]
+pub(super) fn sweep_generic<const L: usize, const N: usize>(
+    scenes: &Scenes<N>,
+    outs: &mut [(Model, &mut Outcomes<N>)],
+) {
+    sweep_with::<L, N, Generic<L, N>>(scenes, outs)
+}
+
+/// Every chunk of `scenes` by the kernel K, under each model of `outs`.
+#[inline(always)]
+fn sweep_with<const L: usize, const N: usize, K: Kernel<L, N>>(
     scenes: &Scenes<N>,
     outs: &mut [(Model, &mut Outcomes<N>)],
 ) {
@@ -137,14 +249,12 @@ pub(super) fn sweep<const L: usize, const N: usize>(
     let mut refused: Vec<(usize, usize, LeanError)> = Vec::new();
     let mut by_scene: Vec<(usize, LeanError)> = Vec::new();
     for start in (0..n).step_by(L) {
-        let data = gather::<L, N>(scenes, start);
-        let valid = valid(&data);
-        let (factored, g) = data.factor();
-        let d = factored.pivots();
-        let accepted = valid & routed(&g, d);
+        let kernel = K::read(scenes, start);
+        let valid = kernel.valid();
+        let accepted = valid & kernel.routed();
         let count = L.min(n - start);
         for (m, (model, out)) in outs.iter_mut().enumerate() {
-            let (p, v) = factored.solve(*model);
+            let (p, v) = kernel.solve(*model);
             let output_finite = valid & finite(&p) & finite(&v);
             // The common case, every lane valid and accepted: whole lanes out at once.
             if count == L && (accepted & output_finite).all() {
@@ -159,7 +269,7 @@ pub(super) fn sweep<const L: usize, const N: usize>(
             }
             for l in 0..count {
                 let route = match output_finite.lane(l) {
-                    true => route_test::<N>(|i, j| g[i][j].0[l], |j| d[j].0[l]),
+                    true => kernel.route(l),
                     false => Err(LeanError::NotFinite),
                 };
                 match route {

@@ -264,3 +264,50 @@ fn a_refused_lane_leaves_its_neighbours_on_the_lean_route() {
     assert!(matches!(newton.reasons[2].1, Reason::Invalid(_)));
     check(&scenes);
 }
+
+/// Both models at L lanes by the generic lean code on lanes (no N = 2 kernel).
+fn generic_at_width<const L: usize, const N: usize>(scenes: &Scenes<N>) -> [Outcomes<N>; 2] {
+    let (mut newton, mut poisson) = (Outcomes::default(), Outcomes::default());
+    newton.reset(scenes.len());
+    poisson.reset(scenes.len());
+    sweep::sweep_generic::<L, N>(
+        scenes,
+        &mut [(Model::Newton, &mut newton), (Model::Poisson, &mut poisson)],
+    );
+    [newton, poisson]
+}
+
+#[test]
+fn the_two_contact_kernel_is_the_generic_lane_code_bit_for_bit() {
+    // Mixed scenes (refused, singular, invalid lanes among them) and the random boxes: the
+    // N = 2 kernel (pair.rs) against the generic lean code on lanes, every width, every
+    // output bit, every route and reason.
+    let mut rng = Seeded(0x5eed_0022);
+    let mut boxes = Scenes::<2>::default();
+    for p in random_boxes(101, 0xb0c6) {
+        boxes.push(&p).expect("a free body in principal axes");
+    }
+    for scenes in [mixed::<2>(&mut rng, 67), boxes] {
+        let same = |a: &[Outcomes<2>; 2], b: &[Outcomes<2>; 2]| {
+            for (a, b) in a.iter().zip(b) {
+                assert_eq!(a.routes, b.routes);
+                assert_eq!(a.reasons, b.reasons);
+                for s in 0..scenes.len() {
+                    assert_eq!(bits(a, s), bits(b, s), "scene {s}");
+                }
+            }
+        };
+        same(
+            &at_width::<2, 2>(&scenes),
+            &generic_at_width::<2, 2>(&scenes),
+        );
+        same(
+            &at_width::<4, 2>(&scenes),
+            &generic_at_width::<4, 2>(&scenes),
+        );
+        same(
+            &at_width::<8, 2>(&scenes),
+            &generic_at_width::<8, 2>(&scenes),
+        );
+    }
+}
