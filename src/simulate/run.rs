@@ -617,10 +617,14 @@ impl<'a> Run<'a> {
                 self.speed / self.length,
             ];
             let mut stepper = std::mem::replace(&mut self.stepper, Stepper::new(1.0, 1.0));
-            let open: Vec<(usize, usize)> = pairs
+            let open: Vec<(usize, usize, f64)> = pairs
                 .iter()
                 .copied()
                 .filter(|&(f, p)| !self.is_closed(f, p))
+                .map(|(f, p)| {
+                    let g = gap(&self.setup.body.features[f], &self.setup.planes[p], &self.s);
+                    (f, p, g.gap)
+                })
                 .collect();
             let (setup, gap_tol) = (self.setup, self.gap_tol);
             let advance = {
@@ -633,8 +637,9 @@ impl<'a> Run<'a> {
                 // step took through is located by halving the step.
                 let crosses = |y: &[f64]| {
                     let end = unpack(y);
-                    open.iter().any(|&(f, p)| {
-                        gap(&setup.body.features[f], &setup.planes[p], &end).gap < -gap_tol
+                    open.iter().any(|&(f, p, start)| {
+                        let g = gap(&setup.body.features[f], &setup.planes[p], &end).gap;
+                        stepper::crossed(start, g, gap_tol)
                     })
                 };
                 stepper.advance(

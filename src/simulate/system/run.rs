@@ -354,8 +354,9 @@ impl<'a> Run<'a> {
                 .map(|k| if k < half { self.length } else { self.speed })
                 .collect();
             let closed = self.closed.clone();
-            let open: Vec<usize> = (0..self.setup.candidates.len())
+            let open: Vec<(usize, f64)> = (0..self.setup.candidates.len())
                 .filter(|k| !self.closed.contains(k))
+                .map(|k| (k, self.gap(k, &self.s).gap))
                 .collect();
             let mut stepper = std::mem::replace(&mut self.stepper, Stepper::new(1.0, 1.0));
             let advance = {
@@ -372,7 +373,9 @@ impl<'a> Run<'a> {
                 // is located by halving the step.
                 let crosses = |y: &[f64]| {
                     let end = SystemState::unpack(y);
-                    open.iter().any(|&k| self.gap(k, &end).gap < -self.gap_tol)
+                    open.iter().any(|&(k, start)| {
+                        stepper::crossed(start, self.gap(k, &end).gap, self.gap_tol)
+                    })
                 };
                 stepper.advance(
                     t0,
