@@ -61,10 +61,11 @@ fn name_spans(root: &Node) -> Vec<NameSpan> {
 /// The texts [`Params::names_in`] remembers per thread at most (it forgets them all at once).
 const NAMES_KEPT: usize = 4096;
 
+/// [`Params::names_in`]'s memory: (text, names allowed) → the names in the text.
+type NamesMemo = HashMap<(String, String), Rc<[NameSpan]>>;
+
 thread_local! {
-    /// [`Params::names_in`]'s memory: (text, names allowed) → the names in the text.
-    static NAMES: RefCell<HashMap<(String, String), Rc<[NameSpan]>>> =
-        RefCell::new(HashMap::new());
+    static NAMES: RefCell<NamesMemo> = RefCell::new(HashMap::new());
 }
 
 /// Names a parameter may not take: the grammar's own and a surface's variables.
