@@ -8,6 +8,10 @@
 //! parameter is *seeded*: every number that depends on it carries its derivative with respect
 //! to it in [`Number::tangent`] ([`crate::number::tangent`]).
 
+use std::cell::RefCell;
+use std::collections::HashMap;
+use std::rc::Rc;
+
 use crate::number::expr::{self, Kind, Node};
 use crate::number::tangent::derivative;
 use crate::number::{Number, NumberError, parse_checked, parse_number_with};
@@ -38,6 +42,30 @@ struct Param {
     expanded: String,
     /// Whether it is a declared symbol (then it is not substituted).
     symbol: bool,
+}
+
+/// A name in a text, by its byte range: (start, end, name).
+type NameSpan = (usize, usize, Box<str>);
+
+/// The [`Kind::Name`] nodes of `root`, in source order.
+fn name_spans(root: &Node) -> Vec<NameSpan> {
+    root.names()
+        .into_iter()
+        .filter_map(|n| match &n.kind {
+            Kind::Name(name) => Some((n.start, n.end, name.clone())),
+            _ => None,
+        })
+        .collect()
+}
+
+/// The texts [`Params::names_in`] remembers per thread at most (it forgets them all at once).
+const NAMES_KEPT: usize = 4096;
+
+/// [`Params::names_in`]'s memory: (text, names allowed) → the names in the text.
+type NamesMemo = HashMap<(String, String), Rc<[NameSpan]>>;
+
+thread_local! {
+    static NAMES: RefCell<NamesMemo> = RefCell::new(HashMap::new());
 }
 
 /// Names a parameter may not take: the grammar's own and a surface's variables.
@@ -113,19 +141,46 @@ impl Params {
 
     /// `src` with each parameter it names replaced by its value in parentheses.
     fn substitute(&self, src: &str, root: &Node) -> String {
+        self.substitute_spans(src, &name_spans(root))
+    }
+
+    /// [`Params::substitute`], from the names' byte ranges in `src` (in source order).
+    fn substitute_spans(&self, src: &str, names: &[NameSpan]) -> String {
         let mut out = src.to_string();
         // Right to left, so that earlier byte ranges stay valid.
-        for node in root.names().into_iter().rev() {
-            if let Kind::Name(name) = &node.kind
-                && let Some(p) = self
-                    .list
-                    .iter()
-                    .find(|p| *p.spec.name == **name && !p.symbol)
+        for (start, end, name) in names.iter().rev() {
+            if let Some(p) = self
+                .list
+                .iter()
+                .find(|p| *p.spec.name == **name && !p.symbol)
             {
-                out.replace_range(node.start..node.end, &format!("({})", p.expanded));
+                out.replace_range(*start..*end, &format!("({})", p.expanded));
             }
         }
         out
+    }
+
+    /// The names `src` uses, with their byte ranges, checked against the names it may use
+    /// ([`parse_checked`]). A read parses each text it reads back twice, the text as
+    /// written (for its names) and then with the parameters' values in place; a sweep over a
+    /// parameter reads back the same texts at every point (`(cos(theta))*(1/5) + …`, only
+    /// θ's value differs), so the first parse is remembered per thread, by the text and the
+    /// names allowed. Only successes are kept: a failure is parsed again and says the same.
+    fn names_in(&self, src: &str) -> Result<Rc<[NameSpan]>, NumberError> {
+        let allowed = self.names(&[]);
+        let key = (src.to_string(), allowed.join(" "));
+        if let Some(hit) = NAMES.with(|m| m.borrow().get(&key).cloned()) {
+            return Ok(hit);
+        }
+        let spans: Rc<[NameSpan]> = name_spans(&parse_checked(src, &allowed)?).into();
+        NAMES.with(|m| {
+            let mut m = m.borrow_mut();
+            if m.len() >= NAMES_KEPT {
+                m.clear();
+            }
+            m.insert(key, spans.clone());
+        });
+        Ok(spans)
     }
 
     /// The number written `text`, parameters substituted, with its tangent when a parameter
@@ -135,12 +190,20 @@ impl Params {
             return parse_number_with(text, &self.symbols);
         }
         let src = text.trim();
+        if self.seed.is_none() {
+            let names = self.names_in(src)?;
+            let mut n = parse_number_with(&self.substitute_spans(src, &names), &self.symbols)?;
+            if n.text != src {
+                n.source = Some(src.to_string());
+            }
+            return Ok(n);
+        }
         let root = parse_checked(src, &self.names(&[]))?;
         let mut n = parse_number_with(&self.substitute(src, &root), &self.symbols)?;
         if n.text != src {
             n.source = Some(src.to_string());
         }
-        if self.seed.is_some() && root.has_name {
+        if root.has_name {
             let env = |name: &str| {
                 let p = self.list.iter().find(|p| p.spec.name == name)?;
                 (!p.symbol).then_some((p.spec.value.approx, p.spec.value.tangent))
@@ -265,6 +328,50 @@ mod tests {
 
     fn none(_: &str) -> Option<String> {
         None
+    }
+
+    /// A text read back with its names remembered ([`Params::names_in`]) is the very number
+    /// of the two parses it stands for, at each value of the parameters — the names of a text
+    /// are kept across values, never its number — and a failure says the same each time.
+    #[test]
+    fn remembered_names_read_the_number_the_two_parses_read() {
+        let texts = [
+            "((cos(theta))*(1/5)) + ((sin(theta))*(-1/20))",
+            "((cos(theta)) + (1 - (cos(theta))))*(1/10)",
+            "(((sin(theta))*(-1))*(1/120))*((sin(theta))*(-1))",
+            "theta",
+            "L*phi - theta/2",
+            "0",
+            "-1/3",
+            "sqrt(2)/2",
+            "cos(phi)^2",
+        ];
+        let failing = ["unknown + 1", "theta/(L - L)", "1 +", "cos(theta"];
+        for theta in ["30 deg", "(1187/25) deg", "0 deg", "2/7", "60 deg"] {
+            let mut params = Params::new(&[], None);
+            params.push("theta", theta).unwrap();
+            params.push("L", "0.4").unwrap();
+            params.push("phi", "2*theta").unwrap();
+            let names = params.names(&[]);
+            for text in texts.iter().chain(&failing) {
+                let two_parses = parse_checked(text, &names).and_then(|root| {
+                    let mut n =
+                        parse_number_with(&params.substitute(text, &root), &params.symbols)?;
+                    if n.text != *text {
+                        n.source = Some(text.to_string());
+                    }
+                    Ok(n)
+                });
+                for _ in 0..2 {
+                    let n = params.number(text);
+                    assert_eq!(n, two_parses, "{text} at theta = {theta}");
+                    if let (Ok(a), Ok(b)) = (&n, &two_parses) {
+                        assert_eq!(a.approx.to_bits(), b.approx.to_bits(), "{text}");
+                    }
+                }
+                assert_eq!(failing.contains(text), two_parses.is_err(), "{text}");
+            }
+        }
     }
 
     #[test]

@@ -95,15 +95,35 @@ impl Term {
         matches!(self, Term::Rat(q) if q.is_one())
     }
 
-    /// The text, parenthesised to serve as an operand.
-    fn operand(&self) -> String {
+    /// The text, parenthesised to serve as an operand, appended to `out`.
+    fn push_operand(&self, out: &mut String) {
         match self {
             Term::Rat(q) if q.is_negative() || !q.denom().is_one() => {
-                format!("({})", format_rational(q))
+                out.push('(');
+                out.push_str(&format_rational(q));
+                out.push(')');
             }
-            Term::Rat(q) => format_rational(q),
-            Term::Text(t, _, _) => format!("({t})"),
+            Term::Rat(q) => out.push_str(&format_rational(q)),
+            Term::Text(t, _, _) => {
+                out.push('(');
+                out.push_str(t);
+                out.push(')');
+            }
         }
+    }
+
+    /// `a op b` of two operands, in one allocation (formatting each operand apart made three
+    /// strings for one): a read of a posed scene builds hundreds of these texts.
+    fn join(a: &Term, op: &str, b: &Term) -> String {
+        let len = |t: &Term| match t {
+            Term::Text(t, _, _) => t.len() + 2,
+            Term::Rat(_) => 16,
+        };
+        let mut out = String::with_capacity(len(a) + op.len() + len(b));
+        a.push_operand(&mut out);
+        out.push_str(op);
+        b.push_operand(&mut out);
+        out
     }
 
     /// `f(self)` for a function of the grammar: `cos`, `sin` or `sqrt`.
@@ -139,7 +159,7 @@ impl Add for &Term {
             (a, b) if a.is_zero() => b.clone(),
             (a, b) if b.is_zero() => a.clone(),
             (a, b) => Term::made(
-                format!("{} + {}", a.operand(), b.operand()),
+                Term::join(a, " + ", b),
                 a.approx() + b.approx(),
                 a.error() + b.error(),
             ),
@@ -155,7 +175,7 @@ impl Sub for &Term {
             (a, b) if b.is_zero() => a.clone(),
             (a, b) if a.is_zero() => -b,
             (a, b) => Term::made(
-                format!("{} - {}", a.operand(), b.operand()),
+                Term::join(a, " - ", b),
                 a.approx() - b.approx(),
                 a.error() + b.error(),
             ),
@@ -172,7 +192,7 @@ impl Mul for &Term {
             (a, b) if a.is_one() => b.clone(),
             (a, b) if b.is_one() => a.clone(),
             (a, b) => Term::made(
-                format!("{}*{}", a.operand(), b.operand()),
+                Term::join(a, "*", b),
                 a.approx() * b.approx(),
                 a.approx().abs() * b.error() + b.approx().abs() * a.error(),
             ),
@@ -191,7 +211,7 @@ impl Div for &Term {
             (a, b) => {
                 let q = a.approx() / b.approx();
                 Term::made(
-                    format!("{}/{}", a.operand(), b.operand()),
+                    Term::join(a, "/", b),
                     q,
                     (a.error() + q.abs() * b.error()) / b.approx().abs(),
                 )
@@ -205,7 +225,11 @@ impl Neg for &Term {
     fn neg(self) -> Term {
         match self {
             Term::Rat(x) => Term::Rat(-x),
-            a => Term::Text(format!("-{}", a.operand()), -a.approx(), a.error()),
+            a => {
+                let mut text = String::from("-");
+                a.push_operand(&mut text);
+                Term::Text(text, -a.approx(), a.error())
+            }
         }
     }
 }
@@ -282,6 +306,9 @@ mod tests {
         assert_eq!((&c * &q(-1, 2)).to_string(), "(cos(theta))*(-1/2)");
         assert_eq!((&q(3, 1) - &c).to_string(), "3 - (cos(theta))");
         assert_eq!((-&c).to_string(), "-(cos(theta))");
+        assert_eq!((&c + &Term::int(2)).to_string(), "(cos(theta)) + 2");
+        assert_eq!((&c / &c).to_string(), "(cos(theta))/(cos(theta))");
+        assert_eq!((&q(-3, 1) * &c).to_string(), "(-3)*(cos(theta))");
     }
 
     #[test]
