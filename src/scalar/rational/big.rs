@@ -15,7 +15,7 @@ pub(super) type Parts = (BigInt, BigInt);
 
 /// gcd(x, y) ≥ 0: by a word remainder when either argument fits a word, in 128-bit integers
 /// when both fit them, else by Lehmer's method ([`lehmer`]).
-pub(super) fn gcd(x: &BigInt, y: &BigInt) -> BigInt {
+pub(crate) fn gcd(x: &BigInt, y: &BigInt) -> BigInt {
     if x.is_one() || y.is_one() {
         return BigInt::one();
     }

@@ -228,8 +228,9 @@ pub struct Poly {
     terms: Vec<Term>,
 }
 
-/// gcd(a, b) ≥ 0 of two integers (through `BigRational`'s reduction, which uses num-integer's
-/// binary gcd).
+/// gcd(a, b) ≥ 0 of two integers: a word gcd when either fits a word, Lehmer's method on big
+/// ones ([`crate::scalar::rational`]), rather than num-integer's binary gcd, which shifts the
+/// whole numbers bit by bit.
 pub(crate) fn int_gcd(a: &BigInt, b: &BigInt) -> BigInt {
     if a.is_zero() {
         return b.abs();
@@ -237,8 +238,7 @@ pub(crate) fn int_gcd(a: &BigInt, b: &BigInt) -> BigInt {
     if b.is_zero() {
         return a.abs();
     }
-    let r = BigRational::new(a.clone(), b.clone());
-    (a / r.numer()).abs()
+    crate::scalar::rational::big_gcd(a, b)
 }
 
 impl Poly {
