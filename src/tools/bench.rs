@@ -739,7 +739,7 @@ pub fn time_scene(scene: &Scene, quick: bool) -> SceneTiming {
             crate::tools::system_bench::time_law::<T, Problem<T>>(scene, budget, || Ok(p.clone()))
         }
     }
-    SceneTiming {
+    let mut timing = SceneTiming {
         scene: scene.name.clone(),
         bodies: 1,
         contacts: scene.contacts.len(),
@@ -776,7 +776,16 @@ pub fn time_scene(scene: &Scene, quick: bool) -> SceneTiming {
             ),
             ("exact", typed::<Exact>(scene, budget, simultaneous)),
         ],
+    };
+    if !scene.is_rational() {
+        // Radicals (a body posed at 30°, a normal 2/sqrt(5)): `solve --exact` runs in the
+        // symbolic field, timed here as its own row.
+        timing.rows.push((
+            "exact/radicals",
+            typed::<crate::scalar::symbolic::RatFun>(scene, budget, simultaneous),
+        ));
     }
+    timing
 }
 
 /// What [`time_batch`] measured.

@@ -418,4 +418,30 @@ mod tests {
             "{f:?}"
         );
     }
+
+    /// The memo of [`readable_parts`] changes nothing: every value of the posed solves, read
+    /// in an order that evicts entries (more values than [`MEMO`] between repeats), prints as
+    /// its fresh factoring does, in text and LaTeX.
+    #[test]
+    fn remembered_readable_forms_equal_fresh_ones() {
+        let values = super::super::radical::tests::posed_values();
+        assert!(values.len() > 4 * MEMO);
+        for round in 0..2 {
+            for v in &values {
+                let (num, den) = factor_quotient(v);
+                for latex in [round == 0, round == 1] {
+                    assert_eq!(readable(v, latex), render_quotient(&num, &den, latex), "{v}");
+                }
+            }
+        }
+        // A symbolic value and a radical one alternating through the memo.
+        let (m, jz) = (RatFun::symbol("m"), RatFun::symbol("Jz"));
+        let x = (RatFun::from_integer(1) / &m) * &jz + RatFun::cos_deg(30).unwrap();
+        for _ in 0..3 {
+            for v in [&x, &values[0]] {
+                let (num, den) = factor_quotient(v);
+                assert_eq!(readable(v, false), render_quotient(&num, &den, false));
+            }
+        }
+    }
 }

@@ -1120,4 +1120,33 @@ mod tests {
         v.insert("z".to_owned(), q(-1, 2));
         assert_eq!(p.eval(&v), Some(q(1, 1)));
     }
+
+    /// int_gcd (word and Lehmer gcds) equals num-integer's binary gcd, on words, 128-bit and
+    /// larger arguments, signs and zeros.
+    #[test]
+    fn integer_gcd_equals_num_integers() {
+        use num_integer::Integer;
+        let mut state = 0x1129_u64;
+        let mut next = move || {
+            state = state
+                .wrapping_mul(6_364_136_223_846_793_005)
+                .wrapping_add(1_442_695_040_888_963_407);
+            state
+        };
+        for k in 0..400u32 {
+            let common = BigInt::from(next() >> (k % 64));
+            let mut big = |bits: u32| {
+                let mut x = BigInt::from(next());
+                while x.bits() < u64::from(bits) {
+                    x = (x << 64u32) + next();
+                }
+                x
+            };
+            let a = big(k % 5 * 60) * &common * if k % 3 == 0 { -1 } else { 1 };
+            let b = big(k % 7 * 40) * &common;
+            for (x, y) in [(&a, &b), (&b, &a), (&a, &BigInt::zero()), (&BigInt::zero(), &b)] {
+                assert_eq!(int_gcd(x, y), x.gcd(y), "gcd({x}, {y})");
+            }
+        }
+    }
 }

@@ -301,7 +301,7 @@ pub(crate) fn cos_first_quadrant(t: u32) -> [(i64, i64); 4] {
 }
 
 #[cfg(test)]
-mod tests {
+pub(super) mod tests {
     use super::*;
 
     fn q(a: i64, b: i64) -> BigRational {
@@ -485,5 +485,66 @@ mod tests {
         let x = &Poly::symbol("x") + &radical_symbol(&BigInt::from(2));
         assert_eq!(sign(&x), None);
         assert!(to_f64(&x).is_nan());
+    }
+
+    /// Every value an exact solve of the posed scenes gives — the tilted box of
+    /// `examples/tilted-box.toml` at 15°, 30°, 45° and 60° (two contacts) and the box striking a
+    /// floor and a wall (`tests/posed/box-floor-wall.toml`, four contacts) at 30° and 60° —
+    /// under Newton's and Poisson's laws: impulses, compression impulses, the twist after
+    /// impact, contact velocities after, both energies.
+    pub(in crate::scalar::symbolic) fn posed_values() -> Vec<super::super::RatFun> {
+        use super::super::RatFun;
+        use crate::impact::restitution::Model;
+        use crate::impact::solve::{Impact, Outcome};
+        let tilted = include_str!("../../../examples/tilted-box.toml");
+        let corner = include_str!("../../../tests/posed/box-floor-wall.toml");
+        let mut out = Vec::new();
+        for (text, deg) in [
+            (tilted, 15),
+            (tilted, 30),
+            (tilted, 45),
+            (tilted, 60),
+            (corner, 30),
+            (corner, 60),
+        ] {
+            let text = text.replace("\"30 deg\"", &format!("\"{deg} deg\""));
+            let scene = crate::scene::Scene::parse(&text, "posed").unwrap();
+            let problem = scene.problem::<RatFun>().unwrap();
+            let mut impact = Impact::assemble(&problem).unwrap();
+            for model in [Model::Newton, Model::Poisson] {
+                let mut o = Outcome::default();
+                impact.solve(model, &mut o).unwrap();
+                out.extend(o.impulses_hat.iter().cloned());
+                out.extend(o.compression_hat.iter().cloned());
+                out.extend(o.velocity.0.iter().cloned());
+                out.extend(o.after_hat.iter().flatten().cloned());
+                out.push(o.lost_velocity_energy.clone());
+                out.push(o.kinetic_energy_loss.clone());
+            }
+        }
+        out
+    }
+
+    #[test]
+    fn posed_scenes_values_convert_as_before() {
+        use crate::scalar::Scalar;
+        let values = posed_values();
+        let radicals = values.iter().filter(|v| v.to_rational().is_none()).count();
+        assert!(radicals >= 40, "{radicals} values with radicals");
+        for v in &values {
+            let p = v.numer();
+            assert!(v.is_constant(), "{v}");
+            assert_eq!(to_f64(p).to_bits(), rational_to_f64(p).to_bits(), "{v}");
+            let (lo, hi) = rational_enclosure(p, 256);
+            let reference = if p.is_zero() {
+                0
+            } else if lo.is_positive() {
+                1
+            } else {
+                assert!(hi.is_negative(), "{v}: 256 bits decide every sign here");
+                -1
+            };
+            assert_eq!(sign(p), Some(reference), "{v}");
+        }
     }
 }
