@@ -691,7 +691,8 @@ fn with_problem<T: Scalar>(scene: &Scene, f: impl FnOnce(&Problem<T>) -> Timing)
 /// ([`crate::tools::system_bench::NotTimed`]).
 ///
 /// One solve is the scene's law: its models, simultaneous or unilateral, or its frictional
-/// restitution laws. A scene of several bodies is timed per type only, each solve from its
+/// restitution laws. A scene with radicals (which the `exact` row cannot read) adds the row
+/// `exact/radicals`, the same solve in the symbolic field, as `solve --exact` runs it. A scene of several bodies is timed per type only, each solve from its
 /// data ([`crate::tools::system_bench::time_system_scene`]).
 pub fn time_scene(scene: &Scene, quick: bool) -> SceneTiming {
     let budget = Duration::from_millis(if quick { 20 } else { 200 });

@@ -430,7 +430,11 @@ mod tests {
             for v in &values {
                 let (num, den) = factor_quotient(v);
                 for latex in [round == 0, round == 1] {
-                    assert_eq!(readable(v, latex), render_quotient(&num, &den, latex), "{v}");
+                    assert_eq!(
+                        readable(v, latex),
+                        render_quotient(&num, &den, latex),
+                        "{v}"
+                    );
                 }
             }
         }

@@ -473,7 +473,11 @@ impl Poly {
             return self.clone();
         }
         Poly {
-            terms: self.terms.iter().map(|(m, a)| (m.clone(), q_mul(a, c))).collect(),
+            terms: self
+                .terms
+                .iter()
+                .map(|(m, a)| (m.clone(), q_mul(a, c)))
+                .collect(),
         }
     }
 
@@ -490,7 +494,11 @@ impl Poly {
     /// so the terms stay sorted).
     fn mul_term_free(&self, m: &Monomial, c: &BigRational) -> Poly {
         Poly {
-            terms: self.terms.iter().map(|(t, a)| (t.mul(m), q_mul(a, c))).collect(),
+            terms: self
+                .terms
+                .iter()
+                .map(|(t, a)| (t.mul(m), q_mul(a, c)))
+                .collect(),
         }
     }
 
@@ -1158,7 +1166,12 @@ mod tests {
             };
             let a = big(k % 5 * 60) * &common * if k % 3 == 0 { -1 } else { 1 };
             let b = big(k % 7 * 40) * &common;
-            for (x, y) in [(&a, &b), (&b, &a), (&a, &BigInt::zero()), (&BigInt::zero(), &b)] {
+            for (x, y) in [
+                (&a, &b),
+                (&b, &a),
+                (&a, &BigInt::zero()),
+                (&BigInt::zero(), &b),
+            ] {
                 assert_eq!(int_gcd(x, y), x.gcd(y), "gcd({x}, {y})");
             }
         }

@@ -9,8 +9,8 @@
 //! nonzero.
 
 use num_bigint::BigInt;
-use num_rational::BigRational;
 use num_integer::Integer;
+use num_rational::BigRational;
 use num_traits::{One, Signed, ToPrimitive, Zero};
 
 use super::poly::Poly;
@@ -463,11 +463,7 @@ pub(super) mod tests {
                 assert_eq!(BigRational::from_integer(lo) / &d, rlo, "{p}");
                 assert_eq!(BigRational::from_integer(hi) / &d, rhi, "{p}");
             }
-            assert_eq!(
-                to_f64(&p).to_bits(),
-                rational_to_f64(&p).to_bits(),
-                "{p}"
-            );
+            assert_eq!(to_f64(&p).to_bits(), rational_to_f64(&p).to_bits(), "{p}");
             let (lo, hi) = rational_enclosure(&p, 1 << 10);
             let expected = if lo.is_positive() {
                 1
