@@ -198,8 +198,8 @@ fn enclosure(table: &Table, p: &Poly, bits: u32) -> Option<(BigInt, BigInt, BigI
     Some((lo, hi, lcm << (u64::from(bits) * top)))
 }
 
-/// ⌊√(p·4^bits)⌋ for the radical r_p with id `v`, remembered per thread; `None` if `v` is not
-/// a radical.
+/// ⌊√(p·4^bits)⌋ for the radical r_p with id `v`, remembered per thread up to 4096 bits;
+/// `None` if `v` is not a radical.
 fn root(table: &Table, v: u32, bits: u32) -> Option<BigInt> {
     use std::cell::RefCell;
     use std::collections::HashMap;
@@ -209,6 +209,10 @@ fn root(table: &Table, v: u32, bits: u32) -> Option<BigInt> {
     }
     let prime = table.radicand(v)?;
     let s = (prime << (2 * u64::from(bits))).sqrt();
+    if bits > 4096 {
+        // Only a sign that nearly cancels gets here, once: not worth holding its root.
+        return Some(s);
+    }
     ROOTS.with(|r| {
         let mut r = r.borrow_mut();
         if r.len() >= 4096 {
