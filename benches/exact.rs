@@ -4,6 +4,13 @@
 //! reductions) and in plain `BigRational`, the arithmetic `Exact` replaced. At the end it prints
 //! the ratio BigRational / Exact measured in the same run.
 //!
+//! Group `radical`: posed scenes, whose numbers are radicals (cos 30° = √3/2), solved exactly in
+//! the symbolic field as `solve --exact` does — the tilted box of `examples/tilted-box.toml` at
+//! 30°, 45°, 60° and 15° (two contacts) and `tests/posed/box-floor-wall.toml` at 30° (four):
+//! `solve/…` assembles and solves both laws, every output (the `exact/radicals` row of
+//! `inertance bench --scene`); `report/…` is `scene::pipeline::run` — reading the numbers into
+//! the field, the solve, its checks and the report with every value's exact text and decimal.
+//!
 //! `cargo bench --bench exact`
 
 use std::hint::black_box;
@@ -13,6 +20,7 @@ use criterion::{Criterion, Throughput};
 use inertance::impact::problem::Problem;
 use inertance::impact::restitution::Model;
 use inertance::impact::solve::{Impact, Outcome};
+use inertance::scalar::symbolic::RatFun;
 use inertance::scalar::{Exact, Scalar};
 use inertance::scene::Scene;
 use num_rational::BigRational;
@@ -76,6 +84,48 @@ fn ratio(exact: &[Problem<Exact>], big: &[Problem<BigRational>]) -> (f64, f64, f
     rounds[rounds.len() / 2]
 }
 
+/// The posed scenes of the `radical` group: (name, scene).
+fn posed() -> Vec<(String, Scene)> {
+    let root = env!("CARGO_MANIFEST_DIR");
+    let read = |path: &str| std::fs::read_to_string(format!("{root}/{path}")).expect(path);
+    let (tilted, corner) = (
+        read("examples/tilted-box.toml"),
+        read("tests/posed/box-floor-wall.toml"),
+    );
+    let at = |text: &str, deg: u32| text.replace("\"30 deg\"", &format!("\"{deg} deg\""));
+    let mut out: Vec<(String, Scene)> = [30, 45, 60, 15]
+        .into_iter()
+        .map(|deg| {
+            let scene = Scene::parse(&at(&tilted, deg), "tilted-box.toml").unwrap();
+            (format!("tilted-box-{deg}"), scene)
+        })
+        .collect();
+    let scene = Scene::parse(&corner, "box-floor-wall.toml").unwrap();
+    out.push(("box-floor-wall-30".into(), scene));
+    out
+}
+
+fn radical(c: &mut Criterion) {
+    let mut group = c.benchmark_group("radical");
+    group.sample_size(20);
+    for (name, scene) in posed() {
+        let problem = scene.problem::<RatFun>().unwrap();
+        let mut impact = Impact::assemble(&problem).unwrap();
+        let (mut n, mut q) = (Outcome::default(), Outcome::default());
+        group.bench_function(format!("solve/{name}"), |b| {
+            b.iter(|| {
+                impact.reassemble(black_box(&problem)).unwrap();
+                impact.solve(Model::Newton, &mut n).unwrap();
+                impact.solve(Model::Poisson, &mut q).unwrap();
+            })
+        });
+        group.bench_function(format!("report/{name}"), |b| {
+            b.iter(|| inertance::scene::pipeline::run::<RatFun>(black_box(&scene), None).unwrap())
+        });
+    }
+    group.finish();
+}
+
 fn main() {
     let scenes = corpus();
     let exact = problems::<Exact>(&scenes);
@@ -83,6 +133,7 @@ fn main() {
     let mut c = Criterion::default().configure_from_args();
     bench(&mut c, "exact", &exact);
     bench(&mut c, "bigrational", &big);
+    radical(&mut c);
     c.final_summary();
     // `cargo test` runs this binary too (criterion's test mode, unoptimised): measure only
     // under `cargo bench`, which passes `--bench`.

@@ -691,7 +691,8 @@ fn with_problem<T: Scalar>(scene: &Scene, f: impl FnOnce(&Problem<T>) -> Timing)
 /// ([`crate::tools::system_bench::NotTimed`]).
 ///
 /// One solve is the scene's law: its models, simultaneous or unilateral, or its frictional
-/// restitution laws. A scene of several bodies is timed per type only, each solve from its
+/// restitution laws. A scene with radicals (which the `exact` row cannot read) adds the row
+/// `exact/radicals`, the same solve in the symbolic field, as `solve --exact` runs it. A scene of several bodies is timed per type only, each solve from its
 /// data ([`crate::tools::system_bench::time_system_scene`]).
 pub fn time_scene(scene: &Scene, quick: bool) -> SceneTiming {
     let budget = Duration::from_millis(if quick { 20 } else { 200 });
@@ -739,7 +740,7 @@ pub fn time_scene(scene: &Scene, quick: bool) -> SceneTiming {
             crate::tools::system_bench::time_law::<T, Problem<T>>(scene, budget, || Ok(p.clone()))
         }
     }
-    SceneTiming {
+    let mut timing = SceneTiming {
         scene: scene.name.clone(),
         bodies: 1,
         contacts: scene.contacts.len(),
@@ -776,7 +777,16 @@ pub fn time_scene(scene: &Scene, quick: bool) -> SceneTiming {
             ),
             ("exact", typed::<Exact>(scene, budget, simultaneous)),
         ],
+    };
+    if !scene.is_rational() {
+        // Radicals (a body posed at 30°, a normal 2/sqrt(5)): `solve --exact` runs in the
+        // symbolic field, timed here as its own row.
+        timing.rows.push((
+            "exact/radicals",
+            typed::<crate::scalar::symbolic::RatFun>(scene, budget, simultaneous),
+        ));
     }
+    timing
 }
 
 /// What [`time_batch`] measured.

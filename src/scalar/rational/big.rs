@@ -11,11 +11,11 @@ use num_traits::{One, ToPrimitive, Zero};
 use super::word;
 
 /// A fraction as its two big-integer parts, in lowest terms with a positive denominator.
-pub(super) type Parts = (BigInt, BigInt);
+pub(crate) type Parts = (BigInt, BigInt);
 
 /// gcd(x, y) ≥ 0: by a word remainder when either argument fits a word, in 128-bit integers
 /// when both fit them, else by Lehmer's method ([`lehmer`]).
-pub(super) fn gcd(x: &BigInt, y: &BigInt) -> BigInt {
+pub(crate) fn gcd(x: &BigInt, y: &BigInt) -> BigInt {
     if x.is_one() || y.is_one() {
         return BigInt::one();
     }
@@ -120,7 +120,7 @@ fn exact_div(x: &BigInt, g: &BigInt) -> BigInt {
 }
 
 /// a/b · c/d.
-pub(super) fn mul(a: &BigInt, b: &BigInt, c: &BigInt, d: &BigInt) -> Parts {
+pub(crate) fn mul(a: &BigInt, b: &BigInt, c: &BigInt, d: &BigInt) -> Parts {
     if a.is_zero() || c.is_zero() {
         return (BigInt::zero(), BigInt::one());
     }
@@ -142,7 +142,7 @@ pub(super) fn div(a: &BigInt, b: &BigInt, c: &BigInt, d: &BigInt) -> Parts {
 }
 
 /// a/b + c/d.
-pub(super) fn add(a: &BigInt, b: &BigInt, c: &BigInt, d: &BigInt) -> Parts {
+pub(crate) fn add(a: &BigInt, b: &BigInt, c: &BigInt, d: &BigInt) -> Parts {
     if b == d {
         let t = a + c;
         let g = gcd(&t, b);

@@ -39,6 +39,7 @@ mod big;
 mod ops;
 mod word;
 
+pub(crate) use big::{add as big_add, gcd as big_gcd, mul as big_mul};
 pub(crate) use word::gcd_u128;
 
 use std::cmp::Ordering;

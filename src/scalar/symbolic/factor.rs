@@ -85,6 +85,43 @@ impl Factored {
 /// [module docs](self)), common factors cancelled, `num/den` with the constant in front of
 /// the numerator. Exact (the factors multiply back to the value), so it reads back equal.
 pub fn readable(x: &RatFun, latex: bool) -> String {
+    let (num, den) = &*readable_parts(x);
+    render_quotient(num, den, latex)
+}
+
+/// The factored numerator and denominator [`readable`] prints, remembered per thread for the
+/// last [`MEMO`] values: a report asks for the text and the LaTeX of each value, and factoring
+/// is most of the cost of either.
+fn readable_parts(x: &RatFun) -> std::rc::Rc<(Factored, Factored)> {
+    use std::cell::RefCell;
+    use std::rc::Rc;
+    type Memo = Vec<(RatFun, Rc<(Factored, Factored)>)>;
+    thread_local!(static LAST: RefCell<Memo> = const { RefCell::new(Vec::new()) });
+    if let Some(hit) = LAST.with(|m| {
+        m.borrow()
+            .iter()
+            .find(|(y, _)| y.same_repr(x))
+            .map(|(_, parts)| Rc::clone(parts))
+    }) {
+        return hit;
+    }
+    let parts = Rc::new(factor_quotient(x));
+    LAST.with(|m| {
+        let mut m = m.borrow_mut();
+        if m.len() == MEMO {
+            m.remove(0);
+        }
+        m.push((x.clone(), Rc::clone(&parts)));
+    });
+    parts
+}
+
+/// How many values [`readable_parts`] remembers.
+const MEMO: usize = 8;
+
+/// Numerator and denominator factored, common factors cancelled, the constant in front of the
+/// numerator (its denominator below the line when there is a denominator).
+fn factor_quotient(x: &RatFun) -> (Factored, Factored) {
     let mut num = factor(x.numer());
     let mut den = Factored {
         constant: BigRational::one(),
@@ -154,6 +191,11 @@ pub fn readable(x: &RatFun, latex: bool) -> String {
         num.constant = BigRational::from_integer(c.numer().clone());
         den.constant = BigRational::from_integer(c.denom().clone());
     }
+    (num, den)
+}
+
+/// `num/den` as [`readable`] prints it.
+fn render_quotient(num: &Factored, den: &Factored, latex: bool) -> String {
     // A lone polynomial factor keeps its own signs: `vx - w*y1`, not `-(w*y1 - vx)`.
     let lone = match num.factors.as_slice() {
         [(f, 1)] if num.constant.abs().is_one() && f.len() > 1 => Some(f.scale(&num.constant)),
@@ -183,7 +225,7 @@ pub fn readable(x: &RatFun, latex: bool) -> String {
         if atomic { t } else { format!("({t})") }
     };
     // `a*(b + c)/(d*e)` reads left to right: only the denominator needs parentheses.
-    format!("{n}/{}", wrap(d, &den))
+    format!("{n}/{}", wrap(d, den))
 }
 
 fn pow(q: &BigRational, e: u32) -> BigRational {
@@ -375,5 +417,35 @@ mod tests {
                 .any(|(g, e)| (*g == &a - &b || *g == &b - &a) && *e == 2),
             "{f:?}"
         );
+    }
+
+    /// The memo of [`readable_parts`] changes nothing: every value of the posed solves, read
+    /// in an order that evicts entries (more values than [`MEMO`] between repeats), prints as
+    /// its fresh factoring does, in text and LaTeX.
+    #[test]
+    fn remembered_readable_forms_equal_fresh_ones() {
+        let values = super::super::radical::tests::posed_values();
+        assert!(values.len() > 4 * MEMO);
+        for round in 0..2 {
+            for v in &values {
+                let (num, den) = factor_quotient(v);
+                for latex in [round == 0, round == 1] {
+                    assert_eq!(
+                        readable(v, latex),
+                        render_quotient(&num, &den, latex),
+                        "{v}"
+                    );
+                }
+            }
+        }
+        // A symbolic value and a radical one alternating through the memo.
+        let (m, jz) = (RatFun::symbol("m"), RatFun::symbol("Jz"));
+        let x = (RatFun::from_integer(1) / &m) * &jz + RatFun::cos_deg(30).unwrap();
+        for _ in 0..3 {
+            for v in [&x, &values[0]] {
+                let (num, den) = factor_quotient(v);
+                assert_eq!(readable(v, false), render_quotient(&num, &den, false));
+            }
+        }
     }
 }

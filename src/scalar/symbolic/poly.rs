@@ -228,8 +228,9 @@ pub struct Poly {
     terms: Vec<Term>,
 }
 
-/// gcd(a, b) ≥ 0 of two integers (through `BigRational`'s reduction, which uses num-integer's
-/// binary gcd).
+/// gcd(a, b) ≥ 0 of two integers: a word gcd when either fits a word, Lehmer's method on big
+/// ones ([`crate::scalar::rational`]), rather than num-integer's binary gcd, which shifts the
+/// whole numbers bit by bit.
 pub(crate) fn int_gcd(a: &BigInt, b: &BigInt) -> BigInt {
     if a.is_zero() {
         return b.abs();
@@ -237,8 +238,21 @@ pub(crate) fn int_gcd(a: &BigInt, b: &BigInt) -> BigInt {
     if b.is_zero() {
         return a.abs();
     }
-    let r = BigRational::new(a.clone(), b.clone());
-    (a / r.numer()).abs()
+    crate::scalar::rational::big_gcd(a, b)
+}
+
+/// a·b by Henrici's product over the exact rationals' gcds (a word gcd when either part fits a
+/// word, Lehmer's method beyond: [`crate::scalar::rational`]): the same lowest terms as
+/// `BigRational`'s product, whose gcds are num-integer's binary ones.
+fn q_mul(a: &BigRational, b: &BigRational) -> BigRational {
+    let (n, d) = crate::scalar::rational::big_mul(a.numer(), a.denom(), b.numer(), b.denom());
+    BigRational::new_raw(n, d)
+}
+
+/// a + b by Henrici's sum, as [`q_mul`].
+fn q_add(a: &BigRational, b: &BigRational) -> BigRational {
+    let (n, d) = crate::scalar::rational::big_add(a.numer(), a.denom(), b.numer(), b.denom());
+    BigRational::new_raw(n, d)
 }
 
 impl Poly {
@@ -459,7 +473,11 @@ impl Poly {
             return self.clone();
         }
         Poly {
-            terms: self.terms.iter().map(|(m, a)| (m.clone(), a * c)).collect(),
+            terms: self
+                .terms
+                .iter()
+                .map(|(m, a)| (m.clone(), q_mul(a, c)))
+                .collect(),
         }
     }
 
@@ -476,7 +494,11 @@ impl Poly {
     /// so the terms stay sorted).
     fn mul_term_free(&self, m: &Monomial, c: &BigRational) -> Poly {
         Poly {
-            terms: self.terms.iter().map(|(t, a)| (t.mul(m), a * c)).collect(),
+            terms: self
+                .terms
+                .iter()
+                .map(|(t, a)| (t.mul(m), q_mul(a, c)))
+                .collect(),
         }
     }
 
@@ -485,7 +507,7 @@ impl Poly {
         let mut map = HashMap::with_capacity(self.len() * other.len());
         for (a, ca) in &self.terms {
             for (b, cb) in &other.terms {
-                accumulate(&mut map, a.mul(b), ca * cb);
+                accumulate(&mut map, a.mul(b), q_mul(ca, cb));
             }
         }
         Poly::from_map(map)
@@ -728,7 +750,7 @@ fn pow_q(q: &BigRational, e: u32) -> BigRational {
 
 fn accumulate(map: &mut HashMap<Monomial, BigRational>, m: Monomial, c: BigRational) {
     match map.get_mut(&m) {
-        Some(a) => *a += c,
+        Some(a) => *a = q_add(a, &c),
         None => {
             map.insert(m, c);
         }
@@ -765,7 +787,7 @@ fn reduce_into(
     let rest = m.with_exponent(v, e % 2);
     let k = e / 2;
     if let Some(q) = p.constant_value() {
-        reduce_into(table, rest, c * pow_q(&q, k), map);
+        reduce_into(table, rest, q_mul(&c, &pow_q(&q, k)), map);
         return;
     }
     let mut pk = p.clone();
@@ -773,7 +795,7 @@ fn reduce_into(
         pk = pk.mul_free(p);
     }
     for (t, a) in pk.terms {
-        reduce_into(table, rest.mul(&t), &c * a, map);
+        reduce_into(table, rest.mul(&t), q_mul(&c, &a), map);
     }
 }
 
@@ -921,9 +943,9 @@ fn merge(a: &[Term], b: &[Term], negate_b: bool) -> Poly {
             }
             Ordering::Equal => {
                 let c = if negate_b {
-                    &a[i].1 - &b[j].1
+                    q_add(&a[i].1, &-&b[j].1)
                 } else {
-                    &a[i].1 + &b[j].1
+                    q_add(&a[i].1, &b[j].1)
                 };
                 if !c.is_zero() {
                     terms.push((a[i].0.clone(), c));
@@ -1119,5 +1141,70 @@ mod tests {
         assert_eq!(p.eval(&v), None);
         v.insert("z".to_owned(), q(-1, 2));
         assert_eq!(p.eval(&v), Some(q(1, 1)));
+    }
+
+    /// int_gcd (word and Lehmer gcds) equals num-integer's binary gcd, on words, 128-bit and
+    /// larger arguments, signs and zeros.
+    #[test]
+    fn integer_gcd_equals_num_integers() {
+        use num_integer::Integer;
+        let mut state = 0x1129_u64;
+        let mut next = move || {
+            state = state
+                .wrapping_mul(6_364_136_223_846_793_005)
+                .wrapping_add(1_442_695_040_888_963_407);
+            state
+        };
+        for k in 0..400u32 {
+            let common = BigInt::from(next() >> (k % 64));
+            let mut big = |bits: u32| {
+                let mut x = BigInt::from(next());
+                while x.bits() < u64::from(bits) {
+                    x = (x << 64u32) + next();
+                }
+                x
+            };
+            let a = big(k % 5 * 60) * &common * if k % 3 == 0 { -1 } else { 1 };
+            let b = big(k % 7 * 40) * &common;
+            for (x, y) in [
+                (&a, &b),
+                (&b, &a),
+                (&a, &BigInt::zero()),
+                (&BigInt::zero(), &b),
+            ] {
+                assert_eq!(int_gcd(x, y), x.gcd(y), "gcd({x}, {y})");
+            }
+        }
+    }
+
+    /// The coefficients' Henrici products and sums equal `BigRational`'s, in lowest terms
+    /// (the same fields, not only the same values), on words and on big parts.
+    #[test]
+    fn coefficient_arithmetic_equals_big_rationals() {
+        let mut state = 0x2911_u64;
+        let mut next = move || {
+            state = state
+                .wrapping_mul(6_364_136_223_846_793_005)
+                .wrapping_add(1_442_695_040_888_963_407);
+            state
+        };
+        let mut values = Vec::new();
+        for k in 0..60u32 {
+            let shift = k % 4 * 50;
+            let n = (BigInt::from(next() >> 1) << shift) - BigInt::from(next());
+            let d = (BigInt::from(next() >> (k % 60)) << (shift / 2)) + 1;
+            values.push(BigRational::new(n, d));
+        }
+        values.push(q(3, 7));
+        values.push(q(-3, 7));
+        values.push(q(1, 1));
+        for a in &values {
+            for b in &values {
+                let (p, s) = (q_mul(a, b), q_add(a, b));
+                let (ep, es) = (a * b, a + b);
+                assert_eq!((p.numer(), p.denom()), (ep.numer(), ep.denom()));
+                assert_eq!((s.numer(), s.denom()), (es.numer(), es.denom()));
+            }
+        }
     }
 }

@@ -9,6 +9,7 @@
 //! nonzero.
 
 use num_bigint::BigInt;
+use num_integer::Integer;
 use num_rational::BigRational;
 use num_traits::{One, Signed, ToPrimitive, Zero};
 
@@ -153,33 +154,73 @@ fn square_free(n: &BigInt) -> Option<(BigInt, Vec<BigInt>)> {
 }
 
 /// A rational interval [lo, hi] containing the value of the constant `p` (every symbol a
-/// radical), with each √prime enclosed to within 2^−bits; `None` if `p` has another symbol.
-fn enclosure(table: &Table, p: &Poly, bits: u32) -> Option<(BigRational, BigRational)> {
-    let scale = BigInt::one() << bits;
-    let mut lo = BigRational::zero();
-    let mut hi = BigRational::zero();
+/// radical), with each √prime enclosed to within 2^−bits: `(lo·d, hi·d, d)` over one positive
+/// denominator d; `None` if `p` has another symbol.
+///
+/// With s = ⌊√(prime·4^bits)⌋ and S = 2^bits, √prime lies in [s/S, (s + 1)/S], so a term
+/// c·Π √p_i^{e_i} lies between c·Π s_i^{e_i}/S^E and c·Π (s_i + 1)^{e_i}/S^E (E = Σ e_i; the
+/// ends swap for c < 0). Over d = lcm(denominators of c)·S^{E_max} every end is an integer:
+/// the sums take no gcd, and the roots s are remembered per radical and precision.
+fn enclosure(table: &Table, p: &Poly, bits: u32) -> Option<(BigInt, BigInt, BigInt)> {
+    let mut ends = Vec::with_capacity(p.len());
+    let mut lcm = BigInt::one();
+    let mut top = 0u64;
     for (m, c) in p.terms() {
-        let mut tlo = BigRational::one();
-        let mut thi = BigRational::one();
+        let mut lo = BigInt::one();
+        let mut hi = BigInt::one();
+        let mut degree = 0u64;
         for &(v, e) in m.vars() {
-            let prime = table.radicand(v)?;
-            let s = (prime * &scale * &scale).sqrt();
-            let rlo = BigRational::new(s.clone(), scale.clone());
-            let rhi = BigRational::new(s + 1, scale.clone());
+            let s = root(table, v, bits)?;
+            let s1 = &s + 1u32;
             for _ in 0..e {
-                tlo *= &rlo;
-                thi *= &rhi;
+                lo *= &s;
+                hi *= &s1;
             }
+            degree += u64::from(e);
         }
-        if c.is_negative() {
-            lo += c * thi;
-            hi += c * tlo;
+        if !lcm.is_multiple_of(c.denom()) {
+            lcm = lcm.lcm(c.denom());
+        }
+        top = top.max(degree);
+        ends.push((c, degree, lo, hi));
+    }
+    let (mut lo, mut hi) = (BigInt::zero(), BigInt::zero());
+    for (c, degree, tlo, thi) in ends {
+        let k = (c.numer() * (&lcm / c.denom())) << (u64::from(bits) * (top - degree));
+        if k.is_negative() {
+            lo += &k * thi;
+            hi += k * tlo;
         } else {
-            lo += c * tlo;
-            hi += c * thi;
+            lo += &k * tlo;
+            hi += k * thi;
         }
     }
-    Some((lo, hi))
+    Some((lo, hi, lcm << (u64::from(bits) * top)))
+}
+
+/// ⌊√(p·4^bits)⌋ for the radical r_p with id `v`, remembered per thread up to 4096 bits;
+/// `None` if `v` is not a radical.
+fn root(table: &Table, v: u32, bits: u32) -> Option<BigInt> {
+    use std::cell::RefCell;
+    use std::collections::HashMap;
+    thread_local!(static ROOTS: RefCell<HashMap<(u32, u32), BigInt>> = RefCell::new(HashMap::new()));
+    if let Some(s) = ROOTS.with(|r| r.borrow().get(&(v, bits)).cloned()) {
+        return Some(s);
+    }
+    let prime = table.radicand(v)?;
+    let s = (prime << (2 * u64::from(bits))).sqrt();
+    if bits > 4096 {
+        // Only a sign that nearly cancels gets here, once: not worth holding its root.
+        return Some(s);
+    }
+    ROOTS.with(|r| {
+        let mut r = r.borrow_mut();
+        if r.len() >= 4096 {
+            r.clear();
+        }
+        r.insert((v, bits), s.clone());
+    });
+    Some(s)
 }
 
 /// The bits of precision tried, doubling from 32. The precision a sign needs grows with the
@@ -198,36 +239,38 @@ pub(crate) fn sign(p: &Poly) -> Option<i8> {
     let table = symbols::snapshot();
     let mut last = None;
     for bits in precisions() {
-        let (lo, hi) = enclosure(&table, p, bits)?;
+        let (lo, hi, _) = enclosure(&table, p, bits)?;
         if lo.is_positive() {
             return Some(1);
         }
         if hi.is_negative() {
             return Some(-1);
         }
-        last = Some((lo + hi) / BigRational::from_integer(2.into()));
+        last = Some(lo + hi);
     }
     // Not reached in practice: a nonzero reduced constant is a nonzero real number, which
     // the shrinking enclosures separate from 0. Past 2³⁰ bits, the midpoint's sign.
-    last.map(|mid| rational_sign(&mid))
+    last.map(|twice_mid| rational_sign(&BigRational::from_integer(twice_mid)))
 }
 
-/// The value of a constant `p` (radicals only) in f64, from an enclosure narrower than
-/// 2^−60 of its magnitude; NaN if `p` has another symbol.
+/// The value of a constant `p` (radicals only) in f64: the midpoint (rounded once) of the
+/// first enclosure narrower than 2^−60 of the midpoint's magnitude, trying 64 bits, then 128,
+/// 256, …; NaN if `p` has another symbol.
 pub(crate) fn to_f64(p: &Poly) -> f64 {
     if let Some(c) = p.constant_value() {
         return crate::number::rational_to_f64(&c);
     }
     let table = symbols::snapshot();
     let mut mid = None;
-    for bits in precisions().map(|b| b.max(64)) {
-        let Some((lo, hi)) = enclosure(&table, p, bits) else {
+    for bits in precisions().filter(|&b| b >= 64) {
+        let Some((lo, hi, d)) = enclosure(&table, p, bits) else {
             return f64::NAN;
         };
-        let m = (&lo + &hi) / BigRational::from_integer(2.into());
-        let width = hi - lo;
-        let tolerance = m.abs() / BigRational::from_integer(BigInt::one() << 60u32);
-        if width <= tolerance {
+        // mid = (lo + hi)/2d; width = (hi − lo)/d ≤ |mid|/2⁶⁰ iff (hi − lo)·2⁶¹ ≤ |lo + hi|.
+        let width = (&hi - &lo) << 61u32;
+        let sum = lo + hi;
+        let m = BigRational::new_raw(sum.clone(), d << 1u32);
+        if width <= sum.abs() {
             return crate::number::rational_to_f64(&m);
         }
         mid = Some(m);
@@ -262,7 +305,7 @@ pub(crate) fn cos_first_quadrant(t: u32) -> [(i64, i64); 4] {
 }
 
 #[cfg(test)]
-mod tests {
+pub(super) mod tests {
     use super::*;
 
     fn q(a: i64, b: i64) -> BigRational {
@@ -324,5 +367,184 @@ mod tests {
             sqrt_parts(&q),
             Some((BigRational::new(r, 2.into()), vec![]))
         );
+    }
+
+    /// The enclosures as they were computed before (one `BigRational` sum per end, each
+    /// product reduced): the reference the integer enclosures must equal, end for end.
+    fn rational_enclosure(p: &Poly, bits: u32) -> (BigRational, BigRational) {
+        let table = symbols::snapshot();
+        let scale = BigInt::one() << bits;
+        let (mut lo, mut hi) = (BigRational::zero(), BigRational::zero());
+        for (m, c) in p.terms() {
+            let (mut tlo, mut thi) = (BigRational::one(), BigRational::one());
+            for &(v, e) in m.vars() {
+                let s = (table.radicand(v).unwrap() * &scale * &scale).sqrt();
+                let rlo = BigRational::new(s.clone(), scale.clone());
+                let rhi = BigRational::new(s + 1, scale.clone());
+                for _ in 0..e {
+                    tlo *= &rlo;
+                    thi *= &rhi;
+                }
+            }
+            if c.is_negative() {
+                lo += c * thi;
+                hi += c * tlo;
+            } else {
+                lo += c * tlo;
+                hi += c * thi;
+            }
+        }
+        (lo, hi)
+    }
+
+    /// `to_f64` as it was computed before, from [`rational_enclosure`].
+    fn rational_to_f64(p: &Poly) -> f64 {
+        if let Some(c) = p.constant_value() {
+            return crate::number::rational_to_f64(&c);
+        }
+        let mut mid = None;
+        for bits in precisions().map(|b| b.max(64)) {
+            let (lo, hi) = rational_enclosure(p, bits);
+            let m = (&lo + &hi) / BigRational::from_integer(2.into());
+            let tolerance = m.abs() / BigRational::from_integer(BigInt::one() << 60u32);
+            if hi - lo <= tolerance {
+                return crate::number::rational_to_f64(&m);
+            }
+            mid = Some(m);
+        }
+        crate::number::rational_to_f64(&mid.unwrap())
+    }
+
+    /// Constants of ℚ(√2, √3, √5, √7) with coefficients of up to 120 bits, some nearly
+    /// cancelling (a + b√2 with a/b close to −√2), from a fixed linear congruential sequence.
+    fn constants() -> Vec<Poly> {
+        let roots: Vec<Poly> = [2, 3, 5, 7]
+            .iter()
+            .map(|&p| radical_symbol(&BigInt::from(p)))
+            .collect();
+        let mut state = 0x2026_1129_u64;
+        let mut next = move |bound: u64| {
+            state = state
+                .wrapping_mul(6_364_136_223_846_793_005)
+                .wrapping_add(1_442_695_040_888_963_407);
+            (state >> 33) % bound
+        };
+        let mut out = Vec::new();
+        for k in 0..300 {
+            let big = BigInt::one() << (k % 4 * 30) as u32;
+            let mut p = Poly::zero();
+            for subset in 0..16u32 {
+                if next(3) == 0 {
+                    continue;
+                }
+                let num = (BigInt::from(next(2001)) - 1000) * &big + next(1000);
+                let den = BigInt::from(next(97) + 1);
+                let mut t = Poly::constant(BigRational::new(num, den));
+                for (i, r) in roots.iter().enumerate() {
+                    if subset >> i & 1 == 1 {
+                        t = &t * r;
+                    }
+                }
+                p = &p + &t;
+            }
+            out.push(p);
+        }
+        // Near cancellation: 665857 − 470832·√2 ≈ 7.5·10⁻⁷, and its square's tiny value.
+        let near = &Poly::from_integer(665_857) - &(&Poly::from_integer(470_832) * &roots[0]);
+        out.push(&near * &near);
+        out.push(near);
+        out
+    }
+
+    #[test]
+    fn integer_enclosures_equal_the_rational_ones() {
+        for p in constants() {
+            let table = symbols::snapshot();
+            for bits in [32, 64, 256] {
+                let (lo, hi, d) = enclosure(&table, &p, bits).unwrap();
+                let (rlo, rhi) = rational_enclosure(&p, bits);
+                let d = BigRational::from_integer(d);
+                assert_eq!(BigRational::from_integer(lo) / &d, rlo, "{p}");
+                assert_eq!(BigRational::from_integer(hi) / &d, rhi, "{p}");
+            }
+            assert_eq!(to_f64(&p).to_bits(), rational_to_f64(&p).to_bits(), "{p}");
+            let (lo, hi) = rational_enclosure(&p, 1 << 10);
+            let expected = if lo.is_positive() {
+                1
+            } else if hi.is_negative() {
+                -1
+            } else {
+                0
+            };
+            assert_eq!(sign(&p), Some(expected), "{p}");
+        }
+    }
+
+    #[test]
+    fn enclosures_refuse_free_symbols() {
+        let x = &Poly::symbol("x") + &radical_symbol(&BigInt::from(2));
+        assert_eq!(sign(&x), None);
+        assert!(to_f64(&x).is_nan());
+    }
+
+    /// Every value an exact solve of the posed scenes gives — the tilted box of
+    /// `examples/tilted-box.toml` at 15°, 30°, 45° and 60° (two contacts) and the box striking a
+    /// floor and a wall (`tests/posed/box-floor-wall.toml`, four contacts) at 30° and 60° —
+    /// under Newton's and Poisson's laws: impulses, compression impulses, the twist after
+    /// impact, contact velocities after, both energies.
+    pub(in crate::scalar::symbolic) fn posed_values() -> Vec<super::super::RatFun> {
+        use super::super::RatFun;
+        use crate::impact::restitution::Model;
+        use crate::impact::solve::{Impact, Outcome};
+        let tilted = include_str!("../../../examples/tilted-box.toml");
+        let corner = include_str!("../../../tests/posed/box-floor-wall.toml");
+        let mut out = Vec::new();
+        for (text, deg) in [
+            (tilted, 15),
+            (tilted, 30),
+            (tilted, 45),
+            (tilted, 60),
+            (corner, 30),
+            (corner, 60),
+        ] {
+            let text = text.replace("\"30 deg\"", &format!("\"{deg} deg\""));
+            let scene = crate::scene::Scene::parse(&text, "posed").unwrap();
+            let problem = scene.problem::<RatFun>().unwrap();
+            let mut impact = Impact::assemble(&problem).unwrap();
+            for model in [Model::Newton, Model::Poisson] {
+                let mut o = Outcome::default();
+                impact.solve(model, &mut o).unwrap();
+                out.extend(o.impulses_hat.iter().cloned());
+                out.extend(o.compression_hat.iter().cloned());
+                out.extend(o.velocity.0.iter().cloned());
+                out.extend(o.after_hat.iter().flatten().cloned());
+                out.push(o.lost_velocity_energy.clone());
+                out.push(o.kinetic_energy_loss.clone());
+            }
+        }
+        out
+    }
+
+    #[test]
+    fn posed_scenes_values_convert_as_before() {
+        use crate::scalar::Scalar;
+        let values = posed_values();
+        let radicals = values.iter().filter(|v| v.to_rational().is_none()).count();
+        assert!(radicals >= 40, "{radicals} values with radicals");
+        for v in &values {
+            let p = v.numer();
+            assert!(v.is_constant(), "{v}");
+            assert_eq!(to_f64(p).to_bits(), rational_to_f64(p).to_bits(), "{v}");
+            let (lo, hi) = rational_enclosure(p, 256);
+            let reference = if p.is_zero() {
+                0
+            } else if lo.is_positive() {
+                1
+            } else {
+                assert!(hi.is_negative(), "{v}: 256 bits decide every sign here");
+                -1
+            };
+            assert_eq!(sign(p), Some(reference), "{v}");
+        }
     }
 }

@@ -142,8 +142,22 @@ impl RatFun {
         })
     }
 
-    /// cos(15°·t), t = 0…6.
+    /// cos(15°·t), t = 0…6, built once per thread (a posed scene asks for its angle's cosine
+    /// and sine at every number that names it).
     fn first_quadrant_cos(t: u32) -> Self {
+        use std::cell::RefCell;
+        thread_local!(static COS: RefCell<[Option<RatFun>; 7]> = RefCell::new(Default::default()));
+        let t = t.min(6);
+        if let Some(c) = COS.with(|c| c.borrow()[t as usize].clone()) {
+            return c;
+        }
+        let c = RatFun::build_first_quadrant_cos(t);
+        COS.with(|cache| cache.borrow_mut()[t as usize] = Some(c.clone()));
+        c
+    }
+
+    /// cos(15°·t), t = 0…6, from [`radical::cos_first_quadrant`].
+    fn build_first_quadrant_cos(t: u32) -> Self {
         let coeffs = radical::cos_first_quadrant(t);
         let r2 = radical::radical_symbol(&BigInt::from(2));
         let r3 = radical::radical_symbol(&BigInt::from(3));
