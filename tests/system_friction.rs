@@ -540,9 +540,69 @@ fn two_free_bodies(
     .expect("valid")
 }
 
+/// The one contact slides at s = 0 and its slide's normal response is exactly zero:
+/// with K the planar blocks (v = v⁰ − KΛ) and σ the sense of the slip, sliding takes
+/// τ' = σ μ p', so v_n' = −(K_nn + σ μ K_nt) p' — when K_nn + σ μ K_nt = 0 no impulse rate
+/// moves the normal velocity along the simultaneous law's path (dv_n/ds = −v_n⁰): the sliding
+/// impulse leaves the approach speed unchanged (the boundary of Painlevé's impact jam), the
+/// path's rates are infinite and the law has no continuation.
+fn slide_stalls(s: &System<Exact>) -> bool {
+    let b = inertance::impact::friction::Blocks::planar(s).expect("a planar pair");
+    if b.dims[0] == 0 {
+        return false; // μ = 0: no slide
+    }
+    let (n, t) = (b.offset[0], b.offset[0] + 1);
+    let sigma: Exact = if b.v0[t].signum_i8() > 0 {
+        int(1)
+    } else {
+        int(-1)
+    };
+    !b.v0[t].is_zero() && (b.at(n, n).clone() + sigma * &b.mu[0] * b.at(n, t)).is_zero()
+}
+
+/// The case proptest found where [`slide_stalls`] holds (masses 1 and 2, moments 3/2 and 1/2,
+/// the contact at (−1/2, −2) with normal (−1, −1), μ = 5/4): by hand, with n = (−1, −1)/√2,
+/// t = ±(1, −1)/√2, r₀ = (−1/2, −2), r₁ = (−7/2, −3),
+/// W_nn = 1 + 1/2 + ((3/2)²/(3/2) + (1/2)²/(1/2))/2 = 5/2 and |W_nt| = |(−3/2)(5/2)/(3/2) +
+/// (1/2)(13/2)/(1/2)|/2 = 2, so W_nn − μ|W_nt| = 5/2 − (5/4)·2 = 0: the solve says the law
+/// has no continuation at s = 0 — an error, never a number.
+#[test]
+fn a_slide_that_cannot_move_the_normal_velocity_is_an_error_not_a_number() {
+    let s = two_free_bodies(
+        (int(1), int(2)),
+        (ratio(3, 2), ratio(1, 2)),
+        (vi(0, 0, 0), vi(1, 0, 1)),
+        v(ratio(-1, 2), int(-2), int(0)),
+        vi(-1, -1, 0),
+        int(0),
+        ratio(5, 4),
+    );
+    assert!(slide_stalls(&s));
+    for law in [Restitution::Newton, Restitution::Poisson] {
+        assert!(matches!(
+            solve_frictional(&s, law, 0.0),
+            Err(inertance::impact::friction::FrictionError::NoConsistentModes { s, .. }) if s == 0.0
+        ));
+    }
+    // A little less friction and the slide compresses: the pair solves.
+    let less = two_free_bodies(
+        (int(1), int(2)),
+        (ratio(3, 2), ratio(1, 2)),
+        (vi(0, 0, 0), vi(1, 0, 1)),
+        v(ratio(-1, 2), int(-2), int(0)),
+        vi(-1, -1, 0),
+        int(0),
+        ratio(6, 5),
+    );
+    assert!(!slide_stalls(&less));
+    assert!(solve_frictional(&less, Restitution::Newton, 0.0).is_ok());
+}
+
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(32))]
 
+    /// (A slide that cannot move its normal velocity, [`slide_stalls`], has no continuation
+    /// under the simultaneous law: it is left out here and pinned above.)
     #[test]
     fn body_body_friction_conserves_momentum_exactly(
         m0 in common::positive(8, 2), m1 in common::positive(8, 2),
@@ -558,6 +618,7 @@ proptest! {
             v(px, py, int(0)), vi(nx, ny, 0), k, mu * int::<Exact>(2),
         );
         prop_assume!(s.relative_velocity(0).dot(&vi(nx, ny, 0)) > Exact::zero());
+        prop_assume!(!slide_stalls(&s));
         for law in [Restitution::Newton, Restitution::Poisson] {
             let out = solve_frictional(&s, law, 0.0).expect("a planar free pair solves");
             prop_assert!(out.blocks.plane.is_some());
