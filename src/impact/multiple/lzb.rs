@@ -1230,13 +1230,90 @@ impl<'a, T: Real, S: Screws<T>> Run<'a, T, S> {
     /// another member may lie in every cone, and Tresca's problem ([`tresca_modes`]) finds
     /// one if there is one (its minimiser keeps every slip rate at zero exactly when a member
     /// of the family lies in every cone).
+    ///
+    /// A family of one direction (two corners of one edge: only the sum of their tangential
+    /// impulses along the edge is determined) is decided exactly by [`one_direction_holds`];
+    /// Tresca's sweeps crawl along such a family, and where it only grazes a cone (a slip
+    /// that stopped at its cone's edge, held there while the forces fade) they ran their full
+    /// budget at every test.
     fn sticks_hold(&self, r: &Rates<T>, normals: &[Normal<T>], modes: &[Mode<T>]) -> bool {
         if r.split_unique {
             return false;
         }
         let sticks: Vec<usize> = (0..self.n).filter(|&i| modes[i] == Mode::Stick).collect();
+        if let Some(holds) = self.one_direction_holds(r, &sticks) {
+            return holds;
+        }
         tresca_modes(self.b, normals, modes, &sticks, self.tol)
             .is_some_and(|m| sticks.iter().all(|&i| m[i] == Mode::Stick))
+    }
+
+    /// Whether some member τ' + α w of the sticking rates' family lies in every cone, when the
+    /// family has one direction w: `None` when it has more (or none the f64 test sees).
+    ///
+    /// The family is τ' + null(K_SS), K_SS the inertance blocks of the sticking contacts'
+    /// tangent axes (a null direction moves no body: wᵀK_SS w = |M^(-1/2) J_Sᵀ w|² = 0, so it
+    /// changes no other rate). With one direction w, stick i holds for the α with
+    ///
+    /// ```text
+    /// |τ'_i + α w_i|² ≤ R_i²,   R_i = μ_i p'_i + tol · scale
+    /// ```
+    ///
+    /// (the slack of [`Run::leaves_cone`]: tol relative to the impact's largest rate), a
+    /// quadratic inequality whose solutions form an interval [−b − √Δ, −b + √Δ]/|w_i|²,
+    /// b = τ'_i·w_i, Δ = b² − |w_i|²(|τ'_i|² − R_i²) — or every α (w_i = 0 and |τ'_i| ≤ R_i),
+    /// or none. The sticks hold iff the intervals meet. w is the right singular vector of
+    /// K_SS of the one singular value below 10⁻⁹ of the largest.
+    fn one_direction_holds(&self, r: &Rates<T>, sticks: &[usize]) -> Option<bool> {
+        let b = self.b;
+        let axes: Vec<usize> = sticks
+            .iter()
+            .flat_map(|&i| (b.offset[i] + 1..b.offset[i] + 1 + b.dims[i]).collect::<Vec<_>>())
+            .collect();
+        let m = axes.len();
+        if m == 0 {
+            return None;
+        }
+        let k = nalgebra::DMatrix::<f64>::from_fn(m, m, |x, y| b.at(axes[x], axes[y]).to_f64());
+        let svd = k.svd(false, true);
+        let v_t = svd.v_t?;
+        let largest = svd.singular_values.max();
+        let null: Vec<usize> = (0..m)
+            .filter(|&x| svd.singular_values[x] <= 1e-9 * largest)
+            .collect();
+        let [w] = null.as_slice() else {
+            return None;
+        };
+        let w: Vec<f64> = (0..m).map(|x| v_t[(*w, x)]).collect();
+        let scale = r
+            .lambda
+            .iter()
+            .fold(0.0_f64, |z, x| z.max(x.to_f64().abs()));
+        let (mut lo, mut hi) = (f64::NEG_INFINITY, f64::INFINITY);
+        let mut at = 0;
+        for &i in sticks {
+            let o = b.offset[i];
+            let d = b.dims[i];
+            let t: Vec<f64> = (o + 1..o + 1 + d).map(|q| r.lambda[q].to_f64()).collect();
+            let wi = &w[at..at + d];
+            at += d;
+            let radius = (b.mu[i] * r.lambda[o]).to_f64() + self.tol * scale;
+            let (ww, tw) = (dot(wi, wi), dot(&t, wi));
+            let excess = dot(&t, &t) - radius * radius;
+            if ww <= f64::EPSILON * f64::EPSILON {
+                if excess > 0.0 {
+                    return Some(false);
+                }
+                continue;
+            }
+            let disc = tw * tw - ww * excess;
+            if disc < 0.0 {
+                return Some(false);
+            }
+            lo = lo.max((-tw - disc.sqrt()) / ww);
+            hi = hi.min((-tw + disc.sqrt()) / ww);
+        }
+        Some(lo <= hi)
     }
 
     fn integrate(&self) -> Result<Path<T>, LzbError> {
@@ -1575,6 +1652,69 @@ mod tests {
         assert!(
             matches!(out, Err(LzbError::Runaway { steps: 1, .. })),
             "{out:?}"
+        );
+    }
+
+    /// Two corners of one edge stuck, their normal rates given: whether a member of the
+    /// sticking family lies in both cones, decided by the one-direction test, is Tresca's
+    /// answer (its minimiser keeps both slips at zero exactly then), over a grid of μ and
+    /// normal rates on both sides of the answer, away from its boundary (where the two
+    /// tests' tolerances, not the problem, decide).
+    #[test]
+    fn the_edges_sticking_family_holds_when_tresca_says_so() {
+        let body = RigidBody::principal(1.0, Vec3::new(0.5, 0.7, 0.9));
+        let twist = Screw::new(Vec3::zeros(), Vec3::new(0.0, 0.0, -1.0));
+        let corner = |x: f64, mu: f64| {
+            Contact::new(Vec3::new(x, 0.3, 0.2), Vec3::new(0.0, 0.0, -1.0), 0.5).with_friction(mu)
+        };
+        let (mut held, mut refused) = (0, 0);
+        for mu in [0.02, 0.05, 0.1, 0.2, 0.3, 0.5, 0.8, 1.2] {
+            let p = Problem::new(
+                body.clone(),
+                twist.clone(),
+                vec![corner(1.0, mu), corner(-1.0, mu)],
+            )
+            .expect("valid");
+            let frames: Vec<_> = (0..2).map(|i| p.frame(i, true).expect("a frame")).collect();
+            let blocks = Blocks::spatial(&p, &frames);
+            let laws = [ContactLaw::default(), ContactLaw::default()];
+            let run = Run::new(&blocks, &laws, 1e-10).expect("a run");
+            for f2 in [0.05, 0.2, 0.5, 1.0, 2.0, 5.0] {
+                let normals = [Normal::Given(1.0), Normal::Given(f2)];
+                let modes = [Mode::Stick, Mode::Stick];
+                let r = rates(&blocks, &normals, &modes).expect("rates");
+                assert!(
+                    !r.split_unique,
+                    "the corners' tangents along the edge are a family"
+                );
+                let holds = run.one_direction_holds(&r, &[0, 1]).expect("one direction");
+                // away from the boundary: the same answer with the cones 10⁻⁴ wider and narrower
+                let scaled = |k: f64| {
+                    let mut b = blocks.clone();
+                    b.mu.iter_mut().for_each(|m| *m *= k);
+                    let run = Run::new(&b, &laws, 1e-10).expect("a run");
+                    run.one_direction_holds(&r, &[0, 1]).expect("one direction")
+                };
+                if scaled(1.0 + 1e-4) != holds || scaled(1.0 - 1e-4) != holds {
+                    continue;
+                }
+                let tresca =
+                    tresca_modes(&blocks, &normals, &modes, &[0, 1], 1e-10).expect("a minimiser");
+                assert_eq!(
+                    holds,
+                    tresca.iter().all(|m| *m == Mode::Stick),
+                    "mu {mu}, f2 {f2}: {tresca:?}"
+                );
+                if holds {
+                    held += 1;
+                } else {
+                    refused += 1;
+                }
+            }
+        }
+        assert!(
+            held >= 5 && refused >= 5,
+            "both answers occur: {held} held, {refused} refused"
         );
     }
 
