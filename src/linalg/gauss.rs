@@ -33,6 +33,7 @@ pub fn rref_in<T: Scalar>(
     pivots: &mut Vec<usize>,
 ) {
     pivots.clear();
+    pivots.reserve(rows.min(cols));
     let mut scale = T::zero();
     for x in m.iter() {
         if x.abs_gt(&scale) {
@@ -53,14 +54,25 @@ pub fn rref_in<T: Scalar>(
         if m[p * cols + c].is_negligible(&scale, cols) {
             continue;
         }
-        for j in 0..cols {
-            m.swap(r * cols + j, p * cols + j);
-        }
-        for j in 0..extra {
-            rhs.swap(r * extra + j, p * extra + j);
+        // The row operations act column by column, and a pivot column, once eliminated, is
+        // read again by nobody: they run on the live columns only — the free ones left of c
+        // (c − r of them) and those right of it — and column c is set to its unit column.
+        // Every live entry sees the same operations in the same order as a sweep over all
+        // the columns would give it.
+        let live = |j: usize| j > c || (j < c && !pivots.contains(&j));
+        let first = if c == r { c + 1 } else { 0 };
+        if p != r {
+            m.swap(r * cols + c, p * cols + c);
+            for j in (first..cols).filter(|&j| live(j)) {
+                m.swap(r * cols + j, p * cols + j);
+            }
+            for j in 0..extra {
+                rhs.swap(r * extra + j, p * extra + j);
+            }
         }
         let piv = m[r * cols + c].clone();
-        for j in 0..cols {
+        m[r * cols + c] = T::one();
+        for j in (first..cols).filter(|&j| live(j)) {
             m[r * cols + j] /= &piv;
         }
         for j in 0..extra {
@@ -68,8 +80,8 @@ pub fn rref_in<T: Scalar>(
         }
         for i in 0..rows {
             if i != r && !m[i * cols + c].is_zero() {
-                let f = m[i * cols + c].clone();
-                for j in 0..cols {
+                let f = std::mem::replace(&mut m[i * cols + c], T::zero());
+                for j in (first..cols).filter(|&j| live(j)) {
                     let t = f.clone() * &m[r * cols + j];
                     m[i * cols + j] -= t;
                 }
