@@ -410,7 +410,10 @@ pub fn rates_with<T: Scalar, S: Screws<T>>(
     // no body (K_SS w = 0 gives wᵀ K_SS w = |M^(-1/2) J_Sᵀ w|² = 0). What a nearly singular
     // elimination says otherwise in floats (a face flat on the floor to the events'
     // tolerance) is its rounding.
-    let only_sticks = columns.iter().all(|(u, _)| matches!(u, Unknown::Stick(_)));
+    let only_sticks = columns
+        .unknowns
+        .iter()
+        .all(|u| matches!(u, Unknown::Stick(_)));
     if only_sticks {
         solve_consistent_in(a, m, m, rhs, pivots, particular);
     } else if !solve_general_in(a, m, m, rhs, pivots, particular) {
