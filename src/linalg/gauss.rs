@@ -32,13 +32,34 @@ pub fn rref_in<T: Scalar>(
     extra: usize,
     pivots: &mut Vec<usize>,
 ) {
-    pivots.clear();
+    let scale = largest_entry(m);
+    rref_scaled(m, rows, cols, rhs, extra, pivots, &scale);
+}
+
+/// The entry of largest magnitude (the first of them; zero for an empty matrix), signed.
+fn largest_entry<T: Scalar>(m: &[T]) -> T {
     let mut scale = T::zero();
-    for x in m.iter() {
+    for x in m {
         if x.abs_gt(&scale) {
             scale = x.clone();
         }
     }
+    scale
+}
+
+/// [`rref_in`] with the entry of largest magnitude of `m` given ([`largest_entry`]), the
+/// scale of its negligible pivots.
+fn rref_scaled<T: Scalar>(
+    m: &mut [T],
+    rows: usize,
+    cols: usize,
+    rhs: &mut [T],
+    extra: usize,
+    pivots: &mut Vec<usize>,
+    scale: &T,
+) {
+    pivots.clear();
+    pivots.reserve(rows.min(cols));
     let mut r = 0;
     for c in 0..cols {
         if r == rows {
@@ -50,17 +71,28 @@ pub fn rref_in<T: Scalar>(
                 p = i;
             }
         }
-        if m[p * cols + c].is_negligible(&scale, cols) {
+        if m[p * cols + c].is_negligible(scale, cols) {
             continue;
         }
-        for j in 0..cols {
-            m.swap(r * cols + j, p * cols + j);
-        }
-        for j in 0..extra {
-            rhs.swap(r * extra + j, p * extra + j);
+        // The row operations act column by column, and a pivot column, once eliminated, is
+        // read again by nobody: they run on the live columns only — the free ones left of c
+        // (c − r of them) and those right of it — and column c is set to its unit column.
+        // Every live entry sees the same operations in the same order as a sweep over all
+        // the columns would give it.
+        let live = |j: usize| j > c || (j < c && !pivots.contains(&j));
+        let first = if c == r { c + 1 } else { 0 };
+        if p != r {
+            m.swap(r * cols + c, p * cols + c);
+            for j in (first..cols).filter(|&j| live(j)) {
+                m.swap(r * cols + j, p * cols + j);
+            }
+            for j in 0..extra {
+                rhs.swap(r * extra + j, p * extra + j);
+            }
         }
         let piv = m[r * cols + c].clone();
-        for j in 0..cols {
+        m[r * cols + c] = T::one();
+        for j in (first..cols).filter(|&j| live(j)) {
             m[r * cols + j] /= &piv;
         }
         for j in 0..extra {
@@ -68,8 +100,8 @@ pub fn rref_in<T: Scalar>(
         }
         for i in 0..rows {
             if i != r && !m[i * cols + c].is_zero() {
-                let f = m[i * cols + c].clone();
-                for j in 0..cols {
+                let f = std::mem::replace(&mut m[i * cols + c], T::zero());
+                for j in (first..cols).filter(|&j| live(j)) {
                     let t = f.clone() * &m[r * cols + j];
                     m[i * cols + j] -= t;
                 }
@@ -157,21 +189,14 @@ pub fn solve_general_in<T: Scalar>(
     pivots: &mut Vec<usize>,
     particular: &mut Vec<T>,
 ) -> bool {
-    let largest = |xs: &[T]| {
-        let mut m = T::zero();
-        for x in xs {
-            if x.abs_gt(&m) {
-                m = x.clone();
-            }
-        }
-        magnitude(m)
-    };
     let floats = T::epsilon_f64() > 0.0;
+    // the largest entry of A scales both the elimination's negligible pivots and the residual
+    let largest_a = largest_entry(a);
     let (scale_b, scale_a) = match floats {
-        true => (largest(b), largest(a)),
+        true => (magnitude(largest_entry(b)), magnitude(largest_a.clone())),
         false => (T::zero(), T::zero()),
     };
-    rref_in(a, rows, cols, b, 1, pivots);
+    rref_scaled(a, rows, cols, b, 1, pivots, &largest_a);
     // The residual of a consistent system is rounding of the size of the terms it cancels:
     // the backward error of elimination bounds it by a multiple of ε (max|b| + max|a| Σ|x_j|)
     // (Higham, Accuracy and Stability of Numerical Algorithms, §9.3). Exact types: zero.

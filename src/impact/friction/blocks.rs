@@ -230,11 +230,12 @@ impl<T: Scalar, S: Screws<T>> Blocks<T, S> {
     pub fn velocity_change(&self, x: &[T], out: &mut Vec<T>) {
         let n = self.len();
         out.clear();
-        for q in 0..n {
+        out.reserve(n);
+        for row in self.k.chunks_exact(n.max(1)).take(n) {
             let mut s = T::zero();
-            for (r, xr) in x.iter().enumerate() {
+            for (kr, xr) in row.iter().zip(x) {
                 if !xr.is_zero() {
-                    s += self.k[q * n + r].clone() * xr;
+                    s += kr.clone() * xr;
                 }
             }
             out.push(-s);

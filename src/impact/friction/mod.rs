@@ -601,9 +601,9 @@ impl<T: Scalar, S: Screws<T>> Frictional<T, S> {
         for (c, r) in work_compression.iter().zip(&work_restitution) {
             kinetic_energy_loss += c.clone() - r;
         }
-        let energy_residual = mechanism.kinetic_energy(before)
-            - mechanism.kinetic_energy(&velocity)
-            - &kinetic_energy_loss;
+        let kinetic_before = mechanism.kinetic_energy(before);
+        let energy_residual =
+            kinetic_before.clone() - mechanism.kinetic_energy(&velocity) - &kinetic_energy_loss;
         verdicts.dedup_by(|a, b| match (a, b) {
             (
                 Verdict::TensileRate {
@@ -625,11 +625,7 @@ impl<T: Scalar, S: Screws<T>> Frictional<T, S> {
                 verdicts.push(Verdict::StillApproaching { contact: i });
             }
         }
-        if !modes::nonnegative(
-            &kinetic_energy_loss,
-            &mechanism.kinetic_energy(before),
-            blocks.len(),
-        ) {
+        if !modes::nonnegative(&kinetic_energy_loss, &kinetic_before, blocks.len()) {
             verdicts.push(Verdict::EnergyGain);
         }
         let samples = linear_samples(&segments, blocks.len());

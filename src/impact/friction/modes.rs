@@ -101,13 +101,15 @@ pub fn resolve_planar_with<T: Scalar, S: Screws<T>>(
             undetermined: search.undetermined,
         });
     };
-    assign_all(modes, candidates, code);
-    Ok(search.distinct)
+    let distinct = search.distinct;
+    assign_all(modes, candidates, code, &mut work.spare);
+    Ok(distinct)
 }
 
 /// The buffers of a mode search, kept from one event to the next: the rate solve's
 /// ([`RateWork`]), the rates of the assignment being tried, those of the first consistent one,
-/// and the distinct rates found (flat, `len` entries each).
+/// the distinct rates found (flat, `len` entries each), and the slide directions of
+/// candidates last tried sticking, kept for their next slide.
 #[derive(Clone, Debug)]
 pub struct Work<T: Scalar> {
     solve: RateWork<T>,
@@ -115,6 +117,28 @@ pub struct Work<T: Scalar> {
     /// The rates of the assignment [`resolve_planar_with`] chose.
     pub chosen: Rates<T>,
     distinct: Vec<T>,
+    spare: Vec<Vec<T>>,
+}
+
+impl<T: Scalar> Work<T> {
+    /// Set `mode` to a slide along the single direction `sense` (planar), reusing its
+    /// direction or a spare one rather than allocating.
+    pub fn slide(&mut self, mode: &mut Mode<T>, sense: T) {
+        match mode {
+            Mode::Slide(u) => {
+                u.clear();
+                u.push(sense);
+            }
+            m => {
+                let mut u = self.spare.pop().unwrap_or_default();
+                u.clear();
+                u.push(sense);
+                if let Mode::Slide(old) = std::mem::replace(m, Mode::Slide(u)) {
+                    self.spare.push(old);
+                }
+            }
+        }
+    }
 }
 
 impl<T: Scalar> Default for Work<T> {
@@ -124,31 +148,47 @@ impl<T: Scalar> Default for Work<T> {
             rates: Rates::default(),
             chosen: Rates::default(),
             distinct: Vec::new(),
+            spare: Vec::new(),
         }
     }
 }
 
 /// Set the `candidates`' modes to assignment `code` (base 3, the last candidate varying
-/// fastest: stick, slide+, slide−).
-fn assign_all<T: Scalar>(modes: &mut [Mode<T>], candidates: &[usize], code: usize) {
+/// fastest: stick, slide+, slide−), with the slide directions of `spare`.
+fn assign_all<T: Scalar>(
+    modes: &mut [Mode<T>],
+    candidates: &[usize],
+    code: usize,
+    spare: &mut Vec<Vec<T>>,
+) {
     let mut c = code;
     for &i in candidates.iter().rev() {
-        assign(&mut modes[i], c % 3);
+        assign(&mut modes[i], c % 3, spare);
         c /= 3;
     }
 }
 
 /// Set a planar candidate's mode to choice `k` of stick, slide+, slide−, reusing a slide's
-/// direction rather than allocating a new one.
-fn assign<T: Scalar>(mode: &mut Mode<T>, k: usize) {
+/// direction rather than allocating a new one: a slide set to stick leaves its direction in
+/// `spare`, and a slide set from another mode takes one from there.
+fn assign<T: Scalar>(mode: &mut Mode<T>, k: usize, spare: &mut Vec<Vec<T>>) {
     let sense = || if k == 1 { T::one() } else { -T::one() };
     match (k, &mut *mode) {
-        (0, _) => *mode = Mode::Stick,
+        (0, _) => {
+            if let Mode::Slide(u) = std::mem::replace(mode, Mode::Stick) {
+                spare.push(u);
+            }
+        }
         (_, Mode::Slide(u)) => {
             u.clear();
             u.push(sense());
         }
-        _ => *mode = Mode::Slide(vec![sense()]),
+        _ => {
+            let mut u = spare.pop().unwrap_or_default();
+            u.clear();
+            u.push(sense());
+            *mode = Mode::Slide(u);
+        }
     }
 }
 
@@ -291,7 +331,7 @@ impl<'w, T: Scalar> Search<'w, T> {
     ) {
         let total = 3usize.pow(candidates.len() as u32);
         for code in 0..total {
-            assign_all(modes, candidates, code);
+            assign_all(modes, candidates, code, &mut self.work.spare);
             let Work { solve, rates, .. } = &mut *self.work;
             match rates_with(b, normals, modes, solve, rates) {
                 Ok(()) => {
@@ -372,6 +412,9 @@ pub fn normal_consistent<T: Scalar, S: Screws<T>>(
     slack_impulse: &T,
     slack_velocity: &T,
 ) -> bool {
+    if checks.is_empty() {
+        return true;
+    }
     let n = b.len();
     let scale_l = max_abs(&r.lambda);
     let scale_v = max_abs(&r.velocity);
@@ -397,6 +440,9 @@ fn planar_consistent<T: Scalar, S: Screws<T>>(
     r: &Rates<T>,
     candidates: &[usize],
 ) -> bool {
+    if candidates.is_empty() {
+        return true;
+    }
     let n = b.len();
     let scale_l = max_abs(&r.lambda);
     let scale_v = max_abs(&r.velocity);

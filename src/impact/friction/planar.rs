@@ -13,7 +13,9 @@ use crate::impact::friction::modes::{
     MAX_CANDIDATES, NoConsistentModes, Resolution, Work, carries, resolve_planar_unilateral,
     resolve_planar_with,
 };
-use crate::impact::friction::rates::{Mode, Normal, Unilateral, normal_rules, unilateral_rules};
+use crate::impact::friction::rates::{
+    Mode, Normal, Unilateral, normal_rules_into, unilateral_rules,
+};
 use crate::impact::friction::{
     FrictionError, Frictional, Hypothesis, Phase, Restitution, Segment, Verdict, labels,
 };
@@ -43,6 +45,9 @@ struct State<T: Scalar> {
     /// Per contact, under the simultaneous hypothesis: held on its path by a pull at zero slip,
     /// freed of friction ([`resolve_simultaneous`]).
     pulling: Vec<bool>,
+    /// The contacts at zero slip whose modes the last search chose (a buffer kept from event
+    /// to event, [`assign_simultaneous`]).
+    candidates: Vec<usize>,
 }
 
 /// Solve a planar scene under `law` and `hypothesis`, event by event.
@@ -76,29 +81,33 @@ pub fn solve_planar<T: Scalar, S: Screws<T>, M: Mechanism<T, Screw = S>>(
         friction_work: T::zero(),
         gap: vec![T::zero(); n],
         pulling: vec![false; n],
+        candidates: Vec::with_capacity(n),
     };
     let mut segments = Vec::new();
     let mut verdicts = Vec::new();
     // The mode search's buffers and the events' candidates, kept from event to event.
     let mut work = Work::default();
     let (mut reversals, mut engages, mut stops) = (Vec::new(), Vec::new(), Vec::new());
+    // The phase's normal rules, rewritten in place at every event.
+    let mut simultaneous = Vec::with_capacity(n);
     for events in 1..=MAX_EVENTS {
-        let simultaneous = normals(contacts, &b, &st, law);
+        normals(contacts, &b, &st, law, &mut simultaneous);
         let rules = match hypothesis {
             Hypothesis::Simultaneous => Vec::new(),
             Hypothesis::Unilateral => unilateral_rules(&simultaneous, &b, st.phase),
         };
-        let unilateral;
+        let (unilateral, unilateral_normals);
         let (normals, r, consistent) = match hypothesis {
             Hypothesis::Simultaneous => {
                 let consistent = resolve_simultaneous(&b, &simultaneous, &mut st, &mut work)?;
-                (simultaneous, &work.chosen, consistent)
+                (simultaneous.as_slice(), &work.chosen, consistent)
             }
             Hypothesis::Unilateral => {
                 let res = resolve_unilateral(&b, &rules, &st)?;
                 st.modes = res.modes;
                 unilateral = res.rates;
-                (res.normals, &unilateral, res.consistent)
+                unilateral_normals = res.normals;
+                (unilateral_normals.as_slice(), &unilateral, res.consistent)
             }
         };
         if consistent > 1 {
@@ -181,7 +190,7 @@ pub fn solve_planar<T: Scalar, S: Screws<T>, M: Mechanism<T, Screw = S>>(
         let from = st.s.clone();
         advance(&b, &mut st, &r.lambda, &r.velocity, &h);
         if hypothesis == Hypothesis::Unilateral {
-            close_gaps(&b, &mut st, &rules, &normals, &r.velocity, &h);
+            close_gaps(&b, &mut st, &rules, normals, &r.velocity, &h);
         }
         let fired = |hi: &T| (hi.clone() - &h).is_negligible(&h, n);
         for (i, hi) in &engages {
@@ -209,7 +218,7 @@ pub fn solve_planar<T: Scalar, S: Screws<T>, M: Mechanism<T, Screw = S>>(
                 from,
                 to: st.s.clone(),
                 phase: st.phase,
-                modes: labels(hypothesis, &normals, &st.modes),
+                modes: labels(hypothesis, normals, &st.modes),
                 rates: r.lambda.clone(),
             });
         }
@@ -277,9 +286,12 @@ fn resolve_simultaneous<T: Scalar, S: Screws<T>>(
 ) -> Result<usize, FrictionError> {
     let n = b.contacts();
     let pulls = |i: usize, work: &Work<T>| work.chosen.lambda[b.offset[i]].signum_i8() < 0;
-    let mut pulling = st.pulling.clone();
+    // The freed contacts and the candidates' buffer are taken out of the state while the
+    // searches run on it, and put back (an error ends the impact: the state is dropped).
+    let mut pulling = std::mem::take(&mut st.pulling);
+    let mut candidates = std::mem::take(&mut st.candidates);
     for _ in 0..=n {
-        let (found, candidates) = assign_simultaneous(b, normals, st, &pulling, work)?;
+        let found = assign_simultaneous(b, normals, st, &pulling, work, &mut candidates)?;
         match found {
             Ok(count) => {
                 // a contact freed that no longer pulls takes Coulomb's law again
@@ -288,25 +300,28 @@ fn resolve_simultaneous<T: Scalar, S: Screws<T>>(
                     continue;
                 }
                 st.pulling = pulling;
+                st.candidates = candidates;
                 return Ok(count);
             }
             Err(e) => {
+                let mut scratch = Vec::new();
                 for &i in &candidates {
                     if !matches!(normals[i], Normal::Driven(_)) {
                         continue;
                     }
                     let mut trial = pulling.clone();
                     trial[i] = true;
-                    let (found, _) = assign_simultaneous(b, normals, st, &trial, work)?;
+                    let found = assign_simultaneous(b, normals, st, &trial, work, &mut scratch)?;
                     if let Ok(count) = found
                         && (0..n).all(|j| !trial[j] || pulls(j, work))
                     {
                         st.pulling = trial;
+                        st.candidates = candidates;
                         return Ok(count);
                     }
                 }
                 // leave the modes as the failed search left them
-                let _ = assign_simultaneous(b, normals, st, &pulling, work)?;
+                let _ = assign_simultaneous(b, normals, st, &pulling, work, &mut scratch)?;
                 return Err(no_modes(e, st));
             }
         }
@@ -320,16 +335,16 @@ fn resolve_simultaneous<T: Scalar, S: Screws<T>>(
 }
 
 /// One search of [`resolve_simultaneous`] with the contacts `pulling` freed: the search's
-/// result and the contacts at zero slip it chose modes for.
-#[allow(clippy::type_complexity)]
+/// result; the contacts at zero slip it chose modes for are left in `candidates`.
 fn assign_simultaneous<T: Scalar, S: Screws<T>>(
     b: &Blocks<T, S>,
     normals: &[Normal<T>],
     st: &mut State<T>,
     pulling: &[bool],
     work: &mut Work<T>,
-) -> Result<(Result<usize, NoConsistentModes>, Vec<usize>), FrictionError> {
-    let mut candidates = Vec::new();
+    candidates: &mut Vec<usize>,
+) -> Result<Result<usize, NoConsistentModes>, FrictionError> {
+    candidates.clear();
     for i in 0..b.contacts() {
         let off = b.offset[i];
         if b.dims[i] == 0 || !carries(&normals[i]) || pulling[i] {
@@ -338,13 +353,7 @@ fn assign_simultaneous<T: Scalar, S: Screws<T>>(
             candidates.push(i);
         } else {
             let sense = sign(&st.v[off + 1]);
-            match &mut st.modes[i] {
-                Mode::Slide(u) => {
-                    u.clear();
-                    u.push(sense);
-                }
-                m => *m = Mode::Slide(vec![sense]),
-            }
+            work.slide(&mut st.modes[i], sense);
         }
     }
     if candidates.len() > MAX_CANDIDATES {
@@ -353,8 +362,13 @@ fn assign_simultaneous<T: Scalar, S: Screws<T>>(
             contacts: candidates.len(),
         });
     }
-    let found = resolve_planar_with(b, normals, &mut st.modes, &candidates, work);
-    Ok((found, candidates))
+    Ok(resolve_planar_with(
+        b,
+        normals,
+        &mut st.modes,
+        candidates,
+        work,
+    ))
 }
 
 /// The unilateral law's rules and modes at an event: every contact on its path is driven or
@@ -425,14 +439,23 @@ fn sign<T: Scalar>(x: &T) -> T {
     }
 }
 
-/// The normal rule of every contact in the current phase.
+/// The normal rule of every contact in the current phase, written into `out`.
 fn normals<T: Scalar, S: Screws<T>>(
     contacts: &[Contact<T>],
     b: &Blocks<T, S>,
     st: &State<T>,
     law: Restitution,
-) -> Vec<Normal<T>> {
-    normal_rules(contacts, b, st.phase, law, &st.compression, &st.stopped)
+    out: &mut Vec<Normal<T>>,
+) {
+    normal_rules_into(
+        contacts,
+        b,
+        st.phase,
+        law,
+        &st.compression,
+        &st.stopped,
+        out,
+    );
 }
 
 /// Move the state by `h` at the rates `dl` (impulses) and `dv` (velocities), integrating the

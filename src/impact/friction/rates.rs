@@ -62,29 +62,35 @@ pub fn normal_rules<T: Scalar, S: Screws<T>>(
     compression: &[T],
     stopped: &[bool],
 ) -> Vec<Normal<T>> {
+    let mut out = Vec::with_capacity(contacts.len());
+    normal_rules_into(contacts, b, phase, law, compression, stopped, &mut out);
+    out
+}
+
+/// [`normal_rules`] written into `out` (cleared first), a buffer kept from event to event.
+pub fn normal_rules_into<T: Scalar, S: Screws<T>>(
+    contacts: &[Contact<T>],
+    b: &Blocks<T, S>,
+    phase: super::Phase,
+    law: super::Restitution,
+    compression: &[T],
+    stopped: &[bool],
+    out: &mut Vec<Normal<T>>,
+) {
     use super::{Phase, Restitution};
-    contacts
-        .iter()
-        .enumerate()
-        .map(|(i, c)| {
-            let v0 = b.v0[b.offset[i]].clone();
-            match (phase, law) {
-                (Phase::Compression, _) => Normal::Driven(v0),
-                (Phase::Restitution, Restitution::Newton) => {
-                    Normal::Driven(c.k_newton.clone() * v0)
-                }
-                (Phase::Restitution, Restitution::Poisson) => {
-                    Normal::Given(c.k_poisson.clone() * &compression[i])
-                }
-                (Phase::Restitution, Restitution::Energetic) if stopped[i] => {
-                    Normal::Given(T::zero())
-                }
-                (Phase::Restitution, Restitution::Energetic) => {
-                    Normal::Given(compression[i].clone())
-                }
+    out.clear();
+    out.extend(contacts.iter().enumerate().map(|(i, c)| {
+        let v0 = b.v0[b.offset[i]].clone();
+        match (phase, law) {
+            (Phase::Compression, _) => Normal::Driven(v0),
+            (Phase::Restitution, Restitution::Newton) => Normal::Driven(c.k_newton.clone() * v0),
+            (Phase::Restitution, Restitution::Poisson) => {
+                Normal::Given(c.k_poisson.clone() * &compression[i])
             }
-        })
-        .collect()
+            (Phase::Restitution, Restitution::Energetic) if stopped[i] => Normal::Given(T::zero()),
+            (Phase::Restitution, Restitution::Energetic) => Normal::Given(compression[i].clone()),
+        }
+    }));
 }
 
 /// Contact i's two rules under the unilateral law ([`super::Hypothesis::Unilateral`]): on its
@@ -332,6 +338,12 @@ pub fn rates_with<T: Scalar, S: Screws<T>>(
     known.resize(len, T::zero());
     columns.clear();
     rows.clear();
+    // at most one unknown and one equation per axis, two entries per column: the buffers
+    // grow once, to their size, rather than by doubling
+    columns.unknowns.reserve(len);
+    columns.ends.reserve(len);
+    columns.entries.reserve(2 * len);
+    rows.reserve(len);
     for (i, (normal, mode)) in normals.iter().zip(modes).enumerate() {
         let off = b.offset[i];
         let slide = match mode {
@@ -369,18 +381,24 @@ pub fn rates_with<T: Scalar, S: Screws<T>>(
     let m = rows.len();
     a.clear();
     rhs.clear();
+    a.reserve(m * m);
+    rhs.reserve(m);
     for (q, target) in rows.iter() {
-        for (_, col) in columns.iter() {
+        // row q of K
+        let k_q = &b.k[q * len..(q + 1) * len];
+        let mut start = 0;
+        for &end in &columns.ends {
             let mut s = T::zero();
-            for (r, c) in col {
-                s += b.at(*q, *r).clone() * c;
+            for (r, c) in &columns.entries[start..end] {
+                s += k_q[*r].clone() * c;
             }
             a.push(s);
+            start = end;
         }
         let mut t = target.clone();
-        for (r, kr) in known.iter().enumerate() {
+        for (k_qr, kr) in k_q.iter().zip(known.iter()) {
             if !kr.is_zero() {
-                t -= b.at(*q, r).clone() * kr;
+                t -= k_qr.clone() * kr;
             }
         }
         rhs.push(t);
@@ -392,7 +410,10 @@ pub fn rates_with<T: Scalar, S: Screws<T>>(
     // no body (K_SS w = 0 gives wᵀ K_SS w = |M^(-1/2) J_Sᵀ w|² = 0). What a nearly singular
     // elimination says otherwise in floats (a face flat on the floor to the events'
     // tolerance) is its rounding.
-    let only_sticks = columns.iter().all(|(u, _)| matches!(u, Unknown::Stick(_)));
+    let only_sticks = columns
+        .unknowns
+        .iter()
+        .all(|u| matches!(u, Unknown::Stick(_)));
     if only_sticks {
         solve_consistent_in(a, m, m, rhs, pivots, particular);
     } else if !solve_general_in(a, m, m, rhs, pivots, particular) {
