@@ -841,9 +841,12 @@ fn a_can_on_a_floor_with_mu_one_half_rests_upright_under_the_unilateral_law_and_
 /// slid and turned: its corners' friction followed the statically indeterminate split of the
 /// normal impulses, so the rigid model does not decide the motion. The least-norm member (the
 /// split of equal compliances) is taken and the log says so; the box rests flat all the same.
+/// With μ = 0.9 LZB ran for minutes on two sticking corners of one edge (Tresca's sweeps
+/// crawling along their family, then a rate solve that took the nearly singular family for a
+/// unique answer chosen by rounding): it rests flat at its 230th impact.
 #[test]
 fn a_box_dropped_on_a_rough_floor_rests_flat_under_every_law() {
-    for (mu, law) in [0.2, 0.5].into_iter().flat_map(|mu| {
+    for (mu, law) in [0.2, 0.5, 0.9].into_iter().flat_map(|mu| {
         [
             Law::Simultaneous(Restitution::Newton),
             Law::Unilateral(Restitution::Newton),

@@ -225,6 +225,17 @@ pub fn solve_general_in<T: Scalar>(
 /// elimination leaves below its pivots hold rounding, not a contradiction, and are not
 /// tested — in floats a nearly singular system leaves them above the backward-error bound
 /// that [`solve_general_in`] tests, by its conditioning. The particular solution is the same.
+///
+/// **Its rank, in floats.** A pivot below √ε_T of the matrix's largest entry is taken as zero
+/// (exact types: exactly zero), not below n ε_T: such a matrix is a singular one — two points
+/// of one line whose tangential impulses along it only their sum determines — whose geometry
+/// carries rounding (a body posed by an integration, its contacts projected, holds its
+/// corners collinear to 10⁻¹⁰ or so, not to ε). Below √ε the unique solution's component
+/// along the nearly null direction is the right-hand side's rounding divided by the pivot —
+/// a member of the family chosen by noise, which jumps from one evaluation to the next; taken
+/// as a family, the caller chooses its member (the rates of [`crate::impact::friction`]:
+/// in proportion to the cones). By Weyl's inequality a perturbation of relative size δ moves
+/// the smallest singular value by at most δ, so a pivot above √ε ≫ δ is a genuine rank.
 pub fn solve_consistent_in<T: Scalar>(
     a: &mut [T],
     rows: usize,
@@ -233,7 +244,14 @@ pub fn solve_consistent_in<T: Scalar>(
     pivots: &mut Vec<usize>,
     particular: &mut Vec<T>,
 ) {
-    rref_in(a, rows, cols, b, 1, pivots);
+    let eps = T::epsilon_f64();
+    let mut scale = largest_entry(a);
+    if eps > 0.0
+        && let Some(widen) = T::from_f64(eps.sqrt() / (cols.max(1) as f64 * eps))
+    {
+        scale = scale * widen;
+    }
+    rref_scaled(a, rows, cols, b, 1, pivots, &scale);
     fill_particular(cols, b, pivots, particular);
 }
 
@@ -254,6 +272,30 @@ mod tests {
 
     fn m(v: &[i64]) -> Vec<Exact> {
         v.iter().map(|&x| int(x)).collect()
+    }
+
+    /// A consistent PSD system singular but for a relative 10⁻¹² (two points of one line whose
+    /// geometry carries rounding): in f64 one pivot (a family; the nearly null component is
+    /// not the rounding of the right-hand side divided by 10⁻¹²), exactly two.
+    #[test]
+    fn a_nearly_singular_consistent_system_is_a_family_in_floats_only() {
+        let d = 1e-12;
+        let (mut a, mut b) = (vec![1.0, 1.0, 1.0, 1.0 + d], vec![2.0, 2.0 + 1e-16]);
+        let (mut pivots, mut x) = (Vec::new(), Vec::new());
+        solve_consistent_in(&mut a, 2, 2, &mut b, &mut pivots, &mut x);
+        assert_eq!(pivots.len(), 1);
+        assert_eq!(x, vec![2.0, 0.0]);
+        let mut a: Vec<Exact> = vec![
+            int(1),
+            int(1),
+            int(1),
+            int::<Exact>(1) + ratio::<Exact>(1, 1_000_000_000_000),
+        ];
+        let mut b: Vec<Exact> = vec![int(2), int(2)];
+        let (mut pivots, mut x) = (Vec::new(), Vec::new());
+        solve_consistent_in(&mut a, 2, 2, &mut b, &mut pivots, &mut x);
+        assert_eq!(pivots.len(), 2);
+        assert_eq!(x, vec![int(2), int(0)]);
     }
 
     #[test]
