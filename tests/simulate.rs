@@ -819,8 +819,9 @@ fn a_can_on_a_very_rough_floor_tumbles_to_rest_upright_under_every_law() {
 /// points met systems that are consistent and move no body by construction (a principal
 /// submatrix of the positive semidefinite K against a right side in its range) but that a
 /// nearly singular elimination called inconsistent or undetermined. It now rests upright.
-/// (Under the simultaneous law it still stops at a face landing: three rim points at zero slip
-/// leave their cones together and no joint slide is found; issue 27.)
+/// (Under the simultaneous law it still stops at a face landing, impact 19: the point it
+/// pivots on is not freed while it pulls; issue 27 and guide/simulate.md. Impact 18, where three
+/// rim points reverse their slip together and no joint slide was found, now passes.)
 #[test]
 fn a_can_on_a_floor_with_mu_one_half_rests_upright_under_the_unilateral_law_and_lzb() {
     can_rests_under(
