@@ -48,6 +48,7 @@
 use crate::impact::friction::blocks::Blocks;
 use crate::impact::friction::modes::nonnegative;
 use crate::impact::friction::rates::{Mode, Normal, RateFailure, max_abs, rates};
+use crate::linalg::gauss::solve_general_in;
 use crate::mechanics::screw::Screws;
 use crate::scalar::Scalar;
 
@@ -349,6 +350,178 @@ pub fn invariant_directions<T: Scalar, S: Screws<T>>(
             Invariant { u, kappa }
         })
         .collect())
+}
+
+/// The slip rates f_k = dv_kt/ds and g_k = u_k⊥ · f_k of the contacts `sliding`, each sliding
+/// along its direction in `dirs` (`modes` set so). `None` when the rates fail.
+fn joint_rates<T: Scalar, S: Screws<T>>(
+    b: &Blocks<T, S>,
+    normals: &[Normal<T>],
+    modes: &mut [Mode<T>],
+    sliding: &[usize],
+    dirs: &[Vec<T>],
+) -> Option<(Vec<T>, Vec<Vec<T>>)> {
+    for (&i, u) in sliding.iter().zip(dirs) {
+        modes[i] = Mode::Slide(u.clone());
+    }
+    let r = rates(b, normals, modes).ok()?;
+    let f: Vec<Vec<T>> = sliding
+        .iter()
+        .map(|&i| r.velocity[b.offset[i] + 1..b.offset[i] + 3].to_vec())
+        .collect();
+    let g = dirs
+        .iter()
+        .zip(&f)
+        .map(|(u, f)| u[0].clone() * &f[1] - u[1].clone() * &f[0])
+        .collect();
+    Some((g, f))
+}
+
+/// Several contacts leaving zero slip together: directions u_k of the contacts `sliding` with
+/// g_k(u) = u_k⊥ · f_k(u) = 0 for every k at once, f_k = dv_kt/ds with all of them sliding —
+/// the joint invariant direction of the module docs — found by Newton's method on their
+/// angles from `start` (u_k = `start[k]` turned by the angle whose tangent is t_k; a
+/// forward-difference Jacobian of 10⁻⁷; a step halved until max|g| falls), to `settled` in
+/// angle. As for one contact, the root needs a root finder: the joint fixed-point iteration
+/// u_k ← f_k/|f_k| has the derivative 1 + D J at a root (J = ∂g/∂θ, D = diag(1/λ_k)), and
+/// diverges wherever an eigenvalue z of D J lies outside the disc |1 + z| < 1 (a real one below
+/// −2) — at strongly attracting directions (the face of a can whose three rim points reverse
+/// their slip together, issue 27: about −3, the iteration's errors doubling with alternating
+/// sign). Returns the root's directions, their λ_k and the eigenvalues' largest real part
+/// (< 0: the directions attract the slips around them), or `None` when Newton's method does
+/// not settle on a root or the rates fail; `modes` are left sliding along the last directions
+/// tried (along the root's when one is returned).
+pub fn joint_root<T: Scalar, S: Screws<T>>(
+    b: &Blocks<T, S>,
+    normals: &[Normal<T>],
+    modes: &mut [Mode<T>],
+    sliding: &[usize],
+    start: &[Vec<T>],
+    settled: f64,
+) -> Option<JointRoot<T>> {
+    let k = sliding.len();
+    let at =
+        |t: &[T]| -> Vec<Vec<T>> { start.iter().zip(t).map(|(u, tk)| turned(u, tk)).collect() };
+    let size = |g: &[T]| g.iter().fold(0.0_f64, |m, x| m.max(x.to_f64().abs()));
+    let d: T = of(1e-7);
+    // ∂g/∂t at t (g there given), k × k row-major, by forward differences.
+    let jacobian = |modes: &mut [Mode<T>], t: &[T], g: &[T]| -> Option<Vec<T>> {
+        let mut jac = vec![T::zero(); k * k];
+        for c in 0..k {
+            let mut tc = t.to_vec();
+            tc[c] += d.clone();
+            let (gc, _) = joint_rates(b, normals, modes, sliding, &at(&tc))?;
+            for r in 0..k {
+                jac[r * k + c] = (gc[r].clone() - &g[r]) / d.clone();
+            }
+        }
+        Some(jac)
+    };
+    let mut t = vec![T::zero(); k];
+    let (mut g, _) = joint_rates(b, normals, modes, sliding, &at(&t))?;
+    let mut settled_at = false;
+    for _ in 0..60 {
+        if size(&g) == 0.0 {
+            settled_at = true;
+            break;
+        }
+        let jac = jacobian(modes, &t, &g)?;
+        let mut a = jac;
+        let mut rhs: Vec<T> = g.iter().map(|x| -x.clone()).collect();
+        let (mut pivots, mut step) = (Vec::new(), Vec::new());
+        if !solve_general_in(&mut a, k, k, &mut rhs, &mut pivots, &mut step) || pivots.len() != k {
+            return None;
+        }
+        // Halve the step until max|g| falls (at most 30 times).
+        let before = size(&g);
+        let mut scale = T::one();
+        let mut accepted = None;
+        for _ in 0..30 {
+            let trial: Vec<T> = t
+                .iter()
+                .zip(&step)
+                .map(|(x, s)| x.clone() + s.clone() * &scale)
+                .collect();
+            if let Some((gt, _)) = joint_rates(b, normals, modes, sliding, &at(&trial))
+                && size(&gt) < before
+            {
+                accepted = Some((trial, gt));
+                break;
+            }
+            scale /= T::one() + T::one();
+        }
+        let moved = step.iter().fold(0.0_f64, |m, x| m.max(x.to_f64().abs())) * scale.to_f64();
+        if let Some((trial, gt)) = accepted {
+            t = trial;
+            g = gt;
+        } else if moved > settled {
+            return None;
+        }
+        if moved <= settled {
+            settled_at = true;
+            break;
+        }
+    }
+    if !settled_at {
+        return None;
+    }
+    let dirs = at(&t);
+    let (g, f) = joint_rates(b, normals, modes, sliding, &dirs)?;
+    // A root, not where the halved steps stalled: every direction within 16 `settled` of its
+    // slip rate's (|g_k| = |f_k| sin of the angle between them).
+    if g.iter()
+        .zip(&f)
+        .any(|(gk, fk)| gk.to_f64().abs() > 16.0 * settled * norm(fk).to_f64())
+    {
+        return None;
+    }
+    let lambda: Vec<T> = dirs.iter().zip(&f).map(|(u, f)| dot(u, f)).collect();
+    // J = ∂g/∂θ: dθ_c = dt_c / (1 + t_c²).
+    let jac = jacobian(modes, &t, &g)?;
+    let jac: Vec<T> = (0..k * k)
+        .map(|q| jac[q].clone() * (T::one() + t[q % k].clone() * &t[q % k]))
+        .collect();
+    let attraction = attraction(&jac, &lambda, k);
+    for (&i, u) in sliding.iter().zip(&dirs) {
+        modes[i] = Mode::Slide(u.clone());
+    }
+    Some(JointRoot {
+        dirs,
+        lambda,
+        attraction,
+    })
+}
+
+/// Directions found by [`joint_root`].
+pub struct JointRoot<T: Scalar> {
+    /// The unit directions u_k, one per sliding contact.
+    pub dirs: Vec<Vec<T>>,
+    /// λ_k = u_k · f_k.
+    pub lambda: Vec<T>,
+    /// The largest real part of the eigenvalues of D J (D = diag(1/λ_k), J = ∂g/∂θ): below 0
+    /// the joint direction attracts the slips around it (dδθ/ds = D J δθ / σ with ρ_k ≈ λ_k σ).
+    pub attraction: f64,
+}
+
+/// The largest real part of the eigenvalues of diag(1/λ) J (`jac`, k × k, row-major), in f64;
+/// +∞ when a λ_k is not positive or the eigenvalues are not finite.
+fn attraction<T: Scalar>(jac: &[T], lambda: &[T], k: usize) -> f64 {
+    if lambda.iter().any(|l| l.signum_i8() <= 0) {
+        return f64::INFINITY;
+    }
+    let m = nalgebra::DMatrix::<f64>::from_fn(k, k, |r, c| {
+        jac[r * k + c].to_f64() / lambda[r].to_f64()
+    });
+    m.complex_eigenvalues()
+        .iter()
+        .map(|z| z.re)
+        .fold(f64::NEG_INFINITY, |a, x| {
+            if x.is_finite() {
+                a.max(x)
+            } else {
+                f64::INFINITY
+            }
+        })
 }
 
 #[cfg(test)]
