@@ -249,7 +249,7 @@ pub fn solve_consistent_in<T: Scalar>(
     if eps > 0.0
         && let Some(widen) = T::from_f64(eps.sqrt() / (cols.max(1) as f64 * eps))
     {
-        scale = scale * widen;
+        scale *= widen;
     }
     rref_scaled(a, rows, cols, b, 1, pivots, &scale);
     fill_particular(cols, b, pivots, particular);
