@@ -527,11 +527,11 @@ fn simulate_report(
     }
 }
 
-/// `simulate` on a system of spheres: the log or JSON, the trajectory, its plot and the
+/// `simulate` on a system: the log or JSON, the trajectory, its plot and the
 /// animation; statuses as for one body.
-fn run_simulate_spheres(
+fn run_simulate_system(
     path: &std::path::Path,
-    mut scene: inertance::scene::SphereSystemScene,
+    mut scene: inertance::scene::SimulatedSystemScene,
     law: Option<LawArg>,
     json: bool,
     files: &SimulateFiles,
@@ -581,8 +581,8 @@ fn run_simulate(
     };
     let mut scene = match scene {
         inertance::scene::AnySimulation::Body(s) => *s,
-        inertance::scene::AnySimulation::Spheres(s) => {
-            return run_simulate_spheres(path, *s, law, json, &files);
+        inertance::scene::AnySimulation::System(s) => {
+            return run_simulate_system(path, *s, law, json, &files);
         }
     };
     if let Some(l) = law {

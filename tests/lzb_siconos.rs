@@ -394,7 +394,7 @@ fn the_transcribed_scheme_reproduces_siconos_column_of_beads_first_impact() {
     ))
     .expect("scene")
     {
-        inertance::scene::AnySimulation::Spheres(s) => {
+        inertance::scene::AnySimulation::System(s) => {
             let sim = inertance::simulate::system::simulate_system(&s.setup);
             inertance::simulate::system::after_first_impact(&sim)
                 .expect("an impact")

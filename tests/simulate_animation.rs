@@ -205,7 +205,7 @@ fn every_frame_of_a_system_draws_each_sphere_where_the_run_has_it() {
     use inertance::simulate::system::simulate_system;
     let path = std::path::Path::new("examples/simulate/cradle-3.toml");
     let (name, mut setup) = match AnySimulation::load(path).expect("reads") {
-        AnySimulation::Spheres(s) => (s.name, s.setup),
+        AnySimulation::System(s) => (s.name, s.setup),
         AnySimulation::Body(_) => unreachable!("a system"),
     };
     setup.law = Law::Lzb;
@@ -231,9 +231,9 @@ fn every_frame_of_a_system_draws_each_sphere_where_the_run_has_it() {
             .children()
             .filter(|n| n.attribute("class") == Some("body"))
             .collect();
-        assert_eq!(circles.len(), setup.spheres.len(), "frame {k}: every ball");
+        assert_eq!(circles.len(), setup.members.len(), "frame {k}: every ball");
         let mut xs = Vec::new();
-        for ((c, x), sphere) in circles.iter().zip(&sample.state.x).zip(&setup.spheres) {
+        for ((c, x), sphere) in circles.iter().zip(&sample.state.x).zip(&setup.members) {
             assert_eq!(c.tag_name().name(), "circle");
             assert_eq!(c.attribute("data-name"), Some(sphere.name.as_str()));
             let (cx, cy, r) = (
@@ -247,7 +247,7 @@ fn every_frame_of_a_system_draws_each_sphere_where_the_run_has_it() {
                 "frame {k}: {} at ({cx}, {cy}), the run has {want:?}",
                 sphere.name
             );
-            assert!((r - sphere.radius * scale).abs() < 2e-3);
+            assert!((r - sphere.radius().expect("a ball") * scale).abs() < 2e-3);
             xs.push(cx);
         }
         drawn_x.push(xs);

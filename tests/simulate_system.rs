@@ -10,7 +10,7 @@ use inertance::simulate::system::{
 
 fn setup(path: &str) -> SystemSetup {
     match AnySimulation::load(std::path::Path::new(path)).expect("scene") {
-        AnySimulation::Spheres(s) => s.setup,
+        AnySimulation::System(s) => s.setup,
         AnySimulation::Body(_) => panic!("{path}: not a system"),
     }
 }
@@ -166,7 +166,7 @@ fn column_of_beads_first_impact_is_siconos_within_its_step() {
     let worst = (0..10)
         .map(|b| (v[b].z - row[11 + b]).abs())
         .fold(0.0, f64::max);
-    let step = 1e-6 / s.spheres[0].mass;
+    let step = 1e-6 / s.members[0].mass();
     println!("first impact: max |Δv| = {worst:e} m/s (DelPest/m = {step:e})");
     assert!(worst <= 10.0 * step, "{worst}");
 }
@@ -212,7 +212,7 @@ fn column_of_beads_follows_siconos_to_the_end() {
         unpaired.map(|k| (&ours[k], &theirs[k]))
     );
     assert!(dt < 1e-3, "{dt}");
-    let step = 1e-6 / s.spheres[0].mass;
+    let step = 1e-6 / s.members[0].mass();
     let allowance: Vec<f64> = (0..10)
         .map(|b| (10 + theirs.iter().skip(1).filter(|i| i.1.contains(&b)).count()) as f64 * step)
         .collect();

@@ -9,7 +9,7 @@ use serde_json::Value;
 
 fn setup(path: &str) -> (String, SystemSetup) {
     match AnySimulation::load(std::path::Path::new(path)).expect("scene") {
-        AnySimulation::Spheres(s) => (s.name, s.setup),
+        AnySimulation::System(s) => (s.name, s.setup),
         AnySimulation::Body(_) => panic!("{path}: not a system"),
     }
 }
@@ -41,11 +41,11 @@ fn json_carries_every_impact_of_the_library_run() {
     assert_eq!(j["end"], "duration");
     assert_eq!(number(&j["t_end"]), sim.t_end);
     let bodies = j["bodies"].as_array().expect("bodies");
-    assert_eq!(bodies.len(), s.spheres.len());
-    for (b, sphere) in bodies.iter().zip(&s.spheres) {
+    assert_eq!(bodies.len(), s.members.len());
+    for (b, sphere) in bodies.iter().zip(&s.members) {
         assert_eq!(b["name"], sphere.name.as_str());
-        assert_eq!(number(&b["mass"]), sphere.mass);
-        assert_eq!(number(&b["radius"]), sphere.radius);
+        assert_eq!(number(&b["mass"]), sphere.mass());
+        assert_eq!(Some(number(&b["radius"])), sphere.radius());
     }
     let impacts = j["impacts"].as_array().expect("impacts");
     assert_eq!(impacts.len(), sim.impacts.len());
@@ -77,7 +77,7 @@ fn json_carries_every_impact_of_the_library_run() {
     }
     // the final state, one [x, y, z] per sphere
     let x = j["state"]["x"].as_array().expect("x");
-    assert_eq!(x.len(), s.spheres.len());
+    assert_eq!(x.len(), s.members.len());
     for (p, want) in x.iter().zip(&sim.state.x) {
         let got: Vec<f64> = p.as_array().expect("xyz").iter().map(number).collect();
         assert_eq!(got, vec![want.x, want.y, want.z]);
@@ -124,7 +124,7 @@ fn the_plot_draws_the_energies_and_every_sphere() {
         .count();
     assert_eq!(
         lines,
-        3 + s.spheres.len(),
+        3 + s.members.len(),
         "three energies and a line per ball"
     );
 }

@@ -17,9 +17,9 @@ use crate::errors;
 /// `"log"` (the JSON report of `inertance simulate --json`, as text: the caller parses it, so
 /// that the numbers are the command's) and `"samples"`
 /// (numpy arrays, one row per sample). One body: `t` (N,), `x`, `v`, `omega` (N, 3), `q`
-/// (N, 4: w, i, j, k, body → world), `kinetic`, `potential` (N,), `closed` (N,). A system of
-/// spheres: `t`, `x` and `v` (N, B, 3), `kinetic`, `potential`, `closed`, and `"bodies"`, the
-/// spheres' names in that order.
+/// (N, 4: w, i, j, k, body → world), `kinetic`, `potential` (N,), `closed` (N,). A system:
+/// `t`, `x`, `v` and `omega` (N, B, 3), `q` (N, B, 4; a sphere's held), `kinetic`,
+/// `potential`, `closed`, and `"bodies"`, the members' names in that order.
 #[pyfunction]
 #[pyo3(signature = (text, file, law = None))]
 pub fn simulate<'py>(
@@ -50,14 +50,14 @@ pub fn simulate<'py>(
             out.set_item("log", log.to_string())?;
             out.set_item("samples", body_samples(py, &sim.samples)?)?;
         }
-        AnySimulation::Spheres(mut s) => {
+        AnySimulation::System(mut s) => {
             s.setup.law = chosen(s.setup.law)?;
             let sim = py.allow_threads(|| simulate_system(&s.setup));
             let log = inertance::report::simulation_system::to_json(&s.name, &s.setup, &sim);
             out.set_item("log", log.to_string())?;
             let d = PyDict::new(py);
             let n = sim.samples.len();
-            let b = s.setup.spheres.len();
+            let b = s.setup.members.len();
             let per = |f: &dyn Fn(
                 &inertance::simulate::system::SystemSample,
             ) -> &Vec<inertance::simulate::body::V3>|
@@ -74,9 +74,27 @@ pub fn simulate<'py>(
             if n > 0 {
                 d.set_item("x", PyArray3::from_vec3(py, &per(&|s| &s.state.x))?)?;
                 d.set_item("v", PyArray3::from_vec3(py, &per(&|s| &s.state.v))?)?;
+                d.set_item("omega", PyArray3::from_vec3(py, &per(&|s| &s.state.w))?)?;
+                let q: Vec<Vec<Vec<f64>>> = sim
+                    .samples
+                    .iter()
+                    .map(|smp| {
+                        smp.state
+                            .q
+                            .iter()
+                            .map(|q| {
+                                let q = q.quaternion();
+                                vec![q.w, q.i, q.j, q.k]
+                            })
+                            .collect()
+                    })
+                    .collect();
+                d.set_item("q", PyArray3::from_vec3(py, &q)?)?;
             } else {
                 d.set_item("x", PyArray3::<f64>::zeros(py, [0, b, 3], false))?;
                 d.set_item("v", PyArray3::<f64>::zeros(py, [0, b, 3], false))?;
+                d.set_item("omega", PyArray3::<f64>::zeros(py, [0, b, 3], false))?;
+                d.set_item("q", PyArray3::<f64>::zeros(py, [0, b, 4], false))?;
             }
             d.set_item(
                 "kinetic",
@@ -91,7 +109,7 @@ pub fn simulate<'py>(
                 PyArray1::from_iter(py, sim.samples.iter().map(|s| s.closed as i64)),
             )?;
             out.set_item("samples", d)?;
-            let names: Vec<String> = s.setup.spheres.iter().map(|s| s.name.clone()).collect();
+            let names: Vec<String> = s.setup.members.iter().map(|s| s.name.clone()).collect();
             out.set_item("bodies", names)?;
         }
     }

@@ -147,7 +147,7 @@ fn outline(setup: &Setup, view: &View, s: &State) -> Vec<(f64, f64)> {
 }
 
 /// The convex hull (Andrew's monotone chain), counter-clockwise, of points in the plane.
-fn hull(mut p: Vec<(f64, f64)>) -> Vec<(f64, f64)> {
+pub(super) fn hull(mut p: Vec<(f64, f64)>) -> Vec<(f64, f64)> {
     p.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.total_cmp(&b.1)));
     p.dedup();
     if p.len() < 3 {

@@ -1,24 +1,42 @@
-//! The report of a simulated system of spheres (`inertance simulate` on several `[[body]]`):
-//! the impact log as one body's ([`super::simulation::impact_log`]); the whole run as JSON, in
-//! the one body's schema with per-sphere arrays; the trajectory as CSV — per sample t, every
-//! sphere's centre and velocity, the energies and the closed contacts (an impact gives two rows
-//! at its time: before and after, as Siconos' event rows) — and its plot (SVG: the energies and
-//! every sphere's height against time, the impacts marked). The animation is
-//! [`super::animation_system`].
+//! The report of a simulated system (`inertance simulate` on several `[[body]]`): the impact
+//! log as one body's ([`super::simulation::impact_log`]); the whole run as JSON, in the one
+//! body's schema with per-member arrays; the trajectory as CSV — per sample t, every member's
+//! centre and velocity (and a box's attitude quaternion and angular velocity), the energies and
+//! the closed contacts (an impact gives two rows at its time: before and after, as Siconos'
+//! event rows) — and its plot (SVG: the energies and every member's height against time, the
+//! impacts marked). The animation is [`super::animation_system`].
 
 use serde_json::{Value as Json, json};
 
 use super::json_f64;
 use super::plot::{Series, energies_and};
 use super::simulation::{end_name, end_of, events_json, impact_log, impacts_json, sig, v3};
-use crate::simulate::body::V3;
+use crate::simulate::body::{Shape, V3};
 use crate::simulate::system::{SystemSetup, SystemSimulation};
+
+/// What the system is made of: `3 spheres`, `2 boxes`, `3 bodies (1 sphere, 2 boxes)`.
+fn made_of(setup: &SystemSetup) -> String {
+    let spheres = setup.members.iter().filter(|m| !m.turns()).count();
+    let boxes = setup.members.len() - spheres;
+    let count =
+        |n: usize, one: &str, many: &str| format!("{n} {}", if n == 1 { one } else { many });
+    match (spheres, boxes) {
+        (_, 0) => count(spheres, "sphere", "spheres"),
+        (0, _) => count(boxes, "box", "boxes"),
+        _ => format!(
+            "{} ({}, {})",
+            count(spheres + boxes, "body", "bodies"),
+            count(spheres, "sphere", "spheres"),
+            count(boxes, "box", "boxes")
+        ),
+    }
+}
 
 /// The log.
 pub fn to_text(name: &str, setup: &SystemSetup, sim: &SystemSimulation) -> String {
     let mut out = format!(
-        "{name} — simulated, {} spheres, law {}, f64 (tolerance {})\n",
-        setup.spheres.len(),
+        "{name} — simulated, {}, law {}, f64 (tolerance {})\n",
+        made_of(setup),
         setup.law.name(),
         sig(setup.options.tolerance)
     );
@@ -41,10 +59,10 @@ pub fn to_text(name: &str, setup: &SystemSetup, sim: &SystemSimulation) -> Strin
         energy(0),
         // a run stopped by an overflow has no energy to print (never `inf` as a result)
         Some(
-            sim.state.kinetic_energy(&setup.spheres)
+            sim.state.kinetic_energy(&setup.members)
                 + sim
                     .state
-                    .potential_energy(&setup.spheres, &setup.options.gravity)
+                    .potential_energy(&setup.members, &setup.options.gravity)
         )
         .filter(|e| e.is_finite())
         .map_or_else(|| "(not finite)".to_string(), sig),
@@ -58,17 +76,29 @@ pub fn to_text(name: &str, setup: &SystemSetup, sim: &SystemSimulation) -> Strin
 /// The trajectory as CSV.
 pub fn to_csv(setup: &SystemSetup, sim: &SystemSimulation) -> String {
     let mut out = String::from("t");
-    for s in &setup.spheres {
+    for s in &setup.members {
         for c in ["x", "y", "z", "vx", "vy", "vz"] {
             out += &format!(",{} {c}", s.name);
+        }
+        if s.turns() {
+            for c in ["qw", "qi", "qj", "qk", "wx", "wy", "wz"] {
+                out += &format!(",{} {c}", s.name);
+            }
         }
     }
     out += ",kinetic,potential,closed\n";
     for s in &sim.samples {
         out += &format!("{:e}", s.t);
-        for (x, v) in s.state.x.iter().zip(&s.state.v) {
+        for (b, m) in setup.members.iter().enumerate() {
+            let (x, v) = (&s.state.x[b], &s.state.v[b]);
             for q in x.iter().chain(v.iter()) {
                 out += &format!(",{q:e}");
+            }
+            if m.turns() {
+                let q = s.state.q[b].quaternion();
+                for c in [q.w, q.i, q.j, q.k].iter().chain(s.state.w[b].iter()) {
+                    out += &format!(",{c:e}");
+                }
             }
         }
         out += &format!(",{:e},{:e},{}\n", s.kinetic, s.potential, s.closed);
@@ -77,20 +107,29 @@ pub fn to_csv(setup: &SystemSetup, sim: &SystemSimulation) -> String {
 }
 
 /// The whole run, for programs: the one body's keys ([`super::simulation::to_json`]; `zeno`
-/// is null, a system does not find accumulations yet), the spheres (`bodies`), the options,
-/// and the final `state` as one `[x, y, z]` per sphere. An impact between two spheres names
-/// the first as `feature` and the second as `obstacle`, as the log's `a on b`.
+/// is null, a system does not find accumulations yet), the members (`bodies`: name, mass, and
+/// a sphere's `radius` or a box's edges `box`), the options, and the final `state` as one
+/// `[x, y, z]` per member in `x` and `v`, one `[w, i, j, k]` in `q` and one `[x, y, z]` in
+/// `omega` (a sphere's held: [`crate::simulate::system::members`]). An impact between two
+/// members names the first as `feature` and the second as `obstacle`, as the log's `a on b`.
 pub fn to_json(name: &str, setup: &SystemSetup, sim: &SystemSimulation) -> Json {
     let o = &setup.options;
     json!({
         "name": name,
         "law": setup.law.name(),
         "tolerance": json_f64(o.tolerance),
-        "bodies": setup.spheres.iter().map(|s| json!({
-            "name": s.name,
-            "mass": json_f64(s.mass),
-            "radius": json_f64(s.radius),
-        })).collect::<Vec<_>>(),
+        "bodies": setup.members.iter().map(|s| match &s.body.shape {
+            Shape::Box { half } => json!({
+                "name": s.name,
+                "mass": json_f64(s.mass()),
+                "box": v3(&(half * 2.0)),
+            }),
+            _ => json!({
+                "name": s.name,
+                "mass": json_f64(s.mass()),
+                "radius": json_f64(s.radius().unwrap_or(0.0)),
+            }),
+        }).collect::<Vec<_>>(),
         "obstacles": setup.planes.iter().map(|p| p.name.as_str()).collect::<Vec<_>>(),
         "options": {
             "gravity": v3(&o.gravity),
@@ -109,6 +148,11 @@ pub fn to_json(name: &str, setup: &SystemSetup, sim: &SystemSimulation) -> Json 
         "state": {
             "x": sim.state.x.iter().map(v3).collect::<Vec<_>>(),
             "v": sim.state.v.iter().map(v3).collect::<Vec<_>>(),
+            "q": sim.state.q.iter().map(|q| {
+                let q = q.quaternion();
+                [q.w, q.i, q.j, q.k].map(json_f64)
+            }).collect::<Vec<_>>(),
+            "omega": sim.state.w.iter().map(v3).collect::<Vec<_>>(),
         },
         "steps": sim.steps.0,
         "rejected": sim.steps.1,
@@ -116,7 +160,7 @@ pub fn to_json(name: &str, setup: &SystemSetup, sim: &SystemSimulation) -> Json 
     })
 }
 
-/// The direction the plot's lower chart follows each sphere along, and its label: up (−g)
+/// The direction the plot's lower chart follows each member along, and its label: up (−g)
 /// under gravity, else the animation's horizontal axis (x for a run without gravity).
 fn plotted_axis(setup: &SystemSetup) -> (V3, &'static str) {
     let view = super::animation_system::view(setup);
@@ -127,7 +171,7 @@ fn plotted_axis(setup: &SystemSetup) -> (V3, &'static str) {
     }
 }
 
-/// The plot: kinetic, potential and total energy against time (top), every sphere's height
+/// The plot: kinetic, potential and total energy against time (top), every member's height
 /// (bottom; without gravity its position along the view's horizontal axis), a vertical mark at
 /// every impact ([`super::plot`]).
 ///
@@ -141,7 +185,7 @@ pub fn to_svg(name: &str, setup: &SystemSetup, sim: &SystemSimulation) -> Result
         .collect();
     let (axis, label) = plotted_axis(setup);
     let paths: Vec<Series> = setup
-        .spheres
+        .members
         .iter()
         .enumerate()
         .map(|(b, s)| Series {

@@ -224,9 +224,9 @@ pub struct SimulationScene {
     pub setup: crate::simulate::Setup,
 }
 
-/// A scene of several spheres to simulate ([`model::sphere_system`] documents the keys).
+/// A scene of several spheres to simulate ([`model::simulated_system`] documents the keys).
 #[derive(Clone, Debug, PartialEq)]
-pub struct SphereSystemScene {
+pub struct SimulatedSystemScene {
     /// Where it came from, for messages.
     pub file: String,
     /// Its `name`, or the file name.
@@ -241,7 +241,7 @@ pub enum AnySimulation {
     /// One body.
     Body(Box<SimulationScene>),
     /// Several spheres.
-    Spheres(Box<SphereSystemScene>),
+    System(Box<SimulatedSystemScene>),
 }
 
 impl AnySimulation {
@@ -268,8 +268,8 @@ impl AnySimulation {
                 name,
                 setup: *setup,
             })),
-            read::Simulated::Spheres(setup) => {
-                AnySimulation::Spheres(Box::new(SphereSystemScene { file, name, setup }))
+            read::Simulated::System(setup) => {
+                AnySimulation::System(Box::new(SimulatedSystemScene { file, name, setup }))
             }
         })
     }
@@ -309,7 +309,7 @@ impl SimulationScene {
     pub fn parse(text: &str, file: &str) -> Result<SimulationScene, SceneError> {
         match AnySimulation::parse(text, file)? {
             AnySimulation::Body(s) => Ok(*s),
-            AnySimulation::Spheres(_) => Err(SceneError {
+            AnySimulation::System(_) => Err(SceneError {
                 file: file.to_string(),
                 key: "body".to_string(),
                 value: None,

@@ -546,7 +546,7 @@ pub(super) fn exact_sphere<T: crate::scalar::Scalar>(
 }
 
 /// Read a scene to simulate ([`super::model::simulation`], or of several `[[body]]`
-/// [`super::model::sphere_system`]): its name and what to run.
+/// [`super::model::simulated_system`]): its name and what to run.
 pub(super) fn simulation(doc: &DocumentMut, file: &str) -> Result<(String, Simulated), SceneError> {
     let root = doc.as_table();
     let r = Reader {
@@ -565,7 +565,7 @@ pub(super) fn simulation(doc: &DocumentMut, file: &str) -> Result<(String, Simul
     };
     let name = r.name(root)?;
     if model::system::declared(root) {
-        return Ok((name, Simulated::Spheres(r.sphere_system(root)?)));
+        return Ok((name, Simulated::System(r.simulated_system(root)?)));
     }
     Ok((name, Simulated::Body(Box::new(r.simulation(root)?))))
 }
@@ -576,5 +576,5 @@ pub enum Simulated {
     /// One body.
     Body(Box<crate::simulate::Setup>),
     /// Several spheres.
-    Spheres(crate::simulate::system::SystemSetup),
+    System(crate::simulate::system::SystemSetup),
 }

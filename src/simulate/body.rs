@@ -230,6 +230,17 @@ pub struct State {
     pub w: V3,
 }
 
+/// q̇ = ½ (0, ω) ⊗ q as (w, i, j, k): the attitude's rate at the angular velocity ω (world).
+pub fn quaternion_rate(q: &UnitQuaternion<f64>, w: &V3) -> [f64; 4] {
+    let q = q.quaternion();
+    [
+        -0.5 * (w.x * q.i + w.y * q.j + w.z * q.k),
+        0.5 * (w.x * q.w + w.y * q.k - w.z * q.j),
+        0.5 * (-w.x * q.k + w.y * q.w + w.z * q.i),
+        0.5 * (w.x * q.j - w.y * q.i + w.z * q.w),
+    ]
+}
+
 impl State {
     /// R(q).
     pub fn rotation(&self) -> Matrix3<f64> {

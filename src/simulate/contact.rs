@@ -570,13 +570,7 @@ fn lu_solve<const M: usize>(a: &[[f64; M]; M], b: &[f64; M], k: usize, x: &mut [
 /// The derivative of the packed state y = (x, q, v, ω) given the accelerations: ẋ = v,
 /// q̇ = ½ (0, ω) q, v̇ = a, ω̇ = α.
 pub fn derivative(s: &State, acc: &Accelerations) -> [f64; 13] {
-    let q = s.q.quaternion();
-    let w = s.w;
-    // ½ (0, ω) ⊗ q
-    let dw = -0.5 * (w.x * q.i + w.y * q.j + w.z * q.k);
-    let di = 0.5 * (w.x * q.w + w.y * q.k - w.z * q.j);
-    let dj = 0.5 * (-w.x * q.k + w.y * q.w + w.z * q.i);
-    let dk = 0.5 * (w.x * q.j - w.y * q.i + w.z * q.w);
+    let [dw, di, dj, dk] = super::body::quaternion_rate(&s.q, &s.w);
     [
         s.v.x,
         s.v.y,

@@ -403,7 +403,8 @@ pub(super) fn verdict_name(
     }
 }
 
-fn list(basis: &[usize]) -> String {
+/// A basis of contacts as the note names it: `{1, 2, 4}`.
+pub(super) fn list(basis: &[usize]) -> String {
     let v: Vec<String> = basis.iter().map(|i| (i + 1).to_string()).collect();
     format!("{{{}}}", v.join(", "))
 }

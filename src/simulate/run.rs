@@ -235,6 +235,23 @@ pub enum SimulateError {
         /// When.
         t: f64,
     },
+    /// Two members of a system overlap where no contact is watched
+    /// ([`super::system::overlap`]).
+    #[error(
+        "t = {t:.9} s: {first} and {second} overlap by {depth:.3e} m where no contact is \
+         watched (a box's edge on another's edge, or on a sphere: a system watches corners and \
+         spheres on faces, not those yet)"
+    )]
+    Overlap {
+        /// When.
+        t: f64,
+        /// The first member.
+        first: String,
+        /// The second.
+        second: String,
+        /// How deep (m).
+        depth: f64,
+    },
 }
 
 /// The most steps of one run.

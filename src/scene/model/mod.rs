@@ -32,8 +32,8 @@ pub(crate) mod obstacle;
 pub(crate) mod params;
 pub(crate) mod pose;
 pub(crate) mod shape;
+pub(crate) mod simulated_system;
 pub(crate) mod simulation;
-pub(crate) mod sphere_system;
 pub(crate) mod system;
 pub(crate) mod term;
 

@@ -22,7 +22,7 @@
 //!
 //! The shapes it moves: a box (its eight corners, or in a planar motion its four edges), a
 //! sphere, a rod (its two ends). Every number is read as any scene number and used in f64.
-//! A scene of several `[[body]]` spheres is a system ([`super::sphere_system`]), read with the
+//! A scene of several `[[body]]` spheres is a system ([`super::simulated_system`]), read with the
 //! same `[simulate]` options and law ([`Reader::simulate_options`]).
 
 use nalgebra::{Matrix3, Rotation3, UnitQuaternion};

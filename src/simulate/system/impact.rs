@@ -1,8 +1,8 @@
-//! One impact of a sphere system, solved by the impact layer: the contacts at the event
-//! brought to a [`System`] ([`crate::mechanics::system`]: world axes, each sphere's screws
-//! about its centre, the contact normal out of the pair's first body — a sphere's −N on a
-//! plane, n from a to b between two spheres) and solved by the scene's law through the same
-//! functions as any system's impact:
+//! One impact of a system, solved by the impact layer: the contacts at the event brought to a
+//! [`System`] ([`crate::mechanics::system`]: world axes, each member's screws about its centre,
+//! the contact normal out of the pair's first member — a feature's −N on a plane, n from a to b
+//! between two spheres, a feature's −n on a box's face) and solved by the scene's law through
+//! the same functions as any system's impact:
 //!
 //! | law | solved by |
 //! |---|---|
@@ -10,9 +10,16 @@
 //! | unilateral (Newton, Poisson) | [`Impact::solve_unilateral`] |
 //! | LZB | [`solve_lzb`] over the system ([`crate::impact::mechanism::Mechanism`]) |
 //!
-//! Every sphere of the system is a body of the impact problem (one not touched takes no
-//! impulse), with its spin set to zero: frictionless contacts through the centres neither see
-//! nor change it ([`super::spheres`]).
+//! Every member of the system is a body of the impact problem (one not touched takes no
+//! impulse); a sphere's spin is set to zero (frictionless contacts through its centre neither
+//! see nor change it, [`super::members`]) and a box's inertia is its world tensor R J Rᵀ.
+//!
+//! **A singular G under the simultaneous law** (a box resting flat on four corners: more
+//! contacts than the motions they stop) has a family of impulses; as for one body
+//! ([`crate::simulate::impact`]) the law is solved on a basis of the contacts — the first
+//! ones, in the log's order, whose rows are independent — and every contact left out must meet
+//! Newton's law v⁺ = −k v⁻ with the basis' answer (to 10⁻⁹ of the speeds), or the impact has no
+//! answer under that law. The note says so.
 
 use crate::impact::admissibility::{energy_gain, verdicts};
 use crate::impact::friction::Restitution;
@@ -25,20 +32,24 @@ use crate::mechanics::screw::{Screw, Vec3};
 use crate::mechanics::system::{Pair, System, SystemBody, SystemScrew};
 
 use super::super::body::V3;
-use super::super::impact::{ImpactError, Law, verdict_name};
+use super::super::impact::{ImpactError, Law, list, verdict_name};
 use super::super::world::Plane;
-use super::gaps::{Candidate, Touch, gap};
-use super::spheres::{Sphere, SystemState};
+use super::gaps::{Candidate, Gap, gap};
+use super::members::{Member, SystemState};
 
 /// What an impact gave.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Rebound {
-    /// v_b after, per sphere (world).
+    /// v_b after, per member (world).
     pub v: Vec<V3>,
+    /// ω_b after, per member (world; a sphere's unchanged).
+    pub w: Vec<V3>,
     /// The normal impulse of each contact (N s).
     pub impulses: Vec<f64>,
     /// Why the answer is not physical, empty when it is.
     pub verdicts: Vec<String>,
+    /// How it was solved, when that needs saying (a basis of a singular G).
+    pub note: Option<String>,
 }
 
 fn vec3(v: &V3) -> Vec3<f64> {
@@ -50,26 +61,46 @@ fn vec3(v: &V3) -> Vec3<f64> {
 /// # Errors
 /// [`ImpactError::Invalid`] when the system refuses the problem.
 pub fn system(
-    spheres: &[Sphere],
+    members: &[Member],
     planes: &[Plane],
     candidates: &[Candidate],
     at: &[usize],
     s: &SystemState,
 ) -> Result<System<f64>, ImpactError> {
-    let bodies = spheres
+    let bodies = members
         .iter()
-        .zip(&s.x)
-        .map(|(b, x)| {
-            let j = 0.4 * b.mass * b.radius * b.radius;
+        .enumerate()
+        .map(|(b, m)| {
+            let body = match m.radius() {
+                Some(r) => {
+                    let j = 0.4 * m.mass() * r * r;
+                    RigidBody::principal(m.mass(), Vec3::new(j, j, j))
+                }
+                None => {
+                    // R J Rᵀ, symmetric to the bit (its rounding is not)
+                    let t = m.body.world_inertia(&s.rotation(b));
+                    RigidBody::with_tensor(
+                        m.mass(),
+                        std::array::from_fn(|i| {
+                            std::array::from_fn(|j| 0.5 * (t[(i, j)] + t[(j, i)]))
+                        }),
+                    )
+                }
+            };
             SystemBody {
-                body: RigidBody::principal(b.mass, Vec3::new(j, j, j)),
-                centre: vec3(x),
+                body,
+                centre: vec3(&s.x[b]),
             }
         })
         .collect();
     let velocity = SystemScrew(
-        s.v.iter()
-            .map(|v| Screw::new(Vec3::zeros(), vec3(v)))
+        members
+            .iter()
+            .enumerate()
+            .map(|(b, m)| {
+                let w = if m.turns() { s.w[b] } else { V3::zeros() };
+                Screw::new(vec3(&w), vec3(&s.v[b]))
+            })
             .collect(),
     );
     let mut contacts = Vec::with_capacity(at.len());
@@ -77,31 +108,24 @@ pub fn system(
     let mut levers = Vec::with_capacity(at.len());
     for &k in at {
         let c = &candidates[k];
-        let g = gap(&c.touch, spheres, planes, s);
-        let (normal, pair, lever) = match c.touch {
-            // the sphere's outward normal at its lowest point: −N
-            Touch::Plane { body, .. } => (
-                -g.normal,
-                Pair {
-                    first: body,
-                    second: None,
-                },
-                (-g.normal * spheres[body].radius, None),
-            ),
-            Touch::Pair { a, b } => (
-                g.normal,
-                Pair {
-                    first: a,
-                    second: Some(b),
-                },
-                (g.normal * spheres[a].radius, Some(g.point - s.x[b])),
-            ),
+        let g = gap(&c.touch, members, planes, s);
+        let sides: Vec<_> = g.sides().copied().collect();
+        let Some(first) = sides.first() else {
+            return Err(ImpactError::Invalid(
+                "a contact that acts on no member".to_string(),
+            ));
         };
+        // the normal out of the first member
+        let normal = g.normal * -first.sign;
+        let second = sides.get(1);
+        pairs.push(Pair {
+            first: first.body,
+            second: second.map(|s| s.body),
+        });
+        levers.push((vec3(&first.arm), second.map(|s| vec3(&s.arm))));
         contacts.push(
             Contact::new(vec3(&g.point), vec3(&normal), c.law.k).with_energetic(c.law.k_energetic),
         );
-        pairs.push(pair);
-        levers.push((vec3(&lever.0), lever.1.as_ref().map(vec3)));
     }
     System::new(bodies, velocity, contacts, pairs, Vec::new())
         .and_then(|sys| sys.with_lever_arms(levers))
@@ -113,9 +137,9 @@ pub fn system(
 ///
 /// # Errors
 /// [`ImpactError`]: the problem refused, or no answer under the law (energetic restitution is
-/// refused: it is integrated with friction, which sphere systems do not have yet).
+/// refused: it is integrated with friction, which systems do not have yet).
 pub fn solve(
-    spheres: &[Sphere],
+    members: &[Member],
     planes: &[Plane],
     candidates: &[Candidate],
     at: &[usize],
@@ -123,21 +147,14 @@ pub fn solve(
     law: Law,
     tolerance: f64,
 ) -> Result<Rebound, ImpactError> {
-    let sys = system(spheres, planes, candidates, at, s)?;
-    let velocities = |v: &SystemScrew<f64>| -> Vec<V3> {
-        v.0.iter()
-            .map(|t| {
-                let b = t.bottom();
-                V3::new(b[0], b[1], b[2])
-            })
-            .collect()
-    };
+    let sys = system(members, planes, candidates, at, s)?;
+    let twists = |v: &SystemScrew<f64>| after(members, s, v);
     let model = |r: Restitution| match r {
         Restitution::Poisson => Ok(Model::Poisson),
         Restitution::Newton => Ok(Model::Newton),
         Restitution::Energetic => Err(ImpactError::NoAnswer(
-            "the energetic restitution law is not simulated for systems of spheres yet: use \
-             newton or poisson"
+            "the energetic restitution law is not simulated for systems yet: use newton or \
+             poisson"
                 .to_string(),
         )),
     };
@@ -156,25 +173,34 @@ pub fn solve(
                 })
                 .collect();
             let out = solve_lzb(&sys, &laws, tolerance).map_err(|e| no(&e))?;
+            let (v, w) = twists(&out.velocity);
             Ok(Rebound {
-                v: velocities(&out.velocity),
+                v,
+                w,
                 impulses: out.impulses.clone(),
                 verdicts: Vec::new(),
+                note: None,
             })
         }
         Law::Simultaneous(r) => {
             let model = model(r)?;
             let mut impact = Impact::assemble(&sys).map_err(|e| no(&e))?;
+            if impact.singular() {
+                return on_basis(members, planes, candidates, at, s, model);
+            }
             let mut out = Outcome::default();
             impact.solve(model, &mut out).map_err(|e| no(&e))?;
-            let v = verdicts(&impact, model, &out)
+            let verdicts = verdicts(&impact, model, &out)
                 .iter()
                 .map(|v| verdict_name(v, |c| c + 1))
                 .collect();
+            let (v, w) = twists(&out.velocity);
             Ok(Rebound {
-                v: velocities(&out.velocity),
+                v,
+                w,
                 impulses: out.impulses_hat.clone(),
-                verdicts: v,
+                verdicts,
+                note: None,
             })
         }
         Law::Unilateral(r) => {
@@ -184,14 +210,119 @@ pub fn solve(
             impact
                 .solve_unilateral(model, &mut out)
                 .map_err(|e| no(&e))?;
+            let (v, w) = twists(&out.velocity);
             Ok(Rebound {
-                v: velocities(&out.velocity),
+                v,
+                w,
                 impulses: out.impulses_hat.clone(),
                 verdicts: energy_gain(&impact, &out)
                     .into_iter()
                     .map(|v| v.name().to_string())
                     .collect(),
+                note: None,
             })
         }
     }
+}
+
+/// Each member's (v, ω) in the twists `v` after an impact at `s` (a sphere keeps its spin).
+fn after(members: &[Member], s: &SystemState, v: &SystemScrew<f64>) -> (Vec<V3>, Vec<V3>) {
+    v.0.iter()
+        .enumerate()
+        .map(|(b, t)| {
+            let (w, c) = (t.top(), t.bottom());
+            let w = if members[b].turns() {
+                V3::new(w[0], w[1], w[2])
+            } else {
+                s.w[b]
+            };
+            (V3::new(c[0], c[1], c[2]), w)
+        })
+        .unzip()
+}
+
+/// The rate J u of the contact `g` at the velocities `v`, `w`.
+fn rate(g: &Gap, members: &[Member], v: &[V3], w: &[V3]) -> f64 {
+    g.sides()
+        .map(|i| {
+            let turning = if members[i.body].turns() {
+                i.moment.dot(&w[i.body])
+            } else {
+                0.0
+            };
+            i.sign * (g.normal.dot(&v[i.body]) + turning)
+        })
+        .sum()
+}
+
+/// The simultaneous law on a basis of the contacts of a singular G (module docs).
+fn on_basis(
+    members: &[Member],
+    planes: &[Plane],
+    candidates: &[Candidate],
+    at: &[usize],
+    s: &SystemState,
+    model: Model,
+) -> Result<Rebound, ImpactError> {
+    let no = |e: &dyn std::fmt::Display| ImpactError::NoAnswer(e.to_string());
+    let mut basis: Vec<usize> = Vec::new();
+    for i in 0..at.len() {
+        let mut trial = basis.clone();
+        trial.push(i);
+        let sub: Vec<usize> = trial.iter().map(|&p| at[p]).collect();
+        let sys = system(members, planes, candidates, &sub, s)?;
+        if !Impact::assemble(&sys).map_err(|e| no(&e))?.singular() {
+            basis = trial;
+        }
+    }
+    let sub: Vec<usize> = basis.iter().map(|&p| at[p]).collect();
+    let sys = system(members, planes, candidates, &sub, s)?;
+    let mut reduced = Impact::assemble(&sys).map_err(|e| no(&e))?;
+    let mut out = Outcome::default();
+    reduced.solve(model, &mut out).map_err(|e| no(&e))?;
+    let (v, w) = after(members, s, &out.velocity);
+    let gaps: Vec<Gap> = at
+        .iter()
+        .map(|&k| gap(&candidates[k].touch, members, planes, s))
+        .collect();
+    let scale = gaps
+        .iter()
+        .map(|g| rate(g, members, &s.v, &s.w).abs())
+        .fold(f64::MIN_POSITIVE, f64::max);
+    let mut impulses = vec![0.0; at.len()];
+    for (k, &i) in basis.iter().enumerate() {
+        impulses[i] = out.impulses_hat[k];
+    }
+    for (i, g) in gaps.iter().enumerate() {
+        if basis.contains(&i) {
+            continue;
+        }
+        let before = rate(g, members, &s.v, &s.w);
+        let after = rate(g, members, &v, &w);
+        let k = candidates[at[i]].law.k;
+        if (after + k * before).abs() > 1e-9 * scale {
+            return Err(ImpactError::NoAnswer(format!(
+                "G is singular and contact {} (left out of the basis {}) does not meet the \
+                 simultaneous law with the basis' answer: the law has no answer here (solve \
+                 it under the unilateral law)",
+                i + 1,
+                list(&basis)
+            )));
+        }
+    }
+    let verdicts = verdicts(&reduced, model, &out)
+        .iter()
+        .map(|v| verdict_name(v, |c| basis[c] + 1))
+        .collect();
+    Ok(Rebound {
+        v,
+        w,
+        impulses,
+        verdicts,
+        note: Some(format!(
+            "G singular: solved on the basis {} (the split among dependent contacts is not \
+             determined by the law; the others meet it)",
+            list(&basis)
+        )),
+    })
 }

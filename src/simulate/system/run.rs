@@ -1,31 +1,38 @@
-//! The event loop of a sphere system: the single body's ([`crate::simulate::run`]: its
-//! integrator, conservative advancement, impact rule and log), over several spheres and the
-//! contacts between them.
+//! The event loop of a system: the single body's ([`crate::simulate::run`]: its integrator,
+//! conservative advancement, impact rule and log), over several members and the contacts
+//! between them.
 //!
-//! **Integration.** The packed state (x_b, v_b) is stepped by Dormand–Prince RK5(4)
-//! ([`crate::simulate::stepper`], shared with the single body's loop, its samples read from
-//! each step's continuous extension) with the accelerations of
-//! [`super::persist::accelerations`]; the steps are held to the relative `tolerance` on the
-//! scales of the motion (the largest radius or gap for positions, the speed scale for
-//! velocities). Ballistic flight is a quadratic in t, which the fifth-order step reproduces to
-//! rounding. Closed contacts are projected back onto their constraints after every step
-//! ([`super::persist::project`]); the largest gap so corrected is reported as the drift.
+//! **Integration.** The packed state (x_b, v_b, q_b, ω_b) is stepped by Dormand–Prince
+//! RK5(4) ([`crate::simulate::stepper`], shared with the single body's loop, its samples read
+//! from each step's continuous extension) with the accelerations of
+//! [`super::persist::accelerations`] (Euler's equations, with the gyroscopic term, for a
+//! member that turns); the steps are held to the relative `tolerance` on the scales of the
+//! motion (the largest reach or gap for positions, the speed scale for velocities, 1 for the
+//! quaternions' components, the speed scale over the member's reach for ω). Ballistic flight
+//! is a quadratic in t, which the fifth-order step reproduces to rounding. Closed contacts are
+//! projected back onto their constraints after every step ([`super::persist::project`]); the
+//! largest gap so corrected is reported as the drift.
 //!
 //! **Events.** No step may cross an open gap: with M a bound on |g̈| over the step (twice
-//! |a_b| for a sphere on a plane; twice |a_a| + |a_b| + |u|²/|d| for a pair), each step is
-//! capped at the horizon of [`crate::simulate::stepper::horizon`]. A gap within the gap tolerance (10⁻¹¹ of the length scale) approaching faster than
-//! `rest_speed` is an impact; one slower closes unless the acceleration-level problem with it
-//! closed separates it (g̈ > 0); a closed contact opens when g̈ > 0 ([`super::persist`]).
+//! |a_b| for a sphere on a plane; twice |a_a| + |a_b| + |u|²/|d| for a pair; otherwise twice
+//! |a| + ρ (|ω|² + |α|) of each side plus twice the curvature term), each step is capped at
+//! the horizon of [`crate::simulate::stepper::horizon`]. A gap within the gap tolerance (10⁻¹¹
+//! of the length scale) approaching faster than `rest_speed` is an impact; one slower closes
+//! unless the acceleration-level problem with it closed separates it (g̈ > 0); a closed
+//! contact opens when g̈ > 0 ([`super::persist`]), or when its point leaves its face (located
+//! by halving the step, as a crossing). After every step the members are checked for an
+//! overlap where no contact is watched ([`super::overlap`]): the run stops there, naming them.
 //!
 //! **Impacts.** Every open contact approaching within the gap tolerance or within
 //! `simultaneity` in time, and every closed contact, strike together: one multiple impact,
 //! solved by the law over the whole system ([`super::impact`]). After it a contact at zero gap
 //! whose normal rate is below `rest_speed` stays closed.
 //!
-//! Not here yet: friction between spheres, the closed-form accumulation (Zeno) of the single
-//! body (a system runs to its impact budget instead), bodies other than spheres.
+//! Not here yet: friction in a system, the closed-form accumulation (Zeno) of the single body
+//! (a system runs to rest by its `rest_speed`, or to its impact budget), rods and cylinders in
+//! a system, edge-on-edge contacts (refused by the overlap check).
 
-use super::super::body::V3;
+use super::super::body::{Feature, Shape, V3, quaternion_rate};
 use super::super::contact::ContactError;
 use super::super::impact::Law;
 use super::super::run::{
@@ -35,17 +42,19 @@ use super::super::stepper::{self, Advance, Stall, Stepper};
 use super::super::world::Plane;
 use super::gaps::{Candidate, Touch, gap};
 use super::impact::solve;
+use super::members::{Member, SystemState};
+use super::overlap::deepest;
 use super::persist::{Accelerations, accelerations, project};
-use super::spheres::{Sphere, SystemState};
 
 /// What to simulate.
 #[derive(Clone, Debug, PartialEq)]
 pub struct SystemSetup {
-    /// The spheres.
-    pub spheres: Vec<Sphere>,
+    /// The members.
+    pub members: Vec<Member>,
     /// The obstacles.
     pub planes: Vec<Plane>,
-    /// Every contact watched (every sphere on every plane, every pair of spheres), with its law.
+    /// Every contact watched (every feature on every plane, every pair of spheres, every
+    /// feature on every face of a box), with its law.
     pub candidates: Vec<Candidate>,
     /// The impact law.
     pub law: Law,
@@ -56,32 +65,63 @@ pub struct SystemSetup {
 }
 
 impl SystemSetup {
-    /// Every sphere on every plane, then every pair (a < b), each with the law `law_of` gives.
+    /// Every feature of every member on every plane, then every pair of spheres (a < b),
+    /// then every feature of every member (but a rim) on every face of every box, each with
+    /// the law `law_of` gives.
     pub fn candidates(
-        spheres: usize,
+        members: &[Member],
         planes: usize,
         mut law_of: impl FnMut(&Touch) -> super::super::world::ContactLaw,
     ) -> Vec<Candidate> {
-        let mut out = Vec::new();
-        for body in 0..spheres {
-            for plane in 0..planes {
-                let touch = Touch::Plane { body, plane };
-                out.push(Candidate {
-                    law: law_of(&touch),
-                    touch,
-                });
+        let mut touches = Vec::new();
+        for (body, m) in members.iter().enumerate() {
+            for feature in 0..m.body.features.len() {
+                for plane in 0..planes {
+                    touches.push(Touch::Plane {
+                        body,
+                        feature,
+                        plane,
+                    });
+                }
             }
         }
-        for a in 0..spheres {
-            for b in a + 1..spheres {
-                let touch = Touch::Pair { a, b };
-                out.push(Candidate {
-                    law: law_of(&touch),
-                    touch,
-                });
+        for a in 0..members.len() {
+            for b in a + 1..members.len() {
+                if members[a].radius().is_some() && members[b].radius().is_some() {
+                    touches.push(Touch::Pair { a, b });
+                }
             }
         }
-        out
+        for (b, box_b) in members.iter().enumerate() {
+            if !matches!(box_b.body.shape, Shape::Box { .. }) {
+                continue;
+            }
+            for (a, m) in members.iter().enumerate() {
+                if a == b {
+                    continue;
+                }
+                for (feature, f) in m.body.features.iter().enumerate() {
+                    if matches!(f, Feature::Rim { .. }) {
+                        continue;
+                    }
+                    for face in 0..6 {
+                        touches.push(Touch::Face {
+                            a,
+                            feature,
+                            b,
+                            face,
+                        });
+                    }
+                }
+            }
+        }
+        touches
+            .into_iter()
+            .map(|touch| Candidate {
+                law: law_of(&touch),
+                touch,
+            })
+            .collect()
     }
 }
 
@@ -157,20 +197,33 @@ struct Run<'a> {
     speed: f64,
     gap_tol: f64,
     drift: f64,
+    /// Each member's reach (m).
+    reaches: Vec<f64>,
 }
 
 impl<'a> Run<'a> {
     fn new(setup: &'a SystemSetup) -> Run<'a> {
         let s = setup.start.clone();
-        let reach = setup.spheres.iter().map(|b| b.radius).fold(0.0, f64::max);
+        let reaches: Vec<f64> = setup.members.iter().map(|m| m.body.reach()).collect();
+        let reach = reaches.iter().copied().fold(0.0, f64::max);
         let length = setup
             .candidates
             .iter()
-            .map(|c| gap(&c.touch, &setup.spheres, &setup.planes, &s).gap.abs())
+            .map(|c| gap(&c.touch, &setup.members, &setup.planes, &s).gap.abs())
+            .filter(|g| g.is_finite())
             .fold(reach, f64::max)
             .max(f64::MIN_POSITIVE);
         let g = setup.options.gravity.norm();
-        let fastest = s.v.iter().map(|v| v.norm()).fold(0.0, f64::max);
+        let fastest = (0..setup.members.len())
+            .map(|b| {
+                let spin = if setup.members[b].turns() {
+                    s.w[b].norm() * reaches[b]
+                } else {
+                    0.0
+                };
+                s.v[b].norm() + spin
+            })
+            .fold(0.0, f64::max);
         let speed = fastest
             .max((2.0 * g * length).sqrt())
             .max(f64::MIN_POSITIVE);
@@ -187,6 +240,7 @@ impl<'a> Run<'a> {
             speed,
             gap_tol: 1e-11 * length,
             drift: 0.0,
+            reaches,
         }
     }
 
@@ -198,8 +252,8 @@ impl<'a> Run<'a> {
             .samples
             .iter()
             .all(|s| s.kinetic.is_finite() && s.potential.is_finite())
-            && (self.s.kinetic_energy(&st.spheres)
-                + self.s.potential_energy(&st.spheres, &st.options.gravity))
+            && (self.s.kinetic_energy(&st.members)
+                + self.s.potential_energy(&st.members, &st.options.gravity))
             .is_finite()
             && self.drift.is_finite();
         if finite {
@@ -218,8 +272,8 @@ impl<'a> Run<'a> {
         let st = &self.setup;
         self.samples.push(SystemSample {
             t,
-            kinetic: s.kinetic_energy(&st.spheres),
-            potential: s.potential_energy(&st.spheres, &st.options.gravity),
+            kinetic: s.kinetic_energy(&st.members),
+            potential: s.potential_energy(&st.members, &st.options.gravity),
             state: s,
             closed: self.closed.len(),
         });
@@ -232,7 +286,7 @@ impl<'a> Run<'a> {
     ) -> Result<Accelerations, ContactError> {
         let st = &self.setup;
         accelerations(
-            &st.spheres,
+            &st.members,
             &st.planes,
             &st.candidates,
             closed,
@@ -244,14 +298,14 @@ impl<'a> Run<'a> {
     fn name(&self, k: usize) -> String {
         let (a, b) = self.setup.candidates[k]
             .touch
-            .name(&self.setup.spheres, &self.setup.planes);
+            .name(&self.setup.members, &self.setup.planes);
         format!("{a} on {b}")
     }
 
     fn gap(&self, k: usize, s: &SystemState) -> super::gaps::Gap {
         gap(
             &self.setup.candidates[k].touch,
-            &self.setup.spheres,
+            &self.setup.members,
             &self.setup.planes,
             s,
         )
@@ -274,6 +328,20 @@ impl<'a> Run<'a> {
             if let Some(why) = self.stepper.stall(MAX_STEPS) {
                 return Err(SimulateError::Stalled { t: self.t, why });
             }
+            // A closed contact whose point has left its face (beyond the face's edge) lets go.
+            let off: Vec<usize> = (0..self.closed.len())
+                .filter(|&p| !self.gap(self.closed[p], &self.s).gap.is_finite())
+                .collect();
+            if !off.is_empty() {
+                for &p in off.iter().rev() {
+                    let k = self.closed.remove(p);
+                    self.events.push(Event {
+                        t: self.t,
+                        what: format!("{} leaves the face", self.name(k)),
+                    });
+                }
+                continue;
+            }
             let s = self.s.clone();
             let acc = self
                 .accelerations_at(&s, &self.closed)
@@ -293,8 +361,10 @@ impl<'a> Run<'a> {
                 }
                 continue;
             }
-            let fastest = self.s.v.iter().map(|v| v.norm()).fold(0.0, f64::max);
-            let accel = acc.a.iter().map(|a| a.norm()).fold(0.0, f64::max);
+            let fastest = self.fastest(&self.s);
+            let accel = (0..self.setup.members.len())
+                .map(|b| self.turning(b, acc.a[b].norm(), acc.alpha[b].norm()))
+                .fold(0.0, f64::max);
             if !self.closed.is_empty()
                 && fastest <= o.rest_speed
                 && accel <= 1e-9 * (o.gravity.norm() + f64::MIN_POSITIVE)
@@ -310,6 +380,9 @@ impl<'a> Run<'a> {
                     continue;
                 }
                 let g = self.gap(k, &self.s);
+                if !g.gap.is_finite() {
+                    continue;
+                }
                 if g.gap <= self.gap_tol {
                     if g.rate < -o.rest_speed {
                         striking = true;
@@ -332,9 +405,26 @@ impl<'a> Run<'a> {
                         }
                     }
                 }
+                let members = &self.setup.members;
                 let bound = match self.setup.candidates[k].touch {
-                    Touch::Plane { body, .. } => 2.0 * acc.a[body].norm(),
+                    Touch::Plane { body, .. } if !members[body].turns() => 2.0 * acc.a[body].norm(),
                     Touch::Pair { a, b } => 2.0 * (acc.a[a].norm() + acc.a[b].norm()) + g.curvature,
+                    // twice |a| + ρ (|ω|² + |α|) of each side at the step's start, and the
+                    // curvature (the single body's bound, over both sides)
+                    _ => {
+                        g.sides()
+                            .map(|i| {
+                                let (w, al) = if members[i.body].turns() {
+                                    (self.s.w[i.body].norm_squared(), acc.alpha[i.body].norm())
+                                } else {
+                                    (0.0, 0.0)
+                                };
+                                2.0 * (acc.a[i.body].norm() + i.arm.norm() * (w + al))
+                            })
+                            .sum::<f64>()
+                            + 2.0 * g.curvature.abs()
+                            + f64::MIN_POSITIVE
+                    }
                 };
                 horizon = horizon.min(stepper::horizon(g.gap, g.rate, bound));
             }
@@ -349,25 +439,34 @@ impl<'a> Run<'a> {
             // One step.
             let y = self.s.pack();
             let t0 = self.t;
-            let half = y.len() / 2;
+            let b = self.setup.members.len();
+            // positions on the length scale, velocities on the speed scale, each quaternion's
+            // components on 1, each ω on the speed scale over the member's reach
             let scales: Vec<f64> = (0..y.len())
-                .map(|k| if k < half { self.length } else { self.speed })
+                .map(|k| match k {
+                    k if k < 3 * b => self.length,
+                    k if k < 6 * b => self.speed,
+                    k if k < 10 * b => 1.0,
+                    k => self.speed / self.reaches[(k - 10 * b) / 3].max(f64::MIN_POSITIVE),
+                })
                 .collect();
             let closed = self.closed.clone();
             let open: Vec<(usize, f64)> = (0..self.setup.candidates.len())
                 .filter(|k| !self.closed.contains(k))
                 .map(|k| (k, self.gap(k, &self.s).gap))
                 .collect();
+            // how far inside its face each closed face contact's point is (+∞ for others)
+            let over: Vec<(usize, f64)> = closed
+                .iter()
+                .map(|&k| (k, self.gap(k, &self.s).inside))
+                .filter(|(_, m)| m.is_finite())
+                .collect();
             let mut stepper = std::mem::replace(&mut self.stepper, Stepper::new(1.0, 1.0));
             let advance = {
                 let mut f = |_t: f64, y: &[f64]| -> Result<Vec<f64>, ContactError> {
                     let s = SystemState::unpack(y);
                     let a = self.accelerations_at(&s, &closed)?;
-                    Ok(s.v
-                        .iter()
-                        .chain(&a.a)
-                        .flat_map(|p| [p.x, p.y, p.z])
-                        .collect())
+                    Ok(derivative(&self.setup.members, &s, &a))
                 };
                 // No open contact may end the step through its gap: one the step took through
                 // is located by halving the step.
@@ -375,6 +474,8 @@ impl<'a> Run<'a> {
                     let end = SystemState::unpack(y);
                     open.iter().any(|&(k, start)| {
                         stepper::crossed(start, self.gap(k, &end).gap, self.gap_tol)
+                    }) || over.iter().any(|&(k, start)| {
+                        stepper::crossed(start, self.gap(k, &end).inside, self.gap_tol)
                     })
                 };
                 stepper.advance(
@@ -411,13 +512,52 @@ impl<'a> Run<'a> {
             self.s = SystemState::unpack(&y5);
             let st = self.setup;
             let d = project(
-                &st.spheres,
+                &st.members,
                 &st.planes,
                 &st.candidates,
                 &self.closed,
                 &mut self.s,
             );
             self.drift = self.drift.max(d);
+            let tol = 1e3 * self.gap_tol;
+            if deepest(&st.members, &self.s, tol).is_some() {
+                // where they first overlap: the step's continuous extension, bisected
+                let at = |t: f64| deepest(&st.members, &SystemState::unpack(&dense.at(t)), tol);
+                let (mut lo, mut hi) = (t0, t1);
+                while hi - lo > 1e-12 * hi.abs().max(1.0) {
+                    let mid = 0.5 * (lo + hi);
+                    if at(mid).is_some() {
+                        hi = mid;
+                    } else {
+                        lo = mid;
+                    }
+                }
+                let (a, b, depth) = at(hi)
+                    .or_else(|| deepest(&st.members, &self.s, tol))
+                    .unwrap_or((0, 1, tol));
+                return Err(SimulateError::Overlap {
+                    t: hi,
+                    first: st.members[a].name.clone(),
+                    second: st.members[b].name.clone(),
+                    depth,
+                });
+            }
+        }
+    }
+
+    /// The fastest a member's point moves: |v_b| + |ω_b| ρ_b (|v_b| for a sphere).
+    fn fastest(&self, s: &SystemState) -> f64 {
+        (0..self.setup.members.len())
+            .map(|b| self.turning(b, s.v[b].norm(), s.w[b].norm()))
+            .fold(0.0, f64::max)
+    }
+
+    /// `linear` + `angular` ρ_b for a member that turns, `linear` for a sphere.
+    fn turning(&self, b: usize, linear: f64, angular: f64) -> f64 {
+        if self.setup.members[b].turns() {
+            linear + angular * self.reaches[b]
+        } else {
+            linear
         }
     }
 
@@ -438,7 +578,7 @@ impl<'a> Run<'a> {
             if !persisting && g.gap > self.gap_tol {
                 spread = spread.max(g.gap / -g.rate);
             }
-            let (first, second) = st.candidates[k].touch.name(&st.spheres, &st.planes);
+            let (first, second) = st.candidates[k].touch.name(&st.members, &st.planes);
             at.push(k);
             struck.push(Struck {
                 feature: first,
@@ -451,10 +591,10 @@ impl<'a> Run<'a> {
             });
         }
         let index = self.impacts.len() + 1;
-        let kinetic_before = self.s.kinetic_energy(&st.spheres);
+        let kinetic_before = self.s.kinetic_energy(&st.members);
         self.sample();
         let out = solve(
-            &st.spheres,
+            &st.members,
             &st.planes,
             &st.candidates,
             &at,
@@ -475,7 +615,11 @@ impl<'a> Run<'a> {
         if !out.v.iter().all(|v| v.iter().all(|x| x.is_finite())) {
             return Err(SimulateError::NotFinite { t: self.t });
         }
+        if !out.w.iter().all(|v| v.iter().all(|x| x.is_finite())) {
+            return Err(SimulateError::NotFinite { t: self.t });
+        }
         self.s.v = out.v;
+        self.s.w = out.w;
         self.closed.clear();
         for (p, &k) in at.iter().enumerate() {
             let g = self.gap(k, &self.s);
@@ -491,9 +635,9 @@ impl<'a> Run<'a> {
             contacts: struck,
             spread,
             kinetic_before,
-            kinetic_after: self.s.kinetic_energy(&st.spheres),
+            kinetic_after: self.s.kinetic_energy(&st.members),
             verdicts: out.verdicts,
-            note: None,
+            note: out.note,
         });
         self.sample();
         Ok(())
@@ -509,4 +653,23 @@ pub fn after_first_impact(sim: &SystemSimulation) -> Option<&[V3]> {
         .filter(|s| s.t == t)
         .nth(1)
         .map(|s| s.state.v.as_slice())
+}
+
+/// ẏ of the packed state (the layout of [`SystemState::pack`]): (v_b), (a_b), ½ (0, ω_b) ⊗ q_b
+/// and (α_b) — the quaternion and ω of a sphere held (module docs of [`super::members`]).
+fn derivative(members: &[Member], s: &SystemState, acc: &Accelerations) -> Vec<f64> {
+    let mut out: Vec<f64> =
+        s.v.iter()
+            .chain(&acc.a)
+            .flat_map(|p| [p.x, p.y, p.z])
+            .collect();
+    for (b, q) in s.q.iter().enumerate() {
+        if members[b].turns() {
+            out.extend(quaternion_rate(q, &s.w[b]));
+        } else {
+            out.extend([0.0; 4]);
+        }
+    }
+    out.extend(acc.alpha.iter().flat_map(|p| [p.x, p.y, p.z]));
+    out
 }

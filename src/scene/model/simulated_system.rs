@@ -1,23 +1,27 @@
-//! A system of spheres to simulate (`inertance simulate` on a scene of several `[[body]]`):
-//! each body a sphere (`shape = { sphere = r }`, a `mass` or `density`, `position`,
-//! `velocity`, an optional `angular_velocity` — kept by frictionless contacts and not reported
-//! — and an optional `material` for Hertz's stiffness), the obstacle planes (none is fine: a
-//! cradle in space), and `[simulate]` as for one body. The simulation watches every sphere
-//! against every obstacle and every pair of spheres against each other.
+//! A system to simulate (`inertance simulate` on a scene of several `[[body]]`): each body a
+//! sphere (`shape = { sphere = r }`) or a box (`shape = { box = [a, b, c] }`), with a `mass` or
+//! `density`, `position`, `pose` (a box's; a sphere's is not reported), `velocity`, an optional
+//! `angular_velocity` (a sphere's kept by frictionless contacts and not reported) and an
+//! optional `material` for Hertz's stiffness; the obstacle planes (none is fine: a cradle in
+//! space), and `[simulate]` as for one body. The simulation watches every feature (a sphere, a
+//! box's corners) against every obstacle, every pair of spheres against each other and every
+//! feature against every face of every other box ([`crate::simulate::system::gaps`]).
 //!
 //! ```toml
 //! [simulate]
 //! law = "lzb"
-//! contact = { k = 1, stiffness = "hertz" }   # every contact (spheres and planes)
+//! contact = { k = 1, stiffness = "hertz" }   # every contact (bodies and planes)
 //! [simulate.obstacle.wall]                   # the contacts with one obstacle
 //! k = 1
-//! [[simulate.pair]]                          # the contact of two spheres
+//! [[simulate.pair]]                          # the contacts of two bodies
 //! bodies = ["bead 1", "bead 2"]
 //! stiffness = 1e9
 //! ```
 //!
 //! `stiffness = "hertz"` takes K = (4/3) E* √R* from the two sides' radii and materials
-//! ([`super::hertz`]; η = 3/2). Contacts are frictionless: `mu` > 0 is refused.
+//! ([`super::hertz`]; η = 3/2) where both sides are curved or flat: a sphere on a sphere, a
+//! plane or a box's face — a box's corner has no radius, and its contacts need a number.
+//! Contacts are frictionless: `mu` > 0 is refused.
 
 use toml_edit::{Item, Table, TableLike};
 
@@ -27,10 +31,12 @@ use super::hertz::{Material, Surface, hertz_stiffness};
 use super::shape::Shape;
 use super::simulation::SIMULATE_KEYS;
 use super::term::Term;
-use crate::simulate::body::V3;
+use crate::simulate::body::{Body, Feature, Shape as SimShape, V3};
 use crate::simulate::system::gaps::gap;
-use crate::simulate::system::{Sphere, SystemSetup, SystemState, Touch};
+use crate::simulate::system::overlap::deepest;
+use crate::simulate::system::{Member, SystemSetup, SystemState, Touch};
 use crate::simulate::world::{ContactLaw, Plane};
+use nalgebra::{Matrix3, Rotation3, UnitQuaternion};
 
 fn v3(t: &[Term; 3]) -> V3 {
     V3::new(t[0].approx(), t[1].approx(), t[2].approx())
@@ -40,14 +46,14 @@ fn v3(t: &[Term; 3]) -> V3 {
 type Law = (ContactLaw, bool);
 
 impl Reader<'_> {
-    /// The system of spheres a document of several `[[body]]` describes.
-    pub(crate) fn sphere_system(&self, root: &Table) -> Result<SystemSetup, SceneError> {
+    /// The system a document of several `[[body]]` describes.
+    pub(crate) fn simulated_system(&self, root: &Table) -> Result<SystemSetup, SceneError> {
         if let Some(c) = root.get("contact") {
             return Err(self.err(
                 "contact",
                 Some(short(c)),
-                "a scene to simulate names no contacts: every pair of spheres and every sphere \
-                 and [[obstacle]] are watched; give their law in [simulate] contact",
+                "a scene to simulate names no contacts: every body and [[obstacle]], and every \
+                 pair of bodies, are watched; give their law in [simulate] contact",
             ));
         }
         for key in ["solve", "joint", "constraints", "surface"] {
@@ -63,10 +69,9 @@ impl Reader<'_> {
         let Some(Item::ArrayOfTables(bodies)) = root.get("body") else {
             return Err(self.err("body", None, "[[body]] tables"));
         };
-        let mut spheres = Vec::new();
+        let mut members: Vec<Member> = Vec::new();
         let mut materials: Vec<Option<Material>> = Vec::new();
-        let mut x = Vec::new();
-        let mut v = Vec::new();
+        let (mut x, mut v, mut q, mut w) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
         for (i, body) in bodies.iter().enumerate() {
             let at = format!("body[{i}]");
             self.only_keys(
@@ -78,6 +83,7 @@ impl Reader<'_> {
                     "mass",
                     "density",
                     "position",
+                    "pose",
                     "velocity",
                     "angular_velocity",
                     "material",
@@ -87,7 +93,7 @@ impl Reader<'_> {
                 Some(n) => self.string(n, &format!("{at}.name"))?,
                 None => at.clone(),
             };
-            if spheres.iter().any(|s: &Sphere| s.name == name) {
+            if members.iter().any(|s| s.name == name) {
                 return Err(self.err(
                     &format!("{at}.name"),
                     Some(format!("\"{name}\"")),
@@ -95,16 +101,23 @@ impl Reader<'_> {
                 ));
             }
             let (props, shape) = self.mass_properties(body, &at)?;
-            let radius = match shape {
-                Some(Shape::Sphere(r)) => r.approx(),
+            let shape = match shape {
+                Some(Shape::Sphere(r)) => SimShape::Sphere { radius: r.approx() },
+                Some(Shape::Box(d)) => SimShape::Box { half: v3(&d) / 2.0 },
                 _ => {
                     return Err(self.err(
                         &format!("{at}.shape"),
                         body.get("shape").map(short),
-                        "a system to simulate is made of spheres: shape = { sphere = r } \
-                         (other shapes move only alone)",
+                        "a system to simulate is made of spheres and boxes: shape = { sphere = r } \
+                         or { box = [a, b, c] } (rods and cylinders move only alone)",
                     ));
                 }
+            };
+            let r = self.pose(body.get("pose"), &at)?;
+            let rm = Matrix3::from_fn(|i, j| r[i][j].approx());
+            let inertia = Matrix3::from_fn(|i, j| props.inertia[i][j].approx());
+            let Some(model) = Body::new(props.mass.approx(), inertia, shape, None) else {
+                return Err(self.err(&at, None, "the inertia tensor is singular"));
             };
             let position = match body.get("position") {
                 None => V3::zeros(),
@@ -117,17 +130,21 @@ impl Reader<'_> {
                 .triple(self.get(body, "velocity", &at)?, &format!("{at}.velocity"))?
                 .each_ref()
                 .map(Term::of));
-            if let Some(w) = body.get("angular_velocity") {
-                self.triple(w, &format!("{at}.angular_velocity"))?;
-            }
+            let omega = match body.get("angular_velocity") {
+                None => V3::zeros(),
+                Some(item) => v3(&self
+                    .triple(item, &format!("{at}.angular_velocity"))?
+                    .each_ref()
+                    .map(Term::of)),
+            };
             materials.push(self.material(body, &at)?);
-            spheres.push(Sphere {
-                name,
-                mass: props.mass.approx(),
-                radius,
-            });
-            x.push(position + v3(&props.centre));
+            members.push(Member { name, body: model });
+            x.push(position + rm * v3(&props.centre));
             v.push(velocity);
+            q.push(UnitQuaternion::from_rotation_matrix(
+                &Rotation3::from_matrix_unchecked(rm),
+            ));
+            w.push(omega);
         }
         let sim = self.table(root, "simulate", "")?;
         // one body's keys, but `plane` (a planar motion of a box), and `pair`
@@ -193,7 +210,7 @@ impl Reader<'_> {
                     .and_then(|a| {
                         let idx = |k: usize| {
                             let n = a.get(k)?.as_str()?;
-                            spheres.iter().position(|s| s.name == n)
+                            members.iter().position(|s| s.name == n)
                         };
                         Some((idx(0)?, idx(1)?))
                     })
@@ -204,7 +221,7 @@ impl Reader<'_> {
                             Some(short(item)),
                             format!(
                                 "two different bodies by name; the scene has: {}",
-                                spheres
+                                members
                                     .iter()
                                     .map(|s| s.name.as_str())
                                     .collect::<Vec<_>>()
@@ -218,38 +235,90 @@ impl Reader<'_> {
                 pair_laws.push(((pair.0.min(pair.1), pair.0.max(pair.1)), l));
             }
         }
-        let start = SystemState { x, v };
+        let start = SystemState { x, v, q, w };
         let mut failure: Option<SceneError> = None;
-        let candidates = SystemSetup::candidates(spheres.len(), planes.len(), |touch| {
-            let (l, hertz) = match *touch {
-                Touch::Plane { plane, .. } => plane_laws[plane].clone(),
-                Touch::Pair { a, b } => pair_laws
+        // a side's surface for Hertz's law: a sphere's, or none (a box's corner)
+        let surface = |m: usize, f: usize| match members[m].body.features[f] {
+            Feature::Sphere { radius } => Some(Surface::Sphere(radius)),
+            _ => None,
+        };
+        let candidates = SystemSetup::candidates(&members, planes.len(), |touch| {
+            let key = |a: usize, b: usize| (a.min(b), a.max(b));
+            let pair_law = |a: usize, b: usize| {
+                pair_laws
                     .iter()
                     .rev()
-                    .find(|(p, _)| *p == (a, b))
-                    .map_or_else(|| base.clone(), |(_, l)| l.clone()),
+                    .find(|(p, _)| *p == key(a, b))
+                    .map_or_else(|| base.clone(), |(_, l)| l.clone())
+            };
+            let (l, hertz) = match *touch {
+                Touch::Plane { plane, .. } => plane_laws[plane].clone(),
+                Touch::Pair { a, b } | Touch::Face { a, b, .. } => pair_law(a, b),
             };
             if !hertz {
                 return l;
             }
-            let (first, second, whose) = match *touch {
-                Touch::Plane { body, plane } => (
-                    (Surface::Sphere(spheres[body].radius), materials[body], body),
-                    (Surface::Flat, obstacles[plane].material),
-                    format!("obstacle \"{}\"", names[plane]),
+            // each side: its surface, its material, and who it is
+            type HertzSide = (Option<Surface>, Option<Material>, String);
+            let (first, second): (HertzSide, HertzSide) = match *touch {
+                Touch::Plane {
+                    body,
+                    feature,
+                    plane,
+                } => (
+                    (
+                        surface(body, feature),
+                        materials[body],
+                        format!("body \"{}\"", members[body].name),
+                    ),
+                    (
+                        Some(Surface::Flat),
+                        obstacles[plane].material,
+                        format!("obstacle \"{}\"", names[plane]),
+                    ),
                 ),
                 Touch::Pair { a, b } => (
-                    (Surface::Sphere(spheres[a].radius), materials[a], a),
-                    (Surface::Sphere(spheres[b].radius), materials[b]),
-                    format!("body \"{}\"", spheres[b].name),
+                    (
+                        surface(a, 0),
+                        materials[a],
+                        format!("body \"{}\"", members[a].name),
+                    ),
+                    (
+                        surface(b, 0),
+                        materials[b],
+                        format!("body \"{}\"", members[b].name),
+                    ),
+                ),
+                Touch::Face { a, feature, b, .. } => (
+                    (
+                        surface(a, feature),
+                        materials[a],
+                        format!("body \"{}\"", members[a].name),
+                    ),
+                    (
+                        Some(Surface::Flat),
+                        materials[b],
+                        format!("body \"{}\"", members[b].name),
+                    ),
                 ),
             };
+            let (Some(s1), Some(s2)) = (first.0, second.0) else {
+                failure.get_or_insert_with(|| {
+                    self.err(
+                        "simulate.contact.stiffness",
+                        Some("\"hertz\"".into()),
+                        format!(
+                            "Hertz's stiffness is for curved or flat surfaces, and the corners of \
+                             {} have no radius: give the stiffness of its contacts as a number \
+                             ([[simulate.pair]] or [simulate.obstacle.NAME])",
+                            first.2
+                        ),
+                    )
+                });
+                return l;
+            };
             let (Some(m1), Some(m2)) = (first.1, second.1) else {
-                let who = if first.1.is_none() {
-                    format!("body \"{}\"", spheres[first.2].name)
-                } else {
-                    whose
-                };
+                let who = if first.1.is_none() { first.2 } else { second.2 };
                 failure.get_or_insert_with(|| {
                     self.err(
                         "simulate.contact.stiffness",
@@ -262,7 +331,7 @@ impl Reader<'_> {
                 });
                 return l;
             };
-            match hertz_stiffness((first.0, m1), (second.0, m2)) {
+            match hertz_stiffness((s1, m1), (s2, m2)) {
                 Ok(k) => ContactLaw {
                     stiffness: k,
                     exponent: 1.5,
@@ -279,31 +348,43 @@ impl Reader<'_> {
         if let Some(e) = failure {
             return Err(e);
         }
-        let reach = spheres.iter().map(|s| s.radius).fold(0.0, f64::max);
+        let reach = members.iter().map(|m| m.body.reach()).fold(0.0, f64::max);
         let length = start
             .x
             .iter()
             .map(|p| p.norm())
             .fold(reach, f64::max)
             .max(f64::MIN_POSITIVE);
+        let inside = |a: &str, b: &str, depth: f64| {
+            self.err(
+                "body.position",
+                None,
+                format!("\"{a}\" starts inside \"{b}\": they overlap by {depth:.6e} m"),
+            )
+        };
         for c in &candidates {
-            let g = gap(&c.touch, &spheres, &planes, &start);
+            let g = gap(&c.touch, &members, &planes, &start);
             if g.gap < -1e-9 * length {
-                let (a, b) = c.touch.name(&spheres, &planes);
-                return Err(self.err(
-                    "body.position",
-                    None,
-                    format!(
-                        "\"{a}\" starts inside \"{b}\": they overlap by {:.6e} m",
-                        -g.gap
-                    ),
-                ));
+                let (a, b) = c.touch.name(&members, &planes);
+                return Err(inside(&a, &b, -g.gap));
             }
         }
-        let fastest = start.v.iter().map(|p| p.norm()).fold(0.0, f64::max);
+        if let Some((a, b, depth)) = deepest(&members, &start, 1e-9 * length) {
+            return Err(inside(&members[a].name, &members[b].name, depth));
+        }
+        let fastest = (0..members.len())
+            .map(|b| {
+                let spin = if members[b].turns() {
+                    start.w[b].norm() * members[b].body.reach()
+                } else {
+                    0.0
+                };
+                start.v[b].norm() + spin
+            })
+            .fold(0.0, f64::max);
         options.rest_speed = self.rest_speed(sim, &gravity, length, fastest)?;
         Ok(SystemSetup {
-            spheres,
+            members,
             planes,
             candidates,
             law,
@@ -345,7 +426,7 @@ impl Reader<'_> {
             return Err(self.err(
                 &format!("{at}.mu"),
                 Some(law.mu.to_string()),
-                "contacts between spheres are frictionless for now: drop mu",
+                "contacts in a system are frictionless for now: drop mu",
             ));
         }
         Ok((law, hertz))
