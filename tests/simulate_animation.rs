@@ -275,3 +275,104 @@ fn every_frame_of_a_system_draws_each_sphere_where_the_run_has_it() {
     );
     assert!(moved(0) < 0.0, "and recoils a little");
 }
+
+/// A system of boxes: the box dropped on the box on the floor, one frame per sample, each box
+/// a polygon whose vertices are projected corners of the box at that sample (the view recomputed
+/// here: gravity along −z, so the vertical plane through x) and which holds every projected
+/// corner (a convex outline: no corner outside it); the base drawn at the same place in every
+/// frame, and the top box drawn resting on it in the last.
+#[test]
+fn every_frame_of_a_system_draws_each_box_where_the_run_has_it() {
+    use inertance::report::animation_system;
+    use inertance::scene::AnySimulation;
+    use inertance::simulate::system::simulate_system;
+    let path = std::path::Path::new("examples/simulate/box-on-box.toml");
+    let (name, setup) = match AnySimulation::load(path).expect("reads") {
+        AnySimulation::System(s) => (s.name, s.setup),
+        AnySimulation::Body(_) => unreachable!("a system"),
+    };
+    let sim = simulate_system(&setup);
+    assert!(sim.stopped.is_none());
+    let svg = animation_system::to_svg(&name, &setup, &sim);
+    let doc = roxmltree::Document::parse(&svg).expect("the SVG is well-formed XML");
+    let root = doc.root_element();
+    let view = View::looking(setup.options.gravity, None);
+    let px = to_canvas(&root, view);
+    let frames: Vec<_> = root
+        .children()
+        .filter(|n| n.attribute("class") == Some("frame"))
+        .collect();
+    assert_eq!(frames.len(), sim.samples.len(), "one frame per sample");
+    let mut base_drawn: Option<Vec<f64>> = None;
+    for (k, (frame, sample)) in frames.iter().zip(&sim.samples).enumerate() {
+        let polygons: Vec<_> = frame
+            .children()
+            .filter(|n| n.attribute("class") == Some("body"))
+            .collect();
+        assert_eq!(polygons.len(), 2, "frame {k}: both boxes");
+        for (b, (p, member)) in polygons.iter().zip(&setup.members).enumerate() {
+            assert_eq!(p.tag_name().name(), "polygon");
+            assert_eq!(p.attribute("data-name"), Some(member.name.as_str()));
+            let points = attr_f64s(p, "points");
+            let corners: Vec<(f64, f64)> = animation_system::corners(&setup, &sample.state, b)
+                .iter()
+                .map(|c| px(c))
+                .collect();
+            assert_eq!(corners.len(), 8);
+            let vertices: Vec<(f64, f64)> = points.chunks(2).map(|v| (v[0], v[1])).collect();
+            for v in &vertices {
+                assert!(
+                    corners
+                        .iter()
+                        .any(|c| (c.0 - v.0).abs() < 2e-3 && (c.1 - v.1).abs() < 2e-3),
+                    "frame {k}: {} vertex {v:?} is no corner",
+                    member.name
+                );
+            }
+            // every corner inside or on the outline (counter-clockwise in the canvas' mirror:
+            // the sign of the turns is one for all edges)
+            let n = vertices.len();
+            for c in &corners {
+                let sides: Vec<f64> = (0..n)
+                    .map(|i| {
+                        let (a, b) = (vertices[i], vertices[(i + 1) % n]);
+                        (b.0 - a.0) * (c.1 - a.1) - (b.1 - a.1) * (c.0 - a.0)
+                    })
+                    .collect();
+                let scale = 1e-3 * (1.0 + sides.iter().fold(0.0f64, |m, s| m.max(s.abs())));
+                assert!(
+                    sides.iter().all(|s| *s >= -scale) || sides.iter().all(|s| *s <= scale),
+                    "frame {k}: {} corner {c:?} outside its outline",
+                    member.name
+                );
+            }
+            if member.name == "base" {
+                match &base_drawn {
+                    None => base_drawn = Some(points.clone()),
+                    Some(first) => assert_eq!(first, &points, "frame {k}: the base moved"),
+                }
+            }
+        }
+    }
+    // the last frame: the top box's lowest drawn vertex on the base's highest
+    let last = frames.last().expect("frames");
+    let lowest_top = |name: &str| {
+        let p = last
+            .children()
+            .find(|n| n.attribute("data-name") == Some(name))
+            .expect("drawn");
+        let ys: Vec<f64> = attr_f64s(&p, "points").chunks(2).map(|v| v[1]).collect();
+        (
+            ys.iter().copied().fold(f64::NEG_INFINITY, f64::max),
+            ys.iter().copied().fold(f64::INFINITY, f64::min),
+        )
+    };
+    // canvas y grows downwards: the top box's largest y is its lowest point, the base's
+    // smallest its highest
+    let (top_low, _) = lowest_top("top");
+    let (_, base_high) = lowest_top("base");
+    assert!(
+        (top_low - base_high).abs() < 2e-3,
+        "{top_low} vs {base_high}"
+    );
+}

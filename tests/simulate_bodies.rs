@@ -378,3 +378,56 @@ fn bad_box_systems_name_the_key_and_the_value() {
     ));
     assert!(e.contains("starts inside"), "{e}");
 }
+
+/// A box sliding flat at 0.5 m/s off the edge of the base (frictionless): its two leading
+/// corners let go of the face when they reach its edge, at t = (0.5 − 0.3)/0.5 = 0.4 s (the
+/// leaving located as a crossing, to 10⁻⁹ s); the box then tips over the base's edge, an edge
+/// on a face, which the system does not watch: the run stops there, naming both, at most
+/// 10⁻³ s later (the tip has begun, at rest in the vertical, under g).
+#[test]
+fn a_box_sliding_off_a_box_stops_where_it_tips_over_the_edge() {
+    let s = system(
+        r#"
+[[body]]
+name = "top"
+shape = { box = [0.2, 0.1, 0.1] }
+mass = 1
+position = [0.2, 0, 0.25]
+velocity = [0.5, 0, 0]
+[[body]]
+name = "base"
+shape = { box = [1, 1, 0.2] }
+mass = 5
+position = [0, 0, 0.1]
+velocity = [0, 0, 0]
+[[obstacle]]
+name = "floor"
+normal = [0, 0, 1]
+[simulate]
+gravity = [0, 0, -9.81]
+duration = 2
+law = "unilateral"
+contact = { k = 0.5 }
+"#,
+    );
+    let sim = simulate_system(&s);
+    let leaving: Vec<_> = sim
+        .events
+        .iter()
+        .filter(|e| e.what.contains("leaves the face"))
+        .collect();
+    assert_eq!(leaving.len(), 2, "{:?}", sim.events);
+    for e in &leaving {
+        assert!(e.what.starts_with("top corner [1, "), "{}", e.what);
+        assert!((e.t - 0.4).abs() <= 1e-9, "{}", e.t);
+    }
+    match &sim.stopped {
+        Some(SimulateError::Overlap {
+            t, first, second, ..
+        }) => {
+            assert!(*t > 0.4 && *t <= 0.401, "{t}");
+            assert_eq!((first.as_str(), second.as_str()), ("top", "base"));
+        }
+        other => panic!("{other:?}"),
+    }
+}

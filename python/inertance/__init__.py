@@ -220,8 +220,9 @@ class Simulation:
     ``kinetic_before``/``kinetic_after``, ``verdicts``; ``events``; ``end``; ``error``; ``zeno``;
     ``steps`` …). ``samples``: numpy arrays, one row per sample (every ``output_step``): one body
     ``t`` (N,), ``x``, ``v``, ``omega`` (N, 3), ``q`` (N, 4: w, i, j, k), ``kinetic``,
-    ``potential``, ``closed`` (N,); a system of spheres ``t``, ``x`` and ``v`` (N, B, 3) in the
-    order of ``bodies``, ``kinetic``, ``potential``, ``closed``.
+    ``potential``, ``closed`` (N,); a system ``t``, ``x``, ``v`` and ``omega`` (N, B, 3) and ``q``
+    (N, B, 4; a sphere's held) in the order of ``bodies``, ``kinetic``, ``potential``,
+    ``closed``.
     """
 
     log: dict
@@ -258,7 +259,8 @@ class Simulation:
 
 def simulate(scene: Union[str, "os.PathLike[str]"], law: Optional[str] = None) -> Simulation:
     """Simulate ``scene`` (a path, or TOML text with a ``[simulate]`` table) through every
-    impact, as ``inertance simulate``: one body, or a system of spheres (``[[body]]`` tables);
+    impact, as ``inertance simulate``: one body, or a system of spheres and boxes (``[[body]]``
+    tables);
     ``law`` (``"simultaneous"``, ``"unilateral"`` or ``"lzb"``) replaces the scene's, keeping its
     restitution. A run that stops early (an impact without an answer, persistent contact
     undecided, a state that overflows) is returned with ``end == "stopped"`` and ``error`` —

@@ -116,6 +116,8 @@ pub struct Gap {
     pub point: V3,
     /// How far the point lies inside its face's edges (m; +∞ but for a face contact).
     pub inside: f64,
+    /// The rate of `inside` (m/s; negative: the point moves out over the nearest edge).
+    pub inside_rate: f64,
     /// The members the row acts on: one on a plane, two between members.
     pub sides: [Option<Side>; 2],
 }
@@ -212,6 +214,7 @@ pub fn gap(touch: &Touch, members: &[Member], planes: &[Plane], s: &SystemState)
                     curvature: 0.0,
                     point: s.x[body] - n * *r,
                     inside: f64::INFINITY,
+                    inside_rate: 0.0,
                     sides: [Some(round_side(body, 1.0, -n * *r)), None],
                 };
             }
@@ -225,6 +228,7 @@ pub fn gap(touch: &Touch, members: &[Member], planes: &[Plane], s: &SystemState)
                 curvature: n.dot(&st.w.cross(&g.drift)),
                 point: g.point,
                 inside: f64::INFINITY,
+                inside_rate: 0.0,
                 sides: [
                     Some(Side {
                         body,
@@ -254,6 +258,7 @@ pub fn gap(touch: &Touch, members: &[Member], planes: &[Plane], s: &SystemState)
                 curvature: (u.norm_squared() - along * along).max(0.0) / len,
                 point,
                 inside: f64::INFINITY,
+                inside_rate: 0.0,
                 sides: [
                     Some(round_side(a, -1.0, n * ra)),
                     Some(round_side(b, 1.0, point - s.x[b])),
@@ -288,22 +293,24 @@ fn face_gap(
     let wb = s.w[b];
     let ndot = wb.cross(&n);
     let nddot = wb.cross(&ndot);
-    // the point, its velocity and the velocity part of its acceleration; the side on a
-    let (p, pdot, pddot, side_a, centre) = match &members[a].body.features[feature] {
+    // the point, its velocity and the velocity part of its acceleration; the side on a; the
+    // point whose place over the face decides (a sphere's centre) and its velocity
+    let (p, pdot, pddot, side_a, (centre, centre_dot)) = match &members[a].body.features[feature] {
         Feature::Sphere { radius } => (
             s.x[a] - n * *radius,
             s.v[a] - ndot * *radius,
             -nddot * *radius,
             round_side(a, 1.0, -n * *radius),
-            s.x[a],
+            (s.x[a], s.v[a]),
         ),
         Feature::Point { at, .. } => {
             let r = s.rotation(a) * at;
             let wa = s.w[a];
             let p = s.x[a] + r;
+            let pdot = s.v[a] + wa.cross(&r);
             (
                 p,
-                s.v[a] + wa.cross(&r),
+                pdot,
                 wa.cross(&wa.cross(&r)),
                 Side {
                     body: a,
@@ -311,7 +318,7 @@ fn face_gap(
                     arm: r,
                     moment: r.cross(&n),
                 },
-                p,
+                (p, pdot),
             )
         }
         // no rim strikes a face ([`super::run::SystemSetup::candidates`])
@@ -319,10 +326,14 @@ fn face_gap(
     };
     let d = p - s.x[b];
     let local = rb.transpose() * (centre - s.x[b]);
-    let inside = (0..3)
+    // the nearest edge j, and how fast the point moves out over it (in b's axes, relative to
+    // b's material point there)
+    let (nearest, inside) = (0..3)
         .filter(|&j| j != k)
-        .map(|j| half[j] - local[j].abs())
-        .fold(f64::INFINITY, f64::min);
+        .map(|j| (j, half[j] - local[j].abs()))
+        .fold((k, f64::INFINITY), |m, e| if e.1 < m.1 { e } else { m });
+    let relative = rb.transpose() * (centre_dot - s.v[b] - wb.cross(&(centre - s.x[b])));
+    let inside_rate = -local[nearest].signum() * relative[nearest];
     let ddot = pdot - s.v[b];
     // over the face: within its edges, on its side of the centre, and nearer its plane than
     // any other face's (a point inside the box belongs to the face it is least deep under)
@@ -340,6 +351,7 @@ fn face_gap(
         curvature: nddot.dot(&d) + 2.0 * ndot.dot(&ddot) + n.dot(&pddot),
         point: p,
         inside,
+        inside_rate,
         sides: [
             Some(side_a),
             Some(Side {
@@ -362,6 +374,7 @@ fn apart(s: &SystemState, a: usize) -> Gap {
         curvature: 0.0,
         point: s.x[a],
         inside: f64::NEG_INFINITY,
+        inside_rate: 0.0,
         sides: [None, None],
     }
 }

@@ -19,8 +19,8 @@
 //! the horizon of [`crate::simulate::stepper::horizon`]. A gap within the gap tolerance (10⁻¹¹
 //! of the length scale) approaching faster than `rest_speed` is an impact; one slower closes
 //! unless the acceleration-level problem with it closed separates it (g̈ > 0); a closed
-//! contact opens when g̈ > 0 ([`super::persist`]), or when its point leaves its face (located
-//! by halving the step, as a crossing). After every step the members are checked for an
+//! contact opens when g̈ > 0 ([`super::persist`]), or when its point reaches its face's edge
+//! moving out (located by halving the step, as a crossing of how far inside the edges it is). After every step the members are checked for an
 //! overlap where no contact is watched ([`super::overlap`]): the run stops there, naming them.
 //!
 //! **Impacts.** Every open contact approaching within the gap tolerance or within
@@ -328,9 +328,9 @@ impl<'a> Run<'a> {
             if let Some(why) = self.stepper.stall(MAX_STEPS) {
                 return Err(SimulateError::Stalled { t: self.t, why });
             }
-            // A closed contact whose point has left its face (beyond the face's edge) lets go.
+            // A closed contact whose point reaches its face's edge moving out lets go.
             let off: Vec<usize> = (0..self.closed.len())
-                .filter(|&p| !self.gap(self.closed[p], &self.s).gap.is_finite())
+                .filter(|&p| self.leaves(self.closed[p], &self.s))
                 .collect();
             if !off.is_empty() {
                 for &p in off.iter().rev() {
@@ -387,7 +387,7 @@ impl<'a> Run<'a> {
                     if g.rate < -o.rest_speed {
                         striking = true;
                         continue;
-                    } else if g.rate <= o.rest_speed {
+                    } else if g.rate <= o.rest_speed && !self.leaves(k, &self.s) {
                         let mut trial = self.closed.clone();
                         trial.push(k);
                         let keeps = self
@@ -543,6 +543,13 @@ impl<'a> Run<'a> {
                 });
             }
         }
+    }
+
+    /// Whether contact `k` is a face contact whose point is at (or past) its face's edge,
+    /// within the gap tolerance, and moving out over it.
+    fn leaves(&self, k: usize, s: &SystemState) -> bool {
+        let g = self.gap(k, s);
+        !g.gap.is_finite() || (g.inside <= self.gap_tol && g.inside_rate < 0.0)
     }
 
     /// The fastest a member's point moves: |v_b| + |ω_b| ρ_b (|v_b| for a sphere).
