@@ -226,6 +226,21 @@ fn a_box_tumbling_on_a_box_is_the_body_tumbling_on_the_floor() {
         sim.t_end,
         alone.t_end
     );
+    // under every law the boxes end at rest, the top flat on the base (its centre 0.05 m above
+    // the base's top, its z axis vertical) and the base where it was: the potential energy
+    // 9.81 (1 · 0.25 + 5 · 0.1) J and nothing else
+    for law in [Law::Simultaneous(Restitution::Newton), Law::Lzb] {
+        let mut s = s.clone();
+        s.law = law;
+        let sim = run(&s);
+        assert_eq!(sim.end, inertance::simulate::End::Rest, "{law:?}");
+        let e = sim.state.kinetic_energy(&s.members)
+            + sim.state.potential_energy(&s.members, &s.options.gravity);
+        assert!((e - 9.81 * (0.25 + 0.5)).abs() <= 1e-9, "{law:?}: {e}");
+        assert!((sim.state.x[0].z - 0.25).abs() <= 1e-9 && (sim.state.x[1].z - 0.1).abs() <= 1e-9);
+        let up = sim.state.rotation(0) * V3::z();
+        assert!(up.x.abs() <= 1e-9 && up.y.abs() <= 1e-9, "{law:?}: {up}");
+    }
 }
 
 /// Two boxes in space, one sliding into the other's corner (k = 1, one frictionless contact):
