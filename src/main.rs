@@ -205,7 +205,7 @@ enum Command {
         #[arg(long, value_name = "CORPUS.txt", conflicts_with_all = ["scene", "plot"])]
         corpus: Option<PathBuf>,
     },
-    /// Simulate a body, or a system of spheres, under gravity among obstacle planes through
+    /// Simulate a body, or a system of spheres and boxes, under gravity among obstacle planes through
     /// every impact, until rest or the end of `[simulate] duration`: the impact log
     /// (guide/simulate.md).
     Simulate {
@@ -218,11 +218,12 @@ enum Command {
         #[arg(long)]
         json: bool,
         /// Write the trajectory to FILE.csv (per output time: C, the angle, v, ω, the
-        /// energies; for a system each sphere's centre and velocity) or its plot to FILE.svg
-        /// (energies and the angle, or each sphere's height, against time, impacts marked).
+        /// energies; for a system each body's centre and velocity, and a box's attitude and ω)
+        /// or its plot to FILE.svg (energies and the angle, or each body's height, against
+        /// time, impacts marked).
         #[arg(long, value_name = "FILE")]
         trajectory: Option<PathBuf>,
-        /// Write an animation of the run to FILE.svg: the body (or every sphere) at every
+        /// Write an animation of the run to FILE.svg: the body (or every body) at every
         /// sample and the obstacles, played by any browser (looping).
         #[arg(long, value_name = "FILE")]
         animation: Option<PathBuf>,

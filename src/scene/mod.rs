@@ -224,7 +224,7 @@ pub struct SimulationScene {
     pub setup: crate::simulate::Setup,
 }
 
-/// A scene of several spheres to simulate ([`model::simulated_system`] documents the keys).
+/// A scene of several bodies (spheres and boxes) to simulate ([`model::simulated_system`] documents the keys).
 #[derive(Clone, Debug, PartialEq)]
 pub struct SimulatedSystemScene {
     /// Where it came from, for messages.
@@ -235,12 +235,12 @@ pub struct SimulatedSystemScene {
     pub setup: crate::simulate::system::SystemSetup,
 }
 
-/// A scene to simulate: one body or several spheres.
+/// A scene to simulate: one body or several bodies.
 #[derive(Clone, Debug, PartialEq)]
 pub enum AnySimulation {
     /// One body.
     Body(Box<SimulationScene>),
-    /// Several spheres.
+    /// Several bodies.
     System(Box<SimulatedSystemScene>),
 }
 
@@ -269,7 +269,11 @@ impl AnySimulation {
                 setup: *setup,
             })),
             read::Simulated::System(setup) => {
-                AnySimulation::System(Box::new(SimulatedSystemScene { file, name, setup }))
+                AnySimulation::System(Box::new(SimulatedSystemScene {
+                    file,
+                    name,
+                    setup: *setup,
+                }))
             }
         })
     }
@@ -279,7 +283,7 @@ impl SimulationScene {
     /// Read the scene to simulate at `path`.
     ///
     /// # Errors
-    /// A [`SceneError`] naming the file, the key and the value; a scene of several spheres is
+    /// A [`SceneError`] naming the file, the key and the value; a scene of several bodies is
     /// refused here (read it with [`AnySimulation::load`]).
     pub fn load(path: &std::path::Path) -> Result<SimulationScene, SceneError> {
         let (file, text) = read_text(path)?;

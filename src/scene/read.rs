@@ -565,7 +565,7 @@ pub(super) fn simulation(doc: &DocumentMut, file: &str) -> Result<(String, Simul
     };
     let name = r.name(root)?;
     if model::system::declared(root) {
-        return Ok((name, Simulated::System(r.simulated_system(root)?)));
+        return Ok((name, Simulated::System(Box::new(r.simulated_system(root)?))));
     }
     Ok((name, Simulated::Body(Box::new(r.simulation(root)?))))
 }
@@ -575,6 +575,6 @@ pub(super) fn simulation(doc: &DocumentMut, file: &str) -> Result<(String, Simul
 pub enum Simulated {
     /// One body.
     Body(Box<crate::simulate::Setup>),
-    /// Several spheres.
-    System(crate::simulate::system::SystemSetup),
+    /// Several bodies.
+    System(Box<crate::simulate::system::SystemSetup>),
 }

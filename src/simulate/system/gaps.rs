@@ -167,7 +167,7 @@ impl Touch {
                 format!(
                     "{} face {}{}",
                     members[b].name,
-                    if face % 2 == 0 { '+' } else { '-' },
+                    if face.is_multiple_of(2) { '+' } else { '-' },
                     ['x', 'y', 'z'][face / 2]
                 ),
             ),
@@ -287,7 +287,7 @@ fn face_gap(
     let Shape::Box { half } = members[b].body.shape else {
         return apart(s, a);
     };
-    let (k, sign) = (face / 2, if face % 2 == 0 { 1.0 } else { -1.0 });
+    let (k, sign) = (face / 2, if face.is_multiple_of(2) { 1.0 } else { -1.0 });
     let rb = s.rotation(b);
     let n = rb.column(k) * sign;
     let wb = s.w[b];
