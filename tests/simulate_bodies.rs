@@ -28,27 +28,19 @@ fn run(setup: &SystemSetup) -> SystemSimulation {
     sim
 }
 
-const FLAT: &str = r#"
-[[body]]
-name = "top"
-shape = { box = [0.2, 0.2, 0.1] }
-mass = 1
-position = [0, 0, 0.3]
-velocity = [0, 0, 0]
-[[body]]
-name = "base"
-shape = { box = [0.6, 0.4, 0.2] }
-mass = 5
-position = [0, 0, 0.1]
-velocity = [0, 0, 0]
-[[obstacle]]
-name = "floor"
-normal = [0, 0, 1]
-[simulate]
-gravity = [0, 0, -10]
-duration = 2
-contact = { k = 0.5 }
-"#;
+/// A box `top` (its `[[body]]` lines) on a base of edges `edges` resting on the floor, under
+/// gravity `g` (m/s², down), k = 1/2.
+fn on_a_base(top: &str, edges: &str, g: f64, law: &str) -> String {
+    format!(
+        "[[body]]\nname = \"top\"\n{top}\n[[body]]\nname = \"base\"\nshape = {{ box = {edges} }}\n\
+         mass = 5\nposition = [0, 0, 0.1]\nvelocity = [0, 0, 0]\n\
+         [[obstacle]]\nname = \"floor\"\nnormal = [0, 0, 1]\n\
+         [simulate]\ngravity = [0, 0, -{g}]\nduration = 2\nlaw = \"{law}\"\ncontact = {{ k = 0.5 }}\n"
+    )
+}
+
+const FLAT: &str =
+    "shape = { box = [0.2, 0.2, 0.1] }\nmass = 1\nposition = [0, 0, 0.3]\nvelocity = [0, 0, 0]";
 
 /// The top box (1 kg) falls flat from 0.05 m onto the base, which rests on the floor: it lands
 /// at t₁ = √(2·0.05/10) = 0.1 s at 1 m/s on its four lower corners, and the base, held by its
@@ -66,7 +58,7 @@ fn a_box_dropped_flat_on_a_box_bounces_as_off_the_floor() {
         Law::Simultaneous(Restitution::Newton),
         Law::Unilateral(Restitution::Newton),
     ] {
-        let mut s = system(FLAT);
+        let mut s = system(&on_a_base(FLAT, "[0.6, 0.4, 0.2]", 10.0, "simultaneous"));
         s.law = law;
         let sim = run(&s);
         assert!(sim.impacts.len() >= 10, "{law:?}: {}", sim.impacts.len());
@@ -401,30 +393,12 @@ fn bad_box_systems_name_the_key_and_the_value() {
 /// 10⁻³ s later (the tip has begun, at rest in the vertical, under g).
 #[test]
 fn a_box_sliding_off_a_box_stops_where_it_tips_over_the_edge() {
-    let s = system(
-        r#"
-[[body]]
-name = "top"
-shape = { box = [0.2, 0.1, 0.1] }
-mass = 1
-position = [0.2, 0, 0.25]
-velocity = [0.5, 0, 0]
-[[body]]
-name = "base"
-shape = { box = [1, 1, 0.2] }
-mass = 5
-position = [0, 0, 0.1]
-velocity = [0, 0, 0]
-[[obstacle]]
-name = "floor"
-normal = [0, 0, 1]
-[simulate]
-gravity = [0, 0, -9.81]
-duration = 2
-law = "unilateral"
-contact = { k = 0.5 }
-"#,
-    );
+    let s = system(&on_a_base(
+        "shape = { box = [0.2, 0.1, 0.1] }\nmass = 1\nposition = [0.2, 0, 0.25]\nvelocity = [0.5, 0, 0]",
+        "[1, 1, 0.2]",
+        9.81,
+        "unilateral",
+    ));
     let sim = simulate_system(&s);
     let leaving: Vec<_> = sim
         .events

@@ -364,16 +364,7 @@ fn simultaneous(
         let d = c.point - s.x;
         let before = n.dot(&(s.v + s.w.cross(&d)));
         let after = n.dot(&(v_after + w_after.cross(&d)));
-        let k = planes[c.plane].law.k;
-        if (after + k * before).abs() > 1e-9 * scale {
-            return Err(ImpactError::NoAnswer(format!(
-                "G is singular and contact {} (left out of the basis {}) does not meet the \
-                 simultaneous law with the basis' answer: the law has no answer here (solve \
-                 it under the unilateral law)",
-                i + 1,
-                list(&basis)
-            )));
-        }
+        left_out_meets_law(i, &basis, before, after, planes[c.plane].law.k, scale)?;
     }
     let v = verdicts(&reduced, model, &out)
         .iter()
@@ -401,6 +392,29 @@ pub(super) fn verdict_name(
         Some(c) => format!("{} at contact {}", v.name(), number(c)),
         None => v.name().to_string(),
     }
+}
+
+/// Whether contact `i`, left out of the `basis` of a singular G, meets Newton's law
+/// v⁺ = −k v⁻ with the basis' answer (its normal rates `before` and `after`), to 10⁻⁹ of the
+/// speeds' `scale`: else the simultaneous law has no answer at this impact.
+pub(super) fn left_out_meets_law(
+    i: usize,
+    basis: &[usize],
+    before: f64,
+    after: f64,
+    k: f64,
+    scale: f64,
+) -> Result<(), ImpactError> {
+    if (after + k * before).abs() > 1e-9 * scale {
+        return Err(ImpactError::NoAnswer(format!(
+            "G is singular and contact {} (left out of the basis {}) does not meet the \
+             simultaneous law with the basis' answer: the law has no answer here (solve it \
+             under the unilateral law)",
+            i + 1,
+            list(basis)
+        )));
+    }
+    Ok(())
 }
 
 /// A basis of contacts as the note names it: `{1, 2, 4}`.

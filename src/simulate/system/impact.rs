@@ -32,7 +32,7 @@ use crate::mechanics::screw::{Screw, Vec3};
 use crate::mechanics::system::{Pair, System, SystemBody, SystemScrew};
 
 use super::super::body::V3;
-use super::super::impact::{ImpactError, Law, list, verdict_name};
+use super::super::impact::{ImpactError, Law, left_out_meets_law, list, verdict_name};
 use super::super::world::Plane;
 use super::gaps::{Candidate, Gap, gap};
 use super::members::{Member, SystemState};
@@ -299,16 +299,7 @@ fn on_basis(
         }
         let before = rate(g, members, &s.v, &s.w);
         let after = rate(g, members, &v, &w);
-        let k = candidates[at[i]].law.k;
-        if (after + k * before).abs() > 1e-9 * scale {
-            return Err(ImpactError::NoAnswer(format!(
-                "G is singular and contact {} (left out of the basis {}) does not meet the \
-                 simultaneous law with the basis' answer: the law has no answer here (solve \
-                 it under the unilateral law)",
-                i + 1,
-                list(&basis)
-            )));
-        }
+        left_out_meets_law(i, &basis, before, after, candidates[at[i]].law.k, scale)?;
     }
     let verdicts = verdicts(&reduced, model, &out)
         .iter()
