@@ -380,7 +380,9 @@ impl<'a> Run<'a> {
                     continue;
                 }
                 let g = self.gap(k, &self.s);
-                if !g.gap.is_finite() {
+                // beside every face, or at a face's edge moving out (it lets go: a zero gap
+                // there would hold the horizon at zero while the point leaves sideways)
+                if !g.gap.is_finite() || self.leaves(k, &self.s) {
                     continue;
                 }
                 if g.gap <= self.gap_tol {
