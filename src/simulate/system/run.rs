@@ -330,16 +330,10 @@ impl<'a> Run<'a> {
             }
             // A closed contact whose point reaches its face's edge moving out lets go.
             let off: Vec<usize> = (0..self.closed.len())
-                .filter(|&p| self.leaves(self.closed[p], &self.s))
+                .filter(|&p| self.leaves(&self.gap(self.closed[p], &self.s)))
                 .collect();
             if !off.is_empty() {
-                for &p in off.iter().rev() {
-                    let k = self.closed.remove(p);
-                    self.events.push(Event {
-                        t: self.t,
-                        what: format!("{} leaves the face", self.name(k)),
-                    });
-                }
+                self.let_go(&off, "leaves the face");
                 continue;
             }
             let s = self.s.clone();
@@ -352,13 +346,7 @@ impl<'a> Run<'a> {
                 .filter(|&p| acc.gap_acceleration[p] > tol)
                 .collect();
             if !opening.is_empty() {
-                for &p in opening.iter().rev() {
-                    let k = self.closed.remove(p);
-                    self.events.push(Event {
-                        t: self.t,
-                        what: format!("{} lifts off", self.name(k)),
-                    });
-                }
+                self.let_go(&opening, "lifts off");
                 continue;
             }
             let fastest = self.fastest(&self.s);
@@ -382,14 +370,14 @@ impl<'a> Run<'a> {
                 let g = self.gap(k, &self.s);
                 // beside every face, or at a face's edge moving out (it lets go: a zero gap
                 // there would hold the horizon at zero while the point leaves sideways)
-                if !g.gap.is_finite() || self.leaves(k, &self.s) {
+                if !g.gap.is_finite() || self.leaves(&g) {
                     continue;
                 }
                 if g.gap <= self.gap_tol {
                     if g.rate < -o.rest_speed {
                         striking = true;
                         continue;
-                    } else if g.rate <= o.rest_speed && !self.leaves(k, &self.s) {
+                    } else if g.rate <= o.rest_speed && !self.leaves(&g) {
                         let mut trial = self.closed.clone();
                         trial.push(k);
                         let keeps = self
@@ -547,11 +535,22 @@ impl<'a> Run<'a> {
         }
     }
 
-    /// Whether contact `k` is a face contact whose point is at (or past) its face's edge,
-    /// within the gap tolerance, and moving out over it.
-    fn leaves(&self, k: usize, s: &SystemState) -> bool {
-        let g = self.gap(k, s);
+    /// Whether the contact of gap `g` is a face contact whose point is at (or past) its
+    /// face's edge, within the gap tolerance, and moving out over it.
+    fn leaves(&self, g: &super::gaps::Gap) -> bool {
         !g.gap.is_finite() || (g.inside <= self.gap_tol && g.inside_rate < 0.0)
+    }
+
+    /// The closed contacts at `positions` (indices into the closed list, ascending) let go,
+    /// each logged as `name why`.
+    fn let_go(&mut self, positions: &[usize], why: &str) {
+        for &p in positions.iter().rev() {
+            let k = self.closed.remove(p);
+            self.events.push(Event {
+                t: self.t,
+                what: format!("{} {why}", self.name(k)),
+            });
+        }
     }
 
     /// The fastest a member's point moves: |v_b| + |ω_b| ρ_b (|v_b| for a sphere).
