@@ -16,7 +16,11 @@ use crate::simulate::system::{SystemSetup, SystemSimulation};
 
 /// What the system is made of: `3 spheres`, `2 boxes`, `3 bodies (1 sphere, 2 boxes)`.
 fn made_of(setup: &SystemSetup) -> String {
-    let spheres = setup.members.iter().filter(|m| !m.turns()).count();
+    let spheres = setup
+        .members
+        .iter()
+        .filter(|m| m.radius().is_some())
+        .count();
     let boxes = setup.members.len() - spheres;
     let count =
         |n: usize, one: &str, many: &str| format!("{n} {}", if n == 1 { one } else { many });

@@ -123,31 +123,64 @@ pub const MAX_CONTACTS: usize = 12;
 /// The most rows of the closed contacts: three per sticking contact.
 const MAX_ROWS: usize = 3 * MAX_CONTACTS;
 
-/// The rows of the closed contacts at one state, on the stack at a capacity M of at least their
-/// number (no allocation per call, and no clearing of the largest capacity for the one to
-/// six rows of the common case: the accelerations are wanted at every stage of every step):
-/// per row p its contact, its
-/// direction d_p (the row of the normal or tangential acceleration), the direction e_p of its
-/// unknown force, r_i × d_p, Ĩ (r_i × e_p) and its bias b_p. A contact has as many unknowns as
-/// rows, so W = J M⁻¹ Jᵀ is square and so is every candidate's block A_SS.
-struct Rows<const M: usize> {
+/// The layout of the rows of the closed contacts, what [`decide`] reads besides W: per row p
+/// its contact and its bias b_p (the acceleration along it at zero force), per contact the
+/// start of its rows and its μ when it sticks — at a capacity M of at least their number, on
+/// the stack (no allocation per call, and no clearing of the largest capacity for the one to
+/// six rows of the common case: the accelerations are wanted at every stage of every step). A
+/// contact's first row is its normal; a sticking one has two tangential rows after it. A
+/// contact has as many unknowns as rows, so W = J M⁻¹ Jᵀ is square and so is every candidate's
+/// block A_SS. Shared with a system's rough contacts ([`crate::simulate::system::persist`]).
+pub(crate) struct Layout<const M: usize> {
     /// Rows in use.
-    m: usize,
+    pub m: usize,
     /// Contacts.
-    n: usize,
+    pub n: usize,
     /// The contact of row p.
-    contact: [usize; M],
+    pub contact: [usize; M],
     /// Contact i's rows are start[i]..start[i + 1].
-    start: [usize; M],
+    pub start: [usize; M],
+    /// b_p.
+    pub b: [f64; M],
+    /// Contact i's μ when it sticks (its rows after the first are then tangential), else 0.
+    pub stick_mu: [f64; M],
+}
+
+impl<const M: usize> Layout<M> {
+    /// No rows, for n contacts.
+    pub fn new(n: usize) -> Layout<M> {
+        Layout {
+            m: 0,
+            n,
+            contact: [0; M],
+            start: [0; M],
+            b: [0.0; M],
+            stick_mu: [0.0; M],
+        }
+    }
+
+    /// Contact i's rows.
+    pub fn rows_of(&self, i: usize) -> std::ops::Range<usize> {
+        let hi = if i + 1 < self.n {
+            self.start[i + 1]
+        } else {
+            self.m
+        };
+        self.start[i]..hi
+    }
+}
+
+/// The rows of one body's closed contacts: their [`Layout`], and per row its direction d_p (the
+/// row of the normal or tangential acceleration), the direction e_p of its unknown force,
+/// r_i × d_p and Ĩ (r_i × e_p); per contact its arm r_i.
+struct Rows<const M: usize> {
+    layout: Layout<M>,
     /// Contact i's arm r_i (from C).
     arm: [V3; M],
     d: [V3; M],
     e: [V3; M],
     row_arm: [V3; M],
     col_arm: [V3; M],
-    b: [f64; M],
-    /// Contact i's μ when it sticks (its rows after the first are then tangential), else 0.
-    stick_mu: [f64; M],
 }
 
 /// The accelerations of `body` at `s` under `gravity` with the `closed` contacts on `planes`;
@@ -216,17 +249,12 @@ fn accelerations_in<const M: usize>(
     // Per contact: its arm, its rows (directions) and its unknowns (force directions), and the
     // acceleration of its point at zero v̇, ω̇ beyond C's (ω × ṙ: [`super::world::Gap::drift`]).
     let mut rows = Rows::<M> {
-        m: 0,
-        n,
-        contact: [0; M],
-        start: [0; M],
+        layout: Layout::new(n),
         arm: [V3::zeros(); M],
         d: [V3::zeros(); M],
         e: [V3::zeros(); M],
         row_arm: [V3::zeros(); M],
         col_arm: [V3::zeros(); M],
-        b: [0.0; M],
-        stick_mu: [0.0; M],
     };
     for (i, c) in closed.iter().enumerate() {
         let plane = &planes[c.plane];
@@ -234,22 +262,22 @@ fn accelerations_in<const M: usize>(
         let arm = g.point - s.x;
         let turning = s.w.cross(&g.drift);
         let nn = plane.normal;
-        rows.start[i] = rows.m;
+        rows.layout.start[i] = rows.layout.m;
         let mut push = |d: V3, e: V3| {
-            let p = rows.m;
-            rows.contact[p] = i;
+            let p = rows.layout.m;
+            rows.layout.contact[p] = i;
             rows.d[p] = d;
             rows.e[p] = e;
             // W = J M⁻¹ Jᵀ entry by entry, d·e/m + (r_i × d)·Ĩ(r_j × e): its factors
             rows.row_arm[p] = arm.cross(&d);
             rows.col_arm[p] = inv * arm.cross(&e);
-            rows.b[p] = d.dot(&(gravity + alpha0.cross(&arm) + turning));
-            rows.m += 1;
+            rows.layout.b[p] = d.dot(&(gravity + alpha0.cross(&arm) + turning));
+            rows.layout.m += 1;
         };
         match c.mode {
             Mode::Frictionless => push(nn, nn),
             Mode::Stick => {
-                rows.stick_mu[i] = plane.law.mu;
+                rows.layout.stick_mu[i] = plane.law.mu;
                 let (t1, t2) = tangents(&nn);
                 push(nn, nn);
                 push(t1, t1);
@@ -276,18 +304,25 @@ fn accelerations_in<const M: usize>(
             .fold(0u32, |m, (i, &on)| m | (u32::from(on) << i))
     });
     // W computed once, at the size of the rows: every candidate active set reads its block
+    let m = rows.layout.m;
+    let mut w = [[0.0; M]; M];
+    for p in 0..m {
+        for q in 0..m {
+            w[p][q] = rows.d[p].dot(&rows.e[q]) / body.mass + rows.row_arm[p].dot(&rows.col_arm[q]);
+        }
+    }
     let mut lambda = [0.0; M];
-    let set = decide(&rows, body.mass, tol, first, &mut lambda).ok_or(ContactError::NoActiveSet)?;
+    let set = decide(&rows.layout, &w, tol, tol * body.mass, first, &mut lambda)
+        .ok_or(ContactError::NoActiveSet)?;
     let active: Vec<bool> = (0..n).map(|i| set & (1 << i) != 0).collect();
     hint.clear();
     hint.extend_from_slice(&active);
     let mut force = Vec::with_capacity(n);
     let mut normal = Vec::with_capacity(n);
     for j in 0..n {
-        let lo = rows.start[j];
-        let hi = if j + 1 < n { rows.start[j + 1] } else { rows.m };
+        let lo = rows.layout.start[j];
         let mut f = V3::zeros();
-        for k in lo..hi {
+        for k in rows.layout.rows_of(j) {
             f += rows.e[k] * lambda[k];
         }
         let nn = planes[closed[j].plane].normal;
@@ -320,24 +355,20 @@ fn accelerations_in<const M: usize>(
     })
 }
 
-/// The active set (a bit per closed contact) and its forces λ (per row, 0 off the set): `first`
-/// tried first, then every subset, largest first (ascending within a size). W is held at M × M
-/// (M ≥ the rows), so that the few rows of the common case do not clear the largest.
-fn decide<const M: usize>(
-    rows: &Rows<M>,
-    mass: f64,
+/// The active set (a bit per closed contact) and its forces λ (per row, 0 off the set) of the
+/// rows `rows` with W = `w`: `first` tried first, then every subset, largest first (ascending
+/// within a size). A set is accepted when its block solves to `tol` (accelerations), every
+/// λ_n ≥ −`force_tol` and every other contact's normal acceleration ≥ −`tol`. W is held at
+/// M × M (M ≥ the rows), so that the few rows of the common case do not clear the largest.
+pub(crate) fn decide<const M: usize>(
+    rows: &Layout<M>,
+    w: &[[f64; M]; M],
     tol: f64,
+    force_tol: f64,
     first: Option<u32>,
     lambda: &mut [f64; M],
 ) -> Option<u32> {
     let m = rows.m;
-    let mut w = [[0.0; M]; M];
-    for p in 0..m {
-        for q in 0..m {
-            w[p][q] = rows.d[p].dot(&rows.e[q]) / mass + rows.row_arm[p].dot(&rows.col_arm[q]);
-        }
-    }
-    let force_tol = tol * mass;
     let try_set = |set: u32, lambda: &mut [f64; M]| -> bool {
         let on = |p: usize| set & (1 << rows.contact[p]) != 0;
         let mut idx = [0usize; M];
@@ -418,7 +449,7 @@ fn decide<const M: usize>(
 /// contacts that stand for one another (four corners of a face) in proportion to their cones,
 /// each at the same fraction of it, where the plain least-norm member can overload a lightly
 /// pressed corner and make it slide at zero slip. `None` when no sticking contact is active.
-fn cone_scales<const M: usize>(rows: &Rows<M>, idx: &[usize], x: &[f64; M]) -> Option<[f64; M]> {
+fn cone_scales<const M: usize>(rows: &Layout<M>, idx: &[usize], x: &[f64; M]) -> Option<[f64; M]> {
     let normal = |p: usize| rows.start[rows.contact[p]] == p;
     let largest = idx
         .iter()

@@ -194,7 +194,7 @@ pub fn solve(
 /// rate, a contact still approaching, energy gained) and notes on an answer that is (a split of
 /// sticking impulses that only their sum determines, several consistent stick/slip assignments,
 /// an unstable slip), each kind named once per impact: the twist after is the law's either way.
-fn frictional_verdicts(verdicts: &[FrictionVerdict]) -> (Vec<String>, Option<String>) {
+pub(super) fn frictional_verdicts(verdicts: &[FrictionVerdict]) -> (Vec<String>, Option<String>) {
     let mut faults = Vec::new();
     let mut notes: Vec<String> = Vec::new();
     for v in verdicts {

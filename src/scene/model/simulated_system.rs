@@ -1,8 +1,8 @@
 //! A system to simulate (`inertance simulate` on a scene of several `[[body]]`): each body a
 //! sphere (`shape = { sphere = r }`) or a box (`shape = { box = [a, b, c] }`), with a `mass` or
-//! `density`, `position`, `pose` (a box's; a sphere's is not reported), `velocity`, an optional
-//! `angular_velocity` (a sphere's kept by frictionless contacts and not reported) and an
-//! optional `material` for Hertz's stiffness; the obstacle planes (none is fine: a cradle in
+//! `density`, `position`, `pose`, `velocity`, an optional `angular_velocity` and an optional
+//! `material` for Hertz's stiffness (a sphere's pose and spin are reported, and its spin
+//! integrated, when a rough contact can touch it; frictionless contacts keep them); the obstacle planes (none is fine: a cradle in
 //! space), and `[simulate]` as for one body. The simulation watches every feature (a sphere, a
 //! box's corners) against every obstacle, every pair of spheres against each other and every
 //! feature against every face of every other box ([`crate::simulate::system::gaps`]).
@@ -21,7 +21,9 @@
 //! `stiffness = "hertz"` takes K = (4/3) E* √R* from the two sides' radii and materials
 //! ([`super::hertz`]; η = 3/2) where both sides are curved or flat: a sphere on a sphere, a
 //! plane or a box's face — a box's corner has no radius, and its contacts need a number.
-//! Contacts are frictionless: `mu` > 0 is refused.
+//! `mu` sets Coulomb's friction of the contacts, as `k` does their restitution: in persistent
+//! contact (stick and slip, [`crate::simulate::system::persist`]) and at impacts (the frictional
+//! laws of [`crate::impact::friction`], or LZB's).
 
 use toml_edit::{Item, Table, TableLike};
 
@@ -138,7 +140,11 @@ impl Reader<'_> {
                     .map(Term::of)),
             };
             materials.push(self.material(body, &at)?);
-            members.push(Member { name, body: model });
+            members.push(Member {
+                name,
+                body: model,
+                spins: false,
+            });
             x.push(position + rm * v3(&props.centre));
             v.push(velocity);
             q.push(UnitQuaternion::from_rotation_matrix(
@@ -348,6 +354,12 @@ impl Reader<'_> {
         if let Some(e) = failure {
             return Err(e);
         }
+        // a sphere a rough contact touches turns (its spin integrated)
+        for c in candidates.iter().filter(|c| c.law.mu > 0.0) {
+            for (b, _) in c.touch.bodies() {
+                members[b].spins = true;
+            }
+        }
         let reach = members.iter().map(|m| m.body.reach()).fold(0.0, f64::max);
         let length = start
             .x
@@ -393,7 +405,7 @@ impl Reader<'_> {
         })
     }
 
-    /// A contact law table whose `stiffness` may be `"hertz"`, over `base`; friction refused.
+    /// A contact law table whose `stiffness` may be `"hertz"`, over `base`.
     fn sphere_law(
         &self,
         t: Option<&dyn TableLike>,
@@ -422,13 +434,6 @@ impl Reader<'_> {
             }
         }
         let law = self.contact_law(t.map(|_| &plain as &dyn TableLike), at, base.map(|b| &b.0))?;
-        if law.mu != 0.0 {
-            return Err(self.err(
-                &format!("{at}.mu"),
-                Some(law.mu.to_string()),
-                "contacts in a system are frictionless for now: drop mu",
-            ));
-        }
         Ok((law, hertz))
     }
 }

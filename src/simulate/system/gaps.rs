@@ -99,6 +99,12 @@ pub struct Side {
     pub arm: V3,
     /// r × n (zero for a sphere).
     pub moment: V3,
+    /// ṙ: how fast the arm turns and slides — ω × r for a material point (a corner), the rate
+    /// of a sphere's r = ∓ρ n as n turns (zero on a plane), and for a box's face the rate of
+    /// the contact point less its centre's, ṗ − v_b. The slip u = Σ σ_i (v_i + ω_i × r_i) of
+    /// the contact then changes at u̇ = Σ σ_i (a_i + α_i × r_i + ω_i × ṙ_i): what a sticking
+    /// contact holds at zero along its tangents ([`super::persist`]).
+    pub arm_rate: V3,
 }
 
 /// A contact's gap at one state.
@@ -185,13 +191,14 @@ pub fn state_of(s: &SystemState, b: usize) -> State {
     }
 }
 
-/// A sphere's side: its force passes through its centre.
-fn round_side(body: usize, sign: f64, arm: V3) -> Side {
+/// A sphere's side: its normal force passes through its centre.
+fn round_side(body: usize, sign: f64, arm: V3, arm_rate: V3) -> Side {
     Side {
         body,
         sign,
         arm,
         moment: V3::zeros(),
+        arm_rate,
     }
 }
 
@@ -215,7 +222,7 @@ pub fn gap(touch: &Touch, members: &[Member], planes: &[Plane], s: &SystemState)
                     point: s.x[body] - n * *r,
                     inside: f64::INFINITY,
                     inside_rate: 0.0,
-                    sides: [Some(round_side(body, 1.0, -n * *r)), None],
+                    sides: [Some(round_side(body, 1.0, -n * *r, V3::zeros())), None],
                 };
             }
             let st = state_of(s, body);
@@ -235,6 +242,7 @@ pub fn gap(touch: &Touch, members: &[Member], planes: &[Plane], s: &SystemState)
                         sign: 1.0,
                         arm: r,
                         moment: r.cross(&n),
+                        arm_rate: g.drift,
                     }),
                     None,
                 ],
@@ -251,6 +259,8 @@ pub fn gap(touch: &Touch, members: &[Member], planes: &[Plane], s: &SystemState)
                 members[b].radius().unwrap_or(0.0),
             );
             let point = s.x[a] + n * ra;
+            // ṅ: n turns as the pair does
+            let ndot = (u - n * along) / len;
             Gap {
                 gap: len - ra - rb,
                 rate: along,
@@ -260,8 +270,13 @@ pub fn gap(touch: &Touch, members: &[Member], planes: &[Plane], s: &SystemState)
                 inside: f64::INFINITY,
                 inside_rate: 0.0,
                 sides: [
-                    Some(round_side(a, -1.0, n * ra)),
-                    Some(round_side(b, 1.0, point - s.x[b])),
+                    Some(round_side(a, -1.0, n * ra, ndot * ra)),
+                    Some(round_side(
+                        b,
+                        1.0,
+                        point - s.x[b],
+                        s.v[a] + ndot * ra - s.v[b],
+                    )),
                 ],
             }
         }
@@ -300,7 +315,7 @@ fn face_gap(
             s.x[a] - n * *radius,
             s.v[a] - ndot * *radius,
             -nddot * *radius,
-            round_side(a, 1.0, -n * *radius),
+            round_side(a, 1.0, -n * *radius, -ndot * *radius),
             (s.x[a], s.v[a]),
         ),
         Feature::Point { at, .. } => {
@@ -317,6 +332,7 @@ fn face_gap(
                     sign: 1.0,
                     arm: r,
                     moment: r.cross(&n),
+                    arm_rate: wa.cross(&r),
                 },
                 (p, pdot),
             )
@@ -359,6 +375,7 @@ fn face_gap(
                 sign: -1.0,
                 arm: d,
                 moment: d.cross(&n),
+                arm_rate: ddot,
             }),
         ],
     }
@@ -401,6 +418,7 @@ mod tests {
                 None,
             )
             .expect("a box"),
+            spins: false,
         }
     }
 
@@ -414,6 +432,7 @@ mod tests {
                 None,
             )
             .expect("a ball"),
+            spins: false,
         }
     }
 

@@ -6,13 +6,15 @@
 //!
 //! | law | solved by |
 //! |---|---|
-//! | simultaneous (Newton, Poisson) | [`Impact::solve`] over the system (eq. 12–15, 20–23) |
-//! | unilateral (Newton, Poisson) | [`Impact::solve_unilateral`] |
-//! | LZB | [`solve_lzb`] over the system ([`crate::impact::mechanism::Mechanism`]) |
+//! | simultaneous, frictionless (Newton, Poisson) | [`Impact::solve`] over the system (eq. 12–15, 20–23) |
+//! | unilateral, frictionless (Newton, Poisson) | [`Impact::solve_unilateral`] |
+//! | either, with friction, or the energetic restitution law | [`solve_frictional_under`] over the system (§14, impulse space) |
+//! | LZB (with each contact's μ) | [`solve_lzb`] over the system ([`crate::impact::mechanism::Mechanism`]) |
 //!
 //! Every member of the system is a body of the impact problem (one not touched takes no
-//! impulse); a sphere's spin is set to zero (frictionless contacts through its centre neither
-//! see nor change it, [`super::members`]) and a box's inertia is its world tensor R J Rᵀ.
+//! impulse); the spin of a sphere that does not turn is set to zero (frictionless contacts
+//! through its centre neither see nor change it, [`super::members`]); a box's inertia is its
+//! world tensor R J Rᵀ.
 //!
 //! **A singular G under the simultaneous law** (a box resting flat on four corners: more
 //! contacts than the motions they stop) has a family of impulses; as for one body
@@ -22,7 +24,7 @@
 //! answer under that law. The note says so.
 
 use crate::impact::admissibility::{energy_gain, verdicts};
-use crate::impact::friction::Restitution;
+use crate::impact::friction::{Hypothesis, Restitution, solve_frictional_under};
 use crate::impact::multiple::{ContactLaw as LzbLaw, solve_lzb};
 use crate::impact::restitution::Model;
 use crate::impact::solve::{Impact, Outcome};
@@ -32,7 +34,9 @@ use crate::mechanics::screw::{Screw, Vec3};
 use crate::mechanics::system::{Pair, System, SystemBody, SystemScrew};
 
 use super::super::body::V3;
-use super::super::impact::{ImpactError, Law, left_out_meets_law, list, verdict_name};
+use super::super::impact::{
+    ImpactError, Law, frictional_verdicts, left_out_meets_law, list, verdict_name,
+};
 use super::super::world::Plane;
 use super::gaps::{Candidate, Gap, gap};
 use super::members::{Member, SystemState};
@@ -124,7 +128,9 @@ pub fn system(
         });
         levers.push((vec3(&first.arm), second.map(|s| vec3(&s.arm))));
         contacts.push(
-            Contact::new(vec3(&g.point), vec3(&normal), c.law.k).with_energetic(c.law.k_energetic),
+            Contact::new(vec3(&g.point), vec3(&normal), c.law.k)
+                .with_energetic(c.law.k_energetic)
+                .with_friction(c.law.mu),
         );
     }
     System::new(bodies, velocity, contacts, pairs, Vec::new())
@@ -137,7 +143,7 @@ pub fn system(
 ///
 /// # Errors
 /// [`ImpactError`]: the problem refused, or no answer under the law (energetic restitution is
-/// refused: it is integrated with friction, which systems do not have yet).
+/// refused under the unilateral law, as for one body).
 pub fn solve(
     members: &[Member],
     planes: &[Plane],
@@ -150,15 +156,12 @@ pub fn solve(
     let sys = system(members, planes, candidates, at, s)?;
     let twists = |v: &SystemScrew<f64>| after(members, s, v);
     let model = |r: Restitution| match r {
-        Restitution::Poisson => Ok(Model::Poisson),
-        Restitution::Newton => Ok(Model::Newton),
-        Restitution::Energetic => Err(ImpactError::NoAnswer(
-            "the energetic restitution law is not simulated for systems yet: use newton or \
-             poisson"
-                .to_string(),
-        )),
+        Restitution::Poisson => Model::Poisson,
+        // the energetic law is integrated with the frictional solve (below)
+        Restitution::Newton | Restitution::Energetic => Model::Newton,
     };
     let no = |e: &dyn std::fmt::Display| ImpactError::NoAnswer(e.to_string());
+    let rough = at.iter().any(|&k| candidates[k].law.mu > 0.0);
     match law {
         Law::Lzb => {
             let laws: Vec<LzbLaw> = at
@@ -182,8 +185,29 @@ pub fn solve(
                 note: None,
             })
         }
+        Law::Simultaneous(r) | Law::Unilateral(r) if rough || r == Restitution::Energetic => {
+            let hypothesis = match law {
+                Law::Unilateral(_) => Hypothesis::Unilateral,
+                _ => Hypothesis::Simultaneous,
+            };
+            let out = solve_frictional_under::<f64, _>(&sys, r, hypothesis, tolerance)
+                .map_err(|e| no(&e))?;
+            let b = &out.blocks;
+            let impulses = (0..b.contacts())
+                .map(|i| out.impulses[b.offset[i]] * b.directions[b.offset[i]].norm())
+                .collect();
+            let (verdicts, note) = frictional_verdicts(&out.verdicts);
+            let (v, w) = twists(&out.velocity);
+            Ok(Rebound {
+                v,
+                w,
+                impulses,
+                verdicts,
+                note,
+            })
+        }
         Law::Simultaneous(r) => {
-            let model = model(r)?;
+            let model = model(r);
             let mut impact = Impact::assemble(&sys).map_err(|e| no(&e))?;
             if impact.singular() {
                 return on_basis(members, planes, candidates, at, s, model);
@@ -204,7 +228,7 @@ pub fn solve(
             })
         }
         Law::Unilateral(r) => {
-            let model = model(r)?;
+            let model = model(r);
             let mut impact = Impact::assemble(&sys).map_err(|e| no(&e))?;
             let mut out = Outcome::default();
             impact

@@ -3,11 +3,14 @@
 //! Each member is a rigid body of the single body's kind ([`crate::simulate::body::Body`]: its
 //! mass, central inertia J in body axes, shape and features) — a sphere or a box here. Its state
 //! is the single body's: the centre x_b, the attitude q_b (body → world), the velocity v_b of
-//! the centre and the angular velocity ω_b (world). A sphere's attitude and spin are carried but
-//! not integrated: its contacts are frictionless and pass through its centre, so no force has a
-//! moment about it, its spin keeps its initial value for the whole run, and nothing else sees
-//! its attitude. The kinetic energy is Σ ½ m_b |v_b|² + ½ ω_bᵀ R_b J_b R_bᵀ ω_b (a sphere's
-//! spin energy, constant, left out) and the potential energy of gravity −Σ m_b g · x_b.
+//! the centre and the angular velocity ω_b (world). A sphere whose contacts are all frictionless
+//! carries its attitude and spin but does not integrate them: its contacts pass through its
+//! centre, so no force has a moment about it, its spin keeps its initial value for the whole
+//! run, and nothing else sees its attitude. A sphere that a rough contact can touch
+//! ([`Member::spins`]) turns as a box does (J = ⅖ m r² I: friction at its surface spins it, and
+//! its spin makes it slip or roll). The kinetic energy is Σ ½ m_b |v_b|² + ½ ω_bᵀ R_b J_b R_bᵀ
+//! ω_b (the constant spin energy of a sphere that does not turn left out) and the potential
+//! energy of gravity −Σ m_b g · x_b.
 
 use nalgebra::{Matrix3, Quaternion, UnitQuaternion};
 
@@ -20,6 +23,9 @@ pub struct Member {
     pub name: String,
     /// Its mass properties, shape and features.
     pub body: Body,
+    /// For a sphere: whether its spin is integrated (a contact with μ > 0 can touch it; module
+    /// docs). Every other shape turns whatever this says.
+    pub spins: bool,
 }
 
 impl Member {
@@ -31,9 +37,10 @@ impl Member {
         }
     }
 
-    /// Whether its attitude and spin are integrated (every shape but a sphere: module docs).
+    /// Whether its attitude and spin are integrated (every shape but a sphere that no rough
+    /// contact touches: module docs).
     pub fn turns(&self) -> bool {
-        self.radius().is_none()
+        self.spins || self.radius().is_none()
     }
 
     /// m.

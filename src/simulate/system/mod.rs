@@ -5,8 +5,8 @@
 //! **Why a folder beside the one-body loop.** The one body of [`super::run`] carries an
 //! attitude, features (corners, rod ends) and friction with stick and slip, in a fixed-size
 //! state; a system carries B bodies, contacts between two of them and a mass matrix W = J M⁻¹ Jᵀ
-//! over all of them. This folder is that loop for spheres and boxes with frictionless contacts
-//! (a sphere's spin, which they neither see nor change, is carried but not integrated).
+//! over all of them. This folder is that loop for spheres and boxes, with Coulomb friction where
+//! μ > 0 (a sphere that no rough contact touches carries its spin without integrating it).
 //! It shares with the one body everything that is not about the body: the Runge–Kutta step
 //! ([`super::ode::step_slice`]), the obstacle planes and contact laws ([`super::world`]), the
 //! impact laws ([`super::impact::Law`]), the options, the log records and the errors

@@ -20,6 +20,18 @@
 //! uniqueness argument), so the motion is decided even where λ is not (a bead resting on two
 //! others in a plane: more contacts than the motions they stop).
 //!
+//! **Friction.** Where a closed contact is rough (μ > 0), the problem is the single body's of
+//! [`crate::simulate::contact`] over the system: a sticking contact has three rows and three
+//! unknowns (its normal and two tangents t: its slip u = Σ σ_i (v_i + ω_i × r_i) held at zero,
+//! u̇ = Σ σ_i (a_i + α_i × r_i + ω_i × ṙ_i), its force in Coulomb's cone); a sliding one has its
+//! normal row and the unknown force λ (n − μ ŝ), ŝ the unit slip (held below the lock speed);
+//! each row's entries W_pq = Σ_b σ_pb σ_qb (d_p · e_q / m_b + (r_pb × d_p)ᵀ Ĩ_b (r_qb × e_q)),
+//! d_p the row's direction and e_q the unknown's. Its active set is decided as the single body's
+//! ([`crate::simulate::contact::decide`]: every subset, largest first, each block solved by LU
+//! or the SVD's least-norm member, the friction of a family shared in proportion to the cones),
+//! and a sticking contact whose force leaves its cone starts to slide
+//! ([`ContactError::Slips`]). W is then not symmetric, and Lemke's method is not used.
+//!
 //! A closed contact stays closed while its g̈ is not positive beyond 10⁻⁹ of the scale of the
 //! accelerations: one that neither presses nor separates (λ = 0, g̈ = 0: the inner contacts of
 //! a column falling as one) persists, so that the impact that ends the fall strikes every one
@@ -28,7 +40,7 @@
 use nalgebra::{DMatrix, DVector, Matrix3, UnitQuaternion};
 
 use super::super::body::V3;
-use super::super::contact::ContactError;
+use super::super::contact::{ContactError, Layout, MAX_CONTACTS, Mode, decide, tangents};
 use super::super::world::Plane;
 use super::gaps::{Candidate, Gap, gap};
 use super::members::{Member, SystemState};
@@ -47,6 +59,35 @@ pub struct Accelerations {
     pub gap_acceleration: Vec<f64>,
     /// The scale of the accelerations the tests of 10⁻⁹ are relative to (m/s²).
     pub scale: f64,
+}
+
+/// A closed contact: the candidate, and how it takes a tangential force.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Held {
+    /// The candidate (index into the setup's candidates).
+    pub k: usize,
+    /// Frictionless, sticking or sliding.
+    pub mode: Mode,
+    /// A sliding contact may stick again once its slip has exceeded the lock speed since it
+    /// started (as the single body's [`crate::simulate::contact::Closed::armed`]).
+    pub armed: bool,
+}
+
+/// The slip of the contact of gap `g` at `s`: the tangential part of
+/// u = Σ σ_i (v_i + ω_i × r_i) (the spin of a member that does not turn left out).
+pub fn slip(g: &Gap, members: &[Member], s: &SystemState) -> V3 {
+    let u: V3 = g
+        .sides()
+        .map(|i| {
+            let spin = if members[i.body].turns() {
+                s.w[i.body].cross(&i.arm)
+            } else {
+                V3::zeros()
+            };
+            (s.v[i.body] + spin) * i.sign
+        })
+        .sum();
+    u - g.normal * g.normal.dot(&u)
 }
 
 /// Each member's Ĩ_b = R_b J_b⁻¹ R_bᵀ (`None` for a sphere, which does not turn).
@@ -90,18 +131,23 @@ fn rows(
     (w, gaps)
 }
 
-/// The accelerations of the members at `s` under `gravity` with the `closed` contacts.
+/// The accelerations of the members at `s` under `gravity` with the `closed` contacts; `lock`:
+/// the slip speed below which a sliding contact keeps its held direction.
 ///
 /// # Errors
-/// [`ContactError::NoActiveSet`] when Lemke's method finds no solution (a ray: W is positive
-/// semidefinite, so none exists — or the pivot budget ran out).
+/// [`ContactError::NoActiveSet`] when no solution is found (frictionless: Lemke's method ends
+/// on a ray — W is positive semidefinite, so none exists — or its pivot budget ran out; rough:
+/// no subset of pressing contacts is consistent, Painlevé-like); [`ContactError::Slips`] when
+/// a sticking contact needs more friction than its cone holds; [`ContactError::TooMany`] past
+/// [`MAX_CONTACTS`] closed contacts with one of them rough.
 pub fn accelerations(
     members: &[Member],
     planes: &[Plane],
     candidates: &[Candidate],
-    closed: &[usize],
+    closed: &[Held],
     s: &SystemState,
     gravity: &V3,
+    lock: f64,
 ) -> Result<Accelerations, ContactError> {
     let mut a = vec![*gravity; members.len()];
     let inverse = inverses(members, s);
@@ -118,7 +164,8 @@ pub fn accelerations(
             None => V3::zeros(),
         })
         .collect();
-    let (w, gaps) = rows(members, planes, candidates, closed, s, &inverse);
+    let ks: Vec<usize> = closed.iter().map(|h| h.k).collect();
+    let (w, gaps) = rows(members, planes, candidates, &ks, s, &inverse);
     let scale = gravity.norm() + gaps.iter().fold(0.0, |m: f64, g| m.max(g.curvature.abs()));
     if closed.is_empty() {
         return Ok(Accelerations {
@@ -147,6 +194,22 @@ pub fn accelerations(
             ja + g.curvature
         })
         .collect();
+    if closed.iter().any(|h| h.mode != Mode::Frictionless) {
+        let given = Rough {
+            members,
+            candidates,
+            closed,
+            s,
+            gravity,
+            lock,
+            inverse: &inverse,
+            alpha0: &alpha,
+            gaps: &gaps,
+            normal_bias: &b,
+            scale,
+        };
+        return rough(&given);
+    }
     let m: Vec<f64> = w.transpose().iter().copied().collect(); // row-major
     let solution = lemke(Lcp { m: &m, q: &b }).map_err(|_| ContactError::NoActiveSet)?;
     for (p, g) in gaps.iter().enumerate() {
@@ -169,23 +232,192 @@ pub fn accelerations(
     })
 }
 
+/// What the rough problem is given: the closed contacts' gaps, each member's Ĩ and α⁰, and the
+/// normal rows' biases J a⁰ + c.
+struct Rough<'a> {
+    members: &'a [Member],
+    candidates: &'a [Candidate],
+    closed: &'a [Held],
+    s: &'a SystemState,
+    gravity: &'a V3,
+    lock: f64,
+    inverse: &'a [Option<Matrix3<f64>>],
+    alpha0: &'a [V3],
+    gaps: &'a [Gap],
+    normal_bias: &'a [f64],
+    scale: f64,
+}
+
+/// The accelerations with a rough contact among the closed ones (module docs), at the smallest
+/// capacity of rows that holds them.
+fn rough(given: &Rough<'_>) -> Result<Accelerations, ContactError> {
+    let n = given.closed.len();
+    if n > MAX_CONTACTS {
+        return Err(ContactError::TooMany { count: n });
+    }
+    let rows: usize = given
+        .closed
+        .iter()
+        .map(|h| if let Mode::Stick = h.mode { 3 } else { 1 })
+        .sum();
+    match rows {
+        0..=3 => rough_in::<3>(given),
+        4..=6 => rough_in::<6>(given),
+        7..=12 => rough_in::<12>(given),
+        _ => rough_in::<{ 3 * MAX_CONTACTS }>(given),
+    }
+}
+
+/// [`rough`] of at most M rows.
+fn rough_in<const M: usize>(given: &Rough<'_>) -> Result<Accelerations, ContactError> {
+    let &Rough {
+        members,
+        candidates,
+        closed,
+        s,
+        gravity,
+        lock,
+        inverse,
+        alpha0,
+        gaps,
+        normal_bias,
+        scale,
+    } = given;
+    let n = closed.len();
+    let mut layout = Layout::<M>::new(n);
+    // per row: its contact's gap, its direction d and its unknown's e
+    let mut d = [V3::zeros(); M];
+    let mut e = [V3::zeros(); M];
+    for (i, (h, g)) in closed.iter().zip(gaps).enumerate() {
+        let nn = g.normal;
+        let mu = candidates[h.k].law.mu;
+        layout.start[i] = layout.m;
+        let mut push = |dir: V3, force: V3, bias: f64| {
+            let p = layout.m;
+            layout.contact[p] = i;
+            d[p] = dir;
+            e[p] = force;
+            layout.b[p] = bias;
+            layout.m += 1;
+        };
+        match h.mode {
+            Mode::Frictionless => push(nn, nn, normal_bias[i]),
+            Mode::Stick => {
+                layout.stick_mu[i] = mu;
+                push(nn, nn, normal_bias[i]);
+                let (t1, t2) = tangents(&nn);
+                for t in [t1, t2] {
+                    // t · u̇ at zero force: Σ σ_i t · (a⁰_i + α⁰_i × r_i + ω_i × ṙ_i)
+                    let bias: f64 = g
+                        .sides()
+                        .map(|side| {
+                            let b = side.body;
+                            let mut acc = *gravity;
+                            if inverse[b].is_some() {
+                                acc += alpha0[b].cross(&side.arm) + s.w[b].cross(&side.arm_rate);
+                            }
+                            side.sign * t.dot(&acc)
+                        })
+                        .sum();
+                    push(t, t, bias);
+                }
+            }
+            Mode::Slide(held) => {
+                let u = slip(g, members, s);
+                let dir = if u.norm() > lock { u.normalize() } else { held };
+                push(nn, nn - dir * mu, normal_bias[i]);
+            }
+        }
+    }
+    let m = layout.m;
+    // W_pq = Σ over the members both rows move of σσ (d_p · e_q / m_b + (r × d_p)ᵀ Ĩ_b (r × e_q))
+    let mut w = [[0.0; M]; M];
+    for p in 0..m {
+        let gp = &gaps[layout.contact[p]];
+        for q in 0..m {
+            let gq = &gaps[layout.contact[q]];
+            let mut sum = 0.0;
+            for i in gp.sides() {
+                for j in gq.sides().filter(|j| j.body == i.body) {
+                    let mut entry = d[p].dot(&e[q]) / members[i.body].mass();
+                    if let Some(inv) = &inverse[i.body] {
+                        entry += i.arm.cross(&d[p]).dot(&(inv * j.arm.cross(&e[q])));
+                    }
+                    sum += i.sign * j.sign * entry;
+                }
+            }
+            w[p][q] = sum;
+        }
+    }
+    let tol = 1e-9 * scale.max(f64::MIN_POSITIVE);
+    let heaviest = members.iter().map(Member::mass).fold(0.0, f64::max);
+    let force_tol = tol * heaviest;
+    let mut lambda = [0.0; M];
+    let set =
+        decide(&layout, &w, tol, force_tol, None, &mut lambda).ok_or(ContactError::NoActiveSet)?;
+    let mut a = vec![*gravity; members.len()];
+    let mut alpha = alpha0.to_vec();
+    let mut force = Vec::with_capacity(n);
+    let mut gap_acceleration = Vec::with_capacity(n);
+    for (i, (h, g)) in closed.iter().zip(gaps).enumerate() {
+        let rows = layout.rows_of(i);
+        let lo = rows.start;
+        // the contact's force on its positive side (σ = +1)
+        let f: V3 = rows.clone().map(|p| e[p] * lambda[p]).sum();
+        let normal = lambda[lo];
+        if let Mode::Stick = h.mode {
+            let ft = f - g.normal * g.normal.dot(&f);
+            let mu = candidates[h.k].law.mu;
+            if set & (1 << i) != 0 && ft.norm() > mu * normal * (1.0 + 1e-9) + force_tol {
+                return Err(ContactError::Slips {
+                    contact: i,
+                    direction: -ft.normalize(),
+                });
+            }
+        }
+        for side in g.sides() {
+            let b = side.body;
+            a[b] += f * (side.sign / members[b].mass());
+            if let Some(inv) = &inverse[b] {
+                alpha[b] += inv * side.arm.cross(&(f * side.sign));
+            }
+        }
+        force.push(normal);
+        gap_acceleration.push(layout.b[lo] + (0..m).map(|q| w[lo][q] * lambda[q]).sum::<f64>());
+    }
+    Ok(Accelerations {
+        a,
+        alpha,
+        force,
+        gap_acceleration,
+        scale,
+    })
+}
+
 /// Hold the closed contacts: the smallest change of the velocities in the kinetic metric that
 /// stops every closed contact's normal rate (Δ(v, ω) = M⁻¹ Jᵀ μ, W μ = −J u), and the smallest
 /// displacement of the members in the same metric that closes their gaps (Δ(x, θ) = M⁻¹ Jᵀ ν,
 /// W ν = −g, the rotation θ applied as exp(θ) q) — what the integration drifted by, to first
-/// order in it. Returns the largest gap corrected (m).
+/// order in it. Where a contact sticks, its slip is stopped with the normal rates, in one
+/// projection ([`hold_sticking`]). Returns the largest gap corrected (m).
 pub fn project(
     members: &[Member],
     planes: &[Plane],
     candidates: &[Candidate],
-    closed: &[usize],
+    held: &[Held],
     s: &mut SystemState,
 ) -> f64 {
-    if closed.is_empty() {
+    if held.is_empty() {
         return 0.0;
     }
+    let closed: Vec<usize> = held.iter().map(|h| h.k).collect();
+    let closed = closed.as_slice();
     let inverse = inverses(members, s);
     let (w, gaps) = rows(members, planes, candidates, closed, s, &inverse);
+    let sticking = held.iter().any(|h| h.mode == Mode::Stick);
+    if sticking {
+        hold_sticking(members, held, &gaps, &inverse, s);
+    }
     let svd = w.svd(true, true);
     let eps = 1e-12 * svd.singular_values.max();
     let apply = |rhs: DVector<f64>, linear: &mut Vec<V3>, angular: &mut Vec<V3>| {
@@ -201,11 +433,13 @@ pub fn project(
         }
     };
     let mut turn = vec![V3::zeros(); members.len()];
-    apply(
-        DVector::from_fn(closed.len(), |p, _| -gaps[p].rate),
-        &mut s.v,
-        &mut s.w,
-    );
+    if !sticking {
+        apply(
+            DVector::from_fn(closed.len(), |p, _| -gaps[p].rate),
+            &mut s.v,
+            &mut s.w,
+        );
+    }
     let worst = gaps.iter().map(|g| g.gap.abs()).fold(0.0, f64::max);
     apply(
         DVector::from_fn(closed.len(), |p, _| -gaps[p].gap),
@@ -218,4 +452,69 @@ pub fn project(
         }
     }
     worst
+}
+
+/// Stop the slip of the sticking contacts among `held` (with their normal rates): the smallest
+/// change of the velocities in the kinetic metric, Δ(v, ω) = M⁻¹ Jᵀ μ with W μ = −J u over
+/// every closed contact's normal and every sticking one's two tangents (the SVD's least-norm
+/// μ, singular values below 10⁻¹² of the largest taken as zero), as the single body's
+/// [`crate::simulate::contact::project`].
+fn hold_sticking(
+    members: &[Member],
+    held: &[Held],
+    gaps: &[Gap],
+    inverse: &[Option<Matrix3<f64>>],
+    s: &mut SystemState,
+) {
+    // per row: its contact and its direction
+    let mut rows: Vec<(usize, V3)> = Vec::new();
+    for (i, (h, g)) in held.iter().zip(gaps).enumerate() {
+        rows.push((i, g.normal));
+        if h.mode == Mode::Stick {
+            let (t1, t2) = tangents(&g.normal);
+            rows.push((i, t1));
+            rows.push((i, t2));
+        }
+    }
+    let velocity = |g: &Gap, d: &V3, s: &SystemState| -> f64 {
+        g.sides()
+            .map(|i| {
+                let spin = if inverse[i.body].is_some() {
+                    s.w[i.body].cross(&i.arm)
+                } else {
+                    V3::zeros()
+                };
+                i.sign * d.dot(&(s.v[i.body] + spin))
+            })
+            .sum()
+    };
+    let w = DMatrix::from_fn(rows.len(), rows.len(), |p, q| {
+        let ((gp, dp), (gq, dq)) = (rows[p], rows[q]);
+        let mut sum = 0.0;
+        for i in gaps[gp].sides() {
+            for j in gaps[gq].sides().filter(|j| j.body == i.body) {
+                let mut entry = dp.dot(&dq) / members[i.body].mass();
+                if let Some(inv) = &inverse[i.body] {
+                    entry += i.arm.cross(&dp).dot(&(inv * j.arm.cross(&dq)));
+                }
+                sum += i.sign * j.sign * entry;
+            }
+        }
+        sum
+    });
+    let rhs = DVector::from_fn(rows.len(), |p, _| {
+        -velocity(&gaps[rows[p].0], &rows[p].1, s)
+    });
+    let svd = w.svd(true, true);
+    let eps = 1e-12 * svd.singular_values.max();
+    if let Ok(mu) = svd.solve(&rhs, eps) {
+        for (p, &(k, d)) in rows.iter().enumerate() {
+            for i in gaps[k].sides() {
+                s.v[i.body] += d * (i.sign * mu[p] / members[i.body].mass());
+                if let Some(inv) = &inverse[i.body] {
+                    s.w[i.body] += inv * i.arm.cross(&(d * (i.sign * mu[p])));
+                }
+            }
+        }
+    }
 }

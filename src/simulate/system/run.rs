@@ -28,12 +28,19 @@
 //! solved by the law over the whole system ([`super::impact`]). After it a contact at zero gap
 //! whose normal rate is below `rest_speed` stays closed.
 //!
-//! Not here yet: friction in a system, the closed-form accumulation (Zeno) of the single body
-//! (a system runs to rest by its `rest_speed`, or to its impact budget), rods and cylinders in
-//! a system, edge-on-edge contacts (refused by the overlap check).
+//! **Friction.** A rough closed contact sticks or slides, as the single body's: it closes
+//! sliding along its slip when that is faster than `rest_speed`, sticking otherwise; a sticking
+//! one whose force leaves its cone starts to slide ([`super::persist`]; inside a step, the step
+//! is cut and the mode switched); sliding ones whose slip has fallen below `rest_speed` stick,
+//! together where they can (the corners of a face), one by one otherwise, when sticking needs no
+//! more than their cones. At rest: slower than `rest_speed`, and still with every slide stuck.
+//!
+//! Not here yet: the closed-form accumulation (Zeno) of the single body (a system runs to rest
+//! by its `rest_speed`, or to its impact budget), rods and cylinders in a system, edge-on-edge
+//! contacts (refused by the overlap check).
 
 use super::super::body::{Feature, Shape, V3, quaternion_rate};
-use super::super::contact::ContactError;
+use super::super::contact::{ContactError, Mode};
 use super::super::impact::Law;
 use super::super::run::{
     End, Event, ImpactRecord, MAX_STEPS, Options, SimulateError, Struck, joins, next_output_after,
@@ -44,7 +51,7 @@ use super::gaps::{Candidate, Touch, gap};
 use super::impact::solve;
 use super::members::{Member, SystemState};
 use super::overlap::deepest;
-use super::persist::{Accelerations, accelerations, project};
+use super::persist::{Accelerations, Held, accelerations, project, slip};
 
 /// What to simulate.
 #[derive(Clone, Debug, PartialEq)]
@@ -189,7 +196,7 @@ struct Run<'a> {
     stepper: Stepper,
     s: SystemState,
     t: f64,
-    closed: Vec<usize>,
+    closed: Vec<Held>,
     impacts: Vec<ImpactRecord>,
     events: Vec<Event>,
     samples: Vec<SystemSample>,
@@ -282,7 +289,7 @@ impl<'a> Run<'a> {
     fn accelerations_at(
         &self,
         s: &SystemState,
-        closed: &[usize],
+        closed: &[Held],
     ) -> Result<Accelerations, ContactError> {
         let st = &self.setup;
         accelerations(
@@ -292,7 +299,172 @@ impl<'a> Run<'a> {
             closed,
             s,
             &st.options.gravity,
+            st.options.rest_speed,
         )
+    }
+
+    /// Whether candidate `k` is closed.
+    fn is_closed(&self, k: usize) -> bool {
+        self.closed.iter().any(|h| h.k == k)
+    }
+
+    /// How candidate `k`, closing, takes a tangential force: frictionless where μ = 0; else
+    /// sliding along its slip when that is faster than the rest speed, sticking otherwise.
+    fn mode_of(&self, k: usize) -> Mode {
+        let st = self.setup;
+        if st.candidates[k].law.mu == 0.0 {
+            return Mode::Frictionless;
+        }
+        let u = slip(&self.gap(k, &self.s), &st.members, &self.s);
+        if u.norm() > st.options.rest_speed {
+            Mode::Slide(u.normalize())
+        } else {
+            Mode::Stick
+        }
+    }
+
+    /// Candidate `k` closed, with the mode [`Self::mode_of`] gives it.
+    fn held(&self, k: usize) -> Held {
+        Held {
+            k,
+            mode: self.mode_of(k),
+            armed: true,
+        }
+    }
+
+    /// Closed contact `p` (a sticking one whose force leaves its cone) slides along
+    /// `direction`, logged.
+    fn starts_to_slide(&mut self, p: usize, direction: V3) {
+        self.closed[p].mode = Mode::Slide(direction);
+        self.closed[p].armed = false;
+        self.events.push(Event {
+            t: self.t,
+            what: format!("{} starts to slide", self.name(self.closed[p].k)),
+        });
+    }
+
+    /// The accelerations at the current state, switching a sticking contact that leaves its
+    /// cone to sliding (as the single body's).
+    fn current(&mut self) -> Result<Accelerations, SimulateError> {
+        for _ in 0..=self.closed.len() {
+            let s = self.s.clone();
+            match self.accelerations_at(&s, &self.closed) {
+                Ok(a) => return Ok(a),
+                Err(ContactError::Slips { contact, direction }) => {
+                    self.starts_to_slide(contact, direction);
+                }
+                Err(error) => return Err(SimulateError::Contact { t: self.t, error }),
+            }
+        }
+        Err(SimulateError::Contact {
+            t: self.t,
+            error: ContactError::NoActiveSet,
+        })
+    }
+
+    /// The last of the closed contacts `trial` (the others already closed), if it presses or
+    /// holds at zero gap acceleration rather than separating: with the mode it takes — sliding,
+    /// where sticking would need more friction than its cone holds.
+    fn closes(&self, mut trial: Vec<Held>) -> Option<Held> {
+        let last = trial.len() - 1;
+        for _ in 0..trial.len() {
+            match self.accelerations_at(&self.s, &trial) {
+                Ok(a) => {
+                    return (a.gap_acceleration[last] <= 1e-9 * a.scale).then_some(trial[last]);
+                }
+                Err(ContactError::Slips { contact, direction }) => {
+                    trial[contact].mode = Mode::Slide(direction);
+                    trial[contact].armed = false;
+                }
+                Err(_) => return None,
+            }
+        }
+        None
+    }
+
+    /// The sliding contacts whose slips have stopped stick, if sticking needs no more friction
+    /// than their cones allow (else they slide on: no chatter between the two). They are tried
+    /// together first — the corners of a face that slides stop at once, and each alone would
+    /// need the friction of all — then one by one. A contact may stick again only once its
+    /// slip has exceeded twice the rest speed since it started (the single body's rule).
+    fn slides_that_stop(&mut self) {
+        let rest = self.setup.options.rest_speed;
+        let mut stopped = Vec::new();
+        for p in 0..self.closed.len() {
+            let Mode::Slide(_) = self.closed[p].mode else {
+                continue;
+            };
+            let k = self.closed[p].k;
+            let u = slip(&self.gap(k, &self.s), &self.setup.members, &self.s).norm();
+            if u > 2.0 * rest {
+                self.closed[p].armed = true;
+            }
+            if u <= rest && self.closed[p].armed {
+                stopped.push(p);
+            }
+        }
+        if stopped.is_empty() {
+            return;
+        }
+        let sticking: Vec<usize> = if let Some(trial) = self.stuck(&stopped) {
+            self.closed = trial;
+            stopped
+        } else {
+            let mut one = Vec::new();
+            for p in stopped {
+                if let Some(trial) = self.stuck(&[p]) {
+                    self.closed = trial;
+                    one.push(p);
+                }
+            }
+            one
+        };
+        for p in sticking {
+            self.events.push(Event {
+                t: self.t,
+                what: format!("{} sticks", self.name(self.closed[p].k)),
+            });
+        }
+    }
+
+    /// The closed contacts with `these` sticking, if none of them then needs more friction
+    /// than its cone holds.
+    fn stuck(&self, these: &[usize]) -> Option<Vec<Held>> {
+        let mut trial = self.closed.clone();
+        for &p in these {
+            trial[p].mode = Mode::Stick;
+        }
+        let slips = matches!(
+            self.accelerations_at(&self.s, &trial),
+            Err(ContactError::Slips { contact, .. }) if these.contains(&contact)
+        );
+        (!slips).then_some(trial)
+    }
+
+    /// Whether the members, slower than the rest speed, would stay put with every sliding
+    /// contact stuck: the accelerations with them sticking are consistent (every friction force
+    /// within its cone) and below `still` (the single body's test: a slide that began at zero
+    /// slip at the edge of its cone may never speed up enough to be let stick again).
+    fn holds_when_stuck(&self, still: f64) -> bool {
+        if !self.closed.iter().any(|h| matches!(h.mode, Mode::Slide(_))) {
+            return false;
+        }
+        let stuck: Vec<Held> = self
+            .closed
+            .iter()
+            .map(|h| Held {
+                mode: match h.mode {
+                    Mode::Slide(_) => Mode::Stick,
+                    m => m,
+                },
+                ..*h
+            })
+            .collect();
+        self.accelerations_at(&self.s, &stuck).is_ok_and(|a| {
+            a.gap_acceleration.iter().all(|&g| g <= 1e-9 * a.scale)
+                && (0..self.setup.members.len())
+                    .all(|b| self.turning(b, a.a[b].norm(), a.alpha[b].norm()) <= still)
+        })
     }
 
     fn name(&self, k: usize) -> String {
@@ -330,16 +502,13 @@ impl<'a> Run<'a> {
             }
             // A closed contact whose point reaches its face's edge moving out lets go.
             let off: Vec<usize> = (0..self.closed.len())
-                .filter(|&p| self.leaves(&self.gap(self.closed[p], &self.s)))
+                .filter(|&p| self.leaves(&self.gap(self.closed[p].k, &self.s)))
                 .collect();
             if !off.is_empty() {
                 self.let_go(&off, "leaves the face");
                 continue;
             }
-            let s = self.s.clone();
-            let acc = self
-                .accelerations_at(&s, &self.closed)
-                .map_err(|error| SimulateError::Contact { t: self.t, error })?;
+            let acc = self.current()?;
             let tol = 1e-9 * acc.scale.max(f64::MIN_POSITIVE);
             // Lift-off: a closed contact the accelerations open.
             let opening: Vec<usize> = (0..self.closed.len())
@@ -349,13 +518,15 @@ impl<'a> Run<'a> {
                 self.let_go(&opening, "lifts off");
                 continue;
             }
+            self.slides_that_stop();
             let fastest = self.fastest(&self.s);
             let accel = (0..self.setup.members.len())
                 .map(|b| self.turning(b, acc.a[b].norm(), acc.alpha[b].norm()))
                 .fold(0.0, f64::max);
+            let still = 1e-9 * (o.gravity.norm() + f64::MIN_POSITIVE);
             if !self.closed.is_empty()
                 && fastest <= o.rest_speed
-                && accel <= 1e-9 * (o.gravity.norm() + f64::MIN_POSITIVE)
+                && (accel <= still || self.holds_when_stuck(still))
             {
                 return Ok(End::Rest);
             }
@@ -364,7 +535,7 @@ impl<'a> Run<'a> {
             let mut striking = false;
             let mut closing = false;
             for k in 0..self.setup.candidates.len() {
-                if self.closed.contains(&k) {
+                if self.is_closed(k) {
                     continue;
                 }
                 let g = self.gap(k, &self.s);
@@ -379,13 +550,9 @@ impl<'a> Run<'a> {
                         continue;
                     } else if g.rate <= o.rest_speed && !self.leaves(&g) {
                         let mut trial = self.closed.clone();
-                        trial.push(k);
-                        let keeps = self
-                            .accelerations_at(&self.s, &trial)
-                            .map(|a| a.gap_acceleration[trial.len() - 1] <= 1e-9 * a.scale)
-                            .unwrap_or(false);
-                        if keeps {
-                            self.closed.push(k);
+                        trial.push(self.held(k));
+                        if let Some(h) = self.closes(trial) {
+                            self.closed.push(h);
                             self.events.push(Event {
                                 t: self.t,
                                 what: format!("{} closes", self.name(k)),
@@ -442,13 +609,13 @@ impl<'a> Run<'a> {
                 .collect();
             let closed = self.closed.clone();
             let open: Vec<(usize, f64)> = (0..self.setup.candidates.len())
-                .filter(|k| !self.closed.contains(k))
+                .filter(|&k| !self.is_closed(k))
                 .map(|k| (k, self.gap(k, &self.s).gap))
                 .collect();
             // how far inside its face each closed face contact's point is (+∞ for others)
             let over: Vec<(usize, f64)> = closed
                 .iter()
-                .map(|&k| (k, self.gap(k, &self.s).inside))
+                .map(|h| (h.k, self.gap(h.k, &self.s).inside))
                 .filter(|(_, m)| m.is_finite())
                 .collect();
             let mut stepper = std::mem::replace(&mut self.stepper, Stepper::new(1.0, 1.0));
@@ -485,6 +652,13 @@ impl<'a> Run<'a> {
                 Advance::Accepted { t, y, dense } => (t, y, dense),
                 Advance::Retry => continue,
                 Advance::NotFinite => return Err(SimulateError::NotFinite { t: self.t }),
+                Advance::Failed(ContactError::Slips { contact, direction }) => {
+                    // a mode change inside a step at the resolution of t: the sticking contact
+                    // that must slip is switched (the single body's rule)
+                    self.starts_to_slide(contact, direction);
+                    self.stepper.h = super::super::ode::floor(self.t, o.output_step) * 16.0;
+                    continue;
+                }
                 Advance::Failed(_) => {
                     return Err(SimulateError::Stalled {
                         t: self.t,
@@ -545,7 +719,7 @@ impl<'a> Run<'a> {
     /// each logged as `name why`.
     fn let_go(&mut self, positions: &[usize], why: &str) {
         for &p in positions.iter().rev() {
-            let k = self.closed.remove(p);
+            let k = self.closed.remove(p).k;
             self.events.push(Event {
                 t: self.t,
                 what: format!("{} {why}", self.name(k)),
@@ -579,7 +753,7 @@ impl<'a> Run<'a> {
         let mut spread = 0.0f64;
         for k in 0..st.candidates.len() {
             let g = self.gap(k, &self.s);
-            let persisting = self.closed.contains(&k);
+            let persisting = self.is_closed(k);
             if !joins(persisting, g.gap, g.rate, self.gap_tol, o.simultaneity) {
                 continue;
             }
@@ -634,7 +808,8 @@ impl<'a> Run<'a> {
             struck[p].after = g.rate;
             struck[p].impulse = out.impulses[p];
             if g.gap <= self.gap_tol && g.rate <= o.rest_speed {
-                self.closed.push(k);
+                let h = self.held(k);
+                self.closed.push(h);
             }
         }
         self.impacts.push(ImpactRecord {
