@@ -181,6 +181,12 @@ pub struct Wording {
 /// The reason, with its 1-based character position: an empty input, a malformed literal, an
 /// unexpected character or token, a missing ')', nesting deeper than [`MAX_DEPTH`].
 pub fn parse(src: &str, wording: &Wording) -> Result<Node, String> {
+    parse_measured(src, wording).map(|(root, _)| root)
+}
+
+/// [`parse`], with the deepest nesting the parse reached (at most [`MAX_DEPTH`]): a text read
+/// again with a parenthesised text in place of a name nests at most the two depths added.
+pub(crate) fn parse_measured(src: &str, wording: &Wording) -> Result<(Node, usize), String> {
     if src.trim().is_empty() {
         return Err(format!("empty {}", wording.input));
     }
@@ -190,13 +196,14 @@ pub fn parse(src: &str, wording: &Wording) -> Result<Node, String> {
         toks,
         pos: 0,
         depth: 0,
+        deepest: 0,
         wording,
     };
     let root = parser.expr()?;
     if parser.peek().kind != TokKind::End {
         return Err(parser.unexpected(&format!("an operator or the end of the {}", wording.input)));
     }
-    Ok(root)
+    Ok((root, parser.deepest))
 }
 
 /// The message for a name an evaluator does not know: "unknown name 'w' at position 1
@@ -426,6 +433,8 @@ struct Parser<'a> {
     toks: Vec<Tok>,
     pos: usize,
     depth: usize,
+    /// The largest `depth` reached.
+    deepest: usize,
     wording: &'a Wording,
 }
 
@@ -566,6 +575,7 @@ impl Parser<'_> {
             return Err(self.too_deep());
         }
         self.depth += 1;
+        self.deepest = self.deepest.max(self.depth);
         let node = match self.sym() {
             Some(sign @ (b'-' | b'+')) => {
                 let start = self.advance().0;

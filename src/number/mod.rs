@@ -24,6 +24,7 @@ use num_traits::{One, Signed, ToPrimitive, Zero};
 pub mod expr;
 mod rational;
 pub(crate) mod tangent;
+pub(crate) mod template;
 
 use expr::{Func, Kind, Lit, MAX_DECIMAL_EXPONENT, Node, Op, Wording};
 
@@ -177,11 +178,16 @@ fn plain_decimal(src: &str) -> Option<Number> {
 /// Parse `src` (trimmed) and check that every name in it is declared in `symbols`: the syntax
 /// half of [`parse_number_with`], shared with [`crate::scalar::symbolic::symbolic`].
 pub(crate) fn parse_checked(src: &str, symbols: &[String]) -> Result<Node, NumberError> {
+    parse_checked_measured(src, symbols).map(|(root, _)| root)
+}
+
+/// [`parse_checked`], with the deepest nesting the parse reached ([`expr::parse_measured`]).
+fn parse_checked_measured(src: &str, symbols: &[String]) -> Result<(Node, usize), NumberError> {
     let syntax = |reason: String| NumberError::Syntax {
         text: src.to_string(),
         reason,
     };
-    let root = expr::parse(src, &WORDING).map_err(syntax)?;
+    let (root, deepest) = expr::parse_measured(src, &WORDING).map_err(syntax)?;
     let undeclared = root.names().into_iter().find(|n| match &n.kind {
         Kind::Name(name) => !symbols.iter().any(|s| s.as_str() == &**name),
         _ => false,
@@ -201,15 +207,25 @@ pub(crate) fn parse_checked(src: &str, symbols: &[String]) -> Result<Node, Numbe
         };
         return Err(syntax(expr::unknown_name(src, node, &known)));
     }
-    Ok(root)
+    Ok((root, deepest))
 }
 
 /// The number written by `node`, a sub-tree of `src` whose names all count as declared
 /// symbols; the number's text (and that of its errors) is the node's span.
 pub(crate) fn evaluate(src: &str, node: &Node) -> Result<Number, NumberError> {
     let text = src.get(node.start..node.end).unwrap_or(src);
-    let value = Eval { src, whole: text }.eval(node)?;
-    let symbols = symbol_names(node);
+    let value = Eval {
+        src,
+        whole: text,
+        at: template::At::Same,
+    }
+    .eval(node)?;
+    number_of(text, value, symbol_names(node))
+}
+
+/// The number of `text` whose value is `value` and which names `symbols` (sorted, without
+/// duplicates): the last step of [`evaluate`].
+fn number_of(text: &str, value: Value, symbols: Vec<String>) -> Result<Number, NumberError> {
     if matches!(value.ex, Exact::Sym) {
         let s = if symbols.len() == 1 { "" } else { "s" };
         return Ok(Number {
@@ -303,7 +319,7 @@ enum Exact {
     Sym,
 }
 
-#[derive(Debug)]
+#[derive(Clone, Debug)]
 struct Value {
     ex: Exact,
     f: f64,
@@ -314,6 +330,9 @@ struct Eval<'a> {
     src: &'a str,
     /// The text of the number evaluated (the text of its errors).
     whole: &'a str,
+    /// Where the nodes' byte ranges lie in `src`: there, or in a text read again with its
+    /// parameters' values in place ([`template`]).
+    at: template::At<'a>,
 }
 
 fn bits(q: &BigRational) -> u64 {
@@ -330,6 +349,7 @@ fn odd(n: &BigInt) -> bool {
 
 impl Eval<'_> {
     fn text(&self, start: usize, end: usize) -> &str {
+        let (start, end) = self.at.range(start, end);
         self.src.get(start..end).unwrap_or(self.src)
     }
 
@@ -369,12 +389,18 @@ impl Eval<'_> {
     /// `and_then` rather than `?` because every nesting level pays for this frame, and in debug
     /// builds each `?` adds temporaries.
     fn eval(&self, node: &Node) -> Result<Value, NumberError> {
+        if let Some(known) = self.at.known(node) {
+            return Ok(known.clone());
+        }
         let text = self.text(node.start, node.end);
         match &node.kind {
             Kind::Lit(lit) => self.literal(lit, text),
             Kind::Pi => self.value(Exact::Pi(BigRational::one()), PI, text),
             Kind::NonFinite => Err(self.not_finite_name(text)),
-            Kind::Name(_) => self.value(Exact::Sym, f64::NAN, text),
+            Kind::Name(_) => match self.at.expansion(node) {
+                Some(expansion) => self.expanded(expansion),
+                None => self.value(Exact::Sym, f64::NAN, text),
+            },
             Kind::Neg(inner) => self.eval(inner).and_then(|v| self.negate(v, text)),
             Kind::Chain(first, rest) => self.chain(node.start, first, rest),
             Kind::Pow(base, exp) => self
@@ -485,7 +511,7 @@ impl Eval<'_> {
             Exact::Rat(q) if q.is_zero() => Exact::Rat(int(i64::from(func == Func::Cos))),
             // Lindemann: sin/cos/tan of a non-zero rational (radian) is transcendental.
             Exact::Rat(_) => irrational(),
-            Exact::Pi(q) => match trig_at_degrees(func, &(q * int(180))) {
+            Exact::Pi(q) => match trig_at_degrees(func, whole_degrees(&q)) {
                 Trig::Rational(r) => Exact::Rat(r),
                 Trig::Irrational => irrational(),
                 Trig::Pole => return Err(self.not_finite(format!("'{text}' is infinite"))),
@@ -625,16 +651,39 @@ enum Trig {
     Pole,
 }
 
-/// sin/cos/tan at a rational number of degrees. By Niven's theorem their only rational values
-/// at rational degrees are 0, ±1/2, ±1 (sin, cos) and 0, ±1 (tan), taken at the angles listed here.
-fn trig_at_degrees(func: Func, degrees: &BigRational) -> Trig {
+/// The angle q·π in whole degrees, in [0, 360): `None` when q·180 is no integer.
+fn whole_degrees(q: &BigRational) -> Option<i64> {
+    // Parts of a word (an angle swept in degrees): q is reduced, so q·180 is an integer iff
+    // q's denominator divides 180·numerator — the same answer as the big rationals' below,
+    // without their gcds (a sweep over an angle takes a sine or cosine of it dozens of times
+    // a point).
+    if let (Some(n), Some(d)) = (q.numer().to_i64(), q.denom().to_i64())
+        && d > 0
+    {
+        let degrees = i128::from(n) * 180;
+        let d = i128::from(d);
+        return (degrees % d == 0).then(|| (degrees / d).rem_euclid(360) as i64);
+    }
+    whole_degrees_big(q)
+}
+
+/// [`whole_degrees`] in big rationals.
+fn whole_degrees_big(q: &BigRational) -> Option<i64> {
+    let degrees = q * int(180);
     // Only whole degrees are listed, and a whole number of turns keeps a fraction one.
     if !degrees.is_integer() {
-        return Trig::Irrational;
+        return None;
     }
     let full = int(360);
-    let d = degrees - (degrees / &full).floor() * &full;
-    let Some(d) = d.is_integer().then(|| d.to_integer().to_i64()).flatten() else {
+    let d = &degrees - (&degrees / &full).floor() * &full;
+    d.is_integer().then(|| d.to_integer().to_i64()).flatten()
+}
+
+/// sin/cos/tan at a whole number of degrees in [0, 360) ([`whole_degrees`]; `None`: not a
+/// whole number). By Niven's theorem their only rational values at rational degrees are 0,
+/// ±1/2, ±1 (sin, cos) and 0, ±1 (tan), taken at the angles listed here.
+fn trig_at_degrees(func: Func, degrees: Option<i64>) -> Trig {
+    let Some(d) = degrees else {
         return Trig::Irrational;
     };
     let half = || BigRational::new(BigInt::from(1), BigInt::from(2));
@@ -652,6 +701,30 @@ fn trig_at_degrees(func: Func, degrees: &BigRational) -> Trig {
 
 #[cfg(test)]
 mod tests {
+    /// An angle's whole degrees read in machine words are those read in big rationals.
+    #[test]
+    fn whole_degrees_in_words_are_those_in_big_rationals() {
+        let mut seed = 0xdeb_u64;
+        let mut next = |k: i64| {
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            ((seed >> 33) as i64) % k
+        };
+        let mut cases: Vec<(i64, i64)> = vec![(0, 1), (1, 1), (-1, 1), (1, 6), (-7, 4), (2, 1)];
+        for _ in 0..20_000 {
+            let d = [1, 2, 3, 4, 5, 6, 9, 12, 36, 60, 180, 7, 11, 1000, 2875][next(15) as usize];
+            cases.push((next(4001) - 2000, d));
+        }
+        cases.push((i64::MAX, 1));
+        cases.push((i64::MIN + 1, 180));
+        cases.push((i64::MAX, i64::MAX - 1));
+        for (n, d) in cases {
+            let q = BigRational::new(BigInt::from(n), BigInt::from(d));
+            assert_eq!(whole_degrees(&q), whole_degrees_big(&q), "{n}/{d}");
+        }
+    }
+
     /// The plain-decimal shortcut gives the very number the expression parser does.
     #[test]
     fn plain_decimals_read_as_the_general_path_reads_them() {

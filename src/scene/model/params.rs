@@ -11,9 +11,11 @@
 use std::cell::RefCell;
 use std::collections::HashMap;
 use std::rc::Rc;
+use std::sync::Arc;
 
 use crate::number::expr::{self, Kind, Node};
 use crate::number::tangent::derivative;
+use crate::number::template::{Expansion, NameSpan, Sub, Template};
 use crate::number::{Number, NumberError, parse_checked, parse_number_with};
 
 /// One parameter as read.
@@ -42,10 +44,10 @@ struct Param {
     expanded: String,
     /// Whether it is a declared symbol (then it is not substituted).
     symbol: bool,
+    /// `(expanded)` parsed and evaluated once, for the texts read back that name it
+    /// ([`Params::number`]); `None` for a symbol (or, never seen, a value that does not parse).
+    expansion: Option<Arc<Expansion>>,
 }
-
-/// A name in a text, by its byte range: (start, end, name).
-type NameSpan = (usize, usize, Box<str>);
 
 /// The [`Kind::Name`] nodes of `root`, in source order.
 fn name_spans(root: &Node) -> Vec<NameSpan> {
@@ -58,14 +60,14 @@ fn name_spans(root: &Node) -> Vec<NameSpan> {
         .collect()
 }
 
-/// The texts [`Params::names_in`] remembers per thread at most (it forgets them all at once).
-const NAMES_KEPT: usize = 4096;
+/// The texts [`Params::template`] remembers per thread at most (it forgets them all at once).
+const TEMPLATES_KEPT: usize = 4096;
 
-/// [`Params::names_in`]'s memory: (text, names allowed) → the names in the text.
-type NamesMemo = HashMap<(String, String), Rc<[NameSpan]>>;
+/// [`Params::template`]'s memory: (text, names allowed) → the text parsed.
+type TemplateMemo = HashMap<(String, String), Rc<Template>>;
 
 thread_local! {
-    static NAMES: RefCell<NamesMemo> = RefCell::new(HashMap::new());
+    static TEMPLATES: RefCell<TemplateMemo> = RefCell::new(HashMap::new());
 }
 
 /// Names a parameter may not take: the grammar's own and a surface's variables.
@@ -119,6 +121,9 @@ impl Params {
             let expanded = n.text.clone();
             (n, expanded)
         };
+        let expansion = (!symbol)
+            .then(|| Expansion::new(&expanded, &self.symbols).map(Arc::new))
+            .flatten();
         self.list.push(Param {
             spec: ParamSpec {
                 name: name.to_string(),
@@ -127,6 +132,7 @@ impl Params {
             },
             expanded,
             symbol,
+            expansion,
         });
         Ok(())
     }
@@ -160,27 +166,55 @@ impl Params {
         out
     }
 
-    /// The names `src` uses, with their byte ranges, checked against the names it may use
-    /// ([`parse_checked`]). A read parses each text it reads back twice, the text as
-    /// written (for its names) and then with the parameters' values in place; a sweep over a
+    /// `src` parsed, checked against the names it may use ([`parse_checked`]). A sweep over a
     /// parameter reads back the same texts at every point (`(cos(theta))*(1/5) + …`, only
-    /// θ's value differs), so the first parse is remembered per thread, by the text and the
-    /// names allowed. Only successes are kept: a failure is parsed again and says the same.
-    fn names_in(&self, src: &str) -> Result<Rc<[NameSpan]>, NumberError> {
+    /// θ's value differs), so the parse is remembered per thread, by the text and the names
+    /// allowed, and [`Template::read`] evaluates it with the values in place — the number the
+    /// substituted text parses into. Only successes are kept: a failure is parsed again and
+    /// says the same.
+    fn template(&self, src: &str) -> Result<Rc<Template>, NumberError> {
         let allowed = self.names(&[]);
         let key = (src.to_string(), allowed.join(" "));
-        if let Some(hit) = NAMES.with(|m| m.borrow().get(&key).cloned()) {
+        if let Some(hit) = TEMPLATES.with(|m| m.borrow().get(&key).cloned()) {
             return Ok(hit);
         }
-        let spans: Rc<[NameSpan]> = name_spans(&parse_checked(src, &allowed)?).into();
-        NAMES.with(|m| {
+        let template = Rc::new(Template::parse(src, &allowed)?);
+        TEMPLATES.with(|m| {
             let mut m = m.borrow_mut();
-            if m.len() >= NAMES_KEPT {
+            if m.len() >= TEMPLATES_KEPT {
                 m.clear();
             }
-            m.insert(key, spans.clone());
+            m.insert(key, template.clone());
         });
-        Ok(spans)
+        Ok(template)
+    }
+
+    /// The number of `src` with the parameters' values in place, from its template.
+    fn read_back(&self, src: &str) -> Result<Number, NumberError> {
+        let template = self.template(src)?;
+        let text = self.substitute_spans(src, template.names());
+        let mut subs = Vec::new();
+        for (start, end, name) in template.names() {
+            let Some(p) = self
+                .list
+                .iter()
+                .find(|p| *p.spec.name == **name && !p.symbol)
+            else {
+                continue;
+            };
+            match &p.expansion {
+                Some(expansion) => subs.push(Sub {
+                    start: *start,
+                    end: *end,
+                    expansion,
+                }),
+                None => return parse_number_with(&text, &self.symbols),
+            }
+        }
+        match template.read(&text, &subs) {
+            Some(n) => n,
+            None => parse_number_with(&text, &self.symbols),
+        }
     }
 
     /// The number written `text`, parameters substituted, with its tangent when a parameter
@@ -191,8 +225,7 @@ impl Params {
         }
         let src = text.trim();
         if self.seed.is_none() {
-            let names = self.names_in(src)?;
-            let mut n = parse_number_with(&self.substitute_spans(src, &names), &self.symbols)?;
+            let mut n = self.read_back(src)?;
             if n.text != src {
                 n.source = Some(src.to_string());
             }
@@ -330,11 +363,41 @@ mod tests {
         None
     }
 
-    /// A text read back with its names remembered ([`Params::names_in`]) is the very number
-    /// of the two parses it stands for, at each value of the parameters — the names of a text
-    /// are kept across values, never its number — and a failure says the same each time.
+    /// The number of `text` as a read without templates gives it: the text parsed for its
+    /// names, then again with the parameters' values in place.
+    fn two_parses(params: &Params, text: &str) -> Result<Number, NumberError> {
+        parse_checked(text, &params.names(&[])).and_then(|root| {
+            let mut n = parse_number_with(&params.substitute(text, &root), &params.symbols)?;
+            if n.text != text.trim() {
+                n.source = Some(text.trim().to_string());
+            }
+            Ok(n)
+        })
+    }
+
+    /// `params.number(text)`, read twice (the second time from the remembered template), is
+    /// [`two_parses`]'s number or error, to the bit.
+    fn reads_as_two_parses(params: &Params, text: &str) -> bool {
+        // Every field, the f64s to the bit (a symbol's NaN included).
+        let bits = |n: Result<Number, NumberError>| {
+            n.map(|n| {
+                let (approx, tangent) = (n.approx.to_bits(), n.tangent.to_bits());
+                (n.text, n.exact, approx, n.symbols, tangent, n.source)
+            })
+        };
+        let expected = bits(two_parses(params, text));
+        for _ in 0..2 {
+            assert_eq!(bits(params.number(text)), expected, "{text}");
+        }
+        expected.is_ok()
+    }
+
+    /// A text read back from its template ([`Params::template`]) is the very number of the two
+    /// parses it stands for, at each value of the parameters — the parse of a text and the
+    /// values of its parts that name nothing are kept across values, never its number — and a
+    /// failure says the same each time, quoting the same text.
     #[test]
-    fn remembered_names_read_the_number_the_two_parses_read() {
+    fn templates_read_the_number_the_two_parses_read() {
         let texts = [
             "((cos(theta))*(1/5)) + ((sin(theta))*(-1/20))",
             "((cos(theta)) + (1 - (cos(theta))))*(1/10)",
@@ -345,32 +408,94 @@ mod tests {
             "-1/3",
             "sqrt(2)/2",
             "cos(phi)^2",
+            "  (1/120)*(theta*L) + sqrt(3)*phi - 1e-3 ",
+            "2^L + theta^(1/3) - (-8)^(1/3)*cos(theta deg)",
+            "1 + 2 + 3 + theta*L*phi/4 - 0x10*0.5e1",
+            "sqrt(2)*sqrt(2) + tan(pi/4)*theta",
+            "(theta)",
+            "+theta",
+            "-(phi)",
+            "1/3",
+            "0.25",
+            "sqrt(5)",
         ];
-        let failing = ["unknown + 1", "theta/(L - L)", "1 +", "cos(theta"];
-        for theta in ["30 deg", "(1187/25) deg", "0 deg", "2/7", "60 deg"] {
+        // Failures at every value, and failures at some: the error quotes the whole text with
+        // the values in place.
+        let failing = [
+            "unknown + 1",
+            "theta/(L - L)",
+            "1 +",
+            "cos(theta",
+            "sqrt(theta - 1)",
+            "tan(theta)",
+            "1/(theta - 30 deg)",
+            "tan(theta + 45 deg)",
+            "(theta - 2/7)^(-1)",
+            "1/0 + theta",
+        ];
+        let fails = |text: &str, theta: &str| match text {
+            "sqrt(theta - 1)" => !["60 deg", "90 deg"].contains(&theta),
+            "tan(theta)" => theta == "90 deg",
+            "1/(theta - 30 deg)" => theta == "30 deg",
+            "tan(theta + 45 deg)" => theta == "45 deg",
+            "(theta - 2/7)^(-1)" => theta == "2/7",
+            _ => failing.contains(&text),
+        };
+        for theta in [
+            "30 deg",
+            "(1187/25) deg",
+            "0 deg",
+            "2/7",
+            "60 deg",
+            "90 deg",
+            "45 deg",
+        ] {
             let mut params = Params::new(&[], None);
             params.push("theta", theta).unwrap();
             params.push("L", "0.4").unwrap();
             params.push("phi", "2*theta").unwrap();
-            let names = params.names(&[]);
             for text in texts.iter().chain(&failing) {
-                let two_parses = parse_checked(text, &names).and_then(|root| {
-                    let mut n =
-                        parse_number_with(&params.substitute(text, &root), &params.symbols)?;
-                    if n.text != *text {
-                        n.source = Some(text.to_string());
-                    }
-                    Ok(n)
-                });
-                for _ in 0..2 {
-                    let n = params.number(text);
-                    assert_eq!(n, two_parses, "{text} at theta = {theta}");
-                    if let (Ok(a), Ok(b)) = (&n, &two_parses) {
-                        assert_eq!(a.approx.to_bits(), b.approx.to_bits(), "{text}");
-                    }
-                }
-                assert_eq!(failing.contains(text), two_parses.is_err(), "{text}");
+                let ok = reads_as_two_parses(&params, text);
+                assert_eq!(ok, !fails(text, theta), "{text} at theta = {theta}");
             }
+        }
+    }
+
+    /// Declared symbols, in a text or in a parameter's value, stay names of the number read
+    /// from a template, as the parse of the substituted text keeps them.
+    #[test]
+    fn templates_keep_declared_symbols() {
+        let mut params = Params::new(&["m".to_string(), "g".to_string()], None);
+        params.push("m", "2").unwrap();
+        params.push("theta", "20 deg").unwrap();
+        params.push("h", "g*cos(theta)").unwrap();
+        for text in ["h*theta", "m*h + 1/2", "g/0 + theta", "theta*(1/3)", "m"] {
+            let ok = reads_as_two_parses(&params, text);
+            assert_eq!(ok, text != "g/0 + theta", "{text}");
+        }
+    }
+
+    /// Nesting: a template and a value that nest deeper together than the parser allows are
+    /// refused as the parse of the substituted text refuses them; nearer the limit they read.
+    #[test]
+    fn templates_nest_as_the_substituted_text_does() {
+        let nested = |depth: usize, inner: &str| {
+            format!("{}{inner}{}", "(".repeat(depth), ")".repeat(depth))
+        };
+        for (outer, inner, reads) in [
+            (90, 90, true),
+            (150, 60, false),
+            (196, 1, true),
+            (198, 1, false),
+        ] {
+            let mut params = Params::new(&[], None);
+            params.push("a", &nested(inner, "1/3")).unwrap();
+            let text = nested(outer, "a*2");
+            assert_eq!(
+                reads_as_two_parses(&params, &text),
+                reads,
+                "{outer} + {inner}"
+            );
         }
     }
 

@@ -9,8 +9,9 @@
 use std::fmt;
 use std::ops::{Add, Div, Mul, Neg, Sub};
 
+use num_bigint::BigInt;
 use num_rational::BigRational;
-use num_traits::{One, Signed, Zero};
+use num_traits::{One, Signed, ToPrimitive, Zero};
 
 use crate::number::{Number, format_rational};
 
@@ -155,7 +156,7 @@ impl Add for &Term {
     type Output = Term;
     fn add(self, b: &Term) -> Term {
         match (self, b) {
-            (Term::Rat(x), Term::Rat(y)) => Term::Rat(x + y),
+            (Term::Rat(x), Term::Rat(y)) => Term::Rat(rat_sum(x, y, false)),
             (a, b) if a.is_zero() => b.clone(),
             (a, b) if b.is_zero() => a.clone(),
             (a, b) => Term::made(
@@ -171,7 +172,7 @@ impl Sub for &Term {
     type Output = Term;
     fn sub(self, b: &Term) -> Term {
         match (self, b) {
-            (Term::Rat(x), Term::Rat(y)) => Term::Rat(x - y),
+            (Term::Rat(x), Term::Rat(y)) => Term::Rat(rat_sum(x, y, true)),
             (a, b) if b.is_zero() => a.clone(),
             (a, b) if a.is_zero() => -b,
             (a, b) => Term::made(
@@ -187,7 +188,7 @@ impl Mul for &Term {
     type Output = Term;
     fn mul(self, b: &Term) -> Term {
         match (self, b) {
-            (Term::Rat(x), Term::Rat(y)) => Term::Rat(x * y),
+            (Term::Rat(x), Term::Rat(y)) => Term::Rat(rat_product(x, y)),
             (a, b) if a.is_zero() || b.is_zero() => Term::int(0),
             (a, b) if a.is_one() => b.clone(),
             (a, b) if b.is_one() => a.clone(),
@@ -231,6 +232,43 @@ impl Neg for &Term {
                 Term::Text(text, -a.approx(), a.error())
             }
         }
+    }
+}
+
+/// The numerator and denominator of q, when both fit a word.
+fn words(q: &BigRational) -> Option<(i128, i128)> {
+    Some((q.numer().to_i64()?.into(), q.denom().to_i64()?.into()))
+}
+
+/// n/d in lowest terms (d > 0, |n|, d < 2¹²⁷): the rational a big-rational operation gives.
+fn reduced(n: i128, d: i128) -> BigRational {
+    let (mut a, mut b) = (n.unsigned_abs(), d.unsigned_abs());
+    while b != 0 {
+        (a, b) = (b, a % b);
+    }
+    // a = gcd(|n|, d) ≥ 1, as d > 0.
+    let g = a as i128;
+    BigRational::new_raw(BigInt::from(n / g), BigInt::from(d / g))
+}
+
+/// x + y, or x − y: in machine words when both are fractions of words (a pose's and a
+/// shape's rationals are), else in big rationals; the same reduced rational either way.
+fn rat_sum(x: &BigRational, y: &BigRational, minus: bool) -> BigRational {
+    match (words(x), words(y)) {
+        (Some((a, b)), Some((c, d))) => {
+            let c = if minus { -c } else { c };
+            reduced(a * d + c * b, b * d)
+        }
+        _ if minus => x - y,
+        _ => x + y,
+    }
+}
+
+/// x·y, as [`rat_sum`].
+fn rat_product(x: &BigRational, y: &BigRational) -> BigRational {
+    match (words(x), words(y)) {
+        (Some((a, b)), Some((c, d))) => reduced(a * c, b * d),
+        _ => x * y,
     }
 }
 
@@ -326,6 +364,45 @@ mod tests {
         assert!(one.error() < 200.0 * f64::EPSILON);
         let c = Term::constant("cos(3 deg)").call("sqrt");
         assert!((c.approx() - 3f64.to_radians().cos().sqrt()).abs() <= c.error());
+    }
+
+    /// Sums, differences and products of fractions of words, taken in words, are the big
+    /// rationals' (reduced, the same numerator and denominator), down to the words' ends.
+    #[test]
+    fn rationals_in_words_are_the_big_rationals() {
+        let mut seed = 0x7e_u64;
+        let mut next = || {
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            seed >> 33
+        };
+        let mut values: Vec<BigRational> = [(0, 1), (1, 1), (-1, 2), (1, 120), (-7, 3)]
+            .map(|(n, d)| BigRational::new(BigInt::from(n), BigInt::from(d)))
+            .to_vec();
+        for _ in 0..300 {
+            let n = (next() % 2001) as i64 - 1000;
+            let d = (next() % 360) as i64 + 1;
+            values.push(BigRational::new(n.into(), d.into()));
+        }
+        for (n, d) in [
+            (i64::MAX, 1),
+            (i64::MIN + 1, 3),
+            (1, i64::MAX),
+            (i64::MAX - 1, i64::MAX),
+        ] {
+            values.push(BigRational::new(n.into(), d.into()));
+        }
+        values.push(BigRational::new(BigInt::from(1) << 70, 3.into()));
+        let same =
+            |a: &BigRational, b: &BigRational| a.numer() == b.numer() && a.denom() == b.denom();
+        for (i, x) in values.iter().enumerate() {
+            for y in values.iter().skip(i % 7).step_by(7) {
+                assert!(same(&rat_sum(x, y, false), &(x + y)), "{x} + {y}");
+                assert!(same(&rat_sum(x, y, true), &(x - y)), "{x} - {y}");
+                assert!(same(&rat_product(x, y), &(x * y)), "{x} * {y}");
+            }
+        }
     }
 
     #[test]
