@@ -76,6 +76,25 @@ def test_text_a_system_and_errors():
         inertance.simulate(ROOT / "no-such-scene.toml")
 
 
+def test_a_ball_spins_up_to_rolling_on_a_box_on_ice():
+    """examples/simulate/ball-on-box.toml: a ball (1 kg, r = 0.1 m) sliding at 1 m/s on a box
+    (5 kg) on a frictionless floor, mu = 0.2 between them. Newton's laws: the ball's v falls at
+    mu g, its spin rises at (5/2) mu g / r, the box's V rises at mu g m/M, until the slip
+    v - omega r - V closes at t* = 1 / (mu g (7/2 + 1/5)); after it v = 27/37 m/s, omega r =
+    25/37 m/s and V = 2/37 m/s (the momentum m v0 kept). The sphere's spin, integrated because a
+    rough contact touches it, is in `omega` like a box's."""
+    sim = inertance.simulate(SIM / "ball-on-box.toml")
+    assert sim.bodies == ["ball", "box"]
+    assert sim.end == "duration"
+    v, w = sim.samples["v"][-1], sim.samples["omega"][-1]
+    assert v[0][0] == pytest.approx(27 / 37, abs=1e-12)
+    assert w[0][1] * 0.1 == pytest.approx(25 / 37, abs=1e-12)
+    assert v[1][0] == pytest.approx(2 / 37, abs=1e-12)
+    momentum = sim.samples["v"][:, 0, 0] + 5 * sim.samples["v"][:, 1, 0]
+    assert np.abs(momentum - 1).max() <= 1e-12
+    assert any(e["what"] == "ball on box face +z sticks" for e in sim.log["events"])
+
+
 def test_a_system_of_boxes_gives_attitudes_and_spins():
     """A box dropped on a box on the floor (examples/simulate/box-on-box.toml): per-body
     attitudes `q` (N, B, 4) and spins `omega` (N, B, 3) beside `x` and `v`; every quaternion a
