@@ -158,8 +158,9 @@ fn a_ball_sliding_on_a_sliding_box_rolls_as_newton_says() {
 /// holds the base) against the single body's loop tumbling on a rough floor at the base's top
 /// (μ = 1/2), under the simultaneous law with friction (the spatial frictional impact of §14
 /// over a system, with the base's four sticking floor contacts in every impact). The impacts
-/// agree while the top box strikes faster than 10⁻² m/s: in time to 10⁻⁹ s, and in the struck
-/// corners and their rebound rates to 10⁻⁸ m/s.
+/// agree while the top box strikes faster than 0.1 m/s (the first 10; the next nine, down to
+/// 10⁻² m/s, agree as well, but each six-contact frictional impact costs seconds in a debug
+/// build): in time to 10⁻⁹ s, and in the struck corners and their rebound rates to 10⁻⁸ m/s.
 #[test]
 fn a_rough_box_tumbling_on_a_box_is_the_body_tumbling_on_a_rough_floor() {
     let text = std::fs::read_to_string("examples/simulate/box-on-box.toml")
@@ -182,7 +183,7 @@ fn a_rough_box_tumbling_on_a_box_is_the_body_tumbling_on_a_rough_floor() {
     let fast = alone
         .impacts
         .iter()
-        .take_while(|i| i.contacts.iter().any(|c| c.before < -1e-2))
+        .take_while(|i| i.contacts.iter().any(|c| c.before < -1e-1))
         .count();
     let mut s = system(&text);
     // the fast impacts only: the face landings after them are the single body's μ-sweep's

@@ -330,7 +330,10 @@ fn accelerations_in<const M: usize>(
         if let Mode::Stick = closed[j].mode {
             let ft = f - nn * nn.dot(&f);
             let mu = planes[closed[j].plane].law.mu;
-            if active[j] && ft.norm() > mu * ln * (1.0 + 1e-9) + tol * body.mass {
+            // (a tangential force of zero never leaves its cone, even where a pull within the
+            // tolerance with μ > 1 makes the bound negative: no direction to slide in)
+            if active[j] && ft.norm() > 0.0 && ft.norm() > mu * ln * (1.0 + 1e-9) + tol * body.mass
+            {
                 return Err(ContactError::Slips {
                     contact: j,
                     direction: -ft.normalize(),

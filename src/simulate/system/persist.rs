@@ -368,7 +368,12 @@ fn rough_in<const M: usize>(given: &Rough<'_>) -> Result<Accelerations, ContactE
         if let Mode::Stick = h.mode {
             let ft = f - g.normal * g.normal.dot(&f);
             let mu = candidates[h.k].law.mu;
-            if set & (1 << i) != 0 && ft.norm() > mu * normal * (1.0 + 1e-9) + force_tol {
+            // (a tangential force of zero never leaves its cone, even where a pull of
+            // −force_tol with μ > 1 makes the bound negative: no direction to slide in)
+            if set & (1 << i) != 0
+                && ft.norm() > 0.0
+                && ft.norm() > mu * normal * (1.0 + 1e-9) + force_tol
+            {
                 return Err(ContactError::Slips {
                     contact: i,
                     direction: -ft.normalize(),
