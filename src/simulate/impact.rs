@@ -20,6 +20,7 @@ use crate::impact::admissibility::{energy_gain, verdicts};
 use crate::impact::friction::{
     Hypothesis, Restitution, Verdict as FrictionVerdict, solve_frictional_under,
 };
+use crate::impact::mechanism::Mechanism;
 use crate::impact::multiple::{ContactLaw as LzbLaw, solve_lzb};
 use crate::impact::problem::Problem;
 use crate::impact::restitution::Model;
@@ -155,20 +156,10 @@ pub fn solve(
             })
         }
         Law::Simultaneous(r) | Law::Unilateral(r) if rough || r == Restitution::Energetic => {
-            let hypothesis = match law {
-                Law::Unilateral(_) => Hypothesis::Unilateral,
-                _ => Hypothesis::Simultaneous,
-            };
-            let out = solve_frictional_under::<f64, _>(&problem, r, hypothesis, tolerance)
-                .map_err(|e| ImpactError::NoAnswer(e.to_string()))?;
-            let b = &out.blocks;
-            let impulses = (0..b.contacts())
-                .map(|i| out.impulses[b.offset[i]] * b.directions[b.offset[i]].norm())
-                .collect();
-            let (faults, notes) = frictional_verdicts(&out.verdicts);
+            let (velocity, impulses, faults, notes) = frictional(&problem, law, r, tolerance)?;
             Ok(Rebound {
-                w: to_v3(&out.velocity.top()),
-                v: to_v3(&out.velocity.bottom()),
+                w: to_v3(&velocity.top()),
+                v: to_v3(&velocity.bottom()),
                 impulses,
                 verdicts: faults,
                 note: notes,
@@ -190,11 +181,38 @@ pub fn solve(
     }
 }
 
+/// The frictional impact of `mechanism` (one body's problem, or a system) under `law`'s
+/// hypothesis (the unilateral law's, or the simultaneous one) and restitution `r`: the twist
+/// after, each contact's normal impulse, and the verdicts split as [`frictional_verdicts`]
+/// splits them.
+///
+/// # Errors
+/// [`ImpactError::NoAnswer`] when the frictional law has none.
+pub(super) fn frictional<M: Mechanism<f64>>(
+    mechanism: &M,
+    law: Law,
+    r: Restitution,
+    tolerance: f64,
+) -> Result<(M::Screw, Vec<f64>, Vec<String>, Option<String>), ImpactError> {
+    let hypothesis = match law {
+        Law::Unilateral(_) => Hypothesis::Unilateral,
+        _ => Hypothesis::Simultaneous,
+    };
+    let out = solve_frictional_under::<f64, _>(mechanism, r, hypothesis, tolerance)
+        .map_err(|e| ImpactError::NoAnswer(e.to_string()))?;
+    let b = &out.blocks;
+    let impulses = (0..b.contacts())
+        .map(|i| out.impulses[b.offset[i]] * b.directions[b.offset[i]].norm())
+        .collect();
+    let (faults, notes) = frictional_verdicts(&out.verdicts);
+    Ok((out.velocity, impulses, faults, notes))
+}
+
 /// A frictional impact's verdicts split into what makes the answer not physical (a pulling
 /// rate, a contact still approaching, energy gained) and notes on an answer that is (a split of
 /// sticking impulses that only their sum determines, several consistent stick/slip assignments,
 /// an unstable slip), each kind named once per impact: the twist after is the law's either way.
-pub(super) fn frictional_verdicts(verdicts: &[FrictionVerdict]) -> (Vec<String>, Option<String>) {
+fn frictional_verdicts(verdicts: &[FrictionVerdict]) -> (Vec<String>, Option<String>) {
     let mut faults = Vec::new();
     let mut notes: Vec<String> = Vec::new();
     for v in verdicts {

@@ -24,7 +24,7 @@
 //! answer under that law. The note says so.
 
 use crate::impact::admissibility::{energy_gain, verdicts};
-use crate::impact::friction::{Hypothesis, Restitution, solve_frictional_under};
+use crate::impact::friction::Restitution;
 use crate::impact::multiple::{ContactLaw as LzbLaw, solve_lzb};
 use crate::impact::restitution::Model;
 use crate::impact::solve::{Impact, Outcome};
@@ -34,9 +34,7 @@ use crate::mechanics::screw::{Screw, Vec3};
 use crate::mechanics::system::{Pair, System, SystemBody, SystemScrew};
 
 use super::super::body::V3;
-use super::super::impact::{
-    ImpactError, Law, frictional_verdicts, left_out_meets_law, list, verdict_name,
-};
+use super::super::impact::{ImpactError, Law, frictional, left_out_meets_law, list, verdict_name};
 use super::super::world::Plane;
 use super::gaps::{Candidate, Gap, gap};
 use super::members::{Member, SystemState};
@@ -186,18 +184,8 @@ pub fn solve(
             })
         }
         Law::Simultaneous(r) | Law::Unilateral(r) if rough || r == Restitution::Energetic => {
-            let hypothesis = match law {
-                Law::Unilateral(_) => Hypothesis::Unilateral,
-                _ => Hypothesis::Simultaneous,
-            };
-            let out = solve_frictional_under::<f64, _>(&sys, r, hypothesis, tolerance)
-                .map_err(|e| no(&e))?;
-            let b = &out.blocks;
-            let impulses = (0..b.contacts())
-                .map(|i| out.impulses[b.offset[i]] * b.directions[b.offset[i]].norm())
-                .collect();
-            let (verdicts, note) = frictional_verdicts(&out.verdicts);
-            let (v, w) = twists(&out.velocity);
+            let (velocity, impulses, verdicts, note) = frictional(&sys, law, r, tolerance)?;
+            let (v, w) = twists(&velocity);
             Ok(Rebound {
                 v,
                 w,

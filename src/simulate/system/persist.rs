@@ -248,6 +248,28 @@ struct Rough<'a> {
     scale: f64,
 }
 
+/// The entry of W = J M⁻¹ Jᵀ between the row of contact `p` along d and the unknown of contact
+/// `q` along e: Σ over the members both move of σ_p σ_q (d · e / m_b + (r_p × d)ᵀ Ĩ_b (r_q × e))
+/// (the moment left out for a member that does not turn).
+fn entry(
+    members: &[Member],
+    inverse: &[Option<Matrix3<f64>>],
+    (p, d): (&Gap, &V3),
+    (q, e): (&Gap, &V3),
+) -> f64 {
+    let mut sum = 0.0;
+    for i in p.sides() {
+        for j in q.sides().filter(|j| j.body == i.body) {
+            let mut term = d.dot(e) / members[i.body].mass();
+            if let Some(inv) = &inverse[i.body] {
+                term += i.arm.cross(d).dot(&(inv * j.arm.cross(e)));
+            }
+            sum += i.sign * j.sign * term;
+        }
+    }
+    sum
+}
+
 /// The accelerations with a rough contact among the closed ones (module docs), at the smallest
 /// capacity of rows that holds them.
 fn rough(given: &Rough<'_>) -> Result<Accelerations, ContactError> {
@@ -333,20 +355,9 @@ fn rough_in<const M: usize>(given: &Rough<'_>) -> Result<Accelerations, ContactE
     // W_pq = Σ over the members both rows move of σσ (d_p · e_q / m_b + (r × d_p)ᵀ Ĩ_b (r × e_q))
     let mut w = [[0.0; M]; M];
     for p in 0..m {
-        let gp = &gaps[layout.contact[p]];
         for q in 0..m {
-            let gq = &gaps[layout.contact[q]];
-            let mut sum = 0.0;
-            for i in gp.sides() {
-                for j in gq.sides().filter(|j| j.body == i.body) {
-                    let mut entry = d[p].dot(&e[q]) / members[i.body].mass();
-                    if let Some(inv) = &inverse[i.body] {
-                        entry += i.arm.cross(&d[p]).dot(&(inv * j.arm.cross(&e[q])));
-                    }
-                    sum += i.sign * j.sign * entry;
-                }
-            }
-            w[p][q] = sum;
+            let (gp, gq) = (&gaps[layout.contact[p]], &gaps[layout.contact[q]]);
+            w[p][q] = entry(members, inverse, (gp, &d[p]), (gq, &e[q]));
         }
     }
     let tol = 1e-9 * scale.max(f64::MIN_POSITIVE);
@@ -495,17 +506,7 @@ fn hold_sticking(
     };
     let w = DMatrix::from_fn(rows.len(), rows.len(), |p, q| {
         let ((gp, dp), (gq, dq)) = (rows[p], rows[q]);
-        let mut sum = 0.0;
-        for i in gaps[gp].sides() {
-            for j in gaps[gq].sides().filter(|j| j.body == i.body) {
-                let mut entry = dp.dot(&dq) / members[i.body].mass();
-                if let Some(inv) = &inverse[i.body] {
-                    entry += i.arm.cross(&dp).dot(&(inv * j.arm.cross(&dq)));
-                }
-                sum += i.sign * j.sign * entry;
-            }
-        }
-        sum
+        entry(members, inverse, (&gaps[gp], &dp), (&gaps[gq], &dq))
     });
     let rhs = DVector::from_fn(rows.len(), |p, _| {
         -velocity(&gaps[rows[p].0], &rows[p].1, s)
