@@ -181,6 +181,10 @@ pub fn solve(
     }
 }
 
+/// What [`frictional`] gives: the twist after, each contact's normal impulse, the verdicts
+/// that make the answer not physical, and the notes on one that is.
+pub(super) type Frictioned<S> = (S, Vec<f64>, Vec<String>, Option<String>);
+
 /// The frictional impact of `mechanism` (one body's problem, or a system) under `law`'s
 /// hypothesis (the unilateral law's, or the simultaneous one) and restitution `r`: the twist
 /// after, each contact's normal impulse, and the verdicts split as [`frictional_verdicts`]
@@ -193,7 +197,7 @@ pub(super) fn frictional<M: Mechanism<f64>>(
     law: Law,
     r: Restitution,
     tolerance: f64,
-) -> Result<(M::Screw, Vec<f64>, Vec<String>, Option<String>), ImpactError> {
+) -> Result<Frictioned<M::Screw>, ImpactError> {
     let hypothesis = match law {
         Law::Unilateral(_) => Hypothesis::Unilateral,
         _ => Hypothesis::Simultaneous,
