@@ -84,6 +84,29 @@ fn json_carries_every_impact_of_the_library_run() {
     }
 }
 
+/// A system's accumulation of impacts in the JSON: `examples/simulate/box-dropped-on-box.toml`
+/// (the top bouncing flat on the base, k = ½) sums its impacts after the third, and `zeno`
+/// carries the library's t∞, the impact after which it was taken and the ratio, bit for bit
+/// (the closed form, t∞ = 0.3 s, is checked in tests/simulate_bodies.rs).
+#[test]
+fn json_carries_a_systems_accumulation() {
+    let path = "examples/simulate/box-dropped-on-box.toml";
+    let (_, s) = setup(path);
+    let sim = simulate_system(&s);
+    let zeno = sim.zeno.as_ref().expect("the accumulation");
+    let out = inertance(&[path, "--json"]);
+    assert_eq!(out.status.code(), Some(0));
+    let j: Value = serde_json::from_slice(&out.stdout).expect("JSON");
+    assert_eq!(number(&j["zeno"]["t_inf"]), zeno.t_inf);
+    assert_eq!(j["zeno"]["after"], zeno.after);
+    assert_eq!(number(&j["zeno"]["ratio"]), zeno.ratio);
+    assert_eq!(j["end"], "rest");
+    // a run without one says null
+    let out = inertance(&["examples/simulate/cradle-3.toml", "--json"]);
+    let j: Value = serde_json::from_slice(&out.stdout).expect("JSON");
+    assert!(j["zeno"].is_null(), "{}", j["zeno"]);
+}
+
 /// The cradle's plot: the three energies and one line per ball, every line through every
 /// sample; the impact marked and the balls named in the legend.
 #[test]

@@ -76,6 +76,19 @@ def test_text_a_system_and_errors():
         inertance.simulate(ROOT / "no-such-scene.toml")
 
 
+def test_a_system_accumulates_its_bounces():
+    """examples/simulate/box-dropped-on-box.toml: a box dropped flat from 0.05 m onto a box on
+    the floor (k = 1/2, g = 10) bounces as off a floor, and after three impacts the rest are
+    summed in closed form: t∞ = 0.25 + 2·(1/8)/(10·(1 − 1/2)) = 0.3 s (to 1e-10: the events are
+    located to 1e-11 of the length scale), where it rests at z = 0.25 m."""
+    sim = inertance.simulate(SIM / "box-dropped-on-box.toml")
+    assert sim.zeno["after"] == 3
+    assert sim.zeno["t_inf"] == pytest.approx(0.3, abs=1e-10)
+    assert sim.zeno["ratio"] == pytest.approx(0.5, abs=1e-9)
+    assert sim.end == "rest"
+    assert sim.samples["x"][-1][0] == pytest.approx([0, 0, 0.25], abs=1e-10)
+
+
 def test_a_ball_spins_up_to_rolling_on_a_box_on_ice():
     """examples/simulate/ball-on-box.toml: a ball (1 kg, r = 0.1 m) sliding at 1 m/s on a box
     (5 kg) on a frictionless floor, mu = 0.2 between them. Newton's laws: the ball's v falls at

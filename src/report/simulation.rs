@@ -213,7 +213,7 @@ pub fn to_json(name: &str, setup: &Setup, sim: &Simulation) -> Json {
         "end": end_name(sim.end),
         "error": sim.stopped.as_ref().map(ToString::to_string),
         "t_end": json_f64(sim.t_end),
-        "zeno": sim.zeno.as_ref().map(|z| json!({"t_inf": json_f64(z.t_inf), "after": z.after, "ratio": json_f64(z.ratio)})),
+        "zeno": zeno_json(sim.zeno.as_ref()),
         "impacts": impacts_json(&sim.impacts),
         "events": events_json(&sim.events),
         "state": {"x": v3(&sim.state.x), "v": v3(&sim.state.v), "omega": v3(&sim.state.w)},
@@ -334,5 +334,13 @@ pub fn to_svg(name: &str, setup: &Setup, sim: &Simulation) -> Result<String, Str
             "rotation from the start [rad]"
         },
         &[angles],
+    )
+}
+
+/// An accumulation of impacts as JSON (`t_inf`, `after`, `ratio`), or null.
+pub(crate) fn zeno_json(zeno: Option<&crate::simulate::run::Zeno>) -> Json {
+    zeno.map_or(
+        Json::Null,
+        |z| json!({"t_inf": json_f64(z.t_inf), "after": z.after, "ratio": json_f64(z.ratio)}),
     )
 }

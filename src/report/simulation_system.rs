@@ -10,7 +10,9 @@ use serde_json::{Value as Json, json};
 
 use super::json_f64;
 use super::plot::{Series, energies_and};
-use super::simulation::{end_name, end_of, events_json, impact_log, impacts_json, sig, v3};
+use super::simulation::{
+    end_name, end_of, events_json, impact_log, impacts_json, sig, v3, zeno_json,
+};
 use crate::simulate::body::{Shape, V3};
 use crate::simulate::system::{SystemSetup, SystemSimulation};
 
@@ -111,7 +113,7 @@ pub fn to_csv(setup: &SystemSetup, sim: &SystemSimulation) -> String {
 }
 
 /// The whole run, for programs: the one body's keys ([`super::simulation::to_json`]; `zeno`
-/// is null, a system does not find accumulations yet), the members (`bodies`: name, mass, and
+/// the accumulation of [`crate::simulate::system::zeno`], or null), the members (`bodies`: name, mass, and
 /// a sphere's `radius` or a box's edges `box`), the options, and the final `state` as one
 /// `[x, y, z]` per member in `x` and `v`, one `[w, i, j, k]` in `q` and one `[x, y, z]` in
 /// `omega` (a sphere's held: [`crate::simulate::system::members`]). An impact between two
@@ -146,7 +148,7 @@ pub fn to_json(name: &str, setup: &SystemSetup, sim: &SystemSimulation) -> Json 
         "end": end_name(sim.end),
         "error": sim.stopped.as_ref().map(ToString::to_string),
         "t_end": json_f64(sim.t_end),
-        "zeno": Json::Null,
+        "zeno": zeno_json(sim.zeno.as_ref()),
         "impacts": impacts_json(&sim.impacts),
         "events": events_json(&sim.events),
         "state": {

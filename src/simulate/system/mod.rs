@@ -16,8 +16,8 @@
 //! [`members`]: the bodies and their state · [`gaps`]: the contacts and their gap functions ·
 //! [`persist`]: persistent contact, the acceleration-level LCP with W = J M⁻¹ Jᵀ ·
 //! [`impact`]: one impact as a system's · [`overlap`]: the check that no unwatched contact
-//! (a box's edge on another's) lets two bodies pass through each other · [`run`]: the event
-//! loop.
+//! (a box's edge on another's) lets two bodies pass through each other · [`zeno`]: the
+//! accumulation of a member's bounces on what stays put · [`run`]: the event loop.
 
 pub mod gaps;
 pub mod impact;
@@ -25,6 +25,7 @@ pub mod members;
 pub mod overlap;
 pub mod persist;
 pub mod run;
+pub mod zeno;
 
 pub use gaps::{Candidate, Touch};
 pub use members::{Member, SystemState};

@@ -35,15 +35,20 @@
 //! together where they can (the corners of a face), one by one otherwise, when sticking needs no
 //! more than their cones. At rest: slower than `rest_speed`, and still with every slide stuck.
 //!
-//! Not here yet: the closed-form accumulation (Zeno) of the single body (a system runs to rest
-//! by its `rest_speed`, or to its impact budget), rods and cylinders in a system, edge-on-edge
-//! contacts (refused by the overlap check).
+//! **Zeno.** Where one member bounces on what stays put (a ball on a box resting on the floor,
+//! a box dropped flat on another), three impacts in a constant ratio are summed in closed form
+//! to their accumulation, as for the single body ([`super::zeno`]); elsewhere a system runs to
+//! rest by its `rest_speed`, or to its impact budget.
+//!
+//! Not here yet: rods and cylinders in a system, edge-on-edge contacts (refused by the overlap
+//! check).
 
 use super::super::body::{Feature, Shape, V3, quaternion_rate};
 use super::super::contact::{ContactError, Mode};
 use super::super::impact::Law;
 use super::super::run::{
-    End, Event, ImpactRecord, MAX_STEPS, Options, SimulateError, Struck, joins, next_output_after,
+    End, Event, ImpactRecord, MAX_STEPS, Options, SimulateError, Struck, Zeno, joins,
+    next_output_after,
 };
 use super::super::stepper::{self, Advance, Stall, Stepper};
 use super::super::world::Plane;
@@ -52,6 +57,7 @@ use super::impact::solve;
 use super::members::{Member, SystemState};
 use super::overlap::deepest;
 use super::persist::{Accelerations, Held, accelerations, project, slip};
+use super::zeno::{Bounce, Scene, accumulation};
 
 /// What to simulate.
 #[derive(Clone, Debug, PartialEq)]
@@ -168,6 +174,8 @@ pub struct SystemSimulation {
     pub drift: f64,
     /// Why the run stopped early ([`End::Stopped`]).
     pub stopped: Option<SimulateError>,
+    /// The accumulation of impacts, if one was taken ([`super::zeno`]).
+    pub zeno: Option<Zeno>,
 }
 
 /// Run `setup` to its end, or to the error that stops it ([`End::Stopped`]), keeping the
@@ -188,6 +196,7 @@ pub fn simulate_system(setup: &SystemSetup) -> SystemSimulation {
         steps: run.stepper.steps,
         drift: run.drift,
         stopped,
+        zeno: run.zeno,
     }
 }
 
@@ -206,6 +215,9 @@ struct Run<'a> {
     drift: f64,
     /// Each member's reach (m).
     reaches: Vec<f64>,
+    /// What each impact left, for the accumulation ([`super::zeno`]).
+    trail: Vec<Bounce>,
+    zeno: Option<Zeno>,
 }
 
 impl<'a> Run<'a> {
@@ -248,6 +260,8 @@ impl<'a> Run<'a> {
             gap_tol: 1e-11 * length,
             drift: 0.0,
             reaches,
+            trail: Vec::new(),
+            zeno: None,
         }
     }
 
@@ -774,6 +788,7 @@ impl<'a> Run<'a> {
         }
         let index = self.impacts.len() + 1;
         let kinetic_before = self.s.kinetic_energy(&st.members);
+        let before = self.s.clone();
         self.sample();
         let out = solve(
             &st.members,
@@ -812,6 +827,12 @@ impl<'a> Run<'a> {
                 self.closed.push(h);
             }
         }
+        let open = at
+            .iter()
+            .zip(&struck)
+            .filter(|(_, c)| !c.persisting)
+            .map(|(&k, _)| k)
+            .collect();
         self.impacts.push(ImpactRecord {
             index,
             t: self.t,
@@ -823,7 +844,64 @@ impl<'a> Run<'a> {
             note: out.note,
         });
         self.sample();
+        self.trail
+            .push(Bounce::new(&st.members, &before, &self.s, open, self.speed));
+        self.accumulate(&before);
         Ok(())
+    }
+
+    /// The accumulation of a member's bounces after the impact just made, from the state
+    /// `before` it, where [`super::zeno`] finds one: the member is moved to t∞ and its
+    /// contacts persist, logged.
+    fn accumulate(&mut self, before: &SystemState) {
+        if self.zeno.is_some() {
+            return;
+        }
+        let st = self.setup;
+        let scene = Scene {
+            members: &st.members,
+            planes: &st.planes,
+            candidates: &st.candidates,
+            gravity: st.options.gravity,
+            speed: self.speed,
+            length: self.length,
+        };
+        let closed: Vec<usize> = self.closed.iter().map(|h| h.k).collect();
+        let Some(jump) = accumulation(
+            &scene,
+            &self.impacts,
+            &self.trail,
+            before,
+            &self.s,
+            &closed,
+            st.options.duration - self.t,
+        ) else {
+            return;
+        };
+        self.s = jump.state;
+        self.t += jump.dt;
+        for &k in &jump.close {
+            let h = self.held(k);
+            self.closed.push(h);
+        }
+        let n = self.impacts.len();
+        let names: Vec<String> = jump.close.iter().map(|&k| self.name(k)).collect();
+        self.events.push(Event {
+            t: self.t,
+            what: format!(
+                "Zeno: the impacts accumulate here (rebound ratio {:.6}, after impact {n}), dissipating {:.6e} J; {} persist{}",
+                jump.ratio,
+                jump.dissipated,
+                names.join(", "),
+                if names.len() == 1 { "s" } else { "" }
+            ),
+        });
+        self.zeno = Some(Zeno {
+            t_inf: self.t,
+            after: n,
+            ratio: jump.ratio,
+            dissipated: jump.dissipated,
+        });
     }
 }
 
