@@ -60,6 +60,61 @@ fn bouncing_ball_meets_its_closed_forms_and_accumulates_at_three_seconds() {
     assert!((sim.state.x.z - 0.1).abs() <= 1e-9 && sim.state.v.norm() <= 1e-9);
 }
 
+/// A box (0.2 × 0.2 × 0.1 m) dropped flat from 0.05 m onto the floor, k = ½, g = 10: its four
+/// lower corners strike together, the n-th time at tₙ = 0.3 − 0.2/2ⁿ⁻¹ s leaving at 2⁻ⁿ m/s,
+/// and after the third the rest are summed as a ball's (the body does not turn; every corner
+/// rebounds at its centre's speed): t∞ = 0.25 + 2·(1/8)/(10·½) = 0.3 s, ½ m u₃² = 1/128 J
+/// dissipated there, all four corners persisting, and rest flat at z = 0.05 m. Under both laws
+/// that hold a face's four corners (the simultaneous law on a basis of its singular G, the
+/// unilateral law); times to 10⁻¹⁰ s (the events are located to 10⁻¹¹ of the length scale).
+#[test]
+fn a_box_dropped_flat_accumulates_on_its_four_corners() {
+    for law in [
+        Law::Simultaneous(Restitution::Newton),
+        Law::Unilateral(Restitution::Newton),
+    ] {
+        let mut s = parse(
+            "[body]\nshape = { box = [0.2, 0.2, 0.1] }\nmass = 1\nposition = [0, 0, 0.1]\n\
+             velocity = [0, 0, 0]\nangular_velocity = [0, 0, 0]\n\
+             [[obstacle]]\nname = \"floor\"\nnormal = [0, 0, 1]\n\
+             [simulate]\ngravity = [0, 0, -10]\nduration = 1\nlaw = \"simultaneous\"\n\
+             contact = { k = 0.5 }\n",
+        );
+        s.setup.law = law;
+        let sim = run(&s);
+        assert_eq!(sim.impacts.len(), 3, "{law:?}");
+        for (n, i) in sim.impacts.iter().enumerate() {
+            let t = 0.3 - 0.2 * 0.5f64.powi(n as i32);
+            assert!((i.t - t).abs() <= 1e-10, "{law:?} #{}: {}", n + 1, i.t);
+            assert_eq!(i.contacts.len(), 4);
+            for c in &i.contacts {
+                assert!((c.after - 0.5f64.powi(n as i32 + 1)).abs() <= 1e-9, "{c:?}");
+            }
+        }
+        let z = sim.zeno.as_ref().expect("the accumulation");
+        assert_eq!(z.after, 3);
+        assert!((z.t_inf - 0.3).abs() <= 1e-10, "{}", z.t_inf);
+        assert!(
+            (z.dissipated - 1.0 / 128.0).abs() <= 1e-12,
+            "{}",
+            z.dissipated
+        );
+        let persisting = sim
+            .events
+            .iter()
+            .find(|e| e.what.starts_with("Zeno"))
+            .expect("logged");
+        assert_eq!(
+            persisting.what.matches(" on floor").count(),
+            4,
+            "{}",
+            persisting.what
+        );
+        assert_eq!(sim.end, End::Rest);
+        assert!((sim.state.x.z - 0.05).abs() <= 1e-10, "{}", sim.state.x);
+    }
+}
+
 #[test]
 fn samples_inside_steps_lie_on_the_parabola() {
     // The samples every 0.01 s are read from the steps' continuous extension (the steps are

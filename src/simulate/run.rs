@@ -29,12 +29,13 @@
 //! gap whose normal velocity is below `rest_speed` stays closed (sticking where μ > 0 and its
 //! slip is below the same speed).
 //!
-//! **Zeno.** When the same single contact has been struck three times in a row by a body that
-//! does not turn, with its tangential velocity unchanged and rebound speeds in a constant ratio
-//! r < 1 (a bouncing ball: r = k), the remaining impacts accumulate in closed form: the next
+//! **Zeno.** When the same contacts on one plane (one, or the corners of a face landing flat)
+//! have been struck three times in a row by a body that does not turn, with its tangential
+//! velocity unchanged and rebound speeds in a constant ratio r < 1 (a bouncing ball: r = k),
+//! the remaining impacts accumulate in closed form: the next
 //! flight lasts 2u/g_n (u the rebound speed, g_n the gravity into the plane), and the sum of the
 //! geometric series gives t∞ = t + 2u/(g_n (1 − r)). The body is moved there (tangential motion
-//! ballistic, normal at zero gap and speed) and the contact persists; the log reports it.
+//! ballistic, normal at zero gap and speed) and the contacts persist; the log reports it.
 
 use super::body::{Body, State, V3};
 use super::contact::{Closed, ContactError, Mode, accelerations, derivative, project};
@@ -950,45 +951,67 @@ impl<'a> Run<'a> {
     /// The accumulation of impacts of a bouncing body (module docs).
     fn zeno(&mut self, w_before: V3, v_before: V3) {
         let n = self.impacts.len();
-        if n < 3 || self.zeno.is_some() || self.impacts[n - 1].contacts.len() != 1 {
+        if n < 3 || self.zeno.is_some() {
             return;
         }
         let last = &self.impacts[n - 3..];
-        let same = last.iter().all(|r| {
-            r.contacts.len() == 1
-                && r.contacts[0].feature == last[2].contacts[0].feature
-                && r.contacts[0].plane == last[2].contacts[0].plane
-        });
+        let struck = |r: &ImpactRecord| -> Vec<(String, String, bool)> {
+            r.contacts
+                .iter()
+                .map(|c| (c.feature.clone(), c.plane.clone(), c.persisting))
+                .collect()
+        };
+        let contacts = &last[2].contacts;
+        let same = !contacts.is_empty()
+            && last.iter().all(|r| struck(r) == struck(&last[2]))
+            && contacts
+                .iter()
+                .all(|c| !c.persisting && c.plane == contacts[0].plane);
         let turning = self.s.w.norm() * self.setup.body.reach() > 1e-12 * self.speed
             || w_before.norm() * self.setup.body.reach() > 1e-12 * self.speed;
         let Some(p) = self
             .setup
             .planes
             .iter()
-            .position(|p| p.name == last[2].contacts[0].plane)
+            .position(|p| p.name == contacts[0].plane)
         else {
             return;
         };
-        // a sphere on a frictionless plane: its spin changes neither its gap nor its impacts
-        let f = self
-            .setup
-            .body
-            .features
+        let features: Vec<usize> = contacts
             .iter()
-            .position(|f| f.label() == last[2].contacts[0].feature)
-            .unwrap_or(0);
+            .filter_map(|c| {
+                self.setup
+                    .body
+                    .features
+                    .iter()
+                    .position(|f| f.label() == c.feature)
+            })
+            .collect();
+        if !same || features.len() != contacts.len() {
+            return;
+        }
+        // a sphere on a frictionless plane: its spin changes neither its gap nor its impacts
         let spin_free = matches!(
-            self.setup.body.features[f],
+            self.setup.body.features[features[0]],
             super::body::Feature::Sphere { .. }
         ) && self.setup.planes[p].law.mu == 0.0;
         let turning = turning && !spin_free;
         let nn = self.setup.planes[p].normal;
         let dv = (self.s.v - v_before) - nn * nn.dot(&(self.s.v - v_before));
         let gn = -nn.dot(&self.setup.options.gravity);
-        if !same || turning || dv.norm() > 1e-12 * self.speed || gn <= 0.0 {
+        if turning || dv.norm() > 1e-12 * self.speed || gn <= 0.0 {
             return;
         }
-        let u: Vec<f64> = last.iter().map(|r| r.contacts[0].after).collect();
+        // every point of a body that does not turn rebounds at its centre's speed
+        let u: Vec<f64> = last
+            .iter()
+            .map(|r| {
+                r.contacts
+                    .iter()
+                    .map(|c| c.after)
+                    .fold(f64::NEG_INFINITY, f64::max)
+            })
+            .collect();
         let (r1, r2) = (u[1] / u[0], u[2] / u[1]);
         // a ratio within 10⁻⁹ of 1 is an elastic bounce (rounding), not an accumulation
         if !(r2 > 0.0 && r2 < 1.0 - 1e-9 && (r1 - r2).abs() <= 1e-9 * r2) {
@@ -1009,14 +1032,20 @@ impl<'a> Run<'a> {
         self.s.q = nalgebra::UnitQuaternion::from_scaled_axis(self.s.w * dt) * self.s.q;
         self.s.v = vt + gt * dt;
         self.t += dt;
-        let g = gap(&self.setup.body.features[f], &self.setup.planes[p], &self.s);
-        self.s.x -= nn * g.gap;
-        self.closed = vec![Closed {
-            feature: f,
-            plane: p,
-            mode: self.mode_of(f, p),
-            armed: true,
-        }];
+        let lowest = features
+            .iter()
+            .map(|&f| gap(&self.setup.body.features[f], &self.setup.planes[p], &self.s).gap)
+            .fold(f64::INFINITY, f64::min);
+        self.s.x -= nn * lowest;
+        self.closed = features
+            .iter()
+            .map(|&f| Closed {
+                feature: f,
+                plane: p,
+                mode: self.mode_of(f, p),
+                armed: true,
+            })
+            .collect();
         self.hint.clear();
         let dissipated = before - energy(&self.s);
         self.zeno = Some(Zeno {
@@ -1025,11 +1054,13 @@ impl<'a> Run<'a> {
             ratio: r2,
             dissipated,
         });
+        let names: Vec<String> = features.iter().map(|&f| self.name(f, p)).collect();
         self.events.push(Event {
             t: self.t,
             what: format!(
-                "Zeno: the impacts accumulate here (rebound ratio {r2:.6}, after impact {n}), dissipating {dissipated:.6e} J; {} persists",
-                self.name(f, p)
+                "Zeno: the impacts accumulate here (rebound ratio {r2:.6}, after impact {n}), dissipating {dissipated:.6e} J; {} persist{}",
+                names.join(", "),
+                if names.len() == 1 { "s" } else { "" }
             ),
         });
     }
