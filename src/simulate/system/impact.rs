@@ -31,12 +31,13 @@ use crate::impact::solve::{Impact, Outcome};
 use crate::mechanics::body::RigidBody;
 use crate::mechanics::contact::Contact;
 use crate::mechanics::screw::{Screw, Vec3};
-use crate::mechanics::system::{Pair, System, SystemBody, SystemScrew};
+use crate::mechanics::system::{Pair, System, SystemBody, SystemScrew, allowed};
 
 use super::super::body::V3;
 use super::super::impact::{ImpactError, Law, frictional, left_out_meets_law, list, verdict_name};
 use super::super::world::Plane;
 use super::gaps::{Candidate, Gap, gap};
+use super::joints::Link;
 use super::members::{Member, SystemState};
 
 /// What an impact gave.
@@ -68,8 +69,9 @@ pub fn system(
     candidates: &[Candidate],
     at: &[usize],
     s: &SystemState,
+    joints: &[Link],
 ) -> Result<System<f64>, ImpactError> {
-    let bodies = members
+    let bodies: Vec<SystemBody<f64>> = members
         .iter()
         .enumerate()
         .map(|(b, m)| {
@@ -131,7 +133,10 @@ pub fn system(
                 .with_friction(c.law.mu),
         );
     }
-    System::new(bodies, velocity, contacts, pairs, Vec::new())
+    let joints: Vec<_> = joints.iter().map(|j| j.at(s)).collect();
+    let velocity =
+        allowed(&bodies, &joints, &velocity).map_err(|e| ImpactError::Invalid(e.to_string()))?;
+    System::new(bodies, velocity, contacts, pairs, joints)
         .and_then(|sys| sys.with_lever_arms(levers))
         .map_err(|e| ImpactError::Invalid(e.to_string()))
 }
@@ -148,10 +153,11 @@ pub fn solve(
     candidates: &[Candidate],
     at: &[usize],
     s: &SystemState,
+    joints: &[Link],
     law: Law,
     tolerance: f64,
 ) -> Result<Rebound, ImpactError> {
-    let sys = system(members, planes, candidates, at, s)?;
+    let sys = system(members, planes, candidates, at, s, joints)?;
     let twists = |v: &SystemScrew<f64>| after(members, s, v);
     let model = |r: Restitution| match r {
         Restitution::Poisson => Model::Poisson,
@@ -198,7 +204,7 @@ pub fn solve(
             let model = model(r);
             let mut impact = Impact::assemble(&sys).map_err(|e| no(&e))?;
             if impact.singular() {
-                return on_basis(members, planes, candidates, at, s, model);
+                return on_basis(members, planes, candidates, at, s, joints, model);
             }
             let mut out = Outcome::default();
             impact.solve(model, &mut out).map_err(|e| no(&e))?;
@@ -274,6 +280,7 @@ fn on_basis(
     candidates: &[Candidate],
     at: &[usize],
     s: &SystemState,
+    joints: &[Link],
     model: Model,
 ) -> Result<Rebound, ImpactError> {
     let no = |e: &dyn std::fmt::Display| ImpactError::NoAnswer(e.to_string());
@@ -282,13 +289,13 @@ fn on_basis(
         let mut trial = basis.clone();
         trial.push(i);
         let sub: Vec<usize> = trial.iter().map(|&p| at[p]).collect();
-        let sys = system(members, planes, candidates, &sub, s)?;
+        let sys = system(members, planes, candidates, &sub, s, joints)?;
         if !Impact::assemble(&sys).map_err(|e| no(&e))?.singular() {
             basis = trial;
         }
     }
     let sub: Vec<usize> = basis.iter().map(|&p| at[p]).collect();
-    let sys = system(members, planes, candidates, &sub, s)?;
+    let sys = system(members, planes, candidates, &sub, s, joints)?;
     let mut reduced = Impact::assemble(&sys).map_err(|e| no(&e))?;
     let mut out = Outcome::default();
     reduced.solve(model, &mut out).map_err(|e| no(&e))?;
