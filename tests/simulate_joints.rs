@@ -74,9 +74,18 @@ fn a_compound_pendulum_keeps_the_exact_period() {
     let mut checked = 0;
     for s in &sim.samples {
         let e = s.kinetic + s.potential;
-        assert!((e - e0).abs() <= 1e-9 * m * G * d, "t = {}: E {e} vs {e0}", s.t);
+        assert!(
+            (e - e0).abs() <= 1e-9 * m * G * d,
+            "t = {}: E {e} vs {e0}",
+            s.t
+        );
         let pivot = s.state.x[0] + s.state.rotation(0) * V3::new(-0.5, 0.0, 0.0);
-        assert!(pivot.norm() <= 1e-9, "t = {}: anchor off by {}", s.t, pivot.norm());
+        assert!(
+            pivot.norm() <= 1e-9,
+            "t = {}: anchor off by {}",
+            s.t,
+            pivot.norm()
+        );
         let eighths = s.t / (period / 8.0);
         let n = eighths.round();
         if (eighths - n).abs() > 1e-6 || n == 0.0 {
@@ -85,14 +94,22 @@ fn a_compound_pendulum_keeps_the_exact_period() {
         let (th, w) = (angle(s), s.state.w[0].z);
         match n as i64 % 4 {
             0 => {
-                let want = if (n as i64 / 4) % 2 == 1 { -theta0 } else { theta0 };
+                let want = if (n as i64 / 4) % 2 == 1 {
+                    -theta0
+                } else {
+                    theta0
+                };
                 assert!((th - want).abs() <= 1e-8, "t = {}: θ {th} vs {want}", s.t);
                 assert!(w.abs() <= 1e-8, "t = {}: θ̇ {w} at a turning point", s.t);
             }
             2 => {
                 let speed = (2.0 * m * G * d * (1.0 - theta0.cos()) / io).sqrt();
                 assert!(th.abs() <= 1e-8, "t = {}: θ {th} at the bottom", s.t);
-                assert!((w.abs() - speed).abs() <= 1e-8, "t = {}: θ̇ {w} vs {speed}", s.t);
+                assert!(
+                    (w.abs() - speed).abs() <= 1e-8,
+                    "t = {}: θ̇ {w} vs {speed}",
+                    s.t
+                );
             }
             _ => continue,
         }
@@ -179,7 +196,11 @@ fn two_hinged_boxes_spinning_in_space_conserve_momentum_and_angular_momentum() {
             let st = &s.state;
             let pa = st.x[0] + st.rotation(0) * (p - x1);
             let pb = st.x[1] + st.rotation(1) * (p - x2);
-            assert!((pa - pb).norm() <= 1e-9, "{kind} t = {}: anchors {pa} {pb}", s.t);
+            assert!(
+                (pa - pb).norm() <= 1e-9,
+                "{kind} t = {}: anchors {pa} {pb}",
+                s.t
+            );
             if kind == "revolute" {
                 let (ua, ub) = (st.rotation(0) * axis, st.rotation(1) * axis);
                 assert!(ua.cross(&ub).norm() <= 1e-9, "{kind} t = {}: axes", s.t);
@@ -343,7 +364,10 @@ fn a_pendulum_striking_a_wall_rebounds_at_minus_k_its_angular_velocity() {
         before.z,
         after.z
     );
-    assert!(after.xy().norm() <= 1e-9 * before.z, "ω off the hinge: {after}");
+    assert!(
+        after.xy().norm() <= 1e-9 * before.z,
+        "ω off the hinge: {after}"
+    );
     assert!((i.contacts[0].after + 0.5 * i.contacts[0].before).abs() <= 1e-9);
 }
 
@@ -371,7 +395,12 @@ fn a_box_on_an_inclined_prismatic_joint_slides_at_g_sin_the_slope() {
             s.t,
             s.state.x[0]
         );
-        assert!(s.state.w[0].norm() <= 1e-9, "t = {}: it turns, {}", s.t, s.state.w[0]);
+        assert!(
+            s.state.w[0].norm() <= 1e-9,
+            "t = {}: it turns, {}",
+            s.t,
+            s.state.w[0]
+        );
     }
 }
 

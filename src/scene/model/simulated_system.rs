@@ -18,6 +18,12 @@
 //! stiffness = 1e9
 //! ```
 //!
+//! `[[joint]]` tables hold bodies together (or one to the ground), read as an impact scene's
+//! ([`super::system`]: `kind`, `bodies`, `anchor`, `axis`, in the world at t = 0) and carried by
+//! their bodies from there ([`crate::simulate::system::joints`]); the velocities at t = 0 must be
+//! ones each joint allows, no contact is watched between two bodies a joint holds, and a sphere
+//! a joint holds turns (the joint's reaction has a moment about its centre).
+//!
 //! `stiffness = "hertz"` takes K = (4/3) E* √R* from the two sides' radii and materials
 //! ([`super::hertz`]; η = 3/2) where both sides are curved or flat: a sphere on a sphere, a
 //! plane or a box's face — a box's corner has no radius, and its contacts need a number.
@@ -32,15 +38,15 @@ use super::super::read::{Reader, short};
 use super::hertz::{Material, Surface, hertz_stiffness};
 use super::shape::Shape;
 use super::simulation::SIMULATE_KEYS;
-use super::term::Term;
-use crate::simulate::body::{Body, Feature, Shape as SimShape, V3};
-use crate::simulate::system::gaps::gap;
-use crate::simulate::system::overlap::deepest;
 use super::system::SystemJointKind;
+use super::term::Term;
 use crate::mechanics::constraint::Joint;
 use crate::mechanics::screw::Vec3;
 use crate::number::Number;
+use crate::simulate::body::{Body, Feature, Shape as SimShape, V3};
+use crate::simulate::system::gaps::gap;
 use crate::simulate::system::joints::rate as joint_rate;
+use crate::simulate::system::overlap::deepest;
 use crate::simulate::system::{Link, Member, SystemSetup, SystemState, Touch};
 use crate::simulate::world::{ContactLaw, Plane};
 use nalgebra::{Matrix3, Rotation3, UnitQuaternion};
@@ -436,8 +442,9 @@ impl Reader<'_> {
         let names: Vec<String> = members.iter().map(|m| m.name.clone()).collect();
         let specs = self.joints(root, &names)?;
         let vector = |t: &Option<[Number; 3]>| {
-            t.as_ref()
-                .map_or_else(Vec3::zeros, |t| Vec3::new(t[0].approx, t[1].approx, t[2].approx))
+            t.as_ref().map_or_else(Vec3::zeros, |t| {
+                Vec3::new(t[0].approx, t[1].approx, t[2].approx)
+            })
         };
         let mut links = Vec::with_capacity(specs.len());
         for spec in &specs {

@@ -879,7 +879,11 @@ impl Reader<'_> {
     }
 
     /// The `[[joint]]` tables (a simulated system's too: [`super::simulated_system`]).
-    pub(crate) fn joints(&self, root: &Table, names: &[String]) -> Result<Vec<SystemJointSpec>, SceneError> {
+    pub(crate) fn joints(
+        &self,
+        root: &Table,
+        names: &[String],
+    ) -> Result<Vec<SystemJointSpec>, SceneError> {
         let tables = match root.get("joint") {
             None => return Ok(Vec::new()),
             Some(Item::ArrayOfTables(a)) => a,

@@ -11,7 +11,13 @@
 //! | either, with friction, or the energetic restitution law | [`solve_frictional_under`] over the system (§14, impulse space) |
 //! | LZB (with each contact's μ) | [`solve_lzb`] over the system ([`crate::impact::mechanism::Mechanism`]) |
 //!
-//! Every member of the system is a body of the impact problem (one not touched takes no
+//! The system's joints are the impact problem's ([`super::joints::Link::at`]: the anchor and the
+//! axis where the first member carries them), and the twist before impact is first projected
+//! onto what they allow in the impact layer's own rows
+//! ([`crate::mechanics::system::allowed`]: the simulation holds it on its rows only to
+//! rounding, and the impact layer takes a blocked rate as zero only within the rounding of its
+//! own); the joints' reactions enter every impulse. Every member of the system is a body of the
+//! impact problem (one not touched takes no
 //! impulse); the spin of a sphere that does not turn is set to zero (frictionless contacts
 //! through its centre neither see nor change it, [`super::members`]); a box's inertia is its
 //! world tensor R J Rᵀ.

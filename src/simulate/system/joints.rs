@@ -449,3 +449,79 @@ pub fn rate(links: &[Link], members: &[Member], s: &SystemState) -> f64 {
         })
         .fold(0.0, f64::max)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Two members at a general pose, moving with given (v, ω) and accelerating at given
+    /// (a, α): each row's C along that motion — x(h) = x + v h + ½ a h², R(h) = exp(ω h + ½ α h²)
+    /// R, whose second derivative at 0 is ([α]× + [ω]×²) R as a rigid body's — has
+    /// Ċ = J (v, ω) and C̈ = J (a, α) + c (J1–J3), against central differences (h = 10⁻⁴: the
+    /// truncation h² C⁗/12 and the rounding ε C/h² both below 10⁻⁶ of the terms).
+    #[test]
+    fn rows_are_the_derivatives_of_their_constraints() {
+        let x = vec![V3::new(0.1, -0.2, 0.3), V3::new(0.7, 0.4, -0.1)];
+        let q = vec![
+            UnitQuaternion::from_scaled_axis(V3::new(0.3, -0.4, 0.5)),
+            UnitQuaternion::from_scaled_axis(V3::new(-0.6, 0.2, 0.1)),
+        ];
+        let v = vec![V3::new(0.5, -1.0, 0.2), V3::new(-0.3, 0.8, 1.1)];
+        let w = vec![V3::new(1.5, -0.7, 2.0), V3::new(-0.4, 1.2, 0.9)];
+        let a = [V3::new(0.2, 0.3, -9.8), V3::new(1.0, -2.0, 0.5)];
+        let alpha = [V3::new(3.0, -1.0, 0.5), V3::new(-2.0, 0.7, 1.5)];
+        let s0 = SystemState { x, v, q, w };
+        let at = |h: f64| -> SystemState {
+            let mut s = s0.clone();
+            for b in 0..2 {
+                s.x[b] += s0.v[b] * h + a[b] * (0.5 * h * h);
+                s.q[b] = UnitQuaternion::from_scaled_axis(s0.w[b] * h + alpha[b] * (0.5 * h * h))
+                    * s0.q[b];
+            }
+            s
+        };
+        let point = Vec3::new(0.4, 0.1, 0.1);
+        let axis = Vec3::new(1.0, 2.0, -0.5);
+        let joints = [
+            Joint::Fixed { point },
+            Joint::Prismatic { axis },
+            Joint::Planar { normal: axis },
+            Joint::Cylindrical { point, axis },
+        ];
+        for joint in joints {
+            for second in [Some(1), None] {
+                let pair = Pair { first: 0, second };
+                let link = Link::new(joint.clone(), pair, &s0);
+                let here = rows(std::slice::from_ref(&link), &s0);
+                let h = 1e-4;
+                let (plus, minus) = (
+                    rows(std::slice::from_ref(&link), &at(h)),
+                    rows(std::slice::from_ref(&link), &at(-h)),
+                );
+                for (k, r) in here.iter().enumerate() {
+                    let apply = |v: &[V3], w: &[V3]| -> f64 {
+                        r.entries
+                            .iter()
+                            .map(|(b, l, an)| l.dot(&v[*b]) + an.dot(&w[*b]))
+                            .sum()
+                    };
+                    let rate = (plus[k].value - minus[k].value) / (2.0 * h);
+                    let second_rate = (plus[k].value - 2.0 * r.value + minus[k].value) / (h * h);
+                    let jv = apply(&s0.v, &s0.w);
+                    let ja = apply(&a, &alpha) + r.bias;
+                    let scale = 1.0 + jv.abs() + ja.abs();
+                    let name = joint.name();
+                    assert!(r.value.abs() < 1e-15, "{name} row {k}: C = {}", r.value);
+                    assert!(
+                        (rate - jv).abs() < 1e-6 * scale,
+                        "{name} {second:?} row {k}: Ċ {rate} vs J v {jv}"
+                    );
+                    assert!(
+                        (second_rate - ja).abs() < 1e-6 * scale,
+                        "{name} {second:?} row {k}: C̈ {second_rate} vs J a + c {ja}"
+                    );
+                }
+            }
+        }
+    }
+}

@@ -32,6 +32,12 @@
 //! and a sticking contact whose force leaves its cone starts to slide
 //! ([`ContactError::Slips`]). W is then not symmetric, and Lemke's method is not used.
 //!
+//! **Joints.** Where joints hold the members ([`super::joints`]), the free accelerations a⁰ are
+//! first projected onto them (a⁰_c, Gauss's principle), every entry of W is that of the
+//! jointed system's mobility W_c = M⁻¹ − M⁻¹ Hᵀ K⁺ H M⁻¹ (less z_dᵀ K⁺ z_e), the bias is
+//! J a⁰_c + c, and the accelerations found are projected once more (the contacts' forces
+//! answered through W_c) — both solvers above unchanged, on that W and bias.
+//!
 //! A closed contact stays closed while its g̈ is not positive beyond 10⁻⁹ of the scale of the
 //! accelerations: one that neither presses nor separates (λ = 0, g̈ = 0: the inner contacts of
 //! a column falling as one) persists, so that the impact that ends the fall strikes every one
@@ -194,7 +200,15 @@ pub fn accelerations(
         f.project(&mut a, &mut alpha, true);
     }
     let ks: Vec<usize> = closed.iter().map(|h| h.k).collect();
-    let (w, gaps) = rows(members, planes, candidates, &ks, s, &inverse, frozen.as_ref());
+    let (w, gaps) = rows(
+        members,
+        planes,
+        candidates,
+        &ks,
+        s,
+        &inverse,
+        frozen.as_ref(),
+    );
     let scale = gravity.norm() + gaps.iter().fold(0.0, |m: f64, g| m.max(g.curvature.abs()));
     if closed.is_empty() {
         return Ok(Accelerations {

@@ -9,9 +9,10 @@
 //! member that turns); the steps are held to the relative `tolerance` on the scales of the
 //! motion (the largest reach or gap for positions, the speed scale for velocities, 1 for the
 //! quaternions' components, the speed scale over the member's reach for ω). Ballistic flight
-//! is a quadratic in t, which the fifth-order step reproduces to rounding. Closed contacts are
-//! projected back onto their constraints after every step ([`super::persist::project`]); the
-//! largest gap so corrected is reported as the drift.
+//! is a quadratic in t, which the fifth-order step reproduces to rounding. Joints and closed
+//! contacts are projected back onto their constraints after every step
+//! ([`super::persist::project`], [`super::joints::hold`]); the largest gap or joint offset so
+//! corrected is reported as the drift.
 //!
 //! **Events.** No step may cross an open gap: with M a bound on |g̈| over the step (twice
 //! |a_b| for a sphere on a plane; twice |a_a| + |a_b| + |u|²/|d| for a pair; otherwise twice
@@ -697,9 +698,8 @@ impl<'a> Run<'a> {
             let joined = |a, b| st.joined(a, b);
             if deepest(&st.members, &self.s, tol, joined).is_some() {
                 // where they first overlap: the step's continuous extension, bisected
-                let at = |t: f64| {
-                    deepest(&st.members, &SystemState::unpack(&dense.at(t)), tol, joined)
-                };
+                let at =
+                    |t: f64| deepest(&st.members, &SystemState::unpack(&dense.at(t)), tol, joined);
                 let (mut lo, mut hi) = (t0, t1);
                 while hi - lo > 1e-12 * hi.abs().max(1.0) {
                     let mid = 0.5 * (lo + hi);
