@@ -277,8 +277,7 @@ contact = { k = 0.2 }
     let after = sim
         .samples
         .iter()
-        .filter(|s| s.t == 0.0)
-        .last()
+        .rfind(|s| s.t == 0.0)
         .expect("the sample after the first impact");
 
     // The impact scene, heel and toe at k = 1/5.

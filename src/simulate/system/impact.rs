@@ -153,6 +153,7 @@ pub fn system(
 /// # Errors
 /// [`ImpactError`]: the problem refused, or no answer under the law (energetic restitution is
 /// refused under the unilateral law, as for one body).
+#[allow(clippy::too_many_arguments)] // the system's parts, one by one as this folder passes them
 pub fn solve(
     members: &[Member],
     planes: &[Plane],

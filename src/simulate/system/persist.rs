@@ -169,6 +169,7 @@ fn normal_row(g: &Gap) -> Vec<(usize, V3, V3)> {
 /// no subset of pressing contacts is consistent, Painlevé-like); [`ContactError::Slips`] when
 /// a sticking contact needs more friction than its cone holds; [`ContactError::TooMany`] past
 /// [`MAX_CONTACTS`] closed contacts with one of them rough.
+#[allow(clippy::too_many_arguments)] // the system's parts, one by one as this folder passes them
 pub fn accelerations(
     members: &[Member],
     planes: &[Plane],
