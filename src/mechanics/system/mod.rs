@@ -42,6 +42,35 @@ pub(crate) use articulated::{Articulated, ResponseScratch};
 use mobility::{JointRows, Row, free_response};
 pub use screw::{SystemScrew, about};
 
+/// The twist `velocity` of `bodies` brought onto the twists `joints` allow: its projection in
+/// the kinetic metric, W [M] {V} = {V} − W₀ H K⁺ Hᵀ η {V} ([`mobility`]). For a caller whose
+/// twist meets the joints only to its own rounding — a simulation's state, held on them by
+/// projections in its own rows ([`crate::simulate::system::joints`]) — which [`System::new`]
+/// would refuse in floats: it takes a blocked rate as zero only within the rounding of the
+/// impact layer's own rows.
+///
+/// # Errors
+/// [`NotSemidefinite`]: K not positive semidefinite (rounding; cannot happen exactly).
+pub fn allowed<T: Scalar>(
+    bodies: &[SystemBody<T>],
+    joints: &[SystemJoint<T>],
+    velocity: &SystemScrew<T>,
+) -> Result<SystemScrew<T>, NotSemidefinite> {
+    if joints.is_empty() {
+        return Ok(velocity.clone());
+    }
+    let screws = JointScrews::new(joints);
+    let rows = JointRows::new(bodies, joints, &screws, false)?;
+    let momentum = SystemScrew(
+        bodies
+            .iter()
+            .zip(&velocity.0)
+            .map(|(b, v)| b.body.momentum(v))
+            .collect(),
+    );
+    Ok(rows.response(bodies, &momentum))
+}
+
 /// One body of a system: its mass and central inertia (world axes) and where its centre of
 /// mass is (world).
 #[derive(Clone, Debug, PartialEq)]

@@ -18,6 +18,12 @@
 //! stiffness = 1e9
 //! ```
 //!
+//! `[[joint]]` tables hold bodies together (or one to the ground), read as an impact scene's
+//! ([`super::system`]: `kind`, `bodies`, `anchor`, `axis`, in the world at t = 0) and carried by
+//! their bodies from there ([`crate::simulate::system::joints`]); the velocities at t = 0 must be
+//! ones each joint allows, no contact is watched between two bodies a joint holds, and a sphere
+//! a joint holds turns (the joint's reaction has a moment about its centre).
+//!
 //! `stiffness = "hertz"` takes K = (4/3) E* √R* from the two sides' radii and materials
 //! ([`super::hertz`]; η = 3/2) where both sides are curved or flat: a sphere on a sphere, a
 //! plane or a box's face — a box's corner has no radius, and its contacts need a number.
@@ -32,11 +38,16 @@ use super::super::read::{Reader, short};
 use super::hertz::{Material, Surface, hertz_stiffness};
 use super::shape::Shape;
 use super::simulation::SIMULATE_KEYS;
+use super::system::SystemJointKind;
 use super::term::Term;
+use crate::mechanics::constraint::Joint;
+use crate::mechanics::screw::Vec3;
+use crate::number::Number;
 use crate::simulate::body::{Body, Feature, Shape as SimShape, V3};
 use crate::simulate::system::gaps::gap;
+use crate::simulate::system::joints::rate as joint_rate;
 use crate::simulate::system::overlap::deepest;
-use crate::simulate::system::{Member, SystemSetup, SystemState, Touch};
+use crate::simulate::system::{Link, Member, SystemSetup, SystemState, Touch};
 use crate::simulate::world::{ContactLaw, Plane};
 use nalgebra::{Matrix3, Rotation3, UnitQuaternion};
 
@@ -58,13 +69,13 @@ impl Reader<'_> {
                  pair of bodies, are watched; give their law in [simulate] contact",
             ));
         }
-        for key in ["solve", "joint", "constraints", "surface"] {
+        for key in ["solve", "constraints", "surface"] {
             if let Some(item) = root.get(key) {
                 return Err(self.err(
                     key,
                     Some(short(item)),
-                    "`simulate` reads its law and options from [simulate]; joints, constraints \
-                     and surfaces are not simulated",
+                    "`simulate` reads its law and options from [simulate]; a system's joints are \
+                     [[joint]] tables, and one body's constraints and surfaces are not simulated",
                 ));
             }
         }
@@ -242,6 +253,7 @@ impl Reader<'_> {
             }
         }
         let start = SystemState { x, v, q, w };
+        let links = self.links(root, &mut members, &start)?;
         let mut failure: Option<SceneError> = None;
         // a side's surface for Hertz's law: a sphere's, or none (a box's corner)
         let surface = |m: usize, f: usize| match members[m].body.features[f] {
@@ -354,6 +366,13 @@ impl Reader<'_> {
         if let Some(e) = failure {
             return Err(e);
         }
+        // no contact is watched between two members a joint holds together
+        let joined = |a: usize, b: usize| links.iter().any(|l| l.joins(a, b));
+        let mut candidates = candidates;
+        candidates.retain(|c| match c.touch {
+            Touch::Pair { a, b } | Touch::Face { a, b, .. } => !joined(a, b),
+            Touch::Plane { .. } => true,
+        });
         // a sphere a rough contact touches turns (its spin integrated)
         for c in candidates.iter().filter(|c| c.law.mu > 0.0) {
             for (b, _) in c.touch.bodies() {
@@ -381,7 +400,7 @@ impl Reader<'_> {
                 return Err(inside(&a, &b, -g.gap));
             }
         }
-        if let Some((a, b, depth)) = deepest(&members, &start, 1e-9 * length) {
+        if let Some((a, b, depth)) = deepest(&members, &start, 1e-9 * length, joined) {
             return Err(inside(&members[a].name, &members[b].name, depth));
         }
         let fastest = (0..members.len())
@@ -399,10 +418,69 @@ impl Reader<'_> {
             members,
             planes,
             candidates,
+            joints: links,
             law,
             start,
             options,
         })
+    }
+
+    /// The `[[joint]]` tables of a system to simulate, read as for one impact
+    /// ([`Reader::joints`]; anchor and axis in the world at t = 0), each carried by its members
+    /// from there; every member a joint holds turns (its spin integrated: the joint's reaction
+    /// has a moment about its centre).
+    ///
+    /// # Errors
+    /// As [`Reader::joints`]; and where the velocities at t = 0 move a joint's members along a
+    /// motion it blocks (the rate beyond 10⁻⁹ of the fastest point's speed).
+    fn links(
+        &self,
+        root: &Table,
+        members: &mut [Member],
+        start: &SystemState,
+    ) -> Result<Vec<Link>, SceneError> {
+        let names: Vec<String> = members.iter().map(|m| m.name.clone()).collect();
+        let specs = self.joints(root, &names)?;
+        let vector = |t: &Option<[Number; 3]>| {
+            t.as_ref().map_or_else(Vec3::zeros, |t| {
+                Vec3::new(t[0].approx, t[1].approx, t[2].approx)
+            })
+        };
+        let mut links = Vec::with_capacity(specs.len());
+        for spec in &specs {
+            let (point, axis) = (vector(&spec.anchor), vector(&spec.axis));
+            let joint = match spec.kind {
+                SystemJointKind::Revolute => Joint::Revolute { point, axis },
+                SystemJointKind::Prismatic => Joint::Prismatic { axis },
+                SystemJointKind::Cylindrical => Joint::Cylindrical { point, axis },
+                SystemJointKind::Spherical => Joint::Spherical { point },
+                SystemJointKind::Planar => Joint::Planar { normal: axis },
+                SystemJointKind::Fixed => Joint::Fixed { point },
+            };
+            for b in std::iter::once(spec.pair.first).chain(spec.pair.second) {
+                members[b].spins = true;
+            }
+            links.push(Link::new(joint, spec.pair, start));
+        }
+        let fastest = (0..members.len())
+            .map(|b| start.v[b].norm() + start.w[b].norm() * members[b].body.reach())
+            .fold(0.0, f64::max);
+        for (j, l) in links.iter().enumerate() {
+            let rate = joint_rate(std::slice::from_ref(l), members, start);
+            if rate > 1e-9 * fastest {
+                return Err(self.err(
+                    &format!("joint[{j}]"),
+                    None,
+                    format!(
+                        "the velocities at t = 0 move the members of this {} joint along a \
+                         motion it blocks (at {rate:.6e} m/s): give each body the velocity and \
+                         angular velocity the joint allows",
+                        l.joint.name()
+                    ),
+                ));
+            }
+        }
+        Ok(links)
     }
 
     /// A contact law table whose `stiffness` may be `"hertz"`, over `base`.

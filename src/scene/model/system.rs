@@ -878,8 +878,12 @@ impl Reader<'_> {
         Ok(())
     }
 
-    /// The `[[joint]]` tables.
-    fn joints(&self, root: &Table, names: &[String]) -> Result<Vec<SystemJointSpec>, SceneError> {
+    /// The `[[joint]]` tables (a simulated system's too: [`super::simulated_system`]).
+    pub(crate) fn joints(
+        &self,
+        root: &Table,
+        names: &[String],
+    ) -> Result<Vec<SystemJointSpec>, SceneError> {
         let tables = match root.get("joint") {
             None => return Ok(Vec::new()),
             Some(Item::ArrayOfTables(a)) => a,

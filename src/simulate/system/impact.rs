@@ -11,7 +11,13 @@
 //! | either, with friction, or the energetic restitution law | [`solve_frictional_under`] over the system (§14, impulse space) |
 //! | LZB (with each contact's μ) | [`solve_lzb`] over the system ([`crate::impact::mechanism::Mechanism`]) |
 //!
-//! Every member of the system is a body of the impact problem (one not touched takes no
+//! The system's joints are the impact problem's ([`super::joints::Link::at`]: the anchor and the
+//! axis where the first member carries them), and the twist before impact is first projected
+//! onto what they allow in the impact layer's own rows
+//! ([`crate::mechanics::system::allowed`]: the simulation holds it on its rows only to
+//! rounding, and the impact layer takes a blocked rate as zero only within the rounding of its
+//! own); the joints' reactions enter every impulse. Every member of the system is a body of the
+//! impact problem (one not touched takes no
 //! impulse); the spin of a sphere that does not turn is set to zero (frictionless contacts
 //! through its centre neither see nor change it, [`super::members`]); a box's inertia is its
 //! world tensor R J Rᵀ.
@@ -31,12 +37,13 @@ use crate::impact::solve::{Impact, Outcome};
 use crate::mechanics::body::RigidBody;
 use crate::mechanics::contact::Contact;
 use crate::mechanics::screw::{Screw, Vec3};
-use crate::mechanics::system::{Pair, System, SystemBody, SystemScrew};
+use crate::mechanics::system::{Pair, System, SystemBody, SystemScrew, allowed};
 
 use super::super::body::V3;
 use super::super::impact::{ImpactError, Law, frictional, left_out_meets_law, list, verdict_name};
 use super::super::world::Plane;
 use super::gaps::{Candidate, Gap, gap};
+use super::joints::Link;
 use super::members::{Member, SystemState};
 
 /// What an impact gave.
@@ -68,8 +75,9 @@ pub fn system(
     candidates: &[Candidate],
     at: &[usize],
     s: &SystemState,
+    joints: &[Link],
 ) -> Result<System<f64>, ImpactError> {
-    let bodies = members
+    let bodies: Vec<SystemBody<f64>> = members
         .iter()
         .enumerate()
         .map(|(b, m)| {
@@ -131,7 +139,10 @@ pub fn system(
                 .with_friction(c.law.mu),
         );
     }
-    System::new(bodies, velocity, contacts, pairs, Vec::new())
+    let joints: Vec<_> = joints.iter().map(|j| j.at(s)).collect();
+    let velocity =
+        allowed(&bodies, &joints, &velocity).map_err(|e| ImpactError::Invalid(e.to_string()))?;
+    System::new(bodies, velocity, contacts, pairs, joints)
         .and_then(|sys| sys.with_lever_arms(levers))
         .map_err(|e| ImpactError::Invalid(e.to_string()))
 }
@@ -142,16 +153,18 @@ pub fn system(
 /// # Errors
 /// [`ImpactError`]: the problem refused, or no answer under the law (energetic restitution is
 /// refused under the unilateral law, as for one body).
+#[allow(clippy::too_many_arguments)] // the system's parts, one by one as this folder passes them
 pub fn solve(
     members: &[Member],
     planes: &[Plane],
     candidates: &[Candidate],
     at: &[usize],
     s: &SystemState,
+    joints: &[Link],
     law: Law,
     tolerance: f64,
 ) -> Result<Rebound, ImpactError> {
-    let sys = system(members, planes, candidates, at, s)?;
+    let sys = system(members, planes, candidates, at, s, joints)?;
     let twists = |v: &SystemScrew<f64>| after(members, s, v);
     let model = |r: Restitution| match r {
         Restitution::Poisson => Model::Poisson,
@@ -198,7 +211,7 @@ pub fn solve(
             let model = model(r);
             let mut impact = Impact::assemble(&sys).map_err(|e| no(&e))?;
             if impact.singular() {
-                return on_basis(members, planes, candidates, at, s, model);
+                return on_basis(members, planes, candidates, at, s, joints, model);
             }
             let mut out = Outcome::default();
             impact.solve(model, &mut out).map_err(|e| no(&e))?;
@@ -274,6 +287,7 @@ fn on_basis(
     candidates: &[Candidate],
     at: &[usize],
     s: &SystemState,
+    joints: &[Link],
     model: Model,
 ) -> Result<Rebound, ImpactError> {
     let no = |e: &dyn std::fmt::Display| ImpactError::NoAnswer(e.to_string());
@@ -282,13 +296,13 @@ fn on_basis(
         let mut trial = basis.clone();
         trial.push(i);
         let sub: Vec<usize> = trial.iter().map(|&p| at[p]).collect();
-        let sys = system(members, planes, candidates, &sub, s)?;
+        let sys = system(members, planes, candidates, &sub, s, joints)?;
         if !Impact::assemble(&sys).map_err(|e| no(&e))?.singular() {
             basis = trial;
         }
     }
     let sub: Vec<usize> = basis.iter().map(|&p| at[p]).collect();
-    let sys = system(members, planes, candidates, &sub, s)?;
+    let sys = system(members, planes, candidates, &sub, s, joints)?;
     let mut reduced = Impact::assemble(&sys).map_err(|e| no(&e))?;
     let mut out = Outcome::default();
     reduced.solve(model, &mut out).map_err(|e| no(&e))?;

@@ -13,7 +13,12 @@
 //! ([`super::run`]); each impact is a [`crate::mechanics::system::System`] solved by the
 //! impact layer, never here.
 //!
+//! Members may be held by joints (`[[joint]]`: revolute, spherical, …), bilateral constraints
+//! eliminated from the flight's accelerations and held against drift ([`joints`]), and passed
+//! to the impact layer at every impact.
+//!
 //! [`members`]: the bodies and their state · [`gaps`]: the contacts and their gap functions ·
+//! [`joints`]: the joints' rows, their elimination and projection ·
 //! [`persist`]: persistent contact, the acceleration-level LCP with W = J M⁻¹ Jᵀ ·
 //! [`impact`]: one impact as a system's · [`overlap`]: the check that no unwatched contact
 //! (a box's edge on another's) lets two bodies pass through each other · [`zeno`]: the
@@ -21,6 +26,7 @@
 
 pub mod gaps;
 pub mod impact;
+pub mod joints;
 pub mod members;
 pub mod overlap;
 pub mod persist;
@@ -28,5 +34,6 @@ pub mod run;
 pub mod zeno;
 
 pub use gaps::{Candidate, Touch};
+pub use joints::Link;
 pub use members::{Member, SystemState};
 pub use run::{SystemSample, SystemSetup, SystemSimulation, after_first_impact, simulate_system};

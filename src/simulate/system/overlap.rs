@@ -63,11 +63,18 @@ pub fn sphere_box(c: &V3, r: f64, xb: &V3, rb: &Matrix3<f64>, hb: &V3) -> f64 {
     }
 }
 
-/// The deepest overlap of two members at `s` beyond `tolerance` (m), as (a, b, depth).
-pub fn deepest(members: &[Member], s: &SystemState, tolerance: f64) -> Option<(usize, usize, f64)> {
+/// The deepest overlap of two members at `s` beyond `tolerance` (m), as (a, b, depth); the
+/// pairs `joined` holds together (a joint's members, which may overlap at their hinge) left
+/// out.
+pub fn deepest(
+    members: &[Member],
+    s: &SystemState,
+    tolerance: f64,
+    joined: impl Fn(usize, usize) -> bool,
+) -> Option<(usize, usize, f64)> {
     let mut worst: Option<(usize, usize, f64)> = None;
     for a in 0..members.len() {
-        for b in a + 1..members.len() {
+        for b in (a + 1..members.len()).filter(|&b| !joined(a, b)) {
             let separation = match (&members[a].body.shape, &members[b].body.shape) {
                 (Shape::Box { half: ha }, Shape::Box { half: hb }) => {
                     boxes(&s.x[a], &s.rotation(a), ha, &s.x[b], &s.rotation(b), hb)

@@ -32,6 +32,12 @@
 //! and a sticking contact whose force leaves its cone starts to slide
 //! ([`ContactError::Slips`]). W is then not symmetric, and Lemke's method is not used.
 //!
+//! **Joints.** Where joints hold the members ([`super::joints`]), the free accelerations a⁰ are
+//! first projected onto them (a⁰_c, Gauss's principle), every entry of W is that of the
+//! jointed system's mobility W_c = M⁻¹ − M⁻¹ Hᵀ K⁺ H M⁻¹ (less z_dᵀ K⁺ z_e), the bias is
+//! J a⁰_c + c, and the accelerations found are projected once more (the contacts' forces
+//! answered through W_c) — both solvers above unchanged, on that W and bias.
+//!
 //! A closed contact stays closed while its g̈ is not positive beyond 10⁻⁹ of the scale of the
 //! accelerations: one that neither presses nor separates (λ = 0, g̈ = 0: the inner contacts of
 //! a column falling as one) persists, so that the impact that ends the fall strikes every one
@@ -43,6 +49,7 @@ use super::super::body::V3;
 use super::super::contact::{ContactError, Layout, MAX_CONTACTS, Mode, decide, tangents};
 use super::super::world::Plane;
 use super::gaps::{Candidate, Gap, gap};
+use super::joints::{Frozen, Link, hold, settle};
 use super::members::{Member, SystemState};
 use crate::linalg::lcp::{Lcp, lemke};
 
@@ -107,6 +114,7 @@ fn rows(
     closed: &[usize],
     s: &SystemState,
     inverse: &[Option<Matrix3<f64>>],
+    joints: Option<&Frozen>,
 ) -> (DMatrix<f64>, Vec<Gap>) {
     let gaps: Vec<Gap> = closed
         .iter()
@@ -128,7 +136,28 @@ fn rows(
         }
         sum
     });
+    let w = match joints {
+        None => w,
+        Some(f) => {
+            let z: Vec<DVector<f64>> = gaps.iter().map(|g| f.z(&normal_row(g))).collect();
+            DMatrix::from_fn(n, n, |p, q| w[(p, q)] - f.coupling(&z[p], &z[q]))
+        }
+    };
     (w, gaps)
+}
+
+/// The row of the contact of gap `g` along d, as the joints take it: σ [d; r × d] per side.
+fn row_along(g: &Gap, d: &V3) -> Vec<(usize, V3, V3)> {
+    g.sides()
+        .map(|i| (i.body, d * i.sign, i.arm.cross(d) * i.sign))
+        .collect()
+}
+
+/// The normal row σ [n; r × n] of the contact of gap `g` (the moment as [`rows`] takes it).
+fn normal_row(g: &Gap) -> Vec<(usize, V3, V3)> {
+    g.sides()
+        .map(|i| (i.body, g.normal * i.sign, i.moment * i.sign))
+        .collect()
 }
 
 /// The accelerations of the members at `s` under `gravity` with the `closed` contacts; `lock`:
@@ -140,6 +169,7 @@ fn rows(
 /// no subset of pressing contacts is consistent, Painlevé-like); [`ContactError::Slips`] when
 /// a sticking contact needs more friction than its cone holds; [`ContactError::TooMany`] past
 /// [`MAX_CONTACTS`] closed contacts with one of them rough.
+#[allow(clippy::too_many_arguments)] // the system's parts, one by one as this folder passes them
 pub fn accelerations(
     members: &[Member],
     planes: &[Plane],
@@ -148,9 +178,11 @@ pub fn accelerations(
     s: &SystemState,
     gravity: &V3,
     lock: f64,
+    joints: &[Link],
 ) -> Result<Accelerations, ContactError> {
     let mut a = vec![*gravity; members.len()];
     let inverse = inverses(members, s);
+    let frozen = Frozen::new(joints, members, s);
     // the gyroscopic α⁰ = Ĩ (−ω × R J Rᵀ ω) of each member that turns
     let mut alpha: Vec<V3> = members
         .iter()
@@ -164,8 +196,20 @@ pub fn accelerations(
             None => V3::zeros(),
         })
         .collect();
+    // the free accelerations held by the joints (J4 of [`super::joints`])
+    if let Some(f) = &frozen {
+        f.project(&mut a, &mut alpha, true);
+    }
     let ks: Vec<usize> = closed.iter().map(|h| h.k).collect();
-    let (w, gaps) = rows(members, planes, candidates, &ks, s, &inverse);
+    let (w, gaps) = rows(
+        members,
+        planes,
+        candidates,
+        &ks,
+        s,
+        &inverse,
+        frozen.as_ref(),
+    );
     let scale = gravity.norm() + gaps.iter().fold(0.0, |m: f64, g| m.max(g.curvature.abs()));
     if closed.is_empty() {
         return Ok(Accelerations {
@@ -183,7 +227,7 @@ pub fn accelerations(
             let ja: f64 = g
                 .sides()
                 .map(|i| {
-                    let linear = i.sign * g.normal.dot(gravity);
+                    let linear = i.sign * g.normal.dot(&a[i.body]);
                     if inverse[i.body].is_some() {
                         linear + i.sign * i.moment.dot(&alpha[i.body])
                     } else {
@@ -200,9 +244,10 @@ pub fn accelerations(
             candidates,
             closed,
             s,
-            gravity,
+            a0: &a,
             lock,
             inverse: &inverse,
+            joints: frozen.as_ref(),
             alpha0: &alpha,
             gaps: &gaps,
             normal_bias: &b,
@@ -223,6 +268,9 @@ pub fn accelerations(
             }
         }
     }
+    if let Some(f) = &frozen {
+        f.project(&mut a, &mut alpha, true);
+    }
     Ok(Accelerations {
         a,
         alpha,
@@ -239,9 +287,11 @@ struct Rough<'a> {
     candidates: &'a [Candidate],
     closed: &'a [Held],
     s: &'a SystemState,
-    gravity: &'a V3,
+    /// a⁰ per member, held by the joints.
+    a0: &'a [V3],
     lock: f64,
     inverse: &'a [Option<Matrix3<f64>>],
+    joints: Option<&'a Frozen>,
     alpha0: &'a [V3],
     gaps: &'a [Gap],
     normal_bias: &'a [f64],
@@ -297,9 +347,10 @@ fn rough_in<const M: usize>(given: &Rough<'_>) -> Result<Accelerations, ContactE
         candidates,
         closed,
         s,
-        gravity,
+        a0,
         lock,
         inverse,
+        joints,
         alpha0,
         gaps,
         normal_bias,
@@ -334,7 +385,7 @@ fn rough_in<const M: usize>(given: &Rough<'_>) -> Result<Accelerations, ContactE
                         .sides()
                         .map(|side| {
                             let b = side.body;
-                            let mut acc = *gravity;
+                            let mut acc = a0[b];
                             if inverse[b].is_some() {
                                 acc += alpha0[b].cross(&side.arm) + s.w[b].cross(&side.arm_rate);
                             }
@@ -353,11 +404,18 @@ fn rough_in<const M: usize>(given: &Rough<'_>) -> Result<Accelerations, ContactE
     }
     let m = layout.m;
     // W_pq = Σ over the members both rows move of σσ (d_p · e_q / m_b + (r × d_p)ᵀ Ĩ_b (r × e_q))
+    // less z_dᵀ K⁺ z_e where joints hold the members ([`super::joints`])
     let mut w = [[0.0; M]; M];
+    let z = |p: usize, dir: &V3| joints.map(|f| f.z(&row_along(&gaps[layout.contact[p]], dir)));
+    let zd: Vec<_> = (0..m).map(|p| z(p, &d[p])).collect();
+    let ze: Vec<_> = (0..m).map(|q| z(q, &e[q])).collect();
     for p in 0..m {
         for q in 0..m {
             let (gp, gq) = (&gaps[layout.contact[p]], &gaps[layout.contact[q]]);
             w[p][q] = entry(members, inverse, (gp, &d[p]), (gq, &e[q]));
+            if let (Some(f), Some(zp), Some(zq)) = (joints, &zd[p], &ze[q]) {
+                w[p][q] -= f.coupling(zp, zq);
+            }
         }
     }
     let tol = 1e-9 * scale.max(f64::MIN_POSITIVE);
@@ -366,7 +424,7 @@ fn rough_in<const M: usize>(given: &Rough<'_>) -> Result<Accelerations, ContactE
     let mut lambda = [0.0; M];
     let set =
         decide(&layout, &w, tol, force_tol, None, &mut lambda).ok_or(ContactError::NoActiveSet)?;
-    let mut a = vec![*gravity; members.len()];
+    let mut a = a0.to_vec();
     let mut alpha = alpha0.to_vec();
     let mut force = Vec::with_capacity(n);
     let mut gap_acceleration = Vec::with_capacity(n);
@@ -401,6 +459,9 @@ fn rough_in<const M: usize>(given: &Rough<'_>) -> Result<Accelerations, ContactE
         force.push(normal);
         gap_acceleration.push(layout.b[lo] + (0..m).map(|q| w[lo][q] * lambda[q]).sum::<f64>());
     }
+    if let Some(f) = joints {
+        f.project(&mut a, &mut alpha, true);
+    }
     Ok(Accelerations {
         a,
         alpha,
@@ -415,36 +476,65 @@ fn rough_in<const M: usize>(given: &Rough<'_>) -> Result<Accelerations, ContactE
 /// displacement of the members in the same metric that closes their gaps (Δ(x, θ) = M⁻¹ Jᵀ ν,
 /// W ν = −g, the rotation θ applied as exp(θ) q) — what the integration drifted by, to first
 /// order in it. Where a contact sticks, its slip is stopped with the normal rates, in one
-/// projection ([`hold_sticking`]). Returns the largest gap corrected (m).
+/// projection ([`hold_sticking`]). With `joints`, they are held first
+/// ([`super::joints::hold`]), the contacts' corrections are made through the jointed system's
+/// mobility (W_c, and each Δ projected onto the joints' rows), and the joints' velocities are
+/// projected again after them. Returns the largest gap, or joint offset, corrected (m).
 pub fn project(
     members: &[Member],
     planes: &[Plane],
     candidates: &[Candidate],
     held: &[Held],
     s: &mut SystemState,
+    joints: &[Link],
 ) -> f64 {
+    let offset = hold(joints, members, s);
     if held.is_empty() {
-        return 0.0;
+        return offset;
     }
     let closed: Vec<usize> = held.iter().map(|h| h.k).collect();
     let closed = closed.as_slice();
     let inverse = inverses(members, s);
-    let (w, gaps) = rows(members, planes, candidates, closed, s, &inverse);
+    let frozen = Frozen::new(joints, members, s);
+    let (w, gaps) = rows(
+        members,
+        planes,
+        candidates,
+        closed,
+        s,
+        &inverse,
+        frozen.as_ref(),
+    );
     let sticking = held.iter().any(|h| h.mode == Mode::Stick);
     if sticking {
-        hold_sticking(members, held, &gaps, &inverse, s);
+        hold_sticking(members, held, &gaps, &inverse, s, frozen.as_ref());
     }
     let svd = w.svd(true, true);
     let eps = 1e-12 * svd.singular_values.max();
     let apply = |rhs: DVector<f64>, linear: &mut Vec<V3>, angular: &mut Vec<V3>| {
-        if let Ok(mu) = svd.solve(&rhs, eps) {
-            for (p, g) in gaps.iter().enumerate() {
-                for i in g.sides() {
-                    linear[i.body] += g.normal * (i.sign * mu[p] / members[i.body].mass());
-                    if let Some(inv) = &inverse[i.body] {
-                        angular[i.body] += inv * (i.moment * (i.sign * mu[p]));
-                    }
+        let Ok(mu) = svd.solve(&rhs, eps) else {
+            return;
+        };
+        let b = members.len();
+        let (mut dl, mut da) = (vec![V3::zeros(); b], vec![V3::zeros(); b]);
+        // without joints, straight into the state (as before joints were simulated)
+        let (lin, ang): (&mut [V3], &mut [V3]) = match frozen {
+            Some(_) => (&mut dl, &mut da),
+            None => (linear.as_mut_slice(), angular.as_mut_slice()),
+        };
+        for (p, g) in gaps.iter().enumerate() {
+            for i in g.sides() {
+                lin[i.body] += g.normal * (i.sign * mu[p] / members[i.body].mass());
+                if let Some(inv) = &inverse[i.body] {
+                    ang[i.body] += inv * (i.moment * (i.sign * mu[p]));
                 }
+            }
+        }
+        if let Some(f) = &frozen {
+            f.project(&mut dl, &mut da, false);
+            for k in 0..b {
+                linear[k] += dl[k];
+                angular[k] += da[k];
             }
         }
     };
@@ -467,7 +557,10 @@ pub fn project(
             s.q[b] = UnitQuaternion::from_scaled_axis(*theta) * s.q[b];
         }
     }
-    worst
+    if frozen.is_some() {
+        settle(joints, members, s);
+    }
+    worst.max(offset)
 }
 
 /// Stop the slip of the sticking contacts among `held` (with their normal rates): the smallest
@@ -481,6 +574,7 @@ fn hold_sticking(
     gaps: &[Gap],
     inverse: &[Option<Matrix3<f64>>],
     s: &mut SystemState,
+    joints: Option<&Frozen>,
 ) {
     // per row: its contact and its direction
     let mut rows: Vec<(usize, V3)> = Vec::new();
@@ -504,9 +598,17 @@ fn hold_sticking(
             })
             .sum()
     };
+    let z: Vec<_> = rows
+        .iter()
+        .map(|(k, d)| joints.map(|f| f.z(&row_along(&gaps[*k], d))))
+        .collect();
     let w = DMatrix::from_fn(rows.len(), rows.len(), |p, q| {
         let ((gp, dp), (gq, dq)) = (rows[p], rows[q]);
-        entry(members, inverse, (&gaps[gp], &dp), (&gaps[gq], &dq))
+        let free = entry(members, inverse, (&gaps[gp], &dp), (&gaps[gq], &dq));
+        match (joints, &z[p], &z[q]) {
+            (Some(f), Some(zp), Some(zq)) => free - f.coupling(zp, zq),
+            _ => free,
+        }
     });
     let rhs = DVector::from_fn(rows.len(), |p, _| {
         -velocity(&gaps[rows[p].0], &rows[p].1, s)
@@ -514,12 +616,26 @@ fn hold_sticking(
     let svd = w.svd(true, true);
     let eps = 1e-12 * svd.singular_values.max();
     if let Ok(mu) = svd.solve(&rhs, eps) {
+        let b = members.len();
+        let (mut dv, mut dw) = (vec![V3::zeros(); b], vec![V3::zeros(); b]);
+        // without joints, straight into the state (as before joints were simulated)
+        let (lin, ang): (&mut [V3], &mut [V3]) = match joints {
+            Some(_) => (&mut dv, &mut dw),
+            None => (&mut s.v, &mut s.w),
+        };
         for (p, &(k, d)) in rows.iter().enumerate() {
             for i in gaps[k].sides() {
-                s.v[i.body] += d * (i.sign * mu[p] / members[i.body].mass());
+                lin[i.body] += d * (i.sign * mu[p] / members[i.body].mass());
                 if let Some(inv) = &inverse[i.body] {
-                    s.w[i.body] += inv * i.arm.cross(&(d * (i.sign * mu[p])));
+                    ang[i.body] += inv * i.arm.cross(&(d * (i.sign * mu[p])));
                 }
+            }
+        }
+        if let Some(f) = joints {
+            f.project(&mut dv, &mut dw, false);
+            for k in 0..b {
+                s.v[k] += dv[k];
+                s.w[k] += dw[k];
             }
         }
     }

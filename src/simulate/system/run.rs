@@ -9,9 +9,10 @@
 //! member that turns); the steps are held to the relative `tolerance` on the scales of the
 //! motion (the largest reach or gap for positions, the speed scale for velocities, 1 for the
 //! quaternions' components, the speed scale over the member's reach for ω). Ballistic flight
-//! is a quadratic in t, which the fifth-order step reproduces to rounding. Closed contacts are
-//! projected back onto their constraints after every step ([`super::persist::project`]); the
-//! largest gap so corrected is reported as the drift.
+//! is a quadratic in t, which the fifth-order step reproduces to rounding. Joints and closed
+//! contacts are projected back onto their constraints after every step
+//! ([`super::persist::project`], [`super::joints::hold`]); the largest gap or joint offset so
+//! corrected is reported as the drift.
 //!
 //! **Events.** No step may cross an open gap: with M a bound on |g̈| over the step (twice
 //! |a_b| for a sphere on a plane; twice |a_a| + |a_b| + |u|²/|d| for a pair; otherwise twice
@@ -54,6 +55,7 @@ use super::super::stepper::{self, Advance, Stall, Stepper};
 use super::super::world::Plane;
 use super::gaps::{Candidate, Touch, gap};
 use super::impact::solve;
+use super::joints::Link;
 use super::members::{Member, SystemState};
 use super::overlap::deepest;
 use super::persist::{Accelerations, Held, accelerations, project, slip};
@@ -69,6 +71,8 @@ pub struct SystemSetup {
     /// Every contact watched (every feature on every plane, every pair of spheres, every
     /// feature on every face of a box), with its law.
     pub candidates: Vec<Candidate>,
+    /// The joints (none: free members).
+    pub joints: Vec<Link>,
     /// The impact law.
     pub law: Law,
     /// The state at t = 0.
@@ -78,6 +82,11 @@ pub struct SystemSetup {
 }
 
 impl SystemSetup {
+    /// Whether a joint holds members `a` and `b` together (no contact is watched between them).
+    pub fn joined(&self, a: usize, b: usize) -> bool {
+        self.joints.iter().any(|j| j.joins(a, b))
+    }
+
     /// Every feature of every member on every plane, then every pair of spheres (a < b),
     /// then every feature of every member (but a rim) on every face of every box, each with
     /// the law `law_of` gives.
@@ -314,6 +323,7 @@ impl<'a> Run<'a> {
             s,
             &st.options.gravity,
             st.options.rest_speed,
+            &st.joints,
         )
     }
 
@@ -695,12 +705,15 @@ impl<'a> Run<'a> {
                 &st.candidates,
                 &self.closed,
                 &mut self.s,
+                &st.joints,
             );
             self.drift = self.drift.max(d);
             let tol = 1e3 * self.gap_tol;
-            if deepest(&st.members, &self.s, tol).is_some() {
+            let joined = |a, b| st.joined(a, b);
+            if deepest(&st.members, &self.s, tol, joined).is_some() {
                 // where they first overlap: the step's continuous extension, bisected
-                let at = |t: f64| deepest(&st.members, &SystemState::unpack(&dense.at(t)), tol);
+                let at =
+                    |t: f64| deepest(&st.members, &SystemState::unpack(&dense.at(t)), tol, joined);
                 let (mut lo, mut hi) = (t0, t1);
                 while hi - lo > 1e-12 * hi.abs().max(1.0) {
                     let mid = 0.5 * (lo + hi);
@@ -711,7 +724,7 @@ impl<'a> Run<'a> {
                     }
                 }
                 let (a, b, depth) = at(hi)
-                    .or_else(|| deepest(&st.members, &self.s, tol))
+                    .or_else(|| deepest(&st.members, &self.s, tol, joined))
                     .unwrap_or((0, 1, tol));
                 return Err(SimulateError::Overlap {
                     t: hi,
@@ -796,6 +809,7 @@ impl<'a> Run<'a> {
             &st.candidates,
             &at,
             &self.s,
+            &st.joints,
             st.law,
             o.tolerance,
         )
@@ -860,6 +874,7 @@ impl<'a> Run<'a> {
         let st = self.setup;
         let scene = Scene {
             members: &st.members,
+            joints: &st.joints,
             planes: &st.planes,
             candidates: &st.candidates,
             gravity: st.options.gravity,

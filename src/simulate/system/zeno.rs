@@ -8,7 +8,7 @@
 //! - one member m moved and every other stayed put: slower than 10⁻¹² of the speed scale
 //!   before and after each impact, at the same place (to 10⁻¹² of the length scale);
 //! - m does not turn (no spin, or a sphere's spin that no contact feels: [`super::members`]),
-//!   so every point of m moves with its centre;
+//!   so every point of m moves with its centre, and no joint holds it;
 //! - every open contact struck is m's against the same unit normal d (pushing m; a plane's, a
 //!   still box's face, or a still sphere's with m moving along the line of centres), and no
 //!   closed contact touches m: between impacts m is in free flight;
@@ -42,6 +42,7 @@ use super::super::body::V3;
 use super::super::run::ImpactRecord;
 use super::super::world::Plane;
 use super::gaps::{Candidate, Touch, gap};
+use super::joints::Link;
 use super::members::{Member, SystemState};
 
 /// What one impact left, for the test above: where every member was, and which moved.
@@ -102,6 +103,8 @@ pub struct Jump {
 pub struct Scene<'a> {
     /// The members.
     pub members: &'a [Member],
+    /// The joints (a member a joint holds is never in free flight).
+    pub joints: &'a [Link],
     /// The obstacle planes.
     pub planes: &'a [Plane],
     /// The contacts watched.
@@ -158,7 +161,7 @@ pub fn accumulation(
     let spins = |st: &SystemState| {
         members[m].turns() && st.w[m].norm() * members[m].body.reach() > 1e-12 * scene.speed
     };
-    if !put || spins(before) || spins(s) {
+    if !put || spins(before) || spins(s) || scene.joints.iter().any(|j| j.holds(m)) {
         return None;
     }
     // every open contact m's, against one normal d that pushes m; no closed one on m
