@@ -106,18 +106,28 @@ impl Reader<'_> {
             let shape = match shape {
                 Some(Shape::Sphere(r)) => SimShape::Sphere { radius: r.approx() },
                 Some(Shape::Box(d)) => SimShape::Box { half: v3(&d) / 2.0 },
+                Some(Shape::Rod(l)) => SimShape::Rod {
+                    half_length: l.approx() / 2.0,
+                },
                 _ => {
                     return Err(self.err(
                         &format!("{at}.shape"),
                         body.get("shape").map(short),
-                        "a system to simulate is made of spheres and boxes: shape = { sphere = r } \
-                         or { box = [a, b, c] } (rods and cylinders move only alone)",
+                        "a system to simulate is made of spheres, boxes and thin rods: shape = \
+                         { sphere = r }, { box = [a, b, c] } or { rod = L } (cylinders move only \
+                         alone)",
                     ));
                 }
             };
             let r = self.pose(body.get("pose"), &at)?;
             let rm = Matrix3::from_fn(|i, j| r[i][j].approx());
-            let inertia = Matrix3::from_fn(|i, j| props.inertia[i][j].approx());
+            let mut inertia = Matrix3::from_fn(|i, j| props.inertia[i][j].approx());
+            if let SimShape::Rod { .. } = shape {
+                // no moment about the axis: completed as the single body's (every contact of a
+                // thin rod is on its axis, so none has a moment about it, and any c > 0 gives
+                // the same motion)
+                inertia[(2, 2)] = inertia[(0, 0)];
+            }
             let Some(model) = Body::new(props.mass.approx(), inertia, shape, None) else {
                 return Err(self.err(&at, None, "the inertia tensor is singular"));
             };
@@ -259,7 +269,11 @@ impl Reader<'_> {
             };
             let (l, hertz) = match *touch {
                 Touch::Plane { plane, .. } => plane_laws[plane].clone(),
-                Touch::Pair { a, b } | Touch::Face { a, b, .. } => pair_law(a, b),
+                Touch::Pair { a, b }
+                | Touch::Face { a, b, .. }
+                | Touch::Edges { a, b, .. }
+                | Touch::OnEdge { a, b, .. }
+                | Touch::OnCorner { a, b, .. } => pair_law(a, b),
             };
             if !hertz {
                 return l;
@@ -307,17 +321,29 @@ impl Reader<'_> {
                         format!("body \"{}\"", members[b].name),
                     ),
                 ),
+                // an edge, a corner or a rod's end has no radius
+                Touch::Edges { a, b, .. }
+                | Touch::OnEdge { a, b, .. }
+                | Touch::OnCorner { a, b, .. } => (
+                    (
+                        surface(a, 0).filter(|_| members[a].radius().is_some()),
+                        materials[a],
+                        format!("body \"{}\"", members[a].name),
+                    ),
+                    (None, materials[b], format!("body \"{}\"", members[b].name)),
+                ),
             };
             let (Some(s1), Some(s2)) = (first.0, second.0) else {
+                let who = if first.0.is_none() { &first.2 } else { &second.2 };
                 failure.get_or_insert_with(|| {
                     self.err(
                         "simulate.contact.stiffness",
                         Some("\"hertz\"".into()),
                         format!(
-                            "Hertz's stiffness is for curved or flat surfaces, and the corners of \
-                             {} have no radius: give the stiffness of its contacts as a number \
-                             ([[simulate.pair]] or [simulate.obstacle.NAME])",
-                            first.2
+                            "Hertz's stiffness is for curved or flat surfaces, and the corners, \
+                             edges and rod ends of {who} have no radius: give the stiffness of \
+                             its contacts as a number ([[simulate.pair]] or \
+                             [simulate.obstacle.NAME])"
                         ),
                     )
                 });

@@ -47,7 +47,7 @@ use super::super::run::{
 };
 use super::super::stepper::{self, Advance, Stall, Stepper};
 use super::super::world::Plane;
-use super::gaps::{Candidate, Touch, gap};
+use super::gaps::{Candidate, Touch, edge_count, gap};
 use super::impact::solve;
 use super::members::{Member, SystemState};
 use super::overlap::deepest;
@@ -73,8 +73,10 @@ pub struct SystemSetup {
 
 impl SystemSetup {
     /// Every feature of every member on every plane, then every pair of spheres (a < b),
-    /// then every feature of every member (but a rim) on every face of every box, each with
-    /// the law `law_of` gives.
+    /// then every feature of every member (but a rim) on every face of every box, then every
+    /// edge of a member (a box's, a rod's segment) on every edge of another (a < b), then
+    /// every sphere on every edge and every corner (a box's corner, a rod's end) of every
+    /// member, each with the law `law_of` gives.
     pub fn candidates(
         members: &[Member],
         planes: usize,
@@ -118,6 +120,39 @@ impl SystemSetup {
                             b,
                             face,
                         });
+                    }
+                }
+            }
+        }
+        let edges = |m: &Member| edge_count(&m.body.shape);
+        for a in 0..members.len() {
+            for b in a + 1..members.len() {
+                for edge_a in 0..edges(&members[a]) {
+                    for edge_b in 0..edges(&members[b]) {
+                        touches.push(Touch::Edges {
+                            a,
+                            edge_a,
+                            b,
+                            edge_b,
+                        });
+                    }
+                }
+            }
+        }
+        for (a, sphere) in members.iter().enumerate() {
+            if sphere.radius().is_none() {
+                continue;
+            }
+            for (b, m) in members.iter().enumerate() {
+                for edge in 0..edges(m) {
+                    touches.push(Touch::OnEdge { a, b, edge });
+                }
+                if edges(m) == 0 {
+                    continue;
+                }
+                for (feature, f) in m.body.features.iter().enumerate() {
+                    if matches!(f, Feature::Point { .. }) {
+                        touches.push(Touch::OnCorner { a, b, feature });
                     }
                 }
             }
