@@ -256,6 +256,19 @@ impl Touch {
         }
     }
 
+    /// What the log says when it lets go of the region where its gap is defined: `leaves the
+    /// face` (a face contact's point over its edge), `leaves the edge` (an edge contact's point
+    /// off an end, a sphere out of an edge's region), `leaves the corner`.
+    pub fn leaving(&self) -> &'static str {
+        match self {
+            Touch::Face { .. } => "leaves the face",
+            Touch::OnCorner { .. } => "leaves the corner",
+            Touch::Edges { .. } | Touch::OnEdge { .. } => "leaves the edge",
+            // a plane's or a pair's contact is defined everywhere: only lift-off ends it
+            Touch::Plane { .. } | Touch::Pair { .. } => "lifts off",
+        }
+    }
+
     /// Its name in the log: `bead 1 on floor`, `bead 1 on bead 2`, `top corner [1, 1, -1]` on
     /// `base face +z`, `top edge [*, 1, -1]` on `base edge [1, *, 1]`, `stick rod` on `base
     /// edge [1, *, 1]`, `ball` on `base corner [1, 1, 1]` or `stick end [0, 0, 1]` — the first

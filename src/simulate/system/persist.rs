@@ -423,6 +423,14 @@ pub fn project(
     held: &[Held],
     s: &mut SystemState,
 ) -> f64 {
+    // a closed contact whose gap the step took out of its region (an edge's normal out of its
+    // cone: +∞) holds nothing; the event loop lets it go
+    let held: Vec<Held> = held
+        .iter()
+        .copied()
+        .filter(|h| gap(&candidates[h.k].touch, members, planes, s).gap.is_finite())
+        .collect();
+    let held = held.as_slice();
     if held.is_empty() {
         return 0.0;
     }

@@ -535,12 +535,23 @@ impl<'a> Run<'a> {
             if let Some(why) = self.stepper.stall(MAX_STEPS) {
                 return Err(SimulateError::Stalled { t: self.t, why });
             }
-            // A closed contact whose point reaches its face's edge moving out lets go.
+            // A closed contact whose point reaches its face's edge (an edge's end, a region's
+            // boundary) moving out lets go.
             let off: Vec<usize> = (0..self.closed.len())
                 .filter(|&p| self.leaves(&self.gap(self.closed[p].k, &self.s)))
                 .collect();
             if !off.is_empty() {
-                self.let_go(&off, "leaves the face");
+                for &p in off.iter().rev() {
+                    let k = self.closed.remove(p).k;
+                    self.events.push(Event {
+                        t: self.t,
+                        what: format!(
+                            "{} {}",
+                            self.name(k),
+                            self.setup.candidates[k].touch.leaving()
+                        ),
+                    });
+                }
                 continue;
             }
             let acc = self.current()?;
@@ -661,11 +672,19 @@ impl<'a> Run<'a> {
                     Ok(derivative(&self.setup.members, &s, &a))
                 };
                 // No open contact may end the step through its gap: one the step took through
-                // is located by halving the step.
+                // is located by halving the step. One that enters its region (from +∞: an
+                // edge's point past a corner onto the next edge or face) does so at the gap the
+                // contact it takes over from held, within the drift of the projection: it is
+                // taken as it comes, up to the overlap tolerance, and struck or closed there.
                 let crosses = |y: &[f64]| {
                     let end = SystemState::unpack(y);
                     open.iter().any(|&(k, start)| {
-                        stepper::crossed(start, self.gap(k, &end).gap, self.gap_tol)
+                        let tol = if start.is_finite() {
+                            self.gap_tol
+                        } else {
+                            1e3 * self.gap_tol
+                        };
+                        stepper::crossed(start, self.gap(k, &end).gap, tol)
                     }) || over.iter().any(|&(k, start)| {
                         stepper::crossed(start, self.gap(k, &end).inside, self.gap_tol)
                     })
