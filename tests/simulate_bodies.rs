@@ -448,11 +448,11 @@ fn a_box_sliding_off_a_box_tips_over_the_edge() {
         assert!(e.what.starts_with("top corner [1, "), "{}", e.what);
         assert!((e.t - 0.4).abs() <= 1e-9, "{}", e.t);
     }
-    // an edge contact is watched from 10⁻⁹ of the reach (√0.54 m, the base's) before the end
+    // an edge contact is watched from 10⁻⁹ of the reach (√0.51 m, the base's) before the end
     // of its edge: at 0.5 m/s, that much before 0.4 s
     let edges = when("on base edge [1, *, 1] closes");
     assert_eq!(edges.len(), 2, "{:?}", sim.events);
-    let early = 1e-9 * 0.54f64.sqrt() / 0.5;
+    let early = 1e-9 * 0.51f64.sqrt() / 0.5;
     assert!(
         edges.iter().all(|t| (t - (0.4 - early)).abs() <= 1e-9),
         "{edges:?}"

@@ -1,11 +1,14 @@
 //! A system to simulate (`inertance simulate` on a scene of several `[[body]]`): each body a
-//! sphere (`shape = { sphere = r }`) or a box (`shape = { box = [a, b, c] }`), with a `mass` or
+//! sphere (`shape = { sphere = r }`), a box (`shape = { box = [a, b, c] }`) or a thin rod
+//! (`shape = { rod = L }`, along its body z), with a `mass` or
 //! `density`, `position`, `pose`, `velocity`, an optional `angular_velocity` and an optional
 //! `material` for Hertz's stiffness (a sphere's pose and spin are reported, and its spin
 //! integrated, when a rough contact can touch it; frictionless contacts keep them); the obstacle planes (none is fine: a cradle in
 //! space), and `[simulate]` as for one body. The simulation watches every feature (a sphere, a
-//! box's corners) against every obstacle, every pair of spheres against each other and every
-//! feature against every face of every other box ([`crate::simulate::system::gaps`]).
+//! box's corners, a rod's ends) against every obstacle, every pair of spheres against each
+//! other, every feature against every face of every other box, every edge (a box's, a rod's
+//! segment) against every other member's edges, and every sphere against every edge and corner
+//! ([`crate::simulate::system::gaps`]).
 //!
 //! ```toml
 //! [simulate]
@@ -20,7 +23,8 @@
 //!
 //! `stiffness = "hertz"` takes K = (4/3) E* √R* from the two sides' radii and materials
 //! ([`super::hertz`]; η = 3/2) where both sides are curved or flat: a sphere on a sphere, a
-//! plane or a box's face — a box's corner has no radius, and its contacts need a number.
+//! plane or a box's face — a box's corner or edge and a rod have no radius, and their contacts
+//! need a number.
 //! `mu` sets Coulomb's friction of the contacts, as `k` does their restitution: in persistent
 //! contact (stick and slip, [`crate::simulate::system::persist`]) and at impacts (the frictional
 //! laws of [`crate::impact::friction`], or LZB's).

@@ -1,6 +1,9 @@
 //! The contacts a system can make and their gap functions: every feature of every member
-//! against every obstacle plane, every pair of spheres against each other, and every feature of
-//! a member (a box's corner, a sphere) against every face of a box.
+//! against every obstacle plane, every pair of spheres against each other, every feature of a
+//! member (a box's corner, a rod's end, a sphere) against every face of a box, every edge (a
+//! box's twelve, a thin rod's segment) against every edge of another member, and every sphere
+//! against every edge and corner (a box's, a rod's segment and ends). Between spheres, boxes
+//! and thin rods nothing else can touch first.
 //!
 //! A feature of member b against a plane (unit normal N out of it, through P) is the single
 //! body's gap ([`crate::simulate::world::gap`]); for a sphere (centre x_b, radius r_b):
@@ -41,6 +44,40 @@
 //! assembles, and ġ = J u. A contact force λ ≥ 0 acts along Jᵀ: it opens the gap. The
 //! moments r × n of a sphere's side are zero (its force passes through its centre), written
 //! as zeros.
+//!
+//! **Edge on edge** (derivations/system-edges.md §1). Edges p_a + s d_a and p_b + t d_b (unit
+//! d, |s| ≤ h_a, |t| ≤ h_b), m = d_a × d_b, ν = |m| > [`PARALLEL`], n = σ m/ν out of a:
+//!
+//! ```text
+//! g = n · (p_b − p_a),   ġ = n · (V_b − V_a),   V_i = v_i + ω_i × r_i,  r_i = q_i − x_i
+//! c = ṅ · (V_b − V_a) + n · (ω_b × ṙ_b − ω_a × ṙ_a),   ṙ_i = ω_i × r_i + ṡ_i d_i
+//! ṅ = σ (ṁ − n (n · ṁ))/ν,   ṁ = (ω_a × d_a) × d_b + d_a × (ω_b × d_b)
+//! ```
+//!
+//! with q_a = p_a + s d_a, q_b = p_b + t d_b the closest points (s = (α − c β)/(1 − c²),
+//! t = (c α − β)/(1 − c²), c = d_a · d_b, α = d_a · D, β = d_b · D, D = p_b − p_a) and ṡ_a = ṡ,
+//! ṡ_b = ṫ their slide along the edges (their rates from differentiating those). As n ⟂ both
+//! edges, the slide does not change g to first order: ġ is the normal relative velocity of the
+//! two material points at q_a, q_b, J u for the row σ_a = −1, σ_b = +1. Watched where the
+//! closest points lie on both segments (to 10⁻⁹ of the reach), n lies in a's cone of outward
+//! face normals and −n in b's (a rod's cone: every direction ⟂ to it), and n · (x_b − x_a) +
+//! g ≥ 0 (the pair on the far side of both bodies is in the cones too, at a gap of about minus
+//! their size); σ puts n in a's cone (or −n in b's for a rod a; for two rods, g ≥ 0: their
+//! distance). Its `inside` is how far the nearer closest point is from its edge's end.
+//!
+//! **A sphere on an edge or a corner** (§2). For the point p of member b nearest the sphere's
+//! centre c on an edge (p = p_b + t d, t = d · (c − p_b), sliding at ṫ) or at a corner:
+//!
+//! ```text
+//! g = |c − p| − ρ,   n = (c − p)/|c − p|,   ġ = n · u,   u = v_a − v_b − ω_b × r_b
+//! c = ṅ · u − n · (ω_b × ṙ_b),   ṅ = (ẇ − n (n · ẇ))/|c − p|,   ẇ = u − ṫ d,
+//! ṙ_b = ω_b × r_b + ṫ d
+//! ```
+//!
+//! (r_b = p − x_b; ṫ = 0 at a corner). Watched where c is in the feature's region: beyond both
+//! faces' planes and within the length of a box's edge, within a rod's length, beyond a box
+//! corner's three faces' planes, beyond a rod's end along its axis; `inside` is how far (m) it
+//! is within the nearest of those bounds. The sphere's side is σ = +1, b's σ = −1.
 
 use super::super::body::{Feature, Shape, State, V3};
 use super::super::world::{ContactLaw, Plane};
@@ -207,8 +244,9 @@ pub struct Side {
     /// r × n (zero for a sphere).
     pub moment: V3,
     /// ṙ: how fast the arm turns and slides — ω × r for a material point (a corner), the rate
-    /// of a sphere's r = ∓ρ n as n turns (zero on a plane), and for a box's face the rate of
-    /// the contact point less its centre's, ṗ − v_b. The slip u = Σ σ_i (v_i + ω_i × r_i) of
+    /// of a sphere's r = ∓ρ n as n turns (zero on a plane), for a box's face the rate of
+    /// the contact point less its centre's, ṗ − v_b, and for an edge ω × r + ṡ d (the contact
+    /// point is no material point: it slides along the edge at ṡ). The slip u = Σ σ_i (v_i + ω_i × r_i) of
     /// the contact then changes at u̇ = Σ σ_i (a_i + α_i × r_i + ω_i × ṙ_i): what a sticking
     /// contact holds at zero along its tangents ([`super::persist`]).
     pub arm_rate: V3,
@@ -217,17 +255,19 @@ pub struct Side {
 /// A contact's gap at one state.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Gap {
-    /// g (m); +∞ for a face contact not over its face (module docs).
+    /// g (m); +∞ for a face, edge or corner contact out of its region (module docs).
     pub gap: f64,
     /// ġ (m/s): negative approaching.
     pub rate: f64,
-    /// The unit normal n (a plane's N; from a's centre to b's; a face's outward normal).
+    /// The unit normal n (a plane's N; from a's centre to b's; a face's outward normal; out of
+    /// a's edge; from an edge or a corner to the sphere).
     pub normal: V3,
     /// The curvature term c of g̈ = J a + c (m/s²).
     pub curvature: f64,
-    /// The contact point (world): on the first member's surface.
+    /// The contact point (world): on the first member's surface (on a's edge, on the sphere).
     pub point: V3,
-    /// How far the point lies inside its face's edges (m; +∞ but for a face contact).
+    /// How far the point lies inside its face's edges, its edges' ends, or the sphere's centre
+    /// inside its feature's region (m; +∞ on a plane and between spheres).
     pub inside: f64,
     /// The rate of `inside` (m/s; negative: the point moves out over the nearest edge).
     pub inside_rate: f64,

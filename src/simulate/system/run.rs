@@ -20,8 +20,9 @@
 //! of the length scale) approaching faster than `rest_speed` is an impact; one slower closes
 //! unless the acceleration-level problem with it closed separates it (g̈ > 0); a closed
 //! contact opens when g̈ > 0 ([`super::persist`]), or when its point reaches its face's edge
-//! moving out (located by halving the step, as a crossing of how far inside the edges it is). After every step the members are checked for an
-//! overlap where no contact is watched ([`super::overlap`]): the run stops there, naming them.
+//! moving out (located by halving the step, as a crossing of how far inside the edges it is).
+//! After every step the members are checked for an overlap ([`super::overlap`]): the run stops
+//! there, naming them.
 //!
 //! **Impacts.** Every open contact approaching within the gap tolerance or within
 //! `simultaneity` in time, and every closed contact, strike together: one multiple impact,
@@ -35,9 +36,14 @@
 //! together where they can (the corners of a face), one by one otherwise, when sticking needs no
 //! more than their cones. At rest: slower than `rest_speed`, and still with every slide stuck.
 //!
+//! An open contact that enters its region (an edge's closest point past a corner onto the next
+//! edge, a corner past an edge onto a face) does so at the gap the contact it takes over from
+//! held, within the projection's drift: it is taken as it comes, to the overlap tolerance
+//! (10³ times the gap tolerance), and struck or closed there; a closed one that leaves it holds
+//! nothing in the projection and lets go.
+//!
 //! Not here yet: the closed-form accumulation (Zeno) of the single body (a system runs to rest
-//! by its `rest_speed`, or to its impact budget), rods and cylinders in a system, edge-on-edge
-//! contacts (refused by the overlap check).
+//! by its `rest_speed`, or to its impact budget), cylinders in a system.
 
 use super::super::body::{Feature, Shape, V3, quaternion_rate};
 use super::super::contact::{ContactError, Mode};
@@ -61,7 +67,8 @@ pub struct SystemSetup {
     /// The obstacles.
     pub planes: Vec<Plane>,
     /// Every contact watched (every feature on every plane, every pair of spheres, every
-    /// feature on every face of a box), with its law.
+    /// feature on every face of a box, every edge on every other member's edges, every sphere on
+    /// every edge and corner), with its law.
     pub candidates: Vec<Candidate>,
     /// The impact law.
     pub law: Law,
