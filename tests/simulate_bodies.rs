@@ -9,9 +9,9 @@
 
 use inertance::impact::friction::Restitution;
 use inertance::scene::{AnySimulation, SimulationScene};
+use inertance::simulate::Law;
 use inertance::simulate::run::simulate_history;
 use inertance::simulate::system::{SystemSetup, SystemSimulation, simulate_system};
-use inertance::simulate::{Law, SimulateError};
 use nalgebra::Vector3;
 
 type V3 = Vector3<f64>;
@@ -358,7 +358,11 @@ fn energy_never_gained(s: &SystemSetup, sim: &SystemSimulation) {
     let mut lowest = f64::INFINITY;
     for p in &sim.samples {
         let e = p.kinetic + p.potential;
-        assert!(e <= lowest + bound, "t = {}: {e} after {lowest} (± {bound})", p.t);
+        assert!(
+            e <= lowest + bound,
+            "t = {}: {e} after {lowest} (± {bound})",
+            p.t
+        );
         lowest = lowest.min(e);
     }
     for i in &sim.impacts {
@@ -475,7 +479,9 @@ fn a_box_sliding_off_a_box_tips_over_the_edge() {
 /// A box tumbling onto the base with a drift of 0.2 m/s and a yaw from its tilt about two axes:
 /// it rocks, spins slowly and slides to the base's edge, where a corner lets go of the face
 /// with the body turning and its edges meet the base's (the run used to stop there, status 3).
-/// Under every law it now tips over the edge and runs to its end, its energy never gained.
+/// Under the simultaneous and the unilateral laws it now tips over the edge and runs to its
+/// end, its energy never gained. (Under LZB it runs on too, but the box's landings on the floor
+/// among the base's compliant contacts take many minutes of a debug build: not a test.)
 #[test]
 fn a_spinning_box_sliding_off_a_box_tips_over_the_edge() {
     let text = on_a_base(
@@ -490,7 +496,6 @@ fn a_spinning_box_sliding_off_a_box_tips_over_the_edge() {
     for law in [
         Law::Simultaneous(Restitution::Newton),
         Law::Unilateral(Restitution::Newton),
-        Law::Lzb,
     ] {
         let mut s = system(&text);
         s.law = law;

@@ -108,7 +108,11 @@ contact = {{ k = {k} }}
         assert_eq!(sim.impacts.len(), 1, "k = {k}");
         let i = &sim.impacts[0];
         let meet = 0.5 - 0.2 * 2f64.sqrt();
-        assert!((i.t - meet).abs() <= 1e-12, "k = {k}: t = {} vs {meet}", i.t);
+        assert!(
+            (i.t - meet).abs() <= 1e-12,
+            "k = {k}: t = {} vs {meet}",
+            i.t
+        );
         assert_eq!(i.contacts.len(), 1, "{:?}", i.contacts);
         assert_eq!(
             (i.contacts[0].feature.as_str(), i.contacts[0].plane.as_str()),
@@ -120,12 +124,11 @@ contact = {{ k = {k} }}
             -(ma - k * mb) * v / (ma + mb),
             -(1.0 + k) * ma * v / (ma + mb),
         ];
-        for b in 0..2 {
+        for (b, want) in want.iter().enumerate() {
             let got = after.v[b];
             assert!(
-                (got - V3::z() * want[b]).norm() <= 1e-12,
-                "k = {k}, body {b}: {got} vs {}",
-                want[b]
+                (got - V3::z() * *want).norm() <= 1e-12,
+                "k = {k}, body {b}: {got} vs {want}"
             );
             assert!(after.w[b].norm() <= 1e-12, "k = {k}: ω {}", after.w[b]);
         }
@@ -240,15 +243,18 @@ contact = {{ k = {k} }}
     let p = -(1.0 + k) * mstar * n.dot(&u);
     let (_, after) = around(&sim, 0);
     let want = [u + n * (p / ms), -n * (p / mb)];
-    for b in 0..2 {
+    for (b, want) in want.iter().enumerate() {
         assert!(
-            (after.v[b] - want[b]).norm() <= 1e-12,
-            "{b}: {} vs {}",
-            after.v[b],
-            want[b]
+            (after.v[b] - want).norm() <= 1e-12,
+            "{b}: {} vs {want}",
+            after.v[b]
         );
     }
-    assert!((after.w[1] + jinv * rn * p).norm() <= 1e-12, "{}", after.w[1]);
+    assert!(
+        (after.w[1] + jinv * rn * p).norm() <= 1e-12,
+        "{}",
+        after.w[1]
+    );
     conserves(&s, &sim, k);
 }
 
@@ -324,11 +330,27 @@ contact = {{ k = {k} }}
     let mstar = 1.0 / (1.0 / mr + sd * sd / rod_j + 1.0 / mb + rn.dot(&(jinv * rn)));
     let u = V3::new(0.0, 0.0, -1.0);
     let p = -(1.0 + k) * mstar * n.dot(&u);
-    assert!((after.v[0] - (u + n * (p / mr))).norm() <= 1e-12, "{}", after.v[0]);
+    assert!(
+        (after.v[0] - (u + n * (p / mr))).norm() <= 1e-12,
+        "{}",
+        after.v[0]
+    );
     let spin = d.cross(&n) * (sd * p / rod_j);
-    assert!((after.w[0] - spin).norm() <= 1e-12, "{} vs {spin}", after.w[0]);
-    assert!((after.v[1] + n * (p / mb)).norm() <= 1e-12, "{}", after.v[1]);
-    assert!((after.w[1] + jinv * rn * p).norm() <= 1e-12, "{}", after.w[1]);
+    assert!(
+        (after.w[0] - spin).norm() <= 1e-12,
+        "{} vs {spin}",
+        after.w[0]
+    );
+    assert!(
+        (after.v[1] + n * (p / mb)).norm() <= 1e-12,
+        "{}",
+        after.v[1]
+    );
+    assert!(
+        (after.w[1] + jinv * rn * p).norm() <= 1e-12,
+        "{}",
+        after.w[1]
+    );
     conserves(&s, &sim, k);
 }
 
@@ -385,7 +407,11 @@ contact = {{ k = {k} }}
     let u = V3::new(0.0, 0.0, 1.0);
     let p = -(1.0 + k) * mstar * n.dot(&u);
     let (_, after) = around(&sim, 0);
-    assert!((after.v[0] - n * (p / ms)).norm() <= 1e-12, "{}", after.v[0]);
+    assert!(
+        (after.v[0] - n * (p / ms)).norm() <= 1e-12,
+        "{}",
+        after.v[0]
+    );
     assert!(
         (after.v[1] - (-u - n * (p / mr))).norm() <= 1e-12,
         "{}",

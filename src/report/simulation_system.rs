@@ -17,9 +17,14 @@ use crate::simulate::system::{SystemSetup, SystemSimulation};
 /// What the system is made of: `3 spheres`, `2 boxes`, `3 bodies (1 sphere, 2 boxes)`,
 /// `2 bodies (1 box, 1 rod)`.
 fn made_of(setup: &SystemSetup) -> String {
-    let of = |kind: fn(&Shape) -> bool| setup.members.iter().filter(|m| kind(&m.body.shape)).count();
+    let of =
+        |kind: fn(&Shape) -> bool| setup.members.iter().filter(|m| kind(&m.body.shape)).count();
     let kinds = [
-        (of(|s| matches!(s, Shape::Sphere { .. })), "sphere", "spheres"),
+        (
+            of(|s| matches!(s, Shape::Sphere { .. })),
+            "sphere",
+            "spheres",
+        ),
         (of(|s| matches!(s, Shape::Box { .. })), "box", "boxes"),
         (of(|s| matches!(s, Shape::Rod { .. })), "rod", "rods"),
     ];

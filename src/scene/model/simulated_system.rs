@@ -338,7 +338,11 @@ impl Reader<'_> {
                 ),
             };
             let (Some(s1), Some(s2)) = (first.0, second.0) else {
-                let who = if first.0.is_none() { &first.2 } else { &second.2 };
+                let who = if first.0.is_none() {
+                    &first.2
+                } else {
+                    &second.2
+                };
                 failure.get_or_insert_with(|| {
                     self.err(
                         "simulate.contact.stiffness",

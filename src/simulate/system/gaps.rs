@@ -316,7 +316,8 @@ impl Touch {
     pub fn name(&self, members: &[Member], planes: &[Plane]) -> (String, String) {
         let edge_name = |m: usize, e: usize| -> String {
             let member = &members[m];
-            let label = edge(&member.body.shape, e).map_or_else(|| format!("edge {e}"), |e| e.label);
+            let label =
+                edge(&member.body.shape, e).map_or_else(|| format!("edge {e}"), |e| e.label);
             format!("{} {label}", member.name)
         };
         let feature = |m: usize, f: usize| -> String {
@@ -1000,8 +1001,7 @@ mod tests {
         assert!(gs.iter().all(|g| g.gap.is_finite()), "{touch:?}: at an end");
         let first = |f: [f64; 4]| (f[0] - 8.0 * f[1] + 8.0 * f[2] - f[3]) / (12.0 * h);
         let rate = first(gs.map(|g| g.gap));
-        let second = (-gs[0].gap + 16.0 * gs[1].gap - 30.0 * g0.gap + 16.0 * gs[2].gap
-            - gs[3].gap)
+        let second = (-gs[0].gap + 16.0 * gs[1].gap - 30.0 * g0.gap + 16.0 * gs[2].gap - gs[3].gap)
             / (12.0 * h * h);
         assert!(
             (rate - g0.rate).abs() <= 1e-7,
@@ -1132,8 +1132,22 @@ mod tests {
         // at x = +, z = +; edge 2 along x at y = −, z = +; corner 0 is [1, 1, 1], 7 [-1, -1,
         // -1]; the rod's feature 0 its end [0, 0, 1]
         let places = [
-            (r * V3::new(0.55, 0.1, 0.16), Touch::OnEdge { a: 0, b: 1, edge: 4 }),
-            (r * V3::new(0.2, -0.45, 0.14), Touch::OnEdge { a: 0, b: 1, edge: 2 }),
+            (
+                r * V3::new(0.55, 0.1, 0.16),
+                Touch::OnEdge {
+                    a: 0,
+                    b: 1,
+                    edge: 4,
+                },
+            ),
+            (
+                r * V3::new(0.2, -0.45, 0.14),
+                Touch::OnEdge {
+                    a: 0,
+                    b: 1,
+                    edge: 2,
+                },
+            ),
             (
                 r * V3::new(0.56, 0.45, 0.13),
                 Touch::OnCorner {
@@ -1152,7 +1166,11 @@ mod tests {
             ),
             (
                 rr * V3::new(0.08, 0.02, 0.1) + rod_at,
-                Touch::OnEdge { a: 0, b: 2, edge: 0 },
+                Touch::OnEdge {
+                    a: 0,
+                    b: 2,
+                    edge: 0,
+                },
             ),
             (
                 rr * V3::new(0.02, -0.03, 0.36) + rod_at,

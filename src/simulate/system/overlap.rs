@@ -168,6 +168,58 @@ mod tests {
         }
     }
 
+    /// A rod as a box of zero thickness: lying across a box's top at a height d above it, its
+    /// separation is d, beside the box's edge (crossing its line past the corner, tilted)
+    /// the distance along the axis that separates them; a sphere beside its segment and past
+    /// its end is as far as its nearest point.
+    #[test]
+    fn a_rod_is_a_box_of_zero_thickness() {
+        let h = V3::new(0.5, 0.5, 0.5);
+        let rod = V3::new(0.0, 0.0, 1.0);
+        let i = Matrix3::identity();
+        // the rod along x (body z turned onto x) over the box's top
+        let along_x = turn(V3::y(), std::f64::consts::FRAC_PI_2);
+        for d in [0.3, 0.0, -0.2] {
+            let s = boxes(
+                &V3::zeros(),
+                &i,
+                &h,
+                &V3::new(0.2, 0.1, 0.5 + d),
+                &along_x,
+                &rod,
+            );
+            assert!((s - d).abs() < 1e-15, "{d}: {s}");
+        }
+        // the rod along y, 0.1 beyond the box's +x face and 0.1 above its top: √2·0.1 from the
+        // box's edge, separated by 0.1 along x and along z (the test's value is the best axis',
+        // a lower bound of the distance); moved to 0.05 inside both faces, it overlaps by 0.05
+        // (every axis overlaps, x and z least)
+        let along_y = turn(V3::x(), std::f64::consts::FRAC_PI_2);
+        let s = boxes(
+            &V3::zeros(),
+            &i,
+            &h,
+            &V3::new(0.6, 0.0, 0.6),
+            &along_y,
+            &rod,
+        );
+        assert!((s - 0.1).abs() < 1e-15, "{s}");
+        let s = boxes(
+            &V3::zeros(),
+            &i,
+            &h,
+            &V3::new(0.45, 0.0, 0.45),
+            &along_y,
+            &rod,
+        );
+        assert!((s + 0.05).abs() < 1e-15, "{s}");
+        let x = V3::new(2.0, 0.0, 0.0);
+        let beside = sphere_segment(&V3::new(2.3, 0.4, 0.0), 0.1, &x, &V3::x(), 1.0);
+        assert!((beside - (0.4 - 0.1)).abs() < 1e-15, "{beside}");
+        let past = sphere_segment(&V3::new(3.3, 0.4, 0.0), 0.1, &x, &V3::x(), 1.0);
+        assert!((past - (0.5 - 0.1)).abs() < 1e-15, "{past}");
+    }
+
     /// A sphere beside a box's face, off its edge and off its corner: the distance to the box
     /// less the radius.
     #[test]

@@ -428,7 +428,11 @@ pub fn project(
     let held: Vec<Held> = held
         .iter()
         .copied()
-        .filter(|h| gap(&candidates[h.k].touch, members, planes, s).gap.is_finite())
+        .filter(|h| {
+            gap(&candidates[h.k].touch, members, planes, s)
+                .gap
+                .is_finite()
+        })
         .collect();
     let held = held.as_slice();
     if held.is_empty() {
