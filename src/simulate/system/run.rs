@@ -18,7 +18,8 @@
 //! |a| + ρ (|ω|² + |α|) of each side plus twice the curvature term), each step is capped at
 //! the horizon of [`crate::simulate::stepper::horizon`]. A gap within the gap tolerance (10⁻¹¹
 //! of the length scale) approaching faster than `rest_speed` is an impact; one slower closes
-//! unless the acceleration-level problem with it closed separates it (g̈ > 0); a closed
+//! unless the acceleration-level problem with it closed separates it (g̈ > 0), and then caps
+//! no step (it separates; the step's crossing check still holds it); a closed
 //! contact opens when g̈ > 0 ([`super::persist`]), or when its point reaches its face's edge
 //! moving out (located by halving the step, as a crossing of how far inside the edges it is).
 //! After every step the members are checked for an overlap ([`super::overlap`]): the run stops
@@ -613,6 +614,11 @@ impl<'a> Run<'a> {
                             closing = true;
                             continue;
                         }
+                        // at zero gap, not approaching beyond the rest speed, and the
+                        // accelerations open it: it separates, and caps no step (its horizon
+                        // would be zero at a rate of −10⁻¹¹ m/s); the step's crossing check
+                        // still holds it
+                        continue;
                     }
                 }
                 let members = &self.setup.members;
@@ -665,9 +671,12 @@ impl<'a> Run<'a> {
                 .filter(|&k| !self.is_closed(k))
                 .map(|k| (k, self.gap(k, &self.s).gap))
                 .collect();
-            // how far inside its face each closed face contact's point is (+∞ for others)
+            // how far inside its face each closed face contact's point is (an edge contact's
+            // end is not located: past it, its gap is +∞ and it lets go, the contact it hands
+            // over to entering its region at the same gap)
             let over: Vec<(usize, f64)> = closed
                 .iter()
+                .filter(|h| matches!(self.setup.candidates[h.k].touch, Touch::Face { .. }))
                 .map(|h| (h.k, self.gap(h.k, &self.s).inside))
                 .filter(|(_, m)| m.is_finite())
                 .collect();
