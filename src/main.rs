@@ -205,9 +205,9 @@ enum Command {
         #[arg(long, value_name = "CORPUS.txt", conflicts_with_all = ["scene", "plot"])]
         corpus: Option<PathBuf>,
     },
-    /// Simulate a body, or a system of spheres and boxes, under gravity among obstacle planes through
-    /// every impact, until rest or the end of `[simulate] duration`: the impact log
-    /// (guide/simulate.md).
+    /// Simulate a body, or a system of spheres, boxes and rods, under gravity among obstacle
+    /// planes through every impact, until rest or the end of `[simulate] duration`: the impact
+    /// log (guide/simulate.md).
     Simulate {
         /// The scene file (TOML) with a `[simulate]` table.
         scene: PathBuf,

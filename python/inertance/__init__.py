@@ -259,8 +259,8 @@ class Simulation:
 
 def simulate(scene: Union[str, "os.PathLike[str]"], law: Optional[str] = None) -> Simulation:
     """Simulate ``scene`` (a path, or TOML text with a ``[simulate]`` table) through every
-    impact, as ``inertance simulate``: one body, or a system of spheres and boxes (``[[body]]``
-    tables);
+    impact, as ``inertance simulate``: one body, or a system of spheres, boxes and thin rods
+    (``[[body]]`` tables);
     ``law`` (``"simultaneous"``, ``"unilateral"`` or ``"lzb"``) replaces the scene's, keeping its
     restitution. A run that stops early (an impact without an answer, persistent contact
     undecided, a state that overflows) is returned with ``end == "stopped"`` and ``error`` —

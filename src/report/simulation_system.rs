@@ -16,25 +16,35 @@ use super::simulation::{
 use crate::simulate::body::{Shape, V3};
 use crate::simulate::system::{SystemSetup, SystemSimulation};
 
-/// What the system is made of: `3 spheres`, `2 boxes`, `3 bodies (1 sphere, 2 boxes)`.
+/// What the system is made of: `3 spheres`, `2 boxes`, `3 bodies (1 sphere, 2 boxes)`,
+/// `2 bodies (1 box, 1 rod)`.
 fn made_of(setup: &SystemSetup) -> String {
-    let spheres = setup
-        .members
-        .iter()
-        .filter(|m| m.radius().is_some())
-        .count();
-    let boxes = setup.members.len() - spheres;
+    let of =
+        |kind: fn(&Shape) -> bool| setup.members.iter().filter(|m| kind(&m.body.shape)).count();
+    let kinds = [
+        (
+            of(|s| matches!(s, Shape::Sphere { .. })),
+            "sphere",
+            "spheres",
+        ),
+        (of(|s| matches!(s, Shape::Box { .. })), "box", "boxes"),
+        (of(|s| matches!(s, Shape::Rod { .. })), "rod", "rods"),
+    ];
     let count =
         |n: usize, one: &str, many: &str| format!("{n} {}", if n == 1 { one } else { many });
-    match (spheres, boxes) {
-        (_, 0) => count(spheres, "sphere", "spheres"),
-        (0, _) => count(boxes, "box", "boxes"),
-        _ => format!(
-            "{} ({}, {})",
-            count(spheres + boxes, "body", "bodies"),
-            count(spheres, "sphere", "spheres"),
-            count(boxes, "box", "boxes")
-        ),
+    let present: Vec<String> = kinds
+        .iter()
+        .filter(|(n, ..)| *n > 0)
+        .map(|&(n, one, many)| count(n, one, many))
+        .collect();
+    if present.len() == 1 {
+        present[0].clone()
+    } else {
+        format!(
+            "{} ({})",
+            count(setup.members.len(), "body", "bodies"),
+            present.join(", ")
+        )
     }
 }
 
@@ -113,8 +123,9 @@ pub fn to_csv(setup: &SystemSetup, sim: &SystemSimulation) -> String {
 }
 
 /// The whole run, for programs: the one body's keys ([`super::simulation::to_json`]; `zeno`
-/// the accumulation of [`crate::simulate::system::zeno`], or null), the members (`bodies`: name, mass, and
-/// a sphere's `radius` or a box's edges `box`), the options, and the final `state` as one
+/// the accumulation of [`crate::simulate::system::zeno`], or null), the members (`bodies`:
+/// name, mass, and a sphere's `radius`, a box's edges `box` or a rod's length `rod`), the
+/// options, and the final `state` as one
 /// `[x, y, z]` per member in `x` and `v`, one `[w, i, j, k]` in `q` and one `[x, y, z]` in
 /// `omega` (a sphere's held: [`crate::simulate::system::members`]). An impact between two
 /// members names the first as `feature` and the second as `obstacle`, as the log's `a on b`.
@@ -129,6 +140,11 @@ pub fn to_json(name: &str, setup: &SystemSetup, sim: &SystemSimulation) -> Json 
                 "name": s.name,
                 "mass": json_f64(s.mass()),
                 "box": v3(&(half * 2.0)),
+            }),
+            Shape::Rod { half_length } => json!({
+                "name": s.name,
+                "mass": json_f64(s.mass()),
+                "rod": json_f64(2.0 * half_length),
             }),
             _ => json!({
                 "name": s.name,

@@ -224,7 +224,7 @@ pub struct SimulationScene {
     pub setup: crate::simulate::Setup,
 }
 
-/// A scene of several bodies (spheres and boxes) to simulate ([`model::simulated_system`] documents the keys).
+/// A scene of several bodies (spheres, boxes and thin rods) to simulate ([`model::simulated_system`] documents the keys).
 #[derive(Clone, Debug, PartialEq)]
 pub struct SimulatedSystemScene {
     /// Where it came from, for messages.

@@ -236,12 +236,12 @@ pub enum SimulateError {
         /// When.
         t: f64,
     },
-    /// Two members of a system overlap where no contact is watched
+    /// Two members of a system overlap: a contact between them was missed
     /// ([`super::system::overlap`]).
     #[error(
-        "t = {t:.9} s: {first} and {second} overlap by {depth:.3e} m where no contact is \
-         watched (a box's edge on another's edge, or on a sphere: a system watches corners and \
-         spheres on faces, not those yet)"
+        "t = {t:.9} s: {first} and {second} overlap by {depth:.3e} m (a contact between them \
+         was missed: every contact of spheres, boxes and rods is watched, so this is a fault \
+         to report)"
     )]
     Overlap {
         /// When.

@@ -1,11 +1,14 @@
 //! A system to simulate (`inertance simulate` on a scene of several `[[body]]`): each body a
-//! sphere (`shape = { sphere = r }`) or a box (`shape = { box = [a, b, c] }`), with a `mass` or
+//! sphere (`shape = { sphere = r }`), a box (`shape = { box = [a, b, c] }`) or a thin rod
+//! (`shape = { rod = L }`, along its body z), with a `mass` or
 //! `density`, `position`, `pose`, `velocity`, an optional `angular_velocity` and an optional
 //! `material` for Hertz's stiffness (a sphere's pose and spin are reported, and its spin
 //! integrated, when a rough contact can touch it; frictionless contacts keep them); the obstacle planes (none is fine: a cradle in
 //! space), and `[simulate]` as for one body. The simulation watches every feature (a sphere, a
-//! box's corners) against every obstacle, every pair of spheres against each other and every
-//! feature against every face of every other box ([`crate::simulate::system::gaps`]).
+//! box's corners, a rod's ends) against every obstacle, every pair of spheres against each
+//! other, every feature against every face of every other box, every edge (a box's, a rod's
+//! segment) against every other member's edges, and every sphere against every edge and corner
+//! ([`crate::simulate::system::gaps`]).
 //!
 //! ```toml
 //! [simulate]
@@ -26,7 +29,8 @@
 //!
 //! `stiffness = "hertz"` takes K = (4/3) E* √R* from the two sides' radii and materials
 //! ([`super::hertz`]; η = 3/2) where both sides are curved or flat: a sphere on a sphere, a
-//! plane or a box's face — a box's corner has no radius, and its contacts need a number.
+//! plane or a box's face — a box's corner or edge and a rod have no radius, and their contacts
+//! need a number.
 //! `mu` sets Coulomb's friction of the contacts, as `k` does their restitution: in persistent
 //! contact (stick and slip, [`crate::simulate::system::persist`]) and at impacts (the frictional
 //! laws of [`crate::impact::friction`], or LZB's).
@@ -117,18 +121,28 @@ impl Reader<'_> {
             let shape = match shape {
                 Some(Shape::Sphere(r)) => SimShape::Sphere { radius: r.approx() },
                 Some(Shape::Box(d)) => SimShape::Box { half: v3(&d) / 2.0 },
+                Some(Shape::Rod(l)) => SimShape::Rod {
+                    half_length: l.approx() / 2.0,
+                },
                 _ => {
                     return Err(self.err(
                         &format!("{at}.shape"),
                         body.get("shape").map(short),
-                        "a system to simulate is made of spheres and boxes: shape = { sphere = r } \
-                         or { box = [a, b, c] } (rods and cylinders move only alone)",
+                        "a system to simulate is made of spheres, boxes and thin rods: shape = \
+                         { sphere = r }, { box = [a, b, c] } or { rod = L } (cylinders move only \
+                         alone)",
                     ));
                 }
             };
             let r = self.pose(body.get("pose"), &at)?;
             let rm = Matrix3::from_fn(|i, j| r[i][j].approx());
-            let inertia = Matrix3::from_fn(|i, j| props.inertia[i][j].approx());
+            let mut inertia = Matrix3::from_fn(|i, j| props.inertia[i][j].approx());
+            if let SimShape::Rod { .. } = shape {
+                // no moment about the axis: completed as the single body's (every contact of a
+                // thin rod is on its axis, so none has a moment about it, and any c > 0 gives
+                // the same motion)
+                inertia[(2, 2)] = inertia[(0, 0)];
+            }
             let Some(model) = Body::new(props.mass.approx(), inertia, shape, None) else {
                 return Err(self.err(&at, None, "the inertia tensor is singular"));
             };
@@ -271,7 +285,11 @@ impl Reader<'_> {
             };
             let (l, hertz) = match *touch {
                 Touch::Plane { plane, .. } => plane_laws[plane].clone(),
-                Touch::Pair { a, b } | Touch::Face { a, b, .. } => pair_law(a, b),
+                Touch::Pair { a, b }
+                | Touch::Face { a, b, .. }
+                | Touch::Edges { a, b, .. }
+                | Touch::OnEdge { a, b, .. }
+                | Touch::OnCorner { a, b, .. } => pair_law(a, b),
             };
             if !hertz {
                 return l;
@@ -319,17 +337,33 @@ impl Reader<'_> {
                         format!("body \"{}\"", members[b].name),
                     ),
                 ),
+                // an edge, a corner or a rod's end has no radius
+                Touch::Edges { a, b, .. }
+                | Touch::OnEdge { a, b, .. }
+                | Touch::OnCorner { a, b, .. } => (
+                    (
+                        surface(a, 0).filter(|_| members[a].radius().is_some()),
+                        materials[a],
+                        format!("body \"{}\"", members[a].name),
+                    ),
+                    (None, materials[b], format!("body \"{}\"", members[b].name)),
+                ),
             };
             let (Some(s1), Some(s2)) = (first.0, second.0) else {
+                let who = if first.0.is_none() {
+                    &first.2
+                } else {
+                    &second.2
+                };
                 failure.get_or_insert_with(|| {
                     self.err(
                         "simulate.contact.stiffness",
                         Some("\"hertz\"".into()),
                         format!(
-                            "Hertz's stiffness is for curved or flat surfaces, and the corners of \
-                             {} have no radius: give the stiffness of its contacts as a number \
-                             ([[simulate.pair]] or [simulate.obstacle.NAME])",
-                            first.2
+                            "Hertz's stiffness is for curved or flat surfaces, and the corners, \
+                             edges and rod ends of {who} have no radius: give the stiffness of \
+                             its contacts as a number ([[simulate.pair]] or \
+                             [simulate.obstacle.NAME])"
                         ),
                     )
                 });
@@ -370,7 +404,11 @@ impl Reader<'_> {
         let joined = |a: usize, b: usize| links.iter().any(|l| l.joins(a, b));
         let mut candidates = candidates;
         candidates.retain(|c| match c.touch {
-            Touch::Pair { a, b } | Touch::Face { a, b, .. } => !joined(a, b),
+            Touch::Pair { a, b }
+            | Touch::Face { a, b, .. }
+            | Touch::Edges { a, b, .. }
+            | Touch::OnEdge { a, b, .. }
+            | Touch::OnCorner { a, b, .. } => !joined(a, b),
             Touch::Plane { .. } => true,
         });
         // a sphere a rough contact touches turns (its spin integrated)

@@ -1,7 +1,9 @@
 //! The bodies of a system and their state, in f64, in the world frame.
 //!
 //! Each member is a rigid body of the single body's kind ([`crate::simulate::body::Body`]: its
-//! mass, central inertia J in body axes, shape and features) — a sphere or a box here. Its state
+//! mass, central inertia J in body axes, shape and features) — a sphere, a box or a thin rod
+//! here (a rod's J completed about its axis, as the single body's: no contact of a thin rod
+//! has a moment about it). Its state
 //! is the single body's: the centre x_b, the attitude q_b (body → world), the velocity v_b of
 //! the centre and the angular velocity ω_b (world). A sphere whose contacts are all frictionless
 //! carries its attitude and spin but does not integrate them: its contacts pass through its

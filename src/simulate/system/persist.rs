@@ -489,6 +489,18 @@ pub fn project(
     joints: &[Link],
 ) -> f64 {
     let offset = hold(joints, members, s);
+    // a closed contact whose gap the step took out of its region (an edge's normal out of its
+    // cone: +∞) holds nothing; the event loop lets it go
+    let held: Vec<Held> = held
+        .iter()
+        .copied()
+        .filter(|h| {
+            gap(&candidates[h.k].touch, members, planes, s)
+                .gap
+                .is_finite()
+        })
+        .collect();
+    let held = held.as_slice();
     if held.is_empty() {
         return offset;
     }

@@ -19,10 +19,12 @@
 //! |a| + ρ (|ω|² + |α|) of each side plus twice the curvature term), each step is capped at
 //! the horizon of [`crate::simulate::stepper::horizon`]. A gap within the gap tolerance (10⁻¹¹
 //! of the length scale) approaching faster than `rest_speed` is an impact; one slower closes
-//! unless the acceleration-level problem with it closed separates it (g̈ > 0); a closed
+//! unless the acceleration-level problem with it closed separates it (g̈ > 0), and then caps
+//! no step (it separates; the step's crossing check still holds it); a closed
 //! contact opens when g̈ > 0 ([`super::persist`]), or when its point reaches its face's edge
-//! moving out (located by halving the step, as a crossing of how far inside the edges it is). After every step the members are checked for an
-//! overlap where no contact is watched ([`super::overlap`]): the run stops there, naming them.
+//! moving out (located by halving the step, as a crossing of how far inside the edges it is).
+//! After every step the members are checked for an overlap ([`super::overlap`]): the run stops
+//! there, naming them.
 //!
 //! **Impacts.** Every open contact approaching within the gap tolerance or within
 //! `simultaneity` in time, and every closed contact, strike together: one multiple impact,
@@ -36,13 +38,18 @@
 //! together where they can (the corners of a face), one by one otherwise, when sticking needs no
 //! more than their cones. At rest: slower than `rest_speed`, and still with every slide stuck.
 //!
+//! An open contact that enters its region (an edge's closest point past a corner onto the next
+//! edge, a corner past an edge onto a face) does so at the gap the contact it takes over from
+//! held, within the projection's drift: it is taken as it comes, to the overlap tolerance
+//! (10³ times the gap tolerance), and struck or closed there; a closed one that leaves it holds
+//! nothing in the projection and lets go.
+//!
 //! **Zeno.** Where one member bounces on what stays put (a ball on a box resting on the floor,
 //! a box dropped flat on another), three impacts in a constant ratio are summed in closed form
 //! to their accumulation, as for the single body ([`super::zeno`]); elsewhere a system runs to
 //! rest by its `rest_speed`, or to its impact budget.
 //!
-//! Not here yet: rods and cylinders in a system, edge-on-edge contacts (refused by the overlap
-//! check).
+//! Not here yet: cylinders in a system.
 
 use super::super::body::{Feature, Shape, V3, quaternion_rate};
 use super::super::contact::{ContactError, Mode};
@@ -53,7 +60,7 @@ use super::super::run::{
 };
 use super::super::stepper::{self, Advance, Stall, Stepper};
 use super::super::world::Plane;
-use super::gaps::{Candidate, Touch, gap};
+use super::gaps::{Candidate, Touch, edge_count, gap};
 use super::impact::solve;
 use super::joints::Link;
 use super::members::{Member, SystemState};
@@ -69,7 +76,8 @@ pub struct SystemSetup {
     /// The obstacles.
     pub planes: Vec<Plane>,
     /// Every contact watched (every feature on every plane, every pair of spheres, every
-    /// feature on every face of a box), with its law.
+    /// feature on every face of a box, every edge on every other member's edges, every sphere on
+    /// every edge and corner), with its law.
     pub candidates: Vec<Candidate>,
     /// The joints (none: free members).
     pub joints: Vec<Link>,
@@ -88,8 +96,10 @@ impl SystemSetup {
     }
 
     /// Every feature of every member on every plane, then every pair of spheres (a < b),
-    /// then every feature of every member (but a rim) on every face of every box, each with
-    /// the law `law_of` gives.
+    /// then every feature of every member (but a rim) on every face of every box, then every
+    /// edge of a member (a box's, a rod's segment) on every edge of another (a < b), then
+    /// every sphere on every edge and every corner (a box's corner, a rod's end) of every
+    /// member, each with the law `law_of` gives.
     pub fn candidates(
         members: &[Member],
         planes: usize,
@@ -133,6 +143,39 @@ impl SystemSetup {
                             b,
                             face,
                         });
+                    }
+                }
+            }
+        }
+        let edges = |m: &Member| edge_count(&m.body.shape);
+        for a in 0..members.len() {
+            for b in a + 1..members.len() {
+                for edge_a in 0..edges(&members[a]) {
+                    for edge_b in 0..edges(&members[b]) {
+                        touches.push(Touch::Edges {
+                            a,
+                            edge_a,
+                            b,
+                            edge_b,
+                        });
+                    }
+                }
+            }
+        }
+        for (a, sphere) in members.iter().enumerate() {
+            if sphere.radius().is_none() {
+                continue;
+            }
+            for (b, m) in members.iter().enumerate() {
+                for edge in 0..edges(m) {
+                    touches.push(Touch::OnEdge { a, b, edge });
+                }
+                if edges(m) == 0 {
+                    continue;
+                }
+                for (feature, f) in m.body.features.iter().enumerate() {
+                    if matches!(f, Feature::Point { .. }) {
+                        touches.push(Touch::OnCorner { a, b, feature });
                     }
                 }
             }
@@ -524,12 +567,23 @@ impl<'a> Run<'a> {
             if let Some(why) = self.stepper.stall(MAX_STEPS) {
                 return Err(SimulateError::Stalled { t: self.t, why });
             }
-            // A closed contact whose point reaches its face's edge moving out lets go.
+            // A closed contact whose point reaches its face's edge (an edge's end, a region's
+            // boundary) moving out lets go.
             let off: Vec<usize> = (0..self.closed.len())
                 .filter(|&p| self.leaves(&self.gap(self.closed[p].k, &self.s)))
                 .collect();
             if !off.is_empty() {
-                self.let_go(&off, "leaves the face");
+                for &p in off.iter().rev() {
+                    let k = self.closed.remove(p).k;
+                    self.events.push(Event {
+                        t: self.t,
+                        what: format!(
+                            "{} {}",
+                            self.name(k),
+                            self.setup.candidates[k].touch.leaving()
+                        ),
+                    });
+                }
                 continue;
             }
             let acc = self.current()?;
@@ -584,6 +638,11 @@ impl<'a> Run<'a> {
                             closing = true;
                             continue;
                         }
+                        // at zero gap, not approaching beyond the rest speed, and the
+                        // accelerations open it: it separates, and caps no step (its horizon
+                        // would be zero at a rate of −10⁻¹¹ m/s); the step's crossing check
+                        // still holds it
+                        continue;
                     }
                 }
                 let members = &self.setup.members;
@@ -636,9 +695,12 @@ impl<'a> Run<'a> {
                 .filter(|&k| !self.is_closed(k))
                 .map(|k| (k, self.gap(k, &self.s).gap))
                 .collect();
-            // how far inside its face each closed face contact's point is (+∞ for others)
+            // how far inside its face each closed face contact's point is (an edge contact's
+            // end is not located: past it, its gap is +∞ and it lets go, the contact it hands
+            // over to entering its region at the same gap)
             let over: Vec<(usize, f64)> = closed
                 .iter()
+                .filter(|h| matches!(self.setup.candidates[h.k].touch, Touch::Face { .. }))
                 .map(|h| (h.k, self.gap(h.k, &self.s).inside))
                 .filter(|(_, m)| m.is_finite())
                 .collect();
@@ -650,11 +712,19 @@ impl<'a> Run<'a> {
                     Ok(derivative(&self.setup.members, &s, &a))
                 };
                 // No open contact may end the step through its gap: one the step took through
-                // is located by halving the step.
+                // is located by halving the step. One that enters its region (from +∞: an
+                // edge's point past a corner onto the next edge or face) does so at the gap the
+                // contact it takes over from held, within the drift of the projection: it is
+                // taken as it comes, up to the overlap tolerance, and struck or closed there.
                 let crosses = |y: &[f64]| {
                     let end = SystemState::unpack(y);
                     open.iter().any(|&(k, start)| {
-                        stepper::crossed(start, self.gap(k, &end).gap, self.gap_tol)
+                        let tol = if start.is_finite() {
+                            self.gap_tol
+                        } else {
+                            1e3 * self.gap_tol
+                        };
+                        stepper::crossed(start, self.gap(k, &end).gap, tol)
                     }) || over.iter().any(|&(k, start)| {
                         stepper::crossed(start, self.gap(k, &end).inside, self.gap_tol)
                     })

@@ -10,7 +10,7 @@
 //! - m does not turn (no spin, or a sphere's spin that no contact feels: [`super::members`]),
 //!   so every point of m moves with its centre, and no joint holds it;
 //! - every open contact struck is m's against the same unit normal d (pushing m; a plane's, a
-//!   still box's face, or a still sphere's with m moving along the line of centres), and no
+//!   still box's face; or, with m moving along d, a still sphere's, edge's or corner's), and no
 //!   closed contact touches m: between impacts m is in free flight;
 //! - the last impact left m's velocity across d unchanged (to 10⁻¹² of the speed scale: no
 //!   friction acted), and the rebound speeds u₁, u₂, u₃ along d are in a constant ratio
@@ -195,10 +195,15 @@ pub fn accumulation(
     if gn <= 0.0 || dv.norm() > 1e-12 * scene.speed {
         return None;
     }
-    // a pair's normal stays put only while m moves along it
-    let pair = open
-        .iter()
-        .any(|&k| matches!(scene.candidates[k].touch, Touch::Pair { .. }));
+    // a pair's normal, or a sphere's on an edge or a corner, stays put only while m moves along
+    // it; an edge on an edge is taken only so too (where its closest points stay on the edges
+    // is not followed along the way)
+    let pair = open.iter().any(|&k| {
+        !matches!(
+            scene.candidates[k].touch,
+            Touch::Plane { .. } | Touch::Face { .. }
+        )
+    });
     if pair && (vt.norm() > 1e-12 * scene.speed || gt.norm() > 1e-12 * g.norm()) {
         return None;
     }
