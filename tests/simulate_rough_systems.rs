@@ -282,3 +282,32 @@ fn two_rough_boxes_colliding_keep_momentum() {
         }
     }
 }
+
+/// A box resting flat on a rough floor (μ = 0.3) closes its four corners at t = 0 and is at
+/// rest there: no impact, no step. Each corner alone would tip the box about it and slip (its
+/// sticking force would leave the cone), so it closes sliding and the loop tries again with it
+/// sliding; a loop one try short left every corner open, and the box fell 10⁻¹¹ m onto the
+/// floor and bounced three times at 10⁻⁶ s before its contacts closed.
+#[test]
+fn a_box_resting_on_a_rough_floor_closes_at_once() {
+    let s = system(
+        "[[body]]\nname = \"box\"\nshape = { box = [1, 1, 0.2] }\nmass = 5\n\
+         position = [0, 0, 0.1]\nvelocity = [0, 0, 0]\n\
+         [[obstacle]]\nname = \"floor\"\nnormal = [0, 0, 1]\n\
+         [simulate]\ngravity = [0, 0, -9.81]\nduration = 1\nlaw = \"unilateral\"\n\
+         contact = { k = 0.5, mu = 0.3 }\n",
+    );
+    let sim = simulate_system(&s);
+    assert!(sim.stopped.is_none(), "{:?}", sim.stopped);
+    assert!(sim.impacts.is_empty(), "{:?}", sim.impacts);
+    let closing: Vec<_> = sim
+        .events
+        .iter()
+        .filter(|e| e.what.ends_with("closes"))
+        .collect();
+    assert_eq!(closing.len(), 4, "{:?}", sim.events);
+    assert!(closing.iter().all(|e| e.t == 0.0));
+    assert_eq!(sim.end, inertance::simulate::End::Rest);
+    assert_eq!(sim.t_end, 0.0);
+    assert!((sim.state.x[0] - nalgebra::Vector3::new(0.0, 0.0, 0.1)).norm() <= 1e-15);
+}

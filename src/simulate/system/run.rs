@@ -434,7 +434,8 @@ impl<'a> Run<'a> {
     /// where sticking would need more friction than its cone holds.
     fn closes(&self, mut trial: Vec<Held>) -> Option<Held> {
         let last = trial.len() - 1;
-        for _ in 0..trial.len() {
+        // each contact switches to sliding at most once: one more try than there are contacts
+        for _ in 0..=trial.len() {
             match self.accelerations_at(&self.s, &trial) {
                 Ok(a) => {
                     return (a.gap_acceleration[last] <= 1e-9 * a.scale).then_some(trial[last]);
