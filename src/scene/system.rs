@@ -2,12 +2,11 @@
 //! [`System`] ([`crate::mechanics::system`]), every failure named by the scene's key.
 
 use crate::mechanics::body::RigidBody;
-use crate::mechanics::constraint::Joint;
 use crate::mechanics::screw::{Screw, Vec3};
 use crate::mechanics::system::{System, SystemBody, SystemError, SystemJoint, SystemScrew};
 use crate::scalar::Scalar;
 
-use super::model::system::{SystemJointKind, SystemSpec};
+use super::model::system::SystemSpec;
 use super::{Scene, SceneError};
 
 impl Scene {
@@ -79,14 +78,7 @@ impl Scene {
                 vector(&joint.axis, "axis")?,
             );
             joints.push(SystemJoint {
-                joint: match joint.kind {
-                    SystemJointKind::Revolute => Joint::Revolute { point, axis },
-                    SystemJointKind::Prismatic => Joint::Prismatic { axis },
-                    SystemJointKind::Cylindrical => Joint::Cylindrical { point, axis },
-                    SystemJointKind::Spherical => Joint::Spherical { point },
-                    SystemJointKind::Planar => Joint::Planar { normal: axis },
-                    SystemJointKind::Fixed => Joint::Fixed { point },
-                },
+                joint: joint.kind.joint(point, axis),
                 pair: joint.pair,
             });
         }

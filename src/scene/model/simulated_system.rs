@@ -42,9 +42,7 @@ use super::super::read::{Reader, short};
 use super::hertz::{Material, Surface, hertz_stiffness};
 use super::shape::Shape;
 use super::simulation::SIMULATE_KEYS;
-use super::system::SystemJointKind;
 use super::term::Term;
-use crate::mechanics::constraint::Joint;
 use crate::mechanics::screw::Vec3;
 use crate::number::Number;
 use crate::simulate::body::{Body, Feature, Shape as SimShape, V3};
@@ -487,14 +485,7 @@ impl Reader<'_> {
         let mut links = Vec::with_capacity(specs.len());
         for spec in &specs {
             let (point, axis) = (vector(&spec.anchor), vector(&spec.axis));
-            let joint = match spec.kind {
-                SystemJointKind::Revolute => Joint::Revolute { point, axis },
-                SystemJointKind::Prismatic => Joint::Prismatic { axis },
-                SystemJointKind::Cylindrical => Joint::Cylindrical { point, axis },
-                SystemJointKind::Spherical => Joint::Spherical { point },
-                SystemJointKind::Planar => Joint::Planar { normal: axis },
-                SystemJointKind::Fixed => Joint::Fixed { point },
-            };
+            let joint = spec.kind.joint(point, axis);
             for b in std::iter::once(spec.pair.first).chain(spec.pair.second) {
                 members[b].spins = true;
             }

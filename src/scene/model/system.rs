@@ -65,6 +65,24 @@ pub enum SystemJointKind {
 }
 
 impl SystemJointKind {
+    /// The joint of this kind through `point` along `axis` (the keys its kind reads; a planar
+    /// joint's `axis` is its plane's normal).
+    pub fn joint<T: crate::scalar::Scalar>(
+        self,
+        point: crate::mechanics::screw::Vec3<T>,
+        axis: crate::mechanics::screw::Vec3<T>,
+    ) -> crate::mechanics::constraint::Joint<T> {
+        use crate::mechanics::constraint::Joint;
+        match self {
+            SystemJointKind::Revolute => Joint::Revolute { point, axis },
+            SystemJointKind::Prismatic => Joint::Prismatic { axis },
+            SystemJointKind::Cylindrical => Joint::Cylindrical { point, axis },
+            SystemJointKind::Spherical => Joint::Spherical { point },
+            SystemJointKind::Planar => Joint::Planar { normal: axis },
+            SystemJointKind::Fixed => Joint::Fixed { point },
+        }
+    }
+
     const NAMES: [(&'static str, SystemJointKind); 6] = [
         ("revolute", SystemJointKind::Revolute),
         ("prismatic", SystemJointKind::Prismatic),
