@@ -44,7 +44,10 @@ impl Slot {
             return None;
         }
         let slots: Option<Vec<Slot>> = paths.map(|p| Slot::find(p, scene)).collect();
-        slots.filter(|s| scene.axes.is_none() || s.iter().all(|s| s.as_written()))
+        slots.filter(|s| match scene.axes {
+            None => true,
+            Some(axes) => s.iter().all(|s| s.as_written(axes)),
+        })
     }
 
     /// The slot of `path` in `scene`, if it is one of the directly settable numbers.
@@ -81,16 +84,22 @@ impl Slot {
         }
     }
 
-    /// Whether a modelled scene (world frame, pose, shape: [`crate::scene::model`]) keeps the
-    /// number as written: a contact's coefficients (k, μ) are read as in the paper's form and
-    /// never brought to the solver's frame, while its points, the body's mass, moments and
-    /// velocities are computed from the pose and the shape, so varying those re-reads the
-    /// document.
-    pub(super) fn as_written(self) -> bool {
-        matches!(
-            self,
-            Slot::K(_) | Slot::KNewton(_) | Slot::KPoisson(_) | Slot::Mu(_)
-        )
+    /// Whether a modelled scene (world frame, pose, shape: [`crate::scene::model`]) solved in
+    /// `axes` keeps the number as written: a contact's coefficients (k, μ) are read as in the
+    /// paper's form and never brought to the solver's frame; the body's velocity v_C and
+    /// angular velocity ω are written in the world frame and, solved in world axes (the
+    /// default), reach the solver unchanged (Q = I in the frame change of
+    /// [`crate::scene::model`]) and feed nothing else the lowering computes. Its points, the
+    /// body's mass and moments (and, in body axes, Rᵀ v_C and Rᵀ ω) are computed from the pose
+    /// and the shape, so varying those re-reads the document.
+    pub(super) fn as_written(self, axes: crate::scene::model::Axes) -> bool {
+        match self {
+            Slot::K(_) | Slot::KNewton(_) | Slot::KPoisson(_) | Slot::Mu(_) => true,
+            Slot::Velocity(_) | Slot::AngularVelocity(_) => {
+                axes == crate::scene::model::Axes::World
+            }
+            Slot::Mass | Slot::Inertia(_) | Slot::Point(..) => false,
+        }
     }
 
     /// Whether the number is a coefficient of restitution (`k`, `k_newton`, `k_poisson`): a
@@ -135,10 +144,18 @@ impl Slot {
         Some(())
     }
 
-    /// Set the number to q, as [`set_value`] and [`Scene::from_document`] would.
+    /// Set the number to q, as [`set_value`] and [`Scene::from_document`] would: a modelled
+    /// scene's velocities are read back from their terms, whose text is the fraction
+    /// (`7/100`, where the document's own number reads `0.07`).
     pub(super) fn set(self, scene: &mut Scene, q: &BigRational) {
+        let read_back =
+            scene.axes.is_some() && matches!(self, Slot::Velocity(_) | Slot::AngularVelocity(_));
         let n = Number {
-            text: text(q),
+            text: if read_back {
+                crate::number::format_rational(q)
+            } else {
+                text(q)
+            },
             exact: Ok(q.clone()),
             approx: rational_to_f64(q),
             symbols: Vec::new(),
@@ -268,8 +285,25 @@ mod tests {
                     }
                 }
             }
+            // In world axes the velocities reach the solver as written.
+            for path in [
+                "body.velocity[0]",
+                "body.velocity[2]",
+                "body.angular_velocity[1]",
+            ] {
+                let slots = Slot::all([path, "contact[0].k"].into_iter(), &base, false)
+                    .unwrap_or_else(|| panic!("{file}: {path}"));
+                for x in [q(0, 1), q(-1, 3), q(7, 100), q(-5, 1)] {
+                    let mut d = doc.clone();
+                    set_value(&mut d, path, &toml_text(&x)).unwrap();
+                    let reread = Scene::from_document(&d, file).unwrap();
+                    let mut direct = base.clone();
+                    slots[0].set(&mut direct, &x);
+                    assert_eq!(direct, reread, "{file}: {path} = {x}");
+                }
+            }
             // Numbers the lowering computes from the pose and the shape are re-read.
-            for path in ["body.mass", "body.velocity[2]", "contact[0].point[0]"] {
+            for path in ["body.mass", "contact[0].point[0]"] {
                 assert_eq!(
                     Slot::all([path].into_iter(), &base, false),
                     None,
@@ -282,6 +316,19 @@ mod tests {
                 );
             }
             assert_eq!(Slot::all(["contact[0].k"].into_iter(), &base, true), None);
+            // Solved in body axes, the velocities are turned by Rᵀ: re-read.
+            if !text.contains("[solve]") {
+                let body_axes = format!("{text}\n[solve]\naxes = \"body\"\n");
+                let doc = parse_document(&body_axes, file).unwrap();
+                let base = Scene::from_document(&doc, file).unwrap();
+                for path in ["body.velocity[0]", "body.angular_velocity[2]"] {
+                    assert_eq!(
+                        Slot::all([path].into_iter(), &base, false),
+                        None,
+                        "{file} in body axes: {path}"
+                    );
+                }
+            }
         }
     }
 }
