@@ -186,6 +186,11 @@ enum Command {
         /// cost versus N) to this file.
         #[arg(long, value_name = "FILE.svg")]
         plot: Option<PathBuf>,
+        /// Also write the tables to this file (e.g. benches/results/bench.md), headed by when,
+        /// on how many cores and under what load they were measured; written atomically
+        /// (FILE.tmp renamed when complete).
+        #[arg(long, value_name = "FILE.md", conflicts_with_all = ["scene", "corpus"])]
+        out: Option<PathBuf>,
         /// Time only this scene, in every scalar type under its law (ns per solve, per body and
         /// per contact; a type without a time says why; JSON with --json). A scene of several
         /// bodies is timed from its data: System::new, assemble, its law.
@@ -379,6 +384,7 @@ fn main() -> ExitCode {
             quick,
             json,
             plot,
+            out,
             scene,
             batch,
             hard_cases,
@@ -389,7 +395,7 @@ fn main() -> ExitCode {
             } else if let (Some(scene), false) = (&scene, batch.is_empty()) {
                 run_bench_batch(scene, &batch, quick, json)
             } else {
-                run_bench(quick, json, plot, scene, hard_cases)
+                run_bench(quick, json, (plot, out), scene, hard_cases)
             }
         }
     }
@@ -1546,7 +1552,7 @@ fn run_bench_corpus(path: &std::path::Path, quick: bool, json: bool) -> ExitCode
 fn run_bench(
     quick: bool,
     json: bool,
-    plot: Option<PathBuf>,
+    (plot, out): (Option<PathBuf>, Option<PathBuf>),
     scene: Option<PathBuf>,
     hard_cases: PathBuf,
 ) -> ExitCode {
@@ -1563,6 +1569,7 @@ fn run_bench(
         }
         return ExitCode::SUCCESS;
     }
+    let measured = inertance::tools::bench::Measured::now(quick);
     let report = inertance::tools::bench::run(&inertance::tools::bench::BenchOptions {
         quick,
         hard_cases: Some(hard_cases),
@@ -1574,6 +1581,14 @@ fn run_bench(
         );
     } else {
         print!("{}", report.to_text());
+    }
+    if let Some(path) = out {
+        let text = format!("{}\n\n{}", measured.to_text(), report.to_text());
+        if let Err(e) = inertance::tools::bench::write_atomically(&path, &text) {
+            eprintln!("error: cannot write the report: {e}");
+            return ExitCode::from(1);
+        }
+        eprintln!("report written to {}", path.display());
     }
     if let Some(path) = plot {
         if let Err(e) = report.plot(&path) {

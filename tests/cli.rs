@@ -619,6 +619,7 @@ fn bench_quick_json_and_plot() {
     let dir = std::env::temp_dir().join(format!("inertance-bench-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let plot = dir.join("bench.svg");
+    let tables = dir.join("bench.md");
     let out = Command::new(env!("CARGO_BIN_EXE_inertance"))
         .args([
             "bench",
@@ -626,6 +627,8 @@ fn bench_quick_json_and_plot() {
             "--json",
             "--plot",
             plot.to_str().unwrap(),
+            "--out",
+            tables.to_str().unwrap(),
         ])
         .current_dir(env!("CARGO_MANIFEST_DIR"))
         .output()
@@ -699,6 +702,32 @@ fn bench_quick_json_and_plot() {
         assert!(active <= n, "N = {n}: {active} active");
     }
     assert!(std::fs::read_to_string(&plot).unwrap().starts_with("<svg"));
+    // Issue 29's goals, each measured in this run: a value (or why not), its bound and
+    // whether it is met; the sweeps' points against the paper form and against k.
+    let goals = v["goals"].as_array().unwrap();
+    assert_eq!(goals.len(), 7, "{goals:?}");
+    for g in goals {
+        let measured = g["measured"].as_f64();
+        assert!(
+            measured.is_some_and(|x| x > 0.0) || !g["note"].as_str().unwrap().is_empty(),
+            "{g}"
+        );
+        assert_eq!(g["met"].is_boolean(), measured.is_some(), "{g}");
+        assert!(
+            ["at_most", "at_least"].contains(&g["bound"].as_str().unwrap()),
+            "{g}"
+        );
+    }
+    assert!(
+        goals[2]["what"].as_str().unwrap().contains("pose angle"),
+        "{goals:?}"
+    );
+    // --out: the tables, headed by when and under what load they were measured.
+    let text = std::fs::read_to_string(&tables).unwrap();
+    assert!(text.starts_with("Measured 20"), "{text}");
+    assert!(text.contains("`inertance bench --quick`"), "{text}");
+    assert!(text.contains("Issue 29's goals"), "{text}");
+    assert!(!dir.join("bench.md.tmp").exists());
     let _ = std::fs::remove_dir_all(dir);
 }
 

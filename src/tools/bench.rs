@@ -149,6 +149,8 @@ pub struct BenchReport {
     /// Scenes of several bodies: the planar chain against N and the examples per scalar type
     /// ([`crate::tools::system_bench`]).
     pub systems: crate::tools::system_bench::SystemsBench,
+    /// The time per point of the sweeps issue 29's goals compare ([`crate::tools::goals`]).
+    pub sweep_points: crate::tools::goals::SweepPoints,
 }
 
 /// A small deterministic generator (SplitMix64), so the corpus is the same on every machine.
@@ -676,6 +678,7 @@ pub fn run(opts: &BenchOptions) -> BenchReport {
         lean: crate::tools::lean_bench::run(opts.quick),
         n_curve: crate::tools::n_curve::run(opts.quick),
         systems: crate::tools::system_bench::run(opts.quick),
+        sweep_points: crate::tools::goals::sweep_points(opts.quick),
     }
 }
 
@@ -955,7 +958,13 @@ impl BenchReport {
             );
         }
         s += &self.friction.to_text();
-        s + &self.systems.to_text()
+        s += &self.systems.to_text();
+        s + &crate::tools::goals::to_text(&self.goals())
+    }
+
+    /// Issue 29's goals measured in this run ([`crate::tools::goals`]).
+    pub fn goals(&self) -> Vec<crate::tools::goals::Goal> {
+        crate::tools::goals::goals(&self.sweep_points, &self.lean, &self.friction)
     }
 
     /// The JSON report.
@@ -1001,6 +1010,7 @@ impl BenchReport {
             "friction": self.friction.to_json(),
             "lean": self.lean.to_json(),
             "systems": self.systems.to_json(),
+            "goals": crate::tools::goals::to_json(&self.goals()),
             "n_curve": self.n_curve.iter().map(|c| json!({
                 "scalar": c.scalar,
                 "points": c.points.iter().map(|(n, t)| json!({"contacts": n, "ns_per_analyze": num(*t)})).collect::<Vec<_>>(),
@@ -1227,4 +1237,66 @@ impl BenchReport {
             }
         }
     }
+}
+
+/// When, where and under what load a bench report was measured: the header of
+/// `inertance bench --out FILE.md`, so that a table in the repository says which run it is.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Measured {
+    /// The start of the run, RFC 3339 in UTC to the second.
+    pub when: String,
+    /// Logical cores the process may use.
+    pub cores: usize,
+    /// The load averages over 1, 5 and 15 minutes at the start (`/proc/loadavg`), where the
+    /// system gives them.
+    pub load: Option<[f64; 3]>,
+    /// Whether the run was `--quick`.
+    pub quick: bool,
+}
+
+impl Measured {
+    /// The machine now.
+    pub fn now(quick: bool) -> Measured {
+        let load = std::fs::read_to_string("/proc/loadavg").ok().and_then(|s| {
+            let v: Vec<f64> = s
+                .split_whitespace()
+                .take(3)
+                .filter_map(|x| x.parse().ok())
+                .collect();
+            <[f64; 3]>::try_from(v).ok()
+        });
+        Measured {
+            when: humantime::format_rfc3339_seconds(std::time::SystemTime::now()).to_string(),
+            cores: std::thread::available_parallelism().map_or(1, |n| n.get()),
+            load,
+            quick,
+        }
+    }
+
+    /// One line for the head of a report.
+    pub fn to_text(&self) -> String {
+        let load = self.load.map_or("not known".into(), |[a, b, c]| {
+            format!("{a:.2}, {b:.2}, {c:.2} (1, 5, 15 min)")
+        });
+        format!(
+            "Measured {} by `inertance bench{}` (inertance {}), {} logical cores, load average at the start {load}; timings are of this machine and load, the ratios of rounds taken in turn.",
+            self.when,
+            if self.quick { " --quick" } else { "" },
+            env!("CARGO_PKG_VERSION"),
+            self.cores,
+        )
+    }
+}
+
+/// Write `text` to `path` atomically: to `path.tmp`, renamed to `path` when complete; the
+/// `.tmp` is removed on failure, so no half-written file is left.
+pub fn write_atomically(path: &Path, text: &str) -> Result<(), String> {
+    let mut tmp = path.as_os_str().to_owned();
+    tmp.push(".tmp");
+    let tmp = std::path::PathBuf::from(tmp);
+    let done = std::fs::write(&tmp, text).and_then(|()| std::fs::rename(&tmp, path));
+    done.map_err(|e| {
+        let _ = std::fs::remove_file(&tmp);
+        format!("{}: {e}", path.display())
+    })
 }

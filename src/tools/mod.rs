@@ -14,6 +14,7 @@ pub mod check;
 pub mod corpus;
 pub mod derive;
 pub mod friction_bench;
+pub mod goals;
 pub mod lean_bench;
 pub mod lzb_bench;
 pub mod lzb_compare;
