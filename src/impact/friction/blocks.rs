@@ -251,6 +251,7 @@ impl<T: Scalar, S: Screws<T>> Blocks<T, S> {
         self.v0
             .extend(self.axes.iter().map(|a| a.reciprocal(mechanism.velocity())));
         self.offset.clear();
+        self.offset.reserve(self.dims.len());
         let mut at = 0;
         for d in &self.dims {
             self.offset.push(at);

@@ -274,18 +274,26 @@ impl<T> Default for Spare<T> {
 }
 
 impl<T> Spare<T> {
-    /// An empty vector of values, a kept one when there is one.
-    pub(crate) fn values(&mut self) -> Vec<T> {
-        let mut v = self.values.pop().unwrap_or_default();
-        v.clear();
-        v
+    /// An empty vector of values: a kept one when there is one, else a new one of `capacity`.
+    pub(crate) fn values(&mut self, capacity: usize) -> Vec<T> {
+        match self.values.pop() {
+            Some(mut v) => {
+                v.clear();
+                v
+            }
+            None => Vec::with_capacity(capacity),
+        }
     }
 
-    /// An empty vector of labels, a kept one when there is one.
-    pub(crate) fn labels(&mut self) -> Vec<ModeLabel> {
-        let mut v = self.labels.pop().unwrap_or_default();
-        v.clear();
-        v
+    /// An empty vector of labels: a kept one when there is one, else a new one of `capacity`.
+    pub(crate) fn labels(&mut self, capacity: usize) -> Vec<ModeLabel> {
+        match self.labels.pop() {
+            Some(mut v) => {
+                v.clear();
+                v
+            }
+            None => Vec::with_capacity(capacity),
+        }
     }
 
     /// Keep the vectors of `segments` and `samples`, which are left empty.
@@ -821,13 +829,13 @@ fn linear_samples_into<T: Scalar>(
 ) {
     spare.take_back(&mut Vec::new(), out);
     out.reserve(2 * segments.len());
-    let mut at = spare.values();
+    let mut at = spare.values(len);
     at.resize(len, T::zero());
     for seg in segments {
         let mut sample = |s: &T, at: &[T]| {
-            let mut impulses = spare.values();
+            let mut impulses = spare.values(at.len());
             impulses.extend_from_slice(at);
-            let mut modes = spare.labels();
+            let mut modes = spare.labels(seg.modes.len());
             modes.extend_from_slice(&seg.modes);
             out.push(Sample {
                 s: s.clone(),

@@ -398,9 +398,9 @@ impl<T: Scalar, S: Screws<T>> PlanarFrictionWork<T, S> {
                 }
             }
             if !h.is_zero() {
-                let mut modes = spare.labels();
+                let mut modes = spare.labels(n);
                 labels_into(hypothesis, normals, &st.modes, &mut modes);
-                let mut rates = spare.values();
+                let mut rates = spare.values(r.lambda.len());
                 rates.extend_from_slice(&r.lambda);
                 segments.push(Segment {
                     from,
