@@ -125,10 +125,10 @@ fn finish_float<T: Scalar>(
     units: Option<&Units>,
     how: &str,
 ) -> Result<(), RunError> {
-    if !T::IS_EXACT {
-        if let Some(output) = precision_lost(&solved.report) {
-            return Err(RunError::Scene(output_below(scene, T::NAME, output, how)));
-        }
+    if !T::IS_EXACT
+        && let Some(output) = precision_lost(&solved.report)
+    {
+        return Err(RunError::Scene(output_below(scene, T::NAME, output, how)));
     }
     if let Some(units) = units {
         unscale(&mut solved.report, units);
