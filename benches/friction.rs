@@ -1,8 +1,10 @@
 //! The planar frictional solve beside the frictionless one, on the friction bench's seeded
 //! planar scenes (`tools::friction_bench::planar_scenes`: 1–3 contacts, μ = 1/2, Poisson's law):
 //!
-//! * `friction-planar/frictional-f64`: `solve_frictional` on each of the 24 scenes, event by
-//!   event (one iteration solves all 24);
+//! * `friction-planar/frictional-f64`: the planar solve on each of the 24 scenes, event by
+//!   event, on a kept `PlanarFrictionWork` (one iteration solves all 24);
+//! * `friction-planar/frictional-f64-one-off`: the same through `solve_frictional`, which
+//!   builds and drops its workspace and report at every call;
 //! * `friction-planar/frictionless-f64`: assemble + Poisson solve of the same 24 scenes on a
 //!   kept `Impact`, as `inertance bench` times it;
 //! * `friction-planar/frictional-exact`: the same frictional solves in exact rationals.
@@ -17,7 +19,7 @@ use std::hint::black_box;
 use std::time::Duration;
 
 use criterion::Criterion;
-use inertance::impact::friction::{Restitution, solve_frictional};
+use inertance::impact::friction::{Hypothesis, PlanarFrictionWork, Restitution, solve_frictional};
 use inertance::impact::problem::Problem;
 use inertance::impact::restitution::Model;
 use inertance::impact::solve::{Impact, Outcome};
@@ -39,7 +41,23 @@ fn main() {
     let f64s: Vec<Problem<f64>> = scenes.iter().map(|s| s.problem().expect("valid")).collect();
     let exact: Vec<Problem<Exact>> = scenes.iter().map(|s| s.problem().expect("valid")).collect();
     let mut g = c.benchmark_group("friction-planar");
+    let mut work = PlanarFrictionWork::new();
     g.bench_function("frictional-f64", |b| {
+        b.iter(|| {
+            for p in &f64s {
+                let f = work
+                    .solve_into(
+                        black_box(p),
+                        Restitution::Poisson,
+                        Hypothesis::Simultaneous,
+                        0.0,
+                    )
+                    .expect("solves");
+                black_box(f);
+            }
+        })
+    });
+    g.bench_function("frictional-f64-one-off", |b| {
         b.iter(|| {
             for p in &f64s {
                 black_box(

@@ -10,10 +10,16 @@
 //! * `… -- --loop N [--frictionless]` — N passes over the scenes and nothing printed, for
 //!   instruction counts:
 //!   `valgrind --tool=callgrind target/release/examples/friction_planar --loop 20`
+//!
+//! The frictional solves run on one kept [`PlanarFrictionWork`], as the bench times them;
+//! `--one-off` makes `--dump` and `--loop` call `solve_frictional` afresh for every scene
+//! instead (the two dumps are identical).
 
 use std::time::Duration;
 
-use inertance::impact::friction::{Restitution, solve_frictional};
+use inertance::impact::friction::{
+    Frictional, Hypothesis, PlanarFrictionWork, Restitution, solve_frictional,
+};
 use inertance::impact::restitution::Model;
 use inertance::impact::solve::{Impact, Outcome};
 use inertance::tools::friction_bench::{PLANAR_GOAL, planar_scenes, time_planar};
@@ -30,9 +36,8 @@ fn main() {
         .iter()
         .map(|s| s.problem::<f64>().expect("the bench's scenes are valid"))
         .collect();
-    let solve = |p: &Problem<f64>| {
-        solve_frictional(std::hint::black_box(p), Restitution::Poisson, 0.0).expect("solves")
-    };
+    let one_off = args.iter().any(|a| a == "--one-off");
+    let mut work = PlanarFrictionWork::new();
     if let Some(at) = args.iter().position(|a| a == "--loop") {
         let passes: usize = args[at + 1].parse().expect("--loop N");
         if args.iter().any(|a| a == "--frictionless") {
@@ -43,10 +48,23 @@ fn main() {
                     impact.solve(Model::Poisson, &mut out).expect("solves");
                 }
             }
+        } else if one_off {
+            for _ in 0..passes {
+                for p in &problems {
+                    let p = std::hint::black_box(p);
+                    std::hint::black_box(
+                        solve_frictional(p, Restitution::Poisson, 0.0).expect("solves"),
+                    );
+                }
+            }
         } else {
             for _ in 0..passes {
                 for p in &problems {
-                    std::hint::black_box(solve(p));
+                    let p = std::hint::black_box(p);
+                    let f = work
+                        .solve_into(p, Restitution::Poisson, Hypothesis::Simultaneous, 0.0)
+                        .expect("solves");
+                    std::hint::black_box(f);
                 }
             }
         }
@@ -54,7 +72,13 @@ fn main() {
     }
     if args.iter().any(|a| a == "--dump") {
         for (k, p) in problems.iter().enumerate() {
-            let f = solve(p);
+            let f: Frictional<f64> = match one_off {
+                true => solve_frictional(p, Restitution::Poisson, 0.0).expect("solves"),
+                false => work
+                    .solve_into(p, Restitution::Poisson, Hypothesis::Simultaneous, 0.0)
+                    .expect("solves")
+                    .clone(),
+            };
             let fmt = |xs: &[f64]| {
                 xs.iter()
                     .map(|x| format!("{x:e}"))

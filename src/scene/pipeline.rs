@@ -15,7 +15,7 @@ use num_traits::Zero;
 
 use crate::analysis::wrench_space::WrenchSpace;
 use crate::impact::admissibility::{Inadmissible, energy_gain, verdicts};
-use crate::impact::friction::{FrictionError, solve_frictional_under};
+use crate::impact::friction::{FrictionError, PlanarFrictionWork};
 use crate::impact::outputs::Outputs;
 use crate::impact::problem::{Problem, Reason};
 use crate::impact::restitution::Model;
@@ -125,10 +125,10 @@ fn finish_float<T: Scalar>(
     units: Option<&Units>,
     how: &str,
 ) -> Result<(), RunError> {
-    if !T::IS_EXACT {
-        if let Some(output) = precision_lost(&solved.report) {
-            return Err(RunError::Scene(output_below(scene, T::NAME, output, how)));
-        }
+    if !T::IS_EXACT
+        && let Some(output) = precision_lost(&solved.report)
+    {
+        return Err(RunError::Scene(output_below(scene, T::NAME, output, how)));
     }
     if let Some(units) = units {
         unscale(&mut solved.report, units);
@@ -381,9 +381,12 @@ fn run_frictional<T: Scalar>(
     let mut energy_identity = Vec::new();
     let kinetic = problem.body().kinetic_energy(problem.velocity());
     let mut first_failure = None;
+    // One workspace for the laws: a planar scene's blocks, buffers and report are refilled
+    // from one law to the next rather than built again.
+    let mut work = PlanarFrictionWork::new();
     for law in laws {
         let tolerance = scene.tolerance.unwrap_or_else(friction_tolerance::<T>);
-        let f = match solve_frictional_under(problem, law, scene.hypothesis(), tolerance) {
+        let f = match work.solve_into(problem, law, scene.hypothesis(), tolerance) {
             Ok(f) => f,
             Err(e) => match e.status() {
                 // A verdict of the physics for this law: the others still answer.
@@ -396,7 +399,7 @@ fn run_frictional<T: Scalar>(
             },
         };
         energy_identity.push(f.energy_balance_holds(&kinetic));
-        report.friction.push(FrictionReport::new(&f));
+        report.friction.push(FrictionReport::new(f));
     }
     if let (true, Some(e)) = (report.friction.is_empty(), first_failure) {
         return Err(e.into());

@@ -14,7 +14,9 @@ use std::time::Duration;
 
 use serde_json::{Value as Json, json};
 
-use crate::impact::friction::{Frictional, Restitution, solve_frictional};
+use crate::impact::friction::{
+    Frictional, Hypothesis, PlanarFrictionWork, Restitution, solve_frictional,
+};
 use crate::impact::problem::Problem;
 use crate::impact::restitution::Model;
 use crate::impact::solve::{Impact, Outcome};
@@ -154,11 +156,15 @@ pub fn time_planar(p: &Problem<f64>, budget: Duration) -> Option<(f64, f64)> {
     Some((time_friction(p, budget)?, time_frictionless(p, budget)?))
 }
 
+/// ns per frictional solve on a kept [`PlanarFrictionWork`], refilled at every solve as the
+/// frictionless baseline's `Impact` is.
 fn time_friction<T: Scalar>(p: &Problem<T>, budget: Duration) -> Option<f64> {
+    let mut work = PlanarFrictionWork::new();
     time_three(budget, || {
-        solve_frictional(
+        work.solve_into(
             std::hint::black_box(p),
             Restitution::Poisson,
+            Hypothesis::Simultaneous,
             friction_tolerance::<T>(),
         )
         .map(|_| ())

@@ -99,38 +99,64 @@ impl<T: Scalar, S: Screws<T>> Blocks<T, S> {
     /// mechanism's own [`Mechanism::planes`] (planes of rational unit normal found from the
     /// scene's vectors, see the module docs); `None` when none does.
     pub fn planar<M: Mechanism<T, Screw = S>>(mechanism: &M) -> Option<Self> {
-        let coordinate = coordinate_planes()
-            .into_iter()
-            .find_map(|unit| Self::in_plane(mechanism, unit));
-        if coordinate.is_some() || !T::IS_EXACT {
-            return coordinate;
+        let mut blocks = Self::empty();
+        blocks.planar_into(mechanism).then_some(blocks)
+    }
+
+    /// No axis: blocks to be filled by [`Blocks::planar_into`] (nothing is allocated).
+    pub fn empty() -> Self {
+        Blocks {
+            dims: Vec::new(),
+            offset: Vec::new(),
+            axes: Vec::new(),
+            directions: Vec::new(),
+            responses: Vec::new(),
+            k: Vec::new(),
+            v0: Vec::new(),
+            mu: Vec::new(),
+            points: Vec::new(),
+            plane: None,
+        }
+    }
+
+    /// [`Blocks::planar`] refilled in place, for a caller that solves impact after impact on
+    /// kept blocks ([`super::planar::PlanarFrictionWork`]): the same blocks, entry for entry,
+    /// and nothing allocated once the vectors have grown. `false` when no plane passes the
+    /// test (the blocks are then left unspecified).
+    pub fn planar_into<M: Mechanism<T, Screw = S>>(&mut self, mechanism: &M) -> bool {
+        for unit in coordinate_planes() {
+            if self.in_plane(mechanism, unit) {
+                return true;
+            }
+        }
+        if !T::IS_EXACT {
+            return false;
         }
         mechanism
             .planes()
             .into_iter()
-            .find_map(|unit| Self::in_plane(mechanism, unit))
+            .any(|unit| self.in_plane(mechanism, unit))
     }
 
-    /// The blocks in the plane of unit normal `unit`, if the scene stays in it.
-    fn in_plane<M: Mechanism<T, Screw = S>>(mechanism: &M, unit: Vec3<T>) -> Option<Self> {
-        let mut axes = Vec::new();
-        let mut directions = Vec::new();
-        let mut dims = Vec::new();
-        let mut out_of_plane = Vec::new();
+    /// Refill the blocks in the plane of unit normal `unit`; whether the scene stays in it.
+    fn in_plane<M: Mechanism<T, Screw = S>>(&mut self, mechanism: &M, unit: Vec3<T>) -> bool {
+        self.axes.clear();
+        self.directions.clear();
+        self.dims.clear();
         let velocity = mechanism.velocity();
         for (i, c) in mechanism.contacts().iter().enumerate() {
-            axes.push(mechanism.contact_axis(i, &c.normal));
-            directions.push(c.normal.clone());
+            self.axes.push(mechanism.contact_axis(i, &c.normal));
+            self.directions.push(c.normal.clone());
             if c.mu.is_zero() {
-                dims.push(0);
+                self.dims.push(0);
                 continue;
             }
             if !dot(&unit, &c.normal).is_zero() {
-                return None;
+                return false;
             }
             let z = mechanism.contact_axis(i, &unit);
             if !z.reciprocal(velocity).is_zero() {
-                return None;
+                return false;
             }
             // slide+ is slip along +y_i, the tangent as given or as §12 chooses it (the frame
             // the report prints), so t_i takes the sense of y_i when y_i lies in the plane.
@@ -140,16 +166,20 @@ impl<T: Scalar, S: Screws<T>> Blocks<T, S> {
                 Ok(y) if dot(&y, &t).signum_i8() < 0 => -t,
                 _ => t,
             };
-            axes.push(mechanism.contact_axis(i, &t));
-            directions.push(t);
-            out_of_plane.push(z);
-            dims.push(1);
+            self.axes.push(mechanism.contact_axis(i, &t));
+            self.directions.push(t);
+            self.dims.push(1);
         }
-        let blocks = Self::from_axes(mechanism, axes, directions, dims, Some(unit));
-        let stays = out_of_plane
-            .iter()
-            .all(|z| blocks.responses.iter().all(|r| z.reciprocal(r).is_zero()));
-        stays.then_some(blocks)
+        self.fill(mechanism, Some(unit.clone()));
+        // No impulse moves a frictional contact out of the plane: its axis Z_i along e (built
+        // again, as above) is reciprocal to every response.
+        let contacts = mechanism.contacts();
+        (0..contacts.len())
+            .filter(|&i| !contacts[i].mu.is_zero())
+            .all(|i| {
+                let z = mechanism.contact_axis(i, &unit);
+                self.responses.iter().all(|r| z.reciprocal(r).is_zero())
+            })
     }
 
     /// The spatial blocks of `mechanism`: unit normals and the unit y, z axes of each
@@ -193,37 +223,46 @@ impl<T: Scalar, S: Screws<T>> Blocks<T, S> {
         dims: Vec<usize>,
         plane: Option<Vec3<T>>,
     ) -> Self {
-        let responses: Vec<S> = axes.iter().map(|a| mechanism.response(a)).collect();
-        let len = axes.len();
-        let mut k = Vec::with_capacity(len * len);
-        for a in &axes {
-            for r in &responses {
-                k.push(a.reciprocal(r));
+        let mut blocks = Self {
+            dims,
+            axes,
+            directions,
+            ..Self::empty()
+        };
+        blocks.fill(mechanism, plane);
+        blocks
+    }
+
+    /// Fill everything the axes, directions and dims determine — responses, K, v⁰, the
+    /// offsets, μ and the points — in place, and the plane.
+    fn fill<M: Mechanism<T, Screw = S>>(&mut self, mechanism: &M, plane: Option<Vec3<T>>) {
+        self.responses.clear();
+        self.responses
+            .extend(self.axes.iter().map(|a| mechanism.response(a)));
+        let len = self.axes.len();
+        self.k.clear();
+        self.k.reserve(len * len);
+        for a in &self.axes {
+            for r in &self.responses {
+                self.k.push(a.reciprocal(r));
             }
         }
-        let v0 = axes
-            .iter()
-            .map(|a| a.reciprocal(mechanism.velocity()))
-            .collect();
-        let mut offset = Vec::with_capacity(dims.len());
+        self.v0.clear();
+        self.v0
+            .extend(self.axes.iter().map(|a| a.reciprocal(mechanism.velocity())));
+        self.offset.clear();
+        self.offset.reserve(self.dims.len());
         let mut at = 0;
-        for d in &dims {
-            offset.push(at);
+        for d in &self.dims {
+            self.offset.push(at);
             at += 1 + d;
         }
         let contacts: &[Contact<T>] = mechanism.contacts();
-        Blocks {
-            dims,
-            offset,
-            axes,
-            directions,
-            responses,
-            k,
-            v0,
-            mu: contacts.iter().map(|c| c.mu.clone()).collect(),
-            points: contacts.iter().map(|c| c.point.clone()).collect(),
-            plane,
-        }
+        self.mu.clear();
+        self.mu.extend(contacts.iter().map(|c| c.mu.clone()));
+        self.points.clear();
+        self.points.extend(contacts.iter().map(|c| c.point.clone()));
+        self.plane = plane;
     }
 
     /// −K x: the velocity change along every axis for the impulse increments `x`.
@@ -255,15 +294,12 @@ impl<T: Scalar, S: Screws<T>> Blocks<T, S> {
 }
 
 /// The coordinate planes' unit normals, z, y, x: every scene written in principal axes.
-fn coordinate_planes<T: Scalar>() -> Vec<Vec3<T>> {
-    (0..3)
-        .rev()
-        .map(|k| {
-            let mut unit = Vec3::zeros();
-            unit[k] = T::one();
-            unit
-        })
-        .collect()
+fn coordinate_planes<T: Scalar>() -> [Vec3<T>; 3] {
+    [2, 1, 0].map(|k| {
+        let mut unit = Vec3::zeros();
+        unit[k] = T::one();
+        unit
+    })
 }
 
 /// The unit normals e = d/|d| of the planes a planar scene in other than coordinate axes may

@@ -92,6 +92,7 @@ use crate::mechanics::screw::{Screw, Screws, Vec3};
 use crate::scalar::Scalar;
 
 pub use blocks::Blocks;
+pub use planar::PlanarFrictionWork;
 pub use rates::{Mode, Normal, Unilateral};
 
 /// The restitution law of a frictional impact.
@@ -234,16 +235,81 @@ pub(crate) fn labels<T: Scalar>(
     normals: &[Normal<T>],
     modes: &[Mode<T>],
 ) -> Vec<ModeLabel> {
-    normals
-        .iter()
-        .zip(modes)
-        .map(|(nr, m)| match nr {
-            Normal::Given(r) if hypothesis == Hypothesis::Unilateral && r.is_zero() => {
-                ModeLabel::Released
+    let mut out = Vec::with_capacity(normals.len());
+    labels_into(hypothesis, normals, modes, &mut out);
+    out
+}
+
+/// [`labels`] written into `out` (cleared first).
+pub(crate) fn labels_into<T: Scalar>(
+    hypothesis: Hypothesis,
+    normals: &[Normal<T>],
+    modes: &[Mode<T>],
+    out: &mut Vec<ModeLabel>,
+) {
+    out.clear();
+    out.extend(normals.iter().zip(modes).map(|(nr, m)| match nr {
+        Normal::Given(r) if hypothesis == Hypothesis::Unilateral && r.is_zero() => {
+            ModeLabel::Released
+        }
+        _ => label(m),
+    }));
+}
+
+/// The vectors of a report's segments and samples taken back for the next report (a kept
+/// [`planar::PlanarFrictionWork`]): reused, emptied, rather than allocated again.
+#[derive(Clone, Debug)]
+pub(crate) struct Spare<T> {
+    values: Vec<Vec<T>>,
+    labels: Vec<Vec<ModeLabel>>,
+}
+
+impl<T> Default for Spare<T> {
+    fn default() -> Self {
+        Spare {
+            values: Vec::new(),
+            labels: Vec::new(),
+        }
+    }
+}
+
+impl<T> Spare<T> {
+    /// An empty vector of values: a kept one when there is one, else a new one of `capacity`.
+    pub(crate) fn values(&mut self, capacity: usize) -> Vec<T> {
+        match self.values.pop() {
+            Some(mut v) => {
+                v.clear();
+                v
             }
-            _ => label(m),
-        })
-        .collect()
+            None => Vec::with_capacity(capacity),
+        }
+    }
+
+    /// An empty vector of labels: a kept one when there is one, else a new one of `capacity`.
+    pub(crate) fn labels(&mut self, capacity: usize) -> Vec<ModeLabel> {
+        match self.labels.pop() {
+            Some(mut v) => {
+                v.clear();
+                v
+            }
+            None => Vec::with_capacity(capacity),
+        }
+    }
+
+    /// Keep the vectors of `segments` and `samples`, which are left empty.
+    pub(crate) fn take_back(&mut self, segments: &mut Vec<Segment<T>>, samples: &mut Vec<Sample<T>>)
+    where
+        T: Scalar,
+    {
+        for s in segments.drain(..) {
+            self.values.push(s.rates);
+            self.labels.push(s.modes);
+        }
+        for s in samples.drain(..) {
+            self.values.push(s.impulses);
+            self.labels.push(s.modes);
+        }
+    }
 }
 
 /// One segment of the impact between two events.
@@ -589,22 +655,89 @@ impl<T: Scalar, S: Screws<T>> Frictional<T, S> {
         work_restitution: Vec<T>,
         friction_dissipation: T,
         segments: Vec<Segment<T>>,
-        mut verdicts: Vec<Verdict>,
+        verdicts: Vec<Verdict>,
         end: T,
     ) -> Self {
+        let mut out = Self::unsettled(
+            blocks,
+            law,
+            impulses,
+            compression,
+            after,
+            work_compression,
+            work_restitution,
+            friction_dissipation,
+            segments,
+            verdicts,
+            end,
+            Vec::new(),
+        );
+        out.settle(mechanism, &mut Spare::default());
+        out
+    }
+
+    /// The report of an integration's end before [`Frictional::settle`]: the twist after and
+    /// the energies zero, `samples` (emptied by `settle`) the vector its samples will fill.
+    #[allow(clippy::too_many_arguments)]
+    pub(crate) fn unsettled(
+        blocks: Blocks<T, S>,
+        law: Restitution,
+        impulses: Vec<T>,
+        compression: Vec<T>,
+        after: Vec<T>,
+        work_compression: Vec<T>,
+        work_restitution: Vec<T>,
+        friction_dissipation: T,
+        segments: Vec<Segment<T>>,
+        verdicts: Vec<Verdict>,
+        end: T,
+        samples: Vec<Sample<T>>,
+    ) -> Self {
+        Frictional {
+            law,
+            hypothesis: Hypothesis::Simultaneous,
+            blocks,
+            impulses,
+            compression,
+            after,
+            velocity: S::default(),
+            work_compression,
+            work_restitution,
+            friction_dissipation,
+            kinetic_energy_loss: T::zero(),
+            lost_velocity_energy: T::zero(),
+            energy_residual: T::zero(),
+            segments,
+            verdicts,
+            end,
+            error_estimate: None,
+            tolerance: None,
+            samples,
+        }
+    }
+
+    /// What follows from the integration's end: the twist after (eq. 142), the energies, the
+    /// verdicts on the end state (still approaching, energy gain) and the linear samples of the
+    /// segments, their vectors taken from `spare`.
+    pub(crate) fn settle<M: Mechanism<T, Screw = S>>(
+        &mut self,
+        mechanism: &M,
+        spare: &mut Spare<T>,
+    ) {
         let before = mechanism.velocity();
-        let velocity = blocks.twist_after(before, &impulses);
-        let mut change = velocity.clone();
+        self.velocity = self.blocks.twist_after(before, &self.impulses);
+        let mut change = self.velocity.clone();
         change.add_scaled(&-T::one(), before);
-        let lost_velocity_energy = mechanism.kinetic_energy(&change);
-        let mut kinetic_energy_loss = friction_dissipation.clone();
-        for (c, r) in work_compression.iter().zip(&work_restitution) {
+        self.lost_velocity_energy = mechanism.kinetic_energy(&change);
+        let mut kinetic_energy_loss = self.friction_dissipation.clone();
+        for (c, r) in self.work_compression.iter().zip(&self.work_restitution) {
             kinetic_energy_loss += c.clone() - r;
         }
         let kinetic_before = mechanism.kinetic_energy(before);
-        let energy_residual =
-            kinetic_before.clone() - mechanism.kinetic_energy(&velocity) - &kinetic_energy_loss;
-        verdicts.dedup_by(|a, b| match (a, b) {
+        self.energy_residual = kinetic_before.clone()
+            - mechanism.kinetic_energy(&self.velocity)
+            - &kinetic_energy_loss;
+        self.verdicts.dedup_by(|a, b| match (a, b) {
             (
                 Verdict::TensileRate {
                     contact: i,
@@ -619,37 +752,18 @@ impl<T: Scalar, S: Screws<T>> Frictional<T, S> {
             ) => i == j && p == q,
             _ => false,
         });
-        let scale = rates::max_abs(&blocks.v0);
-        for (i, &o) in blocks.offset.iter().enumerate() {
-            if modes::positive(&after[o], &scale, blocks.len()) {
-                verdicts.push(Verdict::StillApproaching { contact: i });
+        let len = self.blocks.len();
+        let scale = rates::max_abs(&self.blocks.v0);
+        for (i, &o) in self.blocks.offset.iter().enumerate() {
+            if modes::positive(&self.after[o], &scale, len) {
+                self.verdicts.push(Verdict::StillApproaching { contact: i });
             }
         }
-        if !modes::nonnegative(&kinetic_energy_loss, &kinetic_before, blocks.len()) {
-            verdicts.push(Verdict::EnergyGain);
+        if !modes::nonnegative(&kinetic_energy_loss, &kinetic_before, len) {
+            self.verdicts.push(Verdict::EnergyGain);
         }
-        let samples = linear_samples(&segments, blocks.len());
-        Frictional {
-            law,
-            hypothesis: Hypothesis::Simultaneous,
-            blocks,
-            impulses,
-            compression,
-            after,
-            velocity,
-            work_compression,
-            work_restitution,
-            friction_dissipation,
-            kinetic_energy_loss,
-            lost_velocity_energy,
-            energy_residual,
-            segments,
-            verdicts,
-            end,
-            error_estimate: None,
-            tolerance: None,
-            samples,
-        }
+        self.kinetic_energy_loss = kinetic_energy_loss;
+        linear_samples_into(&self.segments, len, &mut self.samples, spare);
     }
 
     /// p̂_i: contact i's normal impulse along its stacked normal axis (hatted in a planar
@@ -705,29 +819,39 @@ impl<T: Scalar, S: Screws<T>> Frictional<T, S> {
 }
 
 /// The path of an impact whose rates are constant over each segment (a planar scene): Λ at
-/// both ends of every segment, from Λ = 0 at its start.
-fn linear_samples<T: Scalar>(segments: &[Segment<T>], len: usize) -> Vec<Sample<T>> {
-    let mut out = Vec::with_capacity(2 * segments.len());
-    let mut at = vec![T::zero(); len];
+/// both ends of every segment, from Λ = 0 at its start, written into `out` (emptied first into
+/// `spare`, whose vectors the samples take).
+fn linear_samples_into<T: Scalar>(
+    segments: &[Segment<T>],
+    len: usize,
+    out: &mut Vec<Sample<T>>,
+    spare: &mut Spare<T>,
+) {
+    spare.take_back(&mut Vec::new(), out);
+    out.reserve(2 * segments.len());
+    let mut at = spare.values(len);
+    at.resize(len, T::zero());
     for seg in segments {
-        out.push(Sample {
-            s: seg.from.clone(),
-            phase: seg.phase,
-            impulses: at.clone(),
-            modes: seg.modes.clone(),
-        });
+        let mut sample = |s: &T, at: &[T]| {
+            let mut impulses = spare.values(at.len());
+            impulses.extend_from_slice(at);
+            let mut modes = spare.labels(seg.modes.len());
+            modes.extend_from_slice(&seg.modes);
+            out.push(Sample {
+                s: s.clone(),
+                phase: seg.phase,
+                impulses,
+                modes,
+            });
+        };
+        sample(&seg.from, &at);
         let ds = seg.to.clone() - &seg.from;
         for (x, r) in at.iter_mut().zip(&seg.rates) {
             *x += r.clone() * &ds;
         }
-        out.push(Sample {
-            s: seg.to.clone(),
-            phase: seg.phase,
-            impulses: at.clone(),
-            modes: seg.modes.clone(),
-        });
+        sample(&seg.to, &at);
     }
-    out
+    spare.values.push(at);
 }
 
 /// Solve the frictional impact of `mechanism` (one body, or a system of bodies) under `law`:
@@ -762,6 +886,16 @@ pub fn solve_frictional_under<T: Scalar, M: Mechanism<T>>(
     if let Some(b) = Blocks::planar(mechanism) {
         return planar::solve_planar(mechanism, b, law, hypothesis);
     }
+    solve_spatial(mechanism, law, hypothesis, tolerance)
+}
+
+/// [`solve_frictional_under`] for a scene that [`Blocks::planar`] refused.
+pub(crate) fn solve_spatial<T: Scalar, M: Mechanism<T>>(
+    mechanism: &M,
+    law: Restitution,
+    hypothesis: Hypothesis,
+    tolerance: f64,
+) -> Result<Frictional<T, M::Screw>, FrictionError> {
     if T::IS_EXACT {
         return Err(FrictionError::NotPlanar);
     }

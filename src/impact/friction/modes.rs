@@ -121,6 +121,13 @@ pub struct Work<T: Scalar> {
 }
 
 impl<T: Scalar> Work<T> {
+    /// Set `mode` to [`Mode::Free`], keeping a slide's direction for a later slide.
+    pub fn free(&mut self, mode: &mut Mode<T>) {
+        if let Mode::Slide(u) = std::mem::replace(mode, Mode::Free) {
+            self.spare.push(u);
+        }
+    }
+
     /// Set `mode` to a slide along the single direction `sense` (planar), reusing its
     /// direction or a spare one rather than allocating.
     pub fn slide(&mut self, mode: &mut Mode<T>, sense: T) {

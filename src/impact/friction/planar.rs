@@ -17,7 +17,8 @@ use crate::impact::friction::rates::{
     Mode, Normal, Unilateral, normal_rules_into, unilateral_rules,
 };
 use crate::impact::friction::{
-    FrictionError, Frictional, Hypothesis, Phase, Restitution, Segment, Verdict, labels,
+    FrictionError, Frictional, Hypothesis, Phase, Restitution, Sample, Segment, Spare, Verdict,
+    labels_into,
 };
 use crate::impact::mechanism::Mechanism;
 use crate::mechanics::contact::Contact;
@@ -28,6 +29,7 @@ use crate::scalar::Scalar;
 const MAX_EVENTS: usize = 10_000;
 
 /// The state carried from event to event.
+#[derive(Clone, Debug)]
 struct State<T: Scalar> {
     s: T,
     phase: Phase,
@@ -50,7 +52,403 @@ struct State<T: Scalar> {
     candidates: Vec<usize>,
 }
 
-/// Solve a planar scene under `law` and `hypothesis`, event by event.
+impl<T: Scalar> State<T> {
+    fn empty() -> Self {
+        State {
+            s: T::zero(),
+            phase: Phase::Compression,
+            lambda: Vec::new(),
+            v: Vec::new(),
+            modes: Vec::new(),
+            stopped: Vec::new(),
+            compression: Vec::new(),
+            work_compression: Vec::new(),
+            work_restitution: Vec::new(),
+            friction_work: T::zero(),
+            gap: Vec::new(),
+            pulling: Vec::new(),
+            candidates: Vec::new(),
+        }
+    }
+
+    /// The state at s = 0 of an impact on the blocks `b`: no impulse, the velocities before,
+    /// every contact free; in place (slide directions go to `work`'s spares).
+    fn start<S: Screws<T>>(&mut self, b: &Blocks<T, S>, work: &mut Work<T>) {
+        let n = b.contacts();
+        self.s = T::zero();
+        self.phase = Phase::Compression;
+        self.lambda.clear();
+        self.lambda.resize(b.len(), T::zero());
+        self.v.clone_from(&b.v0);
+        for m in &mut self.modes {
+            work.free(m);
+        }
+        self.modes.resize(n, Mode::Free);
+        self.modes.truncate(n);
+        for flags in [&mut self.stopped, &mut self.pulling] {
+            flags.clear();
+            flags.resize(n, false);
+        }
+        self.compression.clear();
+        for xs in [
+            &mut self.work_compression,
+            &mut self.work_restitution,
+            &mut self.gap,
+        ] {
+            xs.clear();
+            xs.resize(n, T::zero());
+        }
+        self.friction_work = T::zero();
+        self.candidates.clear();
+        self.candidates.reserve(n);
+    }
+}
+
+/// A planar frictional solve kept by a caller that solves impact after impact — a bench, a
+/// sweep — as the frictionless solve keeps its [`crate::impact::solve::Impact`]: the blocks
+/// are refilled in place ([`Blocks::planar_into`]), and the state, the mode search's buffers,
+/// the events' candidates and the last report's vectors are kept and refilled, so that once
+/// they have grown a solve allocates little (the report's verdicts and twist aside). Every
+/// output is [`super::solve_frictional_under`]'s, bit for bit: the same operations in the same
+/// order.
+#[derive(Clone, Debug)]
+pub struct PlanarFrictionWork<T: Scalar, S: Screws<T>> {
+    blocks: Blocks<T, S>,
+    state: State<T>,
+    /// The mode search's buffers.
+    search: Work<T>,
+    /// The phase's normal rules, rewritten at every event.
+    simultaneous: Vec<Normal<T>>,
+    /// The events' candidates: slip reversals, re-engagements, energetic stops.
+    reversals: Vec<(usize, T)>,
+    engages: Vec<(usize, T)>,
+    stops: Vec<(usize, T)>,
+    segments: Vec<Segment<T>>,
+    verdicts: Vec<Verdict>,
+    samples: Vec<Sample<T>>,
+    spare: Spare<T>,
+    /// The last report, taken apart by the next solve.
+    report: Option<Frictional<T, S>>,
+}
+
+impl<T: Scalar, S: Screws<T>> Default for PlanarFrictionWork<T, S> {
+    fn default() -> Self {
+        PlanarFrictionWork {
+            blocks: Blocks::empty(),
+            state: State::empty(),
+            search: Work::default(),
+            simultaneous: Vec::new(),
+            reversals: Vec::new(),
+            engages: Vec::new(),
+            stops: Vec::new(),
+            segments: Vec::new(),
+            verdicts: Vec::new(),
+            samples: Vec::new(),
+            spare: Spare::default(),
+            report: None,
+        }
+    }
+}
+
+impl<T: Scalar, S: Screws<T>> PlanarFrictionWork<T, S> {
+    /// A workspace with nothing grown yet.
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// Solve the frictional impact of `mechanism` under `law` and `hypothesis`, as
+    /// [`super::solve_frictional_under`] does, into this workspace: the report is kept here
+    /// (returned by reference, and by [`PlanarFrictionWork::report`]) and taken apart by the
+    /// next solve. A planar scene is solved on the kept buffers; a spatial one is handed to
+    /// the adaptive integrator, to the relative `tolerance`, as a one-off.
+    ///
+    /// # Errors
+    /// As [`super::solve_frictional_under`]; the report is then gone.
+    pub fn solve_into<M: Mechanism<T, Screw = S>>(
+        &mut self,
+        mechanism: &M,
+        law: Restitution,
+        hypothesis: Hypothesis,
+        tolerance: f64,
+    ) -> Result<&Frictional<T, S>, FrictionError> {
+        self.take_back();
+        let report = if self.blocks.planar_into(mechanism) {
+            self.solve(mechanism, law, hypothesis)?
+        } else {
+            super::solve_spatial(mechanism, law, hypothesis, tolerance)?
+        };
+        Ok(self.report.insert(report))
+    }
+
+    /// The last report, if the last solve succeeded.
+    pub fn report(&self) -> Option<&Frictional<T, S>> {
+        self.report.as_ref()
+    }
+
+    /// Take the last report apart: its blocks, state vectors, verdicts, segments and samples
+    /// come back to be refilled.
+    fn take_back(&mut self) {
+        let Some(r) = self.report.take() else {
+            return;
+        };
+        let Frictional {
+            blocks,
+            impulses,
+            compression,
+            after,
+            work_compression,
+            work_restitution,
+            mut segments,
+            mut verdicts,
+            mut samples,
+            ..
+        } = r;
+        // a spatial report's blocks are unit axes and sizes of no use here, but their vectors
+        // are as good as any to refill
+        self.blocks = blocks;
+        let st = &mut self.state;
+        st.lambda = impulses;
+        st.compression = compression;
+        st.v = after;
+        st.work_compression = work_compression;
+        st.work_restitution = work_restitution;
+        self.spare.take_back(&mut segments, &mut samples);
+        verdicts.clear();
+        (self.segments, self.verdicts, self.samples) = (segments, verdicts, samples);
+    }
+
+    /// Solve on the blocks held (planar), event by event; the report takes the buffers.
+    fn solve<M: Mechanism<T, Screw = S>>(
+        &mut self,
+        mechanism: &M,
+        law: Restitution,
+        hypothesis: Hypothesis,
+    ) -> Result<Frictional<T, S>, FrictionError> {
+        self.run(mechanism, law, hypothesis)?;
+        let st = &mut self.state;
+        use std::mem::take;
+        let mut out = Frictional::unsettled(
+            std::mem::replace(&mut self.blocks, Blocks::empty()),
+            law,
+            take(&mut st.lambda),
+            take(&mut st.compression),
+            take(&mut st.v),
+            take(&mut st.work_compression),
+            take(&mut st.work_restitution),
+            std::mem::replace(&mut st.friction_work, T::zero()),
+            take(&mut self.segments),
+            take(&mut self.verdicts),
+            st.s.clone(),
+            take(&mut self.samples),
+        );
+        out.settle(mechanism, &mut self.spare);
+        out.hypothesis = hypothesis;
+        Ok(out)
+    }
+
+    /// The event loop of [`solve_planar`] on the kept buffers: it leaves the end state in
+    /// `self.state`, the segments and verdicts in `self`.
+    fn run<M: Mechanism<T, Screw = S>>(
+        &mut self,
+        mechanism: &M,
+        law: Restitution,
+        hypothesis: Hypothesis,
+    ) -> Result<(), FrictionError> {
+        let PlanarFrictionWork {
+            blocks: b,
+            state: st,
+            search: work,
+            simultaneous,
+            reversals,
+            engages,
+            stops,
+            segments,
+            verdicts,
+            spare,
+            ..
+        } = self;
+        let b = &*b;
+        let contacts = mechanism.contacts();
+        let n = b.contacts();
+        let two = T::one() + T::one();
+        st.start(b, work);
+        spare.take_back(segments, &mut Vec::new());
+        verdicts.clear();
+        for events in 1..=MAX_EVENTS {
+            normals(contacts, b, st, law, simultaneous);
+            let rules = match hypothesis {
+                Hypothesis::Simultaneous => Vec::new(),
+                Hypothesis::Unilateral => unilateral_rules(simultaneous, b, st.phase),
+            };
+            let (unilateral, unilateral_normals);
+            let (normals, r, consistent) = match hypothesis {
+                Hypothesis::Simultaneous => {
+                    let consistent = resolve_simultaneous(b, simultaneous, st, work)?;
+                    (simultaneous.as_slice(), &work.chosen, consistent)
+                }
+                Hypothesis::Unilateral => {
+                    let res = resolve_unilateral(b, &rules, st)?;
+                    st.modes = res.modes;
+                    unilateral = res.rates;
+                    unilateral_normals = res.normals;
+                    (unilateral_normals.as_slice(), &unilateral, res.consistent)
+                }
+            };
+            if consistent > 1 {
+                verdicts.push(Verdict::Ambiguous {
+                    s: st.s.to_f64(),
+                    consistent,
+                });
+            }
+            if let Some(v) = super::split_verdict(r, st.s.to_f64(), law, contacts) {
+                verdicts.push(v);
+            }
+            for (i, normal) in normals.iter().enumerate() {
+                if hypothesis == Hypothesis::Simultaneous
+                    && matches!(normal, Normal::Driven(_))
+                    && r.lambda[b.offset[i]].signum_i8() < 0
+                {
+                    verdicts.push(Verdict::TensileRate {
+                        contact: i,
+                        s: st.s.to_f64(),
+                        phase: st.phase,
+                    });
+                }
+            }
+            // The next event.
+            let end = match (st.phase, law) {
+                (Phase::Compression, _) => Some(T::one() - &st.s),
+                (Phase::Restitution, Restitution::Energetic) => None,
+                (Phase::Restitution, _) => Some(two.clone() - &st.s),
+            };
+            let mut h = end.clone();
+            let take = |cand: T, h: &mut Option<T>| {
+                if h.as_ref()
+                    .is_none_or(|x| (cand.clone() - x).signum_i8() < 0)
+                {
+                    *h = Some(cand);
+                }
+            };
+            reversals.clear();
+            for i in 0..n {
+                if let Mode::Slide(u) = &st.modes[i] {
+                    let off = b.offset[i] + 1;
+                    let dv = &r.velocity[off];
+                    if (u[0].clone() * dv).signum_i8() < 0 {
+                        let hi = -st.v[off].clone() / dv.clone();
+                        reversals.push((i, hi.clone()));
+                        take(hi, &mut h);
+                    }
+                }
+            }
+            // A released contact whose gap closes re-engages.
+            engages.clear();
+            if hypothesis == Hypothesis::Unilateral {
+                for i in 0..n {
+                    if let Normal::Given(_) = normals[i] {
+                        let closing = r.velocity[b.offset[i]].clone() + &rules[i].path;
+                        if closing.signum_i8() > 0 && !st.gap[i].is_zero() {
+                            let hi = st.gap[i].clone() / closing;
+                            engages.push((i, hi.clone()));
+                            take(hi, &mut h);
+                        }
+                    }
+                }
+            }
+            stops.clear();
+            if st.phase == Phase::Restitution && law == Restitution::Energetic {
+                for i in 0..n {
+                    if st.stopped[i] {
+                        continue;
+                    }
+                    if let Some(hi) = energetic_stop(contacts, b, st, &r.lambda, &r.velocity, i)? {
+                        stops.push((i, hi.clone()));
+                        take(hi, &mut h);
+                    }
+                }
+            }
+            let Some(h) = h else {
+                let contact = (0..n).find(|&i| !st.stopped[i]).unwrap_or(0);
+                return Err(FrictionError::NeverEnds { contact });
+            };
+            let from = st.s.clone();
+            advance(b, st, &r.lambda, &r.velocity, &h);
+            if hypothesis == Hypothesis::Unilateral {
+                close_gaps(b, st, &rules, normals, &r.velocity, &h);
+            }
+            let fired = |hi: &T| (hi.clone() - &h).is_negligible(&h, n);
+            for (i, hi) in engages.iter() {
+                if fired(hi) {
+                    st.gap[*i] = T::zero();
+                }
+            }
+            for (i, hi) in reversals.iter() {
+                if fired(hi) {
+                    st.v[b.offset[*i] + 1] = T::zero();
+                }
+            }
+            for (i, hi) in stops.iter() {
+                if fired(hi) {
+                    st.stopped[*i] = true;
+                }
+            }
+            for i in 0..n {
+                if st.modes[i] == Mode::Stick {
+                    st.v[b.offset[i] + 1] = T::zero();
+                }
+            }
+            if !h.is_zero() {
+                let mut modes = spare.labels(n);
+                labels_into(hypothesis, normals, &st.modes, &mut modes);
+                let mut rates = spare.values(r.lambda.len());
+                rates.extend_from_slice(&r.lambda);
+                segments.push(Segment {
+                    from,
+                    to: st.s.clone(),
+                    phase: st.phase,
+                    modes,
+                    rates,
+                });
+            }
+            let at_end = end.as_ref().is_some_and(fired);
+            match (st.phase, at_end) {
+                (Phase::Compression, true) => {
+                    st.s = T::one();
+                    st.phase = Phase::Restitution;
+                    st.compression.clear();
+                    st.compression
+                        .extend(b.offset.iter().map(|&o| st.lambda[o].clone()));
+                    if law == Restitution::Energetic {
+                        for i in 0..n {
+                            let left = contacts[i].k_energetic.clone()
+                                * &contacts[i].k_energetic
+                                * &st.work_compression[i];
+                            st.stopped[i] = st.compression[i].is_zero() || left.signum_i8() <= 0;
+                        }
+                    }
+                }
+                (Phase::Restitution, true) => {
+                    st.s = two.clone();
+                    break;
+                }
+                _ => {}
+            }
+            if law == Restitution::Energetic
+                && st.phase == Phase::Restitution
+                && st.stopped.iter().all(|&x| x)
+            {
+                break;
+            }
+            if events == MAX_EVENTS {
+                return Err(FrictionError::Runaway);
+            }
+        }
+        Ok(())
+    }
+}
+
+/// Solve a planar scene under `law` and `hypothesis`, event by event, on the blocks `b`
+/// ([`Blocks::planar`]), as a one-off: a fresh [`PlanarFrictionWork`].
 ///
 /// Under the unilateral law the normal rules are chosen with the modes at every event
 /// ([`resolve_planar_unilateral`]), and a released contact's gap, linear between events,
@@ -65,210 +463,11 @@ pub fn solve_planar<T: Scalar, S: Screws<T>, M: Mechanism<T, Screw = S>>(
     law: Restitution,
     hypothesis: Hypothesis,
 ) -> Result<Frictional<T, S>, FrictionError> {
-    let contacts = mechanism.contacts();
-    let n = b.contacts();
-    let two = T::one() + T::one();
-    let mut st = State {
-        s: T::zero(),
-        phase: Phase::Compression,
-        lambda: vec![T::zero(); b.len()],
-        v: b.v0.clone(),
-        modes: vec![Mode::Free; n],
-        stopped: vec![false; n],
-        compression: Vec::new(),
-        work_compression: vec![T::zero(); n],
-        work_restitution: vec![T::zero(); n],
-        friction_work: T::zero(),
-        gap: vec![T::zero(); n],
-        pulling: vec![false; n],
-        candidates: Vec::with_capacity(n),
+    let mut work = PlanarFrictionWork {
+        blocks: b,
+        ..PlanarFrictionWork::default()
     };
-    let mut segments = Vec::new();
-    let mut verdicts = Vec::new();
-    // The mode search's buffers and the events' candidates, kept from event to event.
-    let mut work = Work::default();
-    let (mut reversals, mut engages, mut stops) = (Vec::new(), Vec::new(), Vec::new());
-    // The phase's normal rules, rewritten in place at every event.
-    let mut simultaneous = Vec::with_capacity(n);
-    for events in 1..=MAX_EVENTS {
-        normals(contacts, &b, &st, law, &mut simultaneous);
-        let rules = match hypothesis {
-            Hypothesis::Simultaneous => Vec::new(),
-            Hypothesis::Unilateral => unilateral_rules(&simultaneous, &b, st.phase),
-        };
-        let (unilateral, unilateral_normals);
-        let (normals, r, consistent) = match hypothesis {
-            Hypothesis::Simultaneous => {
-                let consistent = resolve_simultaneous(&b, &simultaneous, &mut st, &mut work)?;
-                (simultaneous.as_slice(), &work.chosen, consistent)
-            }
-            Hypothesis::Unilateral => {
-                let res = resolve_unilateral(&b, &rules, &st)?;
-                st.modes = res.modes;
-                unilateral = res.rates;
-                unilateral_normals = res.normals;
-                (unilateral_normals.as_slice(), &unilateral, res.consistent)
-            }
-        };
-        if consistent > 1 {
-            verdicts.push(Verdict::Ambiguous {
-                s: st.s.to_f64(),
-                consistent,
-            });
-        }
-        if let Some(v) = super::split_verdict(r, st.s.to_f64(), law, contacts) {
-            verdicts.push(v);
-        }
-        for (i, normal) in normals.iter().enumerate() {
-            if hypothesis == Hypothesis::Simultaneous
-                && matches!(normal, Normal::Driven(_))
-                && r.lambda[b.offset[i]].signum_i8() < 0
-            {
-                verdicts.push(Verdict::TensileRate {
-                    contact: i,
-                    s: st.s.to_f64(),
-                    phase: st.phase,
-                });
-            }
-        }
-        // The next event.
-        let end = match (st.phase, law) {
-            (Phase::Compression, _) => Some(T::one() - &st.s),
-            (Phase::Restitution, Restitution::Energetic) => None,
-            (Phase::Restitution, _) => Some(two.clone() - &st.s),
-        };
-        let mut h = end.clone();
-        let take = |cand: T, h: &mut Option<T>| {
-            if h.as_ref()
-                .is_none_or(|x| (cand.clone() - x).signum_i8() < 0)
-            {
-                *h = Some(cand);
-            }
-        };
-        reversals.clear();
-        for i in 0..n {
-            if let Mode::Slide(u) = &st.modes[i] {
-                let off = b.offset[i] + 1;
-                let dv = &r.velocity[off];
-                if (u[0].clone() * dv).signum_i8() < 0 {
-                    let hi = -st.v[off].clone() / dv.clone();
-                    reversals.push((i, hi.clone()));
-                    take(hi, &mut h);
-                }
-            }
-        }
-        // A released contact whose gap closes re-engages.
-        engages.clear();
-        if hypothesis == Hypothesis::Unilateral {
-            for i in 0..n {
-                if let Normal::Given(_) = normals[i] {
-                    let closing = r.velocity[b.offset[i]].clone() + &rules[i].path;
-                    if closing.signum_i8() > 0 && !st.gap[i].is_zero() {
-                        let hi = st.gap[i].clone() / closing;
-                        engages.push((i, hi.clone()));
-                        take(hi, &mut h);
-                    }
-                }
-            }
-        }
-        stops.clear();
-        if st.phase == Phase::Restitution && law == Restitution::Energetic {
-            for i in 0..n {
-                if st.stopped[i] {
-                    continue;
-                }
-                if let Some(hi) = energetic_stop(contacts, &b, &st, &r.lambda, &r.velocity, i)? {
-                    stops.push((i, hi.clone()));
-                    take(hi, &mut h);
-                }
-            }
-        }
-        let Some(h) = h else {
-            let contact = (0..n).find(|&i| !st.stopped[i]).unwrap_or(0);
-            return Err(FrictionError::NeverEnds { contact });
-        };
-        let from = st.s.clone();
-        advance(&b, &mut st, &r.lambda, &r.velocity, &h);
-        if hypothesis == Hypothesis::Unilateral {
-            close_gaps(&b, &mut st, &rules, normals, &r.velocity, &h);
-        }
-        let fired = |hi: &T| (hi.clone() - &h).is_negligible(&h, n);
-        for (i, hi) in &engages {
-            if fired(hi) {
-                st.gap[*i] = T::zero();
-            }
-        }
-        for (i, hi) in &reversals {
-            if fired(hi) {
-                st.v[b.offset[*i] + 1] = T::zero();
-            }
-        }
-        for (i, hi) in &stops {
-            if fired(hi) {
-                st.stopped[*i] = true;
-            }
-        }
-        for i in 0..n {
-            if st.modes[i] == Mode::Stick {
-                st.v[b.offset[i] + 1] = T::zero();
-            }
-        }
-        if !h.is_zero() {
-            segments.push(Segment {
-                from,
-                to: st.s.clone(),
-                phase: st.phase,
-                modes: labels(hypothesis, normals, &st.modes),
-                rates: r.lambda.clone(),
-            });
-        }
-        let at_end = end.as_ref().is_some_and(fired);
-        match (st.phase, at_end) {
-            (Phase::Compression, true) => {
-                st.s = T::one();
-                st.phase = Phase::Restitution;
-                st.compression = b.offset.iter().map(|&o| st.lambda[o].clone()).collect();
-                if law == Restitution::Energetic {
-                    for i in 0..n {
-                        let left = contacts[i].k_energetic.clone()
-                            * &contacts[i].k_energetic
-                            * &st.work_compression[i];
-                        st.stopped[i] = st.compression[i].is_zero() || left.signum_i8() <= 0;
-                    }
-                }
-            }
-            (Phase::Restitution, true) => {
-                st.s = two.clone();
-                break;
-            }
-            _ => {}
-        }
-        if law == Restitution::Energetic
-            && st.phase == Phase::Restitution
-            && st.stopped.iter().all(|&x| x)
-        {
-            break;
-        }
-        if events == MAX_EVENTS {
-            return Err(FrictionError::Runaway);
-        }
-    }
-    let mut out = Frictional::finish(
-        mechanism,
-        b,
-        law,
-        st.lambda,
-        st.compression,
-        st.v,
-        st.work_compression,
-        st.work_restitution,
-        st.friction_work,
-        segments,
-        verdicts,
-        st.s,
-    );
-    out.hypothesis = hypothesis;
-    Ok(out)
+    work.solve(mechanism, law, hypothesis)
 }
 
 /// The simultaneous law's modes at an event: contacts at zero slip stick or slide jointly
