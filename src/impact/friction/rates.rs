@@ -312,8 +312,23 @@ pub fn rates<T: Scalar, S: Screws<T>>(
     modes: &[Mode<T>],
 ) -> Result<Rates<T>, RateFailure> {
     let mut out = Rates::default();
-    with_kept_work(|work| rates_with(b, normals, modes, work, &mut out))?;
+    rates_into(b, normals, modes, &mut out)?;
     Ok(out)
+}
+
+/// [`rates`] written into `out`, a [`Rates`] the caller keeps from solve to solve (a root
+/// search over one contact's slip direction solves the rates at every trial): bit for bit
+/// the same rates.
+///
+/// # Errors
+/// As [`rates`] (`out` is then left unspecified).
+pub fn rates_into<T: Scalar, S: Screws<T>>(
+    b: &Blocks<T, S>,
+    normals: &[Normal<T>],
+    modes: &[Mode<T>],
+    out: &mut Rates<T>,
+) -> Result<(), RateFailure> {
+    with_kept_work(|work| rates_with(b, normals, modes, work, out))
 }
 
 thread_local! {
