@@ -293,6 +293,50 @@ pub fn track<T: Scalar, S: Screws<T>>(
     }
 }
 
+/// The last [`track`] of each contact, kept by the spatial integrator between its calls: the
+/// rates depend on the modes and rules alone, not on the impulses, so a held slip tracked again
+/// under the same rules and the same modes (every other contact sticking, free or held, as at
+/// every stage of a step after a stick ends at its cone's edge) has the same root — and the
+/// root search, several rate solves, is the integration's largest cost (issue 29). A track is
+/// recalled only when its inputs compare equal, so the result is the one a fresh search gives.
+pub struct TrackMemo<T: Scalar> {
+    /// Per contact: the rules and the modes a search started from, and what it left in
+    /// `modes[i]` with its verdict.
+    last: Vec<Option<(Vec<Normal<T>>, Vec<Mode<T>>, Mode<T>, bool)>>,
+}
+
+impl<T: Scalar> TrackMemo<T> {
+    /// An empty memo for `n` contacts.
+    pub fn new(n: usize) -> Self {
+        TrackMemo {
+            last: (0..n).map(|_| None).collect(),
+        }
+    }
+
+    /// [`track`], recalled when contact i's last search had the same `normals` and `modes`.
+    pub fn track<S: Screws<T>>(
+        &mut self,
+        b: &Blocks<T, S>,
+        normals: &[Normal<T>],
+        modes: &mut [Mode<T>],
+        i: usize,
+        settled: f64,
+        reach: f64,
+    ) -> bool {
+        if let Some((n, m, mode, found)) = &self.last[i]
+            && n.as_slice() == normals
+            && m.as_slice() == &*modes
+        {
+            modes[i] = mode.clone();
+            return *found;
+        }
+        let before = modes.to_vec();
+        let found = track(b, normals, modes, i, settled, reach);
+        self.last[i] = Some((normals.to_vec(), before, modes[i].clone(), found));
+        found
+    }
+}
+
 /// One invariant direction at zero slip, with its pull.
 pub struct Invariant<T: Scalar> {
     /// The unit direction u (f(u) = λ u).

@@ -346,9 +346,7 @@ fn with_kept_work<T: Scalar, R>(f: impl FnOnce(&mut RateWork<T>) -> R) -> R {
         let at = kept.iter().position(|w| w.is::<RateWork<T>>())?;
         Some(kept.swap_remove(at))
     });
-    let mut work: Box<RateWork<T>> = taken
-        .and_then(|w| w.downcast().ok())
-        .unwrap_or_default();
+    let mut work: Box<RateWork<T>> = taken.and_then(|w| w.downcast().ok()).unwrap_or_default();
     let out = f(&mut work);
     KEPT.with(|kept| kept.borrow_mut().push(work));
     out
