@@ -300,9 +300,17 @@ pub fn track<T: Scalar, S: Screws<T>>(
 /// root search, several rate solves, is the integration's largest cost (issue 29). A track is
 /// recalled only when its inputs compare equal, so the result is the one a fresh search gives.
 pub struct TrackMemo<T: Scalar> {
-    /// Per contact: the rules and the modes a search started from, and what it left in
-    /// `modes[i]` with its verdict.
-    last: Vec<Option<(Vec<Normal<T>>, Vec<Mode<T>>, Mode<T>, bool)>>,
+    /// Per contact, its last search.
+    last: Vec<Option<Tracked<T>>>,
+}
+
+/// One search of [`TrackMemo`]: the rules and the modes it started from, and what it left in
+/// `modes[i]` with its verdict.
+struct Tracked<T: Scalar> {
+    normals: Vec<Normal<T>>,
+    modes: Vec<Mode<T>>,
+    mode: Mode<T>,
+    found: bool,
 }
 
 impl<T: Scalar> TrackMemo<T> {
@@ -323,16 +331,21 @@ impl<T: Scalar> TrackMemo<T> {
         settled: f64,
         reach: f64,
     ) -> bool {
-        if let Some((n, m, mode, found)) = &self.last[i]
-            && n.as_slice() == normals
-            && m.as_slice() == &*modes
+        if let Some(t) = &self.last[i]
+            && t.normals.as_slice() == normals
+            && t.modes.as_slice() == &*modes
         {
-            modes[i] = mode.clone();
-            return *found;
+            modes[i] = t.mode.clone();
+            return t.found;
         }
         let before = modes.to_vec();
         let found = track(b, normals, modes, i, settled, reach);
-        self.last[i] = Some((normals.to_vec(), before, modes[i].clone(), found));
+        self.last[i] = Some(Tracked {
+            normals: normals.to_vec(),
+            modes: before,
+            mode: modes[i].clone(),
+            found,
+        });
         found
     }
 }
