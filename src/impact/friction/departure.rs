@@ -47,7 +47,9 @@
 
 use crate::impact::friction::blocks::Blocks;
 use crate::impact::friction::modes::nonnegative;
-use crate::impact::friction::rates::{Mode, Normal, RateFailure, max_abs, rates};
+use crate::impact::friction::rates::{
+    Mode, Normal, RateFailure, Rates, max_abs, rates, rates_into,
+};
 use crate::linalg::gauss::solve_general_in;
 use crate::mechanics::screw::Screws;
 use crate::scalar::Scalar;
@@ -93,17 +95,40 @@ pub fn slip_rate<T: Scalar, S: Screws<T>>(
     i: usize,
     u: &[T],
 ) -> Result<(T, T, Vec<T>), RateFailure> {
-    modes[i] = Mode::Slide(u.to_vec());
-    let r = rates(b, normals, modes)?;
+    let mut r = Rates::default();
+    let (g, lambda) = slip_rate_in(b, normals, modes, i, u, &mut r)?;
     let off = b.offset[i];
-    let f = r.velocity[off + 1..off + 3].to_vec();
+    Ok((g, lambda, r.velocity[off + 1..off + 3].to_vec()))
+}
+
+/// [`slip_rate`]'s (g, λ), the rates solved into `r`, which the caller keeps from trial to
+/// trial of a root search (f is `r.velocity` along the contact's tangent axes); `modes[i]`'s
+/// direction is overwritten in place. Bit for bit [`slip_rate`]'s.
+///
+/// # Errors
+/// [`RateFailure`] when the modes have no rates.
+pub fn slip_rate_in<T: Scalar, S: Screws<T>>(
+    b: &Blocks<T, S>,
+    normals: &[Normal<T>],
+    modes: &mut [Mode<T>],
+    i: usize,
+    u: &[T],
+    r: &mut Rates<T>,
+) -> Result<(T, T), RateFailure> {
+    match &mut modes[i] {
+        Mode::Slide(held) if held.len() == u.len() => held.clone_from_slice(u),
+        other => *other = Mode::Slide(u.to_vec()),
+    }
+    rates_into(b, normals, modes, r)?;
+    let off = b.offset[i];
+    let f = &r.velocity[off + 1..off + 3];
     let g = u[0].clone() * &f[1] - u[1].clone() * &f[0];
     let lambda = if nonnegative(&r.lambda[off], &max_abs(&r.lambda), b.len()) {
-        dot(u, &f)
+        dot(u, f)
     } else {
         T::zero()
     };
-    Ok((g, lambda, f))
+    Ok((g, lambda))
 }
 
 /// u turned by the angle whose tangent is `t`: (u + t u⊥)/|u + t u⊥|.
@@ -126,10 +151,11 @@ pub fn pull<T: Scalar, S: Screws<T>>(
 ) -> Option<f64> {
     let eps: f64 = 1e-6;
     let held = modes[i].clone();
+    let mut r = Rates::default();
     let mut at = |t: f64| {
-        slip_rate(b, normals, modes, i, &turned(u, &of(t)))
+        slip_rate_in(b, normals, modes, i, &turned(u, &of(t)), &mut r)
             .ok()
-            .map(|(g, _, _)| g.to_f64())
+            .map(|(g, _)| g.to_f64())
     };
     let (plus, minus) = (at(eps.tan()), at(-eps.tan()));
     modes[i] = held;
@@ -203,10 +229,9 @@ pub fn track<T: Scalar, S: Screws<T>>(
     let Mode::Slide(held) = modes[i].clone() else {
         return false;
     };
+    let mut r = Rates::default();
     let mut g = |t: &T| -> Option<(T, T)> {
-        slip_rate(b, normals, modes, i, &turned(&held, t))
-            .ok()
-            .map(|(g, l, _)| (g, l))
+        slip_rate_in(b, normals, modes, i, &turned(&held, t), &mut r).ok()
     };
     let found = (|| {
         let zero = T::zero();
@@ -265,6 +290,63 @@ pub fn track<T: Scalar, S: Screws<T>>(
             modes[i] = Mode::Slide(held);
             false
         }
+    }
+}
+
+/// The last [`track`] of each contact, kept by the spatial integrator between its calls: the
+/// rates depend on the modes and rules alone, not on the impulses, so a held slip tracked again
+/// under the same rules and the same modes (every other contact sticking, free or held, as at
+/// every stage of a step after a stick ends at its cone's edge) has the same root — and the
+/// root search, several rate solves, is the integration's largest cost (issue 29). A track is
+/// recalled only when its inputs compare equal, so the result is the one a fresh search gives.
+pub struct TrackMemo<T: Scalar> {
+    /// Per contact, its last search.
+    last: Vec<Option<Tracked<T>>>,
+}
+
+/// One search of [`TrackMemo`]: the rules and the modes it started from, and what it left in
+/// `modes[i]` with its verdict.
+struct Tracked<T: Scalar> {
+    normals: Vec<Normal<T>>,
+    modes: Vec<Mode<T>>,
+    mode: Mode<T>,
+    found: bool,
+}
+
+impl<T: Scalar> TrackMemo<T> {
+    /// An empty memo for `n` contacts.
+    pub fn new(n: usize) -> Self {
+        TrackMemo {
+            last: (0..n).map(|_| None).collect(),
+        }
+    }
+
+    /// [`track`], recalled when contact i's last search had the same `normals` and `modes`.
+    pub fn track<S: Screws<T>>(
+        &mut self,
+        b: &Blocks<T, S>,
+        normals: &[Normal<T>],
+        modes: &mut [Mode<T>],
+        i: usize,
+        settled: f64,
+        reach: f64,
+    ) -> bool {
+        if let Some(t) = &self.last[i]
+            && t.normals.as_slice() == normals
+            && t.modes.as_slice() == &*modes
+        {
+            modes[i] = t.mode.clone();
+            return t.found;
+        }
+        let before = modes.to_vec();
+        let found = track(b, normals, modes, i, settled, reach);
+        self.last[i] = Some(Tracked {
+            normals: normals.to_vec(),
+            modes: before,
+            mode: modes[i].clone(),
+            found,
+        });
+        found
     }
 }
 

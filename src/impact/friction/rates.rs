@@ -297,6 +297,13 @@ impl<T: Scalar> Default for RateWork<T> {
 
 /// Solve for the rates of one segment.
 ///
+/// The system is built and solved in a [`RateWork`] kept per thread and scalar type
+/// ([`with_kept_work`]): the spatial integrator solves rates several times per Runge–Kutta
+/// stage (a held slip's direction is tracked by a root search, each trial a solve), and a
+/// fresh `RateWork` allocated and freed its seven buffers every time — a third of the
+/// integration's instructions (issue 29). [`rates_with`] on kept buffers gives the same rates
+/// bit for bit.
+///
 /// # Errors
 /// [`RateFailure`] when the assignment admits no rates, or no determined ones.
 pub fn rates<T: Scalar, S: Screws<T>>(
@@ -305,8 +312,44 @@ pub fn rates<T: Scalar, S: Screws<T>>(
     modes: &[Mode<T>],
 ) -> Result<Rates<T>, RateFailure> {
     let mut out = Rates::default();
-    rates_with(b, normals, modes, &mut RateWork::default(), &mut out)?;
+    rates_into(b, normals, modes, &mut out)?;
     Ok(out)
+}
+
+/// [`rates`] written into `out`, a [`Rates`] the caller keeps from solve to solve (a root
+/// search over one contact's slip direction solves the rates at every trial): bit for bit
+/// the same rates.
+///
+/// # Errors
+/// As [`rates`] (`out` is then left unspecified).
+pub fn rates_into<T: Scalar, S: Screws<T>>(
+    b: &Blocks<T, S>,
+    normals: &[Normal<T>],
+    modes: &[Mode<T>],
+    out: &mut Rates<T>,
+) -> Result<(), RateFailure> {
+    with_kept_work(|work| rates_with(b, normals, modes, work, out))
+}
+
+thread_local! {
+    /// The kept [`RateWork`]s of this thread, one per scalar type at most (boxed as `Any`).
+    static KEPT: std::cell::RefCell<Vec<Box<dyn std::any::Any>>> =
+        const { std::cell::RefCell::new(Vec::new()) };
+}
+
+/// Run `f` on this thread's kept [`RateWork`] for `T` (a fresh one the first time). The work
+/// is taken out while `f` runs and put back after, so a nested call gets a fresh one rather
+/// than a borrow conflict.
+fn with_kept_work<T: Scalar, R>(f: impl FnOnce(&mut RateWork<T>) -> R) -> R {
+    let taken = KEPT.with(|kept| {
+        let mut kept = kept.borrow_mut();
+        let at = kept.iter().position(|w| w.is::<RateWork<T>>())?;
+        Some(kept.swap_remove(at))
+    });
+    let mut work: Box<RateWork<T>> = taken.and_then(|w| w.downcast().ok()).unwrap_or_default();
+    let out = f(&mut work);
+    KEPT.with(|kept| kept.borrow_mut().push(work));
+    out
 }
 
 /// [`rates`] on kept buffers: the rates are written into `out`, the system is built and solved

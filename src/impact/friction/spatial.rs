@@ -190,6 +190,8 @@ struct Run<'a, T: Scalar, S: Screws<T>> {
     /// The tableau in the scalar type.
     a: Vec<Vec<T>>,
     e: Vec<T>,
+    /// The last tracked direction of each held slip ([`Run::settle`]).
+    tracks: std::cell::RefCell<departure::TrackMemo<T>>,
 }
 
 /// The changing part of the integration: what the right-hand side depends on besides y.
@@ -480,7 +482,9 @@ impl<T: Scalar, S: Screws<T>> Run<'_, T, S> {
     /// direction nearest the one held in `modes`, tracked by [`departure::track`] (kept when
     /// none is found).
     fn settle(&self, modes: &mut [Mode<T>], normals: &[Normal<T>], i: usize) -> bool {
-        departure::track(self.b, normals, modes, i, self.settled(), QUARTER)
+        self.tracks
+            .borrow_mut()
+            .track(self.b, normals, modes, i, self.settled(), QUARTER)
     }
 
     /// The slips held on their invariant direction at the end `y` (slope `k`) of a step of
@@ -761,6 +765,7 @@ pub fn integrate_under<T: Scalar, S: Screws<T>, M: Mechanism<T, Screw = S>>(
             .map(|row| row.iter().copied().map(ratio_t).collect())
             .collect(),
         e: E.iter().copied().map(ratio_t).collect(),
+        tracks: std::cell::RefCell::new(departure::TrackMemo::new(n)),
     };
     let mut st = State {
         s: T::zero(),
