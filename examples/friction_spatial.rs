@@ -28,13 +28,8 @@ use inertance::impact::mechanism::Mechanism;
 use inertance::scalar::dd::DoubleDouble;
 use inertance::scene::Scene;
 use inertance::scene::pipeline::friction_tolerance;
+use inertance::tools::ball_in_corner::{self, GOAL_TOL, GOAL_US};
 use inertance::{Problem, Scalar};
-
-/// The goal's tolerance.
-const GOAL_TOL: f64 = 1e-8;
-
-/// The goal of issue 29, item 3: µs per solve at [`GOAL_TOL`].
-const GOAL_US: f64 = 30.0;
 
 /// The double-double reference's tolerance: 10³ times below the bench's (its own ε^(2/3),
 /// 10⁻²¹, takes more than the step budget through the stick exits of this class).
@@ -43,105 +38,9 @@ const REFERENCE_TOL: f64 = 1e-14;
 /// Random variants after the example scene.
 const VARIANTS: usize = 23;
 
-/// SplitMix64, as the crate's benches seed their scenes.
-struct Seeded(u64);
-
-impl Seeded {
-    fn next(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    }
-
-    /// A decimal with one fractional digit in [lo, hi].
-    fn decimal(&mut self, lo: i64, hi: i64) -> String {
-        let span = (hi - lo) as u64 * 10 + 1;
-        let x = lo * 10 + (self.next() % span) as i64;
-        format!("{}", x as f64 / 10.0)
-    }
-}
-
-/// The ball-in-corner scene with `n` contacts (1: the floor; 2: and the wall facing −x; 3: and
-/// one facing −y), the ball's velocity and spin, and each contact's (μ, k).
-fn ball(n: usize, velocity: [String; 3], spin: [String; 3], laws: &[(String, String)]) -> String {
-    let mut text = format!(
-        "name = \"ball in corner\"\n[body]\nshape = {{ sphere = 0.1 }}\nmass = 0.5\n\
-         velocity = [{}]\nangular_velocity = [{}]\n",
-        velocity.join(", "),
-        spin.join(", ")
-    );
-    let walls = [
-        ("floor", "[0, 0, 1]"),
-        ("wall", "[-1, 0, 0]"),
-        ("side", "[0, -1, 0]"),
-    ];
-    for (name, normal) in &walls[..n] {
-        text += &format!("[[obstacle]]\nname = \"{name}\"\nnormal = {normal}\n");
-    }
-    for ((name, _), (mu, k)) in walls[..n].iter().zip(laws) {
-        text += &format!("[[contact]]\nobstacle = \"{name}\"\nk = {k}\nmu = {mu}\n");
-    }
-    text + "[solve]\nmodels = [\"newton\"]\n"
-}
-
-/// The example scene, then seeded variants whose f64 solve succeeds at both tolerances.
+/// The class's scenes ([`inertance::tools::ball_in_corner`]).
 fn scenes() -> Vec<(Scene, Problem<f64>)> {
-    let s = |x: &str| x.to_string();
-    let example = ball(
-        2,
-        [s("2"), s("1"), s("-3")],
-        [s("3"), s("-4"), s("10")],
-        &[(s("0.3"), s("0.6")), (s("0.3"), s("0.6"))],
-    );
-    let mut texts = vec![example];
-    let mut rng = Seeded(0xba11_c0de);
-    let mut out = Vec::new();
-    let mut tries = 0;
-    while out.len() < 1 + VARIANTS && tries < 50 * VARIANTS {
-        tries += 1;
-        if texts.is_empty() {
-            let n = 1 + tries % 3;
-            let velocity = [
-                rng.decimal(1, 3),
-                if n == 3 {
-                    rng.decimal(1, 3)
-                } else {
-                    rng.decimal(-2, 2)
-                },
-                rng.decimal(-4, -1),
-            ];
-            let spin = [
-                rng.decimal(-12, 12),
-                rng.decimal(-12, 12),
-                rng.decimal(-12, 12),
-            ];
-            let laws: Vec<(String, String)> = (0..n)
-                .map(|_| (rng.decimal(1, 10), rng.decimal(0, 1)))
-                .collect();
-            // μ drawn in tenths of [1, 10]: [0.1, 1]
-            let laws = laws
-                .into_iter()
-                .map(|(mu, k)| (format!("{}", mu.parse::<f64>().unwrap() / 10.0), k))
-                .collect::<Vec<_>>();
-            texts.push(ball(n, velocity, spin, &laws));
-        }
-        let text = texts.pop().expect("one scene");
-        let Ok(scene) = Scene::parse(&text, "ball-in-corner") else {
-            continue;
-        };
-        let Ok(p) = scene.problem::<f64>() else {
-            continue;
-        };
-        let solves = [GOAL_TOL, friction_tolerance::<f64>()]
-            .iter()
-            .all(|&tol| solve_frictional(&p, Restitution::Newton, tol).is_ok());
-        if solves {
-            out.push((scene, p));
-        }
-    }
-    out
+    ball_in_corner::scenes(VARIANTS)
 }
 
 fn median(mut v: Vec<f64>) -> f64 {

@@ -48,6 +48,9 @@ pub struct FrictionBench {
     pub planar: FrictionGroup,
     /// Spatial scenes, double-double reference.
     pub spatial: FrictionGroup,
+    /// The ball-in-corner class at the goal's tolerance 10⁻⁸: the median over its scenes of µs
+    /// per f64 solve ([`crate::tools::ball_in_corner`]), and how many scenes.
+    pub ball_in_corner: (Option<f64>, usize),
 }
 
 /// The seed of the scenes.
@@ -187,9 +190,14 @@ pub fn run(quick: bool) -> FrictionBench {
     let count = if quick { 6 } else { 24 };
     let budget = Duration::from_millis(if quick { 4 } else { 40 });
     let mut rng = Seeded(SEED);
+    let variants = if quick { 5 } else { 23 };
     FrictionBench {
         planar: group(&mut rng, count, budget, true),
         spatial: group(&mut rng, count, budget, false),
+        ball_in_corner: (
+            crate::tools::ball_in_corner::median_us(variants, budget),
+            1 + variants,
+        ),
     }
 }
 
@@ -343,6 +351,12 @@ impl FrictionBench {
             "planar": group(&self.planar),
             "spatial": group(&self.spatial),
             "planar_goal_f64_over_frictionless": PLANAR_GOAL,
+            "ball_in_corner": {
+                "scenes": self.ball_in_corner.1,
+                "tolerance": crate::tools::ball_in_corner::GOAL_TOL,
+                "median_us_per_f64_solve": self.ball_in_corner.0,
+                "goal_us": crate::tools::ball_in_corner::GOAL_US,
+            },
         })
     }
 }

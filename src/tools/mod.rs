@@ -8,6 +8,7 @@
 
 pub mod accuracy;
 pub mod analyze;
+pub mod ball_in_corner;
 pub mod bench;
 pub mod chain;
 pub mod check;
