@@ -22,6 +22,7 @@
 
 use std::time::Instant;
 
+use inertance::Problem;
 use inertance::impact::friction::spatial::{self, Stats};
 use inertance::impact::friction::{Blocks, Frictional, Restitution, solve_frictional};
 use inertance::impact::mechanism::Mechanism;
@@ -29,7 +30,7 @@ use inertance::scalar::dd::DoubleDouble;
 use inertance::scene::Scene;
 use inertance::scene::pipeline::friction_tolerance;
 use inertance::tools::ball_in_corner::{self, GOAL_TOL, GOAL_US};
-use inertance::{Problem, Scalar};
+use inertance::tools::friction_bench::outputs;
 
 /// The double-double reference's tolerance: 10³ times below the bench's (its own ε^(2/3),
 /// 10⁻²¹, takes more than the step budget through the stick exits of this class).
@@ -102,17 +103,6 @@ fn dump(k: usize, tol: f64, f: &Frictional<f64>) {
         modes.join(" "),
         verdicts.join(" ")
     );
-}
-
-/// Impulse vectors and twist, as f64.
-fn outputs<T: Scalar>(f: &Frictional<T>) -> (Vec<f64>, Vec<f64>) {
-    let mut impulses = Vec::new();
-    for i in 0..f.blocks.contacts() {
-        let (n, t) = f.impulse_vectors(i);
-        impulses.extend(n.iter().chain(t.iter()).map(|x| x.to_f64()));
-    }
-    let twist = f.velocity.as_slice().iter().map(|x| x.to_f64()).collect();
-    (impulses, twist)
 }
 
 /// The largest entry of `y` and the largest error of `x` against it, relative to that.

@@ -106,8 +106,9 @@ fn scene(rng: &mut Seeded, n: usize, planar: bool) -> Option<Scene> {
     Scene::parse(&text, "generated").ok()
 }
 
-/// Impulse vectors and twist of a result, as f64.
-fn outputs<T: Scalar>(f: &Frictional<T>) -> (Vec<f64>, Vec<f64>) {
+/// Impulse vectors (each contact's normal then tangential components) and twist of a result,
+/// as f64: what the bench and `examples/friction_spatial` compare against a reference.
+pub fn outputs<T: Scalar>(f: &Frictional<T>) -> (Vec<f64>, Vec<f64>) {
     let mut impulses = Vec::new();
     for i in 0..f.blocks.contacts() {
         let (n, t) = f.impulse_vectors(i);
