@@ -30,7 +30,7 @@ use inertance::scalar::dd::DoubleDouble;
 use inertance::scene::Scene;
 use inertance::scene::pipeline::friction_tolerance;
 use inertance::tools::ball_in_corner::{self, GOAL_TOL, GOAL_US};
-use inertance::tools::friction_bench::outputs;
+use inertance::tools::friction_bench::{outputs, relative};
 
 /// The double-double reference's tolerance: 10³ times below the bench's (its own ε^(2/3),
 /// 10⁻²¹, takes more than the step budget through the stick exits of this class).
@@ -103,17 +103,6 @@ fn dump(k: usize, tol: f64, f: &Frictional<f64>) {
         modes.join(" "),
         verdicts.join(" ")
     );
-}
-
-/// The largest entry of `y` and the largest error of `x` against it, relative to that.
-fn relative(x: &[f64], y: &[f64]) -> f64 {
-    let scale = y
-        .iter()
-        .fold(0.0f64, |m, v| m.max(v.abs()))
-        .max(f64::MIN_POSITIVE);
-    x.iter()
-        .zip(y)
-        .fold(0.0f64, |m, (p, q)| m.max((p - q).abs() / scale))
 }
 
 fn reference(scenes: &[(Scene, Problem<f64>)]) {

@@ -118,18 +118,21 @@ pub fn outputs<T: Scalar>(f: &Frictional<T>) -> (Vec<f64>, Vec<f64>) {
     (impulses, twist)
 }
 
+/// The largest error of `x` against `y`, relative to the largest entry of `y` (one group of
+/// outputs: the impulse vectors, or the twist).
+pub fn relative(x: &[f64], y: &[f64]) -> f64 {
+    let scale = y
+        .iter()
+        .fold(0.0f64, |m, v| m.max(v.abs()))
+        .max(f64::MIN_POSITIVE);
+    x.iter()
+        .zip(y)
+        .fold(0.0f64, |m, (p, q)| m.max((p - q).abs() / scale))
+}
+
 /// The largest error of `a` against `e`, per group relative to the group's largest entry.
 fn relative_error(a: &(Vec<f64>, Vec<f64>), e: &(Vec<f64>, Vec<f64>)) -> f64 {
-    let group = |x: &[f64], y: &[f64]| {
-        let scale = y
-            .iter()
-            .fold(0.0f64, |m, v| m.max(v.abs()))
-            .max(f64::MIN_POSITIVE);
-        x.iter()
-            .zip(y)
-            .fold(0.0f64, |m, (p, q)| m.max((p - q).abs() / scale))
-    };
-    group(&a.0, &e.0).max(group(&a.1, &e.1))
+    relative(&a.0, &e.0).max(relative(&a.1, &e.1))
 }
 
 /// The bench's planar scenes: the first `count` from its seed (1, 2, 3 contacts in turn) whose
