@@ -170,10 +170,10 @@ impl<const N: usize> Default for Outcomes<N> {
 }
 
 impl<const N: usize> Outcomes<N> {
-    /// Empty the vectors and size them for `n` scenes, keeping their capacity.
+    /// Size the vectors for `n` scenes, keeping their capacity. The numbers are not cleared:
+    /// the sweep writes every entry (a lane's answer, or zeros where no route answers).
     fn reset(&mut self, n: usize) {
         for v in self.impulses_hat.iter_mut().chain(&mut self.velocity) {
-            v.clear();
             v.resize(n, 0.0);
         }
         self.routes.clear();

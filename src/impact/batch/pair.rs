@@ -113,34 +113,35 @@ impl<const L: usize, const N: usize> Kernel<L, N> for Pair<L> {
     /// Scenes `start .. start + L` of `scenes` (past the end, the last repeated), which has
     /// N = 2 contacts: read, checked and factored.
     #[inline(always)]
-    fn read(scenes: &Scenes<N>, start: usize) -> Self {
+    fn read<const WHOLE: bool>(scenes: &Scenes<N>, start: usize) -> Self {
         debug_assert_eq!(N, 2);
         // Direct calls, not closures: a closure here was not inlined, and each lane came back
         // through memory.
-        let mass = load::<L>(&scenes.mass, start);
-        let moments = load3::<L>(&scenes.inertia, start);
+        let mass = load::<L, WHOLE>(&scenes.mass, start);
+        let moments = load3::<L, WHOLE>(&scenes.inertia, start);
         let v = &scenes.velocity;
         let velocity = [
-            load::<L>(&v[0], start),
-            load::<L>(&v[1], start),
-            load::<L>(&v[2], start),
-            load::<L>(&v[3], start),
-            load::<L>(&v[4], start),
-            load::<L>(&v[5], start),
+            load::<L, WHOLE>(&v[0], start),
+            load::<L, WHOLE>(&v[1], start),
+            load::<L, WHOLE>(&v[2], start),
+            load::<L, WHOLE>(&v[3], start),
+            load::<L, WHOLE>(&v[4], start),
+            load::<L, WHOLE>(&v[5], start),
         ];
-        let r1 = load3::<L>(&scenes.points[0], start);
-        let r2 = load3::<L>(&scenes.points[1], start);
-        let n1 = load3::<L>(&scenes.normals[0], start);
-        let n2 = load3::<L>(&scenes.normals[1], start);
+        let r1 = load3::<L, WHOLE>(&scenes.points[0], start);
+        let r2 = load3::<L, WHOLE>(&scenes.points[1], start);
+        let n1 = load3::<L, WHOLE>(&scenes.normals[0], start);
+        let n2 = load3::<L, WHOLE>(&scenes.normals[1], start);
         let k_newton = [
-            load::<L>(&scenes.k_newton[0], start),
-            load::<L>(&scenes.k_newton[1], start),
+            load::<L, WHOLE>(&scenes.k_newton[0], start),
+            load::<L, WHOLE>(&scenes.k_newton[1], start),
         ];
         let k_poisson = [
-            load::<L>(&scenes.k_poisson[0], start),
-            load::<L>(&scenes.k_poisson[1], start),
+            load::<L, WHOLE>(&scenes.k_poisson[0], start),
+            load::<L, WHOLE>(&scenes.k_poisson[1], start),
         ];
-        let valid = valid_parts(
+        // The hot loop's whole chunks take the sufficient test, the fallback the exact one.
+        let valid = valid_parts::<L, 2, WHOLE>(
             &mass,
             &moments,
             &velocity,

@@ -25,12 +25,21 @@ use super::{Outcomes, Scenes, solve_generic};
 use crate::impact::lean::{Data, Factored, InverseInertia, LeanError, limit2, route_test};
 use crate::impact::restitution::Model;
 
-/// Scenes `start .. start + L` of `v` as lanes; past the end, the last scene repeated.
+/// Scenes `start .. start + L` of `v` as lanes.
+///
+/// `WHOLE`: the caller's chunk lies inside `v` (the hot loop's whole chunks), read as one
+/// vector; if it did not, every lane would be NaN, which no lane's checks accept, so the chunk
+/// would go to the lane-by-lane fallback and be read again. Not `WHOLE` (the fallback, the
+/// last partial chunk): past the end, the last scene repeated. The two are separate code so
+/// that the hot loop's lanes are plain vector loads: a choice between the vector and a lane
+/// by lane copy made LLVM build every input from pieces on the stack.
 #[inline(always)]
-pub(super) fn load<const L: usize>(v: &[f64], start: usize) -> Lanes<L> {
-    match v.get(start..start + L).map(<[f64; L]>::try_from) {
-        Some(Ok(chunk)) => Lanes(chunk),
-        _ => {
+pub(super) fn load<const L: usize, const WHOLE: bool>(v: &[f64], start: usize) -> Lanes<L> {
+    let chunk = v.get(start..start + L).map(<[f64; L]>::try_from);
+    match (WHOLE, chunk) {
+        (_, Some(Ok(chunk))) => Lanes(chunk),
+        (true, _) => Lanes::splat(f64::NAN),
+        (false, _) => {
             let last = v.len().saturating_sub(1);
             Lanes(array::from_fn(|l| v[(start + l).min(last)]))
         }
@@ -39,29 +48,39 @@ pub(super) fn load<const L: usize>(v: &[f64], start: usize) -> Lanes<L> {
 
 /// x, y and z of `a` (see [`load`]).
 #[inline(always)]
-pub(super) fn load3<const L: usize>(a: &[Vec<f64>; 3], start: usize) -> [Lanes<L>; 3] {
-    [load(&a[0], start), load(&a[1], start), load(&a[2], start)]
+pub(super) fn load3<const L: usize, const WHOLE: bool>(
+    a: &[Vec<f64>; 3],
+    start: usize,
+) -> [Lanes<L>; 3] {
+    [
+        load::<L, WHOLE>(&a[0], start),
+        load::<L, WHOLE>(&a[1], start),
+        load::<L, WHOLE>(&a[2], start),
+    ]
 }
 
 /// Scenes `start .. start + L` as lanes (see [`load`]).
 #[inline(always)]
-fn gather<const L: usize, const N: usize>(scenes: &Scenes<N>, start: usize) -> Data<Lanes<L>, N> {
+fn gather<const L: usize, const N: usize, const WHOLE: bool>(
+    scenes: &Scenes<N>,
+    start: usize,
+) -> Data<Lanes<L>, N> {
     let v = &scenes.velocity;
     Data {
-        mass: load(&scenes.mass, start),
-        inertia: InverseInertia::Principal(load3(&scenes.inertia, start)),
+        mass: load::<L, WHOLE>(&scenes.mass, start),
+        inertia: InverseInertia::Principal(load3::<L, WHOLE>(&scenes.inertia, start)),
         velocity: [
-            load(&v[0], start),
-            load(&v[1], start),
-            load(&v[2], start),
-            load(&v[3], start),
-            load(&v[4], start),
-            load(&v[5], start),
+            load::<L, WHOLE>(&v[0], start),
+            load::<L, WHOLE>(&v[1], start),
+            load::<L, WHOLE>(&v[2], start),
+            load::<L, WHOLE>(&v[3], start),
+            load::<L, WHOLE>(&v[4], start),
+            load::<L, WHOLE>(&v[5], start),
         ],
-        points: array::from_fn(|i| load3(&scenes.points[i], start)),
-        normals: array::from_fn(|i| load3(&scenes.normals[i], start)),
-        k_newton: array::from_fn(|i| load(&scenes.k_newton[i], start)),
-        k_poisson: array::from_fn(|i| load(&scenes.k_poisson[i], start)),
+        points: array::from_fn(|i| load3::<L, WHOLE>(&scenes.points[i], start)),
+        normals: array::from_fn(|i| load3::<L, WHOLE>(&scenes.normals[i], start)),
+        k_newton: array::from_fn(|i| load::<L, WHOLE>(&scenes.k_newton[i], start)),
+        k_poisson: array::from_fn(|i| load::<L, WHOLE>(&scenes.k_poisson[i], start)),
     }
 }
 
@@ -78,6 +97,22 @@ pub(super) fn finite<const L: usize>(xs: &[Lanes<L>]) -> Mask<L> {
     ok
 }
 
+/// Lane by lane, a sufficient test that every value of `xs` is finite, in one addition per
+/// value: their sum is finite. An infinite or NaN term makes every sum that contains it
+/// infinite or NaN (∞ + finite = ∞, ∞ − ∞ = NaN, NaN + x = NaN), so a finite sum means finite
+/// terms; a lane of finite values whose sum overflows is refused, and the hot loop of
+/// [`sweep_with`] then hands its chunk to the fallback, whose test ([`finite`]) is exact.
+#[inline(always)]
+pub(super) fn surely_finite<const L: usize>(xs: &[Lanes<L>]) -> Mask<L> {
+    // Four running sums, so that the additions do not wait on one another.
+    let mut sums = [Lanes::splat(0.0); 4];
+    for (i, x) in xs.iter().enumerate() {
+        sums[i % 4] += *x;
+    }
+    let sum = (sums[0] + sums[1]) + (sums[2] + sums[3]);
+    sum.test(&Lanes::splat(f64::MAX), |s, m| s.abs() <= m)
+}
+
 /// Which lanes of `data` pass [`crate::impact::problem::Problem::new`]'s checks
 /// ([`valid_parts`]).
 #[inline(always)]
@@ -85,7 +120,7 @@ fn valid<const L: usize, const N: usize>(data: &Data<Lanes<L>, N>) -> Mask<L> {
     let InverseInertia::Principal(j) = &data.inertia else {
         return Mask([0; L]);
     };
-    valid_parts(
+    valid_parts::<L, N, false>(
         &data.mass,
         j,
         &data.velocity,
@@ -99,9 +134,11 @@ fn valid<const L: usize, const N: usize>(data: &Data<Lanes<L>, N>) -> Mask<L> {
 /// Which lanes of a scene (m, principal moments J_k, {v⁰}, r_j, n_j, k_j^N, k_j^P) pass
 /// [`crate::impact::problem::Problem::new`]'s checks: m, J_k > 0, every number finite,
 /// normals nonzero, k ∈ [0, 1] (decided lane by lane, without building a problem; NaN fails
-/// every comparison).
+/// every comparison). Exactly those lanes, or with `QUICK` a sufficient test, finiteness
+/// by [`surely_finite`] (a lane it accepts is valid; it may refuse a valid lane whose values
+/// add up to more than f64::MAX).
 #[inline(always)]
-pub(super) fn valid_parts<const L: usize, const N: usize>(
+pub(super) fn valid_parts<const L: usize, const N: usize, const QUICK: bool>(
     mass: &Lanes<L>,
     j: &[Lanes<L>; 3],
     velocity: &[Lanes<L>; 6],
@@ -114,10 +151,18 @@ pub(super) fn valid_parts<const L: usize, const N: usize>(
     let positive = |x: &Lanes<L>| x.test(&zero, |x, z| x > z) & x.test(&max, |x, m| x <= m);
     let coefficient = |x: &Lanes<L>| x.test(&zero, |x, z| x >= z) & x.test(&one, |x, o| x <= o);
     let mut ok = positive(mass) & positive(&j[0]) & positive(&j[1]) & positive(&j[2]);
-    ok &= finite(velocity);
+    if !QUICK {
+        ok &= finite(velocity);
+        for i in 0..N {
+            ok &= finite(&points[i]) & finite(&normals[i]);
+        }
+    } else {
+        ok &= surely_finite(velocity)
+            & surely_finite(points.as_flattened())
+            & surely_finite(normals.as_flattened());
+    }
     for i in 0..N {
         let n = &normals[i];
-        ok &= finite(&points[i]) & finite(n);
         ok &= coefficient(&k_newton[i]) & coefficient(&k_poisson[i]);
         let nonzero = |x: &Lanes<L>| x.test(&zero, |x, z| x != z);
         ok &= nonzero(&n[0]) | nonzero(&n[1]) | nonzero(&n[2]);
@@ -160,7 +205,8 @@ pub(super) trait Kernel<const L: usize, const N: usize>: Sized {
     /// checked and factored. An associated function rather than a closure handed to
     /// [`sweep`]: called through `Fn::call` it was not inlined into the function `pulp`
     /// compiles for AVX-512, and ran as SSE2 code outside it.
-    fn read(scenes: &Scenes<N>, start: usize) -> Self;
+    /// `WHOLE`: the hot loop's whole chunk (see [`load`]).
+    fn read<const WHOLE: bool>(scenes: &Scenes<N>, start: usize) -> Self;
     /// Lanes whose input is a valid problem.
     fn valid(&self) -> Mask<L>;
     /// Lanes the route test accepts (the operations of [`route_test`], on lanes).
@@ -181,8 +227,8 @@ struct Generic<const L: usize, const N: usize> {
 
 impl<const L: usize, const N: usize> Kernel<L, N> for Generic<L, N> {
     #[inline(always)]
-    fn read(scenes: &Scenes<N>, start: usize) -> Self {
-        let data = gather::<L, N>(scenes, start);
+    fn read<const WHOLE: bool>(scenes: &Scenes<N>, start: usize) -> Self {
+        let data = gather::<L, N, WHOLE>(scenes, start);
         let (factored, g) = data.factor();
         Generic {
             valid: valid(&data),
@@ -238,60 +284,107 @@ pub(super) fn sweep_generic<const L: usize, const N: usize>(
 }
 
 /// Every chunk of `scenes` by the kernel K, under each model of `outs`.
+///
+/// The hot loop takes the whole chunks: each model's L answers are solved and written out at
+/// once, and the chunk's tests — valid input, the route test, finite outputs, the first and
+/// the last by sufficient tests ([`surely_finite`]) — are gathered into one mask on the way.
+/// Only a chunk with a lane that fails them, and the last, partial chunk, goes to
+/// [`Fallback::chunk`], which reads it again and decides lane by lane with the exact tests,
+/// overwriting every lane it does not take from the lanes. Writing before deciding keeps the
+/// masks' intermediates from waiting on the lanes' answers.
 #[inline(always)]
 fn sweep_with<const L: usize, const N: usize, K: Kernel<L, N>>(
     scenes: &Scenes<N>,
     outs: &mut [(Model, &mut Outcomes<N>)],
 ) {
     let n = scenes.len();
-    let mut work = None;
-    // (lane, model, why) of each lane a model's lean answer is refused in, per chunk.
-    let mut refused: Vec<(usize, usize, LeanError)> = Vec::new();
-    let mut by_scene: Vec<(usize, LeanError)> = Vec::new();
-    for start in (0..n).step_by(L) {
-        let kernel = K::read(scenes, start);
+    let whole = n - n % L;
+    let mut fallback = Fallback::default();
+    for start in (0..whole).step_by(L) {
+        let kernel = K::read::<true>(scenes, start);
+        let mut ok = kernel.valid() & kernel.routed();
+        for (model, out) in outs.iter_mut() {
+            let (p, v) = kernel.solve(*model);
+            ok &= surely_finite(&p) & surely_finite(&v);
+            let range = start..start + L;
+            for (o, x) in out.impulses_hat.iter_mut().zip(&p) {
+                o[range.clone()].copy_from_slice(&x.0);
+            }
+            for (o, x) in out.velocity.iter_mut().zip(&v) {
+                o[range.clone()].copy_from_slice(&x.0);
+            }
+        }
+        if !ok.all() {
+            fallback.chunk::<L, N, K>(scenes, start, outs);
+        }
+    }
+    if whole < n {
+        fallback.chunk::<L, N, K>(scenes, whole, outs);
+    }
+}
+
+/// The lane-by-lane decisions for the chunks the hot loop of [`sweep_with`] cannot take whole,
+/// with the buffers they reuse.
+#[derive(Default)]
+struct Fallback {
+    /// The generic solve's buffers.
+    work: super::Work,
+    /// (lane, model, why) of each lane a model's lean answer is refused in.
+    refused: Vec<(usize, usize, LeanError)>,
+    /// (model, why) of one scene.
+    by_scene: Vec<(usize, LeanError)>,
+}
+
+impl Fallback {
+    /// Scenes `start .. min(start + L, n)`, lane by lane: a lane whose input is valid, whose
+    /// answer is finite and which the scalar route test accepts takes the lanes' answer (the
+    /// same operations as the hot loop's, hence the same bits); every other lane is zeroed and
+    /// handed to the generic route, which writes its answer where it has one.
+    #[cold]
+    #[inline(never)]
+    fn chunk<const L: usize, const N: usize, K: Kernel<L, N>>(
+        &mut self,
+        scenes: &Scenes<N>,
+        start: usize,
+        outs: &mut [(Model, &mut Outcomes<N>)],
+    ) {
+        let count = L.min(scenes.len() - start);
+        let kernel = K::read::<false>(scenes, start);
         let valid = kernel.valid();
-        let accepted = valid & kernel.routed();
-        let count = L.min(n - start);
         for (m, (model, out)) in outs.iter_mut().enumerate() {
             let (p, v) = kernel.solve(*model);
             let output_finite = valid & finite(&p) & finite(&v);
-            // The common case, every lane valid and accepted: whole lanes out at once.
-            if count == L && (accepted & output_finite).all() {
-                let range = start..start + L;
-                for (o, x) in out.impulses_hat.iter_mut().zip(&p) {
-                    o[range.clone()].copy_from_slice(&x.0);
-                }
-                for (o, x) in out.velocity.iter_mut().zip(&v) {
-                    o[range.clone()].copy_from_slice(&x.0);
-                }
-                continue;
-            }
             for l in 0..count {
                 let route = match output_finite.lane(l) {
                     true => kernel.route(l),
                     false => Err(LeanError::NotFinite),
                 };
-                match route {
-                    Ok(()) => {
-                        for (o, x) in out.impulses_hat.iter_mut().zip(&p) {
-                            o[start + l] = x.0[l];
-                        }
-                        for (o, x) in out.velocity.iter_mut().zip(&v) {
-                            o[start + l] = x.0[l];
-                        }
-                    }
-                    Err(why) => refused.push((l, m, why)),
+                let taken = route.is_ok();
+                for (o, x) in out.impulses_hat.iter_mut().zip(&p) {
+                    o[start + l] = if taken { x.0[l] } else { 0.0 };
+                }
+                for (o, x) in out.velocity.iter_mut().zip(&v) {
+                    o[start + l] = if taken { x.0[l] } else { 0.0 };
+                }
+                if let Err(why) = route {
+                    self.refused.push((l, m, why));
                 }
             }
         }
         // The refused lanes by the generic route, each scene assembled once for its models.
-        refused.sort_by_key(|r| (r.0, r.1));
-        for lane in refused.chunk_by(|a, b| a.0 == b.0) {
-            by_scene.clear();
-            by_scene.extend(lane.iter().map(|(_, m, why)| (*m, why.clone())));
-            solve_generic(scenes, start + lane[0].0, &by_scene, outs, &mut work);
+        self.refused.sort_by_key(|r| (r.0, r.1));
+        for lane in self.refused.chunk_by(|a, b| a.0 == b.0) {
+            self.by_scene.clear();
+            self.by_scene
+                .extend(lane.iter().map(|(_, m, why)| (*m, why.clone())));
+            solve_generic(
+                scenes,
+                start + lane[0].0,
+                &self.by_scene,
+                outs,
+                &mut self.work,
+            );
         }
-        refused.clear();
+        self.refused.clear();
     }
 }

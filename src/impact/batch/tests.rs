@@ -311,3 +311,48 @@ fn the_two_contact_kernel_is_the_generic_lane_code_bit_for_bit() {
         );
     }
 }
+
+#[test]
+fn outcomes_reused_across_batches_equal_fresh_ones() {
+    // The sweep no longer clears the outcomes before writing: every entry of a reused one must
+    // still be written — the lanes' answers, the generic route's, or zeros where no route
+    // answers. Fill the outcomes with a batch of other numbers first, then solve a mixed batch
+    // (refused, singular and invalid lanes, a partial last chunk) into them.
+    let mut rng = Seeded(0x5eed_0077);
+    let first = mixed::<2>(&mut rng, 64);
+    let second = mixed::<2>(&mut rng, 43);
+    let (mut newton, mut poisson) = (Outcomes::default(), Outcomes::default());
+    solve_both(&first, &mut newton, &mut poisson).expect("arrays of one length");
+    solve_both(&second, &mut newton, &mut poisson).expect("arrays of one length");
+    let (mut fresh_newton, mut fresh_poisson) = (Outcomes::default(), Outcomes::default());
+    solve_both(&second, &mut fresh_newton, &mut fresh_poisson).expect("arrays of one length");
+    for s in 0..second.len() {
+        assert_eq!(bits(&newton, s), bits(&fresh_newton, s), "scene {s}");
+        assert_eq!(bits(&poisson, s), bits(&fresh_poisson, s), "scene {s}");
+    }
+    assert_eq!(newton, fresh_newton);
+    assert_eq!(poisson, fresh_poisson);
+    assert!(newton.routes.contains(&Route::Refused));
+}
+
+#[test]
+fn the_quick_finiteness_test_never_accepts_a_non_finite_lane() {
+    // surely_finite may refuse finite lanes whose sum overflows, never accept a lane with an
+    // infinite or NaN value, whatever the other values.
+    let (inf, nan, big) = (f64::INFINITY, f64::NAN, f64::MAX);
+    let lanes = |xs: [f64; 4]| lanes::Lanes::<4>(xs);
+    let columns = [
+        lanes([1.0, inf, -inf, nan]),
+        lanes([2.0, -inf, inf, 0.0]),
+        lanes([-3.0, 0.0, 1.0, -big]),
+        lanes([big, big, big, big]),
+    ];
+    let quick = sweep::surely_finite(&columns);
+    assert!(quick.lane(0), "finite values summing to MAX − 0 are accepted");
+    for l in 1..4 {
+        assert!(!quick.lane(l), "lane {l} holds ±∞ or NaN");
+    }
+    let overflowing = [lanes([big; 4]), lanes([big; 4])];
+    assert!(!sweep::surely_finite(&overflowing).lane(0), "an overflowing sum is refused");
+    assert!(sweep::finite(&overflowing).all(), "though every value is finite");
+}
