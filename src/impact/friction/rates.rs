@@ -367,6 +367,26 @@ pub fn rates_with<T: Scalar, S: Screws<T>>(
     work: &mut RateWork<T>,
     out: &mut Rates<T>,
 ) -> Result<(), RateFailure> {
+    impulse_rates_with(b, normals, modes, work, out)?;
+    b.velocity_change(&out.lambda, &mut out.velocity);
+    Ok(())
+}
+
+/// [`rates_with`] without the velocity rates: `out.velocity` is left as it was, for a caller
+/// that computes v′ = −K λ′ ([`super::blocks::Blocks::velocity_change`] of `out.lambda`) only
+/// when it reads it — the mode search, which reads it for a slide's test and for the
+/// assignment it keeps, not for a stick's ([`super::modes`]). The impulse rates and flags are
+/// [`rates_with`]'s, bit for bit.
+///
+/// # Errors
+/// As [`rates_with`].
+pub(super) fn impulse_rates_with<T: Scalar, S: Screws<T>>(
+    b: &Blocks<T, S>,
+    normals: &[Normal<T>],
+    modes: &[Mode<T>],
+    work: &mut RateWork<T>,
+    out: &mut Rates<T>,
+) -> Result<(), RateFailure> {
     let len = b.len();
     let RateWork {
         known,
@@ -565,7 +585,6 @@ pub fn rates_with<T: Scalar, S: Screws<T>>(
             }
         }
     }
-    b.velocity_change(&out.lambda, &mut out.velocity);
     Ok(())
 }
 
