@@ -175,6 +175,30 @@ fn assign_all<T: Scalar>(
     }
 }
 
+/// Take the `candidates`' modes from assignment `from` (as [`assign_all`] left them; `None`:
+/// unknown) to assignment `code`, setting only the candidates whose choice differs: the modes
+/// [`assign_all`]`(code)` sets, the others' already theirs.
+fn assign_changed<T: Scalar>(
+    modes: &mut [Mode<T>],
+    candidates: &[usize],
+    from: Option<usize>,
+    code: usize,
+    spare: &mut Vec<Vec<T>>,
+) {
+    let (mut c, mut p) = (code, from);
+    for &i in candidates.iter().rev() {
+        if p == Some(c) {
+            // the remaining (slower) choices agree
+            return;
+        }
+        if p.is_none_or(|p| p % 3 != c % 3) {
+            assign(&mut modes[i], c % 3, spare);
+        }
+        c /= 3;
+        p = p.map(|p| p / 3);
+    }
+}
+
 /// Set a planar candidate's mode to choice `k` of stick, slide+, slide−, reusing a slide's
 /// direction rather than allocating a new one: a slide set to stick leaves its direction in
 /// `spare`, and a slide set from another mode takes one from there.
@@ -338,7 +362,8 @@ impl<'w, T: Scalar> Search<'w, T> {
     ) {
         let total = 3usize.pow(candidates.len() as u32);
         for code in 0..total {
-            assign_all(modes, candidates, code, &mut self.work.spare);
+            let last = code.checked_sub(1);
+            assign_changed(modes, candidates, last, code, &mut self.work.spare);
             let Work { solve, rates, .. } = &mut *self.work;
             match impulse_rates_with(b, normals, modes, solve, rates) {
                 Ok(()) => {

@@ -402,11 +402,14 @@ pub(super) fn impulse_rates_with<T: Scalar, S: Screws<T>>(
     columns.clear();
     rows.clear();
     // at most one unknown and one equation per axis, two entries per column: the buffers
-    // grow once, to their size, rather than by doubling
-    columns.unknowns.reserve(len);
-    columns.ends.reserve(len);
-    columns.entries.reserve(2 * len);
-    rows.reserve(len);
+    // grow once, to their size, rather than by doubling (tested on one of them: they grow
+    // together)
+    if rows.capacity() < len {
+        columns.unknowns.reserve(len);
+        columns.ends.reserve(len);
+        columns.entries.reserve(2 * len);
+        rows.reserve(len);
+    }
     for (i, (normal, mode)) in normals.iter().zip(modes).enumerate() {
         let off = b.offset[i];
         let slide = match mode {
