@@ -410,6 +410,9 @@ pub(super) fn impulse_rates_with<T: Scalar, S: Screws<T>>(
         columns.entries.reserve(2 * len);
         rows.reserve(len);
     }
+    // whether some normal rate is driven (an unknown), and some given (a known rate, maybe
+    // nonzero): with none given, every right-hand side is its target alone
+    let (mut driven, mut given) = (false, false);
     for (i, (normal, mode)) in normals.iter().zip(modes).enumerate() {
         let off = b.offset[i];
         let slide = match mode {
@@ -418,6 +421,7 @@ pub(super) fn impulse_rates_with<T: Scalar, S: Screws<T>>(
         };
         match normal {
             Normal::Driven(c) => {
+                driven = true;
                 columns.open(Unknown::Normal(i));
                 columns.entry(off, T::one());
                 if let Some(u) = slide {
@@ -428,6 +432,7 @@ pub(super) fn impulse_rates_with<T: Scalar, S: Screws<T>>(
                 rows.push((off, c.clone()));
             }
             Normal::Given(r) => {
+                given = true;
                 known[off] = r.clone();
                 if let Some(u) = slide {
                     for (a, ua) in u.iter().enumerate() {
@@ -462,9 +467,11 @@ pub(super) fn impulse_rates_with<T: Scalar, S: Screws<T>>(
             start = end;
         }
         let mut t = target.clone();
-        for (k_qr, kr) in k_q.iter().zip(known.iter()) {
-            if !kr.is_zero() {
-                t -= k_qr.clone() * kr;
+        if given {
+            for (k_qr, kr) in k_q.iter().zip(known.iter()) {
+                if !kr.is_zero() {
+                    t -= k_qr.clone() * kr;
+                }
             }
         }
         rhs.push(t);
@@ -476,10 +483,7 @@ pub(super) fn impulse_rates_with<T: Scalar, S: Screws<T>>(
     // no body (K_SS w = 0 gives wᵀ K_SS w = |M^(-1/2) J_Sᵀ w|² = 0). What a nearly singular
     // elimination says otherwise in floats (a face flat on the floor to the events'
     // tolerance) is its rounding.
-    let only_sticks = columns
-        .unknowns
-        .iter()
-        .all(|u| matches!(u, Unknown::Stick(_)));
+    let only_sticks = !driven;
     if only_sticks {
         solve_consistent_in(a, m, m, rhs, pivots, particular);
     } else if !solve_general_in(a, m, m, rhs, pivots, particular) {
