@@ -281,6 +281,19 @@ impl<T: Scalar, S: Screws<T>> Blocks<T, S> {
         }
     }
 
+    /// Entry `q` of −K x alone: [`Blocks::velocity_change`]'s entry `q`, bit for bit (the same
+    /// terms in the same order).
+    pub fn velocity_change_at(&self, x: &[T], q: usize) -> T {
+        let n = self.len();
+        let mut s = T::zero();
+        for (kr, xr) in self.k[q * n..(q + 1) * n].iter().zip(x) {
+            if !xr.is_zero() {
+                s += kr.clone() * xr;
+            }
+        }
+        -s
+    }
+
     /// The twist {v⁰} − Σ_q Λ_q W{E_q} after the impulses Λ (eq. 142).
     pub fn twist_after(&self, velocity: &S, lambda: &[T]) -> S {
         let mut v = velocity.clone();

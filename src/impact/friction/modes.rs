@@ -18,7 +18,7 @@
 
 use crate::impact::friction::blocks::Blocks;
 use crate::impact::friction::rates::{
-    Mode, Normal, RateFailure, RateWork, Rates, Unilateral, max_abs, rates_with,
+    Mode, Normal, RateFailure, RateWork, Rates, Unilateral, impulse_rates_with, max_abs,
 };
 use crate::mechanics::screw::Screws;
 use crate::scalar::Scalar;
@@ -81,7 +81,7 @@ pub fn resolve_planar<T: Scalar, S: Screws<T>>(
 /// [`resolve_planar`] on buffers kept from event to event (`work`), in place: the assignments
 /// are tried in `modes` itself, which is left holding the one chosen, its rates in
 /// [`Work::chosen`]; returns how many distinct rates the consistent assignments have. Nothing is
-/// allocated once the buffers have grown (the rates by [`rates_with`]); the modes, rates and
+/// allocated once the buffers have grown (the rates by [`super::rates::rates_with`]); the modes, rates and
 /// count are [`resolve_planar`]'s, bit for bit.
 ///
 /// # Errors
@@ -172,6 +172,30 @@ fn assign_all<T: Scalar>(
     for &i in candidates.iter().rev() {
         assign(&mut modes[i], c % 3, spare);
         c /= 3;
+    }
+}
+
+/// Take the `candidates`' modes from assignment `from` (as [`assign_all`] left them; `None`:
+/// unknown) to assignment `code`, setting only the candidates whose choice differs: the modes
+/// [`assign_all`]`(code)` sets, the others' already theirs.
+fn assign_changed<T: Scalar>(
+    modes: &mut [Mode<T>],
+    candidates: &[usize],
+    from: Option<usize>,
+    code: usize,
+    spare: &mut Vec<Vec<T>>,
+) {
+    let (mut c, mut p) = (code, from);
+    for &i in candidates.iter().rev() {
+        if p == Some(c) {
+            // the remaining (slower) choices agree
+            return;
+        }
+        if p.is_none_or(|p| p % 3 != c % 3) {
+            assign(&mut modes[i], c % 3, spare);
+        }
+        c /= 3;
+        p = p.map(|p| p / 3);
     }
 }
 
@@ -338,13 +362,22 @@ impl<'w, T: Scalar> Search<'w, T> {
     ) {
         let total = 3usize.pow(candidates.len() as u32);
         for code in 0..total {
-            assign_all(modes, candidates, code, &mut self.work.spare);
+            let last = code.checked_sub(1);
+            assign_changed(modes, candidates, last, code, &mut self.work.spare);
             let Work { solve, rates, .. } = &mut *self.work;
-            match rates_with(b, normals, modes, solve, rates) {
+            match impulse_rates_with(b, normals, modes, solve, rates) {
                 Ok(()) => {
-                    if planar_consistent(b, modes, rates, candidates)
-                        && normal_consistent(b, rates, checks, &T::zero(), &T::zero())
-                    {
+                    // v′ = −K λ′ only once a test or the first consistent assignment reads it
+                    let mut velocity = Velocity::Stale;
+                    let consistent = planar_consistent(b, modes, rates, candidates, &mut velocity)
+                        && (checks.is_empty() || {
+                            velocity.fresh(b, rates);
+                            normal_consistent(b, rates, checks, &T::zero(), &T::zero())
+                        });
+                    if consistent {
+                        if self.first_code.is_none() {
+                            velocity.fresh(b, rates);
+                        }
                         self.found(code, modes, normals);
                     }
                 }
@@ -440,23 +473,50 @@ pub fn normal_consistent<T: Scalar, S: Screws<T>>(
     })
 }
 
-/// The tests of the module docs for the candidates.
+/// Whether the velocity rates of a search's [`Rates`] are those of its impulse rates: the
+/// search solves the impulse rates alone ([`impulse_rates_with`]) and computes v′ = −K λ′ when
+/// it first reads it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Velocity {
+    /// `velocity` is left from an earlier solve.
+    Stale,
+    /// `velocity` is −K `lambda`.
+    Fresh,
+}
+
+impl Velocity {
+    /// Make `r.velocity` −K `r.lambda` ([`Blocks::velocity_change`]) if it is not yet.
+    fn fresh<T: Scalar, S: Screws<T>>(&mut self, b: &Blocks<T, S>, r: &mut Rates<T>) {
+        if *self == Velocity::Stale {
+            b.velocity_change(&r.lambda, &mut r.velocity);
+            *self = Velocity::Fresh;
+        }
+    }
+}
+
+/// The tests of the module docs for the candidates, in their order, the first failure ending
+/// them. Each scale is found when a test first needs it: max |λ′| for a stick's, max |v′| for a
+/// slide whose slip rate has the sense assumed — a slide whose slip rate has not fails whatever
+/// the scale, its one entry of v′ = −K λ′ computed alone ([`Blocks::velocity_change_at`]); the
+/// velocity rates are made fresh by the first slide that needs their scale.
 fn planar_consistent<T: Scalar, S: Screws<T>>(
     b: &Blocks<T, S>,
     modes: &[Mode<T>],
-    r: &Rates<T>,
+    r: &mut Rates<T>,
     candidates: &[usize],
+    velocity: &mut Velocity,
 ) -> bool {
     if candidates.is_empty() {
         return true;
     }
     let n = b.len();
-    let scale_l = max_abs(&r.lambda);
-    let scale_v = max_abs(&r.velocity);
-    candidates.iter().all(|&i| {
+    let mut scale_l: Option<T> = None;
+    let mut scale_v: Option<T> = None;
+    for &i in candidates {
         let off = b.offset[i];
-        match &modes[i] {
+        let holds = match &modes[i] {
             Mode::Stick => {
+                let scale_l = scale_l.get_or_insert_with(|| max_abs(&r.lambda));
                 let p = &r.lambda[off];
                 let bound = b.mu[i].clone() * p;
                 let t = &r.lambda[off + 1];
@@ -465,10 +525,27 @@ fn planar_consistent<T: Scalar, S: Screws<T>>(
                 } else {
                     t.clone()
                 };
-                nonnegative(p, &scale_l, n) && nonnegative(&(bound - t_abs), &scale_l, n)
+                nonnegative(p, scale_l, n) && nonnegative(&(bound - t_abs), scale_l, n)
             }
-            Mode::Slide(u) => positive(&(u[0].clone() * &r.velocity[off + 1]), &scale_v, n),
+            Mode::Slide(u) => {
+                let slip = match velocity {
+                    Velocity::Fresh => r.velocity[off + 1].clone(),
+                    Velocity::Stale => b.velocity_change_at(&r.lambda, off + 1),
+                };
+                let grows = u[0].clone() * &slip;
+                grows.signum_i8() > 0 && {
+                    let scale_v = scale_v.get_or_insert_with(|| {
+                        velocity.fresh(b, r);
+                        max_abs(&r.velocity)
+                    });
+                    positive(&grows, scale_v, n)
+                }
+            }
             Mode::Free => true,
+        };
+        if !holds {
+            return false;
         }
-    })
+    }
+    true
 }

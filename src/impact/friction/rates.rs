@@ -367,6 +367,26 @@ pub fn rates_with<T: Scalar, S: Screws<T>>(
     work: &mut RateWork<T>,
     out: &mut Rates<T>,
 ) -> Result<(), RateFailure> {
+    impulse_rates_with(b, normals, modes, work, out)?;
+    b.velocity_change(&out.lambda, &mut out.velocity);
+    Ok(())
+}
+
+/// [`rates_with`] without the velocity rates: `out.velocity` is left as it was, for a caller
+/// that computes v′ = −K λ′ ([`super::blocks::Blocks::velocity_change`] of `out.lambda`) only
+/// when it reads it — the mode search, which reads it for a slide's test and for the
+/// assignment it keeps, not for a stick's ([`super::modes`]). The impulse rates and flags are
+/// [`rates_with`]'s, bit for bit.
+///
+/// # Errors
+/// As [`rates_with`].
+pub(super) fn impulse_rates_with<T: Scalar, S: Screws<T>>(
+    b: &Blocks<T, S>,
+    normals: &[Normal<T>],
+    modes: &[Mode<T>],
+    work: &mut RateWork<T>,
+    out: &mut Rates<T>,
+) -> Result<(), RateFailure> {
     let len = b.len();
     let RateWork {
         known,
@@ -382,11 +402,17 @@ pub fn rates_with<T: Scalar, S: Screws<T>>(
     columns.clear();
     rows.clear();
     // at most one unknown and one equation per axis, two entries per column: the buffers
-    // grow once, to their size, rather than by doubling
-    columns.unknowns.reserve(len);
-    columns.ends.reserve(len);
-    columns.entries.reserve(2 * len);
-    rows.reserve(len);
+    // grow once, to their size, rather than by doubling (tested on one of them: they grow
+    // together)
+    if rows.capacity() < len {
+        columns.unknowns.reserve(len);
+        columns.ends.reserve(len);
+        columns.entries.reserve(2 * len);
+        rows.reserve(len);
+    }
+    // whether some normal rate is driven (an unknown), and some given (a known rate, maybe
+    // nonzero): with none given, every right-hand side is its target alone
+    let (mut driven, mut given) = (false, false);
     for (i, (normal, mode)) in normals.iter().zip(modes).enumerate() {
         let off = b.offset[i];
         let slide = match mode {
@@ -395,6 +421,7 @@ pub fn rates_with<T: Scalar, S: Screws<T>>(
         };
         match normal {
             Normal::Driven(c) => {
+                driven = true;
                 columns.open(Unknown::Normal(i));
                 columns.entry(off, T::one());
                 if let Some(u) = slide {
@@ -405,6 +432,7 @@ pub fn rates_with<T: Scalar, S: Screws<T>>(
                 rows.push((off, c.clone()));
             }
             Normal::Given(r) => {
+                given = true;
                 known[off] = r.clone();
                 if let Some(u) = slide {
                     for (a, ua) in u.iter().enumerate() {
@@ -439,9 +467,11 @@ pub fn rates_with<T: Scalar, S: Screws<T>>(
             start = end;
         }
         let mut t = target.clone();
-        for (k_qr, kr) in k_q.iter().zip(known.iter()) {
-            if !kr.is_zero() {
-                t -= k_qr.clone() * kr;
+        if given {
+            for (k_qr, kr) in k_q.iter().zip(known.iter()) {
+                if !kr.is_zero() {
+                    t -= k_qr.clone() * kr;
+                }
             }
         }
         rhs.push(t);
@@ -453,10 +483,7 @@ pub fn rates_with<T: Scalar, S: Screws<T>>(
     // no body (K_SS w = 0 gives wᵀ K_SS w = |M^(-1/2) J_Sᵀ w|² = 0). What a nearly singular
     // elimination says otherwise in floats (a face flat on the floor to the events'
     // tolerance) is its rounding.
-    let only_sticks = columns
-        .unknowns
-        .iter()
-        .all(|u| matches!(u, Unknown::Stick(_)));
+    let only_sticks = !driven;
     if only_sticks {
         solve_consistent_in(a, m, m, rhs, pivots, particular);
     } else if !solve_general_in(a, m, m, rhs, pivots, particular) {
@@ -565,7 +592,6 @@ pub fn rates_with<T: Scalar, S: Screws<T>>(
             }
         }
     }
-    b.velocity_change(&out.lambda, &mut out.velocity);
     Ok(())
 }
 
