@@ -23,20 +23,16 @@
 //! SSE2 only), `pulp` when the program runs.
 //!
 //! **What it costs** (2026-11-29, AMD EPYC Zen 4, eight AVX-512 lanes, both laws, criterion
-//! medians of 256 scenes, batch and loop in one run at load ≈ 1.5–1.9; numbers and profile in
-//! `guide/accuracy.md`). Two contacts take the written-out kernel of `pair.rs`: 1.25× the
-//! one-by-one lean path on Example-3-class scenes (6.89 µs against 8.57 µs), 1.42× on the
-//! random boxes the lean route accepts (6.50 against 9.24 µs), 0.87× on all random boxes with
-//! the refused ones by the generic route (14.8 against 12.9 µs) — faster than the loop where
-//! the lean route answers, not the 4× of issue 29. The profile (`perf annotate` of the
-//! dispatched function, 72 % of the samples) still puts 47 % of its samples on moves between
-//! zmm registers and the stack (618 of 3,325 instructions) against 8 % on the arithmetic: a
-//! chunk's factored state is about 32 lanes live across the loop over the laws, as many as
-//! the registers. Before the pair kernel the field-generic code took 16.0 µs per 256 (1.7×
-//! slower than the loop); a first pair kernel handed to the sweep as a closure ran outside the
-//! AVX-512 function, as SSE2 code (half the samples), until it became `sweep::Kernel::read`.
-//! Refused scenes cost what the generic solve costs (≈ 900 ns each, assembled once for both
-//! laws).
+//! medians of 256 scenes, batch and loop in one run at load ≈ 2; numbers and profile in
+//! `guide/accuracy.md`). Two contacts take the written-out kernel of `pair.rs`: 2.8× the
+//! one-by-one lean path on Example-3-class scenes (3.36 µs against 9.5 µs), 1.9–2.1× on the
+//! random boxes the lean route accepts, about even (0.96–1.00×) on all random boxes with the
+//! refused ones by the generic route — not the 4× of issue 29. The hot loop reads whole chunks
+//! only, as plain vector loads (a lane-by-lane copy of the last, partial chunk in the same
+//! load made LLVM build every input from pieces on the stack, 2.3× slower), decides a chunk by
+//! sufficient tests (`sweep::surely_finite`) and leaves the lane-by-lane decisions to a
+//! cold fallback. Refused scenes cost what the generic solve costs (≈ 900 ns each, assembled
+//! once for both laws).
 
 pub mod lanes;
 mod pair;

@@ -348,11 +348,20 @@ fn the_quick_finiteness_test_never_accepts_a_non_finite_lane() {
         lanes([big, big, big, big]),
     ];
     let quick = sweep::surely_finite(&columns);
-    assert!(quick.lane(0), "finite values summing to MAX − 0 are accepted");
+    assert!(
+        quick.lane(0),
+        "finite values summing to MAX − 0 are accepted"
+    );
     for l in 1..4 {
         assert!(!quick.lane(l), "lane {l} holds ±∞ or NaN");
     }
     let overflowing = [lanes([big; 4]), lanes([big; 4])];
-    assert!(!sweep::surely_finite(&overflowing).lane(0), "an overflowing sum is refused");
-    assert!(sweep::finite(&overflowing).all(), "though every value is finite");
+    assert!(
+        !sweep::surely_finite(&overflowing).lane(0),
+        "an overflowing sum is refused"
+    );
+    assert!(
+        sweep::finite(&overflowing).all(),
+        "though every value is finite"
+    );
 }

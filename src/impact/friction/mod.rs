@@ -592,6 +592,23 @@ pub enum FrictionError {
     /// More events or steps than any physical impact needs.
     #[error("the integration did not end within its event or step budget")]
     Runaway,
+    /// The contacts chatter: one cycle of modes repeats, each cycle shorter in s than the one
+    /// before — events accumulating at a Zeno point of the impact (`planar::chatter`).
+    #[error(
+        "the contacts chatter: a cycle of {period} mode change(s) ({phase}) repeated {cycles} \
+         times, each shorter in s than the one before, events accumulating near s = {s} — a \
+         Zeno point of the impact, whose limit is not computed (no answer rather than a guess)"
+    )]
+    Chatter {
+        /// Where the last event fell (the accumulation point is at or just past it).
+        s: f64,
+        /// The phase.
+        phase: Phase,
+        /// Events per cycle.
+        period: usize,
+        /// Cycles seen.
+        cycles: usize,
+    },
 }
 
 /// The outcome of a frictional impact. Impulses are along the stacked axes of

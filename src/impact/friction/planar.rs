@@ -28,6 +28,42 @@ use crate::scalar::Scalar;
 /// The most events one impact may have before the integration is declared runaway.
 const MAX_EVENTS: usize = 10_000;
 
+/// Events after which the loop starts looking for chatter ([`chatter`]): far more than the
+/// few per contact an impact without chatter has (4.4 per impact on the bench's scenes), so
+/// that the common case keeps no history.
+const CHATTER_AFTER: usize = 64;
+
+/// Cycles of repeated modes, each shorter than the one before, that make chatter.
+const CHATTER_CYCLES: usize = 16;
+
+/// The longest cycle of modes looked for.
+const CHATTER_PERIOD: usize = 4;
+
+/// One event as [`chatter`] compares them: the modes and phase it starts, and where.
+type Event<T> = (Vec<Mode<T>>, Phase, f64);
+
+/// Whether the last events chatter: for some period p ≤ [`CHATTER_PERIOD`], the modes and
+/// phase of each of the last p · [`CHATTER_CYCLES`] events equal those p events before, and
+/// each cycle advanced s no more than the one before. That is a Zeno sequence — infinitely
+/// many events before a finite s, as when two contacts take turns to separate and re-engage
+/// in ever shorter intervals: in rationals each event costs more than the last and the loop
+/// would never end, in floats s stalls one ulp short of the accumulation point. Returns the
+/// period.
+fn chatter<T: Scalar>(history: &[Event<T>]) -> Option<usize> {
+    (1..=CHATTER_PERIOD).find(|&p| {
+        let need = p * (CHATTER_CYCLES + 1);
+        let Some(tail) = history.len().checked_sub(need).map(|at| &history[at..]) else {
+            return false;
+        };
+        let repeats = (p..need).all(|i| tail[i].0 == tail[i - p].0 && tail[i].1 == tail[i - p].1);
+        let advances: Vec<f64> = (p..need)
+            .step_by(p)
+            .map(|i| tail[i].2 - tail[i - p].2)
+            .collect();
+        repeats && advances.windows(2).all(|w| w[1] <= w[0])
+    })
+}
+
 /// The state carried from event to event.
 #[derive(Clone, Debug)]
 struct State<T: Scalar> {
@@ -274,7 +310,23 @@ impl<T: Scalar, S: Screws<T>> PlanarFrictionWork<T, S> {
         st.start(b, work);
         spare.take_back(segments, &mut Vec::new());
         verdicts.clear();
+        let mut history: Vec<Event<T>> = Vec::new();
         for events in 1..=MAX_EVENTS {
+            if events > CHATTER_AFTER {
+                history.push((st.modes.clone(), st.phase, st.s.to_f64()));
+                if let Some(period) = chatter(&history) {
+                    return Err(FrictionError::Chatter {
+                        s: st.s.to_f64(),
+                        phase: st.phase,
+                        period,
+                        cycles: CHATTER_CYCLES,
+                    });
+                }
+                let keep = CHATTER_PERIOD * (CHATTER_CYCLES + 1);
+                if history.len() > 2 * keep {
+                    history.drain(..history.len() - keep);
+                }
+            }
             normals(contacts, b, st, law, simultaneous);
             let rules = match hypothesis {
                 Hypothesis::Simultaneous => Vec::new(),
