@@ -28,7 +28,7 @@ use num_traits::Zero;
 
 use super::Scenes;
 use super::lanes::{Lanes, Mask};
-use super::sweep::{Kernel, load, load3, valid_parts};
+use super::sweep::{Kernel, load, load3, load6, valid_parts};
 use crate::impact::lean::{LeanError, limit2, route_test};
 use crate::impact::restitution::Model;
 
@@ -119,15 +119,7 @@ impl<const L: usize, const N: usize> Kernel<L, N> for Pair<L> {
         // through memory.
         let mass = load::<L, WHOLE>(&scenes.mass, start);
         let moments = load3::<L, WHOLE>(&scenes.inertia, start);
-        let v = &scenes.velocity;
-        let velocity = [
-            load::<L, WHOLE>(&v[0], start),
-            load::<L, WHOLE>(&v[1], start),
-            load::<L, WHOLE>(&v[2], start),
-            load::<L, WHOLE>(&v[3], start),
-            load::<L, WHOLE>(&v[4], start),
-            load::<L, WHOLE>(&v[5], start),
-        ];
+        let velocity = load6::<L, WHOLE>(&scenes.velocity, start);
         let r1 = load3::<L, WHOLE>(&scenes.points[0], start);
         let r2 = load3::<L, WHOLE>(&scenes.points[1], start);
         let n1 = load3::<L, WHOLE>(&scenes.normals[0], start);

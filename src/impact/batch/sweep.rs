@@ -59,24 +59,33 @@ pub(super) fn load3<const L: usize, const WHOLE: bool>(
     ]
 }
 
+/// The six coordinates of {v⁰} (see [`load`]): direct calls, not a closure, which was not
+/// inlined into the dispatched function.
+#[inline(always)]
+pub(super) fn load6<const L: usize, const WHOLE: bool>(
+    a: &[Vec<f64>; 6],
+    start: usize,
+) -> [Lanes<L>; 6] {
+    [
+        load::<L, WHOLE>(&a[0], start),
+        load::<L, WHOLE>(&a[1], start),
+        load::<L, WHOLE>(&a[2], start),
+        load::<L, WHOLE>(&a[3], start),
+        load::<L, WHOLE>(&a[4], start),
+        load::<L, WHOLE>(&a[5], start),
+    ]
+}
+
 /// Scenes `start .. start + L` as lanes (see [`load`]).
 #[inline(always)]
 fn gather<const L: usize, const N: usize, const WHOLE: bool>(
     scenes: &Scenes<N>,
     start: usize,
 ) -> Data<Lanes<L>, N> {
-    let v = &scenes.velocity;
     Data {
         mass: load::<L, WHOLE>(&scenes.mass, start),
         inertia: InverseInertia::Principal(load3::<L, WHOLE>(&scenes.inertia, start)),
-        velocity: [
-            load::<L, WHOLE>(&v[0], start),
-            load::<L, WHOLE>(&v[1], start),
-            load::<L, WHOLE>(&v[2], start),
-            load::<L, WHOLE>(&v[3], start),
-            load::<L, WHOLE>(&v[4], start),
-            load::<L, WHOLE>(&v[5], start),
-        ],
+        velocity: load6::<L, WHOLE>(&scenes.velocity, start),
         points: array::from_fn(|i| load3::<L, WHOLE>(&scenes.points[i], start)),
         normals: array::from_fn(|i| load3::<L, WHOLE>(&scenes.normals[i], start)),
         k_newton: array::from_fn(|i| load::<L, WHOLE>(&scenes.k_newton[i], start)),
